@@ -1,0 +1,84 @@
+#include "drivers/fpga/fpga_io_board.hpp"
+
+namespace tnv::drivers {
+
+namespace regs = hal::regs;
+
+namespace {
+constexpr std::size_t slot(std::uint16_t snapshot_register) noexcept {
+  return static_cast<std::size_t>(snapshot_register - regs::kSnapshotFirst);
+}
+constexpr std::uint32_t dac_mask = (1u << regs::kDacBits) - 1u;
+}  // namespace
+
+FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
+  if (settings.tick_divider_clocks == 0) return {hal::HalStatus::bad_address, "tick divider must be > 0"};
+  if (settings.watchdog_timeout_clocks <= settings.tick_divider_clocks)
+    return {hal::HalStatus::bad_address, "watchdog timeout must be longer than one tick"};
+
+  std::array<std::uint32_t, 2> ident{};
+  hal::HalStatus st = bus_.read_block(regs::kId, ident);
+  if (st != hal::HalStatus::ok) return {st, "cannot read the I/O board id register"};
+  if (ident[0] != regs::kIdValue) return {hal::HalStatus::not_present, "no TNV I/O board at this address (bad id)"};
+  if ((ident[1] >> 16) != (regs::kVersionValue >> 16))
+    return {hal::HalStatus::not_present, "unsupported I/O board major version"};
+
+  const std::array<std::uint32_t, 3> config{settings.tick_divider_clocks, settings.watchdog_timeout_clocks,
+                                            regs::kControlClearWatchdog | regs::kControlClearFaults};
+  st = bus_.write_block(regs::kTickDivider, config);
+  if (st != hal::HalStatus::ok) return {st, "cannot program the I/O board configuration registers"};
+
+  dac_codes_ = {kMidCode, kMidCode};
+  output_bits_ = 0;
+  kick_pending_ = false;
+  st = write_outputs();
+  if (st != hal::HalStatus::ok) return {st, "cannot write safe outputs to the I/O board"};
+  return {};
+}
+
+hal::HalStatus FpgaIoBoard::read_inputs() noexcept { return bus_.read_block(regs::kSnapshotFirst, snapshot_); }
+
+hal::HalStatus FpgaIoBoard::write_outputs() noexcept {
+  const std::array<std::uint32_t, regs::kOutputWords> out{
+      dac_codes_[0], dac_codes_[1], output_bits_, kick_pending_ ? regs::kWatchdogKickKey : 0u};
+  kick_pending_ = false;
+  return bus_.write_block(regs::kOutputFirst, out);
+}
+
+hal::TickLatch FpgaIoBoard::latched_tick() const noexcept {
+  return {snapshot_[slot(regs::kTickClock)], snapshot_[slot(regs::kTickSequence)],
+          snapshot_[slot(regs::kClockAtRead)]};
+}
+
+std::uint32_t FpgaIoBoard::latched_count(hal::Axis axis) const noexcept {
+  const std::uint16_t reg = axis == hal::Axis::x ? regs::kEncoderX : regs::kEncoderY;
+  return snapshot_[slot(reg)] & ((1u << regs::kEncoderBits) - 1u);
+}
+
+void FpgaIoBoard::set_code(hal::Axis axis, std::uint16_t code) noexcept {
+  dac_codes_[hal::index(axis)] = static_cast<std::uint16_t>(code & dac_mask);
+}
+
+hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
+  const std::uint32_t bits = snapshot_[slot(regs::kInputs)];
+  hal::DiscreteInputs in;
+  in.estop = (bits & regs::kInputEstop) != 0;
+  in.servo_alarm = {(bits & regs::kInputAlarmX) != 0, (bits & regs::kInputAlarmY) != 0};
+  in.limit_positive = {(bits & regs::kInputLimitXPos) != 0, (bits & regs::kInputLimitYPos) != 0};
+  in.limit_negative = {(bits & regs::kInputLimitXNeg) != 0, (bits & regs::kInputLimitYNeg) != 0};
+  in.watchdog_tripped = (bits & regs::kInputWatchdogTripped) != 0;
+  return in;
+}
+
+void FpgaIoBoard::set_servo_enable(hal::Axis axis, bool enabled) noexcept {
+  const std::uint32_t bit = axis == hal::Axis::x ? regs::kOutputEnableX : regs::kOutputEnableY;
+  output_bits_ = enabled ? (output_bits_ | bit) : (output_bits_ & ~bit);
+}
+
+std::uint16_t FpgaIoBoard::latched_force_code() const noexcept {
+  return static_cast<std::uint16_t>(snapshot_[slot(regs::kAdcForce)] & ((1u << regs::kAdcBits) - 1u));
+}
+
+std::uint32_t FpgaIoBoard::latched_fault_bits() const noexcept { return snapshot_[slot(regs::kFaults)]; }
+
+}  // namespace tnv::drivers

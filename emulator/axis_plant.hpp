@@ -1,0 +1,117 @@
+#pragma once
+// One table axis: servopack speed loop + ball screw (reference plant "Axis"),
+//   dp/dt = v,   tau dv/dt = K u + d_cut - f_fric(v) - v,
+// stepped over sub-steps with u, d_cut and the friction force held at their
+// start-of-sub-step values, so the linear part is integrated exactly.
+#include <cmath>
+
+#include "emulator/scenario.hpp"
+#include "emulator/stribeck_friction.hpp"
+
+namespace tnv::emu {
+
+struct AxisState {
+  double position_mm = 0.0;
+  double speed_mm_s = 0.0;
+  bool stuck = false;  // Karnopp: held by stiction (speed is then exactly 0)
+};
+
+class AxisPlant {
+ public:
+  explicit AxisPlant(const AxisPlantParams& params) noexcept;
+
+  // One 10 us sub-step (precomputed exponentials; the hot path).
+  void step(double command_mm_s, double disturbance_mm_s) noexcept { advance(state_, command_mm_s, disturbance_mm_s); }
+  // Same law over any duration (tests, identification tools).
+  void step_for(double command_mm_s, double disturbance_mm_s, double duration_s) noexcept;
+  // One sub-step on a state the caller holds (lets a block of sub-steps keep
+  // the state in registers).
+  void advance(AxisState& state, double command_mm_s, double disturbance_mm_s) const noexcept {
+    advance_with(state, command_mm_s, disturbance_mm_s, substep_);
+  }
+
+  double position_mm() const noexcept { return state_.position_mm; }
+  double speed_mm_s() const noexcept { return state_.speed_mm_s; }
+  bool stuck() const noexcept { return state_.stuck; }
+  const AxisState& state() const noexcept { return state_; }
+  bool friction_enabled() const noexcept { return friction_enabled_; }
+  double tau_s() const noexcept { return tau_s_; }
+  double gain() const noexcept { return gain_; }
+  const StribeckFriction& friction() const noexcept { return friction_; }
+
+  // Test / identification bench. stuck only holds for speed 0 with friction on;
+  // a resting axis (v == 0) gets the Karnopp test at its next step either way.
+  void set_state(double position_mm, double speed_mm_s, bool stuck = false) noexcept;
+  void set_state(const AxisState& state) noexcept { set_state(state.position_mm, state.speed_mm_s, state.stuck); }
+
+ private:
+  // Exact solution over a step dt with w = K u + d - f held (v -> w with time
+  // constant tau), written so the speed recursion is one multiply-add:
+  //   v(dt) = e^{-dt/tau} v0 + (1 - e^{-dt/tau}) w
+  //   p(dt) = p0 + (dt - tau (1 - e^{-dt/tau})) w + tau (1 - e^{-dt/tau}) v0
+  struct Decay {
+    double decay;         // e^{-dt/tau}
+    double rise;          // 1 - decay, exact in floating point (so v -> w exactly)
+    double tau_rise_s;    // tau (1 - e^{-dt/tau})
+    double drive_gain_s;  // dt - tau (1 - e^{-dt/tau})
+  };
+  Decay decay_for(double duration_s) const noexcept;
+
+  void advance_with(AxisState& s, double command_mm_s, double disturbance_mm_s, const Decay& d) const noexcept;
+  static void advance_linear(AxisState& s, double w_mm_s, const Decay& d) noexcept {
+    s.position_mm += d.drive_gain_s * w_mm_s + d.tau_rise_s * s.speed_mm_s;
+    s.speed_mm_s = d.decay * s.speed_mm_s + d.rise * w_mm_s;
+  }
+  // Distance travelled from speed v0 until v first reaches zero (v0, w of
+  // opposite signs). Out of line and by value, so a caller's state can stay in registers.
+  double travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) const noexcept;
+
+  double tau_s_;
+  double gain_;
+  StribeckFriction friction_;
+  bool friction_enabled_;
+  Decay substep_;
+  AxisState state_{};
+};
+
+inline void AxisPlant::advance_with(AxisState& s, double command_mm_s, double disturbance_mm_s,
+                                    const Decay& d) const noexcept {
+  const double drive_mm_s = gain_ * command_mm_s + disturbance_mm_s;
+  if (!friction_enabled_) {
+    advance_linear(s, drive_mm_s, d);
+    return;
+  }
+  const double v0_mm_s = s.speed_mm_s;
+  if (v0_mm_s == 0.0) {
+    // reference plant: Karnopp stick condition |K u + d_cut| <= f_s
+    if (std::abs(drive_mm_s) <= friction_.stiction_mm_s()) {
+      s.stuck = true;
+      return;
+    }
+    // Break-away: friction at v = 0+ in the direction of the drive is f_s.
+    s.stuck = false;
+    advance_linear(s, drive_mm_s - std::copysign(friction_.stiction_mm_s(), drive_mm_s), d);
+    return;
+  }
+  const double friction_mm_s = friction_.magnitude_mm_s(v0_mm_s);  // |f(v0)|, signed below
+  const double w_mm_s = drive_mm_s - std::copysign(friction_mm_s, v0_mm_s);
+  // v(t) runs monotonically from v0 toward w, so it crosses zero inside the
+  // step iff v(dt) is zero or has flipped sign (same test as
+  // r = w / (w - v0) = e^{-t*/tau} >= e^{-dt/tau}, without the division).
+  // Grouped to keep the v0 -> v1 dependency chain short (this is the hot loop).
+  const double v1_mm_s =
+      (d.decay * v0_mm_s + d.rise * drive_mm_s) - std::copysign(d.rise * friction_mm_s, v0_mm_s);
+  if (v1_mm_s == 0.0 || (v1_mm_s > 0.0) != (v0_mm_s > 0.0)) {
+    // reference plant: "a zero crossing of v inside a sub-step is located
+    // exactly and puts the axis into the stuck state" (for the rest of the
+    // sub-step; the next step tests break-away).
+    s.position_mm += travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+    s.speed_mm_s = 0.0;
+    s.stuck = true;
+    return;
+  }
+  s.position_mm += d.drive_gain_s * w_mm_s + d.tau_rise_s * v0_mm_s;
+  s.speed_mm_s = v1_mm_s;
+}
+
+}  // namespace tnv::emu

@@ -1,0 +1,142 @@
+#include "emulator/io_board.hpp"
+
+namespace tnv::emu {
+
+namespace regs = hal::regs;
+
+namespace {
+constexpr std::uint32_t kEnableBits = regs::kOutputEnableX | regs::kOutputEnableY;
+constexpr std::uint32_t kControlBits = regs::kControlClearWatchdog | regs::kControlClearFaults;
+constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::kInputAlarmX | regs::kInputAlarmY |
+                                          regs::kInputLimitXPos | regs::kInputLimitXNeg | regs::kInputLimitYPos |
+                                          regs::kInputLimitYNeg;
+constexpr std::uint32_t kMinTickDividerClocks = kSubstepClocks;
+
+constexpr std::uint32_t enable_bit(hal::Axis axis) {
+  return axis == hal::Axis::x ? regs::kOutputEnableX : regs::kOutputEnableY;
+}
+}  // namespace
+
+IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm) noexcept
+    : dac_(dac, lead_mm), clock_start_(board.clock_start) {
+  dac_codes_.fill(dac_.mid_code());
+  snapshot_[kSeq] = 0xFFFF'FFFFu;  // the first tick reads 0
+  snapshot_[kClk] = clock();
+  refresh_commands();
+}
+
+bool IoBoard::enabled(hal::Axis axis) const noexcept {
+  return !watchdog_tripped_ && (outputs_ & enable_bit(axis)) != 0;
+}
+
+bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noexcept {
+  switch (word) {
+    case regs::kId: value = regs::kIdValue; return true;
+    case regs::kVersion: value = regs::kVersionValue; return true;
+    case regs::kClockLive:
+    case regs::kClockAtRead: value = clock(); return true;
+    case regs::kTickSequence:
+    case regs::kTickClock:
+    case regs::kEncoderX:
+    case regs::kEncoderY:
+    case regs::kInputs:
+    case regs::kAdcForce:
+    case regs::kFaults: value = snapshot_[word - regs::kSnapshotFirst]; return true;
+    case regs::kDacX: value = dac_codes_[0]; return true;
+    case regs::kDacY: value = dac_codes_[1]; return true;
+    case regs::kOutputs: value = outputs_; return true;
+    case regs::kWatchdogKick: value = last_kick_word_; return true;
+    case regs::kTickDivider: value = tick_divider_clocks_; return true;
+    case regs::kWatchdogTimeout: value = watchdog_timeout_clocks_; return true;
+    case regs::kControl: value = 0; return true;  // write-one-to-act
+    default: return false;
+  }
+}
+
+bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
+  switch (word) {
+    case regs::kDacX:
+    case regs::kDacY:
+      if (value > dac_.max_code()) return false;
+      dac_codes_[word - regs::kDacX] = value;
+      refresh_commands();
+      return true;
+    case regs::kOutputs:
+      if ((value & ~kEnableBits) != 0) return false;
+      outputs_ = value;
+      refresh_commands();
+      return true;
+    case regs::kWatchdogKick:
+      last_kick_word_ = value;
+      if (value == regs::kWatchdogKickKey && !watchdog_tripped_) {
+        watchdog_armed_ = true;
+        last_kick_clocks_ = elapsed_clocks_;
+      }
+      return true;
+    case regs::kTickDivider:
+      if (value < kMinTickDividerClocks) return false;
+      tick_divider_clocks_ = value;
+      next_tick_clocks_ = last_nominal_tick_clocks_ + value;
+      return true;
+    case regs::kWatchdogTimeout:
+      watchdog_timeout_clocks_ = value;
+      return true;
+    case regs::kControl:
+      if ((value & ~kControlBits) != 0) return false;
+      if ((value & regs::kControlClearWatchdog) != 0) {
+        watchdog_tripped_ = false;
+        watchdog_armed_ = false;
+        refresh_commands();
+      }
+      if ((value & regs::kControlClearFaults) != 0) faults_ = 0;
+      return true;
+    default:
+      return false;  // read-only or unmapped
+  }
+}
+
+void IoBoard::latch_tick(const TickSamples& samples) noexcept {
+  ++snapshot_[kSeq];
+  fill_snapshot(samples);
+  // Latest nominal tick at or before now; a divider >= one sub-step means
+  // at most one is due per boundary except right after a divider write.
+  const std::uint64_t late_clocks = elapsed_clocks_ - next_tick_clocks_;
+  last_nominal_tick_clocks_ = next_tick_clocks_ + late_clocks / tick_divider_clocks_ * tick_divider_clocks_;
+  next_tick_clocks_ = last_nominal_tick_clocks_ + tick_divider_clocks_;
+}
+
+void IoBoard::preset_snapshot(const TickSamples& samples) noexcept { fill_snapshot(samples); }
+
+void IoBoard::fill_snapshot(const TickSamples& samples) noexcept {
+  snapshot_[kClk] = clock();
+  snapshot_[regs::kEncoderX - regs::kSnapshotFirst] = samples.encoder_registers[0];
+  snapshot_[regs::kEncoderY - regs::kSnapshotFirst] = samples.encoder_registers[1];
+  snapshot_[regs::kInputs - regs::kSnapshotFirst] = live_inputs();
+  snapshot_[regs::kAdcForce - regs::kSnapshotFirst] = samples.adc_force_code;
+  snapshot_[regs::kFaults - regs::kSnapshotFirst] = faults_;
+}
+
+void IoBoard::set_input(std::uint32_t bit, bool asserted) noexcept {
+  bit &= kBenchInputBits;  // the watchdog bit belongs to the board
+  inputs_ = asserted ? (inputs_ | bit) : (inputs_ & ~bit);
+}
+
+std::uint32_t IoBoard::live_inputs() const noexcept {
+  return inputs_ | (watchdog_tripped_ ? regs::kInputWatchdogTripped : 0u);
+}
+
+void IoBoard::trip_watchdog() noexcept {
+  watchdog_tripped_ = true;
+  dac_codes_.fill(dac_.mid_code());
+  outputs_ &= ~kEnableBits;
+  refresh_commands();
+}
+
+void IoBoard::refresh_commands() noexcept {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const hal::Axis axis = hal::axis_from_index(i);
+    command_mm_s_[i] = enabled(axis) ? dac_.speed_mm_s(dac_codes_[i]) : 0.0;
+  }
+}
+
+}  // namespace tnv::emu

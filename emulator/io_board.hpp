@@ -1,0 +1,132 @@
+#pragma once
+// The FPGA I/O board at register level (design notes "The I/O board";
+// map in hal/io_board_registers.hpp). Owns the 10 MHz counter, the tick
+// latch, the DAC and output registers and the watchdog; the machine feeds
+// it encoder and ADC samples at each tick and reads back the speed command.
+//
+// Decisions the map leaves open:
+// - Ticks are latched on sub-step boundaries (every 100 clocks). Nominal tick
+//   clocks are multiples of TICK_DIVIDER since reset; a tick latches at the
+//   first boundary at or after its nominal clock and TICK_CLOCK holds the
+//   counter at that boundary (when the samples were really taken).
+//   TICK_DIVIDER writes below 100 (one sub-step) are refused; a new divider
+//   counts from the last nominal tick.
+// - Before the first tick the snapshot holds the reset state with sequence
+//   0xFFFFFFFF, so the first tick reads 0.
+// - DAC writes above 2^bits - 1 are refused (false, nothing changed):
+//   saturation is the firmware's job. OUTPUTS and CONTROL writes with
+//   undefined bits are refused too.
+// - Watchdog: armed by the first kick, checked at each sub-step boundary; it
+//   trips at the first boundary more than WATCHDOG_TIMEOUT clocks after the
+//   last kick. A trip resets both DAC registers to mid-scale and clears the
+//   enable bits; while tripped, DAC/OUTPUTS writes are stored but the outputs
+//   stay forced off (u = 0) and kicks are ignored, until CONTROL
+//   kControlClearWatchdog (which also disarms until the next kick).
+// - The WATCHDOG_KICK word reads back the last value written; CONTROL reads 0.
+#include <array>
+#include <cstdint>
+
+#include "emulator/dac_speed_map.hpp"
+#include "emulator/scenario.hpp"
+#include "emulator/substep_timing.hpp"
+#include "hal/axis.hpp"
+#include "hal/io_board_registers.hpp"
+
+namespace tnv::emu {
+
+// What the machine hands the board at a tick latch.
+struct TickSamples {
+  std::array<std::uint32_t, hal::kAxisCount> encoder_registers{};  // already wrapped to kEncoderBits
+  std::uint32_t adc_force_code = 0;
+};
+
+class IoBoard {
+ public:
+  IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm) noexcept;
+
+  // --- bus side; false = unmapped address, or a refused write
+  bool read_register(std::uint16_t word, std::uint32_t& value) const noexcept;
+  bool write_register(std::uint16_t word, std::uint32_t value) noexcept;
+
+  // --- machine side
+  // Speed command the servopack gets: DAC value, or 0 when the axis is
+  // disabled or the watchdog has tripped.
+  double command_mm_s(hal::Axis axis) const noexcept { return command_mm_s_[hal::index(axis)]; }
+  bool enabled(hal::Axis axis) const noexcept;  // enable bit and watchdog not tripped
+  bool both_enabled() const noexcept { return enabled(hal::Axis::x) && enabled(hal::Axis::y); }
+
+  // Whole sub-steps until the next event (tick latch or watchdog trip), >= 1.
+  // Between events the outputs cannot change unless the bus writes.
+  std::uint64_t substeps_to_next_event() const noexcept {
+    const std::uint64_t to_tick_clocks = next_tick_clocks_ > elapsed_clocks_ ? next_tick_clocks_ - elapsed_clocks_ : 0;
+    std::uint64_t substeps = to_tick_clocks == 0 ? 1 : (to_tick_clocks + kSubstepClocks - 1) / kSubstepClocks;
+    if (watchdog_armed_ && !watchdog_tripped_) {
+      // Trips at the first boundary with elapsed - last kick > timeout.
+      const std::uint64_t deadline_clocks = last_kick_clocks_ + watchdog_timeout_clocks_;
+      const std::uint64_t to_trip =
+          deadline_clocks >= elapsed_clocks_ ? (deadline_clocks - elapsed_clocks_) / kSubstepClocks + 1 : 1;
+      if (to_trip < substeps) substeps = to_trip;
+    }
+    return substeps;
+  }
+  // Advance the counter by `substeps` (at most substeps_to_next_event());
+  // true if a tick latch is due now (call latch_tick before advancing again).
+  bool advance_substeps(std::uint64_t substeps) noexcept {
+    elapsed_clocks_ += substeps * kSubstepClocks;
+    if (watchdog_armed_ && !watchdog_tripped_ && elapsed_clocks_ - last_kick_clocks_ > watchdog_timeout_clocks_) {
+      trip_watchdog();
+    }
+    return elapsed_clocks_ >= next_tick_clocks_;
+  }
+  bool advance_substep() noexcept { return advance_substeps(1); }
+  void latch_tick(const TickSamples& samples) noexcept;
+  // Snapshot contents before the first tick (sequence stays 0xFFFFFFFF).
+  void preset_snapshot(const TickSamples& samples) noexcept;
+
+  std::uint64_t elapsed_clocks() const noexcept { return elapsed_clocks_; }
+  std::uint32_t clock() const noexcept {  // the wrapping 32-bit counter
+    return static_cast<std::uint32_t>(clock_start_ + elapsed_clocks_);
+  }
+  std::uint32_t tick_sequence() const noexcept { return snapshot_[kSeq]; }
+  bool watchdog_tripped() const noexcept { return watchdog_tripped_; }
+  const DacSpeedMap& dac() const noexcept { return dac_; }
+
+  // --- test-bench inputs (kInput* bits except kInputWatchdogTripped)
+  void set_input(std::uint32_t bit, bool asserted) noexcept;
+  // Hook for sticky fault sources (encoder illegal transitions come later).
+  void raise_faults(std::uint32_t fault_bits) noexcept { faults_ |= fault_bits; }
+
+ private:
+  // Snapshot slots, relative to kSnapshotFirst.
+  static constexpr std::size_t kSeq = hal::regs::kTickSequence - hal::regs::kSnapshotFirst;
+  static constexpr std::size_t kClk = hal::regs::kTickClock - hal::regs::kSnapshotFirst;
+
+  void fill_snapshot(const TickSamples& samples) noexcept;
+  void trip_watchdog() noexcept;
+  void refresh_commands() noexcept;
+  std::uint32_t live_inputs() const noexcept;
+
+  DacSpeedMap dac_;
+  std::uint64_t clock_start_;
+  std::uint64_t elapsed_clocks_ = 0;
+
+  std::uint32_t tick_divider_clocks_ = hal::regs::kDefaultTickDivider;
+  std::uint64_t last_nominal_tick_clocks_ = 0;
+  std::uint64_t next_tick_clocks_ = hal::regs::kDefaultTickDivider;
+  std::array<std::uint32_t, hal::regs::kSnapshotWords> snapshot_{};
+
+  std::array<std::uint32_t, hal::kAxisCount> dac_codes_{};
+  std::uint32_t outputs_ = 0;
+  std::uint32_t last_kick_word_ = 0;
+  std::uint32_t inputs_ = 0;
+  std::uint32_t faults_ = 0;
+
+  std::uint32_t watchdog_timeout_clocks_ = hal::regs::kDefaultWatchdogTimeout;
+  bool watchdog_armed_ = false;
+  bool watchdog_tripped_ = false;
+  std::uint64_t last_kick_clocks_ = 0;
+
+  std::array<double, hal::kAxisCount> command_mm_s_{};
+};
+
+}  // namespace tnv::emu

@@ -1,0 +1,185 @@
+#include "emulator/machine.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "emulator/axis_plant.hpp"
+#include "emulator/cutting_disturbance.hpp"
+#include "emulator/force_adc.hpp"
+#include "emulator/io_board.hpp"
+#include "emulator/quadrature_encoder.hpp"
+#include "emulator/scenario_validation.hpp"
+#include "emulator/structural_mode.hpp"
+#include "emulator/substep_timing.hpp"
+
+namespace tnv::emu {
+
+using hal::Axis;
+
+struct Machine::Impl {
+  explicit Impl(const Scenario& s);
+
+  // Sub-steps up to the next board event (or max_substeps), with the bus
+  // outputs constant over the block; true if a tick latched at its end.
+  bool run_block(std::uint64_t max_substeps) noexcept;
+  TickSamples tick_samples() const noexcept;
+
+  Scenario scenario;
+  IoBoard board;
+  std::array<AxisPlant, hal::kAxisCount> plants;
+  std::array<StructuralMode, hal::kAxisCount> modes;
+  std::array<QuadratureEncoder, hal::kAxisCount> encoders;
+  CuttingDisturbance cutting;
+  bool any_mode;
+
+  std::uint64_t substep = 0;
+  std::optional<double> servo_on_s;
+  std::array<double, hal::kAxisCount> applied_command_mm_s{};  // held during the last sub-step
+  CuttingVector applied_cutting{};
+};
+
+namespace {
+StructuralMode make_mode(const AxisPlantParams& p) { return StructuralMode(p.mode_hz, p.mode_zeta, kSubstep_s); }
+QuadratureEncoder make_encoder(const EncoderParams& e, Axis axis) {
+  return QuadratureEncoder(e.count_mm(), e.offset_counts(axis));
+}
+}  // namespace
+
+Machine::Impl::Impl(const Scenario& s)
+    : scenario(s),
+      board(s.board, s.dac, s.encoder.lead_mm),
+      plants{AxisPlant(s.plant[0]), AxisPlant(s.plant[1])},
+      modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
+      encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
+      cutting(s.cutting, s.circle),
+      any_mode(modes[0].enabled() || modes[1].enabled()) {
+  assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
+  // At rest, held by stiction, at the circle's start point (R, 0).
+  plants[0].set_state(s.circle.radius_mm, 0.0, true);
+  plants[1].set_state(0.0, 0.0, true);
+  board.preset_snapshot(tick_samples());
+}
+
+TickSamples Machine::Impl::tick_samples() const noexcept {
+  TickSamples samples;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    samples.encoder_registers[i] = encoders[i].register_value(plants[i].position_mm());
+  }
+  // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
+  // (sqrt rather than hypot: no overflow risk at these magnitudes, and cheaper)
+  const double magnitude_mm_s = std::sqrt(applied_cutting.x_mm_s * applied_cutting.x_mm_s +
+                                          applied_cutting.y_mm_s * applied_cutting.y_mm_s);
+  samples.adc_force_code = force_adc_code(magnitude_mm_s, scenario.force_sensor.volts_per_mm_s);
+  return samples;
+}
+
+bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
+  // Bounded so the per-block buffers stay small and on the stack.
+  constexpr std::uint64_t kMaxBlock = CuttingDisturbance::kMaxFill;
+  const auto n = static_cast<std::size_t>(std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock}));
+  if (!servo_on_s && board.both_enabled()) {
+    servo_on_s = substep_time_s(substep);
+    cutting.servo_on_at(*servo_on_s);
+  }
+  // Inputs held over each sub-step, evaluated at its start.
+  applied_command_mm_s = {board.command_mm_s(Axis::x), board.command_mm_s(Axis::y)};
+  std::array<double, kMaxBlock> cut_x_mm_s, cut_y_mm_s;
+  const bool cutting_on = cutting.enabled();
+  if (cutting_on) {
+    cutting.fill(substep, n, cut_x_mm_s.data(), cut_y_mm_s.data());
+    applied_cutting = {cut_x_mm_s[n - 1], cut_y_mm_s[n - 1]};
+  }
+  // Both axes in one loop on local state: independent chains, no memory round trips.
+  AxisState x = plants[0].state();
+  AxisState y = plants[1].state();
+  const auto step_axes = [&](std::size_t i) {
+    plants[0].advance(x, applied_command_mm_s[0], cutting_on ? cut_x_mm_s[i] : 0.0);
+    plants[1].advance(y, applied_command_mm_s[1], cutting_on ? cut_y_mm_s[i] : 0.0);
+  };
+  if (!any_mode) {
+    for (std::size_t i = 0; i < n; ++i) step_axes(i);
+  } else {
+    ModeState mode_x = modes[0].state();
+    ModeState mode_y = modes[1].state();
+    constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
+      step_axes(i);
+      // Table acceleration over the sub-step drives the mode.
+      modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
+      modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
+    }
+    modes[0].set_state(mode_x);
+    modes[1].set_state(mode_y);
+  }
+  plants[0].set_state(x);
+  plants[1].set_state(y);
+  substep += n;
+  if (!board.advance_substeps(n)) return false;
+  board.latch_tick(tick_samples());
+  return true;
+}
+
+Machine::Machine(const Scenario& scenario) : impl_(std::make_unique<Impl>(scenario)) {}
+Machine::~Machine() = default;
+
+bool Machine::read_register(std::uint16_t word, std::uint32_t& value) noexcept {
+  return impl_->board.read_register(word, value);
+}
+
+bool Machine::write_register(std::uint16_t word, std::uint32_t value) noexcept {
+  return impl_->board.write_register(word, value);
+}
+
+void Machine::advance_to_next_tick() noexcept {
+  while (!impl_->run_block(std::numeric_limits<std::uint64_t>::max())) {
+  }
+}
+
+void Machine::advance_clocks(std::uint64_t clocks) noexcept {
+  const std::uint64_t end = impl_->substep + (clocks + kSubstepClocks - 1) / kSubstepClocks;
+  while (impl_->substep < end) impl_->run_block(end - impl_->substep);
+}
+
+std::uint64_t Machine::elapsed_clocks() const noexcept { return impl_->board.elapsed_clocks(); }
+
+double Machine::time_s() const noexcept { return substep_time_s(impl_->substep); }
+
+AxisTruth Machine::truth(Axis axis) const noexcept {
+  const std::size_t i = hal::index(axis);
+  const AxisPlant& plant = impl_->plants[i];
+  return AxisTruth{.position_mm = plant.position_mm(),
+                   .speed_mm_s = plant.speed_mm_s(),
+                   .tool_position_mm = plant.position_mm() + impl_->modes[i].deflection_mm(),
+                   .command_mm_s = impl_->applied_command_mm_s[i],
+                   .cutting_mm_s = impl_->applied_cutting.component(axis),
+                   .stuck = plant.stuck()};
+}
+
+const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
+
+std::optional<double> Machine::servo_on_time_s() const noexcept { return impl_->servo_on_s; }
+
+std::optional<double> Machine::motion_start_s() const noexcept {
+  if (!impl_->servo_on_s) return std::nullopt;
+  return *impl_->servo_on_s + impl_->scenario.circle.dwell_s;
+}
+
+void Machine::set_estop(bool asserted) noexcept { impl_->board.set_input(hal::regs::kInputEstop, asserted); }
+
+void Machine::set_servo_alarm(Axis axis, bool asserted) noexcept {
+  impl_->board.set_input(axis == Axis::x ? hal::regs::kInputAlarmX : hal::regs::kInputAlarmY, asserted);
+}
+
+void Machine::set_limit(Axis axis, bool positive_side, bool asserted) noexcept {
+  using namespace hal::regs;
+  const std::uint32_t bit = axis == Axis::x ? (positive_side ? kInputLimitXPos : kInputLimitXNeg)
+                                            : (positive_side ? kInputLimitYPos : kInputLimitYNeg);
+  impl_->board.set_input(bit, asserted);
+}
+
+}  // namespace tnv::emu

@@ -1,0 +1,76 @@
+#pragma once
+// Everything that describes one emulated experiment. Defaults are the
+// reference plant (shared design notes: reference-plant.md); every field
+// is settable from a TOML scenario file (scenario_file.hpp).
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "hal/axis.hpp"
+
+namespace tnv::emu {
+
+struct AxisPlantParams {
+  double tau_s = 0.005360;       // speed-loop time constant
+  double gain = 1.0;             // K: table speed per commanded speed
+  double coulomb_mm_s = 1.5;     // f_c
+  double stiction_mm_s = 3.0;    // f_s
+  double stribeck_mm_s = 0.1;    // v_s
+  double mode_hz = 0.0;          // optional structural mode, 0 = none
+  double mode_zeta = 0.0;
+};
+
+struct CuttingParams {
+  bool enabled = false;
+  double spindle_rpm = 900.0;
+  int flutes = 2;
+  double mean_mm_s = 0.6;       // c_m
+  double amplitude_mm_s = 0.6;  // c_a
+  double exponent = 0.75;       // Kienzle exponent on (900/S)
+  double phase_rad = 0.0;       // phi_0
+};
+
+struct EncoderParams {
+  int counts_per_rev = 24000;  // after x4 decoding
+  double lead_mm = 10.0;
+  double offset_counts_x = 0.0;  // count = round(p/q + offset)
+  double offset_counts_y = 0.0;
+  double offset_counts(hal::Axis axis) const noexcept {
+    return axis == hal::Axis::x ? offset_counts_x : offset_counts_y;
+  }
+  double count_mm() const noexcept { return lead_mm / counts_per_rev; }
+};
+
+struct DacParams {
+  int bits = 12;
+  double full_scale_v = 10.0;
+  double rpm_at_full_scale = 1000.0;
+};
+
+struct ForceSensorParams {
+  double volts_per_mm_s = 1.0;  // ADC input volts per mm/s of cutting disturbance magnitude
+};
+
+struct BoardParams {
+  std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
+};
+
+struct CircleParams {
+  double radius_mm = 6.0;
+  double feed_mm_s = 2.0;  // F, also the programmed feed of the cutting model
+  double ramp_s = 0.1;     // raised-cosine feed ramp at start and end
+  double dwell_s = 0.5;    // servo-on dwell before the start
+};
+
+struct Scenario {
+  std::string name = "default";
+  std::array<AxisPlantParams, hal::kAxisCount> plant{AxisPlantParams{}, AxisPlantParams{.tau_s = 0.007122}};
+  CuttingParams cutting{};
+  EncoderParams encoder{};
+  DacParams dac{};
+  ForceSensorParams force_sensor{};
+  BoardParams board{};
+  CircleParams circle{};
+};
+
+}  // namespace tnv::emu

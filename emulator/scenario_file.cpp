@@ -1,0 +1,243 @@
+#include "emulator/scenario_file.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <span>
+#include <variant>
+
+#include <toml++/toml.h>
+
+#include "emulator/scenario_validation.hpp"
+
+namespace tnv::emu {
+
+namespace {
+
+using FieldTarget = std::variant<double*, int*, bool*, std::uint32_t*, std::string*>;
+struct Field {
+  std::string_view name;
+  FieldTarget target;
+};
+
+std::string one_line(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return out;
+}
+
+const char* type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "nothing";
+  }
+}
+
+// Walks the parsed document into a Scenario, remembering where each key was.
+class ScenarioReader {
+ public:
+  explicit ScenarioReader(std::string_view source_name) : source_(source_name) {}
+
+  bool read(const toml::table& root, Scenario& s) {
+    for (auto&& [key, node] : root) {
+      const std::string name(key.str());
+      if (name == "name") {
+        if (!assign(key, name, node, &s.name)) return false;
+      } else if (name == "plant") {
+        if (!read_plant(key, node, s)) return false;
+      } else if (name == "cutting") {
+        const Field fields[] = {{"enabled", &s.cutting.enabled},     {"spindle_rpm", &s.cutting.spindle_rpm},
+                                {"flutes", &s.cutting.flutes},       {"mean_mm_s", &s.cutting.mean_mm_s},
+                                {"amplitude_mm_s", &s.cutting.amplitude_mm_s}, {"exponent", &s.cutting.exponent},
+                                {"phase_rad", &s.cutting.phase_rad}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "encoder") {
+        const Field fields[] = {{"counts_per_rev", &s.encoder.counts_per_rev}, {"lead_mm", &s.encoder.lead_mm},
+                                {"offset_counts_x", &s.encoder.offset_counts_x},
+                                {"offset_counts_y", &s.encoder.offset_counts_y}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "dac") {
+        const Field fields[] = {{"bits", &s.dac.bits}, {"full_scale_v", &s.dac.full_scale_v},
+                                {"rpm_at_full_scale", &s.dac.rpm_at_full_scale}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "force_sensor") {
+        const Field fields[] = {{"volts_per_mm_s", &s.force_sensor.volts_per_mm_s}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "board") {
+        const Field fields[] = {{"clock_start", &s.board.clock_start}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "circle") {
+        const Field fields[] = {{"radius_mm", &s.circle.radius_mm}, {"feed_mm_s", &s.circle.feed_mm_s},
+                                {"ramp_s", &s.circle.ramp_s}, {"dwell_s", &s.circle.dwell_s}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else {
+        return unknown(key, name, node);
+      }
+    }
+    return true;
+  }
+
+  bool check(const Scenario& s) {
+    const auto violation = find_scenario_violation(s, [this](std::string_view k) { return given(k); });
+    if (!violation) return true;
+    const auto where = positions_.find(violation->key);
+    if (where == positions_.end()) {
+      error_ = std::string(source_) + ": " + violation->key + ": " + violation->message;
+    } else {
+      error_ = location(where->second) + violation->key + ": " + violation->message;
+    }
+    return false;
+  }
+
+  bool given(std::string_view key) const { return positions_.find(std::string(key)) != positions_.end(); }
+  const std::string& error() const { return error_; }
+
+ private:
+  bool read_plant(const toml::key& key, const toml::node& node, Scenario& s) {
+    const toml::table* table = node.as_table();
+    if (table == nullptr) return fail(key, "plant", std::string("expected a table, got ") + type_name(node));
+    for (auto&& [axis_key, axis_node] : *table) {
+      const std::string path = "plant." + std::string(axis_key.str());
+      AxisPlantParams* p = axis_key.str() == "x" ? &s.plant[0] : axis_key.str() == "y" ? &s.plant[1] : nullptr;
+      if (p == nullptr) return unknown(axis_key, path, axis_node);
+      const Field fields[] = {{"tau_s", &p->tau_s},
+                              {"gain", &p->gain},
+                              {"coulomb_mm_s", &p->coulomb_mm_s},
+                              {"stiction_mm_s", &p->stiction_mm_s},
+                              {"stribeck_mm_s", &p->stribeck_mm_s},
+                              {"mode_hz", &p->mode_hz},
+                              {"mode_zeta", &p->mode_zeta}};
+      if (!read_section(axis_key, path, axis_node, fields)) return false;
+    }
+    return true;
+  }
+
+  bool read_section(const toml::key& key, const std::string& path, const toml::node& node,
+                    std::span<const Field> fields) {
+    const toml::table* table = node.as_table();
+    if (table == nullptr) return fail(key, path, std::string("expected a table, got ") + type_name(node));
+    for (auto&& [field_key, field_node] : *table) {
+      const std::string field_path = path + "." + std::string(field_key.str());
+      const Field* field = nullptr;
+      for (const Field& f : fields) {
+        if (f.name == field_key.str()) field = &f;
+      }
+      if (field == nullptr) return unknown(field_key, field_path, field_node);
+      const bool ok = std::visit([&](auto* target) { return assign(field_key, field_path, field_node, target); },
+                                 field->target);
+      if (!ok) return false;
+    }
+    return true;
+  }
+
+  bool assign(const toml::key& key, const std::string& path, const toml::node& node, double* target) {
+    if (const auto* f = node.as_floating_point()) {
+      *target = f->get();
+    } else if (const auto* i = node.as_integer()) {
+      *target = static_cast<double>(i->get());
+    } else {
+      return fail(key, path, std::string("expected a number, got ") + type_name(node));
+    }
+    return remember(key, path);
+  }
+  bool assign(const toml::key& key, const std::string& path, const toml::node& node, int* target) {
+    const auto* i = node.as_integer();
+    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + type_name(node));
+    if (i->get() < std::numeric_limits<int>::min() || i->get() > std::numeric_limits<int>::max()) {
+      return fail(key, path, "out of range (got " + std::to_string(i->get()) + ")");
+    }
+    *target = static_cast<int>(i->get());
+    return remember(key, path);
+  }
+  bool assign(const toml::key& key, const std::string& path, const toml::node& node, std::uint32_t* target) {
+    const auto* i = node.as_integer();
+    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + type_name(node));
+    if (i->get() < 0 || i->get() > std::int64_t{std::numeric_limits<std::uint32_t>::max()}) {
+      return fail(key, path, "must be in 0..4294967295 (got " + std::to_string(i->get()) + ")");
+    }
+    *target = static_cast<std::uint32_t>(i->get());
+    return remember(key, path);
+  }
+  bool assign(const toml::key& key, const std::string& path, const toml::node& node, bool* target) {
+    const auto* b = node.as_boolean();
+    if (b == nullptr) return fail(key, path, std::string("expected a boolean, got ") + type_name(node));
+    *target = b->get();
+    return remember(key, path);
+  }
+  bool assign(const toml::key& key, const std::string& path, const toml::node& node, std::string* target) {
+    const auto* text = node.as_string();
+    if (text == nullptr) return fail(key, path, std::string("expected a string, got ") + type_name(node));
+    *target = text->get();
+    return remember(key, path);
+  }
+
+  bool unknown(const toml::key& key, const std::string& path, const toml::node& node) {
+    return fail(key, path, node.is_table() ? "unknown section" : "unknown key");
+  }
+
+  bool remember(const toml::key& key, const std::string& path) {
+    positions_[path] = key.source().begin;
+    return true;
+  }
+
+  bool fail(const toml::key& key, const std::string& path, const std::string& message) {
+    error_ = location(key.source().begin) + path + ": " + message;
+    return false;
+  }
+
+  std::string location(const toml::source_position& at) const {
+    return std::string(source_) + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": ";
+  }
+
+  std::string_view source_;
+  std::map<std::string, toml::source_position> positions_;
+  std::string error_;
+};
+
+}  // namespace
+
+ScenarioResult parse_scenario_text(std::string_view text, std::string_view source_name) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source().begin;
+    return {std::nullopt, std::string(source_name) + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
+                              ": TOML syntax error: " + one_line(e.description())};
+  }
+  Scenario scenario;
+  ScenarioReader reader(source_name);
+  if (!reader.read(root, scenario) || !reader.check(scenario)) return {std::nullopt, reader.error()};
+  return {std::move(scenario), {}};
+}
+
+ScenarioResult load_scenario_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return {std::nullopt, path + ": cannot read file: is a directory"};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {std::nullopt, path + ": cannot read file: " + std::strerror(errno)};
+  std::string text;
+  try {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    return {std::nullopt, path + ": cannot read file: " + one_line(e.what())};
+  }
+  if (in.bad()) return {std::nullopt, path + ": cannot read file"};
+  return parse_scenario_text(text, path);
+}
+
+}  // namespace tnv::emu

@@ -1,0 +1,38 @@
+#pragma once
+// Scenarios from TOML files (toml++) and the built-in set. Every key is
+// optional; defaults come from scenario.hpp. Errors are one line:
+//   "scen.toml:7:1: plant.x.tau_s: must be > 0 and finite (got -1)"
+// and on error no Scenario is returned (nothing half-applied).
+//
+// Keys: name; [plant.x] / [plant.y]: tau_s gain coulomb_mm_s stiction_mm_s
+// stribeck_mm_s mode_hz mode_zeta; [cutting]: enabled spindle_rpm flutes
+// mean_mm_s amplitude_mm_s exponent phase_rad; [encoder]: counts_per_rev
+// lead_mm offset_counts_x offset_counts_y; [dac]: bits full_scale_v
+// rpm_at_full_scale; [force_sensor]: volts_per_mm_s; [board]: clock_start;
+// [circle]: radius_mm feed_mm_s ramp_s dwell_s. Integers are accepted where
+// numbers are expected, not the other way round.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "emulator/scenario.hpp"
+
+namespace tnv::emu {
+
+struct ScenarioResult {
+  std::optional<Scenario> scenario;
+  std::string error;  // empty on success
+};
+
+ScenarioResult load_scenario_file(const std::string& path);
+ScenarioResult parse_scenario_text(std::string_view text, std::string_view source_name);
+
+// Built-ins: no-cut, cut-900, cut-1200, cut-1500, flex-30, flex-100.
+std::optional<Scenario> builtin_scenario(std::string_view name);
+std::vector<std::string> builtin_scenario_names();
+
+// A built-in name if it is one, else a file path.
+ScenarioResult resolve_scenario(std::string_view name_or_path);
+
+}  // namespace tnv::emu

@@ -1,0 +1,136 @@
+#include "emulator/scenario_validation.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include "emulator/substep_timing.hpp"
+
+namespace tnv::emu {
+
+std::string format_number(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+namespace {
+
+class Rules {
+ public:
+  explicit Rules(const std::function<bool(std::string_view)>& given) : given_(given) {}
+
+  std::optional<ScenarioViolation> found;
+
+  void positive(const std::string& key, double value) {
+    if (!(std::isfinite(value) && value > 0.0)) fail(key, "must be > 0 and finite", value);
+  }
+  void non_negative(const std::string& key, double value) {
+    if (!(std::isfinite(value) && value >= 0.0)) fail(key, "must be >= 0 and finite", value);
+  }
+  void finite(const std::string& key, double value) {
+    if (!std::isfinite(value)) fail(key, "must be finite", value);
+  }
+  void below(const std::string& key, double value, double limit, const std::string& what) {
+    if (!(std::isfinite(value) && value >= 0.0 && value < limit)) fail(key, "must be >= 0 and below " + what, value);
+  }
+  void int_range(const std::string& key, long long value, long long low, long long high) {
+    if (value < low || value > high) {
+      fail(key, "must be in " + std::to_string(low) + ".." + std::to_string(high), static_cast<double>(value));
+    }
+  }
+  void at_least(const std::string& key, long long value, long long low) {
+    if (value < low) fail(key, "must be >= " + std::to_string(low), static_cast<double>(value));
+  }
+  // low <= high for two keys; reported at whichever the file set (high first).
+  void ordered(const std::string& low_key, double low, const std::string& high_key, double high) {
+    if (found || low <= high) return;
+    if (!is_given(high_key) && is_given(low_key)) {
+      fail(low_key, "must be <= " + leaf(high_key) + " = " + format_number(high), low);
+    } else {
+      fail(high_key, "must be >= " + leaf(low_key) + " = " + format_number(low), high);
+    }
+  }
+  bool is_given(const std::string& key) const { return given_ && given_(key); }
+  void fail_text(const std::string& key, const std::string& message) {
+    if (!found) found = ScenarioViolation{key, message};
+  }
+
+ private:
+  void fail(const std::string& key, const std::string& rule, double got) {
+    fail_text(key, rule + " (got " + format_number(got) + ")");
+  }
+  static std::string leaf(const std::string& key) { return key.substr(key.rfind('.') + 1); }
+
+  const std::function<bool(std::string_view)>& given_;
+};
+
+void check_plant(Rules& r, const AxisPlantParams& p, const std::string& section) {
+  r.positive(section + ".tau_s", p.tau_s);
+  r.positive(section + ".gain", p.gain);
+  r.non_negative(section + ".coulomb_mm_s", p.coulomb_mm_s);
+  r.non_negative(section + ".stiction_mm_s", p.stiction_mm_s);
+  r.ordered(section + ".coulomb_mm_s", p.coulomb_mm_s, section + ".stiction_mm_s", p.stiction_mm_s);
+  r.positive(section + ".stribeck_mm_s", p.stribeck_mm_s);
+  const double nyquist_hz = static_cast<double>(kSubstepsPerSecond) / 2.0;
+  r.below(section + ".mode_hz", p.mode_hz, nyquist_hz, "the sub-step Nyquist frequency " + format_number(nyquist_hz) + " Hz");
+  r.below(section + ".mode_zeta", p.mode_zeta, 1.0, "1");
+}
+
+void check_circle(Rules& r, const CircleParams& c) {
+  r.positive("circle.radius_mm", c.radius_mm);
+  r.positive("circle.feed_mm_s", c.feed_mm_s);
+  r.non_negative("circle.ramp_s", c.ramp_s);
+  r.non_negative("circle.dwell_s", c.dwell_s);
+  if (r.found) return;
+  // Each raised-cosine ramp covers F ramp / 2 of arc.
+  const double ramps_mm = c.feed_mm_s * c.ramp_s;
+  const double circle_mm = 2.0 * std::numbers::pi * c.radius_mm;
+  if (ramps_mm > circle_mm) {
+    const std::string key = r.is_given("circle.ramp_s")     ? "circle.ramp_s"
+                            : r.is_given("circle.feed_mm_s") ? "circle.feed_mm_s"
+                                                             : "circle.radius_mm";
+    r.fail_text(key, "both ramps must fit in the circle: feed_mm_s * ramp_s = " + format_number(ramps_mm) +
+                         " mm > 2 pi radius_mm = " + format_number(circle_mm) + " mm");
+  }
+}
+
+}  // namespace
+
+std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
+                                                         const std::function<bool(std::string_view)>& given) {
+  Rules r(given);
+  check_plant(r, s.plant[0], "plant.x");
+  check_plant(r, s.plant[1], "plant.y");
+
+  r.positive("cutting.spindle_rpm", s.cutting.spindle_rpm);
+  r.at_least("cutting.flutes", s.cutting.flutes, 1);
+  r.non_negative("cutting.mean_mm_s", s.cutting.mean_mm_s);
+  r.non_negative("cutting.amplitude_mm_s", s.cutting.amplitude_mm_s);
+  r.finite("cutting.exponent", s.cutting.exponent);
+  r.finite("cutting.phase_rad", s.cutting.phase_rad);
+
+  if (s.encoder.counts_per_rev <= 0 || s.encoder.counts_per_rev % 4 != 0) {
+    r.fail_text("encoder.counts_per_rev", "must be a positive multiple of 4 (x4 decoding) (got " +
+                                               std::to_string(s.encoder.counts_per_rev) + ")");
+  }
+  r.positive("encoder.lead_mm", s.encoder.lead_mm);
+  r.finite("encoder.offset_counts_x", s.encoder.offset_counts_x);
+  r.finite("encoder.offset_counts_y", s.encoder.offset_counts_y);
+
+  r.int_range("dac.bits", s.dac.bits, 8, 16);
+  r.positive("dac.full_scale_v", s.dac.full_scale_v);
+  r.positive("dac.rpm_at_full_scale", s.dac.rpm_at_full_scale);
+
+  r.non_negative("force_sensor.volts_per_mm_s", s.force_sensor.volts_per_mm_s);
+
+  check_circle(r, s.circle);
+  return r.found;
+}
+
+std::string validate_scenario(const Scenario& scenario) {
+  const auto violation = find_scenario_violation(scenario);
+  return violation ? violation->key + ": " + violation->message : std::string{};
+}
+
+}  // namespace tnv::emu

@@ -1,0 +1,43 @@
+#include "firmware/control/axis_model.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace tnv::fw {
+
+AxisModel paper_axis_model(hal::Axis axis) noexcept {
+  AxisModel m;
+  // S1 eq. (31)
+  if (axis == hal::Axis::x) {
+    m.A << 1.0, 0.0009, 0.0, 0.8298;
+    m.B << 0.0001, 0.1702;
+  } else {
+    m.A << 1.0, 0.0009, 0.0, 0.8690;
+    m.B << 0.0001, 0.1310;
+  }
+  m.period_s = kControlPeriod_s;
+  return m;
+}
+
+AxisModel zoh_axis_model(double tau_s, double gain, double period_s) noexcept {
+  AxisModel m;
+  m.period_s = period_s;
+  if (!(tau_s > 0.0) || !(period_s > 0.0) || !std::isfinite(tau_s) || !std::isfinite(period_s)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    m.A.setConstant(nan);
+    m.B.setConstant(nan);
+    return m;
+  }
+  // expm1 keeps 1 - e^{-T/tau} accurate when T << tau.
+  const double one_minus_a22 = -std::expm1(-period_s / tau_s);
+  const double a12 = tau_s * one_minus_a22;
+  m.A << 1.0, a12, 0.0, 1.0 - one_minus_a22;
+  m.B << gain * (period_s - a12), gain * one_minus_a22;
+  return m;
+}
+
+bool is_finite(const AxisModel& model) noexcept {
+  return model.A.allFinite() && model.B.allFinite() && std::isfinite(model.period_s) && model.period_s > 0.0;
+}
+
+}  // namespace tnv::fw

@@ -1,0 +1,58 @@
+#pragma once
+// Per-tick safety checks. Pure: given this tick's inputs it returns the
+// first fault found (none if all is well); the tick task latches it and
+// makes the outputs safe in the same tick.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "firmware/supervisor/fault.hpp"
+#include "hal/axis.hpp"
+#include "hal/discrete_io.hpp"
+
+namespace tnv::fw {
+
+// limit = floor + lag * |commanded speed|: a servo lags its reference by
+// roughly speed x (loop time constant), so a fixed limit is either blind
+// at rest or trips at speed.
+struct FollowingErrorLimit {
+  double floor_mm = 0.05;
+  double lag_s = 0.02;
+  double at(double commanded_speed_mm_s) const noexcept { return floor_mm + lag_s * std::fabs(commanded_speed_mm_s); }
+};
+
+struct AxisLimits {
+  double position_min_mm = -250.0;
+  double position_max_mm = 250.0;
+  double speed_max_mm_s = 150.0;
+  FollowingErrorLimit following{};
+};
+
+struct SupervisorConfig {
+  std::array<AxisLimits, hal::kAxisCount> axis{};
+  std::uint32_t max_consecutive_missed_ticks = 2;
+};
+
+const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid
+
+struct AxisCheckInput {
+  double position_mm = 0.0;
+  double speed_mm_s = 0.0;
+  double reference_mm = 0.0;
+  double reference_speed_mm_s = 0.0;
+  double command_mm_s = 0.0;
+};
+
+struct SupervisorInput {
+  std::uint64_t tick = 0;
+  bool bus_ok = true;
+  bool snapshot_advanced = true;
+  std::uint32_t ticks_missed = 0;  // lost since the previous tick
+  hal::DiscreteInputs inputs{};
+  bool servo_on = false;  // following error and command checks only apply with the servo on
+  std::array<AxisCheckInput, hal::kAxisCount> axis{};
+};
+
+FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noexcept;
+
+}  // namespace tnv::fw

@@ -1,0 +1,55 @@
+#include "firmware/tick/firmware_config.hpp"
+
+#include <cmath>
+
+#include "firmware/control/pid_tuning.hpp"
+
+namespace tnv::fw {
+
+FirmwareConfig default_firmware_config() noexcept {
+  FirmwareConfig config;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const hal::Axis axis = hal::axis_from_index(i);
+    AxisConfig& a = config.axis[i];
+    a.model = paper_axis_model(axis);
+    a.sliding = paper_rdvsc_params(axis);
+    const PidTuningReport tuning = paper_pid_tuning(axis);
+    if (tuning.ok) a.pid = pid_params_from(tuning, a.sliding.u_max_mm_s);
+  }
+  return config;
+}
+
+namespace {
+
+ConfigError axis_error(std::size_t axis, const char* what_x, const char* what_y, const ParamCheck& check) noexcept {
+  return {axis == 0 ? what_x : what_y, check.field, check.reason};
+}
+
+}  // namespace
+
+ConfigError validate(const FirmwareConfig& config) noexcept {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const AxisConfig& a = config.axis[i];
+    const char* section = i == 0 ? "axis x" : "axis y";
+    if (!std::isfinite(a.count_mm) || a.count_mm <= 0.0) return {section, "count_mm", "must be > 0 and finite"};
+    if (a.dac.bits < 8 || a.dac.bits > 16) return {section, "dac.bits", "must be 8..16"};
+    if (!std::isfinite(a.dac.full_scale_mm_s) || a.dac.full_scale_mm_s <= 0.0)
+      return {section, "dac.full_scale_mm_s", "must be > 0 and finite"};
+    if (!std::isfinite(a.home_position_mm)) return {section, "home_position_mm", "must be finite"};
+    if (!is_finite(a.model)) return {section, "model", "A and B must be finite with period > 0"};
+    if (const ParamCheck c = validate(a.sliding, a.model); !c.ok)
+      return axis_error(i, "axis x: sliding-mode", "axis y: sliding-mode", c);
+    SlidingModeParams dvsc = a.sliding;
+    dvsc.gamma = 0.0;
+    if (const ParamCheck c = validate(dvsc, a.model); !c.ok)
+      return axis_error(i, "axis x: sliding-mode (gamma = 0)", "axis y: sliding-mode (gamma = 0)", c);
+    if (const ParamCheck c = validate(a.pid, a.model); !c.ok) return axis_error(i, "axis x: pid", "axis y: pid", c);
+    if (a.controller != ControllerKind::pid && a.controller != ControllerKind::dvsc &&
+        a.controller != ControllerKind::rdvsc)
+      return {section, "controller", "must be pid, dvsc or rdvsc"};
+  }
+  if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
+  return {};
+}
+
+}  // namespace tnv::fw

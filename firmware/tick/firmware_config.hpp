@@ -1,0 +1,48 @@
+#pragma once
+// Everything the tick task is built from. Validated as a whole before it
+// reaches the tick: a bad set is rejected entire, never half-applied.
+#include <array>
+
+#include "firmware/control/axis_controller.hpp"
+#include "firmware/control/axis_model.hpp"
+#include "firmware/control/param_check.hpp"
+#include "firmware/control/pid_params.hpp"
+#include "firmware/control/sliding_mode_params.hpp"
+#include "firmware/io/dac_code.hpp"
+#include "firmware/supervisor/supervisor.hpp"
+#include "hal/axis.hpp"
+
+namespace tnv::fw {
+
+struct AxisConfig {
+  double count_mm = 10.0 / 24000.0;  // encoder: lead / counts per rev (x4)
+  DacScale dac{};
+  double home_position_mm = 0.0;     // position assigned to the first encoder reading
+  AxisModel model{};                 // the discrete model the controllers believe
+  SlidingModeParams sliding{};       // R-DVSC+DDC; DVSC+DDC uses the same with gamma = 0
+                                     // (S1 Tables 1/2 are identical except gamma)
+  PidParams pid{};
+  ControllerKind controller = ControllerKind::rdvsc;
+};
+
+struct FirmwareConfig {
+  std::array<AxisConfig, hal::kAxisCount> axis{};
+  SupervisorConfig supervisor{};
+};
+
+// The papers' defaults (S1 eq. (31), Tables 1/2) with the PID baseline
+// tuned by the stated rule (pid_tuning.hpp).
+FirmwareConfig default_firmware_config() noexcept;
+
+// Which part of the config is wrong and why (static text, no allocation):
+// e.g. section "axis x: sliding-mode", field "q", reason "must satisfy 0 < q < 1".
+struct ConfigError {
+  const char* section = "";
+  const char* field = "";
+  const char* reason = "";  // empty when valid
+  bool ok() const noexcept { return reason[0] == '\0'; }
+};
+
+ConfigError validate(const FirmwareConfig& config) noexcept;
+
+}  // namespace tnv::fw

@@ -1,0 +1,59 @@
+#pragma once
+// What one tick saw and did: the telemetry / trace sample.
+#include <array>
+#include <cstdint>
+
+#include "firmware/supervisor/fault.hpp"
+#include "hal/axis.hpp"
+
+namespace tnv::fw {
+
+enum class MotionState : std::uint8_t {
+  disabled = 0,  // servo off, DACs at mid-scale
+  dwell,         // servo on, holding the start point
+  moving,        // following the trajectory
+  holding,       // servo on, holding the end point
+  faulted,       // outputs safe, fault latched
+};
+
+constexpr const char* to_string(MotionState s) noexcept {
+  switch (s) {
+    case MotionState::disabled: return "disabled";
+    case MotionState::dwell: return "dwell";
+    case MotionState::moving: return "moving";
+    case MotionState::holding: return "holding";
+    case MotionState::faulted: return "faulted";
+  }
+  return "?";
+}
+
+struct AxisTickRecord {
+  double reference_mm = 0.0;
+  double reference_speed_mm_s = 0.0;
+  double position_mm = 0.0;  // encoder-measured
+  double speed_mm_s = 0.0;   // M-method
+  double command_mm_s = 0.0; // controller output u_k
+  std::uint16_t dac_code = 0;
+  bool enabled = false;
+  double s = 0.0;
+  double d_hat_mm_s = 0.0;
+};
+
+struct TickRecord {
+  std::uint64_t tick = 0;             // firmware tick count since construction
+  std::uint32_t sequence = 0;         // board tick sequence
+  std::uint32_t period_clocks = 0;    // measured period (10 MHz clocks)
+  MotionState state = MotionState::disabled;
+  std::int64_t motion_tick = -1;      // ticks since the start of motion, -1 outside motion
+  std::uint16_t force_code = 0;
+  std::array<AxisTickRecord, hal::kAxisCount> axis{};
+};
+
+struct TickCounters {
+  std::uint64_t ticks = 0;
+  std::uint64_t missed_ticks = 0;    // board ticks with no firmware tick (sequence gaps)
+  std::uint64_t late_ticks = 0;      // measured period beyond the nominal +- tolerance
+  std::uint64_t bus_errors = 0;
+};
+
+}  // namespace tnv::fw

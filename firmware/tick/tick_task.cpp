@@ -1,0 +1,256 @@
+#include "firmware/tick/tick_task.hpp"
+
+#include <cmath>
+
+#include "firmware/io/dac_code.hpp"
+#include "firmware/supervisor/supervisor.hpp"
+#include "firmware/timing/m_method_speed.hpp"
+
+namespace tnv::fw {
+
+namespace {
+constexpr double kTickPeriodS = 1e-3;
+constexpr std::uint32_t kNominalPeriodClocks = 10'000;
+constexpr std::uint32_t kLateToleranceClocks = 500;  // 5% of a period
+
+std::int64_t ticks_for(double seconds) noexcept {
+  return static_cast<std::int64_t>(std::llround(seconds / kTickPeriodS));
+}
+}  // namespace
+
+TickTask::AxisLoop::AxisLoop(const AxisConfig& config) noexcept
+    : pid(config.model, config.pid),
+      dvsc(ControllerKind::dvsc, config.model, config.sliding),
+      rdvsc(ControllerKind::rdvsc, config.model, config.sliding),
+      kind(config.controller) {}
+
+AxisController& TickTask::AxisLoop::active() noexcept {
+  switch (kind) {
+    case ControllerKind::pid: return pid;
+    case ControllerKind::dvsc: return dvsc;
+    case ControllerKind::rdvsc: break;
+  }
+  return rdvsc;
+}
+
+TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
+    : board_(board), config_(config), axis_{AxisLoop(config.axis[0]), AxisLoop(config.axis[1])} {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    axis_[i].encoder = EncoderPosition(board_.counter_bits());
+    hold_[i] = {config_.axis[i].home_position_mm, 0.0};
+    next_[i] = hold_[i];
+  }
+}
+
+bool TickTask::servo_on() const noexcept {
+  return state_ == MotionState::dwell || state_ == MotionState::moving || state_ == MotionState::holding;
+}
+
+void TickTask::latch_fault(const FaultRecord& f) noexcept {
+  if (state_ == MotionState::faulted) return;  // the first reason wins
+  fault_ = f;
+  state_ = MotionState::faulted;
+}
+
+void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept {
+  ticks_missed = 0;
+  advanced = bus_ok;
+  if (!bus_ok) return;
+  const hal::TickLatch latch = board_.latched_tick();
+  if (first_tick_) {
+    // Power-up: this position is home; no period measured yet.
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) axis_[i].encoder.reset(board_.latched_count(hal::axis_from_index(i)));
+    last_sequence_ = latch.sequence;
+    last_clock_ = latch.clock_10mhz;
+    record_.period_clocks = kNominalPeriodClocks;
+    first_tick_ = false;
+    return;
+  }
+  const std::uint32_t sequence_step = latch.sequence - last_sequence_;
+  const std::uint32_t period_clocks = elapsed_clocks(last_clock_, latch.clock_10mhz);
+  if (sequence_step == 0 || period_clocks == 0) {
+    advanced = false;  // the board did not tick: never reuse stale data silently
+    return;
+  }
+  ticks_missed = sequence_step - 1;
+  counters_.missed_ticks += ticks_missed;
+  const std::uint32_t expected = kNominalPeriodClocks * sequence_step;
+  const std::uint32_t deviation = period_clocks > expected ? period_clocks - expected : expected - period_clocks;
+  if (deviation > kLateToleranceClocks) ++counters_.late_ticks;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    AxisLoop& loop = axis_[i];
+    const std::int64_t delta = loop.encoder.update(board_.latched_count(hal::axis_from_index(i)));
+    loop.speed_mm_s = m_method_speed_mm_s(delta, config_.axis[i].count_mm, period_clocks);
+  }
+  last_sequence_ = latch.sequence;
+  last_clock_ = latch.clock_10mhz;
+  record_.period_clocks = period_clocks;
+}
+
+void TickTask::set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept {
+  record_.axis[i].reference_mm = now.position_mm;
+  record_.axis[i].reference_speed_mm_s = now.speed_mm_s;
+  next_[i] = next;
+}
+
+void TickTask::update_reference() noexcept {
+  record_.motion_tick = -1;
+  switch (state_) {
+    case MotionState::dwell:
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, hold_[i], hold_[i]);
+      if (++phase_tick_ >= dwell_ticks_) {
+        state_ = MotionState::moving;
+        phase_tick_ = 0;
+      }
+      return;
+    case MotionState::moving: {
+      const double t_s = static_cast<double>(phase_tick_) * kTickPeriodS;
+      const PlaneSample now = circle_.at(t_s);
+      const PlaneSample next = circle_.at(t_s + kTickPeriodS);
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, now.axis[i], next.axis[i]);
+      record_.motion_tick = phase_tick_;
+      if (++phase_tick_ > motion_ticks_) {
+        state_ = MotionState::holding;
+        for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {next.axis[i].position_mm, 0.0};
+      }
+      return;
+    }
+    case MotionState::holding:
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, hold_[i], hold_[i]);
+      return;
+    case MotionState::disabled:
+    case MotionState::faulted:
+      // Servo off: the reference follows the table so the next servo-on is bumpless.
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        hold_[i] = {record_.axis[i].position_mm, 0.0};
+        set_reference(i, hold_[i], hold_[i]);
+      }
+      return;
+  }
+}
+
+void TickTask::tick() noexcept {
+  ++counters_.ticks;
+  record_.tick = counters_.ticks;
+
+  // 1. one batched read of the latched snapshot
+  const bool bus_ok = board_.read_inputs() == hal::HalStatus::ok;
+  if (!bus_ok) ++counters_.bus_errors;
+  std::uint32_t ticks_missed = 0;
+  bool advanced = true;
+  read_timebase(bus_ok, ticks_missed, advanced);
+  record_.sequence = board_.latched_tick().sequence;
+  if (bus_ok) last_inputs_ = board_.inputs();
+  record_.force_code = board_.latched_force_code();
+
+  // 2. measured state
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    record_.axis[i].position_mm = config_.axis[i].home_position_mm +
+                                  static_cast<double>(axis_[i].encoder.counts()) * config_.axis[i].count_mm;
+    record_.axis[i].speed_mm_s = axis_[i].speed_mm_s;
+  }
+
+  // 3. reference x_ref,k and x_ref,k+1
+  update_reference();
+
+  // 4. axis controllers -> speed commands
+  const bool on = servo_on();
+  SupervisorInput check_in;
+  check_in.tick = counters_.ticks;
+  check_in.bus_ok = bus_ok;
+  check_in.snapshot_advanced = advanced;
+  check_in.ticks_missed = ticks_missed;
+  check_in.inputs = last_inputs_;
+  check_in.servo_on = on;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    AxisTickRecord& r = record_.axis[i];
+    double u_mm_s = 0.0;
+    AxisController& ctl = axis_[i].active();
+    if (on) {
+      const AxisState x{r.position_mm, r.speed_mm_s};
+      const AxisReference ref{r.reference_mm, r.reference_speed_mm_s, next_[i].position_mm,
+                              next_[i].speed_mm_s};
+      u_mm_s = ctl.update(x, ref);
+    }
+    const ControllerSignals sig = ctl.signals();
+    r.command_mm_s = u_mm_s;
+    r.s = on ? sig.s : 0.0;
+    r.d_hat_mm_s = on ? sig.d_hat_mm_s : 0.0;
+    check_in.axis[i] = {r.position_mm, r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s, u_mm_s};
+  }
+
+  // 5. supervisor: a fault makes this very tick's outputs safe
+  const FaultRecord f = check(config_.supervisor, check_in);
+  if (f.active()) latch_fault(f);
+  const bool outputs_live = servo_on();
+
+  // 6. DAC codes and enables, one batched write, watchdog kick
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    AxisTickRecord& r = record_.axis[i];
+    const DacScale& dac = config_.axis[i].dac;
+    r.dac_code = outputs_live ? speed_to_dac_code(r.command_mm_s, dac) : dac.mid_code();
+    r.enabled = outputs_live;
+    board_.set_code(hal::axis_from_index(i), r.dac_code);
+    board_.set_servo_enable(hal::axis_from_index(i), outputs_live);
+  }
+  board_.kick();
+  if (board_.write_outputs() != hal::HalStatus::ok) {
+    ++counters_.bus_errors;
+    latch_fault({FaultReason::bus_error, -1, counters_.ticks, 0.0, 0.0});
+  }
+  record_.state = state_;
+}
+
+CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
+  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
+  const CircleTrajectory circle(spec);
+  const PlaneSample start = circle.start();
+  // The table must already stand at the start point (within the following-error floor).
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double error_mm = start.axis[i].position_mm - record_.axis[i].position_mm;
+    if (!(std::fabs(error_mm) < config_.supervisor.axis[i].following.floor_mm)) return CommandStatus::invalid;
+  }
+  circle_ = circle;
+  dwell_ticks_ = ticks_for(spec.dwell_s);
+  motion_ticks_ = static_cast<std::int64_t>(std::ceil(circle.duration_s() / kTickPeriodS - 1e-9));
+  phase_tick_ = 0;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    hold_[i] = {start.axis[i].position_mm, 0.0};
+    axis_[i].pid.reset();
+    axis_[i].dvsc.reset();
+    axis_[i].rdvsc.reset();
+  }
+  state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) noexcept {
+  if (state_ == MotionState::dwell || state_ == MotionState::moving || state_ == MotionState::holding)
+    return CommandStatus::busy;
+  if (kind != ControllerKind::pid && kind != ControllerKind::dvsc && kind != ControllerKind::rdvsc)
+    return CommandStatus::invalid;
+  axis_[hal::index(axis)].kind = kind;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::disable() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::ok;  // already safe
+  state_ = MotionState::disabled;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::clear_fault() noexcept {
+  if (state_ != MotionState::faulted) return CommandStatus::ok;
+  const hal::DiscreteInputs& in = last_inputs_;
+  bool cause = in.estop || in.watchdog_tripped;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    cause = cause || in.servo_alarm[i] || in.limit_positive[i] || in.limit_negative[i];
+  if (cause) return CommandStatus::cause_present;
+  fault_ = {};
+  state_ = MotionState::disabled;
+  return CommandStatus::ok;
+}
+
+}  // namespace tnv::fw

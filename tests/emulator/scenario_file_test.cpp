@@ -1,0 +1,272 @@
+// Scenario files: every key, every error class, the built-ins.
+#include "emulator/scenario_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cctype>
+
+#include <filesystem>
+#include <fstream>
+
+#include "emulator/scenario_validation.hpp"
+
+namespace tnv::emu {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr std::string_view kEveryKey = R"(name = "everything"
+
+[plant.x]
+tau_s = 0.006
+gain = 1.1
+coulomb_mm_s = 1.0
+stiction_mm_s = 2.0
+stribeck_mm_s = 0.2
+mode_hz = 30
+mode_zeta = 0.02
+
+[plant.y]
+tau_s = 0.008
+gain = 0.9
+coulomb_mm_s = 0.5
+stiction_mm_s = 0.7
+stribeck_mm_s = 0.05
+mode_hz = 100.5
+mode_zeta = 0.1
+
+[cutting]
+enabled = true
+spindle_rpm = 1200
+flutes = 3
+mean_mm_s = 0.4
+amplitude_mm_s = 0.3
+exponent = 0.8
+phase_rad = 1.25
+
+[encoder]
+counts_per_rev = 8000
+lead_mm = 5
+offset_counts_x = 0.25
+offset_counts_y = -0.5
+
+[dac]
+bits = 16
+full_scale_v = 5.0
+rpm_at_full_scale = 2000
+
+[force_sensor]
+volts_per_mm_s = 2.5
+
+[board]
+clock_start = 4294967295
+
+[circle]
+radius_mm = 10
+feed_mm_s = 3
+ramp_s = 0.2
+dwell_s = 0.25
+)";
+
+TEST(ScenarioFile, EveryKeyIsParsed) {
+  const ScenarioResult r = parse_scenario_text(kEveryKey, "every.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_TRUE(r.error.empty());
+  const Scenario& s = *r.scenario;
+  EXPECT_EQ(s.name, "everything");
+  EXPECT_EQ(s.plant[0].tau_s, 0.006);
+  EXPECT_EQ(s.plant[0].gain, 1.1);
+  EXPECT_EQ(s.plant[0].coulomb_mm_s, 1.0);
+  EXPECT_EQ(s.plant[0].stiction_mm_s, 2.0);
+  EXPECT_EQ(s.plant[0].stribeck_mm_s, 0.2);
+  EXPECT_EQ(s.plant[0].mode_hz, 30.0);
+  EXPECT_EQ(s.plant[0].mode_zeta, 0.02);
+  EXPECT_EQ(s.plant[1].tau_s, 0.008);
+  EXPECT_EQ(s.plant[1].gain, 0.9);
+  EXPECT_EQ(s.plant[1].coulomb_mm_s, 0.5);
+  EXPECT_EQ(s.plant[1].stiction_mm_s, 0.7);
+  EXPECT_EQ(s.plant[1].stribeck_mm_s, 0.05);
+  EXPECT_EQ(s.plant[1].mode_hz, 100.5);
+  EXPECT_EQ(s.plant[1].mode_zeta, 0.1);
+  EXPECT_TRUE(s.cutting.enabled);
+  EXPECT_EQ(s.cutting.spindle_rpm, 1200.0);
+  EXPECT_EQ(s.cutting.flutes, 3);
+  EXPECT_EQ(s.cutting.mean_mm_s, 0.4);
+  EXPECT_EQ(s.cutting.amplitude_mm_s, 0.3);
+  EXPECT_EQ(s.cutting.exponent, 0.8);
+  EXPECT_EQ(s.cutting.phase_rad, 1.25);
+  EXPECT_EQ(s.encoder.counts_per_rev, 8000);
+  EXPECT_EQ(s.encoder.lead_mm, 5.0);
+  EXPECT_EQ(s.encoder.offset_counts_x, 0.25);
+  EXPECT_EQ(s.encoder.offset_counts_y, -0.5);
+  EXPECT_EQ(s.dac.bits, 16);
+  EXPECT_EQ(s.dac.full_scale_v, 5.0);
+  EXPECT_EQ(s.dac.rpm_at_full_scale, 2000.0);
+  EXPECT_EQ(s.force_sensor.volts_per_mm_s, 2.5);
+  EXPECT_EQ(s.board.clock_start, 4294967295u);
+  EXPECT_EQ(s.circle.radius_mm, 10.0);
+  EXPECT_EQ(s.circle.feed_mm_s, 3.0);
+  EXPECT_EQ(s.circle.ramp_s, 0.2);
+  EXPECT_EQ(s.circle.dwell_s, 0.25);
+}
+
+TEST(ScenarioFile, EmptyFileGivesTheReferencePlant) {
+  const ScenarioResult r = parse_scenario_text("", "empty.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_EQ(r.scenario->plant[0].tau_s, 0.005360);
+  EXPECT_EQ(r.scenario->plant[1].tau_s, 0.007122);
+  EXPECT_EQ(r.scenario->circle.radius_mm, 6.0);
+}
+
+TEST(ScenarioFile, PartialSectionKeepsOtherDefaults) {
+  const ScenarioResult r = parse_scenario_text("[plant.y]\ngain = 2\n", "p.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_EQ(r.scenario->plant[1].gain, 2.0);
+  EXPECT_EQ(r.scenario->plant[1].tau_s, 0.007122);
+  EXPECT_EQ(r.scenario->plant[0].gain, 1.0);
+}
+
+TEST(ScenarioFile, LoadsFromDisk) {
+  const auto path = std::filesystem::temp_directory_path() / "tnv_emu_scenario_test.toml";
+  {
+    std::ofstream out(path);
+    out << "name = \"disk\"\n[cutting]\nenabled = true\n";
+  }
+  const ScenarioResult r = load_scenario_file(path.string());
+  std::filesystem::remove(path);
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_EQ(r.scenario->name, "disk");
+  EXPECT_TRUE(r.scenario->cutting.enabled);
+}
+
+struct BadCase {
+  const char* what;
+  const char* text;
+  const char* expected;  // the whole line after "scen.toml:"
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.what; }
+
+class ScenarioFileErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(ScenarioFileErrors, OneLineNamingFileLineAndKey) {
+  const BadCase& c = GetParam();
+  const ScenarioResult r = parse_scenario_text(c.text, "scen.toml");
+  EXPECT_FALSE(r.scenario) << c.what << ": accepted";
+  EXPECT_EQ(r.error, std::string("scen.toml:") + c.expected) << c.what;
+  EXPECT_EQ(r.error.find('\n'), std::string::npos) << c.what << ": not one line";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryErrorClass, ScenarioFileErrors,
+    ::testing::Values(
+        BadCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
+        BadCase{"unknown section", "[plant.z]\ntau_s = 1\n", "1:8: plant.z: unknown section"},
+        BadCase{"unknown top section", "[spindle]\nrpm = 1\n", "1:2: spindle: unknown section"},
+        BadCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
+        BadCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
+        BadCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},
+        BadCase{"float for integer", "[dac]\nbits = 12.0\n", "2:1: dac.bits: expected an integer, got a float"},
+        BadCase{"wrong bool type", "[cutting]\nenabled = 1\n", "2:1: cutting.enabled: expected a boolean, got an integer"},
+        BadCase{"section not a table", "cutting = 3\n", "1:1: cutting: expected a table, got an integer"},
+        BadCase{"name not a string", "name = 3\n", "1:1: name: expected a string, got an integer"},
+        BadCase{"nan", "[plant.y]\ngain = nan\n", "2:1: plant.y.gain: must be > 0 and finite (got nan)"},
+        BadCase{"inf", "[encoder]\noffset_counts_x = -inf\n", "2:1: encoder.offset_counts_x: must be finite (got -inf)"},
+        BadCase{"stiction below coulomb", "[plant.x]\ncoulomb_mm_s = 2\nstiction_mm_s = 1.5\n",
+                "3:1: plant.x.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1.5)"},
+        BadCase{"coulomb above default stiction", "[plant.y]\ncoulomb_mm_s = 4\n",
+                "2:1: plant.y.coulomb_mm_s: must be <= stiction_mm_s = 3 (got 4)"},
+        BadCase{"negative friction", "[plant.x]\ncoulomb_mm_s = -0.1\n",
+                "2:1: plant.x.coulomb_mm_s: must be >= 0 and finite (got -0.1)"},
+        BadCase{"stribeck zero", "[plant.x]\nstribeck_mm_s = 0\n", "2:1: plant.x.stribeck_mm_s: must be > 0 and finite (got 0)"},
+        BadCase{"mode above nyquist", "[plant.x]\nmode_hz = 50000\n",
+                "2:1: plant.x.mode_hz: must be >= 0 and below the sub-step Nyquist frequency 50000 Hz (got 50000)"},
+        BadCase{"zeta one", "[plant.y]\nmode_zeta = 1\n", "2:1: plant.y.mode_zeta: must be >= 0 and below 1 (got 1)"},
+        BadCase{"spindle zero", "[cutting]\nspindle_rpm = 0\n", "2:1: cutting.spindle_rpm: must be > 0 and finite (got 0)"},
+        BadCase{"no flutes", "[cutting]\nflutes = 0\n", "2:1: cutting.flutes: must be >= 1 (got 0)"},
+        BadCase{"huge flutes", "[cutting]\nflutes = 9999999999\n", "2:1: cutting.flutes: out of range (got 9999999999)"},
+        BadCase{"negative amplitude", "[cutting]\namplitude_mm_s = -1\n",
+                "2:1: cutting.amplitude_mm_s: must be >= 0 and finite (got -1)"},
+        BadCase{"counts not x4", "[encoder]\ncounts_per_rev = 1001\n",
+                "2:1: encoder.counts_per_rev: must be a positive multiple of 4 (x4 decoding) (got 1001)"},
+        BadCase{"lead zero", "[encoder]\nlead_mm = 0\n", "2:1: encoder.lead_mm: must be > 0 and finite (got 0)"},
+        BadCase{"dac bits", "[dac]\nbits = 17\n", "2:1: dac.bits: must be in 8..16 (got 17)"},
+        BadCase{"dac volts", "[dac]\nfull_scale_v = 0\n", "2:1: dac.full_scale_v: must be > 0 and finite (got 0)"},
+        BadCase{"dac rpm", "[dac]\nrpm_at_full_scale = -5\n", "2:1: dac.rpm_at_full_scale: must be > 0 and finite (got -5)"},
+        BadCase{"force volts", "[force_sensor]\nvolts_per_mm_s = -1\n",
+                "2:1: force_sensor.volts_per_mm_s: must be >= 0 and finite (got -1)"},
+        BadCase{"clock negative", "[board]\nclock_start = -1\n", "2:1: board.clock_start: must be in 0..4294967295 (got -1)"},
+        BadCase{"clock too big", "[board]\nclock_start = 4294967296\n",
+                "2:1: board.clock_start: must be in 0..4294967295 (got 4294967296)"},
+        BadCase{"radius", "[circle]\nradius_mm = 0\n", "2:1: circle.radius_mm: must be > 0 and finite (got 0)"},
+        BadCase{"feed", "[circle]\nfeed_mm_s = -2\n", "2:1: circle.feed_mm_s: must be > 0 and finite (got -2)"},
+        BadCase{"dwell", "[circle]\ndwell_s = -0.5\n", "2:1: circle.dwell_s: must be >= 0 and finite (got -0.5)"},
+        BadCase{"ramps too long", "[circle]\nramp_s = 20\n",
+                "2:1: circle.ramp_s: both ramps must fit in the circle: feed_mm_s * ramp_s = 40 mm > 2 pi radius_mm = "
+                "37.69911184307752 mm"}),
+    [](const ::testing::TestParamInfo<BadCase>& param_info) {
+      std::string name = param_info.param.what;
+      for (char& ch : name) {
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      }
+      return name;
+    });
+
+TEST(ScenarioFile, SyntaxErrorUsesTheTomlSourceRegion) {
+  const ScenarioResult r = parse_scenario_text("[plant.x]\ntau_s = = 1\n", "scen.toml");
+  EXPECT_FALSE(r.scenario);
+  EXPECT_EQ(r.error.rfind("scen.toml:2:", 0), 0u) << r.error;
+  EXPECT_THAT(r.error, HasSubstr("TOML syntax error"));
+  EXPECT_EQ(r.error.find('\n'), std::string::npos);
+}
+
+TEST(ScenarioFile, DuplicateKeyIsASyntaxError) {
+  const ScenarioResult r = parse_scenario_text("[plant.x]\ntau_s = 0.005\ntau_s = 1\n", "scen.toml");
+  EXPECT_FALSE(r.scenario);
+  EXPECT_EQ(r.error.rfind("scen.toml:3:", 0), 0u) << r.error;
+}
+
+TEST(ScenarioFile, UnreadableFileIsNamed) {
+  const ScenarioResult r = load_scenario_file("/nonexistent/dir/scen.toml");
+  EXPECT_FALSE(r.scenario);
+  EXPECT_EQ(r.error, "/nonexistent/dir/scen.toml: cannot read file: No such file or directory");
+  const ScenarioResult dir = load_scenario_file(std::filesystem::temp_directory_path().string());
+  EXPECT_FALSE(dir.scenario);
+  EXPECT_THAT(dir.error, HasSubstr("is a directory"));
+}
+
+TEST(ScenarioFile, IntegersAcceptedForNumbers) {
+  const ScenarioResult r = parse_scenario_text("[circle]\nradius_mm = 7\n[plant.x]\ngain = 2\n", "i.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_EQ(r.scenario->circle.radius_mm, 7.0);
+}
+
+TEST(BuiltinScenarios, AllExistAreValidAndDiffer) {
+  const std::vector<std::string> names = builtin_scenario_names();
+  EXPECT_EQ(names, (std::vector<std::string>{"no-cut", "cut-900", "cut-1200", "cut-1500", "flex-30", "flex-100"}));
+  for (const std::string& name : names) {
+    const auto s = builtin_scenario(name);
+    ASSERT_TRUE(s) << name;
+    EXPECT_EQ(s->name, name);
+    EXPECT_EQ(validate_scenario(*s), "") << name;
+  }
+  EXPECT_FALSE(builtin_scenario("cut-1000"));
+  EXPECT_FALSE(builtin_scenario("no-cut")->cutting.enabled);
+  EXPECT_TRUE(builtin_scenario("cut-1200")->cutting.enabled);
+  EXPECT_EQ(builtin_scenario("cut-1500")->cutting.spindle_rpm, 1500.0);
+  EXPECT_EQ(builtin_scenario("flex-30")->plant[0].mode_hz, 30.0);
+  EXPECT_EQ(builtin_scenario("flex-100")->plant[0].mode_hz, 100.0);
+  EXPECT_EQ(builtin_scenario("flex-100")->plant[0].mode_zeta, 0.02);
+  EXPECT_EQ(builtin_scenario("flex-100")->plant[1].mode_hz, 0.0);
+}
+
+TEST(BuiltinScenarios, ResolveTakesANameOrAPath) {
+  EXPECT_EQ(resolve_scenario("cut-900").scenario->cutting.spindle_rpm, 900.0);
+  EXPECT_THAT(resolve_scenario("no-such.toml").error, HasSubstr("no-such.toml: cannot read file"));
+}
+
+TEST(ScenarioValidation, DefaultsAreValid) { EXPECT_EQ(validate_scenario(Scenario{}), ""); }
+
+}  // namespace
+}  // namespace tnv::emu

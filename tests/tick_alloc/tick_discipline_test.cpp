@@ -1,0 +1,154 @@
+// Tick-path discipline (design notes "The tick"): over 10,000 ticks of the
+// full HIL rig the tick allocates nothing, throws nothing and makes no
+// system call (so it can neither block on a lock, sleep, log nor do I/O).
+//  - allocations: global operator new/delete are replaced in this binary
+//    and count while armed;
+//  - exceptions: tick() is noexcept (checked at compile time);
+//  - system calls: a forked child runs the ticks under a seccomp filter that
+//    kills the process on any system call except exit.
+#include <gtest/gtest.h>
+#include <linux/filter.h>
+#include <linux/seccomp.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+
+#include "emulator/scenario_file.hpp"
+#include "tests/hil/hil_rig.hpp"
+
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocations{0};
+
+void* counted_alloc(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* counted_aligned_alloc(std::size_t n, std::align_val_t a) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const auto align = static_cast<std::size_t>(a);
+  if (void* p = std::aligned_alloc(align, ((n + align - 1) / align) * align)) return p;
+  throw std::bad_alloc();
+}
+}  // namespace
+
+void* operator new(std::size_t n) { return counted_alloc(n); }
+void* operator new[](std::size_t n) { return counted_alloc(n); }
+void* operator new(std::size_t n, std::align_val_t a) { return counted_aligned_alloc(n, a); }
+void* operator new[](std::size_t n, std::align_val_t a) { return counted_aligned_alloc(n, a); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace tnv::hil {
+namespace {
+
+constexpr int kTicks = 10'000;
+
+static_assert(noexcept(std::declval<fw::TickTask&>().tick()), "the tick must be noexcept");
+
+// Cutting on, circle running: every branch of a normal tick is exercised.
+std::unique_ptr<test::HilRig> running_rig() {
+  auto rig = std::make_unique<test::HilRig>(*emu::builtin_scenario("cut-1200"));
+  for (int i = 0; i < 3; ++i) rig->tick();
+  if (rig->task.start_circle(circle_spec_for(rig->scenario)) != fw::CommandStatus::ok) return nullptr;
+  for (int i = 0; i < 600; ++i) rig->tick();  // past the dwell, into the motion
+  return rig;
+}
+
+TEST(TickDiscipline, TheTickAllocatesNothingOver10000Ticks) {
+  auto rig = running_rig();
+  ASSERT_TRUE(rig && rig->init_ok);
+  ASSERT_EQ(rig->task.state(), fw::MotionState::moving);
+  long allocations = 0;
+  for (int i = 0; i < kTicks; ++i) {
+    rig->machine.advance_to_next_tick();
+    g_allocations = 0;
+    g_counting = true;
+    rig->task.tick();
+    g_counting = false;
+    allocations += g_allocations;
+  }
+  EXPECT_EQ(allocations, 0) << "heap allocations inside the tick";
+  EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "the rig must still be running the circle";
+  EXPECT_EQ(rig->task.counters().ticks, static_cast<std::uint64_t>(kTicks + 603));
+}
+
+TEST(TickDiscipline, TheCounterSeesAnAllocationWhenThereIsOne) {
+  // Guards the guard: the replaced operator new really counts.
+  g_allocations = 0;
+  g_counting = true;
+  auto* p = new std::vector<int>(100);
+  g_counting = false;
+  delete p;
+  EXPECT_GE(g_allocations.load(), 1);
+}
+
+// Runs body() in a forked child under a seccomp filter that allows only
+// exit/exit_group. Returns the child's exit code, or -signal if killed,
+// or 77 if seccomp could not be installed.
+template <typename Body>
+int run_without_syscalls(Body body) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    struct sock_filter filter[] = {
+        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, __NR_exit_group, 0, 1),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, __NR_exit, 0, 1),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
+        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
+    };
+    struct sock_fprog prog = {static_cast<unsigned short>(sizeof filter / sizeof filter[0]), filter};
+    if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) ::_exit(77);
+    if (::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog) != 0) ::_exit(77);
+    const int code = body();
+    ::syscall(SYS_exit_group, code);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) ? -WTERMSIG(status) : -1000;
+}
+
+TEST(TickDiscipline, TheTickMakesNoSystemCallOver10000Ticks) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "the sanitizer runtime makes its own system calls; proven in the plain build";
+#endif
+  auto rig = running_rig();
+  ASSERT_TRUE(rig && rig->init_ok);
+  const int result = run_without_syscalls([&] {
+    for (int i = 0; i < kTicks; ++i) {
+      rig->machine.advance_to_next_tick();
+      rig->task.tick();
+    }
+    return rig->task.state() == fw::MotionState::moving ? 0 : 3;
+  });
+  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": the tick made a system call"
+                                      : "the circle stopped running inside the child");
+}
+
+TEST(TickDiscipline, TheSeccompGuardCatchesASystemCall) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "sanitizer build";
+#endif
+  const int result = run_without_syscalls([] { return ::getppid() > 0 ? 0 : 1; });
+  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, -SIGSYS) << "a getppid() under the filter must kill the child";
+}
+
+}  // namespace
+}  // namespace tnv::hil

@@ -1,0 +1,112 @@
+// tnv-hil as a script sees it: exit codes, one-line errors, JSON on stdout.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string err_path = (dir / ("tnv_hil_cli_" + std::to_string(::getpid()) + ".err")).string();
+  const std::string cmd = std::string(TNV_HIL_EXE) + " " + args + " 2>" + err_path;
+  CliRun r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_path);
+  return r;
+}
+
+std::filesystem::path temp_file(const std::string& name, const std::string& content) {
+  const auto p = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+  std::ofstream(p) << content;
+  return p;
+}
+
+TEST(TnvHilCli, BadScenarioFileIsOneLineNamingFileLineAndKeyWithExitCode2) {
+  const auto path = temp_file("bad.toml", "name = \"x\"\n[plant.x]\ntau_s = 0.005\ntua_s = 1.0\n");
+  const CliRun r = run("circle --scenario " + path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << "nothing may run: " << r.out;
+  EXPECT_NE(r.err.find(path.filename().string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(":4"), std::string::npos) << "line number: " << r.err;
+  EXPECT_NE(r.err.find("tua_s"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  std::filesystem::remove(path);
+}
+
+TEST(TnvHilCli, NonFiniteAndOutOfRangeValuesAreRefused) {
+  const auto nan_path = temp_file("nan.toml", "[circle]\nfeed_mm_s = nan\n");
+  CliRun r = run("circle --scenario " + nan_path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("feed_mm_s"), std::string::npos) << r.err;
+  const auto neg_path = temp_file("neg.toml", "[plant.y]\ntau_s = -0.001\n");
+  r = run("circle --scenario " + neg_path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("tau_s"), std::string::npos) << r.err;
+  std::filesystem::remove(nan_path);
+  std::filesystem::remove(neg_path);
+}
+
+TEST(TnvHilCli, MissingScenarioAndBadOptionsExitWith2) {
+  EXPECT_EQ(run("circle --scenario /nonexistent/nothing.toml").exit_code, 2);
+  EXPECT_EQ(run("circle --controller fuzzy").exit_code, 2);
+  EXPECT_EQ(run("table3 --seeds 0").exit_code, 2);
+  EXPECT_EQ(run("").exit_code, 2);
+  EXPECT_EQ(run("--help").exit_code, 0);
+}
+
+TEST(TnvHilCli, Table3JsonHasTwelveRowsAndThePidGains) {
+  const CliRun r = run("table3 --seeds 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["results"].size(), 12u);
+  for (const auto& row : j["results"]) {
+    for (const char* key : {"scenario", "controller", "max_um", "mean_um", "std_um"}) EXPECT_TRUE(row.contains(key)) << key;
+    EXPECT_GT(row["max_um"].get<double>(), row["mean_um"].get<double>());
+  }
+  EXPECT_TRUE(j["pid_gains"]["x"].contains("kp_per_s"));
+  EXPECT_NE(r.err.find("[table3]"), std::string::npos) << "progress goes to stderr";
+}
+
+TEST(TnvHilCli, CircleWritesPlotAndCsv) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tnv_hil_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const CliRun r = run("circle --controller pid --scenario cut-1500 --json --plot " + (dir / "c.svg").string() +
+                    " --csv " + (dir / "c.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["results"][0]["controller"], "pid");
+  std::ifstream svg(dir / "c.svg");
+  std::string head(5, '\0');
+  svg.read(head.data(), 5);
+  EXPECT_EQ(head, "<svg ");
+  std::ifstream csv(dir / "c.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_GT(lines, 18'000) << "one row per tick of motion";
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

@@ -1,0 +1,93 @@
+#include "tools/hil/circle_run.hpp"
+
+#include <cmath>
+
+#include "drivers/emulated/emulated_register_bus.hpp"
+#include "drivers/fpga/fpga_io_board.hpp"
+#include "emulator/machine.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "tools/hil/hil_firmware_config.hpp"
+
+namespace tnv::hil {
+
+namespace {
+constexpr int kHomingTicks = 3;  // servo-off ticks before the command: the firmware reads home
+}
+
+CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConfig& base_config,
+                           fw::ControllerKind controller, const CircleRunOptions& options) {
+  CircleRunResult result;
+  const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
+  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
+    result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;
+    return result;
+  }
+
+  emu::Machine machine(scenario);
+  drivers::EmulatedRegisterBus bus(machine);
+  drivers::FpgaIoBoard board(bus);
+  if (const drivers::FpgaInitResult init = board.init({}); !init.ok()) {
+    result.error = std::string("I/O board: ") + init.message;
+    return result;
+  }
+  fw::TickTask task(board, config);
+  task.select_controller(hal::Axis::x, controller);
+  task.select_controller(hal::Axis::y, controller);
+
+  for (int i = 0; i < kHomingTicks; ++i) {
+    machine.advance_to_next_tick();
+    task.tick();
+  }
+  if (const fw::CommandStatus st = task.start_circle(circle_spec_for(scenario)); st != fw::CommandStatus::ok) {
+    result.error = std::string("start_circle refused: ") + fw::to_string(st);
+    return result;
+  }
+
+  const double period_s = 1e-3;
+  const std::int64_t max_ticks = task.motion_ticks() + static_cast<std::int64_t>(scenario.circle.dwell_s / period_s) + 100;
+  if (options.keep_trace) result.trace.reserve(static_cast<std::size_t>(task.motion_ticks() + 1));
+  ContourAccumulator contour;
+  for (std::int64_t k = 0; k < max_ticks; ++k) {
+    machine.advance_to_next_tick();
+    task.tick();
+    const fw::TickRecord& rec = task.last_record();
+    if (task.state() == fw::MotionState::faulted) break;
+    if (rec.motion_tick >= 0) {
+      const auto& ax = rec.axis[0];
+      const auto& ay = rec.axis[1];
+      const double e_mm = contour_error_mm(ax.reference_mm, ay.reference_mm, ax.position_mm, ay.position_mm);
+      contour.add(e_mm);
+      if (options.keep_trace) {
+        TraceSample t;
+        t.t_s = static_cast<double>(rec.motion_tick) * period_s;
+        for (std::size_t i = 0; i < 2; ++i) {
+          const auto& a = rec.axis[i];
+          t.reference_mm[i] = a.reference_mm;
+          t.position_mm[i] = a.position_mm;
+          t.command_mm_s[i] = a.command_mm_s;
+          t.s[i] = a.s;
+          t.d_hat_mm_s[i] = a.d_hat_mm_s;
+          t.tool_mm[i] = machine.truth(hal::axis_from_index(i)).tool_position_mm;
+        }
+        t.contour_um = e_mm * 1000.0;
+        result.trace.push_back(t);
+      }
+    }
+    if (task.state() == fw::MotionState::holding) break;
+  }
+  result.stats = contour.stats();
+  result.fault = task.fault();
+  result.counters = task.counters();
+  if (task.state() == fw::MotionState::faulted) {
+    result.error = std::string("fault: ") + fw::to_string(result.fault.reason) + " on axis " +
+                   (result.fault.axis == 0 ? "x" : result.fault.axis == 1 ? "y" : "-") + " at tick " +
+                   std::to_string(result.fault.tick);
+  } else if (task.state() != fw::MotionState::holding) {
+    result.error = "the circle did not finish in the expected time";
+  } else {
+    result.completed = true;
+  }
+  return result;
+}
+
+}  // namespace tnv::hil
