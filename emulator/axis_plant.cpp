@@ -12,7 +12,9 @@ AxisPlant::AxisPlant(const AxisPlantParams& params) noexcept
       friction_(params.coulomb_mm_s, params.stiction_mm_s, params.stribeck_mm_s),
       // coulomb = stiction = 0 turns friction off: no Karnopp, never stuck.
       friction_enabled_(params.stiction_mm_s > 0.0),
-      substep_(decay_for(kSubstep_s)) {}
+      substep_(decay_for(kSubstep_s)) {
+  for (std::size_t k = 0; k < kMaxBlock; ++k) decay_powers_[k] = std::exp(-static_cast<double>(k) * kSubstep_s / tau_s_);
+}
 
 AxisPlant::Decay AxisPlant::decay_for(double duration_s) const noexcept {
   const double x = duration_s / tau_s_;
@@ -46,6 +48,43 @@ double AxisPlant::travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) cons
   const double crossing_s = -tau_s_ * std::log1p(v0_mm_s / (w_mm_s - v0_mm_s));
   // p(t*) - p0 = w t* + (v0 - w) tau (1 - r), and (v0 - w)(1 - r) = v0 exactly.
   return w_mm_s * std::max(crossing_s, 0.0) + v0_mm_s * tau_s_;
+}
+
+// With w_j = K u + d_j - f (f constant) held over sub-step j, the exact
+// solution telescopes (sum_j e^{-(n-1-j)h/tau} (1 - e^{-h/tau}) = 1 - e^{-nh/tau}):
+//   Q   = sum_j e^{-(n-1-j)h/tau} (v0 - w_j)
+//   v_n = v0 - (1 - e^{-h/tau}) Q
+//   p_n = p0 + h sum_j w_j + tau (1 - e^{-h/tau}) Q
+// Q is zero at steady state, so nothing cancels when the speed is steady.
+bool AxisPlant::advance_block(AxisState& s, double command_mm_s, const double* disturbance_mm_s,
+                              std::size_t count) const noexcept {
+  if (count == 0 || count > kMaxBlock) return false;
+  const double v0_mm_s = s.speed_mm_s;
+  double friction_mm_s = 0.0;
+  if (friction_enabled_) {
+    if (v0_mm_s == 0.0 || !friction_.coulomb_only_beyond(v0_mm_s)) return false;
+    friction_mm_s = std::copysign(friction_.coulomb_mm_s(), v0_mm_s);
+  }
+  const double drive_mm_s = gain_ * command_mm_s;
+  double lowest_w_mm_s = v0_mm_s, highest_w_mm_s = v0_mm_s, sum_w_mm_s = 0.0, q_mm_s = 0.0;
+  const double* power = decay_powers_.data() + (count - 1);  // e^{-(n-1-j)h/tau} for j = 0
+  for (std::size_t j = 0; j < count; ++j) {
+    const double w_mm_s = drive_mm_s + disturbance_mm_s[j] - friction_mm_s;
+    lowest_w_mm_s = std::min(lowest_w_mm_s, w_mm_s);
+    highest_w_mm_s = std::max(highest_w_mm_s, w_mm_s);
+    sum_w_mm_s += w_mm_s;
+    q_mm_s += *(power - j) * (v0_mm_s - w_mm_s);
+  }
+  if (friction_enabled_) {
+    // v stays between min and max of {v0, w_j}: all beyond the cutoff on v0's side?
+    const double nearest_zero_mm_s = v0_mm_s > 0.0 ? lowest_w_mm_s : highest_w_mm_s;
+    if ((nearest_zero_mm_s > 0.0) != (v0_mm_s > 0.0) || !friction_.coulomb_only_beyond(nearest_zero_mm_s)) {
+      return false;
+    }
+  }
+  s.position_mm += kSubstep_s * sum_w_mm_s + substep_.tau_rise_s * q_mm_s;
+  s.speed_mm_s = v0_mm_s - substep_.rise * q_mm_s;
+  return true;
 }
 
 void AxisPlant::set_state(double position_mm, double speed_mm_s, bool stuck) noexcept {

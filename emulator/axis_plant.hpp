@@ -3,7 +3,9 @@
 //   dp/dt = v,   tau dv/dt = K u + d_cut - f_fric(v) - v,
 // stepped over sub-steps with u, d_cut and the friction force held at their
 // start-of-sub-step values, so the linear part is integrated exactly.
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 #include "emulator/scenario.hpp"
 #include "emulator/stribeck_friction.hpp"
@@ -18,6 +20,8 @@ struct AxisState {
 
 class AxisPlant {
  public:
+  static constexpr std::size_t kMaxBlock = 100;  // longest advance_block
+
   explicit AxisPlant(const AxisPlantParams& params) noexcept;
 
   // One 10 us sub-step (precomputed exponentials; the hot path).
@@ -29,6 +33,15 @@ class AxisPlant {
   void advance(AxisState& state, double command_mm_s, double disturbance_mm_s) const noexcept {
     advance_with(state, command_mm_s, disturbance_mm_s, substep_);
   }
+
+  // `count` (<= kMaxBlock) sub-steps with command u and disturbances d[i] in
+  // one closed form, when that is provably the same as stepping: friction
+  // off, or the speed stays beyond the Stribeck cutoff on one side for the
+  // whole block (it moves between v0 and the w_i, so min/max of those bound
+  // it), where friction is exactly +-f_c at every sub-step start. Returns
+  // false and leaves `state` alone otherwise (step them one by one).
+  bool advance_block(AxisState& state, double command_mm_s, const double* disturbance_mm_s,
+                     std::size_t count) const noexcept;
 
   double position_mm() const noexcept { return state_.position_mm; }
   double speed_mm_s() const noexcept { return state_.speed_mm_s; }
@@ -71,6 +84,7 @@ class AxisPlant {
   StribeckFriction friction_;
   bool friction_enabled_;
   Decay substep_;
+  std::array<double, kMaxBlock> decay_powers_;  // e^{-k h/tau}, k = 0..kMaxBlock-1
   AxisState state_{};
 };
 

@@ -22,6 +22,8 @@
 //   enable bits; while tripped, DAC/OUTPUTS writes are stored but the outputs
 //   stay forced off (u = 0) and kicks are ignored, until CONTROL
 //   kControlClearWatchdog (which also disarms until the next kick).
+// - INPUTS (with the board's own watchdog-tripped bit), ADC_FORCE and FAULTS
+//   are snapshot words like the rest: they change only at ticks.
 // - The WATCHDOG_KICK word reads back the last value written; CONTROL reads 0.
 #include <array>
 #include <cstdint>

@@ -80,6 +80,7 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
 bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Bounded so the per-block buffers stay small and on the stack.
   constexpr std::uint64_t kMaxBlock = CuttingDisturbance::kMaxFill;
+  static_assert(kMaxBlock <= AxisPlant::kMaxBlock);
   const auto n = static_cast<std::size_t>(std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock}));
   if (!servo_on_s && board.both_enabled()) {
     servo_on_s = substep_time_s(substep);
@@ -88,28 +89,43 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Inputs held over each sub-step, evaluated at its start.
   applied_command_mm_s = {board.command_mm_s(Axis::x), board.command_mm_s(Axis::y)};
   std::array<double, kMaxBlock> cut_x_mm_s, cut_y_mm_s;
-  const bool cutting_on = cutting.enabled();
-  if (cutting_on) {
+  static constexpr std::array<double, kMaxBlock> kNoCutting{};
+  const double* disturbance_x_mm_s = kNoCutting.data();
+  const double* disturbance_y_mm_s = kNoCutting.data();
+  if (cutting.enabled()) {
     cutting.fill(substep, n, cut_x_mm_s.data(), cut_y_mm_s.data());
     applied_cutting = {cut_x_mm_s[n - 1], cut_y_mm_s[n - 1]};
+    disturbance_x_mm_s = cut_x_mm_s.data();
+    disturbance_y_mm_s = cut_y_mm_s.data();
   }
-  // Both axes in one loop on local state: independent chains, no memory round trips.
+  const double u_x = applied_command_mm_s[0], u_y = applied_command_mm_s[1];
+  // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
-  const auto step_axes = [&](std::size_t i) {
-    plants[0].advance(x, applied_command_mm_s[0], cutting_on ? cut_x_mm_s[i] : 0.0);
-    plants[1].advance(y, applied_command_mm_s[1], cutting_on ? cut_y_mm_s[i] : 0.0);
-  };
   if (!any_mode) {
-    for (std::size_t i = 0; i < n; ++i) step_axes(i);
+    // Closed form for the block where it is provably the same as stepping
+    // (AxisPlant::advance_block); sub-step by sub-step otherwise.
+    const bool x_done = plants[0].advance_block(x, u_x, disturbance_x_mm_s, n);
+    const bool y_done = plants[1].advance_block(y, u_y, disturbance_y_mm_s, n);
+    if (!x_done && !y_done) {
+      for (std::size_t i = 0; i < n; ++i) {  // both in one loop: their chains overlap
+        plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
+        plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
+      }
+    } else if (!x_done) {
+      for (std::size_t i = 0; i < n; ++i) plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
+    } else if (!y_done) {
+      for (std::size_t i = 0; i < n; ++i) plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
+    }
   } else {
+    // The modes need every sub-step's table acceleration.
     ModeState mode_x = modes[0].state();
     ModeState mode_y = modes[1].state();
     constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
     for (std::size_t i = 0; i < n; ++i) {
       const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
-      step_axes(i);
-      // Table acceleration over the sub-step drives the mode.
+      plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
+      plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
       modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
       modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
     }

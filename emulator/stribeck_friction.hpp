@@ -25,6 +25,11 @@ class StribeckFriction {
     if (std::abs(ratio) >= exp_cutoff_ratio_) return coulomb_mm_s_;
     return coulomb_mm_s_ + excess_mm_s_ * std::exp(-ratio * ratio);
   }
+  // True if |f| is exactly f_c at every speed of this sign at least this far
+  // from zero (with a hair of margin for rounding).
+  bool coulomb_only_beyond(double speed_mm_s) const noexcept {
+    return std::abs(speed_mm_s * inv_stribeck_s_mm_) >= exp_cutoff_ratio_ * (1.0 + 1e-9);
+  }
   // f(v) while slipping; f(0) = 0 (a resting axis is handled by Karnopp, not here).
   double slipping_mm_s(double speed_mm_s) const noexcept {
     return speed_mm_s == 0.0 ? 0.0 : std::copysign(magnitude_mm_s(speed_mm_s), speed_mm_s);

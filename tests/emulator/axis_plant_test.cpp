@@ -194,5 +194,46 @@ TEST(AxisPlantFriction, SlidingAboveCoulombReachesSteadySpeed) {
   EXPECT_NEAR(plant.speed_mm_s(), 5.0 - 1.5, 1e-9) << "steady speed = K u - f_c when v >> v_s";
 }
 
+// advance_block is a shortcut, never a different model.
+struct BlockCase {
+  const char* what;
+  AxisPlantParams params;
+  double v0_mm_s, command_mm_s, ripple_mm_s;
+  bool closed_form_expected;
+};
+
+class AxisPlantBlock : public ::testing::TestWithParam<BlockCase> {};
+
+TEST_P(AxisPlantBlock, ClosedFormEqualsSteppingOrDeclines) {
+  const BlockCase& c = GetParam();
+  const AxisPlant plant(c.params);
+  double disturbance_mm_s[100];
+  for (int i = 0; i < 100; ++i) disturbance_mm_s[i] = c.ripple_mm_s * std::sin(0.3 * i);
+  AxisState stepped{1.0, c.v0_mm_s, false};
+  for (int i = 0; i < 100; ++i) plant.advance(stepped, c.command_mm_s, disturbance_mm_s[i]);
+  AxisState block{1.0, c.v0_mm_s, false};
+  const bool done = plant.advance_block(block, c.command_mm_s, disturbance_mm_s, 100);
+  ASSERT_EQ(done, c.closed_form_expected) << c.what;
+  if (!done) {
+    EXPECT_EQ(block.position_mm, 1.0) << c.what << ": a declined block changed the state";
+    EXPECT_EQ(block.speed_mm_s, c.v0_mm_s);
+    return;
+  }
+  EXPECT_NEAR(block.position_mm, stepped.position_mm, 1e-14) << c.what << ": position, mm";
+  EXPECT_NEAR(block.speed_mm_s, stepped.speed_mm_s, 1e-13) << c.what << ": speed, mm/s";
+  EXPECT_FALSE(block.stuck);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, AxisPlantBlock,
+    ::testing::Values(BlockCase{"cruising forward", AxisPlantParams{}, 2.0, 3.6, 0.5, true},
+                      BlockCase{"cruising backward", AxisPlantParams{}, -2.0, -3.4, 0.3, true},
+                      BlockCase{"decelerating, stays clear of the Stribeck zone", AxisPlantParams{}, 3.0, 2.5, 0.0, true},
+                      BlockCase{"friction off, through zero", frictionless(0.007122), 1.0, -1.0, 0.2, true},
+                      BlockCase{"heading into the Stribeck zone", AxisPlantParams{}, 2.0, 1.8, 0.0, false},
+                      BlockCase{"starting inside the Stribeck zone", AxisPlantParams{}, 0.3, 3.0, 0.0, false},
+                      BlockCase{"at rest", AxisPlantParams{}, 0.0, 5.0, 0.0, false}),
+    [](const ::testing::TestParamInfo<BlockCase>& param_info) { return std::to_string(param_info.index); });
+
 }  // namespace
 }  // namespace tnv::emu

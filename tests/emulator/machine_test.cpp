@@ -179,8 +179,11 @@ TEST(Machine, TableFollowsThePlantDrivenByCommandAndCutting) {
       x.step(40 * lsb_mm_s, d.x_mm_s);
       y.step(-30 * lsb_mm_s, d.y_mm_s);
     }
-    ASSERT_NEAR(m.truth(Axis::x).position_mm, x.position_mm(), 1e-12) << "X at tick " << tick;
-    ASSERT_NEAR(m.truth(Axis::y).position_mm, y.position_mm(), 1e-12) << "Y at tick " << tick;
+    // Rounding only: the machine may take a block in one closed form where
+    // this reference adds 100 sub-step increments (1e-10 mm = 1e-7 um).
+    ASSERT_NEAR(m.truth(Axis::x).position_mm, x.position_mm(), 1e-10) << "X at tick " << tick;
+    ASSERT_NEAR(m.truth(Axis::y).position_mm, y.position_mm(), 1e-10) << "Y at tick " << tick;
+    ASSERT_NEAR(m.truth(Axis::x).speed_mm_s, x.speed_mm_s(), 1e-12) << "X at tick " << tick;
     ASSERT_EQ(m.truth(Axis::x).stuck, x.stuck()) << "tick " << tick;
   }
   EXPECT_NE(m.truth(Axis::x).cutting_mm_s, 0.0);

@@ -5,6 +5,7 @@
 #include "drivers/emulated/emulated_register_bus.hpp"
 #include "drivers/fpga/fpga_io_board.hpp"
 #include "emulator/machine.hpp"
+#include "emulator/scenario_validation.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 
@@ -17,6 +18,10 @@ constexpr int kHomingTicks = 3;  // servo-off ticks before the command: the firm
 CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConfig& base_config,
                            fw::ControllerKind controller, const CircleRunOptions& options) {
   CircleRunResult result;
+  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
+    result.error = "scenario " + scenario.name + ": " + bad;
+    return result;
+  }
   const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
   if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
     result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;

@@ -11,11 +11,11 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "emulator/scenario_file.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "tools/hil/circle_plot.hpp"
 #include "tools/hil/plant_check.hpp"
 #include "tools/hil/report.hpp"
-#include "tools/hil/scenario_lookup.hpp"
 #include "tools/hil/seed_sweep.hpp"
 
 namespace {
@@ -56,9 +56,17 @@ std::optional<fw::ControllerKind> parse_controller(const std::string& name) {
 }
 
 std::optional<emu::Scenario> resolve(const std::string& name_or_file) {
-  hil::ScenarioLookup found = hil::lookup_scenario(name_or_file);
-  if (!found.scenario) std::fprintf(stderr, "tnv-hil: %s\n", found.error.c_str());
-  return found.scenario;
+  emu::ScenarioResult found = emu::resolve_scenario(name_or_file);
+  if (found.scenario) return std::move(found.scenario);
+  if (name_or_file.find_first_of("./") == std::string::npos && !std::filesystem::exists(name_or_file)) {
+    std::string names;
+    for (const std::string& n : emu::builtin_scenario_names()) names += (names.empty() ? "" : ", ") + n;
+    std::fprintf(stderr, "tnv-hil: '%s' is neither a built-in scenario (%s) nor a file\n", name_or_file.c_str(),
+                 names.c_str());
+  } else {
+    std::fprintf(stderr, "tnv-hil: %s\n", found.error.c_str());
+  }
+  return std::nullopt;
 }
 
 bool write_text(const std::string& path, const std::string& content) {
