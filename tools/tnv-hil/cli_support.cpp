@@ -1,0 +1,67 @@
+#include "tools/tnv-hil/cli_support.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "emulator/scenario_file.hpp"
+
+namespace tnv::cli {
+
+Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) != 0) {}
+
+void Progress::operator()(std::size_t done, std::size_t total) {
+  std::lock_guard lock(mutex_);
+  const auto quarter = std::max<std::size_t>(1, total / 4);
+  if (tty_) {
+    std::fprintf(stderr, "\r[%s] %zu/%zu runs", label_.c_str(), done, total);
+    if (done == total) std::fputc('\n', stderr);
+  } else if (done % quarter == 0 || done == total) {
+    std::fprintf(stderr, "[%s] %zu/%zu runs\n", label_.c_str(), done, total);
+  }
+  std::fflush(stderr);
+}
+
+std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file) {
+  emu::ScenarioResult found = emu::resolve_scenario(name_or_file);
+  if (found.scenario) return std::move(found.scenario);
+  if (name_or_file.find_first_of("./") == std::string::npos && !std::filesystem::exists(name_or_file)) {
+    std::string names;
+    for (const std::string& n : emu::builtin_scenario_names()) names += (names.empty() ? "" : ", ") + n;
+    std::fprintf(stderr, "tnv-hil: '%s' is neither a built-in scenario (%s) nor a file\n", name_or_file.c_str(),
+                 names.c_str());
+  } else {
+    std::fprintf(stderr, "tnv-hil: %s\n", found.error.c_str());
+  }
+  return std::nullopt;
+}
+
+bool write_text(const std::string& path, const std::string& content) {
+  std::ofstream out(path, std::ios::trunc);
+  out << content;
+  out.close();
+  if (!out) {
+    std::fprintf(stderr, "tnv-hil: %s: cannot write\n", path.c_str());
+    return false;
+  }
+  return true;
+}
+
+bool write_svg(const std::string& path, const hil::SvgWriter& svg) {
+  std::string error;
+  if (!svg.save(path, error)) {
+    std::fprintf(stderr, "tnv-hil: %s\n", error.c_str());
+    return false;
+  }
+  std::fprintf(stderr, "[plot] wrote %s\n", path.c_str());
+  return true;
+}
+
+bool write_plot(const std::string& path, const std::string& title, double radius_mm,
+                const std::vector<hil::PlotRow>& rows) {
+  return write_svg(path, hil::circle_figure(title, radius_mm, rows));
+}
+
+}  // namespace tnv::cli

@@ -1,0 +1,45 @@
+#pragma once
+// Shared pieces of the tnv-hil subcommands: exit codes, progress on
+// stderr, scenario resolution, and writing outputs with clear errors.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emulator/scenario.hpp"
+#include "tools/hil/circle_plot.hpp"
+
+namespace tnv::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   // a run failed or an output could not be written
+inline constexpr int kExitBadInput = 2;  // bad command line or scenario: nothing was run
+
+// Set by the chosen subcommand's parse callback; main() calls it.
+using Runner = std::function<int()>;
+
+// Progress on stderr: a live line on a terminal, a few lines otherwise.
+class Progress {
+ public:
+  explicit Progress(std::string label);
+  void operator()(std::size_t done, std::size_t total);
+
+ private:
+  std::string label_;
+  bool tty_;
+  std::mutex mutex_;
+};
+
+// A built-in scenario name or a TOML file; prints a one-line error and
+// returns nullopt when neither works.
+std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file);
+
+// Write helpers: print a one-line error on failure and return false.
+bool write_text(const std::string& path, const std::string& content);
+bool write_svg(const std::string& path, const hil::SvgWriter& svg);
+bool write_plot(const std::string& path, const std::string& title, double radius_mm,
+                const std::vector<hil::PlotRow>& rows);
+
+}  // namespace tnv::cli
