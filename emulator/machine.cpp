@@ -11,6 +11,7 @@
 #include "emulator/cutting_disturbance.hpp"
 #include "emulator/force_adc.hpp"
 #include "emulator/io_board.hpp"
+#include "emulator/milling_force.hpp"
 #include "emulator/quadrature_encoder.hpp"
 #include "emulator/scenario_validation.hpp"
 #include "emulator/structural_mode.hpp"
@@ -34,6 +35,7 @@ struct Machine::Impl {
   std::array<StructuralMode, hal::kAxisCount> modes;
   std::array<QuadratureEncoder, hal::kAxisCount> encoders;
   CuttingDisturbance cutting;
+  MillingForce milling;  // S3 end-milling force on X ([milling], off by default)
   bool any_mode;
 
   std::uint64_t substep = 0;
@@ -56,6 +58,7 @@ Machine::Impl::Impl(const Scenario& s)
       modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
       cutting(s.cutting, s.circle),
+      milling(s.milling, kSubstep_s),
       any_mode(modes[0].enabled() || modes[1].enabled()) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
   // At rest, held by stiction, at the circle's start point (R, 0).
@@ -74,6 +77,8 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
   const double magnitude_mm_s = std::sqrt(applied_cutting.x_mm_s * applied_cutting.x_mm_s +
                                           applied_cutting.y_mm_s * applied_cutting.y_mm_s);
   samples.adc_force_code = force_adc_code(magnitude_mm_s, scenario.force_sensor.volts_per_mm_s);
+  // With [milling] on, the sensor reads the milling force instead (same ADC scaling law, volts per N).
+  if (milling.enabled()) samples.adc_force_code = force_adc_code(milling.force_n(), scenario.force_sensor.volts_per_n);
   return samples;
 }
 
@@ -102,7 +107,24 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
-  if (!any_mode) {
+  if (milling.enabled()) {
+    // The milling force depends on the table speed: step sub-step by sub-step.
+    ModeState mode_x = modes[0].state();
+    ModeState mode_y = modes[1].state();
+    constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
+      plants[0].advance(x, u_x, disturbance_x_mm_s[i] + milling.disturbance_mm_s());
+      plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
+      milling.advance(v0_x, substep_time_s(substep + i));
+      if (any_mode) {
+        modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
+        modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
+      }
+    }
+    modes[0].set_state(mode_x);
+    modes[1].set_state(mode_y);
+  } else if (!any_mode) {
     // Closed form for the block where it is provably the same as stepping
     // (AxisPlant::advance_block); sub-step by sub-step otherwise.
     const bool x_done = plants[0].advance_block(x, u_x, disturbance_x_mm_s, n);
@@ -177,6 +199,10 @@ AxisTruth Machine::truth(Axis axis) const noexcept {
 }
 
 const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
+
+double Machine::milling_force_n() const noexcept { return impl_->milling.force_n(); }
+
+double Machine::milling_depth_mm() const noexcept { return impl_->milling.depth_mm(time_s()); }
 
 std::optional<double> Machine::servo_on_time_s() const noexcept { return impl_->servo_on_s; }
 

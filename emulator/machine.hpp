@@ -42,6 +42,9 @@ class Machine {
   // --- judge side
   AxisTruth truth(hal::Axis axis) const noexcept;
   const Scenario& scenario() const noexcept;
+  // S3 milling force on X (N) and the depth of cut now (mm); 0 / profile when [milling] is off.
+  double milling_force_n() const noexcept;
+  double milling_depth_mm() const noexcept;
   // First moment both servo enables were on (after the watchdog gate); the
   // commanded circle, which the cutting model follows, starts dwell_s later.
   std::optional<double> servo_on_time_s() const noexcept;

@@ -49,6 +49,24 @@ struct DacParams {
 
 struct ForceSensorParams {
   double volts_per_mm_s = 1.0;  // ADC input volts per mm/s of cutting disturbance magnitude
+  double volts_per_n = 1.0 / 30.0;  // ADC input volts per N of milling force (when [milling] is on)
+};
+
+// Depth of cut over time, S3 Fig. 4: start -> peak over rise_s, back over fall_s.
+struct DepthProfile {
+  double start_mm = 0.2;
+  double peak_mm = 1.0;
+  double rise_s = 15.0;
+  double fall_s = 15.0;
+};
+
+// S3 end-milling process on X (emulator/milling_force.hpp). Off by default.
+struct MillingParams {
+  bool enabled = false;
+  double time_constant_s = 0.20;       // T_f, S3
+  double force_n_per_mm_mm_s = 15.0;   // K: 150 N at 0.8 mm and 12.5 mm/s (S3 experiment)
+  double feed_load_mm_s_per_n = 0.004;  // table-speed disturbance per N, opposing the feed
+  DepthProfile depth{};
 };
 
 struct BoardParams {
@@ -69,6 +87,7 @@ struct Scenario {
   EncoderParams encoder{};
   DacParams dac{};
   ForceSensorParams force_sensor{};
+  MillingParams milling{};
   BoardParams board{};
   CircleParams circle{};
 };

@@ -75,7 +75,18 @@ class ScenarioReader {
                                 {"rpm_at_full_scale", &s.dac.rpm_at_full_scale}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "force_sensor") {
-        const Field fields[] = {{"volts_per_mm_s", &s.force_sensor.volts_per_mm_s}};
+        const Field fields[] = {{"volts_per_mm_s", &s.force_sensor.volts_per_mm_s},
+                                {"volts_per_n", &s.force_sensor.volts_per_n}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "milling") {
+        const Field fields[] = {{"enabled", &s.milling.enabled},
+                                {"time_constant_s", &s.milling.time_constant_s},
+                                {"force_n_per_mm_mm_s", &s.milling.force_n_per_mm_mm_s},
+                                {"feed_load_mm_s_per_n", &s.milling.feed_load_mm_s_per_n},
+                                {"depth_start_mm", &s.milling.depth.start_mm},
+                                {"depth_peak_mm", &s.milling.depth.peak_mm},
+                                {"rise_s", &s.milling.depth.rise_s},
+                                {"fall_s", &s.milling.depth.fall_s}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "board") {
         const Field fields[] = {{"clock_start", &s.board.clock_start}};

@@ -123,6 +123,14 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.positive("dac.rpm_at_full_scale", s.dac.rpm_at_full_scale);
 
   r.non_negative("force_sensor.volts_per_mm_s", s.force_sensor.volts_per_mm_s);
+  r.non_negative("force_sensor.volts_per_n", s.force_sensor.volts_per_n);
+  r.positive("milling.time_constant_s", s.milling.time_constant_s);
+  r.non_negative("milling.force_n_per_mm_mm_s", s.milling.force_n_per_mm_mm_s);
+  r.non_negative("milling.feed_load_mm_s_per_n", s.milling.feed_load_mm_s_per_n);
+  r.non_negative("milling.depth_start_mm", s.milling.depth.start_mm);
+  r.non_negative("milling.depth_peak_mm", s.milling.depth.peak_mm);
+  r.non_negative("milling.rise_s", s.milling.depth.rise_s);
+  r.non_negative("milling.fall_s", s.milling.depth.fall_s);
 
   check_circle(r, s.circle);
   return r.found;

@@ -47,6 +47,7 @@ ConfigError validate(const FirmwareConfig& config) noexcept {
     if (a.controller != ControllerKind::pid && a.controller != ControllerKind::dvsc &&
         a.controller != ControllerKind::rdvsc)
       return {section, "controller", "must be pid, dvsc or rdvsc"};
+    if (const ParamCheck c = validate(a.jog); !c.ok) return axis_error(i, "axis x: jog", "axis y: jog", c);
   }
   if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
   return {};

@@ -10,6 +10,7 @@
 #include "firmware/control/sliding_mode_params.hpp"
 #include "firmware/io/dac_code.hpp"
 #include "firmware/supervisor/supervisor.hpp"
+#include "firmware/trajectory/jog_stream.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw {
@@ -23,6 +24,7 @@ struct AxisConfig {
                                      // (S1 Tables 1/2 are identical except gamma)
   PidParams pid{};
   ControllerKind controller = ControllerKind::rdvsc;
+  JogLimits jog{};                   // operator jog: speed, acceleration, dead-man timeout
 };
 
 struct FirmwareConfig {

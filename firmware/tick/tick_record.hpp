@@ -30,6 +30,7 @@ constexpr const char* to_string(MotionState s) noexcept {
 struct AxisTickRecord {
   double reference_mm = 0.0;
   double reference_speed_mm_s = 0.0;
+  double unshaped_reference_mm = 0.0;  // the source's x_ref,k before the input shaper
   double position_mm = 0.0;  // encoder-measured
   double speed_mm_s = 0.0;   // M-method
   double command_mm_s = 0.0; // controller output u_k

@@ -93,36 +93,98 @@ void TickTask::set_reference(std::size_t i, const AxisSample& now, const AxisSam
   next_[i] = next;
 }
 
-void TickTask::update_reference() noexcept {
-  record_.motion_tick = -1;
-  switch (state_) {
-    case MotionState::dwell:
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, hold_[i], hold_[i]);
-      if (++phase_tick_ >= dwell_ticks_) {
-        state_ = MotionState::moving;
-        phase_tick_ = 0;
-      }
-      return;
-    case MotionState::moving: {
-      const double t_s = static_cast<double>(phase_tick_) * kTickPeriodS;
+// The source's x_k and x_{k+1} through the axis' shaper: the controllers
+// get y_k (the shaper's previous output) and y_{k+1} = shaper(x_{k+1}).
+void TickTask::shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept {
+  record_.axis[i].unshaped_reference_mm = now.position_mm;
+  StreamShaper& shaper = axis_[i].shaper;
+  const bool was_shaping = shaper.shaping();
+  const AxisSample shaped_now = shaper.output();
+  const AxisSample shaped_next = shaper.step(next);
+  if (!was_shaping && !shaper.shaping()) {
+    set_reference(i, now, next);  // off: the unshaped path, bit for bit
+  } else {
+    set_reference(i, shaped_now, shaped_next);
+  }
+}
+
+bool TickTask::shapers_settled() const noexcept {
+  for (const AxisLoop& loop : axis_)
+    if (loop.shaper.shaping() && !loop.shaper.quiet()) return false;
+  return true;
+}
+
+void TickTask::moving_reference() noexcept {
+  const double t_s = static_cast<double>(phase_tick_) * kTickPeriodS;
+  record_.motion_tick = phase_tick_;
+  ++phase_tick_;
+  switch (source_) {
+    case Source::circle: {
       const PlaneSample now = circle_.at(t_s);
       const PlaneSample next = circle_.at(t_s + kTickPeriodS);
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, now.axis[i], next.axis[i]);
-      record_.motion_tick = phase_tick_;
-      if (++phase_tick_ > motion_ticks_) {
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, now.axis[i], next.axis[i]);
+      if (phase_tick_ > motion_ticks_ && shapers_settled()) {
         state_ = MotionState::holding;
         for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {next.axis[i].position_mm, 0.0};
       }
       return;
     }
+    case Source::move: {
+      // x_{k+1} at (k + 1) T, so it is bit for bit next tick's x_k.
+      const double t_next_s = static_cast<double>(phase_tick_) * kTickPeriodS;
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        if (i == move_axis_) {
+          shape_reference(i, move_.at(t_s), move_.at(t_next_s));
+        } else {
+          shape_reference(i, hold_[i], hold_[i]);
+        }
+      }
+      if (phase_tick_ > motion_ticks_ && shapers_settled()) {
+        state_ = MotionState::holding;
+        hold_[move_axis_] = {move_.end_mm(), 0.0};
+      }
+      return;
+    }
+    case Source::jog: {
+      bool at_rest = true;
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        const AxisSample now = jog_[i].current();
+        shape_reference(i, now, jog_[i].advance(kTickPeriodS));
+        at_rest = at_rest && jog_[i].at_rest();
+      }
+      if (at_rest && shapers_settled()) {
+        state_ = MotionState::holding;
+        for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {jog_[i].current().position_mm, 0.0};
+      }
+      return;
+    }
+  }
+}
+
+void TickTask::update_reference() noexcept {
+  record_.motion_tick = -1;
+  switch (state_) {
+    case MotionState::dwell:
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);
+      if (++phase_tick_ >= dwell_ticks_) {
+        state_ = MotionState::moving;
+        phase_tick_ = 0;
+      }
+      return;
+    case MotionState::moving:
+      moving_reference();
+      return;
     case MotionState::holding:
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) set_reference(i, hold_[i], hold_[i]);
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);
       return;
     case MotionState::disabled:
     case MotionState::faulted:
-      // Servo off: the reference follows the table so the next servo-on is bumpless.
+      // Servo off: the reference follows the table so the next servo-on is
+      // bumpless, and the shapers rest there (a pending change applies now).
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
         hold_[i] = {record_.axis[i].position_mm, 0.0};
+        axis_[i].shaper.reset(hold_[i]);
+        record_.axis[i].unshaped_reference_mm = hold_[i].position_mm;
         set_reference(i, hold_[i], hold_[i]);
       }
       return;
@@ -213,17 +275,108 @@ CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept {
     if (!(std::fabs(error_mm) < config_.supervisor.axis[i].following.floor_mm)) return CommandStatus::invalid;
   }
   circle_ = circle;
+  source_ = Source::circle;
   dwell_ticks_ = ticks_for(spec.dwell_s);
   motion_ticks_ = static_cast<std::int64_t>(std::ceil(circle.duration_s() / kTickPeriodS - 1e-9));
   phase_tick_ = 0;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    hold_[i] = {start.axis[i].position_mm, 0.0};
-    axis_[i].pid.reset();
-    axis_[i].dvsc.reset();
-    axis_[i].rdvsc.reset();
-  }
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {start.axis[i].position_mm, 0.0};
+  reset_controllers();
   state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
   return CommandStatus::ok;
+}
+
+void TickTask::reset_controllers() noexcept {
+  for (AxisLoop& loop : axis_) {
+    loop.pid.reset();
+    loop.dvsc.reset();
+    loop.rdvsc.reset();
+  }
+}
+
+CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
+  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
+  const std::size_t a = hal::index(spec.axis);
+  const bool was_on = state_ == MotionState::holding;
+  // From a servo-off start the table's position is the start (bumpless).
+  std::array<AxisSample, hal::kAxisCount> start = hold_;
+  if (!was_on)
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) start[i] = {record_.axis[i].position_mm, 0.0};
+  const PointToPointMove move(spec, start[a].position_mm);
+  const AxisLimits& lim = config_.supervisor.axis[a];
+  if (!(move.end_mm() >= lim.position_min_mm && move.end_mm() <= lim.position_max_mm)) return CommandStatus::invalid;
+  move_ = move;
+  move_axis_ = a;
+  source_ = Source::move;
+  dwell_ticks_ = ticks_for(spec.dwell_s);
+  motion_ticks_ = static_cast<std::int64_t>(std::ceil(move.duration_s() / kTickPeriodS - 1e-9));
+  phase_tick_ = 0;
+  hold_ = start;
+  if (!was_on) reset_controllers();
+  state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::hold_position() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ != MotionState::disabled) return state_ == MotionState::holding ? CommandStatus::ok : CommandStatus::busy;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
+  reset_controllers();
+  state_ = MotionState::holding;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::jog(hal::Axis axis, double speed_mm_s) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  const bool jogging = state_ == MotionState::moving && source_ == Source::jog;
+  if (state_ != MotionState::holding && !jogging) return CommandStatus::busy;
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount) return CommandStatus::invalid;
+  if (!jogging && speed_mm_s == 0.0) return CommandStatus::ok;  // standing still already
+  if (!jogging) {
+    // Validate before starting anything: nothing is half-applied.
+    JogStream probe(config_.axis[a].jog);
+    if (!probe.command(speed_mm_s)) return CommandStatus::invalid;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      jog_[i] = JogStream(config_.axis[i].jog);
+      jog_[i].start(hold_[i].position_mm);
+    }
+    source_ = Source::jog;
+    phase_tick_ = 0;
+    motion_ticks_ = 0;
+    state_ = MotionState::moving;
+  }
+  return jog_[a].command(speed_mm_s) ? CommandStatus::ok : CommandStatus::invalid;
+}
+
+CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept {
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
+  AxisLoop& loop = axis_[a];
+  const ShaperDesign design = design_shaper(spec, kTickPeriodS);
+  if (!loop.shaper.request_taps(design.taps)) return CommandStatus::invalid;
+  loop.design = design;
+  loop.shaper_configured = true;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::enable_shaper(hal::Axis axis, bool on) noexcept {
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount) return CommandStatus::invalid;
+  if (on && !axis_[a].shaper_configured) return CommandStatus::invalid;
+  axis_[a].shaper.request_enabled(on);
+  return CommandStatus::ok;
+}
+
+double TickTask::shaper_delay_s(hal::Axis axis) const noexcept {
+  return axis_[hal::index(axis)].shaper.delay_samples() * kTickPeriodS;
+}
+
+std::uint32_t TickTask::jog_deadman_stops() const noexcept {
+  std::uint32_t n = 0;
+  for (const JogStream& j : jog_) n += j.deadman_stops();
+  return n;
 }
 
 CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) noexcept {

@@ -1,18 +1,33 @@
 #pragma once
 // The 1 ms control tick (design notes "The tick"): read the latched
-// snapshot -> M-method speed over the measured period -> trajectory ->
+// snapshot -> M-method speed over the measured period -> reference source
+// (circle, point-to-point move or operator jog) -> per-axis input shaper ->
 // axis controllers -> DAC codes -> supervisor -> write outputs -> kick the
 // watchdog. Fixed cost: no allocation, no exceptions, no locks, no system
 // calls. Commands are accepted between ticks only.
+//
+// Input shaping: the reference source runs one tick ahead; its sample
+// x_{k+1} goes through the axis' StreamShaper, so the controllers get the
+// shaped y_k (last tick's output) and y_{k+1}. The supervisor checks the
+// following error against this shaped reference, the one the loop is told
+// to follow, and scales its limit with the shaped speed: the shaper's
+// delay (shaper_delay_s) is then not following error at all, and the
+// limit needs no delay term. (Measured against the unshaped command the
+// error would grow by delay x speed.) With the shaper disabled (default)
+// the unshaped reference is passed through untouched, bit for bit.
 #include <array>
 #include <cstdint>
 
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
+#include "firmware/shaper/shaper_design.hpp"
+#include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
 #include "firmware/timing/encoder_position.hpp"
 #include "firmware/trajectory/circle_trajectory.hpp"
+#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/point_to_point_move.hpp"
 #include "hal/io_board.hpp"
 
 namespace tnv::fw {
@@ -47,6 +62,22 @@ class TickTask {
 
   // --- commands (between ticks)
   CommandStatus start_circle(const CircleSpec& spec) noexcept;
+  // One axis from where it stands (holding) or where the table is
+  // (disabled) by spec.distance_mm; the other axis holds. busy while
+  // moving; invalid for a bad spec or an end beyond the soft limits.
+  CommandStatus start_move(const MoveSpec& spec) noexcept;
+  // Servo on, holding where the table stands (disabled -> holding).
+  CommandStatus hold_position() noexcept;
+  // The operator's jog stream: target speed for one axis, to be repeated
+  // at least every jog deadman_s. Accepted while holding (starts the jog)
+  // or jogging; the jog ends (holding) when every axis is back at rest.
+  CommandStatus jog(hal::Axis axis, double speed_mm_s) noexcept;
+  // Input shaper per axis: the design (applied when the axis' reference is
+  // quiet, see StreamShaper) and, separately, on/off. Enabling an axis that
+  // was never configured is invalid. Accepted in every state: a shaper
+  // change waits for a quiet reference, so it never makes a jump.
+  CommandStatus configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept;
+  CommandStatus enable_shaper(hal::Axis axis, bool on) noexcept;
   CommandStatus select_controller(hal::Axis axis, ControllerKind kind) noexcept;
   CommandStatus disable() noexcept;
   CommandStatus clear_fault() noexcept;
@@ -58,8 +89,15 @@ class TickTask {
   MotionState state() const noexcept { return state_; }
   ControllerKind controller(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].kind; }
   const FirmwareConfig& config() const noexcept { return config_; }
-  // Ticks from the start of motion to the end of the trajectory (inclusive).
+  // Ticks from the start of motion to the end of the trajectory (inclusive),
+  // unshaped; a shaped axis keeps moving for up to its shaper's span after.
   std::int64_t motion_ticks() const noexcept { return motion_ticks_; }
+  // The active shaper's delay (centroid of its taps), 0 when it is off:
+  // what multi-axis synchronisation and host-side comparisons shift by.
+  double shaper_delay_s(hal::Axis axis) const noexcept;
+  const StreamShaper& shaper(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].shaper; }
+  const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].design; }
+  std::uint32_t jog_deadman_stops() const noexcept;
 
  private:
   struct AxisLoop {
@@ -70,12 +108,21 @@ class TickTask {
     ControllerKind kind;
     EncoderPosition encoder;
     double speed_mm_s = 0.0;
+    StreamShaper shaper{};
+    ShaperDesign design{};
+    bool shaper_configured = false;
     AxisController& active() noexcept;
   };
+
+  enum class Source : std::uint8_t { circle, move, jog };
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
   void update_reference() noexcept;
   void set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
+  void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
+  void moving_reference() noexcept;
+  bool shapers_settled() const noexcept;
+  void reset_controllers() noexcept;
   bool servo_on() const noexcept;
   void latch_fault(const FaultRecord& f) noexcept;
 
@@ -83,6 +130,10 @@ class TickTask {
   FirmwareConfig config_;
   std::array<AxisLoop, hal::kAxisCount> axis_;
   CircleTrajectory circle_{};
+  PointToPointMove move_{};
+  std::size_t move_axis_ = 0;
+  std::array<JogStream, hal::kAxisCount> jog_{};
+  Source source_ = Source::circle;
   std::int64_t dwell_ticks_ = 0;
   std::int64_t motion_ticks_ = 0;
   std::int64_t phase_tick_ = 0;  // ticks into the current dwell / motion phase

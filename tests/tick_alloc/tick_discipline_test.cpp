@@ -86,6 +86,39 @@ TEST(TickDiscipline, TheTickAllocatesNothingOver10000Ticks) {
   EXPECT_EQ(rig->task.counters().ticks, static_cast<std::uint64_t>(kTicks + 603));
 }
 
+// The input shaper in the reference path (a two-mode ZVDD, 30 Hz x 11 Hz)
+// under a live jog stream that reverses every 0.5 s: the shaper commands
+// and the ticks alike allocate nothing.
+TEST(TickDiscipline, TheShapedJogAllocatesNothingOver10000Ticks) {
+  auto rig = std::make_unique<test::HilRig>(*emu::builtin_scenario("flex-30"));
+  ASSERT_TRUE(rig->init_ok);
+  for (int i = 0; i < 3; ++i) rig->tick();
+  const fw::ShaperSpec spec{fw::ShaperType::zvdd, {30.0, 0.02}, {11.0, 0.02}};
+  g_allocations = 0;
+  g_counting = true;
+  const fw::CommandStatus configured = rig->task.configure_shaper(hal::Axis::x, spec);
+  const fw::CommandStatus enabled = rig->task.enable_shaper(hal::Axis::x, true);
+  const fw::CommandStatus held = rig->task.hold_position();
+  g_counting = false;
+  ASSERT_EQ(configured, fw::CommandStatus::ok);
+  ASSERT_EQ(enabled, fw::CommandStatus::ok);
+  ASSERT_EQ(held, fw::CommandStatus::ok);
+  EXPECT_EQ(g_allocations, 0) << "heap allocations while designing the shaper";
+  long allocations = 0;
+  for (int i = 0; i < kTicks; ++i) {
+    rig->machine.advance_to_next_tick();
+    g_allocations = 0;
+    g_counting = true;
+    rig->task.jog(hal::Axis::x, (i / 500) % 2 == 0 ? 20.0 : -20.0);
+    rig->task.tick();
+    g_counting = false;
+    allocations += g_allocations;
+  }
+  EXPECT_EQ(allocations, 0) << "heap allocations inside the shaped tick";
+  EXPECT_TRUE(rig->task.shaper(hal::Axis::x).shaping());
+  EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "fault: " << fw::to_string(rig->task.fault().reason);
+}
+
 TEST(TickDiscipline, TheCounterSeesAnAllocationWhenThereIsOne) {
   // Guards the guard: the replaced operator new really counts.
   g_allocations = 0;

@@ -1,0 +1,22 @@
+#pragma once
+// The optimal infeed for constant deflection d0 (S4 eq. (3)):
+//   S_opt(L) = (d0 / (C L^beta))^(1/alpha)
+// from the current estimate, with alpha held at or above alpha_min (so
+// 1/alpha stays bounded) and S clamped to the configured infeed range.
+#include "firmware/adaptive/boring/log_model.hpp"
+#include "firmware/control/param_check.hpp"
+
+namespace tnv::fw {
+
+struct InfeedCommand {
+  ParamCheck check;            // !ok: infeed_mm_rev is 0, do not cut
+  double infeed_mm_rev = 0.0;  // S to cut with at this overhang
+  bool infeed_limited = false; // eq. (3) asked for more or less than the range
+  bool alpha_limited = false;  // alpha_hat < alpha_min, alpha_min used
+};
+
+// theta in the params' log base. Errors: overhang not finite or outside
+// [overhang_min_mm, overhang_max_mm]; theta not finite.
+InfeedCommand optimal_infeed(const BoringTheta& theta, double overhang_mm, const BoringPlannerParams& params) noexcept;
+
+}  // namespace tnv::fw

@@ -1,0 +1,85 @@
+// The reference sources the shaper is fed with in the tick: the S-curve
+// point-to-point move and the operator jog stream with its dead man.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/point_to_point_move.hpp"
+
+namespace tnv::fw {
+namespace {
+
+constexpr double kPeriodS = 1e-3;
+
+TEST(PointToPointMove, SCurveWithTheStatedMoveTime) {
+  const MoveSpec spec{hal::Axis::y, -12.0, 60.0, 0.05, 0.0};
+  ASSERT_STREQ(validate(spec), "");
+  const PointToPointMove move(spec, 3.0);
+  EXPECT_NEAR(move.duration_s(), 12.0 / 60.0 + 0.05, 1e-15) << "move time (s)";
+  EXPECT_EQ(move.at(0.0).position_mm, 3.0);
+  EXPECT_EQ(move.at(0.0).speed_mm_s, 0.0);
+  EXPECT_EQ(move.at(move.duration_s()).position_mm, -9.0) << "end point exact";
+  EXPECT_EQ(move.at(10.0).speed_mm_s, 0.0);
+  EXPECT_NEAR(move.at(0.1).speed_mm_s, -60.0, 1e-12) << "cruise";
+  // Raised-cosine ramp: speed and acceleration continuous, peak acceleration F pi / (2 T_r).
+  double peak_accel = 0.0;
+  for (double t = 0.0; t < move.duration_s(); t += 1e-4)
+    peak_accel = std::fmax(peak_accel, std::fabs(move.at(t + 1e-4).speed_mm_s - move.at(t).speed_mm_s) / 1e-4);
+  EXPECT_NEAR(peak_accel, 60.0 * M_PI / (2.0 * 0.05), 5.0) << "mm/s^2";
+}
+
+TEST(PointToPointMove, ValidationNamesTheField) {
+  EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, NAN, 50.0, 0.02, 0.0}), "distance_mm must be finite and non-zero");
+  EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, 5.0, 50.0, -0.1, 0.0}), "ramp_s must be >= 0 and finite");
+  EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, 5.0, 50.0, 0.02, INFINITY}), "dwell_s must be >= 0 and finite");
+  EXPECT_NE(std::string(validate(MoveSpec{hal::Axis::x, 0.5, 50.0, 0.02, 0.0})).find("ramps do not fit"), std::string::npos);
+}
+
+TEST(JogStream, ReachesTheTargetAtTheAccelerationLimitAndRestsExactly) {
+  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
+  jog.start(10.0);
+  ASSERT_TRUE(jog.command(25.0));
+  int ticks_to_speed = 0;
+  while (jog.current().speed_mm_s != 25.0 && ticks_to_speed < 1000) {
+    jog.advance(kPeriodS);
+    jog.command(25.0);
+    ++ticks_to_speed;
+  }
+  EXPECT_EQ(ticks_to_speed, 25) << "25 mm/s at 1000 mm/s^2 takes 25 ms";
+  // Position is the exact integral of the piecewise-linear speed.
+  EXPECT_NEAR(jog.current().position_mm, 10.0 + 0.5 * 25.0 * 0.025, 1e-12);
+  ASSERT_TRUE(jog.command(0.0));
+  for (int k = 0; k < 40; ++k) jog.advance(kPeriodS);
+  EXPECT_TRUE(jog.at_rest());
+  const double x = jog.current().position_mm;
+  for (int k = 0; k < 1000; ++k) jog.advance(kPeriodS);
+  EXPECT_EQ(jog.current().position_mm, x) << "at rest the position does not creep";
+  EXPECT_EQ(jog.deadman_stops(), 0u);
+}
+
+TEST(JogStream, TheDeadManStopsASilentOperator) {
+  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
+  jog.start(0.0);
+  ASSERT_TRUE(jog.command(-20.0));
+  int k = 0;
+  for (; k < 1000 && jog.target_mm_s() != 0.0; ++k) jog.advance(kPeriodS);
+  EXPECT_NEAR(k * kPeriodS, 0.1, 1.5e-3) << "stops after deadman_s of silence (s)";
+  EXPECT_EQ(jog.deadman_stops(), 1u);
+  for (int i = 0; i < 30; ++i) jog.advance(kPeriodS);
+  EXPECT_TRUE(jog.at_rest());
+}
+
+TEST(JogStream, RefusesNonFiniteOrTooFastCommandsAndKeepsTheOldTarget) {
+  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
+  jog.start(0.0);
+  ASSERT_TRUE(jog.command(10.0));
+  EXPECT_FALSE(jog.command(NAN));
+  EXPECT_FALSE(jog.command(-50.1));
+  EXPECT_EQ(jog.target_mm_s(), 10.0);
+  EXPECT_FALSE(validate(JogLimits{50.0, 0.0, 0.1}).ok);
+  EXPECT_STREQ(validate(JogLimits{50.0, 1000.0, -1.0}).field, "deadman_s");
+}
+
+}  // namespace
+}  // namespace tnv::fw

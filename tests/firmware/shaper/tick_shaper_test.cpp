@@ -1,0 +1,222 @@
+// The shaper in the tick's reference path, the point-to-point move and the
+// operator jog, on a scripted board whose table follows the reference the
+// controllers were given (perfect servo, one tick late).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "firmware/shaper/stream_shaper.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "tests/firmware/fake_io_board.hpp"
+
+namespace tnv::fw {
+namespace {
+
+constexpr double kCountMm = 10.0 / 24000.0;
+constexpr double kHomeMm = 6.0;
+constexpr double kPeriodS = 1e-3;
+
+class TickShaperTest : public ::testing::Test {
+ protected:
+  TickShaperTest() : task(board, make_config()) {}
+
+  static FirmwareConfig make_config() {
+    FirmwareConfig c = default_firmware_config();
+    c.axis[0].home_position_mm = kHomeMm;
+    c.axis[1].home_position_mm = 0.0;
+    return c;
+  }
+
+  // The table stands where the last tick's reference was (a perfect servo).
+  void tick() {
+    board.next_tick();
+    task.tick();
+    for (std::size_t i = 0; i < 2; ++i) {
+      const double home = i == 0 ? kHomeMm : 0.0;
+      board.counts[i] = static_cast<std::uint32_t>(std::lround((task.last_record().axis[i].reference_mm - home) / kCountMm));
+    }
+  }
+
+  void servo_on_holding() {
+    tick();
+    ASSERT_EQ(task.hold_position(), CommandStatus::ok);
+    tick();
+    ASSERT_EQ(task.state(), MotionState::holding);
+  }
+
+  test::FakeIoBoard board;
+  TickTask task;
+};
+
+TEST_F(TickShaperTest, UnshapedMoveFollowsTheProfileExactly) {
+  servo_on_holding();
+  const MoveSpec spec{hal::Axis::x, 5.0, 50.0, 0.02, 0.0};
+  ASSERT_EQ(task.start_move(spec), CommandStatus::ok);
+  const PointToPointMove move(spec, kHomeMm);
+  EXPECT_NEAR(move.duration_s(), 0.12, 1e-15) << "move time = distance / speed + ramp";
+  int ticks = 0;
+  do {
+    tick();
+    const TickRecord& r = task.last_record();
+    if (r.motion_tick >= 0) {
+      ASSERT_EQ(r.axis[0].reference_mm, move.at(static_cast<double>(r.motion_tick) * kPeriodS).position_mm);
+      ASSERT_EQ(r.axis[0].reference_mm, r.axis[0].unshaped_reference_mm);
+      ASSERT_EQ(r.axis[1].reference_mm, 0.0) << "the other axis holds";
+      ++ticks;
+    }
+  } while (task.state() == MotionState::moving);
+  EXPECT_EQ(ticks, 121);
+  EXPECT_EQ(task.state(), MotionState::holding);
+  EXPECT_EQ(task.last_record().axis[0].reference_mm, kHomeMm + 5.0);
+}
+
+// With the shaper on, the reference the controllers get is the offline
+// shaping of the move's samples, and the motion lasts until the shaped
+// reference is at rest, exactly at the end point.
+TEST_F(TickShaperTest, ShapedMoveIsTheOfflineShapingOfTheProfile) {
+  const ShaperSpec zvd{ShaperType::zvd, {30.0, 0.02}, {0.0, 0.0}};
+  ASSERT_EQ(task.configure_shaper(hal::Axis::x, zvd), CommandStatus::ok);
+  ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok);
+  servo_on_holding();
+  ASSERT_TRUE(task.shaper(hal::Axis::x).shaping());
+  EXPECT_FALSE(task.shaper(hal::Axis::y).shaping());
+  EXPECT_NEAR(task.shaper_delay_s(hal::Axis::x), task.shaper_design(hal::Axis::x).delay_s(), 1e-15);
+  EXPECT_EQ(task.shaper_delay_s(hal::Axis::y), 0.0);
+  const MoveSpec spec{hal::Axis::x, -3.0, 40.0, 0.025, 0.0};
+  ASSERT_EQ(task.start_move(spec), CommandStatus::ok);
+  const PointToPointMove move(spec, kHomeMm);
+  std::vector<AxisSample> raw;
+  std::vector<double> shaped;
+  while (task.state() != MotionState::holding) {
+    tick();
+    ASSERT_NE(task.state(), MotionState::faulted);
+    const TickRecord& r = task.last_record();
+    if (r.motion_tick < 0) continue;
+    raw.push_back(move.at(static_cast<double>(r.motion_tick) * kPeriodS));
+    shaped.push_back(r.axis[0].reference_mm);
+    ASSERT_EQ(r.axis[0].unshaped_reference_mm, raw.back().position_mm);
+    ASSERT_LT(raw.size(), 1000u);
+  }
+  const TapSet& taps = task.shaper_design(hal::Axis::x).taps;
+  std::vector<AxisSample> offline(raw.size());
+  shape_offline(taps, raw.data(), offline.data(), raw.size(), {kHomeMm, 0.0});
+  for (std::size_t k = 0; k < raw.size(); ++k) ASSERT_EQ(shaped[k], offline[k].position_mm) << "motion tick " << k;
+  EXPECT_GE(raw.size(), static_cast<std::size_t>(std::ceil(move.duration_s() / kPeriodS)) + taps.span())
+      << "the motion lasts until the shaped tail is done";
+  EXPECT_EQ(shaped.back(), kHomeMm - 3.0) << "end point exact";
+}
+
+// The supervisor checks the following error against the shaped reference
+// (what the loop follows): a 10 Hz ZVDD delays the reference by 75 ms, far
+// more than the speed-scaled limit allows against the unshaped command.
+TEST_F(TickShaperTest, FollowingErrorIsMeasuredAgainstTheShapedReference) {
+  ASSERT_EQ(task.configure_shaper(hal::Axis::x, {ShaperType::zvdd, {10.0, 0.0}, {0.0, 0.0}}), CommandStatus::ok);
+  ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok);
+  servo_on_holding();
+  const FollowingErrorLimit& limit = task.config().supervisor.axis[0].following;
+  ASSERT_EQ(task.start_move({hal::Axis::x, 20.0, 50.0, 0.02, 0.0}), CommandStatus::ok);
+  double worst_unshaped_excess_mm = -1e9;
+  while (task.state() == MotionState::moving) {
+    tick();
+    const AxisTickRecord& r = task.last_record().axis[0];
+    worst_unshaped_excess_mm = std::fmax(worst_unshaped_excess_mm,
+                                         std::fabs(r.unshaped_reference_mm - r.position_mm) - limit.at(r.reference_speed_mm_s));
+  }
+  EXPECT_EQ(task.state(), MotionState::holding) << "fault: " << to_string(task.fault().reason);
+  EXPECT_GT(worst_unshaped_excess_mm, 1.0) << "mm beyond the limit: a delay-blind check would have tripped";
+}
+
+TEST_F(TickShaperTest, AShaperChangeWaitsUntilTheAxisIsAtRest) {
+  ASSERT_EQ(task.configure_shaper(hal::Axis::x, {ShaperType::zv, {30.0, 0.0}, {0.0, 0.0}}), CommandStatus::ok);
+  servo_on_holding();
+  ASSERT_EQ(task.start_move({hal::Axis::x, 2.0, 20.0, 0.02, 0.0}), CommandStatus::ok);
+  tick();
+  tick();
+  ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok) << "accepted while moving";
+  while (task.state() == MotionState::moving) {
+    tick();
+    ASSERT_FALSE(task.shaper(hal::Axis::x).shaping()) << "switched on while moving";
+    ASSERT_EQ(task.last_record().axis[0].reference_mm, task.last_record().axis[0].unshaped_reference_mm);
+  }
+  tick();
+  tick();
+  EXPECT_TRUE(task.shaper(hal::Axis::x).shaping()) << "applied once holding";
+  EXPECT_EQ(task.last_record().axis[0].reference_mm, kHomeMm + 2.0);
+}
+
+TEST_F(TickShaperTest, ShaperCommandsValidateBeforeAnythingChanges) {
+  EXPECT_EQ(task.enable_shaper(hal::Axis::y, true), CommandStatus::invalid) << "never configured";
+  EXPECT_EQ(task.configure_shaper(hal::Axis::x, {ShaperType::zv, {std::nan(""), 0.0}, {0.0, 0.0}}),
+            CommandStatus::invalid);
+  EXPECT_EQ(task.configure_shaper(hal::Axis::x, {ShaperType::zv, {30.0, 0.0}, {300.0, 0.0}}), CommandStatus::invalid);
+  EXPECT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::invalid) << "a refused design is not a design";
+  EXPECT_EQ(task.enable_shaper(hal::Axis::x, false), CommandStatus::ok);
+}
+
+TEST_F(TickShaperTest, MoveCommandsAreRefusedWithAReason) {
+  tick();
+  EXPECT_EQ(task.start_move({hal::Axis::x, 0.0, 50.0, 0.02, 0.0}), CommandStatus::invalid);
+  EXPECT_EQ(task.start_move({hal::Axis::x, 0.5, 50.0, 0.02, 0.0}), CommandStatus::invalid) << "ramps do not fit";
+  EXPECT_EQ(task.start_move({hal::Axis::x, 300.0, 50.0, 0.02, 0.0}), CommandStatus::invalid) << "beyond +250 mm";
+  EXPECT_EQ(task.start_move({hal::Axis::x, 5.0, INFINITY, 0.02, 0.0}), CommandStatus::invalid);
+  EXPECT_EQ(task.state(), MotionState::disabled);
+  EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, 5.0, -1.0, 0.02, 0.0}), "speed_mm_s must be > 0 and finite");
+  ASSERT_EQ(task.start_move({hal::Axis::y, -5.0, 50.0, 0.02, 0.1}), CommandStatus::ok) << "from servo-off";
+  tick();
+  EXPECT_EQ(task.state(), MotionState::dwell);
+  EXPECT_EQ(task.start_move({hal::Axis::y, 5.0, 50.0, 0.02, 0.0}), CommandStatus::busy);
+  EXPECT_EQ(task.jog(hal::Axis::x, 1.0), CommandStatus::busy);
+}
+
+TEST_F(TickShaperTest, JogFollowsTheOperatorAndTheDeadManStopsIt) {
+  EXPECT_EQ(task.jog(hal::Axis::x, 10.0), CommandStatus::busy) << "servo off";
+  servo_on_holding();
+  EXPECT_EQ(task.jog(hal::Axis::x, std::nan("")), CommandStatus::invalid);
+  EXPECT_EQ(task.jog(hal::Axis::x, 1e3), CommandStatus::invalid) << "beyond the jog speed limit";
+  EXPECT_EQ(task.state(), MotionState::holding) << "a refused jog starts nothing";
+  const JogLimits& lim = task.config().axis[0].jog;
+  const double v = 20.0;
+  // The pendant sends every tick for 0.3 s ...
+  for (int k = 0; k < 300; ++k) {
+    ASSERT_EQ(task.jog(hal::Axis::x, v), CommandStatus::ok);
+    tick();
+  }
+  EXPECT_EQ(task.last_record().axis[0].reference_speed_mm_s, v);
+  const double x_release = task.last_record().axis[0].reference_mm;
+  // ... then goes silent: the axis brakes after deadman_s and holds.
+  int ticks = 0;
+  while (task.state() == MotionState::moving && ticks < 2000) {
+    tick();
+    ++ticks;
+  }
+  EXPECT_EQ(task.state(), MotionState::holding);
+  EXPECT_EQ(task.jog_deadman_stops(), 1u);
+  tick();  // the first holding tick: x_ref,k is the rest point
+  const double coast_mm = task.last_record().axis[0].reference_mm - x_release;
+  const double expected_mm = v * lim.deadman_s + v * v / (2.0 * lim.accel_mm_s2);
+  EXPECT_NEAR(coast_mm, expected_mm, v * 2.5 * kPeriodS) << "coasted deadman_s, then braked at the jog acceleration";
+  EXPECT_EQ(task.last_record().axis[0].reference_speed_mm_s, 0.0);
+}
+
+TEST_F(TickShaperTest, ShapedJogEndsExactlyWhereTheUnshapedJogDoes) {
+  ASSERT_EQ(task.configure_shaper(hal::Axis::y, {ShaperType::zvdd, {25.0, 0.05}, {60.0, 0.05}}), CommandStatus::ok);
+  ASSERT_EQ(task.enable_shaper(hal::Axis::y, true), CommandStatus::ok);
+  servo_on_holding();
+  double raw_end = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    ASSERT_EQ(task.jog(hal::Axis::y, k < 150 ? -15.0 : (k < 250 ? 0.0 : 8.0)), CommandStatus::ok);
+    tick();
+  }
+  ASSERT_EQ(task.jog(hal::Axis::y, 0.0), CommandStatus::ok);
+  while (task.state() == MotionState::moving) {
+    raw_end = task.last_record().axis[1].unshaped_reference_mm;
+    tick();
+  }
+  EXPECT_EQ(task.state(), MotionState::holding);
+  EXPECT_EQ(task.last_record().axis[1].reference_mm, raw_end);
+  EXPECT_EQ(task.jog_deadman_stops(), 0u);
+}
+
+}  // namespace
+}  // namespace tnv::fw

@@ -1,0 +1,107 @@
+// `tnv-hil boring` as a script sees it: the issue's command line, JSON keys,
+// exit codes, the plot.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run_boring(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string err_path = (dir / ("tnv_hil_boring_" + std::to_string(::getpid()) + ".err")).string();
+  std::string cmd = TNV_HIL_EXE;
+  cmd += " boring ";
+  cmd += args;
+  cmd += " 2>";
+  cmd += err_path;
+  CliRun r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_path);
+  return r;
+}
+
+TEST(BoringCli, TheIssuesCommandLineGivesTheRequiredJsonKeys) {
+  const CliRun r = run_boring("--sigma-mm 0.016231 --alpha0 0.5 --parts 30 --change-at 11,21 --seeds 20 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"bad_parts_mean", "bad_parts_max", "resets_mean", "segments", "seed1", "settings"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_GE(j["bad_parts_mean"].get<double>(), 1.0) << "part 1 is cut at S0 = 0.5 mm/rev: 0.285 mm at L = 310 mm";
+  EXPECT_LE(j["bad_parts_mean"].get<double>(), static_cast<double>(j["bad_parts_max"].get<int>()));
+  const auto& parts = j["seed1"]["parts"];
+  ASSERT_EQ(parts.size(), 30u);
+  EXPECT_EQ(parts[10]["true"]["alpha"].get<double>(), 0.7) << "part 11: the second set";
+  EXPECT_EQ(parts[20]["true"]["alpha"].get<double>(), 0.6) << "part 21: the third set";
+  for (const auto& p : parts) {
+    ASSERT_EQ(p["positions"].size(), 2u);
+    EXPECT_EQ(p["positions"][0]["overhang_mm"].get<double>(), 40.0);
+    EXPECT_EQ(p["positions"][1]["overhang_mm"].get<double>(), 310.0);
+    for (const char* key : {"infeed_mm_rev", "optimal_infeed_mm_rev", "true_deflection_mm", "measured_deflection_mm"})
+      EXPECT_TRUE(p["positions"][0].contains(key)) << key;
+    EXPECT_TRUE(p["estimate"].contains("c_mm"));
+  }
+  EXPECT_EQ(j["settings"]["gain_form"], "normalised");
+  EXPECT_EQ(j["settings"]["reset_count"], "measurements");
+  EXPECT_EQ(j["bad_fraction_by_part"].size(), 30u);
+}
+
+TEST(BoringCli, TextIsTheDefaultAndNamesTheSettings) {
+  const CliRun r = run_boring("--sigma-mm 0.005 --alpha0 1.0 --seeds 3 --gain-form printed --reset-count parts");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("gain form printed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("parts out of d0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("RESET"), std::string::npos) << "the large change resets P in seed 1";
+}
+
+TEST(BoringCli, BadInputExitsWith2AndRunsNothing) {
+  for (const char* args : {"--sigma-mm -1", "--sigma-mm nan", "--alpha0 0", "--change-at 21,11", "--change-at x",
+                           "--change-at 1", "--change-at 5,10,20", "--parts 0", "--seeds 0", "--gain-form fuzzy",
+                           "--reset-count sometimes", "--s0 5"}) {
+    const CliRun r = run_boring(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+  const CliRun r = run_boring("--change-at 21,11");
+  EXPECT_NE(r.err.find("change_at"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const CliRun s0 = run_boring("--s0 5");
+  EXPECT_NE(s0.err.find("nominal_infeed_mm_rev"), std::string::npos) << s0.err;
+}
+
+TEST(BoringCli, WritesThePlotOrFailsWithExit1) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tnv_hil_boring_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const CliRun r = run_boring("--seeds 5 --plot " + (dir / "b.svg").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream svg(dir / "b.svg");
+  std::string head(5, '\0');
+  svg.read(head.data(), 5);
+  EXPECT_EQ(head, "<svg ");
+  EXPECT_EQ(run_boring("--plot /nonexistent/dir/b.svg").exit_code, 1);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

@@ -1,0 +1,112 @@
+#include "tools/hil/boring_run.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "firmware/adaptive/boring/boring_infeed_planner.hpp"
+
+namespace tnv::hil {
+
+BoringRunRequest paper_boring_request(double sigma_d_mm, double alpha0) {
+  BoringRunRequest r;
+  r.planner.sigma_d_mm = sigma_d_mm;
+  r.planner.alpha0 = alpha0;
+  r.process_sigma_mm = sigma_d_mm;
+  r.band_sigma_mm = sigma_d_mm;
+  return r;
+}
+
+namespace {
+
+emu::BoringProcessConfig process_config(const BoringRunRequest& r, std::uint64_t seed) {
+  const int c1 = r.change_at.size() > 0 ? r.change_at[0] : 0;
+  const int c2 = r.change_at.size() > 1 ? r.change_at[1] : 0;
+  emu::BoringProcessConfig c = emu::paper_boring_process(r.process_sigma_mm, seed, c1, c2);
+  c.preset_deflection_mm = r.planner.target_deflection_mm;
+  c.force_angle_deg = r.planner.force_angle_deg;
+  return c;
+}
+
+}  // namespace
+
+std::string validate_boring_request(const BoringRunRequest& r) {
+  if (const fw::ParamCheck check = fw::validate(r.planner); !check.ok)
+    return std::string(check.field) + ": " + check.reason;
+  if (!(r.parts >= 1 && r.parts <= 100'000)) return "parts: must be in [1, 100000]";
+  if (r.change_at.size() > 2) return "change_at: at most two change points (the paper's three sets)";
+  for (std::size_t i = 0; i < r.change_at.size(); ++i) {
+    if (r.change_at[i] < 2) return "change_at: a change point must be a part number >= 2";
+    if (i > 0 && r.change_at[i] <= r.change_at[i - 1]) return "change_at: change points must increase";
+  }
+  if (!(std::isfinite(r.band_sigma_mm) && r.band_sigma_mm > 0.0)) return "band_sigma_mm: must be > 0 and finite";
+  if (r.positions_mm.size() < 2 || r.positions_mm.size() > static_cast<std::size_t>(fw::kMaxBorePositions))
+    return "positions_mm: 2 to 8 measuring positions";
+  for (double p : r.positions_mm)
+    if (!(std::isfinite(p) && p >= r.planner.overhang_min_mm && p <= r.planner.overhang_max_mm))
+      return "positions_mm: each must lie in [overhang_min_mm, overhang_max_mm]";
+  return emu::validate_boring_process(process_config(r, 1));
+}
+
+BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {
+  if (const std::string error = validate_boring_request(r); !error.empty()) throw std::invalid_argument(error);
+  emu::BoringProcess process(process_config(r, seed));
+  fw::BoringInfeedPlanner planner(r.planner);
+  const double d0 = r.planner.target_deflection_mm;
+  const double band_mm = r.planner.band_sigmas * r.band_sigma_mm;
+
+  BoringRunResult result;
+  result.seed = seed;
+  result.parts.reserve(static_cast<std::size_t>(r.parts));
+  double sum_sq = 0.0;
+  int n_sq = 0;
+  std::vector<fw::BoreMeasurement> gauge(r.positions_mm.size());
+  for (int part = 1; part <= r.parts; ++part) {
+    BoringPartRecord rec;
+    rec.part = part;
+    rec.true_c_mm = process.c_mm(part);
+    rec.true_alpha = process.parameters(part).alpha;
+    rec.true_beta = process.parameters(part).beta;
+    for (std::size_t i = 0; i < r.positions_mm.size(); ++i) {
+      const double L = r.positions_mm[i];
+      const fw::InfeedCommand cmd = planner.infeed(L);
+      if (!cmd.check.ok) {
+        result.error = "part " + std::to_string(part) + ": planner refused infeed: " + cmd.check.field + ": " +
+                       cmd.check.reason;
+        return result;
+      }
+      BoringPositionRecord pos;
+      pos.overhang_mm = L;
+      pos.infeed_mm_rev = cmd.infeed_mm_rev;
+      pos.infeed_limited = cmd.infeed_limited;
+      pos.optimal_infeed_mm_rev = process.optimal_infeed_mm_rev(part, L);
+      pos.true_deflection_mm = process.deflection_mm(part, cmd.infeed_mm_rev, L);
+      gauge[i] = {L, cmd.infeed_mm_rev, process.measure_bore_error_mm(part, cmd.infeed_mm_rev, L)};
+      pos.measured_deflection_mm = planner.deflection_mm(gauge[i]);
+      rec.bad = rec.bad || std::fabs(pos.true_deflection_mm - d0) > band_mm;
+      if (part > 1) {
+        sum_sq += (pos.true_deflection_mm - d0) * (pos.true_deflection_mm - d0);
+        ++n_sq;
+      }
+      rec.positions.push_back(pos);
+    }
+    const fw::BoringPartReport report = planner.record_part(gauge);
+    if (!report.check.ok) {
+      result.error = "part " + std::to_string(part) + ": planner refused the measurements: " + report.check.field +
+                     ": " + report.check.reason;
+      return result;
+    }
+    rec.reset = report.reset;
+    rec.out_of_band = report.out_of_band;
+    rec.c_hat_mm = planner.estimated_c_mm();
+    rec.alpha_hat = planner.estimated_alpha();
+    rec.beta_hat = planner.estimated_beta();
+    rec.resets = planner.resets() - result.resets;
+    result.resets = planner.resets();
+    result.bad_parts += rec.bad ? 1 : 0;
+    result.parts.push_back(std::move(rec));
+  }
+  result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
+  return result;
+}
+
+}  // namespace tnv::hil

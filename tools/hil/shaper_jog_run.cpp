@@ -1,0 +1,198 @@
+#include "tools/hil/shaper_jog_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "drivers/emulated/emulated_register_bus.hpp"
+#include "drivers/fpga/fpga_io_board.hpp"
+#include "emulator/machine.hpp"
+#include "emulator/scenario_validation.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "tools/hil/hil_firmware_config.hpp"
+
+namespace tnv::hil {
+
+namespace {
+constexpr int kHomingTicks = 3;
+constexpr double kPeriodS = 1e-3;
+constexpr double kLongestStreamS = 600.0;
+
+bool parse_number(const std::string& field, double& out) {
+  std::size_t used = 0;
+  try {
+    out = std::stod(field, &used);
+  } catch (...) {
+    return false;
+  }
+  while (used < field.size() && (field[used] == ' ' || field[used] == '\r')) ++used;
+  return used == field.size() && std::isfinite(out);
+}
+}  // namespace
+
+std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, std::string& error) {
+  std::vector<JogCommand> out;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  bool header = false;
+  const char* names[] = {"t_s", "x_mm_s", "y_mm_s"};
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line != "t_s,x_mm_s,y_mm_s") {
+        error = "line " + std::to_string(n) + ": header must be t_s,x_mm_s,y_mm_s";
+        return std::nullopt;
+      }
+      header = true;
+      continue;
+    }
+    std::vector<std::string> fields;
+    std::string f;
+    std::istringstream row(line);
+    while (std::getline(row, f, ',')) fields.push_back(f);
+    if (fields.size() != 3) {
+      error = "line " + std::to_string(n) + ": expected 3 fields (t_s,x_mm_s,y_mm_s), got " + std::to_string(fields.size());
+      return std::nullopt;
+    }
+    double v[3];
+    for (int i = 0; i < 3; ++i)
+      if (!parse_number(fields[static_cast<std::size_t>(i)], v[i])) {
+        error = "line " + std::to_string(n) + ": " + names[i] + " is not a finite number";
+        return std::nullopt;
+      }
+    if (v[0] < 0.0 || v[0] > kLongestStreamS || (!out.empty() && v[0] <= out.back().t_s)) {
+      error = "line " + std::to_string(n) + ": t_s must increase, 0.." + std::to_string(static_cast<int>(kLongestStreamS)) + " s";
+      return std::nullopt;
+    }
+    out.push_back({v[0], {v[1], v[2]}});
+  }
+  if (out.empty()) {
+    error = header ? "no command rows" : "empty file (header t_s,x_mm_s,y_mm_s expected)";
+    return std::nullopt;
+  }
+  return out;
+}
+
+JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& base_config) {
+  JogRunResult result;
+  const emu::Scenario& scenario = request.scenario;
+  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
+    result.error = "scenario " + scenario.name + ": " + bad;
+    return result;
+  }
+  const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
+  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
+    result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;
+    return result;
+  }
+  if (request.commands.empty()) {
+    result.error = "no jog commands";
+    return result;
+  }
+  emu::Machine machine(scenario);
+  drivers::EmulatedRegisterBus bus(machine);
+  drivers::FpgaIoBoard board(bus);
+  if (const drivers::FpgaInitResult init = board.init({}); !init.ok()) {
+    result.error = std::string("I/O board: ") + init.message;
+    return result;
+  }
+  fw::TickTask task(board, config);
+  task.select_controller(hal::Axis::x, request.controller);
+  task.select_controller(hal::Axis::y, request.controller);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const hal::Axis axis = hal::axis_from_index(i);
+    if (!request.shaper[i]) continue;
+    if (task.configure_shaper(axis, *request.shaper[i]) != fw::CommandStatus::ok ||
+        task.enable_shaper(axis, true) != fw::CommandStatus::ok) {
+      result.error = std::string("shaper refused on axis ") + hal::axis_name(axis) + ": " + fw::validate(*request.shaper[i]).field;
+      return result;
+    }
+  }
+  for (int i = 0; i < kHomingTicks; ++i) {
+    machine.advance_to_next_tick();
+    task.tick();
+  }
+  if (task.hold_position() != fw::CommandStatus::ok) {
+    result.error = "servo-on refused";
+    return result;
+  }
+  machine.advance_to_next_tick();
+  task.tick();
+  for (std::size_t i = 0; i < 2; ++i) {
+    result.axis[i].start_mm = task.last_record().axis[i].reference_mm;
+    result.axis[i].shaper_delay_s = task.shaper_delay_s(hal::axis_from_index(i));
+  }
+
+  const auto last_row_tick = static_cast<std::int64_t>(std::llround(request.commands.back().t_s / kPeriodS));
+  const auto window_ticks = static_cast<std::int64_t>(std::llround(request.window_s / kPeriodS));
+  std::optional<std::int64_t> stop_tick;
+  std::size_t row = 0;
+  std::vector<std::array<double, 3>> tool_samples;  // t, tool x, tool y
+  for (std::int64_t k = 0;; ++k) {
+    const double t_s = static_cast<double>(k) * kPeriodS;
+    // The pendant: hold the current row, silent after the last one.
+    while (row + 1 < request.commands.size() && request.commands[row + 1].t_s <= t_s + 1e-9) ++row;
+    if (k <= last_row_tick && request.commands[row].t_s <= t_s + 1e-9) {
+      for (std::size_t i = 0; i < 2; ++i) {
+        const double v = request.commands[row].speed_mm_s[i];
+        const bool axis_idle = v == 0.0 && task.state() != fw::MotionState::moving;
+        if (axis_idle) continue;  // nothing to send for a standing axis
+        if (task.jog(hal::axis_from_index(i), v) != fw::CommandStatus::ok) ++result.refused_commands;
+      }
+    }
+    machine.advance_to_next_tick();
+    const emu::AxisTruth tx = machine.truth(hal::Axis::x), ty = machine.truth(hal::Axis::y);
+    task.tick();
+    if (task.state() == fw::MotionState::faulted) break;
+    const fw::TickRecord& rec = task.last_record();
+    tool_samples.push_back({t_s, tx.tool_position_mm, ty.tool_position_mm});
+    for (std::size_t i = 0; i < 2; ++i) {
+      const fw::AxisTickRecord& r = rec.axis[i];
+      result.axis[i].max_following_error_um =
+          std::max(result.axis[i].max_following_error_um, std::fabs(r.reference_mm - r.position_mm) * 1e3);
+    }
+    if (request.keep_trace)
+      result.trace.push_back({t_s, {rec.axis[0].unshaped_reference_mm, rec.axis[1].unshaped_reference_mm},
+                              {rec.axis[0].reference_mm, rec.axis[1].reference_mm}, {tx.tool_position_mm, ty.tool_position_mm}});
+    const bool at_rest = task.state() == fw::MotionState::holding;
+    if (k > last_row_tick && at_rest && !stop_tick) stop_tick = k;
+    if (!at_rest) stop_tick.reset();
+    if (stop_tick && k >= *stop_tick + window_ticks) break;
+    if (t_s > kLongestStreamS + 60.0) break;
+  }
+  result.deadman_stops = task.jog_deadman_stops();
+  if (task.state() == fw::MotionState::faulted) {
+    result.error = std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick);
+    return result;
+  }
+  if (!stop_tick) {
+    result.error = "the axes did not come to rest";
+    return result;
+  }
+  result.stop_s = static_cast<double>(*stop_tick) * kPeriodS;
+  for (std::size_t i = 0; i < 2; ++i) {
+    JogAxisResult& a = result.axis[i];
+    a.end_mm = task.last_record().axis[i].reference_mm;
+    a.unshaped_end_mm = task.last_record().axis[i].unshaped_reference_mm;
+    double lo = 1e300, hi = -1e300;
+    std::optional<double> last_outside_s;
+    for (const auto& s : tool_samples) {
+      const double e_um = (s[1 + i] - a.end_mm) * 1e3;
+      if (s[0] >= result.stop_s) {
+        lo = std::min(lo, e_um);
+        hi = std::max(hi, e_um);
+      }
+      if (std::fabs(e_um) > request.settle_band_um) last_outside_s = s[0];
+    }
+    a.residual_pp_um = hi - lo;
+    if (!last_outside_s || *last_outside_s < tool_samples.back()[0])
+      a.settling_s = std::round(std::max(0.0, last_outside_s.value_or(0.0) + kPeriodS - result.stop_s) * 1e6) / 1e6;
+  }
+  result.completed = true;
+  return result;
+}
+
+}  // namespace tnv::hil
