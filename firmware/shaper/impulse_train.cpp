@@ -8,7 +8,8 @@ namespace tnv::fw {
 ImpulseTrain convolve(const ImpulseTrain& a, const ImpulseTrain& b) noexcept {
   ImpulseTrain out;
   for (std::size_t i = 0; i < a.count; ++i)
-    for (std::size_t j = 0; j < b.count; ++j) out.push(a.impulse[i].t_s + b.impulse[j].t_s, a.impulse[i].a * b.impulse[j].a);
+    for (std::size_t j = 0; j < b.count; ++j)
+      out.push(a.impulse[i].t_s + b.impulse[j].t_s, a.impulse[i].a * b.impulse[j].a);
   std::sort(out.impulse.begin(), out.impulse.begin() + static_cast<std::ptrdiff_t>(out.count),
             [](const Impulse& x, const Impulse& y) { return x.t_s < y.t_s; });
   // Merge impulses that coincide (e.g. 30 Hz x 60 Hz ZV share times).

@@ -73,8 +73,7 @@ Band insensitivity_band(const ImpulseTrain& train, double design_hz, double zeta
   return band_of([&](double r) { return residual_vibration(train, r * design_hz, zeta); }, tolerance);
 }
 
-Band insensitivity_band(const TapSet& taps, double period_s, double design_hz, double zeta,
-                        double tolerance) noexcept {
+Band insensitivity_band(const TapSet& taps, double period_s, double design_hz, double zeta, double tolerance) noexcept {
   return band_of([&](double r) { return residual_vibration(taps, period_s, r * design_hz, zeta); }, tolerance);
 }
 

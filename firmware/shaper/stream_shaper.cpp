@@ -1,13 +1,9 @@
 #include "firmware/shaper/stream_shaper.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace tnv::fw {
 
-namespace {
-constexpr std::uint32_t kRestSaturated = std::numeric_limits<std::uint32_t>::max() / 2;
-}
 
 bool StreamShaper::request_taps(const TapSet& taps) noexcept {
   if (taps.count == 0 || taps.span() >= kRingCapacity) return false;
@@ -54,18 +50,16 @@ void StreamShaper::reset(const AxisSample& rest) noexcept {
   }
 }
 
-AxisSample StreamShaper::step(const AxisSample& in) noexcept {
+AxisSample StreamShaper::step_switching_or_shaping(const AxisSample& in) noexcept {
   if (change_pending_ && quiet()) apply_requested();
-  const bool at_rest = in.speed_mm_s == 0.0 && in.position_mm == last_in_.position_mm;
-  rest_count_ = at_rest ? (rest_count_ < kRestSaturated ? rest_count_ + 1 : rest_count_) : 0;
-  last_in_ = in;
-  head_ = (head_ + 1) & kMask;
-  position_mm_[head_] = in.position_mm;
-  speed_mm_s_[head_] = in.speed_mm_s;
-  if (!shaping_) {
+  track_rest(in);
+  if (!shaping_) {  // the identity; a switch refills the history it needs from last_in_
     out_ = in;
     return out_;
   }
+  head_ = (head_ + 1) & kMask;
+  position_mm_[head_] = in.position_mm;
+  speed_mm_s_[head_] = in.speed_mm_s;
   // y_k = x_k + sum_j a_j (x_{k-k_j} - x_k)  (S2 section 2.2, difference form)
   double dp = 0.0, dv = 0.0;
   for (std::size_t j = 0; j < active_.count; ++j) {

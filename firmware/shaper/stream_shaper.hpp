@@ -27,7 +27,8 @@ namespace tnv::fw {
 
 class StreamShaper {
  public:
-  // Power of two. Longest shaper: two ZVDD at 5 Hz, zeta 0.3 = 2 x 316 samples.
+  // Power of two. The longest shaper of the design range (two ZVDD at 5 Hz,
+  // zeta 0.3) spans 630 samples (shaper_design TheLongestShaperFitsTheRing).
   static constexpr std::size_t kRingCapacity = 1024;
 
   StreamShaper() noexcept { reset({}); }
@@ -39,7 +40,14 @@ class StreamShaper {
   void request_enabled(bool on) noexcept;
 
   // --- streaming
-  AxisSample step(const AxisSample& in) noexcept;
+  AxisSample step(const AxisSample& in) noexcept {
+    if (!shaping_ && !change_pending_) {  // off, nothing waiting: the identity (inline: the tick's usual case)
+      track_rest(in);
+      out_ = in;
+      return out_;
+    }
+    return step_switching_or_shaping(in);
+  }
   // Declares the stream at rest at `rest` (servo off, or a deliberate
   // restart): any requested change is applied at once.
   void reset(const AxisSample& rest) noexcept;
@@ -57,23 +65,32 @@ class StreamShaper {
 
  private:
   static constexpr std::size_t kMask = kRingCapacity - 1;
+  static constexpr std::uint32_t kRestSaturated = 0x7FFFFFFFu;
   static_assert((kRingCapacity & kMask) == 0, "ring capacity must be a power of two");
+  AxisSample step_switching_or_shaping(const AxisSample& in) noexcept;
   void apply_requested() noexcept;
+  // Consecutive inputs equal to their predecessor with speed 0 (saturating).
+  void track_rest(const AxisSample& in) noexcept {
+    const bool at_rest = in.speed_mm_s == 0.0 && in.position_mm == last_in_.position_mm;
+    rest_count_ = at_rest ? (rest_count_ < kRestSaturated ? rest_count_ + 1 : rest_count_) : 0;
+    last_in_ = in;
+  }
   void fill_history(const AxisSample& value, std::uint32_t samples) noexcept;
 
-  std::array<double, kRingCapacity> position_mm_{};
-  std::array<double, kRingCapacity> speed_mm_s_{};
-  std::size_t head_ = 0;  // index of the newest input
-  TapSet active_ = TapSet::identity();
-  TapSet requested_ = TapSet::identity();
+  // What every tick touches first, on one cache line; the bulk after it.
   bool active_enabled_ = false;
   bool requested_enabled_ = false;
   bool change_pending_ = false;
   bool shaping_ = false;
   std::uint32_t span_ = 0;        // longest delay of the active shaper (0 when not shaping)
   std::uint32_t rest_count_ = 0;  // consecutive inputs equal to their predecessor with speed 0
+  std::size_t head_ = 0;          // index of the newest input
   AxisSample last_in_{};
   AxisSample out_{};
+  TapSet active_ = TapSet::identity();
+  std::array<double, kRingCapacity> position_mm_{};
+  std::array<double, kRingCapacity> speed_mm_s_{};
+  TapSet requested_ = TapSet::identity();
 };
 
 // The same shaping over a recorded stream in[0..n) (history before it at

@@ -97,7 +97,12 @@ void TickTask::set_reference(std::size_t i, const AxisSample& now, const AxisSam
 // get y_k (the shaper's previous output) and y_{k+1} = shaper(x_{k+1}).
 void TickTask::shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept {
   record_.axis[i].unshaped_reference_mm = now.position_mm;
-  StreamShaper& shaper = axis_[i].shaper;
+  StreamShaper& shaper = shaping_[i].shaper;
+  if (!shaper.shaping() && !shaper.change_pending()) {
+    shaper.step(next);            // the identity; it only notes whether the stream rests
+    set_reference(i, now, next);  // off: the unshaped path, bit for bit
+    return;
+  }
   const bool was_shaping = shaper.shaping();
   const AxisSample shaped_now = shaper.output();
   const AxisSample shaped_next = shaper.step(next);
@@ -109,8 +114,8 @@ void TickTask::shape_reference(std::size_t i, const AxisSample& now, const AxisS
 }
 
 bool TickTask::shapers_settled() const noexcept {
-  for (const AxisLoop& loop : axis_)
-    if (loop.shaper.shaping() && !loop.shaper.quiet()) return false;
+  for (const AxisShaping& s : shaping_)
+    if (s.shaper.shaping() && !s.shaper.quiet()) return false;
   return true;
 }
 
@@ -183,7 +188,7 @@ void TickTask::update_reference() noexcept {
       // bumpless, and the shapers rest there (a pending change applies now).
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
         hold_[i] = {record_.axis[i].position_mm, 0.0};
-        axis_[i].shaper.reset(hold_[i]);
+        shaping_[i].shaper.reset(hold_[i]);
         record_.axis[i].unshaped_reference_mm = hold_[i].position_mm;
         set_reference(i, hold_[i], hold_[i]);
       }
@@ -353,24 +358,24 @@ CommandStatus TickTask::jog(hal::Axis axis, double speed_mm_s) noexcept {
 CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept {
   const std::size_t a = hal::index(axis);
   if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
-  AxisLoop& loop = axis_[a];
+  AxisShaping& s = shaping_[a];
   const ShaperDesign design = design_shaper(spec, kTickPeriodS);
-  if (!loop.shaper.request_taps(design.taps)) return CommandStatus::invalid;
-  loop.design = design;
-  loop.shaper_configured = true;
+  if (!s.shaper.request_taps(design.taps)) return CommandStatus::invalid;
+  s.design = design;
+  s.configured = true;
   return CommandStatus::ok;
 }
 
 CommandStatus TickTask::enable_shaper(hal::Axis axis, bool on) noexcept {
   const std::size_t a = hal::index(axis);
   if (a >= hal::kAxisCount) return CommandStatus::invalid;
-  if (on && !axis_[a].shaper_configured) return CommandStatus::invalid;
-  axis_[a].shaper.request_enabled(on);
+  if (on && !shaping_[a].configured) return CommandStatus::invalid;
+  shaping_[a].shaper.request_enabled(on);
   return CommandStatus::ok;
 }
 
 double TickTask::shaper_delay_s(hal::Axis axis) const noexcept {
-  return axis_[hal::index(axis)].shaper.delay_samples() * kTickPeriodS;
+  return shaping_[hal::index(axis)].shaper.delay_samples() * kTickPeriodS;
 }
 
 std::uint32_t TickTask::jog_deadman_stops() const noexcept {

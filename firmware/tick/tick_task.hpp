@@ -95,8 +95,8 @@ class TickTask {
   // The active shaper's delay (centroid of its taps), 0 when it is off:
   // what multi-axis synchronisation and host-side comparisons shift by.
   double shaper_delay_s(hal::Axis axis) const noexcept;
-  const StreamShaper& shaper(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].shaper; }
-  const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].design; }
+  const StreamShaper& shaper(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].shaper; }
+  const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].design; }
   std::uint32_t jog_deadman_stops() const noexcept;
 
  private:
@@ -108,10 +108,14 @@ class TickTask {
     ControllerKind kind;
     EncoderPosition encoder;
     double speed_mm_s = 0.0;
+    AxisController& active() noexcept;
+  };
+
+  // Per axis; kept after the hot per-tick state (the ring buffers are large).
+  struct AxisShaping {
     StreamShaper shaper{};
     ShaperDesign design{};
-    bool shaper_configured = false;
-    AxisController& active() noexcept;
+    bool configured = false;
   };
 
   enum class Source : std::uint8_t { circle, move, jog };
@@ -147,6 +151,7 @@ class TickTask {
   bool first_tick_ = true;
   std::uint32_t last_sequence_ = 0;
   std::uint32_t last_clock_ = 0;
+  std::array<AxisShaping, hal::kAxisCount> shaping_{};
 };
 
 }  // namespace tnv::fw

@@ -37,8 +37,8 @@ class PointToPointMove {
 
   // t_s since the start of the move; before it the start, after it the end (at rest).
   AxisSample at(double t_s) const noexcept {
+    if (t_s >= duration_s()) return {end_mm(), 0.0};  // exactly the end point, exactly at rest
     const PathPoint p = profile_.at(t_s);
-    if (p.distance_mm == profile_.length_mm() && p.speed_mm_s == 0.0) return {end_mm(), 0.0};
     return {start_mm_ + direction_ * p.distance_mm, direction_ * p.speed_mm_s};
   }
 

@@ -18,7 +18,9 @@ fw::ShaperSpec spec_for(int which) {
     case 0: return {fw::ShaperType::zv, {30.0, 0.02}, {0.0, 0.0}};
     case 1: return {fw::ShaperType::zvdd, {30.0, 0.02}, {0.0, 0.0}};
     case 2: return {fw::ShaperType::zvd, {30.0, 0.02}, {100.0, 0.02}};
-    default: return {fw::ShaperType::zvdd, {fw::kShaperMinFreqHz, fw::kShaperMaxZeta}, {fw::kShaperMinFreqHz, fw::kShaperMaxZeta}};
+    default:
+      return {
+          fw::ShaperType::zvdd, {fw::kShaperMinFreqHz, fw::kShaperMaxZeta}, {fw::kShaperMinFreqHz, fw::kShaperMaxZeta}};
   }
 }
 

@@ -28,7 +28,8 @@ TEST(ShaperDesignReport, JsonHasTheIssueKeysAndTheFirmwareNumbers) {
   EXPECT_DOUBLE_EQ(residual[0]["ratio"].get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(residual[20]["ratio"].get<double>(), 1.5);
   EXPECT_LT(residual[10]["percent"].get<double>(), 1e-9) << "design point";
-  EXPECT_NEAR(residual[6]["percent"].get<double>(), 100.0 * fw::residual_vibration(d.taps, kShaperPeriodS, 0.8 * 30.0, 0.02), 1e-9);
+  EXPECT_NEAR(residual[6]["percent"].get<double>(),
+              100.0 * fw::residual_vibration(d.taps, kShaperPeriodS, 0.8 * 30.0, 0.02), 1e-9);
   const double band = j["band_5pct"].get<double>();
   EXPECT_GT(band, 0.4);
   EXPECT_LT(band, 0.6);

@@ -61,8 +61,8 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
                                   " Hz, " + std::to_string(distance_mm) + " mm, seed " + std::to_string(p.seed);
         ASSERT_GT(p.unshaped.residual_pp_um, 100.0) << where << ": the unshaped move must excite the mode (um p-p)";
         EXPECT_LE(p.residual_ratio(), c.max_residual_ratio)
-            << where << ": tool residual " << p.shaped.residual_pp_um << " um p-p shaped vs " << p.unshaped.residual_pp_um
-            << " um unshaped";
+            << where << ": tool residual " << p.shaped.residual_pp_um << " um p-p shaped vs "
+            << p.unshaped.residual_pp_um << " um unshaped";
         EXPECT_LT(p.shaped.max_following_error_um, 50.0) << where << ": following error (um)";
         worst_ratio = std::max(worst_ratio, p.residual_ratio());
         settling_ratios.push_back(p.settling_ratio().value_or(0.0));
@@ -73,10 +73,12 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
       EXPECT_GE(settling, 3.0) << fw::to_string(c.type) << ": median unshaped / shaped settling time to +-1 um over "
                                << settling_ratios.size() << " runs";
     }
-    RecordProperty(std::string(fw::to_string(c.type)) + "_" + std::to_string(static_cast<int>(c.design_hz * 10)) + "_worst_ratio",
-                   std::to_string(worst_ratio));
-    RecordProperty(std::string(fw::to_string(c.type)) + "_" + std::to_string(static_cast<int>(c.design_hz * 10)) + "_settling_x",
-                   std::to_string(settling));
+    RecordProperty(
+        std::string(fw::to_string(c.type)) + "_" + std::to_string(static_cast<int>(c.design_hz * 10)) + "_worst_ratio",
+        std::to_string(worst_ratio));
+    RecordProperty(
+        std::string(fw::to_string(c.type)) + "_" + std::to_string(static_cast<int>(c.design_hz * 10)) + "_settling_x",
+        std::to_string(settling));
   }
 }
 
@@ -85,7 +87,8 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
 // unshaped stream does, and leaves much less vibration at the tool.
 TEST(ShaperFlex30, JogStreamEndsWhereItWouldAndRingsLess) {
   std::string error;
-  const auto commands = parse_jog_csv("t_s,x_mm_s,y_mm_s\n0,40,0\n0.3,0,0\n0.5,-25,0\n0.75,0,10\n0.9,0,0\n1.2,20,0\n", error);
+  const auto commands =
+      parse_jog_csv("t_s,x_mm_s,y_mm_s\n0,40,0\n0.3,0,0\n0.5,-25,0\n0.75,0,10\n0.9,0,0\n1.2,20,0\n", error);
   ASSERT_TRUE(commands) << error;
   JogRunRequest request;
   request.scenario = *emu::builtin_scenario("flex-30");

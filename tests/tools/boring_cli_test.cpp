@@ -76,10 +76,21 @@ TEST(BoringCli, TextIsTheDefaultAndNamesTheSettings) {
   EXPECT_NE(r.out.find("RESET"), std::string::npos) << "the large change resets P in seed 1";
 }
 
+TEST(BoringCli, AnExactGaugeMeasuresTheTrueDeflection) {
+  const CliRun r = run_boring("--sigma-mm 0.005 --alpha0 1.0 --gauge-sigma-mm 0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["settings"]["process_sigma_mm"].get<double>(), 0.0);
+  EXPECT_EQ(j["settings"]["sigma_mm"].get<double>(), 0.005) << "the planner keeps --sigma-mm";
+  for (const auto& p : j["seed1"]["parts"])
+    for (const auto& q : p["positions"])
+      EXPECT_NEAR(q["measured_deflection_mm"].get<double>(), q["true_deflection_mm"].get<double>(), 1e-12);
+}
+
 TEST(BoringCli, BadInputExitsWith2AndRunsNothing) {
   for (const char* args : {"--sigma-mm -1", "--sigma-mm nan", "--alpha0 0", "--change-at 21,11", "--change-at x",
                            "--change-at 1", "--change-at 5,10,20", "--parts 0", "--seeds 0", "--gain-form fuzzy",
-                           "--reset-count sometimes", "--s0 5"}) {
+                           "--reset-count sometimes", "--s0 5", "--gauge-sigma-mm -0.1"}) {
     const CliRun r = run_boring(args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << args;

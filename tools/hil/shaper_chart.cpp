@@ -21,7 +21,8 @@ std::string fmt(double v) {
 std::vector<double> linear_ticks(double lo, double hi, int count) {
   const double step = chart_nice_ceiling((hi - lo) / count);
   std::vector<double> out;
-  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step) out.push_back(std::fabs(t) < 1e-12 * step ? 0.0 : t);
+  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step)
+    out.push_back(std::fabs(t) < 1e-12 * step ? 0.0 : t);
   return out;
 }
 
@@ -37,7 +38,8 @@ double chart_nice_ceiling(double v) {
 
 void draw_chart(SvgWriter& svg, const ChartPanel& p, const std::vector<ChartSeries>& series) {
   const auto y_unit = [&](double y) {
-    if (p.log_y) return (std::log10(std::max(y, p.y_min)) - std::log10(p.y_min)) / (std::log10(p.y_max) - std::log10(p.y_min));
+    if (p.log_y)
+      return (std::log10(std::max(y, p.y_min)) - std::log10(p.y_min)) / (std::log10(p.y_max) - std::log10(p.y_min));
     return (y - p.y_min) / (p.y_max - p.y_min);
   };
   const auto X = [&](double x) { return p.x_px + p.w_px * std::clamp((x - p.x_min) / (p.x_max - p.x_min), 0.0, 1.0); };
@@ -46,7 +48,8 @@ void draw_chart(SvgWriter& svg, const ChartPanel& p, const std::vector<ChartSeri
   // grid and ticks
   std::vector<double> y_ticks;
   if (p.log_y) {
-    for (double d = std::ceil(std::log10(p.y_min) - 1e-9); d <= std::log10(p.y_max) + 1e-9; d += 1.0) y_ticks.push_back(std::pow(10.0, d));
+    for (double d = std::ceil(std::log10(p.y_min) - 1e-9); d <= std::log10(p.y_max) + 1e-9; d += 1.0)
+      y_ticks.push_back(std::pow(10.0, d));
   } else {
     y_ticks = linear_ticks(p.y_min, p.y_max, 5);
   }

@@ -58,7 +58,8 @@ std::string shaper_design_text(const fw::ShaperSpec& spec) {
   const nlohmann::json j = shaper_design_json(spec);
   std::string out;
   char buf[512];
-  std::snprintf(buf, sizeof buf, "%s shaper, %.4g Hz, zeta %.4g", fw::to_string(spec.type), spec.mode.freq_hz, spec.mode.zeta);
+  std::snprintf(buf, sizeof buf, "%s shaper, %.4g Hz, zeta %.4g", fw::to_string(spec.type), spec.mode.freq_hz,
+                spec.mode.zeta);
   out += buf;
   if (spec.has_second_mode()) {
     std::snprintf(buf, sizeof buf, " x %.4g Hz, zeta %.4g", spec.second_mode.freq_hz, spec.second_mode.zeta);
@@ -80,8 +81,8 @@ std::string shaper_design_text(const fw::ShaperSpec& spec) {
                 "5%% band: %.3f of the design frequency (continuous %.3f)\n\nresidual vibration, %% (at zeta %.4g):\n"
                 "  ratio   taps   continuous\n",
                 j["duration_s"].get<double>() * 1e3, j["continuous_duration_s"].get<double>() * 1e3,
-                j["delay_s"].get<double>() * 1e3, j["continuous_delay_s"].get<double>() * 1e3, j["band_5pct"].get<double>(),
-                j["band_5pct_continuous"].get<double>(), spec.mode.zeta);
+                j["delay_s"].get<double>() * 1e3, j["continuous_delay_s"].get<double>() * 1e3,
+                j["band_5pct"].get<double>(), j["band_5pct_continuous"].get<double>(), spec.mode.zeta);
   out += buf;
   for (const auto& r : j["residual"]) {
     std::snprintf(buf, sizeof buf, "  %5.2f %7.3f %8.3f\n", r["ratio"].get<double>(), r["percent"].get<double>(),

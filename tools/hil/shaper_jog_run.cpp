@@ -54,7 +54,8 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
     std::istringstream row(line);
     while (std::getline(row, f, ',')) fields.push_back(f);
     if (fields.size() != 3) {
-      error = "line " + std::to_string(n) + ": expected 3 fields (t_s,x_mm_s,y_mm_s), got " + std::to_string(fields.size());
+      error =
+          "line " + std::to_string(n) + ": expected 3 fields (t_s,x_mm_s,y_mm_s), got " + std::to_string(fields.size());
       return std::nullopt;
     }
     double v[3];
@@ -64,7 +65,8 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
         return std::nullopt;
       }
     if (v[0] < 0.0 || v[0] > kLongestStreamS || (!out.empty() && v[0] <= out.back().t_s)) {
-      error = "line " + std::to_string(n) + ": t_s must increase, 0.." + std::to_string(static_cast<int>(kLongestStreamS)) + " s";
+      error = "line " + std::to_string(n) + ": t_s must increase, 0.." +
+              std::to_string(static_cast<int>(kLongestStreamS)) + " s";
       return std::nullopt;
     }
     out.push_back({v[0], {v[1], v[2]}});
@@ -107,7 +109,8 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     if (!request.shaper[i]) continue;
     if (task.configure_shaper(axis, *request.shaper[i]) != fw::CommandStatus::ok ||
         task.enable_shaper(axis, true) != fw::CommandStatus::ok) {
-      result.error = std::string("shaper refused on axis ") + hal::axis_name(axis) + ": " + fw::validate(*request.shaper[i]).field;
+      result.error =
+          std::string("shaper refused on axis ") + hal::axis_name(axis) + ": " + fw::validate(*request.shaper[i]).field;
       return result;
     }
   }
@@ -155,8 +158,10 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
           std::max(result.axis[i].max_following_error_um, std::fabs(r.reference_mm - r.position_mm) * 1e3);
     }
     if (request.keep_trace)
-      result.trace.push_back({t_s, {rec.axis[0].unshaped_reference_mm, rec.axis[1].unshaped_reference_mm},
-                              {rec.axis[0].reference_mm, rec.axis[1].reference_mm}, {tx.tool_position_mm, ty.tool_position_mm}});
+      result.trace.push_back({t_s,
+                              {rec.axis[0].unshaped_reference_mm, rec.axis[1].unshaped_reference_mm},
+                              {rec.axis[0].reference_mm, rec.axis[1].reference_mm},
+                              {tx.tool_position_mm, ty.tool_position_mm}});
     const bool at_rest = task.state() == fw::MotionState::holding;
     if (k > last_row_tick && at_rest && !stop_tick) stop_tick = k;
     if (!at_rest) stop_tick.reset();
@@ -165,7 +170,8 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
   }
   result.deadman_stops = task.jog_deadman_stops();
   if (task.state() == fw::MotionState::faulted) {
-    result.error = std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick);
+    result.error =
+        std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick);
     return result;
   }
   if (!stop_tick) {

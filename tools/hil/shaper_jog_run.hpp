@@ -30,7 +30,7 @@ struct JogRunRequest {
   std::vector<JogCommand> commands;
   std::array<std::optional<fw::ShaperSpec>, 2> shaper{};  // per axis; nullopt: unshaped
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
-  double window_s = 1.5;        // recorded after both axes are back at rest
+  double window_s = 1.5;  // recorded after both axes are back at rest
   double settle_band_um = 1.0;
   bool keep_trace = false;
 };
@@ -44,10 +44,10 @@ struct JogTraceSample {
 
 struct JogAxisResult {
   double start_mm = 0.0;
-  double end_mm = 0.0;              // where the shaped reference came to rest
-  double unshaped_end_mm = 0.0;     // where the operator's stream came to rest
-  double residual_pp_um = 0.0;      // tool point, from the stop to the end of the window
-  std::optional<double> settling_s; // after the stop, |tool - end| <= band for good
+  double end_mm = 0.0;               // where the shaped reference came to rest
+  double unshaped_end_mm = 0.0;      // where the operator's stream came to rest
+  double residual_pp_um = 0.0;       // tool point, from the stop to the end of the window
+  std::optional<double> settling_s;  // after the stop, |tool - end| <= band for good
   double max_following_error_um = 0.0;
   double shaper_delay_s = 0.0;
 };

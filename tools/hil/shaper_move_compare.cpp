@@ -65,7 +65,8 @@ MoveComparison compare_move(const MoveRunRequest& request, const fw::FirmwareCon
     c.pairs.push_back(std::move(p));
   }
   c.median_residual_ratio = median(residual_ratios);
-  c.worst_residual_ratio = residual_ratios.empty() ? 0.0 : *std::max_element(residual_ratios.begin(), residual_ratios.end());
+  c.worst_residual_ratio =
+      residual_ratios.empty() ? 0.0 : *std::max_element(residual_ratios.begin(), residual_ratios.end());
   c.median_settling_ratio = median(settling_ratios);
   c.median_unshaped_residual_um = median(unshaped_um);
   c.median_shaped_residual_um = median(shaped_um);

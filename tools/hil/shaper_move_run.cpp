@@ -79,17 +79,19 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
     const double t_s = static_cast<double>(k - dwell_ticks) * kPeriodS;
     const fw::AxisTickRecord& r = rec.axis[a];
     if (!command_end_s && task.state() == fw::MotionState::holding) command_end_s = t_s;
-    result.max_following_error_um = std::max(result.max_following_error_um, std::fabs(r.reference_mm - r.position_mm) * 1e3);
+    result.max_following_error_um =
+        std::max(result.max_following_error_um, std::fabs(r.reference_mm - r.position_mm) * 1e3);
     result.max_unshaped_error_um =
         std::max(result.max_unshaped_error_um, std::fabs(r.unshaped_reference_mm - r.position_mm) * 1e3);
     tool_um.emplace_back(t_s, (truth.tool_position_mm - result.target_mm) * 1e3);
     if (request.keep_trace)
-      result.trace.push_back({t_s, r.unshaped_reference_mm, r.reference_mm, r.position_mm, truth.position_mm,
-                              truth.tool_position_mm});
+      result.trace.push_back(
+          {t_s, r.unshaped_reference_mm, r.reference_mm, r.position_mm, truth.position_mm, truth.tool_position_mm});
   }
   result.fault = task.fault();
   if (task.state() == fw::MotionState::faulted) {
-    result.error = std::string("fault: ") + fw::to_string(result.fault.reason) + " at tick " + std::to_string(result.fault.tick);
+    result.error =
+        std::string("fault: ") + fw::to_string(result.fault.reason) + " at tick " + std::to_string(result.fault.tick);
     return result;
   }
   if (!command_end_s) {

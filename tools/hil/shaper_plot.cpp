@@ -67,11 +67,23 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
     char label[96];
     std::snprintf(label, sizeof label, "%s %.0f ms, band %.2f", upper(fw::to_string(t)).c_str(), d.duration_s() * 1e3,
                   fw::insensitivity_band(d.taps, kShaperPeriodS, spec.mode.freq_hz, spec.mode.zeta).width());
-    families.push_back(residual_curve(d.taps, spec.mode.freq_hz, spec.mode.zeta, 0.0, 2.0, type_color(t), mine ? 3.0 : 1.4, label));
+    families.push_back(
+        residual_curve(d.taps, spec.mode.freq_hz, spec.mode.zeta, 0.0, 2.0, type_color(t), mine ? 3.0 : 1.4, label));
   }
-  ChartPanel left{70, 70, 450, panel_h, 0.0, 2.0, 0.0, 100.0, false,
-                  "residual vibration vs modelling error (design damping)", "actual / design frequency",
-                  "residual vibration (%)", {{5.0, "5 %"}}, 1.0};
+  ChartPanel left{70,
+                  70,
+                  450,
+                  panel_h,
+                  0.0,
+                  2.0,
+                  0.0,
+                  100.0,
+                  false,
+                  "residual vibration vs modelling error (design damping)",
+                  "actual / design frequency",
+                  "residual vibration (%)",
+                  {{5.0, "5 %"}},
+                  1.0};
   left.legend_below = true;  // every corner of this panel has curves in it
   draw_chart(svg, left, families);
 
@@ -85,9 +97,20 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
     damping.push_back(residual_curve(one.taps, spec.mode.freq_hz, zetas[i], 0.5, 1.5, colors[i], i == 1 ? 2.6 : 1.6,
                                      fmt("actual zeta %.3g", zetas[i]) + (i == 1 ? " (design)" : "")));
   }
-  ChartPanel right{600, 70, 450, panel_h, 0.5, 1.5, 0.0, 30.0, false,
-                   upper(fw::to_string(spec.type)) + ": residual vs frequency and damping error", "actual / design frequency",
-                   "residual vibration (%)", {{5.0, "5 %"}}, 1.0};
+  ChartPanel right{600,
+                   70,
+                   450,
+                   panel_h,
+                   0.5,
+                   1.5,
+                   0.0,
+                   30.0,
+                   false,
+                   upper(fw::to_string(spec.type)) + ": residual vs frequency and damping error",
+                   "actual / design frequency",
+                   "residual vibration (%)",
+                   {{5.0, "5 %"}},
+                   1.0};
   right.legend_at = 0.5;  // the curves leave through the top corners
   draw_chart(svg, right, damping);
 
@@ -101,9 +124,20 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
       both.points.emplace_back(f, 100.0 * fw::residual_vibration(d.taps, kShaperPeriodS, f, spec.mode.zeta));
       first.points.emplace_back(f, 100.0 * fw::residual_vibration(one.taps, kShaperPeriodS, f, spec.mode.zeta));
     }
-    ChartPanel bottom{70, 70 + panel_h + 120, 980, panel_h, 0.0, f_max, 0.0, 100.0, false,
-                      "two modes by convolution: both zeros on the grid", "actual frequency (Hz)",
-                      "residual vibration (%)", {{5.0, "5 %"}}, 1.0};
+    ChartPanel bottom{70,
+                      70 + panel_h + 120,
+                      980,
+                      panel_h,
+                      0.0,
+                      f_max,
+                      0.0,
+                      100.0,
+                      false,
+                      "two modes by convolution: both zeros on the grid",
+                      "actual frequency (Hz)",
+                      "residual vibration (%)",
+                      {{5.0, "5 %"}},
+                      1.0};
     draw_chart(svg, bottom, {first, both});
   }
   return svg;
@@ -112,8 +146,8 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
 SvgWriter grid_method_figure(const std::vector<fw::ShaperType>& types, double zeta) {
   const double panel_h = 230.0, gap = 70.0;
   SvgWriter svg(kWidthPx, 60.0 + (panel_h + gap) * static_cast<double>(types.size()) + 50.0);
-  svg.text(kWidthPx / 2, 26,
-           fmt("Residual vibration left at the design frequency by the 1 ms grid (zeta %.3g)", zeta), 17, "middle", "#111");
+  svg.text(kWidthPx / 2, 26, fmt("Residual vibration left at the design frequency by the 1 ms grid (zeta %.3g)", zeta),
+           17, "middle", "#111");
   constexpr double kFloor = 1e-6;  // percent; the exact taps sit ~1e-12 % (rounding), drawn here
   double top = 70.0;
   for (std::size_t n = 0; n < types.size(); ++n) {
@@ -121,16 +155,35 @@ SvgWriter grid_method_figure(const std::vector<fw::ShaperType>& types, double ze
     const bool last = n + 1 == types.size();  // the legend goes once, under the last panel
     ChartSeries rounding{{}, "#d62728", 1.3, last ? "rounding to the nearest sample" : ""};
     ChartSeries split{{}, "#ff7f0e", 1.3, last ? "splitting between neighbours" : ""};
-    ChartSeries exact{{}, "#2ca02c", 2.6, last ? "exact taps (this firmware): below 1e-12 %, drawn at the 1e-6 % floor" : ""};
+    ChartSeries exact{
+        {}, "#2ca02c", 2.6, last ? "exact taps (this firmware): below 1e-12 %, drawn at the 1e-6 % floor" : ""};
     for (int i = 0; i <= 390; ++i) {
       const double f = 5.0 + 0.5 * i;
       const fw::ImpulseTrain cont = fw::design_impulses(t, {f, zeta});
-      rounding.points.emplace_back(f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::round_to_grid(cont, kShaperPeriodS), kShaperPeriodS, f, zeta)));
-      split.points.emplace_back(f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::split_to_grid(cont, kShaperPeriodS), kShaperPeriodS, f, zeta)));
-      exact.points.emplace_back(f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::exact_grid_taps(t, {f, zeta}, kShaperPeriodS), kShaperPeriodS, f, zeta)));
+      rounding.points.emplace_back(
+          f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::round_to_grid(cont, kShaperPeriodS), kShaperPeriodS, f,
+                                                             zeta)));
+      split.points.emplace_back(
+          f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::split_to_grid(cont, kShaperPeriodS), kShaperPeriodS, f,
+                                                             zeta)));
+      exact.points.emplace_back(
+          f, std::max(kFloor, 100.0 * fw::residual_vibration(fw::exact_grid_taps(t, {f, zeta}, kShaperPeriodS),
+                                                             kShaperPeriodS, f, zeta)));
     }
-    ChartPanel p{80, top, 980, panel_h, 0.0, 200.0, kFloor, 100.0, true, upper(fw::to_string(t)),
-                 "design frequency (Hz)", "residual at design (%)", {{0.5, "0.5 %"}}, 0.0};
+    ChartPanel p{80,
+                 top,
+                 980,
+                 panel_h,
+                 0.0,
+                 200.0,
+                 kFloor,
+                 100.0,
+                 true,
+                 upper(fw::to_string(t)),
+                 "design frequency (Hz)",
+                 "residual at design (%)",
+                 {{0.5, "0.5 %"}},
+                 0.0};
     p.legend_below = true;
     draw_chart(svg, p, {rounding, split, exact});
     top += panel_h + gap;
@@ -173,17 +226,60 @@ SvgWriter move_figure(const std::string& title, const MoveComparison& c) {
   }
   const double lo = std::min(start, target), hi = std::max(start, target), pad = 0.08 * (hi - lo);
   char sub[200];
-  std::snprintf(sub, sizeof sub, "unshaped: residual %.1f um p-p, settles (+-1 um) %.3f s after the move;  shaped: %.2f um p-p, %s",
+  std::snprintf(sub, sizeof sub,
+                "unshaped: residual %.1f um p-p, settles (+-1 um) %.3f s after the move;  shaped: %.2f um p-p, %s",
                 u.residual_pp_um, u.settling_s.value_or(-1.0), s.residual_pp_um,
                 s.settling_s ? fmt("%.3f s", *s.settling_s).c_str() : "not settled");
   svg.text(kWidthPx / 2, 48, sub, 12, "middle", "#333");
-  draw_chart(svg, {80, 90, 980, 250, 0.0, t_zoom, lo - pad, hi + pad, false, "command and tool point", "time since the start of the move (s)", "position (mm)", {}, 0.0},
+  draw_chart(svg,
+             {80,
+              90,
+              980,
+              250,
+              0.0,
+              t_zoom,
+              lo - pad,
+              hi + pad,
+              false,
+              "command and tool point",
+              "time since the start of the move (s)",
+              "position (mm)",
+              {},
+              0.0},
              {ref_u, ref_s, tool_u, tool_s});
   const double t_end = u.trace.empty() ? 1.0 : u.trace.back().t_s;
   const double e = chart_nice_ceiling(err_max);
-  draw_chart(svg, {80, 420, 980, 250, 0.0, t_end, -e, e, false, "tool point - target, each after its own command has ended", "time since the start of the move (s)", "error (um)", {}, 1.0},
+  draw_chart(svg,
+             {80,
+              420,
+              980,
+              250,
+              0.0,
+              t_end,
+              -e,
+              e,
+              false,
+              "tool point - target, each after its own command has ended",
+              "time since the start of the move (s)",
+              "error (um)",
+              {},
+              1.0},
              {err_u, err_s});
-  draw_chart(svg, {80, 750, 980, 250, 0.0, t_end, -5.0, 5.0, false, "the same, +-5 um (dashed: the +-1 um settling band)", "time since the start of the move (s)", "error (um)", {{1.0, "+1 um"}, {-1.0, "-1 um"}}, 1.0},
+  draw_chart(svg,
+             {80,
+              750,
+              980,
+              250,
+              0.0,
+              t_end,
+              -5.0,
+              5.0,
+              false,
+              "the same, +-5 um (dashed: the +-1 um settling band)",
+              "time since the start of the move (s)",
+              "error (um)",
+              {{1.0, "+1 um"}, {-1.0, "-1 um"}},
+              1.0},
              {err_u, err_s});
   return svg;
 }
@@ -212,12 +308,39 @@ SvgWriter jog_figure(const std::string& title, const JogRunResult& u, const JogR
       if (t.t_s >= s.stop_s) err_s.points.emplace_back(t.t_s, (t.tool_mm[i] - s.axis[i].end_mm) * 1e3);
     const double pad = std::max(0.05 * (hi - lo), 0.01);
     const char axis = i == 0 ? 'x' : 'y';
-    draw_chart(svg, {80, top, 560, 250, 0.0, t_end, lo - pad, hi + pad, false, std::string("axis ") + axis + ": operator stream and shaped reference",
-                     "time (s)", "position (mm)", {}, 0.0},
+    draw_chart(svg,
+               {80,
+                top,
+                560,
+                250,
+                0.0,
+                t_end,
+                lo - pad,
+                hi + pad,
+                false,
+                std::string("axis ") + axis + ": operator stream and shaped reference",
+                "time (s)",
+                "position (mm)",
+                {},
+                0.0},
                {cmd, ref});
-    draw_chart(svg, {720, top, 340, 250, std::min(u.stop_s, s.stop_s), t_end, -10.0, 10.0, false,
-                     std::string("axis ") + axis + ": tool - end after the stop", "time (s)", "error (um)", {{1.0, "+1"}, {-1.0, "-1"}}, 1.0},
-               {ChartSeries{err_u.points, err_u.color, err_u.width, "unshaped"}, ChartSeries{err_s.points, err_s.color, err_s.width, "shaped"}});
+    draw_chart(svg,
+               {720,
+                top,
+                340,
+                250,
+                std::min(u.stop_s, s.stop_s),
+                t_end,
+                -10.0,
+                10.0,
+                false,
+                std::string("axis ") + axis + ": tool - end after the stop",
+                "time (s)",
+                "error (um)",
+                {{1.0, "+1"}, {-1.0, "-1"}},
+                1.0},
+               {ChartSeries{err_u.points, err_u.color, err_u.width, "unshaped"},
+                ChartSeries{err_s.points, err_s.color, err_s.width, "shaped"}});
   }
   return svg;
 }

@@ -36,7 +36,9 @@ bool check_spec(const fw::ShaperSpec& spec) {
   return false;
 }
 
-nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+nlohmann::json optional_json(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
 
 std::string seconds_or_never(const std::optional<double>& v) {
   char buf[32];
@@ -96,15 +98,18 @@ int run_move_command(const MoveOptions& o) {
   const hal::Axis axis = o.axis == "y" ? hal::Axis::y : hal::Axis::x;
   const emu::AxisPlantParams& plant = scenario->plant[hal::index(axis)];
   if (!o.freq_hz && plant.mode_hz <= 0.0) {
-    std::fprintf(stderr, "tnv-hil: scenario %s has no structural mode on axis %s: give --freq-hz\n", scenario->name.c_str(),
-                 o.axis.c_str());
+    std::fprintf(stderr, "tnv-hil: scenario %s has no structural mode on axis %s: give --freq-hz\n",
+                 scenario->name.c_str(), o.axis.c_str());
     return kExitBadInput;
   }
-  const fw::ShaperSpec spec{*fw::parse_shaper_type(o.shaper), {o.freq_hz.value_or(plant.mode_hz), o.zeta.value_or(plant.mode_zeta)}, {0.0, 0.0}};
+  const fw::ShaperSpec spec{*fw::parse_shaper_type(o.shaper),
+                            {o.freq_hz.value_or(plant.mode_hz), o.zeta.value_or(plant.mode_zeta)},
+                            {0.0, 0.0}};
   if (!check_spec(spec)) return kExitBadInput;
   // The ramps must fit: lower the cruise speed if the move is short.
   double speed = o.speed_mm_s;
-  if (std::isfinite(o.distance_mm) && speed * o.ramp_s > std::fabs(o.distance_mm) && o.ramp_s > 0.0) speed = std::fabs(o.distance_mm) / o.ramp_s;
+  if (std::isfinite(o.distance_mm) && speed * o.ramp_s > std::fabs(o.distance_mm) && o.ramp_s > 0.0)
+    speed = std::fabs(o.distance_mm) / o.ramp_s;
   const fw::MoveSpec move{axis, o.distance_mm, speed, o.ramp_s, 0.0};
   if (const char* bad = fw::validate(move); bad[0] != '\0') {
     std::fprintf(stderr, "tnv-hil: move: %s\n", bad);
@@ -127,51 +132,65 @@ int run_move_command(const MoveOptions& o) {
     nlohmann::json per_seed = nlohmann::json::array();
     for (const hil::MovePair& p : c.pairs)
       per_seed.push_back({{"seed", p.seed}, {"unshaped", run_json(p.unshaped)}, {"shaped", run_json(p.shaped)}});
-    nlohmann::json j = {
-        {"scenario", scenario->name},
-        {"axis", o.axis},
-        {"distance_mm", o.distance_mm},
-        {"speed_mm_s", speed},
-        {"ramp_s", o.ramp_s},
-        {"move_time_s", move_time_s},
-        {"shaper", {{"type", o.shaper}, {"freq_hz", spec.mode.freq_hz}, {"zeta", spec.mode.zeta},
-                    {"delay_s", design.delay_s()}, {"duration_s", design.duration_s()}}},
-        {"seeds", o.seeds},
-        {"unshaped", {{"residual_pp_um", c.median_unshaped_residual_um}, {"settling_s", optional_json(c.median_unshaped_settling_s)},
-                      {"move_time_s", move_time_s}, {"command_end_s", p0.unshaped.command_end_s}}},
-        {"shaped", {{"residual_pp_um", c.median_shaped_residual_um}, {"settling_s", optional_json(c.median_shaped_settling_s)},
-                    {"move_time_s", move_time_s}, {"command_end_s", p0.shaped.command_end_s}}},
-        {"residual_ratio", c.median_residual_ratio},
-        {"worst_residual_ratio", c.worst_residual_ratio},
-        {"settling_ratio", c.median_settling_ratio},
-        {"per_seed", per_seed}};
+    nlohmann::json j = {{"scenario", scenario->name},
+                        {"axis", o.axis},
+                        {"distance_mm", o.distance_mm},
+                        {"speed_mm_s", speed},
+                        {"ramp_s", o.ramp_s},
+                        {"move_time_s", move_time_s},
+                        {"shaper",
+                         {{"type", o.shaper},
+                          {"freq_hz", spec.mode.freq_hz},
+                          {"zeta", spec.mode.zeta},
+                          {"delay_s", design.delay_s()},
+                          {"duration_s", design.duration_s()}}},
+                        {"seeds", o.seeds},
+                        {"unshaped",
+                         {{"residual_pp_um", c.median_unshaped_residual_um},
+                          {"settling_s", optional_json(c.median_unshaped_settling_s)},
+                          {"move_time_s", move_time_s},
+                          {"command_end_s", p0.unshaped.command_end_s}}},
+                        {"shaped",
+                         {{"residual_pp_um", c.median_shaped_residual_um},
+                          {"settling_s", optional_json(c.median_shaped_settling_s)},
+                          {"move_time_s", move_time_s},
+                          {"command_end_s", p0.shaped.command_end_s}}},
+                        {"residual_ratio", c.median_residual_ratio},
+                        {"worst_residual_ratio", c.worst_residual_ratio},
+                        {"settling_ratio", c.median_settling_ratio},
+                        {"per_seed", per_seed}};
     std::cout << j.dump(2) << '\n';
   } else {
     char buf[400];
     std::snprintf(buf, sizeof buf,
                   "%s, axis %s: %.4g mm at %.4g mm/s, raised-cosine ramps %.0f ms: move time %.3f s\n"
                   "shaper %s at %.4g Hz, zeta %.3g: delay %.1f ms, duration %.0f ms\n",
-                  scenario->name.c_str(), o.axis.c_str(), o.distance_mm, speed, o.ramp_s * 1e3, move_time_s, o.shaper.c_str(),
-                  spec.mode.freq_hz, spec.mode.zeta, design.delay_s() * 1e3, design.duration_s() * 1e3);
+                  scenario->name.c_str(), o.axis.c_str(), o.distance_mm, speed, o.ramp_s * 1e3, move_time_s,
+                  o.shaper.c_str(), spec.mode.freq_hz, spec.mode.zeta, design.delay_s() * 1e3,
+                  design.duration_s() * 1e3);
     std::cout << buf;
     if (o.seeds > 1) std::cout << "medians over " << o.seeds << " encoder phases (seeds)\n";
     std::cout << "                                   unshaped      shaped\n";
-    std::snprintf(buf, sizeof buf, "tool residual p-p after command (um) %9.3f   %9.3f   (%.2f %%)\n", c.median_unshaped_residual_um,
-                  c.median_shaped_residual_um, 100.0 * c.median_residual_ratio);
+    std::snprintf(buf, sizeof buf, "tool residual p-p after command (um) %9.3f   %9.3f   (%.2f %%)\n",
+                  c.median_unshaped_residual_um, c.median_shaped_residual_um, 100.0 * c.median_residual_ratio);
     std::cout << buf;
-    std::snprintf(buf, sizeof buf, "settling to +-1 um after the move (s)%9s   %9s   (x%.1f)\n", seconds_or_never(c.median_unshaped_settling_s).c_str(),
+    std::snprintf(buf, sizeof buf, "settling to +-1 um after the move (s)%9s   %9s   (x%.1f)\n",
+                  seconds_or_never(c.median_unshaped_settling_s).c_str(),
                   seconds_or_never(c.median_shaped_settling_s).c_str(), c.median_settling_ratio);
     std::cout << buf;
-    std::snprintf(buf, sizeof buf, "command end (s, seed 0)              %9.3f   %9.3f\n", p0.unshaped.command_end_s, p0.shaped.command_end_s);
+    std::snprintf(buf, sizeof buf, "command end (s, seed 0)              %9.3f   %9.3f\n", p0.unshaped.command_end_s,
+                  p0.shaped.command_end_s);
     std::cout << buf;
-    std::snprintf(buf, sizeof buf, "max following error (um, seed 0)     %9.2f   %9.2f   (shaped run vs the unshaped command: %.0f)\n",
-                  p0.unshaped.max_following_error_um, p0.shaped.max_following_error_um, p0.shaped.max_unshaped_error_um);
+    std::snprintf(buf, sizeof buf,
+                  "max following error (um, seed 0)     %9.2f   %9.2f   (shaped run vs the unshaped command: %.0f)\n",
+                  p0.unshaped.max_following_error_um, p0.shaped.max_following_error_um,
+                  p0.shaped.max_unshaped_error_um);
     std::cout << buf;
   }
   if (!o.plot.empty()) {
     char title[200];
-    std::snprintf(title, sizeof title, "%s: %.4g mm on %s, unshaped vs %s at %.4g Hz (seed 0)", scenario->name.c_str(), o.distance_mm,
-                  o.axis.c_str(), o.shaper.c_str(), spec.mode.freq_hz);
+    std::snprintf(title, sizeof title, "%s: %.4g mm on %s, unshaped vs %s at %.4g Hz (seed 0)", scenario->name.c_str(),
+                  o.distance_mm, o.axis.c_str(), o.shaper.c_str(), spec.mode.freq_hz);
     if (!write_svg(o.plot, hil::move_figure(title, c))) return kExitFailure;
   }
   return kExitOk;
@@ -237,14 +256,18 @@ int run_jog_command(const JogOptions& o) {
     for (std::size_t i = 0; i < 2; ++i) {
       const auto one = [&](const hil::JogRunResult& r) {
         const hil::JogAxisResult& a = r.axis[i];
-        return nlohmann::json{{"start_mm", a.start_mm},           {"end_mm", a.end_mm},
-                              {"travel_mm", a.end_mm - a.start_mm}, {"residual_pp_um", a.residual_pp_um},
-                              {"settling_s", optional_json(a.settling_s)}, {"max_following_error_um", a.max_following_error_um},
+        return nlohmann::json{{"start_mm", a.start_mm},
+                              {"end_mm", a.end_mm},
+                              {"travel_mm", a.end_mm - a.start_mm},
+                              {"residual_pp_um", a.residual_pp_um},
+                              {"settling_s", optional_json(a.settling_s)},
+                              {"max_following_error_um", a.max_following_error_um},
                               {"shaper_delay_s", a.shaper_delay_s}};
       };
       nlohmann::json ax = {{"unshaped", one(u)}, {"shaped", one(s)}};
       if (request.shaper[i])
-        ax["shaper"] = {{"type", o.shaper}, {"freq_hz", request.shaper[i]->mode.freq_hz}, {"zeta", request.shaper[i]->mode.zeta}};
+        ax["shaper"] = {
+            {"type", o.shaper}, {"freq_hz", request.shaper[i]->mode.freq_hz}, {"zeta", request.shaper[i]->mode.zeta}};
       axes[i == 0 ? "x" : "y"] = ax;
     }
     nlohmann::json j = {{"scenario", scenario->name},
@@ -256,22 +279,28 @@ int run_jog_command(const JogOptions& o) {
     std::cout << j.dump(2) << '\n';
   } else {
     char buf[300];
-    std::snprintf(buf, sizeof buf, "%s: %zu jog rows; axes at rest after %.3f s unshaped, %.3f s shaped; dead-man stops %u\n",
+    std::snprintf(buf, sizeof buf,
+                  "%s: %zu jog rows; axes at rest after %.3f s unshaped, %.3f s shaped; dead-man stops %u\n",
                   scenario->name.c_str(), commands->size(), u.stop_s, s.stop_s, s.deadman_stops);
     std::cout << buf;
     for (std::size_t i = 0; i < 2; ++i) {
       const hil::JogAxisResult& a = u.axis[i];
       const hil::JogAxisResult& b = s.axis[i];
-      std::snprintf(buf, sizeof buf,
-                    "axis %c: travel %.4f mm (shaped %.4f mm, end difference %.3g um); shaper %s\n"
-                    "        tool residual p-p after the stop %.3f um unshaped, %.3f um shaped; settling +-1 um %s s / %s s\n",
-                    i == 0 ? 'x' : 'y', a.end_mm - a.start_mm, b.end_mm - b.start_mm, (b.end_mm - a.end_mm) * 1e3,
-                    request.shaper[i] ? (o.shaper + " at " + std::to_string(request.shaper[i]->mode.freq_hz).substr(0, 5) + " Hz").c_str() : "off",
-                    a.residual_pp_um, b.residual_pp_um, seconds_or_never(a.settling_s).c_str(), seconds_or_never(b.settling_s).c_str());
+      std::snprintf(
+          buf, sizeof buf,
+          "axis %c: travel %.4f mm (shaped %.4f mm, end difference %.3g um); shaper %s\n"
+          "        tool residual p-p after the stop %.3f um unshaped, %.3f um shaped; settling +-1 um %s s / %s s\n",
+          i == 0 ? 'x' : 'y', a.end_mm - a.start_mm, b.end_mm - b.start_mm, (b.end_mm - a.end_mm) * 1e3,
+          request.shaper[i]
+              ? (o.shaper + " at " + std::to_string(request.shaper[i]->mode.freq_hz).substr(0, 5) + " Hz").c_str()
+              : "off",
+          a.residual_pp_um, b.residual_pp_um, seconds_or_never(a.settling_s).c_str(),
+          seconds_or_never(b.settling_s).c_str());
       std::cout << buf;
     }
   }
-  if (!o.plot.empty() && !write_svg(o.plot, hil::jog_figure(scenario->name + ": operator jog through the real-time shaper", u, s)))
+  if (!o.plot.empty() &&
+      !write_svg(o.plot, hil::jog_figure(scenario->name + ": operator jog through the real-time shaper", u, s)))
     return kExitFailure;
   return kExitOk;
 }
@@ -294,7 +323,8 @@ int run_grid_command(const GridOptions& o) {
     for (int i = 0; i <= 390; ++i) {
       const double f = 5.0 + 0.5 * i;
       const fw::ImpulseTrain cont = fw::design_impulses(t, {f, o.zeta});
-      const fw::TapSet taps[3] = {fw::round_to_grid(cont, hil::kShaperPeriodS), fw::split_to_grid(cont, hil::kShaperPeriodS),
+      const fw::TapSet taps[3] = {fw::round_to_grid(cont, hil::kShaperPeriodS),
+                                  fw::split_to_grid(cont, hil::kShaperPeriodS),
                                   fw::exact_grid_taps(t, {f, o.zeta}, hil::kShaperPeriodS)};
       const double v_cont = fw::residual_vibration(cont, f, o.zeta);
       for (int m = 0; m < 3; ++m) {
@@ -302,13 +332,17 @@ int run_grid_command(const GridOptions& o) {
         const double excess = fw::zero_at_design_point(t) ? v : std::max(0.0, v - v_cont);
         if (excess > worst[m]) worst[m] = excess, at[m] = f;
       }
-      band_ratio = std::min(band_ratio, fw::insensitivity_band(taps[2], hil::kShaperPeriodS, f, o.zeta, 0.05 + 1e-9).width() /
-                                            fw::insensitivity_band(cont, f, o.zeta, 0.05 + 1e-9).width());
+      band_ratio =
+          std::min(band_ratio, fw::insensitivity_band(taps[2], hil::kShaperPeriodS, f, o.zeta, 0.05 + 1e-9).width() /
+                                   fw::insensitivity_band(cont, f, o.zeta, 0.05 + 1e-9).width());
     }
     rows.push_back({{"type", fw::to_string(t)},
-                    {"rounding_max_percent", 100.0 * worst[0]}, {"rounding_worst_hz", at[0]},
-                    {"splitting_max_percent", 100.0 * worst[1]}, {"splitting_worst_hz", at[1]},
-                    {"exact_max_percent", 100.0 * worst[2]}, {"exact_worst_hz", at[2]},
+                    {"rounding_max_percent", 100.0 * worst[0]},
+                    {"rounding_worst_hz", at[0]},
+                    {"splitting_max_percent", 100.0 * worst[1]},
+                    {"splitting_worst_hz", at[1]},
+                    {"exact_max_percent", 100.0 * worst[2]},
+                    {"exact_worst_hz", at[2]},
                     {"exact_min_band_ratio", band_ratio}});
   }
   if (o.json) {
@@ -323,14 +357,16 @@ int run_grid_command(const GridOptions& o) {
     std::cout << buf;
     for (const auto& r : rows) {
       std::snprintf(buf, sizeof buf, "%-6s %7.3f %% @%5.1f  %7.3f %% @%5.1f  %9.2e %% @%5.1f  %.4f\n",
-                    r["type"].get<std::string>().c_str(), r["rounding_max_percent"].get<double>(), r["rounding_worst_hz"].get<double>(),
-                    r["splitting_max_percent"].get<double>(), r["splitting_worst_hz"].get<double>(),
-                    r["exact_max_percent"].get<double>(), r["exact_worst_hz"].get<double>(), r["exact_min_band_ratio"].get<double>());
+                    r["type"].get<std::string>().c_str(), r["rounding_max_percent"].get<double>(),
+                    r["rounding_worst_hz"].get<double>(), r["splitting_max_percent"].get<double>(),
+                    r["splitting_worst_hz"].get<double>(), r["exact_max_percent"].get<double>(),
+                    r["exact_worst_hz"].get<double>(), r["exact_min_band_ratio"].get<double>());
       std::cout << buf;
     }
   }
-  if (!o.plot.empty() &&
-      !write_svg(o.plot, hil::grid_method_figure({fw::ShaperType::zv, fw::ShaperType::zvd, fw::ShaperType::zvdd, fw::ShaperType::mzv}, o.zeta)))
+  if (!o.plot.empty() && !write_svg(o.plot, hil::grid_method_figure({fw::ShaperType::zv, fw::ShaperType::zvd,
+                                                                     fw::ShaperType::zvdd, fw::ShaperType::mzv},
+                                                                    o.zeta)))
     return kExitFailure;
   return kExitOk;
 }
@@ -338,11 +374,13 @@ int run_grid_command(const GridOptions& o) {
 }  // namespace
 
 void add_shaper_commands(CLI::App& app, Runner& run) {
-  CLI::App* shaper = app.add_subcommand("shaper", "input shaper: design, HIL point-to-point move, HIL jog stream, grid methods");
+  CLI::App* shaper =
+      app.add_subcommand("shaper", "input shaper: design, HIL point-to-point move, HIL jog stream, grid methods");
   shaper->require_subcommand(1);
 
   auto d = std::make_shared<DesignOptions>();
-  CLI::App* design = shaper->add_subcommand("design", "impulses, taps on the 1 ms grid, delay, residual vibration, 5 % band");
+  CLI::App* design =
+      shaper->add_subcommand("design", "impulses, taps on the 1 ms grid, delay, residual vibration, 5 % band");
   design->add_option("--type", d->type, kTypes)->required()->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}));
   design->add_option("--freq-hz", d->freq_hz, "mode frequency, 5..200 Hz")->required();
   design->add_option("--freq2-hz", d->freq2_hz, "second mode (two-mode shaper by convolution), 5..200 Hz");
@@ -352,33 +390,44 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   design->callback([&run, d] { run = [d] { return run_design(*d); }; });
 
   auto m = std::make_shared<MoveOptions>();
-  CLI::App* move = shaper->add_subcommand("move", "HIL point-to-point move, unshaped and shaped, scored at the tool point");
+  CLI::App* move =
+      shaper->add_subcommand("move", "HIL point-to-point move, unshaped and shaped, scored at the tool point");
   move->add_option("--scenario", m->scenario, "built-in name (flex-30, flex-100, ...) or TOML file")->required();
   move->add_option("--axis", m->axis, "x | y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
   move->add_option("--distance-mm", m->distance_mm, "signed move distance")->required();
   move->add_option("--shaper", m->shaper, kTypes)->required()->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}));
   move->add_option("--freq-hz", m->freq_hz, "shaper frequency (default: the scenario's mode on that axis)");
   move->add_option("--zeta", m->zeta, "shaper damping (default: the scenario's mode damping)");
-  move->add_option("--speed-mm-s", m->speed_mm_s, "cruise speed (lowered if the ramps do not fit)")->capture_default_str();
+  move->add_option("--speed-mm-s", m->speed_mm_s, "cruise speed (lowered if the ramps do not fit)")
+      ->capture_default_str();
   move->add_option("--ramp-s", m->ramp_s, "raised-cosine speed ramp at each end")->capture_default_str();
-  move->add_option("--seeds", m->seeds, "median over N encoder phases")->check(CLI::Range(1, 100))->capture_default_str();
+  move->add_option("--seeds", m->seeds, "median over N encoder phases")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   move->add_flag("--json", m->json, "print JSON on stdout");
   move->add_option("--plot", m->plot, "write the seed-0 traces (SVG)");
   move->callback([&run, m] { run = [m] { return run_move_command(*m); }; });
 
   auto j = std::make_shared<JogOptions>();
-  CLI::App* jog = shaper->add_subcommand("jog", "HIL operator jog stream (CSV t_s,x_mm_s,y_mm_s) through the real-time shaper");
+  CLI::App* jog =
+      shaper->add_subcommand("jog", "HIL operator jog stream (CSV t_s,x_mm_s,y_mm_s) through the real-time shaper");
   jog->add_option("--scenario", j->scenario, "built-in name or TOML file")->required();
-  jog->add_option("--commands", j->commands, "CSV: t_s,x_mm_s,y_mm_s; each row held until the next, silence after the last")->required();
-  jog->add_option("--shaper", j->shaper, kTypes)->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}))->capture_default_str();
-  jog->add_option("--freq-hz", j->freq_hz, "shaper frequency on both axes (default: each axis' scenario mode; none: off)");
+  jog->add_option("--commands", j->commands,
+                  "CSV: t_s,x_mm_s,y_mm_s; each row held until the next, silence after the last")
+      ->required();
+  jog->add_option("--shaper", j->shaper, kTypes)
+      ->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}))
+      ->capture_default_str();
+  jog->add_option("--freq-hz", j->freq_hz,
+                  "shaper frequency on both axes (default: each axis' scenario mode; none: off)");
   jog->add_option("--zeta", j->zeta, "shaper damping (default: the scenario's mode damping)");
   jog->add_flag("--json", j->json, "print JSON on stdout");
   jog->add_option("--plot", j->plot, "write the traces (SVG)");
   jog->callback([&run, j] { run = [j] { return run_jog_command(*j); }; });
 
   auto g = std::make_shared<GridOptions>();
-  CLI::App* grid = shaper->add_subcommand("grid", "residual left at the design frequency by rounding, splitting and the exact taps, 5-200 Hz");
+  CLI::App* grid = shaper->add_subcommand(
+      "grid", "residual left at the design frequency by rounding, splitting and the exact taps, 5-200 Hz");
   grid->add_option("--zeta", g->zeta, "damping ratio, 0..0.3")->capture_default_str();
   grid->add_flag("--json", g->json, "print JSON on stdout");
   grid->add_option("--plot", g->plot, "write the residual-vs-frequency figure (SVG)");

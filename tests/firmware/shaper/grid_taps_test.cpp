@@ -69,7 +69,8 @@ TEST(GridTaps, TapsAreNonNegativeAtTheHighestDamping) {
       for (double f = 5.0; f <= 200.0; f += 0.5) {
         const TapSet taps = exact_grid_taps(type, {f, zeta}, kPeriodS);
         for (std::size_t j = 0; j < taps.count; ++j)
-          ASSERT_GE(taps.tap[j].a, 0.0) << to_string(type) << " at " << f << " Hz, zeta " << zeta << ": tap " << taps.tap[j].k;
+          ASSERT_GE(taps.tap[j].a, 0.0) << to_string(type) << " at " << f << " Hz, zeta " << zeta << ": tap "
+                                        << taps.tap[j].k;
       }
 }
 
@@ -81,7 +82,8 @@ TEST(GridTaps, RoundingAndSplittingLeaveWhatTheIssueSays) {
     const ImpulseTrain zv = design_impulses(ShaperType::zv, {f, 0.0});
     round_max = std::fmax(round_max, residual_vibration(round_to_grid(zv, kPeriodS), kPeriodS, f, 0.0));
     split_max = std::fmax(split_max, residual_vibration(split_to_grid(zv, kPeriodS), kPeriodS, f, 0.0));
-    exact_max = std::fmax(exact_max, residual_vibration(exact_grid_taps(ShaperType::zv, {f, 0.0}, kPeriodS), kPeriodS, f, 0.0));
+    exact_max =
+        std::fmax(exact_max, residual_vibration(exact_grid_taps(ShaperType::zv, {f, 0.0}, kPeriodS), kPeriodS, f, 0.0));
   }
   EXPECT_GT(round_max, 0.12) << "rounding ZV near 100 Hz";
   EXPECT_LT(round_max, 0.17) << "rounding ZV near 100 Hz";
@@ -134,8 +136,8 @@ TEST(ShaperDesign, ValidationNamesTheField) {
 }
 
 TEST(ShaperDesign, TheLongestShaperFitsTheRing) {
-  const ShaperDesign d = design_shaper({ShaperType::zvdd, {kShaperMinFreqHz, kShaperMaxZeta}, {kShaperMinFreqHz, kShaperMaxZeta}},
-                                       kPeriodS);
+  const ShaperDesign d = design_shaper(
+      {ShaperType::zvdd, {kShaperMinFreqHz, kShaperMaxZeta}, {kShaperMinFreqHz, kShaperMaxZeta}}, kPeriodS);
   EXPECT_LT(d.taps.span(), 1024u);
   EXPECT_GT(d.taps.span(), 600u);
   EXPECT_LE(d.taps.count, TapSet::kCapacity);

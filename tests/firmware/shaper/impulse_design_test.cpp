@@ -62,10 +62,10 @@ TEST(ImpulseDesign, AmplitudesAndTimesEqualTheirClosedForms) {
         const Expected want = closed_form(type, f, z);
         ASSERT_EQ(got.count, want.n) << to_string(type);
         for (std::size_t i = 0; i < want.n; ++i) {
-          EXPECT_NEAR(got.impulse[i].t_s, want.t[i], 1e-9) << to_string(type) << " " << f << " Hz zeta " << z
-                                                           << ": time of impulse " << i << " (s)";
-          EXPECT_NEAR(got.impulse[i].a, want.a[i], 1e-9) << to_string(type) << " " << f << " Hz zeta " << z
-                                                         << ": amplitude of impulse " << i;
+          EXPECT_NEAR(got.impulse[i].t_s, want.t[i], 1e-9)
+              << to_string(type) << " " << f << " Hz zeta " << z << ": time of impulse " << i << " (s)";
+          EXPECT_NEAR(got.impulse[i].a, want.a[i], 1e-9)
+              << to_string(type) << " " << f << " Hz zeta " << z << ": amplitude of impulse " << i;
         }
       }
 }
@@ -90,7 +90,8 @@ TEST(ResidualVibration, MatchesTheUndampedSensitivityCurves) {
   for (double r = 0.05; r < 2.0; r += 0.05) {
     const double c = std::fabs(std::cos(kPi * r / 2.0));
     EXPECT_NEAR(residual_vibration(design_impulses(ShaperType::zv, {f, 0.0}), r * f, 0.0), c, 1e-12) << "ratio " << r;
-    EXPECT_NEAR(residual_vibration(design_impulses(ShaperType::zvd, {f, 0.0}), r * f, 0.0), c * c, 1e-12) << "ratio " << r;
+    EXPECT_NEAR(residual_vibration(design_impulses(ShaperType::zvd, {f, 0.0}), r * f, 0.0), c * c, 1e-12)
+        << "ratio " << r;
     EXPECT_NEAR(residual_vibration(design_impulses(ShaperType::zvdd, {f, 0.0}), r * f, 0.0), c * c * c, 1e-12)
         << "ratio " << r;
   }

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <string>
 
 #include "firmware/trajectory/jog_stream.hpp"
 #include "firmware/trajectory/point_to_point_move.hpp"
@@ -26,14 +28,15 @@ TEST(PointToPointMove, SCurveWithTheStatedMoveTime) {
   double peak_accel = 0.0;
   for (double t = 0.0; t < move.duration_s(); t += 1e-4)
     peak_accel = std::fmax(peak_accel, std::fabs(move.at(t + 1e-4).speed_mm_s - move.at(t).speed_mm_s) / 1e-4);
-  EXPECT_NEAR(peak_accel, 60.0 * M_PI / (2.0 * 0.05), 5.0) << "mm/s^2";
+  EXPECT_NEAR(peak_accel, 60.0 * std::numbers::pi / (2.0 * 0.05), 5.0) << "mm/s^2";
 }
 
 TEST(PointToPointMove, ValidationNamesTheField) {
   EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, NAN, 50.0, 0.02, 0.0}), "distance_mm must be finite and non-zero");
   EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, 5.0, 50.0, -0.1, 0.0}), "ramp_s must be >= 0 and finite");
   EXPECT_STREQ(validate(MoveSpec{hal::Axis::x, 5.0, 50.0, 0.02, INFINITY}), "dwell_s must be >= 0 and finite");
-  EXPECT_NE(std::string(validate(MoveSpec{hal::Axis::x, 0.5, 50.0, 0.02, 0.0})).find("ramps do not fit"), std::string::npos);
+  EXPECT_NE(std::string(validate(MoveSpec{hal::Axis::x, 0.5, 50.0, 0.02, 0.0})).find("ramps do not fit"),
+            std::string::npos);
 }
 
 TEST(JogStream, ReachesTheTargetAtTheAccelerationLimitAndRestsExactly) {

@@ -34,7 +34,8 @@ class TickShaperTest : public ::testing::Test {
     task.tick();
     for (std::size_t i = 0; i < 2; ++i) {
       const double home = i == 0 ? kHomeMm : 0.0;
-      board.counts[i] = static_cast<std::uint32_t>(std::lround((task.last_record().axis[i].reference_mm - home) / kCountMm));
+      board.counts[i] =
+          static_cast<std::uint32_t>(std::lround((task.last_record().axis[i].reference_mm - home) / kCountMm));
     }
   }
 
@@ -120,8 +121,8 @@ TEST_F(TickShaperTest, FollowingErrorIsMeasuredAgainstTheShapedReference) {
   while (task.state() == MotionState::moving) {
     tick();
     const AxisTickRecord& r = task.last_record().axis[0];
-    worst_unshaped_excess_mm = std::fmax(worst_unshaped_excess_mm,
-                                         std::fabs(r.unshaped_reference_mm - r.position_mm) - limit.at(r.reference_speed_mm_s));
+    worst_unshaped_excess_mm = std::fmax(worst_unshaped_excess_mm, std::fabs(r.unshaped_reference_mm - r.position_mm) -
+                                                                       limit.at(r.reference_speed_mm_s));
   }
   EXPECT_EQ(task.state(), MotionState::holding) << "fault: " << to_string(task.fault().reason);
   EXPECT_GT(worst_unshaped_excess_mm, 1.0) << "mm beyond the limit: a delay-blind check would have tripped";
