@@ -1,30 +1,19 @@
 // tnv-hil arsc as a script sees it: the commands and JSON keys.
 #include <gtest/gtest.h>
+
+#include "tests/tools/cli_runner.hpp"
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
+namespace tnv {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-};
+using test::CliRun;
 
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(TNV_HIL_EXE) + " " + args + " 2>/dev/null";
-  CliRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun run(const std::string& args) { return test::run_tnv_hil(args); }
 
 TEST(ArscCli, DesignPrintsTheSevenGainsOrSaysSingular) {
   CliRun r = run("arsc design --poles case1 --json");
@@ -61,3 +50,4 @@ TEST(ArscCli, BadArgumentsAreExitCode2) {
 }
 
 }  // namespace
+}  // namespace tnv

@@ -1,6 +1,8 @@
 // `tnv-hil boring` as a script sees it: the issue's command line, JSON keys,
 // exit codes, the plot.
 #include <gtest/gtest.h>
+
+#include "tests/tools/cli_runner.hpp"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,37 +13,12 @@
 #include <sstream>
 #include <string>
 
+namespace tnv {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
-CliRun run_boring(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string err_path = (dir / ("tnv_hil_boring_" + std::to_string(::getpid()) + ".err")).string();
-  std::string cmd = TNV_HIL_EXE;
-  cmd += " boring ";
-  cmd += args;
-  cmd += " 2>";
-  cmd += err_path;
-  CliRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  std::filesystem::remove(err_path);
-  return r;
-}
+CliRun run_boring(const std::string& args) { return test::run_tnv_hil("boring " + args); }
 
 TEST(BoringCli, TheIssuesCommandLineGivesTheRequiredJsonKeys) {
   const CliRun r = run_boring("--sigma-mm 0.016231 --alpha0 0.5 --parts 30 --change-at 11,21 --seeds 20 --json");
@@ -116,3 +93,4 @@ TEST(BoringCli, WritesThePlotOrFailsWithExit1) {
 }
 
 }  // namespace
+}  // namespace tnv

@@ -1,5 +1,7 @@
 // tnv-hil as a script sees it: exit codes, one-line errors, JSON on stdout.
 #include <gtest/gtest.h>
+
+#include "tests/tools/cli_runner.hpp"
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -9,33 +11,12 @@
 #include <sstream>
 #include <string>
 
+namespace tnv {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
-CliRun run(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string err_path = (dir / ("tnv_hil_cli_" + std::to_string(::getpid()) + ".err")).string();
-  const std::string cmd = std::string(TNV_HIL_EXE) + " " + args + " 2>" + err_path;
-  CliRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  std::filesystem::remove(err_path);
-  return r;
-}
+CliRun run(const std::string& args) { return test::run_tnv_hil(args); }
 
 std::filesystem::path temp_file(const std::string& name, const std::string& content) {
   const auto p = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
@@ -110,3 +91,4 @@ TEST(TnvHilCli, CircleWritesPlotAndCsv) {
 }
 
 }  // namespace
+}  // namespace tnv

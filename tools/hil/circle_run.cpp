@@ -2,47 +2,21 @@
 
 #include <cmath>
 
-#include "drivers/emulated/emulated_register_bus.hpp"
-#include "drivers/fpga/fpga_io_board.hpp"
 #include "emulator/machine.hpp"
-#include "emulator/scenario_validation.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
+#include "tools/hil/hil_rig.hpp"
 
 namespace tnv::hil {
-
-namespace {
-constexpr int kHomingTicks = 3;  // servo-off ticks before the command: the firmware reads home
-}
 
 CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConfig& base_config,
                            fw::ControllerKind controller, const CircleRunOptions& options) {
   CircleRunResult result;
-  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
-    result.error = "scenario " + scenario.name + ": " + bad;
-    return result;
-  }
-  const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
-  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
-    result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;
-    return result;
-  }
-
-  emu::Machine machine(scenario);
-  drivers::EmulatedRegisterBus bus(machine);
-  drivers::FpgaIoBoard board(bus);
-  if (const drivers::FpgaInitResult init = board.init({}); !init.ok()) {
-    result.error = std::string("I/O board: ") + init.message;
-    return result;
-  }
-  fw::TickTask task(board, config);
-  task.select_controller(hal::Axis::x, controller);
-  task.select_controller(hal::Axis::y, controller);
-
-  for (int i = 0; i < kHomingTicks; ++i) {
-    machine.advance_to_next_tick();
-    task.tick();
-  }
+  std::unique_ptr<HilRig> rig = HilRig::create(scenario, base_config, controller, result.error);
+  if (!rig) return result;
+  emu::Machine& machine = rig->machine;
+  fw::TickTask& task = rig->task;
+  rig->home();
   if (const fw::CommandStatus st = task.start_circle(circle_spec_for(scenario)); st != fw::CommandStatus::ok) {
     result.error = std::string("start_circle refused: ") + fw::to_string(st);
     return result;
@@ -53,8 +27,7 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
   if (options.keep_trace) result.trace.reserve(static_cast<std::size_t>(task.motion_ticks() + 1));
   ContourAccumulator contour;
   for (std::int64_t k = 0; k < max_ticks; ++k) {
-    machine.advance_to_next_tick();
-    task.tick();
+    rig->tick();
     const fw::TickRecord& rec = task.last_record();
     if (task.state() == fw::MotionState::faulted) break;
     if (rec.motion_tick >= 0) {

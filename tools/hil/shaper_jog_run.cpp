@@ -4,17 +4,14 @@
 #include <cmath>
 #include <sstream>
 
-#include "drivers/emulated/emulated_register_bus.hpp"
-#include "drivers/fpga/fpga_io_board.hpp"
 #include "emulator/machine.hpp"
-#include "emulator/scenario_validation.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
+#include "tools/hil/hil_rig.hpp"
 
 namespace tnv::hil {
 
 namespace {
-constexpr int kHomingTicks = 3;
 constexpr double kPeriodS = 1e-3;
 constexpr double kLongestStreamS = 600.0;
 
@@ -81,29 +78,14 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
 JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& base_config) {
   JogRunResult result;
   const emu::Scenario& scenario = request.scenario;
-  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
-    result.error = "scenario " + scenario.name + ": " + bad;
-    return result;
-  }
-  const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
-  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
-    result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;
-    return result;
-  }
   if (request.commands.empty()) {
     result.error = "no jog commands";
     return result;
   }
-  emu::Machine machine(scenario);
-  drivers::EmulatedRegisterBus bus(machine);
-  drivers::FpgaIoBoard board(bus);
-  if (const drivers::FpgaInitResult init = board.init({}); !init.ok()) {
-    result.error = std::string("I/O board: ") + init.message;
-    return result;
-  }
-  fw::TickTask task(board, config);
-  task.select_controller(hal::Axis::x, request.controller);
-  task.select_controller(hal::Axis::y, request.controller);
+  std::unique_ptr<HilRig> rig = HilRig::create(scenario, base_config, request.controller, result.error);
+  if (!rig) return result;
+  emu::Machine& machine = rig->machine;
+  fw::TickTask& task = rig->task;
   for (std::size_t i = 0; i < 2; ++i) {
     const hal::Axis axis = hal::axis_from_index(i);
     if (!request.shaper[i]) continue;
@@ -114,10 +96,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
       return result;
     }
   }
-  for (int i = 0; i < kHomingTicks; ++i) {
-    machine.advance_to_next_tick();
-    task.tick();
-  }
+  rig->home();
   if (task.hold_position() != fw::CommandStatus::ok) {
     result.error = "servo-on refused";
     return result;
@@ -131,7 +110,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
 
   const auto last_row_tick = static_cast<std::int64_t>(std::llround(request.commands.back().t_s / kPeriodS));
   const auto window_ticks = static_cast<std::int64_t>(std::llround(request.window_s / kPeriodS));
-  std::optional<std::int64_t> stop_tick;
+  std::int64_t stop_tick = -1;  // first tick of the final rest, -1 while moving
   std::size_t row = 0;
   std::vector<std::array<double, 3>> tool_samples;  // t, tool x, tool y
   for (std::int64_t k = 0;; ++k) {
@@ -163,9 +142,9 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
                               {rec.axis[0].reference_mm, rec.axis[1].reference_mm},
                               {tx.tool_position_mm, ty.tool_position_mm}});
     const bool at_rest = task.state() == fw::MotionState::holding;
-    if (k > last_row_tick && at_rest && !stop_tick) stop_tick = k;
-    if (!at_rest) stop_tick.reset();
-    if (stop_tick && k >= *stop_tick + window_ticks) break;
+    if (k > last_row_tick && at_rest && stop_tick < 0) stop_tick = k;
+    if (!at_rest) stop_tick = -1;
+    if (stop_tick >= 0 && k >= stop_tick + window_ticks) break;
     if (t_s > kLongestStreamS + 60.0) break;
   }
   result.deadman_stops = task.jog_deadman_stops();
@@ -174,11 +153,11 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
         std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick);
     return result;
   }
-  if (!stop_tick) {
+  if (stop_tick < 0) {
     result.error = "the axes did not come to rest";
     return result;
   }
-  result.stop_s = static_cast<double>(*stop_tick) * kPeriodS;
+  result.stop_s = static_cast<double>(stop_tick) * kPeriodS;
   for (std::size_t i = 0; i < 2; ++i) {
     JogAxisResult& a = result.axis[i];
     a.end_mm = task.last_record().axis[i].reference_mm;

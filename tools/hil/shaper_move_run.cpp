@@ -3,44 +3,26 @@
 #include <algorithm>
 #include <cmath>
 
-#include "drivers/emulated/emulated_register_bus.hpp"
-#include "drivers/fpga/fpga_io_board.hpp"
 #include "emulator/machine.hpp"
-#include "emulator/scenario_validation.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
+#include "tools/hil/hil_rig.hpp"
 
 namespace tnv::hil {
 
 namespace {
-constexpr int kHomingTicks = 3;  // servo-off ticks: the firmware reads home
 constexpr double kPeriodS = 1e-3;
 }  // namespace
 
 MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& base_config) {
   MoveRunResult result;
   const emu::Scenario& scenario = request.scenario;
-  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
-    result.error = "scenario " + scenario.name + ": " + bad;
-    return result;
-  }
-  const fw::FirmwareConfig config = firmware_config_for(scenario, base_config);
-  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
-    result.error = std::string("firmware config: ") + err.section + ": " + err.field + ": " + err.reason;
-    return result;
-  }
-  emu::Machine machine(scenario);
-  drivers::EmulatedRegisterBus bus(machine);
-  drivers::FpgaIoBoard board(bus);
-  if (const drivers::FpgaInitResult init = board.init({}); !init.ok()) {
-    result.error = std::string("I/O board: ") + init.message;
-    return result;
-  }
-  fw::TickTask task(board, config);
+  std::unique_ptr<HilRig> rig = HilRig::create(scenario, base_config, request.controller, result.error);
+  if (!rig) return result;
+  emu::Machine& machine = rig->machine;
+  fw::TickTask& task = rig->task;
   const hal::Axis axis = request.move.axis;
   const std::size_t a = hal::index(axis);
-  task.select_controller(hal::Axis::x, request.controller);
-  task.select_controller(hal::Axis::y, request.controller);
   if (request.shaper) {
     if (task.configure_shaper(axis, *request.shaper) != fw::CommandStatus::ok ||
         task.enable_shaper(axis, true) != fw::CommandStatus::ok) {
@@ -48,10 +30,7 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
       return result;
     }
   }
-  for (int i = 0; i < kHomingTicks; ++i) {
-    machine.advance_to_next_tick();
-    task.tick();
-  }
+  rig->home();
   const double start_mm = task.last_record().axis[a].position_mm;
   if (const fw::CommandStatus st = task.start_move(request.move); st != fw::CommandStatus::ok) {
     result.error = std::string("start_move refused: ") + fw::to_string(st) + " (" + fw::validate(request.move) + ")";

@@ -1,0 +1,37 @@
+#include "tools/hil/hil_rig.hpp"
+
+#include "emulator/scenario_validation.hpp"
+#include "tools/hil/hil_firmware_config.hpp"
+
+namespace tnv::hil {
+
+HilRig::HilRig(const emu::Scenario& scenario, const fw::FirmwareConfig& config)
+    : machine(scenario), bus(machine), board(bus), task(board, config) {}
+
+std::unique_ptr<HilRig> HilRig::create(const emu::Scenario& scenario, const fw::FirmwareConfig& base,
+                                       fw::ControllerKind controller, std::string& error) {
+  if (const std::string bad = emu::validate_scenario(scenario); !bad.empty()) {
+    error = "scenario ";
+    error += scenario.name;
+    error += ": ";
+    error += bad;
+    return nullptr;
+  }
+  const fw::FirmwareConfig config = firmware_config_for(scenario, base);
+  if (const fw::ConfigError err = fw::validate(config); !err.ok()) {
+    error = "firmware config: ";
+    error.append(err.section).append(": ").append(err.field).append(": ").append(err.reason);
+    return nullptr;
+  }
+  std::unique_ptr<HilRig> rig(new HilRig(scenario, config));
+  if (const drivers::FpgaInitResult init = rig->board.init({}); !init.ok()) {
+    error = "I/O board: ";
+    error += init.message;
+    return nullptr;
+  }
+  rig->task.select_controller(hal::Axis::x, controller);
+  rig->task.select_controller(hal::Axis::y, controller);
+  return rig;
+}
+
+}  // namespace tnv::hil
