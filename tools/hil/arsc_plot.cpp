@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tools/hil/plot_format.hpp"
+
 namespace tnv::hil {
 
 namespace {
@@ -14,20 +16,6 @@ constexpr double kRightPx = 200.0;  // legend column
 constexpr double kPanelPx = 170.0;
 constexpr double kGapPx = 34.0;
 constexpr double kTitlePx = 50.0;
-
-std::string fmt(const char* pattern, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, v);
-  return buf;
-}
-
-double nice_step(double span, int target) {
-  const double raw = span / target;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * p >= raw) return m * p;
-  return 10.0 * p;
-}
 
 void draw_panel(SvgWriter& svg, const Panel& panel, double top, double t_end, bool last, std::string_view x_label) {
   const double w = kWidthPx - kLeftPx - kRightPx;
@@ -40,12 +28,12 @@ void draw_panel(SvgWriter& svg, const Panel& panel, double top, double t_end, bo
   const double y_step = nice_step(span, 4);
   for (double v = std::ceil(panel.y_min / y_step) * y_step; v <= panel.y_max + 1e-9; v += y_step) {
     svg.line(kLeftPx, y_of(v), kLeftPx + w, y_of(v), "#e4e4e4", 0.7);
-    svg.text(kLeftPx - 6, y_of(v) + 4, fmt("%g", std::fabs(v) < 1e-12 ? 0.0 : v), 10, "end", "#555");
+    svg.text(kLeftPx - 6, y_of(v) + 4, format_value("%g", std::fabs(v) < 1e-12 ? 0.0 : v), 10, "end", "#555");
   }
   const double t_step = nice_step(t_end, 8);
   for (double t = 0.0; t <= t_end + 1e-9; t += t_step) {
     svg.line(x_of(t), top, x_of(t), top + h, "#eeeeee", 0.7);
-    if (last) svg.text(x_of(t), top + h + 14, fmt("%g", t), 10, "middle", "#555");
+    if (last) svg.text(x_of(t), top + h + 14, format_value("%g", t), 10, "middle", "#555");
   }
   svg.rect(kLeftPx, top, w, h, "#888");
   svg.text(kLeftPx - 50, top + h / 2, panel.y_label, 11, "middle", "#333", -90);

@@ -6,6 +6,8 @@
 #include <functional>
 #include <string>
 
+#include "tools/hil/plot_format.hpp"
+
 namespace tnv::hil {
 
 namespace {
@@ -20,20 +22,6 @@ constexpr const char* kPositionColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#94
                                            "#7f7f7f", "#bcbd22"};
 constexpr const char* kResetColor = "#7b3fa0";
 constexpr const char* kBadColor = "#d62728";
-
-std::string fmt(const char* pattern, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, v);
-  return buf;
-}
-
-double nice_step(double span, int target_ticks) {
-  const double raw = span / target_ticks;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * p >= raw) return m * p;
-  return 10.0 * p;
-}
 
 // One panel: part number across, a linear or log value axis up.
 struct Panel {
@@ -58,19 +46,19 @@ struct Panel {
           const double v = m * decade;
           if (v < lo * 0.9999 || v > hi * 1.0001) continue;
           svg.line(kLeftPx, y(v), kLeftPx + kPlotWidthPx, y(v), "#eee", 0.6);
-          svg.text(kLeftPx - 6, y(v) + 4, fmt("%g", v), 10, "end", "#555");
+          svg.text(kLeftPx - 6, y(v) + 4, format_value("%g", v), 10, "end", "#555");
         }
     } else {
       const double step = nice_step(hi - lo, 5);
       for (double v = std::ceil(lo / step) * step; v <= hi + 1e-12; v += step) {
         svg.line(kLeftPx, y(v), kLeftPx + kPlotWidthPx, y(v), "#eee", 0.6);
-        svg.text(kLeftPx - 6, y(v) + 4, fmt("%g", std::fabs(v) < 1e-12 ? 0.0 : v), 10, "end", "#555");
+        svg.text(kLeftPx - 6, y(v) + 4, format_value("%g", std::fabs(v) < 1e-12 ? 0.0 : v), 10, "end", "#555");
       }
     }
     const double part_step = parts <= 40 ? 1.0 : nice_step(parts, 15);
     for (double p = part_step; p <= parts; p += part_step) {
       svg.line(x(p), top + kPanelPx, x(p), top + kPanelPx + 4, "#888", 0.8);
-      svg.text(x(p), top + kPanelPx + 15, fmt("%g", p), 10, "middle", "#555");
+      svg.text(x(p), top + kPanelPx + 15, format_value("%g", p), 10, "middle", "#555");
     }
     for (int c : r.change_at)
       if (c <= parts) svg.line(x(c - 0.5), top, x(c - 0.5), top + kPanelPx, "#999", 1.0, "6,3");
@@ -145,15 +133,15 @@ SvgWriter boring_figure(std::string_view title, const BoringRunRequest& r, const
   svg.rect(kLeftPx, deflection.y(d0 + band), kPlotWidthPx, deflection.y(d0 - band) - deflection.y(d0 + band), "none", "#e6f4e6");
   deflection.frame("deflection d (mm)", r);
   svg.line(kLeftPx, deflection.y(d0), kLeftPx + kPlotWidthPx, deflection.y(d0), "#2a7a2a", 1.0, "4,3");
-  svg.text(kLeftPx + kPlotWidthPx + 6, deflection.y(d0) - 2, fmt("d0 = %.4g", d0), 10, "start", "#2a7a2a");
-  svg.text(kLeftPx + kPlotWidthPx + 6, deflection.y(d0) + 10, fmt("+- %.3g mm", band), 10, "start", "#2a7a2a");
+  svg.text(kLeftPx + kPlotWidthPx + 6, deflection.y(d0) - 2, format_value("d0 = %.4g", d0), 10, "start", "#2a7a2a");
+  svg.text(kLeftPx + kPlotWidthPx + 6, deflection.y(d0) + 10, format_value("+- %.3g mm", band), 10, "start", "#2a7a2a");
   std::vector<std::pair<std::string, std::string>> legend;
   for (std::size_t i = 0; i < npos; ++i) {
     const char* color = kPositionColors[i % std::size(kPositionColors)];
     deflection.series(collect(parts, [i](const BoringPartRecord& p) { return p.positions[i].true_deflection_mm; }), color);
     if (parts.size() <= 120)
       for (const BoringPartRecord& p : parts) deflection.ring(p.part, p.positions[i].measured_deflection_mm, color);
-    legend.emplace_back(fmt("true d at L = %.0f mm", parts.front().positions[i].overhang_mm), color);
+    legend.emplace_back(format_value("true d at L = %.0f mm", parts.front().positions[i].overhang_mm), color);
   }
   deflection.legend(kLeftPx, legend);
   svg.text(kLeftPx + kPlotWidthPx, top - 4, "rings: measured;  shaded: d0 +- 3 sigma;  x: bad part;  R: P reset;  beyond the frame: drawn on it", 10, "end", "#555");
@@ -181,7 +169,7 @@ SvgWriter boring_figure(std::string_view title, const BoringRunRequest& r, const
     const char* color = kPositionColors[i % std::size(kPositionColors)];
     infeed.steps(collect(parts, [i](const BoringPartRecord& p) { return p.positions[i].optimal_infeed_mm_rev; }), color);
     infeed.series(collect(parts, [i](const BoringPartRecord& p) { return p.positions[i].infeed_mm_rev; }), color);
-    legend.emplace_back(fmt("S at L = %.0f mm", parts.front().positions[i].overhang_mm), color);
+    legend.emplace_back(format_value("S at L = %.0f mm", parts.front().positions[i].overhang_mm), color);
   }
   legend.emplace_back("optimal S (eq. 3, true set)", "#666");
   infeed.legend(kLeftPx, legend, true);
@@ -227,7 +215,7 @@ SvgWriter boring_figure(std::string_view title, const BoringRunRequest& r, const
     if (fb > 0) svg.rect(share.x(p) - bar, share.y(fb), bar, share.y(0) - share.y(fb), "none", kBadColor);
     if (fr > 0) svg.rect(share.x(p), share.y(fr), bar, share.y(0) - share.y(fr), "none", kResetColor);
   }
-  share.legend(kLeftPx, {{fmt("bad part (%.0f seeds)", static_cast<double>(s.seeds)), kBadColor}, {"P reset", kResetColor}});
+  share.legend(kLeftPx, {{format_value("bad part (%.0f seeds)", static_cast<double>(s.seeds)), kBadColor}, {"P reset", kResetColor}});
   svg.text(kLeftPx + kPlotWidthPx / 2, top + kPanelPx + 34, "part number  (grey dashed: process change)", 12, "middle", "#333");
   return svg;
 }

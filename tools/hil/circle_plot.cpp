@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tools/hil/plot_format.hpp"
+
 namespace tnv::hil {
 
 namespace {
@@ -16,20 +18,8 @@ constexpr double kSuppressed = 0.998;  // fraction of the radius removed in the 
 
 constexpr const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
 
-std::string fmt(const char* pattern, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, v);
-  return buf;
-}
-
 // 1, 2 or 5 times a power of ten, at least v.
-double nice_ceiling(double v) {
-  if (!(v > 0.0)) return 1.0;
-  const double p = std::pow(10.0, std::floor(std::log10(v)));
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * p >= v) return m * p;
-  return 10.0 * p;
-}
+double nice_ceiling(double v) { return v > 0.0 ? nice_step(v, 1) : 1.0; }
 
 void polar_panel(SvgWriter& svg, double cx, double cy, double radius_mm, const std::vector<TraceSample>& trace,
                  const char* color) {
@@ -40,7 +30,7 @@ void polar_panel(SvgWriter& svg, double cx, double cy, double radius_mm, const s
     const double r_um = target_um + k * ring_step_um;
     if (r_um <= 0.0) continue;
     svg.circle(cx, cy, r_um * px_per_um, k == 0 ? "#444" : "#ddd", k == 0 ? 1.2 : 0.8, k == 0 ? "5,3" : "");
-    if (k != 0) svg.text(cx + 3, cy - r_um * px_per_um + 11, fmt("%+.0f um", k * ring_step_um), 9, "start", "#999");
+    if (k != 0) svg.text(cx + 3, cy - r_um * px_per_um + 11, format_value("%+.0f um", k * ring_step_um), 9, "start", "#999");
   }
   svg.line(cx - kPolarRadiusPx, cy, cx + kPolarRadiusPx, cy, "#ccc", 0.6);
   svg.line(cx, cy - kPolarRadiusPx, cx, cy + kPolarRadiusPx, "#ccc", 0.6);
@@ -62,13 +52,13 @@ void time_panel(SvgWriter& svg, double x0, double y0, double w, double h, const 
   for (int i = 0; i <= 5; ++i) {
     const double y = y0 + h - h * i / 5.0;
     svg.line(x0, y, x0 + w, y, "#eee", 0.6);
-    svg.text(x0 - 6, y + 4, fmt("%.2g", y_max_um * i / 5.0), 10, "end", "#555");
+    svg.text(x0 - 6, y + 4, format_value("%.2g", y_max_um * i / 5.0), 10, "end", "#555");
   }
   const double t_step = nice_ceiling(t_end / 8.0);
   for (double t = 0.0; t <= t_end + 1e-9; t += t_step) {
     const double x = x0 + w * t / t_end;
     svg.line(x, y0, x, y0 + h, "#eee", 0.6);
-    svg.text(x, y0 + h + 14, fmt("%g", t), 10, "middle", "#555");
+    svg.text(x, y0 + h + 14, format_value("%g", t), 10, "middle", "#555");
   }
   svg.text(x0 + w / 2, y0 + h + 30, "time since start of motion (s)", 11, "middle", "#333");
   svg.text(x0 - 40, y0 + h / 2, "contour error (um)", 11, "middle", "#333", -90);

@@ -9,6 +9,8 @@
 #include "tools/hil/shaper_chart.hpp"
 #include "tools/hil/shaper_design_report.hpp"
 
+#include "tools/hil/plot_format.hpp"
+
 namespace tnv::hil {
 
 namespace {
@@ -32,12 +34,6 @@ std::string upper(const char* s) {
   return out;
 }
 
-std::string fmt(const char* pattern, double v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, pattern, v);
-  return buf;
-}
-
 ChartSeries residual_curve(const fw::TapSet& taps, double design_hz, double zeta, double r_lo, double r_hi,
                            const char* color, double width, std::string label) {
   ChartSeries s{{}, color, width, std::move(label)};
@@ -54,9 +50,9 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
   const bool two = spec.has_second_mode();
   const double panel_h = 330.0;
   SvgWriter svg(kWidthPx, 70.0 + panel_h + 110.0 + (two ? panel_h + 80.0 : 0.0));
-  std::string title = upper(fw::to_string(spec.type)) + " input shaper at " + fmt("%.4g Hz", spec.mode.freq_hz) +
-                      fmt(", zeta %.3g", spec.mode.zeta);
-  if (two) title += fmt(" and %.4g Hz", spec.second_mode.freq_hz) + fmt(", zeta %.3g", spec.second_mode.zeta);
+  std::string title = upper(fw::to_string(spec.type)) + " input shaper at " + format_value("%.4g Hz", spec.mode.freq_hz) +
+                      format_value(", zeta %.3g", spec.mode.zeta);
+  if (two) title += format_value(" and %.4g Hz", spec.second_mode.freq_hz) + format_value(", zeta %.3g", spec.second_mode.zeta);
   svg.text(kWidthPx / 2, 26, title + " (taps as implemented on the 1 ms grid)", 17, "middle", "#111");
 
   // Left: the five families, same mode (S2 Fig. 3 style).
@@ -95,7 +91,7 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
   for (int i = 0; i < 5; ++i) {
     if (i == 1 && (spec.mode.zeta == 0.0 || spec.mode.zeta == 0.05 || spec.mode.zeta == 0.1)) continue;
     damping.push_back(residual_curve(one.taps, spec.mode.freq_hz, zetas[i], 0.5, 1.5, colors[i], i == 1 ? 2.6 : 1.6,
-                                     fmt("actual zeta %.3g", zetas[i]) + (i == 1 ? " (design)" : "")));
+                                     format_value("actual zeta %.3g", zetas[i]) + (i == 1 ? " (design)" : "")));
   }
   ChartPanel right{600,
                    70,
@@ -146,7 +142,7 @@ SvgWriter shaper_sensitivity_figure(const fw::ShaperSpec& spec) {
 SvgWriter grid_method_figure(const std::vector<fw::ShaperType>& types, double zeta) {
   const double panel_h = 230.0, gap = 70.0;
   SvgWriter svg(kWidthPx, 60.0 + (panel_h + gap) * static_cast<double>(types.size()) + 50.0);
-  svg.text(kWidthPx / 2, 26, fmt("Residual vibration left at the design frequency by the 1 ms grid (zeta %.3g)", zeta),
+  svg.text(kWidthPx / 2, 26, format_value("Residual vibration left at the design frequency by the 1 ms grid (zeta %.3g)", zeta),
            17, "middle", "#111");
   constexpr double kFloor = 1e-6;  // percent; the exact taps sit ~1e-12 % (rounding), drawn here
   double top = 70.0;
@@ -229,7 +225,7 @@ SvgWriter move_figure(const std::string& title, const MoveComparison& c) {
   std::snprintf(sub, sizeof sub,
                 "unshaped: residual %.1f um p-p, settles (+-1 um) %.3f s after the move;  shaped: %.2f um p-p, %s",
                 u.residual_pp_um, u.settling_s.value_or(-1.0), s.residual_pp_um,
-                s.settling_s ? fmt("%.3f s", *s.settling_s).c_str() : "not settled");
+                s.settling_s ? format_value("%.3f s", *s.settling_s).c_str() : "not settled");
   svg.text(kWidthPx / 2, 48, sub, 12, "middle", "#333");
   draw_chart(svg,
              {80,

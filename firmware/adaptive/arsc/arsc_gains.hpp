@@ -2,6 +2,8 @@
 // The ARSC gain vector K (S3 eq. (18)) and the split the paper uses for the
 // on-line update: seven gains computed from the desired poles, six fixed
 // (S3 eq. (32)).
+#include <Eigen/Core>
+
 namespace tnv::fw::arsc {
 
 struct ArscGains {
@@ -23,6 +25,17 @@ struct FixedGains {
   double gamma41 = 1.0;
   double gamma42 = 1.0;
 };
+
+// The six gains the on-line design solves for, in the order of the
+// unknown vector of S3 eq. (26): {k, gamma11, gamma13, gamma22, gamma31, gamma32}.
+inline void set_solved_gains(ArscGains& g, const Eigen::Matrix<double, 6, 1>& kv) noexcept {
+  g.k = kv(0);
+  g.gamma11 = kv(1);
+  g.gamma13 = kv(2);
+  g.gamma22 = kv(3);
+  g.gamma31 = kv(4);
+  g.gamma32 = kv(5);
+}
 
 inline ArscGains with_fixed(const FixedGains& f) noexcept {
   ArscGains g;

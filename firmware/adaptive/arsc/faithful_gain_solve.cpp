@@ -112,12 +112,7 @@ GainDesign solve_faithful_gains(const Arv2Model& model, const std::array<double,
   }
   ArscGains g = with_fixed(fixed);
   g.gamma01 = sys.gamma01;
-  g.k = kv(0);
-  g.gamma11 = kv(1);
-  g.gamma13 = kv(2);
-  g.gamma22 = kv(3);
-  g.gamma31 = kv(4);
-  g.gamma32 = kv(5);
+  set_solved_gains(g, kv);
   out.gains = g;
   out.reason = GuardReason::none;
   return out;

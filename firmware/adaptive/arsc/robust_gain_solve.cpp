@@ -146,12 +146,7 @@ RobustDesign solve_robust_gains(const StructuredModel& model, const std::array<d
     out.reason = GuardReason::gain_out_of_range;
     return out;
   }
-  g.k = x(0);
-  g.gamma11 = x(1);
-  g.gamma13 = x(2);
-  g.gamma22 = x(3);
-  g.gamma31 = x(4);
-  g.gamma32 = x(5);
+  set_solved_gains(g, x);
   out.gains = g;
   out.reason = GuardReason::none;
   return out;
