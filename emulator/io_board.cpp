@@ -96,8 +96,15 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
 }
 
 void IoBoard::latch_tick(const TickSamples& samples) noexcept {
-  ++snapshot_[kSeq];
-  fill_snapshot(samples);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const std::uint32_t output = dac_output_code(hal::axis_from_index(i));
+    const std::uint32_t apart = output > dac_codes_[i] ? output - dac_codes_[i] : dac_codes_[i] - output;
+    if (apart > regs::kDacReadbackToleranceCodes) faults_ |= i == 0 ? regs::kFaultDacX : regs::kFaultDacY;
+  }
+  if (!snapshot_frozen_) {
+    ++snapshot_[kSeq];
+    fill_snapshot(samples);
+  }
   // Latest nominal tick at or before now; a divider >= one sub-step means
   // at most one is due per boundary except right after a divider write.
   const std::uint64_t late_clocks = elapsed_clocks_ - next_tick_clocks_;
@@ -127,15 +134,27 @@ std::uint32_t IoBoard::live_inputs() const noexcept {
 
 void IoBoard::trip_watchdog() noexcept {
   watchdog_tripped_ = true;
+  last_trip_clocks_ = elapsed_clocks_;
   dac_codes_.fill(dac_.mid_code());
   outputs_ &= ~kEnableBits;
   refresh_commands();
 }
 
+void IoBoard::stick_dac(hal::Axis axis, std::optional<std::uint32_t> code) noexcept {
+  if (code && *code > dac_.max_code()) code = dac_.max_code();
+  stuck_dac_codes_[hal::index(axis)] = code;
+  refresh_commands();
+}
+
+std::uint32_t IoBoard::dac_output_code(hal::Axis axis) const noexcept {
+  const std::size_t i = hal::index(axis);
+  return stuck_dac_codes_[i] ? *stuck_dac_codes_[i] : dac_codes_[i];
+}
+
 void IoBoard::refresh_commands() noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const hal::Axis axis = hal::axis_from_index(i);
-    command_mm_s_[i] = enabled(axis) ? dac_.speed_mm_s(dac_codes_[i]) : 0.0;
+    command_mm_s_[i] = enabled(axis) ? dac_.speed_mm_s(dac_output_code(axis)) : 0.0;
   }
 }
 

@@ -25,8 +25,15 @@
 // - INPUTS (with the board's own watchdog-tripped bit), ADC_FORCE and FAULTS
 //   are snapshot words like the rest: they change only at ticks.
 // - The WATCHDOG_KICK word reads back the last value written; CONTROL reads 0.
+// - The DAC output is the register's code unless a fault sticks it. At each
+//   tick latch a readback comparator checks output against register and
+//   latches kFaultDac* when they are more than kDacReadbackToleranceCodes
+//   apart (the emulated readback is exact).
+// Fault injection (emulator/fault_schedule.hpp) acts through stick_dac,
+// freeze_snapshot, delay_next_tick, raise_faults and set_input.
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "emulator/dac_speed_map.hpp"
 #include "emulator/scenario.hpp"
@@ -91,12 +98,27 @@ class IoBoard {
   }
   std::uint32_t tick_sequence() const noexcept { return snapshot_[kSeq]; }
   bool watchdog_tripped() const noexcept { return watchdog_tripped_; }
+  // Counter (elapsed clocks) at the most recent watchdog trip, if any.
+  std::optional<std::uint64_t> last_watchdog_trip_clocks() const noexcept { return last_trip_clocks_; }
+  std::uint32_t dac_register(hal::Axis axis) const noexcept { return dac_codes_[hal::index(axis)]; }
   const DacSpeedMap& dac() const noexcept { return dac_; }
 
   // --- test-bench inputs (kInput* bits except kInputWatchdogTripped)
   void set_input(std::uint32_t bit, bool asserted) noexcept;
-  // Hook for sticky fault sources (encoder illegal transitions come later).
+  // Sticky fault sources (an encoder's illegal A/B transition).
   void raise_faults(std::uint32_t fault_bits) noexcept { faults_ |= fault_bits; }
+
+  // --- injected faults
+  // The DAC output sticks at `code` (<= max code) whatever is written; nullopt releases it.
+  void stick_dac(hal::Axis axis, std::optional<std::uint32_t> code) noexcept;
+  // What the DAC really outputs (the register's code unless stuck).
+  std::uint32_t dac_output_code(hal::Axis axis) const noexcept;
+  // While frozen, ticks still fire on schedule but the snapshot window
+  // (sequence and clock included) keeps its last contents.
+  void freeze_snapshot(bool frozen) noexcept { snapshot_frozen_ = frozen; }
+  // The tick timer stalls: the next tick latches `clocks` late (a multiple
+  // of kSubstepClocks) and later ticks keep the period from it.
+  void delay_next_tick(std::uint64_t clocks) noexcept { next_tick_clocks_ += clocks; }
 
  private:
   // Snapshot slots, relative to kSnapshotFirst.
@@ -118,6 +140,8 @@ class IoBoard {
   std::array<std::uint32_t, hal::regs::kSnapshotWords> snapshot_{};
 
   std::array<std::uint32_t, hal::kAxisCount> dac_codes_{};
+  std::array<std::optional<std::uint32_t>, hal::kAxisCount> stuck_dac_codes_{};
+  bool snapshot_frozen_ = false;
   std::uint32_t outputs_ = 0;
   std::uint32_t last_kick_word_ = 0;
   std::uint32_t inputs_ = 0;
@@ -127,6 +151,7 @@ class IoBoard {
   bool watchdog_armed_ = false;
   bool watchdog_tripped_ = false;
   std::uint64_t last_kick_clocks_ = 0;
+  std::optional<std::uint64_t> last_trip_clocks_;
 
   std::array<double, hal::kAxisCount> command_mm_s_{};
 };

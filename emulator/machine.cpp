@@ -9,6 +9,7 @@
 
 #include "emulator/axis_plant.hpp"
 #include "emulator/cutting_disturbance.hpp"
+#include "emulator/fault_timeline.hpp"
 #include "emulator/force_adc.hpp"
 #include "emulator/io_board.hpp"
 #include "emulator/milling_force.hpp"
@@ -28,6 +29,11 @@ struct Machine::Impl {
   // outputs constant over the block; true if a tick latched at its end.
   bool run_block(std::uint64_t max_substeps) noexcept;
   TickSamples tick_samples() const noexcept;
+  std::int64_t encoder_count(std::size_t i) const noexcept;
+  void apply_due_faults() noexcept;
+  void apply_fault_edge(const FaultEdge& edge) noexcept;
+  bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
+  std::uint32_t input_bit(const FaultSpec& f) const noexcept;
 
   Scenario scenario;
   IoBoard board;
@@ -42,6 +48,15 @@ struct Machine::Impl {
   std::optional<double> servo_on_s;
   std::array<double, hal::kAxisCount> applied_command_mm_s{};  // held during the last sub-step
   CuttingVector applied_cutting{};
+
+  // Injected faults (scenario.faults).
+  FaultTimeline fault_timeline;
+  std::vector<bool> fault_on;                            // per scheduled fault
+  std::array<std::int64_t, hal::kAxisCount> encoder_slip_counts{};  // counts the decoder lost
+  std::array<std::optional<std::int64_t>, hal::kAxisCount> dead_encoder_count{};  // frozen count while dead
+  std::array<double, hal::kAxisCount> drive_sign{1.0, 1.0};  // -1: runaway (gain sign flipped)
+  bool read_errors = false;
+  std::uint64_t ticks_to_sleep = 0;  // missed ticks still to come
 };
 
 namespace {
@@ -59,7 +74,9 @@ Machine::Impl::Impl(const Scenario& s)
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
       cutting(s.cutting, s.circle),
       milling(s.milling, kSubstep_s),
-      any_mode(modes[0].enabled() || modes[1].enabled()) {
+      any_mode(modes[0].enabled() || modes[1].enabled()),
+      fault_timeline(s.faults),
+      fault_on(s.faults.size(), false) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
   // At rest, held by stiction, at the circle's start point (R, 0).
   plants[0].set_state(s.circle.radius_mm, 0.0, true);
@@ -67,11 +84,14 @@ Machine::Impl::Impl(const Scenario& s)
   board.preset_snapshot(tick_samples());
 }
 
+std::int64_t Machine::Impl::encoder_count(std::size_t i) const noexcept {
+  if (dead_encoder_count[i]) return *dead_encoder_count[i];
+  return encoders[i].count(plants[i].position_mm()) + encoder_slip_counts[i];
+}
+
 TickSamples Machine::Impl::tick_samples() const noexcept {
   TickSamples samples;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    samples.encoder_registers[i] = encoders[i].register_value(plants[i].position_mm());
-  }
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) samples.encoder_registers[i] = QuadratureEncoder::wrap(encoder_count(i));
   // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
   // (sqrt rather than hypot: no overflow risk at these magnitudes, and cheaper)
   const double magnitude_mm_s = std::sqrt(applied_cutting.x_mm_s * applied_cutting.x_mm_s +
@@ -82,11 +102,104 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
   return samples;
 }
 
+bool Machine::Impl::any_active(FaultKind kind, std::optional<Axis> axis) const noexcept {
+  for (std::size_t i = 0; i < fault_on.size(); ++i) {
+    const FaultSpec& f = scenario.faults[i];
+    if (fault_on[i] && f.kind == kind && (!axis || f.axis == *axis)) return true;
+  }
+  return false;
+}
+
+std::uint32_t Machine::Impl::input_bit(const FaultSpec& f) const noexcept {
+  using namespace hal::regs;
+  switch (f.kind) {
+    case FaultKind::estop: return kInputEstop;
+    case FaultKind::servo_alarm: return f.axis == Axis::x ? kInputAlarmX : kInputAlarmY;
+    case FaultKind::limit_switch:
+      return f.axis == Axis::x ? (f.positive_side ? kInputLimitXPos : kInputLimitXNeg)
+                               : (f.positive_side ? kInputLimitYPos : kInputLimitYNeg);
+    default: return 0;
+  }
+}
+
+void Machine::Impl::apply_due_faults() noexcept {
+  for (const FaultEdge& edge : fault_timeline.take_due(substep)) apply_fault_edge(edge);
+}
+
+void Machine::Impl::apply_fault_edge(const FaultEdge& edge) noexcept {
+  const FaultSpec& f = scenario.faults[edge.fault];
+  const std::size_t i = hal::index(f.axis);
+  fault_on[edge.fault] = edge.begins;
+  switch (f.kind) {
+    case FaultKind::estop:
+    case FaultKind::servo_alarm:
+    case FaultKind::limit_switch: {
+      // Asserted while any scheduled window on this input is open.
+      const std::uint32_t bit = input_bit(f);
+      bool asserted = false;
+      for (std::size_t k = 0; k < fault_on.size(); ++k) asserted = asserted || (fault_on[k] && input_bit(scenario.faults[k]) == bit);
+      board.set_input(bit, asserted);
+      return;
+    }
+    case FaultKind::encoder_illegal: {
+      // Both channels changed at once: a 180 degree jump the decoder cannot
+      // give a direction, so it latches the fault and does not count it.
+      // The register then lags the table by 2 counts in the direction of travel.
+      board.raise_faults(f.axis == Axis::x ? hal::regs::kFaultEncoderX : hal::regs::kFaultEncoderY);
+      const double v_mm_s = plants[i].speed_mm_s();
+      encoder_slip_counts[i] -= v_mm_s > 0.0 ? 2 : v_mm_s < 0.0 ? -2 : 0;
+      return;
+    }
+    case FaultKind::encoder_dead: {
+      const bool dead = any_active(FaultKind::encoder_dead, f.axis);
+      if (dead && !dead_encoder_count[i]) {
+        dead_encoder_count[i] = encoder_count(i);
+      } else if (!dead && dead_encoder_count[i]) {
+        // The lines come back; the decoder never saw the motion in between.
+        const std::int64_t frozen = *dead_encoder_count[i];
+        dead_encoder_count[i].reset();
+        encoder_slip_counts[i] += frozen - encoder_count(i);
+      }
+      return;
+    }
+    case FaultKind::dac_stuck: {
+      // The most recent window still open on this axis decides the code.
+      std::optional<std::uint32_t> code;
+      for (std::size_t k = 0; k < fault_on.size(); ++k) {
+        const FaultSpec& g = scenario.faults[k];
+        if (fault_on[k] && g.kind == FaultKind::dac_stuck && g.axis == f.axis) code = g.dac_code;
+      }
+      board.stick_dac(f.axis, code);
+      return;
+    }
+    case FaultKind::missed_tick:
+      if (edge.begins) ticks_to_sleep += f.ticks;
+      return;
+    case FaultKind::late_tick:
+      if (edge.begins) {
+        const std::uint64_t clocks = static_cast<std::uint64_t>(std::ceil(f.delay_us * 1e-6 * kClockHz - 1e-6));
+        board.delay_next_tick((clocks + kSubstepClocks - 1) / kSubstepClocks * kSubstepClocks);
+      }
+      return;
+    case FaultKind::stale_snapshot:
+      board.freeze_snapshot(any_active(FaultKind::stale_snapshot));
+      return;
+    case FaultKind::runaway:
+      drive_sign[i] = any_active(FaultKind::runaway, f.axis) ? -1.0 : 1.0;
+      return;
+    case FaultKind::bus_read_error:
+      read_errors = any_active(FaultKind::bus_read_error);
+      return;
+  }
+}
+
 bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Bounded so the per-block buffers stay small and on the stack.
   constexpr std::uint64_t kMaxBlock = CuttingDisturbance::kMaxFill;
   static_assert(kMaxBlock <= AxisPlant::kMaxBlock);
-  const auto n = static_cast<std::size_t>(std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock}));
+  apply_due_faults();  // the next edge is then strictly ahead: never step across it
+  const auto n = static_cast<std::size_t>(
+      std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock, fault_timeline.substeps_to_next(substep)}));
   if (!servo_on_s && board.both_enabled()) {
     servo_on_s = substep_time_s(substep);
     cutting.servo_on_at(*servo_on_s);
@@ -103,7 +216,8 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
     disturbance_x_mm_s = cut_x_mm_s.data();
     disturbance_y_mm_s = cut_y_mm_s.data();
   }
-  const double u_x = applied_command_mm_s[0], u_y = applied_command_mm_s[1];
+  // The drive's gain sign (runaway fault: -1) acts on what the servopack is told.
+  const double u_x = drive_sign[0] * applied_command_mm_s[0], u_y = drive_sign[1] * applied_command_mm_s[1];
   // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
@@ -166,6 +280,7 @@ Machine::Machine(const Scenario& scenario) : impl_(std::make_unique<Impl>(scenar
 Machine::~Machine() = default;
 
 bool Machine::read_register(std::uint16_t word, std::uint32_t& value) noexcept {
+  if (impl_->read_errors) return false;
   return impl_->board.read_register(word, value);
 }
 
@@ -174,7 +289,11 @@ bool Machine::write_register(std::uint16_t word, std::uint32_t value) noexcept {
 }
 
 void Machine::advance_to_next_tick() noexcept {
-  while (!impl_->run_block(std::numeric_limits<std::uint64_t>::max())) {
+  for (;;) {
+    while (!impl_->run_block(std::numeric_limits<std::uint64_t>::max())) {
+    }
+    if (impl_->ticks_to_sleep == 0) return;
+    --impl_->ticks_to_sleep;  // a lost tick interrupt: the firmware sleeps through this latch
   }
 }
 
@@ -195,8 +314,27 @@ AxisTruth Machine::truth(Axis axis) const noexcept {
                    .tool_position_mm = plant.position_mm() + impl_->modes[i].deflection_mm(),
                    .command_mm_s = impl_->applied_command_mm_s[i],
                    .cutting_mm_s = impl_->applied_cutting.component(axis),
-                   .stuck = plant.stuck()};
+                   .stuck = plant.stuck(),
+                   .dac_output_code = impl_->board.dac_output_code(axis)};
 }
+
+BoardOutputs Machine::board_outputs() const noexcept {
+  const IoBoard& board = impl_->board;
+  BoardOutputs out;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const Axis axis = hal::axis_from_index(i);
+    out.dac_register[i] = board.dac_register(axis);
+    out.dac_output[i] = board.dac_output_code(axis);
+    out.enabled[i] = board.enabled(axis);
+  }
+  out.watchdog_tripped = board.watchdog_tripped();
+  if (const auto trip = board.last_watchdog_trip_clocks()) {
+    out.watchdog_trip_s = static_cast<double>(*trip) / static_cast<double>(kClockHz);
+  }
+  return out;
+}
+
+std::uint32_t Machine::dac_mid_code() const noexcept { return impl_->board.dac().mid_code(); }
 
 const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
 
@@ -209,6 +347,10 @@ std::optional<double> Machine::servo_on_time_s() const noexcept { return impl_->
 std::optional<double> Machine::motion_start_s() const noexcept {
   if (!impl_->servo_on_s) return std::nullopt;
   return *impl_->servo_on_s + impl_->scenario.circle.dwell_s;
+}
+
+bool Machine::fault_active(std::size_t i) const noexcept {
+  return i < impl_->fault_on.size() && impl_->fault_on[i];
 }
 
 void Machine::set_estop(bool asserted) noexcept { impl_->board.set_input(hal::regs::kInputEstop, asserted); }

@@ -2,7 +2,11 @@
 // The emulated TNV-40: the FPGA I/O board at register level driving two
 // table axes. The only door for firmware is read_register/write_register
 // (through an emulated RegisterBus); truth() and the set_* inputs are the
-// test bench's side of the machine.
+// test bench's side of the machine. The scenario's fault schedule
+// (fault_schedule.hpp) is injected as simulated time passes: a read during
+// an injected bus error returns false; a missed tick makes
+// advance_to_next_tick() sleep through that many tick latches.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -20,6 +24,20 @@ struct AxisTruth {
   double command_mm_s = 0.0;      // u actually applied (after DAC, enable, watchdog)
   double cutting_mm_s = 0.0;      // d_cut component on this axis
   bool stuck = false;             // Karnopp stick state
+  std::uint32_t dac_output_code = 0;  // what the DAC outputs (its register's code unless a fault sticks it)
+};
+
+// The board's output side now (judge side: readable whatever the bus does).
+struct BoardOutputs {
+  std::array<std::uint32_t, hal::kAxisCount> dac_register{};  // DAC_X / DAC_Y as last written
+  std::array<std::uint32_t, hal::kAxisCount> dac_output{};    // what the DACs output (differs when stuck)
+  std::array<bool, hal::kAxisCount> enabled{};                // servo enable reaching the drive (watchdog gated)
+  bool watchdog_tripped = false;
+  std::optional<double> watchdog_trip_s;                      // machine time of the most recent trip
+  // DAC registers at mid-scale and both enables off.
+  bool safe(std::uint32_t mid_code) const noexcept {
+    return !enabled[0] && !enabled[1] && dac_register[0] == mid_code && dac_register[1] == mid_code;
+  }
 };
 
 class Machine {
@@ -29,18 +47,21 @@ class Machine {
   Machine(const Machine&) = delete;
   Machine& operator=(const Machine&) = delete;
 
-  // --- register interface (what the bus sees); false = unmapped / read-only
+  // --- register interface (what the bus sees); false = unmapped / read-only,
+  // or any read while an injected bus_read_error is active
   bool read_register(std::uint16_t word, std::uint32_t& value) noexcept;
   bool write_register(std::uint16_t word, std::uint32_t value) noexcept;
 
   // --- simulated time (sub-steps of 100 clocks = 10 us)
-  void advance_to_next_tick() noexcept;               // returns right after the next tick latch
+  void advance_to_next_tick() noexcept;               // returns right after the next tick latch the firmware wakes for
   void advance_clocks(std::uint64_t clocks) noexcept;  // rounded up to whole sub-steps
   std::uint64_t elapsed_clocks() const noexcept;
   double time_s() const noexcept;
 
   // --- judge side
   AxisTruth truth(hal::Axis axis) const noexcept;
+  BoardOutputs board_outputs() const noexcept;
+  std::uint32_t dac_mid_code() const noexcept;
   const Scenario& scenario() const noexcept;
   // S3 milling force on X (N) and the depth of cut now (mm); 0 / profile when [milling] is off.
   double milling_force_n() const noexcept;
@@ -54,6 +75,11 @@ class Machine {
   void set_estop(bool asserted) noexcept;
   void set_servo_alarm(hal::Axis axis, bool asserted) noexcept;
   void set_limit(hal::Axis axis, bool positive_side, bool asserted) noexcept;
+
+  // --- fault schedule (judge side): is scenario().faults[i] in effect now?
+  // One-shot kinds (encoder_illegal, missed_tick, late_tick) stay "in
+  // effect" from their start on.
+  bool fault_active(std::size_t i) const noexcept;
 
  private:
   struct Impl;

@@ -5,7 +5,9 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "emulator/fault_schedule.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::emu {
@@ -90,6 +92,7 @@ struct Scenario {
   MillingParams milling{};
   BoardParams board{};
   CircleParams circle{};
+  std::vector<FaultSpec> faults{};  // [[fault]]: injected on schedule (fault_schedule.hpp)
 };
 
 }  // namespace tnv::emu

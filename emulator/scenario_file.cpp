@@ -91,6 +91,8 @@ class ScenarioReader {
       } else if (name == "board") {
         const Field fields[] = {{"clock_start", &s.board.clock_start}};
         if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "fault") {
+        if (!read_faults(key, node, s)) return false;
       } else if (name == "circle") {
         const Field fields[] = {{"radius_mm", &s.circle.radius_mm}, {"feed_mm_s", &s.circle.feed_mm_s},
                                 {"ramp_s", &s.circle.ramp_s}, {"dwell_s", &s.circle.dwell_s}};
@@ -133,6 +135,100 @@ class ScenarioReader {
                               {"mode_hz", &p->mode_hz},
                               {"mode_zeta", &p->mode_zeta}};
       if (!read_section(axis_key, path, axis_node, fields)) return false;
+    }
+    return true;
+  }
+
+  // [[fault]] tables: kind first (it decides which keys apply), then the rest.
+  bool read_faults(const toml::key& key, const toml::node& node, Scenario& s) {
+    const toml::array* list = node.as_array();
+    if (list == nullptr || !list->is_array_of_tables()) {
+      return fail(key, "fault", std::string("expected an array of tables ([[fault]]), got ") + type_name(node));
+    }
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& table = *list->get(i)->as_table();
+      const std::string path = "fault[" + std::to_string(i) + "]";
+      FaultSpec f;
+      if (!read_fault_kind(table, path, f)) return false;
+      const FaultKeys keys = fault_keys(f.kind);
+      bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false;
+      for (auto&& [field_key, field_node] : table) {
+        const std::string_view name = field_key.str();
+        const std::string field_path = path + "." + std::string(name);
+        const auto not_for_kind = [&] {
+          return fail(field_key, field_path, std::string("not a key of kind ") + to_string(f.kind));
+        };
+        bool ok = true;
+        if (name == "kind") {
+          continue;
+        } else if (name == "start_s") {
+          ok = assign(field_key, field_path, field_node, &f.start_s);
+          has_start = true;
+        } else if (name == "duration_s") {
+          ok = keys.duration ? assign(field_key, field_path, field_node, &f.duration_s) : not_for_kind();
+        } else if (name == "axis") {
+          ok = keys.axis ? read_choice(field_key, field_path, field_node, "x", "y", f.axis, hal::Axis::x, hal::Axis::y)
+                         : not_for_kind();
+          has_axis = true;
+        } else if (name == "side") {
+          ok = keys.side ? read_choice(field_key, field_path, field_node, "+", "-", f.positive_side, true, false)
+                         : not_for_kind();
+          has_side = true;
+        } else if (name == "code") {
+          ok = keys.code ? assign(field_key, field_path, field_node, &f.dac_code) : not_for_kind();
+          has_code = true;
+        } else if (name == "ticks") {
+          ok = keys.ticks ? assign(field_key, field_path, field_node, &f.ticks) : not_for_kind();
+        } else if (name == "delay_us") {
+          ok = keys.delay ? assign(field_key, field_path, field_node, &f.delay_us) : not_for_kind();
+          has_delay = true;
+        } else {
+          ok = unknown(field_key, field_path, field_node);
+        }
+        if (!ok) return false;
+      }
+      const auto missing = [&](const char* leaf) {
+        error_ = location(table.source().begin) + path + "." + leaf + ": required for kind " + to_string(f.kind);
+        return false;
+      };
+      if (!has_start) return missing("start_s");
+      if (keys.axis && !has_axis) return missing("axis");
+      if (keys.side && !has_side) return missing("side");
+      if (keys.code && !has_code) return missing("code");
+      if (keys.delay && !has_delay) return missing("delay_us");
+      s.faults.push_back(f);
+    }
+    return true;
+  }
+
+  bool read_fault_kind(const toml::table& table, const std::string& path, FaultSpec& f) {
+    std::string kinds;
+    for (FaultKind kind : kFaultKinds) kinds.append(kinds.empty() ? "" : ", ").append(to_string(kind));
+    for (auto&& [field_key, field_node] : table) {
+      if (field_key.str() != "kind") continue;
+      std::string name;
+      if (!assign(field_key, path + ".kind", field_node, &name)) return false;
+      const auto kind = fault_kind_from_string(name);
+      if (!kind) return fail(field_key, path + ".kind", "unknown kind \"" + name + "\" (one of: " + kinds + ")");
+      f.kind = *kind;
+      return true;
+    }
+    error_ = location(table.source().begin) + path + ".kind: required (one of: " + kinds + ")";
+    return false;
+  }
+
+  // A string that must be one of two spellings.
+  template <typename T>
+  bool read_choice(const toml::key& key, const std::string& path, const toml::node& node, const char* first,
+                   const char* second, T& target, T first_value, T second_value) {
+    std::string text;
+    if (!assign(key, path, node, &text)) return false;
+    if (text == first) {
+      target = first_value;
+    } else if (text == second) {
+      target = second_value;
+    } else {
+      return fail(key, path, std::string("must be \"") + first + "\" or \"" + second + "\" (got \"" + text + "\")");
     }
     return true;
   }

@@ -9,8 +9,10 @@
 // mean_mm_s amplitude_mm_s exponent phase_rad; [encoder]: counts_per_rev
 // lead_mm offset_counts_x offset_counts_y; [dac]: bits full_scale_v
 // rpm_at_full_scale; [force_sensor]: volts_per_mm_s; [board]: clock_start;
-// [circle]: radius_mm feed_mm_s ramp_s dwell_s. Integers are accepted where
-// numbers are expected, not the other way round.
+// [circle]: radius_mm feed_mm_s ramp_s dwell_s; [[fault]] (any number):
+// kind start_s and, by kind, axis side duration_s code ticks delay_us
+// (fault_schedule.hpp; errors name "fault[i].key", i from 0). Integers are
+// accepted where numbers are expected, not the other way round.
 #include <optional>
 #include <string>
 #include <string_view>

@@ -95,6 +95,23 @@ void check_circle(Rules& r, const CircleParams& c) {
   }
 }
 
+void check_faults(Rules& r, const Scenario& s) {
+  const std::uint32_t max_code = (std::uint32_t{1} << (s.dac.bits >= 8 && s.dac.bits <= 16 ? s.dac.bits : 16)) - 1;
+  for (std::size_t i = 0; i < s.faults.size() && !r.found; ++i) {
+    const FaultSpec& f = s.faults[i];
+    const std::string key = "fault[" + std::to_string(i) + "].";
+    const FaultKeys keys = fault_keys(f.kind);
+    r.non_negative(key + "start_s", f.start_s);
+    if (keys.duration) r.non_negative(key + "duration_s", f.duration_s);
+    if (keys.code) r.int_range(key + "code", f.dac_code, 0, max_code);
+    if (keys.ticks) r.int_range(key + "ticks", f.ticks, 1, kMaxMissedTicks);
+    if (keys.delay && !(std::isfinite(f.delay_us) && f.delay_us > 0.0 && f.delay_us <= kMaxLateTickDelayUs)) {
+      r.fail_text(key + "delay_us", "must be > 0 and <= " + std::to_string(static_cast<long long>(kMaxLateTickDelayUs)) + " (got " +
+                                        format_number(f.delay_us) + ")");
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
@@ -133,6 +150,7 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.non_negative("milling.fall_s", s.milling.depth.fall_s);
 
   check_circle(r, s.circle);
+  check_faults(r, s);
   return r.found;
 }
 

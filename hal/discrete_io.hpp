@@ -5,14 +5,17 @@
 
 namespace tnv::hal {
 
-// Digital inputs as latched at the tick; true = asserted (active),
-// whatever the wiring polarity.
+// Digital inputs and the board's own fault flags as latched at the tick;
+// true = asserted (active), whatever the wiring polarity.
 struct DiscreteInputs {
   bool estop = false;
   std::array<bool, kAxisCount> servo_alarm{};
   std::array<bool, kAxisCount> limit_positive{};
   std::array<bool, kAxisCount> limit_negative{};
   bool watchdog_tripped = false;  // board watchdog has forced outputs safe
+  // Sticky board faults (stay set until the board's fault latch is cleared):
+  std::array<bool, kAxisCount> encoder_error{};  // the decoder saw an illegal A/B transition
+  std::array<bool, kAxisCount> dac_error{};      // the DAC output readback differs from the code written
 };
 
 class DiscreteIo {

@@ -12,7 +12,7 @@ inline constexpr std::uint16_t kVersion = 0x001;     // major << 16 | minor
 inline constexpr std::uint16_t kClockLive = 0x002;   // free-running 10 MHz counter, now
 
 inline constexpr std::uint32_t kIdValue = 0x544E5634;  // "TNV4"
-inline constexpr std::uint32_t kVersionValue = 0x00010000;
+inline constexpr std::uint32_t kVersionValue = 0x00010001;  // 1.1: DAC readback fault bits
 
 // --- snapshot window (read-only, latched at each tick, read in one block)
 inline constexpr std::uint16_t kSnapshotFirst = 0x010;
@@ -54,6 +54,8 @@ inline constexpr std::uint32_t kInputWatchdogTripped = 1u << 7;
 // kFaults bits (sticky until kControlClearFaults)
 inline constexpr std::uint32_t kFaultEncoderX = 1u << 0;  // illegal A/B transition
 inline constexpr std::uint32_t kFaultEncoderY = 1u << 1;
+inline constexpr std::uint32_t kFaultDacX = 1u << 2;      // DAC output readback differs from DAC_X
+inline constexpr std::uint32_t kFaultDacY = 1u << 3;
 
 // kOutputs bits
 inline constexpr std::uint32_t kOutputEnableX = 1u << 0;
@@ -71,5 +73,8 @@ inline constexpr unsigned kDacBits = 12;
 inline constexpr unsigned kAdcBits = 12;
 inline constexpr std::uint32_t kDefaultTickDivider = 10'000;
 inline constexpr std::uint32_t kDefaultWatchdogTimeout = 30'000;
+// The DAC readback comparator latches kFaultDac* at a tick when the output
+// (through the readback ADC) and the register are more than this many LSB apart.
+inline constexpr std::uint32_t kDacReadbackToleranceCodes = 4;
 
 }  // namespace tnv::hal::regs

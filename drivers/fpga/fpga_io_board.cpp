@@ -67,6 +67,9 @@ hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
   in.limit_positive = {(bits & regs::kInputLimitXPos) != 0, (bits & regs::kInputLimitYPos) != 0};
   in.limit_negative = {(bits & regs::kInputLimitXNeg) != 0, (bits & regs::kInputLimitYNeg) != 0};
   in.watchdog_tripped = (bits & regs::kInputWatchdogTripped) != 0;
+  const std::uint32_t faults = snapshot_[slot(regs::kFaults)];
+  in.encoder_error = {(faults & regs::kFaultEncoderX) != 0, (faults & regs::kFaultEncoderY) != 0};
+  in.dac_error = {(faults & regs::kFaultDacX) != 0, (faults & regs::kFaultDacY) != 0};
   return in;
 }
 
@@ -80,5 +83,10 @@ std::uint16_t FpgaIoBoard::latched_force_code() const noexcept {
 }
 
 std::uint32_t FpgaIoBoard::latched_fault_bits() const noexcept { return snapshot_[slot(regs::kFaults)]; }
+
+hal::HalStatus FpgaIoBoard::clear_latched_faults() noexcept {
+  const std::array<std::uint32_t, 1> control{regs::kControlClearWatchdog | regs::kControlClearFaults};
+  return bus_.write_block(regs::kControl, control);
+}
 
 }  // namespace tnv::drivers

@@ -52,7 +52,14 @@ class FpgaIoBoard final : public hal::IoBoard {
   // hal::Watchdog
   void kick() noexcept override { kick_pending_ = true; }
 
+  // The FAULTS word of the last snapshot (also mapped into inputs():
+  // encoder_error, dac_error).
   std::uint32_t latched_fault_bits() const noexcept;
+  // Clears the board's latches, the sticky FAULTS word and a watchdog trip
+  // (CONTROL bits 1 and 0; the watchdog re-arms at the next kick), in one
+  // bus write: the operator's reset between ticks, never part of the tick.
+  // The next snapshot shows whether the cause is still there.
+  hal::HalStatus clear_latched_faults() noexcept;
 
  private:
   static constexpr std::uint16_t kMidCode = 1u << (hal::regs::kDacBits - 1);

@@ -17,6 +17,10 @@ enum class FaultReason : std::uint8_t {
   position_limit,      // soft travel limit
   speed_limit,         // measured speed above the limit
   non_finite_command,  // a controller produced NaN/inf
+  remote_estop,        // e-stop requested over CAN (TickTask::estop())
+  encoder_error,       // the board's decoder latched an illegal A/B transition
+  dac_error,           // the board's DAC readback differs from the code written
+  late_tick,           // tick period off nominal by more than the tolerance
 };
 
 constexpr const char* to_string(FaultReason r) noexcept {
@@ -33,6 +37,10 @@ constexpr const char* to_string(FaultReason r) noexcept {
     case FaultReason::position_limit: return "position_limit";
     case FaultReason::speed_limit: return "speed_limit";
     case FaultReason::non_finite_command: return "non_finite_command";
+    case FaultReason::remote_estop: return "remote_estop";
+    case FaultReason::encoder_error: return "encoder_error";
+    case FaultReason::dac_error: return "dac_error";
+    case FaultReason::late_tick: return "late_tick";
   }
   return "unknown";
 }

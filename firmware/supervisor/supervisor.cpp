@@ -23,6 +23,9 @@ const char* validate(const SupervisorConfig& config) noexcept {
     if (!std::isfinite(a.following.lag_s) || a.following.lag_s < 0.0)
       return "following-error lag_s must be >= 0 and finite";
   }
+  if (config.tick_period_clocks == 0) return "tick_period_clocks must be > 0";
+  if (config.period_tolerance_clocks == 0 || config.period_tolerance_clocks >= config.tick_period_clocks)
+    return "period_tolerance_clocks must be > 0 and below tick_period_clocks";
   return "";
 }
 
@@ -31,12 +34,22 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
   if (!in.snapshot_advanced) return fault(FaultReason::stale_snapshot, in);
   if (in.ticks_missed > config.max_consecutive_missed_ticks)
     return fault(FaultReason::missed_ticks, in, -1, in.ticks_missed, config.max_consecutive_missed_ticks);
+  if (in.period_clocks != 0) {
+    // The period spans ticks_missed + 1 nominal periods (in 64 bits: no overflow).
+    const std::uint64_t expected = std::uint64_t{config.tick_period_clocks} * (std::uint64_t{in.ticks_missed} + 1);
+    const std::uint64_t period = in.period_clocks;
+    const std::uint64_t off = period > expected ? period - expected : expected - period;
+    if (off > config.period_tolerance_clocks)
+      return fault(FaultReason::late_tick, in, -1, static_cast<double>(period), static_cast<double>(expected));
+  }
   if (in.inputs.estop) return fault(FaultReason::estop, in);
   if (in.inputs.watchdog_tripped) return fault(FaultReason::watchdog_tripped, in);
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const int axis = static_cast<int>(i);
     if (in.inputs.servo_alarm[i]) return fault(FaultReason::servo_alarm, in, axis);
     if (in.inputs.limit_positive[i] || in.inputs.limit_negative[i]) return fault(FaultReason::limit_switch, in, axis);
+    if (in.inputs.encoder_error[i]) return fault(FaultReason::encoder_error, in, axis);
+    if (in.inputs.dac_error[i]) return fault(FaultReason::dac_error, in, axis);
   }
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const int axis = static_cast<int>(i);
@@ -53,6 +66,15 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
     if (!(std::fabs(error_mm) <= limit_mm)) return fault(FaultReason::following_error, in, axis, error_mm, limit_mm);
   }
   return {};
+}
+
+bool fault_cause_present(const hal::DiscreteInputs& in) noexcept {
+  bool cause = in.estop || in.watchdog_tripped;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    cause = cause || in.servo_alarm[i] || in.limit_positive[i] || in.limit_negative[i] || in.encoder_error[i] ||
+            in.dac_error[i];
+  }
+  return cause;
 }
 
 }  // namespace tnv::fw

@@ -31,6 +31,12 @@ struct AxisLimits {
 struct SupervisorConfig {
   std::array<AxisLimits, hal::kAxisCount> axis{};
   std::uint32_t max_consecutive_missed_ticks = 2;
+  // Late tick: the measured period, over the ticks it spans, off nominal by
+  // more than the tolerance. Half a period: ordinary jitter is absorbed by
+  // the M-method's measured period; a tick late or early by half a period or
+  // more is a broken real-time loop.
+  std::uint32_t tick_period_clocks = 10'000;
+  std::uint32_t period_tolerance_clocks = 5'000;
 };
 
 const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid
@@ -48,11 +54,17 @@ struct SupervisorInput {
   bool bus_ok = true;
   bool snapshot_advanced = true;
   std::uint32_t ticks_missed = 0;  // lost since the previous tick
+  std::uint32_t period_clocks = 0;  // measured since the previous tick; 0 = not measured (unchecked)
   hal::DiscreteInputs inputs{};
   bool servo_on = false;  // following error and command checks only apply with the servo on
   std::array<AxisCheckInput, hal::kAxisCount> axis{};
 };
 
 FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noexcept;
+
+// True while an input-level cause is still asserted (e-stop, watchdog trip,
+// servo alarm, limit switch, or a sticky board fault not yet cleared on the
+// board): what clear_fault() must refuse on.
+bool fault_cause_present(const hal::DiscreteInputs& inputs) noexcept;
 
 }  // namespace tnv::fw

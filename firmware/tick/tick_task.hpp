@@ -82,6 +82,40 @@ class TickTask {
   CommandStatus disable() noexcept;
   CommandStatus clear_fault() noexcept;
 
+  // --- commands for the CAN node (between ticks)
+  // A whole new config, validated first and applied whole or not at all
+  // (invalid: validate(config) failed; busy: see below). Controller gains
+  // go through the controllers' bumpless set_params(); limits, DAC scale and
+  // jog limits are copied (a running jog keeps the limits it started with);
+  // a new encoder count is re-based so the position reading does not jump;
+  // a new model rebuilds that axis' controllers (reset); a new controller
+  // kind is selected (reset first when the servo is on). home_position_mm
+  // is not applied: zero() moves the frame. While moving (dwell or moving,
+  // jog and controlled stop included) only the live-tunable part may
+  // differ: sliding.*, pid.kp / ki / kd / u_max_mm_s; anything else -> busy.
+  CommandStatus apply_config(const FirmwareConfig& config) noexcept;
+  // True when `to` differs from `from` only in what apply_config() takes
+  // while moving.
+  static bool live_tunable_only(const FirmwareConfig& from, const FirmwareConfig& to) noexcept;
+  // The S1 circle about (centre_x_mm, centre_y_mm) instead of the origin:
+  // the table must stand at centre + (radius, 0). start_circle(spec) is
+  // this with the origin, bit for bit.
+  CommandStatus start_circle(const CircleSpec& spec, double centre_x_mm, double centre_y_mm) noexcept;
+  // Controlled stop. Circle / move: the trajectory clock slows to a halt
+  // (its rate falls from 1 to 0 along a raised cosine over the motion's own
+  // ramp time), so the reference decelerates smoothly along the path, then
+  // holds where it stopped. Jog: both targets 0 (the jog's acceleration
+  // limit). Dwell: holding at once. At rest: ok, nothing to do. faulted
+  // when a fault is latched.
+  CommandStatus stop() noexcept;
+  // Assigns position_mm to where the axis stands (disabled or holding; busy
+  // while moving, faulted when faulted, invalid when not finite or outside
+  // the soft limits). Reference and measurement move together: bumpless.
+  CommandStatus zero(hal::Axis axis, double position_mm) noexcept;
+  // Software e-stop: latches FaultReason::remote_estop (outputs safe from
+  // the next tick on). Always ok; the first latched reason wins.
+  CommandStatus estop() noexcept;
+
   // --- status
   const TickRecord& last_record() const noexcept { return record_; }
   const FaultRecord& fault() const noexcept { return fault_; }
@@ -98,6 +132,22 @@ class TickTask {
   const StreamShaper& shaper(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].shaper; }
   const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].design; }
   std::uint32_t jog_deadman_stops() const noexcept;
+  // Servo on and the reference in motion: dwell or moving (jog and
+  // controlled stop included).
+  bool moving() const noexcept { return state_ == MotionState::dwell || state_ == MotionState::moving; }
+  bool jogging() const noexcept { return state_ == MotionState::moving && source_ == Source::jog; }
+  bool stopping() const noexcept { return moving() && stop_.active; }
+  // The last motion started (running or finished) was a circle, and its
+  // centre (the origin for start_circle(spec)).
+  bool circle_motion() const noexcept { return source_ == Source::circle; }
+  double circle_centre_mm(hal::Axis axis) const noexcept { return centre_mm_[hal::index(axis)]; }
+  // Where the axis stands: the held reference when holding, else the
+  // measured position of the last tick.
+  double standing_mm(hal::Axis axis) const noexcept;
+  // What the controllers run with now (the sliding set of both DVSC+DDC and
+  // R-DVSC+DDC; DVSC+DDC applies it with gamma = 0).
+  const SlidingModeParams& sliding_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].rdvsc.params(); }
+  const PidParams& pid_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].pid.params(); }
 
  private:
   struct AxisLoop {
@@ -120,6 +170,15 @@ class TickTask {
 
   enum class Source : std::uint8_t { circle, move, jog };
 
+  // Controlled stop of a circle or move: the trajectory time tau advances
+  // by rate x T per tick, rate_k = (1 + cos(pi k / n)) / 2.
+  struct StopWarp {
+    bool active = false;
+    std::int64_t k = 0;
+    std::int64_t n = 1;
+    double tau_s = 0.0;
+  };
+
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
   void update_reference() noexcept;
   void set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
@@ -129,6 +188,9 @@ class TickTask {
   void reset_controllers() noexcept;
   bool servo_on() const noexcept;
   void latch_fault(const FaultRecord& f) noexcept;
+  void stopping_reference() noexcept;
+  AxisSample source_sample(std::size_t i, double t_s) const noexcept;
+  PlaneSample circle_at(double t_s) const noexcept;
 
   hal::IoBoard& board_;
   FirmwareConfig config_;
@@ -151,6 +213,11 @@ class TickTask {
   bool first_tick_ = true;
   std::uint32_t last_sequence_ = 0;
   std::uint32_t last_clock_ = 0;
+  StopWarp stop_{};
+  double stop_ramp_s_ = 0.1;                         // the running circle's / move's own ramp
+  bool centred_ = false;                             // circle about centre_mm_, not the origin
+  std::array<double, hal::kAxisCount> centre_mm_{};  // circle centre
+  std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
   std::array<AxisShaping, hal::kAxisCount> shaping_{};
 };
 

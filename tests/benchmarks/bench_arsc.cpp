@@ -3,8 +3,10 @@
 #include <benchmark/benchmark.h>
 
 #include "firmware/adaptive/arsc/faithful_arsc.hpp"
+#include "firmware/adaptive/arsc/outer_arsc.hpp"
 #include "firmware/adaptive/arsc/robust_arsc.hpp"
 #include "tools/hil/arsc_run.hpp"
+#include "tools/hil/arsc_tick_study.hpp"
 
 namespace {
 
@@ -75,5 +77,44 @@ void BM_FaithfulEstimateAndFullGainUpdate(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FaithfulEstimateAndFullGainUpdate);
+
+// The outer loop at the 1 ms tick (issue 8 item 5): one step = estimate,
+// next feed command, delta-operator gain design, on samples recorded from
+// the emulated machine.
+void BM_OuterStepAtTheTick(benchmark::State& state) {
+  tnv::hil::TickStudyConfig study;
+  study.pole_speedup = 4.0;
+  const tnv::hil::TickStudyResult run = tnv::hil::run_tick_study(study);
+  if (!run.error.empty() || run.trace.empty()) {
+    state.SkipWithError("the tick study did not run");
+    return;
+  }
+  OuterArscConfig c;
+  c.period_s = 1e-3;
+  c.model = {run.test_stage.force_time_constant_s, run.test_stage.drive_time_constant_s, 1e-3,
+             run.test_stage.cutting_gain_n_per_mm_s * c.feed_scale_mm_s / c.force_scale_n};
+  c.poles = tnv::hil::outer_poles(study.poles, study.pole_speedup);
+  c.limits.max_gain = 1e4;
+  c.gain_min = 0.2 * c.model.cutting_gain;
+  c.gain_max = 20.0 * c.model.cutting_gain;
+  if (!validate(c).ok) {
+    state.SkipWithError("bad outer-loop config");
+    return;
+  }
+  OuterArsc arsc(c);
+  std::size_t i = 0;
+  std::uint32_t refused = 0;
+  for (auto _ : state) {
+    const auto& p = run.trace[i];
+    benchmark::DoNotOptimize(arsc.step(p.force_n, p.feed_mm_s, p.feed_mm_s));
+    refused += arsc.signals().last_reason != GuardReason::none;
+    if (++i == run.trace.size()) {
+      i = 0;
+      arsc.reset();
+    }
+  }
+  if (refused) state.SkipWithError("every step must take the full design path");
+}
+BENCHMARK(BM_OuterStepAtTheTick);
 
 }  // namespace

@@ -20,6 +20,8 @@
 #include <new>
 
 #include "emulator/scenario_file.hpp"
+#include "firmware/can/can_node.hpp"
+#include "tests/firmware/can/can_test_doubles.hpp"
 #include "tests/hil/hil_rig.hpp"
 
 namespace {
@@ -181,6 +183,90 @@ TEST(TickDiscipline, TheSeccompGuardCatchesASystemCall) {
   const int result = run_without_syscalls([] { return ::getppid() > 0 ? 0 : 1; });
   if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, -SIGSYS) << "a getppid() under the filter must kill the child";
+}
+
+// The CAN service between ticks (firmware/can/can_node.hpp): while a
+// circle runs with telemetry on, service() calls that handle a parameter
+// set, a staged commit, a capture arm and a segmented upload allocate
+// nothing and make no system call.
+struct CanBench {
+  explicit CanBench(std::unique_ptr<test::HilRig> r) : rig(std::move(r)) {
+    fw::can::NodeSettings s = fw::can::default_node_settings();
+    s.firmware = rig->task.config();
+    s.telemetry = {10, 1, 1, 1, 1, 1};
+    s.capture.trigger = fw::can::CaptureTrigger::immediate;
+    node = std::make_unique<fw::can::CanNode>(rig->task, port, storage, s);
+  }
+  // Frames the host sends during the measured run: at step k.
+  void host(int k) {
+    using fw::can::ParamOp;
+    const std::uint16_t gamma = fw::can::find_param("x.sliding.gamma")->id;
+    const std::uint16_t kp = fw::can::find_param("x.pid.kp")->id;
+    if (k == 10) port.send(test::capture_control(1, fw::can::CaptureOp::arm));
+    if (k == 100) port.send(test::capture_control(1, fw::can::CaptureOp::abort));
+    if (k == 200) port.send(test::param_request(1, ParamOp::set, gamma, test::f32_raw(0.3f)));
+    if (k == 201) port.send(test::param_request(1, ParamOp::stage, kp, test::f32_raw(500.0f)));
+    if (k == 202) port.send(test::param_request(1, ParamOp::commit, 0));
+    if (k == 300) port.send(test::capture_control(1, fw::can::CaptureOp::upload, 255, 0));
+    if (k == 301) port.send(test::param_request(1, ParamOp::get, gamma));
+  }
+  std::unique_ptr<test::HilRig> rig;
+  test::FakeCanPort port;
+  test::MemoryStorage storage;
+  std::unique_ptr<fw::can::CanNode> node;
+};
+
+static_assert(noexcept(std::declval<fw::can::CanNode&>().service()), "service() must be noexcept");
+
+TEST(TickDiscipline, TheCanServiceAllocatesNothingForAParamSetACommitAndACaptureUpload) {
+  auto rig = running_rig();
+  ASSERT_TRUE(rig && rig->init_ok);
+  CanBench b(std::move(rig));
+  long allocations = 0;
+  std::size_t data_frames = 0;
+  std::size_t replies = 0;
+  for (int k = 0; k < 400; ++k) {
+    b.host(k);
+    b.rig->machine.advance_to_next_tick();
+    b.rig->task.tick();
+    g_allocations = 0;
+    g_counting = true;
+    b.node->service();
+    g_counting = false;
+    allocations += g_allocations;
+    for (const hal::CanFrame& f : b.port.drain()) {  // the host's side allocates, outside the count
+      data_frames += test::is(f, fw::can::MessageId::capture_data) ? 1 : 0;
+      replies += test::is(f, fw::can::MessageId::param_reply) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(allocations, 0) << "heap allocations inside service()";
+  EXPECT_EQ(b.rig->task.sliding_params(hal::Axis::x).gamma, static_cast<double>(0.3f)) << "the set was applied";
+  EXPECT_EQ(b.rig->task.pid_params(hal::Axis::x).kp, 500.0) << "the commit was applied";
+  EXPECT_EQ(replies, 4u);
+  EXPECT_EQ(data_frames, 255u) << "the whole upload block went out";
+  EXPECT_EQ(b.rig->task.state(), fw::MotionState::moving);
+}
+
+TEST(TickDiscipline, TheCanServiceMakesNoSystemCall) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "the sanitizer runtime makes its own system calls; proven in the plain build";
+#endif
+  auto rig = running_rig();
+  ASSERT_TRUE(rig && rig->init_ok);
+  CanBench b(std::move(rig));
+  const int result = run_without_syscalls([&] {
+    for (int k = 0; k < 400; ++k) {
+      b.host(k);  // the fake port's rings: no allocation, no system call
+      b.rig->machine.advance_to_next_tick();
+      b.rig->task.tick();
+      b.node->service();
+      b.port.from_node.clear();
+    }
+    return b.rig->task.pid_params(hal::Axis::x).kp == 500.0 ? 0 : 3;
+  });
+  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": service() made a system call"
+                                      : "the commit did not apply inside the child");
 }
 
 }  // namespace

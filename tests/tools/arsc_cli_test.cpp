@@ -43,10 +43,46 @@ TEST(ArscCli, RunReportsTheIssueKeysAndTheTrace) {
     EXPECT_TRUE(j["trace"][100].contains(key)) << key;
 }
 
+TEST(ArscCli, TickAtOnePeriodReportsErrorPeriodAndSaturation) {
+  const CliRun r = run("arsc tick --period-ms 1 --speedup 4 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_DOUBLE_EQ(j["period_s"].get<double>(), 0.001);
+  EXPECT_LT(j["force_error_max_pct"].get<double>(), 1.0);
+  EXPECT_GE(j["force_error_rms_pct"].get<double>(), 0.0);
+  EXPECT_FALSE(j["diverged"].get<bool>());
+  for (const char* key : {"dac_saturated_ticks", "dac_saturated_fraction", "dac_saturated_longest_s",
+                          "first_dac_saturation_s", "command_clamped_samples", "test_stage", "initial_gains"})
+    EXPECT_TRUE(j.contains(key)) << key;
+}
+
+TEST(ArscCli, TickWithoutAPeriodComparesTheRates) {
+  const CliRun r = run("arsc tick --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["runs"].size(), 6u);
+  EXPECT_FALSE(j["runs"][0]["outer_loop"].get<bool>());
+  double slow = -1.0, fast = -1.0;
+  for (const auto& run_j : j["runs"]) {
+    if (!run_j["outer_loop"].get<bool>()) continue;
+    if (run_j["period_ms"].get<double>() == 150.0 && run_j["pole_speedup"].get<double>() == 1.0)
+      slow = run_j["force_error_max_pct"].get<double>();
+    if (run_j["period_ms"].get<double>() == 1.0 && run_j["pole_speedup"].get<double>() == 1.0)
+      fast = run_j["force_error_max_pct"].get<double>();
+  }
+  ASSERT_GT(slow, 0.0);
+  ASSERT_GT(fast, 0.0);
+  EXPECT_LT(fast, slow);
+}
+
 TEST(ArscCli, BadArgumentsAreExitCode2) {
   EXPECT_EQ(run("arsc run --poles case5 --variant robust").exit_code, 2);
   EXPECT_EQ(run("arsc run --poles case1 --variant literal").exit_code, 2);
   EXPECT_EQ(run("arsc design").exit_code, 2);
+  EXPECT_EQ(run("arsc tick --period-ms 0").exit_code, 2);
+  EXPECT_EQ(run("arsc tick --poles case9").exit_code, 2);
+  EXPECT_EQ(run("arsc tick --period-ms 1 --speedup -2").exit_code, 2);
+  EXPECT_EQ(run("arsc tick --speedup 4").exit_code, 2);  // only with --period-ms
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
-// Runs the real tnv-hil binary (TNV_HIL_EXE) as a script would, capturing
-// stdout, stderr and the exit code.
+// Runs a command line (or the real tnv-hil binary, TNV_HIL_EXE) as a script
+// would, capturing stdout, stderr and the exit code.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,12 +18,13 @@ struct CliRun {
   std::string err;
 };
 
-inline CliRun run_tnv_hil(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string err_path = (dir / ("tnv_hil_cli_" + std::to_string(::getpid()) + ".err")).string();
-  std::string cmd = TNV_HIL_EXE;
-  cmd += ' ';
-  cmd += args;
+// Any command line through the shell; stderr goes through a temporary file.
+inline CliRun run_command(const std::string& command_line) {
+  static int counter = 0;
+  std::string name = "tnv_cli_";
+  name.append(std::to_string(::getpid())).append("_").append(std::to_string(++counter)).append(".err");
+  const std::string err_path = (std::filesystem::temp_directory_path() / name).string();
+  std::string cmd = command_line;
   cmd += " 2>";
   cmd += err_path;
   CliRun r;
@@ -40,6 +41,13 @@ inline CliRun run_tnv_hil(const std::string& args) {
   r.err = ss.str();
   std::filesystem::remove(err_path);
   return r;
+}
+
+inline CliRun run_tnv_hil(const std::string& args) {
+  std::string cmd = TNV_HIL_EXE;
+  cmd += ' ';
+  cmd += args;
+  return run_command(cmd);
 }
 
 }  // namespace tnv::test

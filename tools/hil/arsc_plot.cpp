@@ -176,24 +176,61 @@ SvgWriter arsc_compare_figure(const std::vector<ArscRunResult>& faithful, const 
 }
 
 SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs) {
-  const char* colors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e"};
-  Panel force{"force (N)", 0.0, 300.0, {}, 135.0, 165.0};
-  Panel feed{"feed (mm/s)", -170.0, 170.0, {}, 0.0, 0.0};
-  double t_end = 1.0;
+  const char* loop_colors[] = {"#d62728", "#ff7f0e", "#1f77b4", "#2ca02c", "#9467bd", "#8c564b"};
+  std::size_t loops = 0;
+  double ref_n = 150.0, t_end = 1.0;
+  for (const TickStudyResult& r : runs) {
+    ref_n = r.config.force_ref_n;
+    t_end = std::max(t_end, r.config.duration_s);
+  }
+  Panel force{"force (N)", 0.0, 2.0 * ref_n, {}, 0.9 * ref_n, 1.1 * ref_n};
+  Panel error{"force error (% of f*), scored part", -10.0, 10.0, {}, -1.0, 1.0};
+  Panel feed{"table feed (mm/s)", 0.0, 80.0, {}, 0.0, 0.0};
+  Panel gain{"cutting gain G (N per mm/s)", 0.0, 18.0, {}, 0.0, 0.0};
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    Series f{runs[i].config.label, {}, {}, colors[i % 4], false};
-    Series v{runs[i].config.label, {}, {}, colors[i % 4], false};
-    for (const TickStudyPoint& p : runs[i].trace) {
+    const TickStudyResult& r = runs[i];
+    char label[96];
+    if (r.diverged)
+      std::snprintf(label, sizeof label, "%s: diverged", r.config.label.c_str());
+    else
+      std::snprintf(label, sizeof label, "%s: max %.1f%%", r.config.label.c_str(), r.force_error_max_pct);
+    const std::string color = r.config.outer_loop ? loop_colors[loops++ % 6] : "#7f7f7f";  // baseline grey
+    Series f{label, {}, {}, color, false}, e{label, {}, {}, color, false}, v{label, {}, {}, color, false};
+    Series g{std::string(r.config.label) + " estimate", {}, {}, color, false};
+    for (const TickStudyPoint& p : r.trace) {
       f.t_s.push_back(p.t_s);
       f.value.push_back(p.force_n);
       v.t_s.push_back(p.t_s);
       v.value.push_back(p.feed_mm_s);
+      if (p.t_s >= r.config.settle_s) {
+        e.t_s.push_back(p.t_s);
+        e.value.push_back((p.force_n - p.force_ref_n) / ref_n * 100.0);
+      }
+      g.t_s.push_back(p.t_s);
+      g.value.push_back(p.cutting_gain_n_per_mm_s);
     }
     force.series.push_back(f);
     feed.series.push_back(v);
-    t_end = runs[i].config.duration_s;
+    if (r.config.outer_loop) {
+      error.series.push_back(e);
+      // Estimates of the first and the last force loop only (in the comparison 0.15 s and
+      // 1 ms with 4x poles): the others lie between them.
+      if (gain.series.empty() || i + 1 == runs.size()) gain.series.push_back(g);
+    }
   }
-  return panel_figure("Robust ARSC on the emulated TNV-40 X axis, 150 N reference: none of these loops regulates", {force, feed}, t_end, "time (s)");
+  Series ref{"f* and +-10%", {0.0, t_end}, {ref_n, ref_n}, "#2ca02c", true};
+  force.series.push_back(ref);
+  if (!runs.empty()) {
+    Series truth{"K x depth (emulator)", {}, {}, "#222222", false};
+    for (const TickStudyPoint& p : runs.front().trace) {
+      truth.t_s.push_back(p.t_s);
+      truth.value.push_back(p.true_cutting_gain_n_per_mm_s);
+    }
+    gain.series.push_back(truth);
+  }
+  return panel_figure(
+      "Robust ARSC as an outer loop over the X axis controller (emulated TNV-40), 150 N, depth 0.2-1.0-0.2 mm",
+      {force, error, feed, gain}, t_end, "time (s)");
 }
 
 }  // namespace tnv::hil

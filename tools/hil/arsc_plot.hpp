@@ -35,7 +35,7 @@ SvgWriter panel_figure(std::string_view title, const std::vector<Panel>& panels,
 SvgWriter arsc_run_figure(const ArscRunResult& run);
 // Faithful vs robust force for the four pole sets (8 runs).
 SvgWriter arsc_compare_figure(const std::vector<ArscRunResult>& faithful, const std::vector<ArscRunResult>& robust);
-// The machine study: force and feed per configuration.
+// The machine study: force, force error, feed and cutting-gain estimate per configuration.
 SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs);
 
 }  // namespace tnv::hil

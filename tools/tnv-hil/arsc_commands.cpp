@@ -2,7 +2,10 @@
 // regulation (ARSC), the paper's loop and the robust variant.
 #include <CLI/CLI.hpp>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -250,61 +253,168 @@ int run_compare(const CompareOptions& o) {
 }
 
 struct TickOptions {
+  int period_ms = 0;  // 0: the comparison of rates
+  std::string poles = "case1";
+  double speedup = 1.0;
+  bool fixed_gain = false;
   bool json = false;
   std::string plot;
 };
 
+// The comparison behind "what the faster loop buys": no force loop, the
+// paper's rate, faster rates at the same poles, and the fast loop with
+// poles it alone can use.
+std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set) {
+  std::vector<hil::TickStudyConfig> out;
+  hil::TickStudyConfig c;
+  c.poles = set;
+  c.label = "constant feed";
+  c.outer_loop = false;
+  out.push_back(c);
+  c.outer_loop = true;
+  const struct {
+    const char* label;
+    std::uint32_t ticks;
+    double speedup;
+  } rows[] = {{"0.15 s", 150, 1.0}, {"0.15 s, 4x poles", 150, 4.0}, {"10 ms", 10, 1.0}, {"1 ms", 1, 1.0},
+              {"1 ms, 4x poles", 1, 4.0}};
+  for (const auto& row : rows) {
+    c.label = row.label;
+    c.ticks_per_sample = row.ticks;
+    c.pole_speedup = row.speedup;
+    out.push_back(c);
+  }
+  return out;
+}
+
+json tick_json(const hil::TickStudyResult& r) {
+  const hil::TickTestStage& ts = r.test_stage;
+  const OuterGains& g = r.initial_gains;
+  json poles_s = json::array(), target_z = json::array();
+  for (const auto& s : r.poles.force_s) poles_s.push_back({s.real(), s.imag()});
+  for (const auto& z : r.target_z) target_z.push_back({z.real(), z.imag()});
+  const double ticks = r.ticks > 0 ? static_cast<double>(r.ticks) : 1.0;
+  json j = {{"label", r.config.label},
+            {"error", r.error},
+            {"outer_loop", r.config.outer_loop},
+            {"period_s", r.period_s},
+            {"period_ms", r.period_s * 1e3},
+            {"pole_set", to_string(r.config.poles)},
+            {"pole_speedup", r.config.pole_speedup},
+            {"adapt", r.config.adapt},
+            {"force_ref_n", r.config.force_ref_n},
+            {"settle_s", r.config.settle_s},
+            {"duration_s", r.config.duration_s},
+            {"force_error_max_pct", r.force_error_max_pct},
+            {"force_error_max_at_s", r.force_error_max_at_s},
+            {"force_error_rms_pct", r.force_error_rms_pct},
+            {"diverged", r.diverged},
+            {"diverged_at_s", r.diverged ? json(r.diverged_at_s) : json(nullptr)},
+            {"fault", r.fault.empty() ? json(nullptr) : json(r.fault)},
+            {"dac_saturated_ticks", r.dac_saturated_ticks},
+            {"dac_saturated_fraction", static_cast<double>(r.dac_saturated_ticks) / ticks},
+            {"dac_saturated_longest_s", r.dac_saturated_longest_s},
+            {"first_dac_saturation_s", r.first_dac_saturation_s < 0.0 ? json(nullptr) : json(r.first_dac_saturation_s)},
+            {"adc_full_scale_ticks", r.adc_full_scale_ticks},
+            {"command_clamped_samples", r.clamped_samples},
+            {"samples", r.samples},
+            {"ticks", r.ticks},
+            {"refused_gain_updates", r.refused_updates},
+            {"refused_jogs", r.refused_jogs},
+            {"deadman_stops", r.deadman_stops},
+            {"travel_mm", r.travel_mm},
+            {"max_feed_mm_s", r.max_feed_mm_s},
+            {"force_poles_rad_s", poles_s},
+            {"target_poles_z", target_z},
+            {"initial_gains", {{"k", g.k}, {"gamma31", g.gamma31}, {"gamma32", g.gamma32}, {"gamma33", g.gamma33}}},
+            {"max_abs_gain", r.max_abs_gain},
+            {"jog", {{"speed_max_mm_s", r.config.jog.speed_max_mm_s},
+                     {"accel_mm_s2", r.config.jog.accel_mm_s2},
+                     {"deadman_s", std::max(r.config.jog.deadman_s, 2.0 * r.period_s)}}},
+            {"test_stage", {{"force_time_constant_s", ts.force_time_constant_s},
+                            {"cutting_gain_n_per_mm_s", ts.cutting_gain_n_per_mm_s},
+                            {"drive_time_constant_s", ts.drive_time_constant_s},
+                            {"drive_gain", ts.drive_gain},
+                            {"force_rms_n", ts.force_rms_n},
+                            {"drive_rms_mm_s", ts.drive_rms_mm_s}}}};
+  if (!r.config.outer_loop) {  // no force loop: nothing was designed
+    j["constant_feed_mm_s"] = r.config.constant_feed_mm_s;
+    for (const char* key : {"force_poles_rad_s", "target_poles_z", "initial_gains", "pole_set", "pole_speedup"})
+      j[key] = nullptr;
+  }
+  return j;
+}
+
+void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
+  const hil::TickStudyConfig& c0 = runs.front().config;
+  std::printf("Robust ARSC as an outer loop over the X axis controller (emulated TNV-40), f* = %.0f N, %s,\n"
+              "depth %.1f -> %.1f -> %.1f mm over %.0f + %.0f s; force error after %.0f s, every tick, %% of f*\n",
+              c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm, c0.milling.depth.peak_mm,
+              c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s, c0.settle_s);
+  const hil::TickTestStage& ts = runs.front().test_stage;
+  std::printf("test stage: T_f %.4f s, G %.4f N per mm/s at %.1f mm, axis lag %.2f ms (gain %.3f)\n",
+              ts.force_time_constant_s, ts.cutting_gain_n_per_mm_s, c0.milling.depth.start_mm,
+              ts.drive_time_constant_s * 1e3, ts.drive_gain);
+  std::printf("  %-26s %9s %9s %9s  %-9s %10s %8s %10s\n", "loop", "period", "max %", "rms %", "diverged",
+              "DAC sat.", "clamped", "max |gain|");
+  for (const hil::TickStudyResult& r : runs) {
+    if (!r.error.empty()) {
+      std::printf("  %-26s not run: %s\n", r.config.label.c_str(), r.error.c_str());
+      continue;
+    }
+    char period[32];
+    if (r.config.outer_loop)
+      std::snprintf(period, sizeof period, "%g ms", r.period_s * 1e3);
+    else
+      std::snprintf(period, sizeof period, "-");
+    char diverged[48];
+    std::snprintf(diverged, sizeof diverged, r.diverged ? "at %.2f s" : "no", r.diverged_at_s);
+    std::printf("  %-26s %9s %9.2f %9.2f  %-9s %10llu %8u %10.3g\n", r.config.label.c_str(), period,
+                r.force_error_max_pct, r.force_error_rms_pct, diverged,
+                static_cast<unsigned long long>(r.dac_saturated_ticks), r.clamped_samples,
+                r.config.outer_loop ? r.max_abs_gain : 0.0);
+    if (!r.fault.empty()) std::printf("  %-26s firmware fault: %s\n", "", r.fault.c_str());
+  }
+}
+
 int run_tick(const TickOptions& o) {
+  const PoleSet set = *parse_pole_set(o.poles);
   std::vector<hil::TickStudyConfig> configs;
-  {
+  if (o.period_ms > 0) {
     hil::TickStudyConfig c;
-    c.label = "0.15 s, paper poles";
-    c.ticks_per_sample = 150;
+    c.poles = set;
+    c.ticks_per_sample = static_cast<std::uint32_t>(o.period_ms);
+    c.pole_speedup = o.speedup;
+    c.adapt = !o.fixed_gain;
+    char label[64];
+    std::snprintf(label, sizeof label, "%d ms", o.period_ms);
+    const std::size_t used = std::strlen(label);
+    const char* fixed = o.fixed_gain ? ", fixed G" : "";
+    if (o.speedup != 1.0)
+      std::snprintf(label + used, sizeof label - used, ", %gx poles%s", o.speedup, fixed);
+    else
+      std::snprintf(label + used, sizeof label - used, "%s", fixed);
+    c.label = label;
     configs.push_back(c);
-    c.label = "1 ms, paper poles";
-    c.ticks_per_sample = 1;
-    configs.push_back(c);
-    c.label = "1 ms, fast poles kept";
-    c.keep_fast_poles = true;
-    configs.push_back(c);
+  } else {
+    configs = tick_comparison(set);
   }
   std::vector<hil::TickStudyResult> runs;
-  for (const auto& c : configs) runs.push_back(hil::run_tick_study(c));
-  json j = json::array();
-  for (const auto& r : runs) {
-    const StructuredModel& m = r.test_stage.model;
-    j.push_back({{"label", r.config.label},
-                 {"period_s", 1e-3 * r.config.ticks_per_sample},
-                 {"pole_speedup", r.config.pole_speedup},
-                 {"error", r.error},
-                 {"force_error_max_pct", r.force_error_max_pct},
-                 {"force_error_rms_pct", r.force_error_rms_pct},
-                 {"diverged", r.diverged},
-                 {"travel_mm", r.travel_mm},
-                 {"refused_updates", r.refused_updates},
-                 {"initial_gamma01", r.initial_gamma01},
-                 {"initial_max_abs_gain", r.initial_max_abs_gain},
-                 {"first_saturation_s", r.first_saturation_s},
-                 {"test_stage", {{"a11", m.drive.a11}, {"b11", m.drive.b11}, {"c11", m.drive.c11},
-                                 {"a21", m.a21}, {"g", m.cutting_gain}, {"bias", r.test_stage.drive_bias}}}});
-  }
+  for (const auto& c : configs) runs.push_back(hil::run_tick_study(c));  // about 50 ms each
   if (o.json) {
-    std::cout << json{{"runs", j}}.dump(2) << '\n';
-  } else {
-    std::printf("Robust ARSC on the emulated TNV-40 X axis, 150 N, depth 0.2 -> 1.0 -> 0.2 mm over 12 s\n");
-    for (const auto& r : runs) {
-      if (!r.error.empty()) {
-        std::printf("  %-40s  not run: %s\n", r.config.label.c_str(), r.error.c_str());
-        continue;
-      }
-      std::printf("  %-38s  force error after 3 s: max %7.2f%%  rms %7.2f%%  travel %7.1f mm\n",
-                  r.config.label.c_str(), r.force_error_max_pct, r.force_error_rms_pct, r.travel_mm);
-      std::printf("  %-38s  design: gamma01 %.3f, largest gain %.3g; DAC saturated first at %s\n", "",
-                  r.initial_gamma01, r.initial_max_abs_gain,
-                  r.first_saturation_s < 0.0 ? "never" : (std::to_string(r.first_saturation_s) + " s").c_str());
+    if (o.period_ms > 0) {
+      std::cout << tick_json(runs.front()).dump(2) << '\n';
+    } else {
+      json j = json::array();
+      for (const auto& r : runs) j.push_back(tick_json(r));
+      std::cout << json{{"runs", j}}.dump(2) << '\n';
     }
+  } else {
+    print_tick_text(runs);
   }
   if (!o.plot.empty() && !write_svg(o.plot, hil::arsc_tick_figure(runs))) return kExitFailure;
+  for (const auto& r : runs)
+    if (!r.error.empty() || !r.fault.empty()) return kExitFailure;
   return kExitOk;
 }
 
@@ -342,7 +452,19 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
   cc->callback([&run, cmp] { run = [cmp] { return run_compare(*cmp); }; });
 
   auto tick = std::make_shared<TickOptions>();
-  CLI::App* tc = arsc->add_subcommand("tick", "robust ARSC on the emulated TNV-40 X axis at 150 N (0.15 s, 10 ms, 1 ms)");
+  CLI::App* tc = arsc->add_subcommand(
+      "tick", "robust ARSC as an outer loop over the X axis controller on the emulated TNV-40, 150 N; "
+              "without --period-ms: constant feed, 0.15 s, 10 ms and 1 ms side by side");
+  CLI::Option* period = tc->add_option("--period-ms", tick->period_ms, "one run with this outer-loop period (whole 1 ms ticks)")
+                            ->check(CLI::Range(1, 500));
+  tc->add_option("--poles", tick->poles, "case1 | case2 | case3 | case4 (S3 Fig. 7, force-loop pair)")
+      ->check(pole_check);
+  tc->add_option("--speedup", tick->speedup, "force-loop poles this many times faster than the paper's (with --period-ms)")
+      ->check(CLI::Range(0.1, 20.0))
+      ->needs(period);
+  tc->add_flag("--fixed-gain", tick->fixed_gain,
+               "freeze the cutting-gain estimate at the test stage's (no adaptation; with --period-ms)")
+      ->needs(period);
   tc->add_flag("--json", tick->json, "print JSON on stdout");
   tc->add_option("--plot", tick->plot, "write the figure (SVG)");
   tc->callback([&run, tick] { run = [tick] { return run_tick(*tick); }; });

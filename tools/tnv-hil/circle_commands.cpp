@@ -45,13 +45,19 @@ struct CircleOptions {
   bool json = false;
   std::string plot;
   std::string csv;
+  std::optional<double> gamma;  // both axes' sliding.gamma; unset: the papers'
 };
 
 int run_circle_command(const CircleOptions& o) {
   const auto kind = parse_controller(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!kind || !scenario) return kExitBadInput;
-  const fw::FirmwareConfig config = fw::default_firmware_config();
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  for (auto& axis : config.axis) axis.sliding.gamma = o.gamma.value_or(axis.sliding.gamma);
+  if (const fw::ConfigError e = fw::validate(config); !e.ok()) {
+    std::fprintf(stderr, "tnv-hil: --gamma: %s: %s: %s\n", e.section, e.field, e.reason);
+    return kExitBadInput;
+  }
   Progress progress("circle");
   hil::SweepRequest request{{*scenario}, {*kind}, o.seeds, !o.plot.empty() || !o.csv.empty(), 0, {}};
   if (o.seeds > 1) request.progress = std::ref(progress);
@@ -165,6 +171,7 @@ void add_circle_commands(CLI::App& app, Runner& run) {
   circle_cmd->add_flag("--json", circle->json, "print JSON on stdout");
   circle_cmd->add_option("--plot", circle->plot, "write the polar + contour-error plot (SVG)");
   circle_cmd->add_option("--csv", circle->csv, "write the seed-0 trace (CSV)");
+  circle_cmd->add_option("--gamma", circle->gamma, "R-DVSC gamma of both axes (default: the papers', S1 Table 2)");
   circle_cmd->callback([&run, circle] { run = [circle] { return run_circle_command(*circle); }; });
 
   auto table3 = std::make_shared<Table3Options>();

@@ -8,6 +8,8 @@
 namespace tnv::cli {
 
 void add_circle_commands(CLI::App& app, Runner& run);  // circle, table3, plant-check (S1)
+void add_fault_commands(CLI::App& app, Runner& run);   // faults (safety: fault injection)
+void add_soak_commands(CLI::App& app, Runner& run);    // soak (safety: long run)
 void add_boring_commands(CLI::App& app, Runner& run);  // boring (S4)
 void add_arsc_commands(CLI::App& app, Runner& run);    // arsc design | run | compare | tick (S3)
 void add_shaper_commands(CLI::App& app, Runner& run);  // shaper design | move | jog | grid (S2)

@@ -1,0 +1,306 @@
+// CanNode: construction, the service() loop, receive routing, replies,
+// heartbeat and telemetry. Requests are handled in can_node_commands.cpp,
+// can_node_params.cpp and can_node_capture.cpp.
+#include "firmware/can/can_node.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+#include "firmware/can/tick_signals.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
+                 bool storage_fault) noexcept
+    : task_(task),
+      can_(can),
+      storage_(storage),
+      settings_(settings),
+      node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
+      storage_fault_(storage_fault) {
+  // The task at rest takes the whole firmware part (controller per axis
+  // included); if it refuses, the settings say what the task really runs.
+  if (task_.apply_config(settings_.firmware) != CommandStatus::ok) settings_.firmware = task_.config();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    if (!settings_.shaper[i].enabled) continue;
+    const hal::Axis axis = hal::axis_from_index(i);
+    shaper_configured_[i] = task_.configure_shaper(axis, settings_.shaper[i].spec) == CommandStatus::ok;
+    if (!shaper_configured_[i] || task_.enable_shaper(axis, true) != CommandStatus::ok) settings_.shaper[i].enabled = false;
+  }
+  last_tick_ = task_.last_record().tick;
+  deadman_stops_seen_ = task_.jog_deadman_stops();
+  bus_errors_at_heartbeat_ = task_.counters().bus_errors;
+  late_ticks_at_heartbeat_ = task_.counters().late_ticks;
+}
+
+const NodeSettings& CanNode::settings() const noexcept { return settings_; }
+std::uint8_t CanNode::node_id() const noexcept { return node_id_; }
+const NodeCounters& CanNode::counters() const noexcept { return counters_; }
+CaptureState CanNode::capture_state() const noexcept { return capture_.state(); }
+std::uint32_t CanNode::capture_samples() const noexcept { return capture_.samples(); }
+std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.channel_mask(); }
+std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.words(); }
+std::size_t CanNode::staged_count() const noexcept { return staged_.size(); }
+bool CanNode::storage_fault() const noexcept { return storage_fault_; }
+bool CanNode::params_unsaved() const noexcept { return unsaved_; }
+std::uint16_t CanNode::reply_sequence() const noexcept { return sequence_; }
+
+bool CanNode::moving() const noexcept { return task_.moving(); }
+
+void CanNode::service() noexcept {
+  tx_budget_ = kMaxTxPerService;
+  std::uint32_t due = 0;
+  const std::uint64_t tick = task_.last_record().tick;
+  if (tick != last_tick_) {
+    const std::uint64_t ticks = tick - last_tick_;
+    last_tick_ = tick;
+    due = on_new_tick(ticks);
+  }
+  flush_replies();
+  receive();
+  check_fault();
+  send_telemetry(due);
+  send_upload();
+}
+
+std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
+  capture_.on_tick(task_.last_record(), tick_signals(task_, settings_));
+  check_fault();
+  if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
+    deadman_stops_seen_ = stops;
+    jog_deadman_ = true;
+  }
+  // Host timeout: while moving, no valid frame for can.host_timeout_ms -> controlled stop.
+  silent_ticks_ += ticks;
+  const std::uint32_t timeout = settings_.can.host_timeout_ms;
+  if (timeout > 0 && task_.moving() && !task_.stopping() && silent_ticks_ >= timeout) {
+    task_.stop();
+    host_timeout_ = true;
+  }
+  return telemetry_.advance(settings_.telemetry, ticks);
+}
+
+void CanNode::check_fault() noexcept {
+  const FaultRecord& f = task_.fault();
+  if (!f.active()) {
+    fault_reported_ = false;
+    return;
+  }
+  if (fault_reported_) return;
+  fault_reported_ = true;
+  hal::CanFrame frame = make_frame(kFaultEventMsg, node_id_);
+  write_raw(frame, kFaultReason, static_cast<std::uint32_t>(f.reason));
+  write(frame, kFaultAxis, f.axis);
+  write_raw(frame, kFaultTick, static_cast<std::uint32_t>(f.tick & 0xFFFFu));
+  write(frame, kFaultValue, f.value);
+  send_reply(frame);
+}
+
+// --- receive
+
+void CanNode::receive() noexcept {
+  for (int n = 0; n < kMaxRxPerService; ++n) {
+    hal::CanFrame frame;
+    if (!can_.try_receive(frame)) return;
+    const MessageDef* m = classify(frame);  // nullptr: extended, remote or no such message
+    const std::uint8_t node = node_of(frame.id);
+    const bool broadcast = node == kBroadcastNode;
+    if (m == nullptr || m->direction != Direction::to_node || (!broadcast && node != node_id_)) {
+      ++counters_.rx_ignored;
+      continue;
+    }
+    if (broadcast) {
+      // Only e-stop and a well-formed stop command are accepted on node 0.
+      const bool stop = m->id == kCommandMsg.id && frame.dlc == kCommandMsg.dlc &&
+                        read_raw(frame, kCommandCode) == static_cast<std::uint32_t>(CommandCode::stop);
+      if (m->id != static_cast<std::uint8_t>(MessageId::estop) && !stop) {
+        ++counters_.rx_ignored;
+        continue;
+      }
+    }
+    handle(frame, *m);
+  }
+}
+
+void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
+  ++counters_.rx_frames;
+  const auto id = static_cast<MessageId>(m.id);
+  if (id == MessageId::estop) {  // whatever its length
+    task_.estop();
+    silent_ticks_ = 0;
+    return;
+  }
+  if (frame.dlc != m.dlc) {
+    ++counters_.rx_malformed;
+    switch (id) {
+      case MessageId::param_request: reply_param(0, ErrorCode::bad_length, 0, 0); return;
+      case MessageId::capture_control: reply_capture(ErrorCode::bad_length); return;
+      default: reply_ack(m.id, 0, ErrorCode::bad_length, 0); return;
+    }
+  }
+  silent_ticks_ = 0;  // a valid frame from the host
+  switch (id) {
+    case MessageId::command: handle_command(frame); return;
+    case MessageId::jog: handle_jog(frame); return;
+    case MessageId::move: handle_move(frame); return;
+    case MessageId::circle: handle_circle(frame); return;
+    case MessageId::shaper: handle_shaper(frame); return;
+    case MessageId::param_request: handle_param(frame); return;
+    case MessageId::capture_control: handle_capture(frame); return;
+    default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
+  }
+}
+
+// --- replies
+
+void CanNode::count_result(ErrorCode result) noexcept {
+  if (result == ErrorCode::ok) return;
+  ++counters_.requests_refused;
+  if (result == ErrorCode::unknown_command) ++counters_.rx_malformed;
+}
+
+void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
+  count_result(result);
+  hal::CanFrame frame = make_frame(kAckMsg, node_id_);
+  write_raw(frame, kAckRequest, request);
+  write_raw(frame, kAckCode, code);
+  write_raw(frame, kAckResult, static_cast<std::uint32_t>(result));
+  write_raw(frame, kAckState, static_cast<std::uint32_t>(task_.state()));
+  write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
+  write_raw(frame, kAckDetail, detail);
+  write_raw(frame, kAckSequence, ++sequence_);
+  send_reply(frame);
+}
+
+void CanNode::reply_param(std::uint8_t op, ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
+  count_result(result);
+  hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
+  write_raw(frame, kReplyOp, op);
+  write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
+  write_raw(frame, kReplyParam, param);
+  write_raw(frame, kReplyValue, value);
+  ++sequence_;
+  send_reply(frame);
+}
+
+void CanNode::reply_capture(ErrorCode result) noexcept {
+  count_result(result);
+  hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
+  write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
+  write_raw(frame, kStatusResult, static_cast<std::uint32_t>(result));
+  write_raw(frame, kStatusChannels, capture_.channel_count());
+  write_raw(frame, kStatusDecimation, std::min<std::uint32_t>(capture_.decimation(), 255u));
+  write_raw(frame, kStatusSamples, capture_.samples());
+  ++sequence_;
+  send_reply(frame);
+}
+
+bool CanNode::send_now(const hal::CanFrame& frame) noexcept {
+  if (tx_budget_ <= 0 || can_.try_send(frame) != hal::HalStatus::ok) return false;
+  --tx_budget_;
+  ++counters_.tx_frames;
+  return true;
+}
+
+void CanNode::dropped() noexcept {
+  ++counters_.tx_dropped;
+  tx_dropped_since_heartbeat_ = true;
+}
+
+void CanNode::send_reply(const hal::CanFrame& frame) noexcept {
+  if (replies_.empty() && send_now(frame)) return;
+  if (!replies_.push(frame)) dropped();  // kept in order for the next service()
+}
+
+void CanNode::flush_replies() noexcept {
+  while (!replies_.empty() && send_now(replies_.front())) replies_.pop();
+}
+
+// --- heartbeat and telemetry
+
+std::uint16_t CanNode::heartbeat_errors() const noexcept {
+  std::uint16_t bits = 0;
+  const auto set = [&bits](bool on, HeartbeatBit b) noexcept {
+    if (on) bits = static_cast<std::uint16_t>(bits | b);
+  };
+  const TickCounters& c = task_.counters();
+  set(storage_fault_, kHbStorageFault);
+  set(unsaved_, kHbParamsUnsaved);
+  set(tx_dropped_since_heartbeat_, kHbTxDropped);
+  set(jog_deadman_, kHbJogDeadman);
+  set(capture_.state() == CaptureState::recording, kHbCaptureRecording);
+  set(capture_.state() == CaptureState::done, kHbCaptureDone);
+  set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
+  set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
+  set(!staged_.empty(), kHbParamsStaged);
+  set(task_.shaper(hal::Axis::x).shaping(), kHbShaperX);
+  set(task_.shaper(hal::Axis::y).shaping(), kHbShaperY);
+  set(host_timeout_, kHbHostTimeout);
+  return bits;
+}
+
+void CanNode::send_telemetry(std::uint32_t due) noexcept {
+  if (due == 0) return;
+  const TickRecord& r = task_.last_record();
+  const auto emit = [this](const hal::CanFrame& frame) noexcept {
+    if (!send_now(frame)) dropped();
+  };
+  if ((due & cyclic_bit(Cyclic::heartbeat)) != 0) {
+    hal::CanFrame f = make_frame(kHeartbeatMsg, node_id_);
+    const TickCounters& c = task_.counters();
+    write_raw(f, kHbState, static_cast<std::uint32_t>(task_.state()));
+    write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
+    write_raw(f, kHbErrors, heartbeat_errors());
+    write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFFFu)));
+    write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFFFu));
+    tx_dropped_since_heartbeat_ = false;
+    bus_errors_at_heartbeat_ = c.bus_errors;
+    late_ticks_at_heartbeat_ = c.late_ticks;
+    emit(f);
+  }
+  const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
+    // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.
+    const double lim_mm = 2147483647.0 * field.scale;
+    write(f, field, std::clamp(std::isfinite(mm) ? mm : 0.0, -lim_mm, lim_mm));
+  };
+  if ((due & cyclic_bit(Cyclic::position)) != 0) {
+    hal::CanFrame f = make_frame(kPositionMsg, node_id_);
+    i32_mm(f, kPosX, r.axis[0].position_mm);
+    i32_mm(f, kPosY, r.axis[1].position_mm);
+    emit(f);
+  }
+  if ((due & cyclic_bit(Cyclic::following)) != 0) {
+    hal::CanFrame f = make_frame(kFollowingMsg, node_id_);
+    i32_mm(f, kFollowX, r.axis[0].reference_mm - r.axis[0].position_mm);
+    i32_mm(f, kFollowY, r.axis[1].reference_mm - r.axis[1].position_mm);
+    emit(f);
+  }
+  if ((due & cyclic_bit(Cyclic::sliding)) != 0) {
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      hal::CanFrame f = make_frame(i == 0 ? kSlidingXMsg : kSlidingYMsg, node_id_);
+      const bool pid = task_.controller(hal::axis_from_index(i)) == ControllerKind::pid;
+      write(f, kSlidingS, pid ? 0.0 : r.axis[i].s);
+      write(f, kSlidingDHat, pid ? 0.0 : r.axis[i].d_hat_mm_s);
+      emit(f);
+    }
+  }
+  if ((due & cyclic_bit(Cyclic::output)) != 0) {
+    hal::CanFrame f = make_frame(kOutputMsg, node_id_);
+    write_raw(f, kOutputDacX, r.axis[0].dac_code);
+    write_raw(f, kOutputDacY, r.axis[1].dac_code);
+    write(f, kOutputForce, force_n(r, settings_));
+    emit(f);
+  }
+  if ((due & cyclic_bit(Cyclic::contour)) != 0) {
+    hal::CanFrame f = make_frame(kContourMsg, node_id_);
+    write(f, kContour, contour_um(task_, r));
+    write(f, kContourTick, static_cast<double>(std::clamp<std::int64_t>(r.motion_tick, -1, 2147483647)));
+    emit(f);
+  }
+}
+
+}  // namespace tnv::fw::can

@@ -1,0 +1,157 @@
+#pragma once
+// The node's CAN service: parameters, commands, heartbeat, telemetry and
+// on-target capture over the protocol of protocol_messages.hpp.
+//
+// Threading and timing: service() runs once after every tick(), in the
+// same thread, never inside it. Everything it applies (a committed
+// parameter set, a command) therefore lands between two ticks, whole; a
+// tick never sees half of it. service() does bounded work (at most
+// kMaxRxPerService received frames, kMaxTxPerService sent frames), does not
+// allocate, throw, lock or log; storage writes (save/load) are the only
+// calls that may take long and happen only on request.
+//
+// Per new tick (TickTask::last_record().tick advanced since the last call)
+// service() records the capture sample, counts the telemetry periods and
+// the host timeout, and notices a newly latched fault (FAULT_EVENT, once).
+// Calling service() more than once per tick only handles more frames.
+//
+// Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
+// words, 512 KiB): give it static storage or build it on the heap.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "firmware/can/capture_recorder.hpp"
+#include "firmware/can/node_settings.hpp"
+#include "firmware/can/param_table.hpp"
+#include "firmware/can/protocol_messages.hpp"
+#include "firmware/can/staged_params.hpp"
+#include "firmware/can/telemetry_scheduler.hpp"
+#include "firmware/can/tx_queue.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "hal/can_port.hpp"
+#include "hal/param_storage.hpp"
+
+namespace tnv::fw::can {
+
+inline constexpr int kMaxRxPerService = 16;
+inline constexpr int kMaxTxPerService = 32;
+
+struct NodeCounters {
+  std::uint64_t rx_frames = 0;       // frames addressed to this node (or broadcast) and handled
+  std::uint64_t rx_ignored = 0;      // frames for other nodes, from other nodes, or not ours
+  std::uint64_t rx_malformed = 0;    // answered with an error code (bad length, unknown op, ...)
+  std::uint64_t tx_frames = 0;
+  std::uint64_t tx_dropped = 0;      // the transmit queue was full
+  std::uint64_t requests_refused = 0;
+};
+
+class CanNode {
+ public:
+  // `task` must have been built from settings.firmware; settings must pass
+  // validate(). storage_fault: the start-up load failed (shown in the
+  // heartbeat until a save or load succeeds). The constructor brings the
+  // task in line with `settings` (controller per axis, enabled shapers);
+  // the task must be at rest (it is, right after construction).
+  CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
+          bool storage_fault = false) noexcept;
+  CanNode(const CanNode&) = delete;
+  CanNode& operator=(const CanNode&) = delete;
+
+  void service() noexcept;
+
+  // The live parameter set (what PARAM_REQUEST get reads back).
+  const NodeSettings& settings() const noexcept;
+  // The id this node answers to: settings().can.node_id at construction
+  // (a changed node id applies at the next start).
+  std::uint8_t node_id() const noexcept;
+  const NodeCounters& counters() const noexcept;
+
+  // --- inspection (tests and the in-process emulated controller)
+  std::uint16_t heartbeat_errors() const noexcept;  // HEARTBEAT.errors if one were sent now
+  CaptureState capture_state() const noexcept;
+  std::uint32_t capture_samples() const noexcept;
+  std::uint32_t capture_channel_mask() const noexcept;  // channels of the current / last capture
+  // The capture image as 32-bit words: samples x channels, sample-major,
+  // channels in bit order (CAPTURE_DATA carries these little-endian).
+  std::span<const std::uint32_t> capture_words() const noexcept;
+  std::size_t staged_count() const noexcept;  // parameters waiting for commit
+  bool storage_fault() const noexcept;
+  bool params_unsaved() const noexcept;
+  std::uint16_t reply_sequence() const noexcept;  // COMMAND_ACK.sequence of the last answer
+
+ private:
+  struct Upload {
+    bool active = false;
+    std::uint32_t offset_bytes = 0;
+    std::uint16_t frames = 0;
+    std::uint16_t next = 0;
+  };
+
+  // service() steps
+  std::uint32_t on_new_tick(std::uint64_t ticks) noexcept;  // returns the telemetry due
+  void check_fault() noexcept;                               // FAULT_EVENT once per latch
+  void receive() noexcept;
+  void send_telemetry(std::uint32_t due) noexcept;
+  void send_upload() noexcept;
+  // one frame addressed to this node (or an accepted broadcast)
+  void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
+  void handle_command(const hal::CanFrame& frame) noexcept;
+  void handle_jog(const hal::CanFrame& frame) noexcept;
+  void handle_move(const hal::CanFrame& frame) noexcept;
+  void handle_circle(const hal::CanFrame& frame) noexcept;
+  void handle_shaper(const hal::CanFrame& frame) noexcept;
+  void handle_param(const hal::CanFrame& frame) noexcept;
+  void handle_capture(const hal::CanFrame& frame) noexcept;
+  // COMMAND codes with more to them than one TickTask call
+  ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+  ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+  ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+  ErrorCode command_save() noexcept;
+  ErrorCode command_load() noexcept;
+  ErrorCode command_restore_defaults() noexcept;
+  void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
+  // parameters: validate the whole next set, refuse busy, apply whole
+  ErrorCode apply_settings(const NodeSettings& next, bool idle_touched) noexcept;
+  bool capture_change_refused(const NodeSettings& next) const noexcept;
+  bool moving() const noexcept;
+  // replies and frames
+  void reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept;
+  void reply_param(std::uint8_t op, ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
+  void reply_capture(ErrorCode result) noexcept;
+  void count_result(ErrorCode result) noexcept;
+  void send_reply(const hal::CanFrame& frame) noexcept;  // queued in order when the port is full
+  bool send_now(const hal::CanFrame& frame) noexcept;    // false: not sent
+  void flush_replies() noexcept;
+  void dropped() noexcept;
+
+  TickTask& task_;
+  hal::CanPort& can_;
+  hal::ParamStorage& storage_;
+  NodeSettings settings_;
+  std::uint8_t node_id_;
+  NodeCounters counters_{};
+  StagedParams staged_{};
+  TelemetryScheduler telemetry_{};
+  TxQueue replies_{};
+  Upload upload_{};
+  std::array<bool, hal::kAxisCount> shaper_configured_{};
+  std::uint64_t last_tick_ = 0;
+  int tx_budget_ = 0;                   // frames this service() may still send
+  std::uint16_t sequence_ = 0;          // answered requests, mod 65536
+  std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
+  std::uint64_t silent_ticks_ = 0;      // ticks since the last valid frame from the host
+  std::uint32_t deadman_stops_seen_ = 0;
+  bool storage_fault_ = false;
+  bool unsaved_ = false;
+  bool fault_reported_ = false;
+  bool jog_deadman_ = false;            // sticky until the next accepted motion request
+  bool host_timeout_ = false;           // sticky until the next accepted motion request
+  bool tx_dropped_since_heartbeat_ = false;
+  std::uint64_t bus_errors_at_heartbeat_ = 0;
+  std::uint64_t late_ticks_at_heartbeat_ = 0;
+  CaptureRecorder capture_{};           // last: the big buffer
+};
+
+}  // namespace tnv::fw::can

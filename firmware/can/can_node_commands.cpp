@@ -1,0 +1,198 @@
+// CanNode: COMMAND, JOG, MOVE, CIRCLE and SHAPER, each answered by one
+// COMMAND_ACK (detail = index of the offending field). Every check comes
+// before anything is started: a refused request changes nothing.
+#include <cmath>
+
+#include "firmware/can/can_node.hpp"
+#include "firmware/can/command_result.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+namespace {
+
+constexpr std::uint8_t kAllAxes = 255;
+
+std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
+  return static_cast<std::uint16_t>((axis == 0 ? 0x0100 : 0x0200) + low);
+}
+
+}  // namespace
+
+void CanNode::motion_accepted() noexcept {
+  jog_deadman_ = false;
+  host_timeout_ = false;
+}
+
+void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
+  const auto code_raw = static_cast<std::uint8_t>(read_raw(frame, kCommandCode));
+  if (code_raw >= kCommandCodeCount) {
+    reply_ack(kCommandMsg.id, code_raw, ErrorCode::unknown_command, index_of(kCommandMsg, kCommandCode));
+    return;
+  }
+  std::uint8_t detail = 0;
+  ErrorCode e = ErrorCode::ok;
+  switch (static_cast<CommandCode>(code_raw)) {
+    case CommandCode::enable:
+      e = to_error(task_.hold_position());
+      break;
+    case CommandCode::disable: e = to_error(task_.disable()); break;
+    case CommandCode::stop: e = to_error(task_.stop()); break;
+    case CommandCode::clear_faults: e = to_error(task_.clear_fault()); break;
+    case CommandCode::zero: e = command_zero(frame, detail); break;
+    case CommandCode::select_controller: e = command_select_controller(frame, detail); break;
+    case CommandCode::shaper_enable: e = command_shaper_enable(frame, detail); break;
+    case CommandCode::save_params: e = command_save(); break;
+    case CommandCode::load_params: e = command_load(); break;
+    case CommandCode::restore_defaults: e = command_restore_defaults(); break;
+  }
+  reply_ack(kCommandMsg.id, code_raw, e, detail);
+}
+
+ErrorCode CanNode::command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+  const std::uint32_t axis = read_raw(frame, kCommandAxis);
+  const double value_mm = read(frame, kCommandValue);
+  if (axis > 1) {
+    detail = index_of(kCommandMsg, kCommandAxis);
+    return ErrorCode::bad_axis;
+  }
+  detail = index_of(kCommandMsg, kCommandValue);
+  if (!std::isfinite(value_mm)) return ErrorCode::not_finite;
+  const CommandStatus st = task_.zero(hal::axis_from_index(axis), value_mm);
+  if (st == CommandStatus::invalid) return ErrorCode::out_of_range;  // outside the soft limits
+  if (st == CommandStatus::ok) detail = 0;
+  return to_error(st);
+}
+
+ErrorCode CanNode::command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+  const std::uint32_t axis = read_raw(frame, kCommandAxis);
+  const std::uint32_t arg = read_raw(frame, kCommandArg);
+  if (axis > 1 && axis != kAllAxes) {
+    detail = index_of(kCommandMsg, kCommandAxis);
+    return ErrorCode::bad_axis;
+  }
+  if (arg > 2) {
+    detail = index_of(kCommandMsg, kCommandArg);
+    return ErrorCode::out_of_range;
+  }
+  NodeSettings next = settings_;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (axis == kAllAxes || axis == i) next.firmware.axis[i].controller = static_cast<ControllerKind>(arg);
+  const ParamDef* p = find_param(axis_param(0, 0x00));
+  return apply_settings(next, p == nullptr || p->apply == Apply::idle);
+}
+
+ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+  const std::uint32_t axis = read_raw(frame, kCommandAxis);
+  const std::uint32_t arg = read_raw(frame, kCommandArg);
+  if (axis > 1 && axis != kAllAxes) {
+    detail = index_of(kCommandMsg, kCommandAxis);
+    return ErrorCode::bad_axis;
+  }
+  if (arg > 1) {
+    detail = index_of(kCommandMsg, kCommandArg);
+    return ErrorCode::out_of_range;
+  }
+  NodeSettings next = settings_;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (axis == kAllAxes || axis == i) next.shaper[i].enabled = arg == 1;
+  return apply_settings(next, false);
+}
+
+void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
+  const std::array<double, hal::kAxisCount> speed_mm_s{read(frame, kJogSpeedX), read(frame, kJogSpeedY)};
+  const std::array<const FieldDef*, hal::kAxisCount> field{&kJogSpeedX, &kJogSpeedY};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const std::uint8_t detail = index_of(kJogMsg, *field[i]);
+    if (!std::isfinite(speed_mm_s[i])) return reply_ack(kJogMsg.id, 0, ErrorCode::not_finite, detail);
+    if (std::fabs(speed_mm_s[i]) > task_.config().axis[i].jog.speed_max_mm_s)
+      return reply_ack(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
+  }
+  ErrorCode e = ErrorCode::ok;
+  if (task_.state() == MotionState::faulted) {
+    e = ErrorCode::faulted;
+  } else if ((task_.state() != MotionState::holding && !task_.jogging()) || task_.stopping()) {
+    e = ErrorCode::busy;
+  } else {
+    // Checked above, so neither call refuses: x may start the jog, y joins it.
+    e = to_error(task_.jog(hal::Axis::x, speed_mm_s[0]));
+    if (e == ErrorCode::ok) e = to_error(task_.jog(hal::Axis::y, speed_mm_s[1]));
+  }
+  if (e == ErrorCode::ok) motion_accepted();
+  reply_ack(kJogMsg.id, 0, e, 0);
+}
+
+void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
+  const std::uint32_t axis = read_raw(frame, kMoveAxis);
+  const double speed_mm_s = read(frame, kMoveSpeed);
+  const double distance_mm = read(frame, kMoveDistance);
+  if (axis > 1) return reply_ack(kMoveMsg.id, 0, ErrorCode::bad_axis, index_of(kMoveMsg, kMoveAxis));
+  if (!(speed_mm_s > 0.0)) return reply_ack(kMoveMsg.id, 0, ErrorCode::out_of_range, index_of(kMoveMsg, kMoveSpeed));
+  const std::uint8_t distance = index_of(kMoveMsg, kMoveDistance);
+  if (!std::isfinite(distance_mm)) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_finite, distance);
+  MoveSpec spec;
+  spec.axis = hal::axis_from_index(axis);
+  spec.distance_mm = distance_mm;
+  spec.speed_mm_s = speed_mm_s;
+  spec.ramp_s = settings_.motion.move_ramp_s;
+  spec.dwell_s = settings_.motion.move_dwell_s;
+  // A zero distance, or one too short for the two ramps at this speed.
+  if (validate(spec)[0] != '\0') return reply_ack(kMoveMsg.id, 0, ErrorCode::invalid, distance);
+  const CommandStatus st = task_.start_move(spec);
+  if (st == CommandStatus::invalid) return reply_ack(kMoveMsg.id, 0, ErrorCode::out_of_range, distance);  // soft limits
+  if (st == CommandStatus::ok) motion_accepted();
+  reply_ack(kMoveMsg.id, 0, to_error(st), 0);
+}
+
+// The circle starts where the table stands, which is on the circle at
+// (+r, 0) from its centre. Standing at (r, 0) of the machine frame (within
+// the following-error floor, as after homing or zero) the circle is run
+// about the origin itself, exactly as tnv-hil runs it; anywhere else about
+// (standing - (r, 0)).
+void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
+  const double radius_mm = read(frame, kCircleRadius);
+  const double feed_mm_s = read(frame, kCircleFeed);
+  const std::uint8_t radius = index_of(kCircleMsg, kCircleRadius);
+  const std::uint8_t feed = index_of(kCircleMsg, kCircleFeed);
+  if (!std::isfinite(radius_mm)) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_finite, radius);
+  if (!std::isfinite(feed_mm_s)) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_finite, feed);
+  if (!(radius_mm > 0.0)) return reply_ack(kCircleMsg.id, 0, ErrorCode::out_of_range, radius);
+  if (!(feed_mm_s > 0.0)) return reply_ack(kCircleMsg.id, 0, ErrorCode::out_of_range, feed);
+  const CircleSpec spec{radius_mm, feed_mm_s, settings_.motion.circle_ramp_s, settings_.motion.circle_dwell_s};
+  if (validate(spec)[0] != '\0') return reply_ack(kCircleMsg.id, 0, ErrorCode::invalid, radius);
+  const double x_mm = task_.standing_mm(hal::Axis::x);
+  const double y_mm = task_.standing_mm(hal::Axis::y);
+  const SupervisorConfig& sup = task_.config().supervisor;
+  const bool on_origin_circle = std::fabs(x_mm - radius_mm) < sup.axis[0].following.floor_mm &&
+                                std::fabs(y_mm) < sup.axis[1].following.floor_mm;
+  const CommandStatus st =
+      on_origin_circle ? task_.start_circle(spec) : task_.start_circle(spec, x_mm - radius_mm, y_mm);
+  if (st == CommandStatus::ok) motion_accepted();
+  reply_ack(kCircleMsg.id, 0, to_error(st), 0);
+}
+
+// Same as staging x|y.shaper.type/freq_hz/zeta and committing.
+void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
+  const std::uint32_t axis = read_raw(frame, kShaperAxis);
+  const std::uint32_t type = read_raw(frame, kShaperType);
+  const double zeta = read(frame, kShaperZeta);
+  const double freq_hz = read(frame, kShaperFreq);
+  if (axis > 1) return reply_ack(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
+  const std::array<std::pair<const FieldDef*, std::uint16_t>, 3> checks{
+      {{&kShaperType, axis_param(axis, 0x40)}, {&kShaperZeta, axis_param(axis, 0x42)}, {&kShaperFreq, axis_param(axis, 0x41)}}};
+  const std::array<double, 3> values{static_cast<double>(type), zeta, freq_hz};
+  NodeSettings next = settings_;
+  for (std::size_t k = 0; k < checks.size(); ++k) {
+    const ParamDef* p = find_param(checks[k].second);
+    const std::uint8_t detail = index_of(kShaperMsg, *checks[k].first);
+    if (p == nullptr) return reply_ack(kShaperMsg.id, 0, ErrorCode::unknown_id, detail);
+    if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return reply_ack(kShaperMsg.id, 0, e, detail);
+    p->set(next, values[k]);
+  }
+  reply_ack(kShaperMsg.id, 0, apply_settings(next, false), 0);
+}
+
+}  // namespace tnv::fw::can

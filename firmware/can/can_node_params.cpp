@@ -1,0 +1,170 @@
+// CanNode: PARAM_REQUEST (get / set / stage / commit / discard), applying a
+// whole parameter set, and the storage commands.
+#include <array>
+
+#include "firmware/can/can_node.hpp"
+#include "firmware/can/command_result.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+#include "firmware/can/param_image.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+namespace {
+
+bool same_spec(const ShaperSpec& a, const ShaperSpec& b) noexcept {
+  return a.type == b.type && a.mode.freq_hz == b.mode.freq_hz && a.mode.zeta == b.mode.zeta &&
+         a.second_mode.freq_hz == b.second_mode.freq_hz && a.second_mode.zeta == b.second_mode.zeta;
+}
+
+bool same_params(const NodeSettings& a, const NodeSettings& b) noexcept {
+  for (const ParamDef& p : param_table())
+    if (p.access == Access::read_write && p.get(a) != p.get(b)) return false;
+  return true;
+}
+
+}  // namespace
+
+bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
+  const CaptureState st = capture_.state();
+  if (st != CaptureState::armed && st != CaptureState::recording) return false;
+  const CaptureSettings& a = settings_.capture;
+  const CaptureSettings& b = next.capture;
+  return a.channels != b.channels || a.trigger != b.trigger || a.decimation != b.decimation;
+}
+
+// The one way a parameter change reaches the task: the whole next set is
+// validated, refused busy where it must wait for rest, then applied between
+// two ticks (this runs in service()), all of it or none of it.
+ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched) noexcept {
+  if (const SettingsCheck c = validate(next); !c.ok) {
+    blamed_param_ = c.param;
+    return ErrorCode::invalid;
+  }
+  if (idle_touched && moving()) return ErrorCode::busy;
+  if (capture_change_refused(next)) return ErrorCode::busy;
+  // Gains, limits, controller selection: the task checks again and applies whole.
+  if (const CommandStatus st = task_.apply_config(next.firmware); st != CommandStatus::ok) return to_error(st);
+  // Shapers: validated with the set above, so the designs fit; they apply at the next quiet reference.
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const hal::Axis axis = hal::axis_from_index(i);
+    const ShaperSettings& was = settings_.shaper[i];
+    const ShaperSettings& now = next.shaper[i];
+    if (!same_spec(was.spec, now.spec) || (now.enabled && !shaper_configured_[i]))
+      shaper_configured_[i] = task_.configure_shaper(axis, now.spec) == CommandStatus::ok;
+    if (was.enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
+  }
+  if (!same_params(settings_, next)) unsaved_ = true;
+  settings_ = next;
+  return ErrorCode::ok;
+}
+
+void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
+  const auto op_raw = static_cast<std::uint8_t>(read_raw(frame, kParamOp));
+  const auto id = static_cast<std::uint16_t>(read_raw(frame, kParamId));
+  const std::uint32_t raw = read_raw(frame, kParamValue);
+  if (op_raw >= kParamOpCount) {
+    reply_param(op_raw, ErrorCode::unknown_command, id, 0);
+    return;
+  }
+  const auto op = static_cast<ParamOp>(op_raw);
+  if (op == ParamOp::commit) {
+    const auto n = static_cast<std::uint16_t>(staged_.size());
+    NodeSettings next = settings_;
+    staged_.write_into(next);
+    bool idle = false;
+    for (const StagedParam& s : staged_.items()) {
+      const ParamDef* p = find_param(s.id);
+      idle = idle || (p != nullptr && p->apply == Apply::idle);
+    }
+    blamed_param_ = 0;
+    const ErrorCode e = apply_settings(next, idle);
+    if (e == ErrorCode::ok) staged_.clear();  // refused: the pending set stays for a fix or a discard
+    reply_param(op_raw, e, n, e == ErrorCode::invalid ? blamed_param_ : 0u);
+    return;
+  }
+  if (op == ParamOp::discard) {
+    const auto n = static_cast<std::uint16_t>(staged_.size());
+    staged_.clear();
+    reply_param(op_raw, ErrorCode::ok, n, 0);
+    return;
+  }
+  const ParamDef* p = find_param(id);
+  if (p == nullptr) {
+    reply_param(op_raw, ErrorCode::unknown_id, id, 0);
+    return;
+  }
+  const std::uint32_t current = to_wire(*p, p->get(settings_));
+  if (op == ParamOp::get) {
+    reply_param(op_raw, ErrorCode::ok, id, current);
+    return;
+  }
+  // set / stage: the value exactly as it arrived (an f32 stays that float).
+  const double value = from_wire(*p, raw);
+  if (const ErrorCode e = check_value(*p, value); e != ErrorCode::ok) {
+    reply_param(op_raw, e, id, current);
+    return;
+  }
+  if (op == ParamOp::stage) {
+    const bool kept = staged_.put(id, value);
+    reply_param(op_raw, kept ? ErrorCode::ok : ErrorCode::busy, id, kept ? to_wire(*p, value) : current);
+    return;
+  }
+  NodeSettings next = settings_;
+  p->set(next, value);
+  const ErrorCode e = apply_settings(next, p->apply == Apply::idle);
+  reply_param(op_raw, e, id, to_wire(*p, p->get(settings_)));
+}
+
+// --- storage commands (idle only)
+
+ErrorCode CanNode::command_save() noexcept {
+  if (moving()) return ErrorCode::busy;
+  const ErrorCode e = save_settings(storage_, settings_);
+  storage_fault_ = e != ErrorCode::ok;
+  if (e == ErrorCode::ok) unsaved_ = false;
+  return e;
+}
+
+ErrorCode CanNode::command_load() noexcept {
+  if (moving()) return ErrorCode::busy;
+  std::array<std::uint8_t, kParamImageMaxBytes> image{};
+  std::size_t size = 0;
+  const hal::HalStatus st = storage_.read(image, size);
+  if (st == hal::HalStatus::not_present) return ErrorCode::not_ready;
+  if (st != hal::HalStatus::ok || size > image.size()) {
+    storage_fault_ = true;
+    return ErrorCode::storage_error;
+  }
+  NodeSettings next = settings_;
+  if (const ErrorCode e = decode_image(std::span<const std::uint8_t>(image.data(), size), next); e != ErrorCode::ok) {
+    storage_fault_ = true;
+    return e;
+  }
+  const ErrorCode e = apply_settings(next, true);
+  if (e == ErrorCode::ok) {
+    unsaved_ = false;
+    storage_fault_ = false;
+  }
+  return e;
+}
+
+// The papers' defaults, except what describes this machine and this node:
+// the encoder count and DAC scale (commissioning facts) and the bus
+// identity (node id, bit rate), so the node stays reachable and sane.
+ErrorCode CanNode::command_restore_defaults() noexcept {
+  if (moving()) return ErrorCode::busy;
+  NodeSettings next = default_node_settings();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    next.firmware.axis[i].count_mm = settings_.firmware.axis[i].count_mm;
+    next.firmware.axis[i].dac = settings_.firmware.axis[i].dac;
+    next.firmware.axis[i].home_position_mm = settings_.firmware.axis[i].home_position_mm;
+  }
+  next.can.node_id = settings_.can.node_id;
+  next.can.bitrate_kbit = settings_.can.bitrate_kbit;
+  return apply_settings(next, true);
+}
+
+}  // namespace tnv::fw::can

@@ -1,0 +1,114 @@
+#include "firmware/can/capture_recorder.hpp"
+
+#include <bit>
+#include <cmath>
+
+#include "firmware/can/capture_channels.hpp"
+#include "firmware/can/frame_codec.hpp"
+
+namespace tnv::fw::can {
+namespace {
+
+// round(value / scale) as an i32, saturated; NaN -> 0.
+std::uint32_t i32_word(double value, double scale) noexcept {
+  const double raw = std::round(value / scale);
+  if (!(raw == raw)) return 0;
+  if (raw >= 2147483647.0) return 0x7FFFFFFFu;
+  if (raw <= -2147483648.0) return 0x80000000u;
+  return static_cast<std::uint32_t>(static_cast<std::int32_t>(raw));
+}
+std::uint32_t f32_word(double value) noexcept { return float_bits(static_cast<float>(value)); }
+
+bool in_motion(const TickRecord& r) noexcept {
+  return r.state == MotionState::dwell || r.state == MotionState::moving || r.motion_tick >= 0;
+}
+
+}  // namespace
+
+std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSignals& sig) noexcept {
+  const ChannelDef* c = find_channel(bit);
+  if (c == nullptr) return 0;
+  const AxisTickRecord& x = r.axis[0];
+  const AxisTickRecord& y = r.axis[1];
+  switch (bit) {
+    case 0: return i32_word(x.position_mm, c->scale);
+    case 1: return i32_word(y.position_mm, c->scale);
+    case 2: return i32_word(x.reference_mm, c->scale);
+    case 3: return i32_word(y.reference_mm, c->scale);
+    case 4: return f32_word(x.speed_mm_s);
+    case 5: return f32_word(y.speed_mm_s);
+    case 6: return f32_word(x.command_mm_s);
+    case 7: return f32_word(y.command_mm_s);
+    case 8: return f32_word(x.s);
+    case 9: return f32_word(y.s);
+    case 10: return f32_word(x.d_hat_mm_s);
+    case 11: return f32_word(y.d_hat_mm_s);
+    case 12: return x.dac_code;
+    case 13: return y.dac_code;
+    case 14: return f32_word(sig.force_n);
+    case 15: return f32_word(sig.contour_um);
+    case 16: return i32_word(static_cast<double>(r.motion_tick), 1.0);
+    case 17: return static_cast<std::uint32_t>(r.state);
+    case 18: return i32_word(x.unshaped_reference_mm, c->scale);
+    case 19: return i32_word(y.unshaped_reference_mm, c->scale);
+    default: return 0;
+  }
+}
+
+void CaptureRecorder::arm(const CaptureSettings& settings) noexcept {
+  mask_ = settings.channels & kAllCaptureChannels;
+  channels_ = static_cast<std::uint32_t>(std::popcount(mask_));
+  decimation_ = settings.decimation == 0 ? 1 : settings.decimation;
+  trigger_ = settings.trigger;
+  samples_ = 0;
+  phase_ = 0;
+  state_ = trigger_ == CaptureTrigger::immediate ? CaptureState::recording : CaptureState::armed;
+}
+
+void CaptureRecorder::abort() noexcept {
+  if (state_ == CaptureState::armed || state_ == CaptureState::recording)
+    state_ = samples_ > 0 ? CaptureState::done : CaptureState::idle;
+}
+
+void CaptureRecorder::record(const TickRecord& r, const TickSignals& sig) noexcept {
+  std::uint32_t* out = buffer_.data() + static_cast<std::size_t>(samples_) * channels_;
+  for (std::uint8_t bit = 0; bit < kCaptureChannels.size(); ++bit)
+    if ((mask_ >> bit) & 1u) *out++ = channel_word(bit, r, sig);
+  ++samples_;
+  phase_ = 0;
+}
+
+void CaptureRecorder::on_tick(const TickRecord& r, const TickSignals& sig) noexcept {
+  const MotionState before = last_state_;
+  last_state_ = r.state;
+  if (state_ == CaptureState::armed) {
+    const bool fire = trigger_ == CaptureTrigger::motion  ? in_motion(r)
+                      : trigger_ == CaptureTrigger::fault ? r.state == MotionState::faulted && before != MotionState::faulted
+                                                          : true;
+    if (!fire) return;
+    state_ = CaptureState::recording;
+    record(r, sig);  // the trigger tick is the first sample
+  } else if (state_ == CaptureState::recording) {
+    ++phase_;
+    const bool motion_ended = trigger_ == CaptureTrigger::motion && r.state != MotionState::dwell &&
+                              r.state != MotionState::moving;
+    if (motion_ended || phase_ >= decimation_) record(r, sig);
+    if (motion_ended) {
+      state_ = CaptureState::done;
+      return;
+    }
+  } else {
+    return;
+  }
+  // The trigger tick of a motion that ends in that very tick also ends the capture.
+  if (trigger_ == CaptureTrigger::motion && r.state != MotionState::dwell && r.state != MotionState::moving)
+    state_ = CaptureState::done;
+  if (samples_ >= capacity_samples()) state_ = CaptureState::done;
+}
+
+std::uint8_t CaptureRecorder::image_byte(std::uint32_t offset) const noexcept {
+  if (offset >= image_bytes()) return 0;
+  return static_cast<std::uint8_t>(buffer_[offset / 4] >> (8 * (offset % 4)));
+}
+
+}  // namespace tnv::fw::can

@@ -1,0 +1,105 @@
+#pragma once
+// The fields the node reads and writes, looked up by name at compile time
+// (a typo is a compile error). Internal to the CAN node's implementation.
+#include "firmware/can/protocol_messages.hpp"
+
+namespace tnv::fw::can::fields {
+
+inline constexpr const MessageDef& kCommandMsg = message(MessageId::command);
+inline constexpr const MessageDef& kAckMsg = message(MessageId::command_ack);
+inline constexpr const MessageDef& kJogMsg = message(MessageId::jog);
+inline constexpr const MessageDef& kMoveMsg = message(MessageId::move);
+inline constexpr const MessageDef& kCircleMsg = message(MessageId::circle);
+inline constexpr const MessageDef& kShaperMsg = message(MessageId::shaper);
+inline constexpr const MessageDef& kParamRequestMsg = message(MessageId::param_request);
+inline constexpr const MessageDef& kParamReplyMsg = message(MessageId::param_reply);
+inline constexpr const MessageDef& kCaptureControlMsg = message(MessageId::capture_control);
+inline constexpr const MessageDef& kCaptureStatusMsg = message(MessageId::capture_status);
+inline constexpr const MessageDef& kCaptureDataMsg = message(MessageId::capture_data);
+inline constexpr const MessageDef& kFaultEventMsg = message(MessageId::fault_event);
+inline constexpr const MessageDef& kHeartbeatMsg = message(MessageId::heartbeat);
+inline constexpr const MessageDef& kPositionMsg = message(MessageId::tlm_position);
+inline constexpr const MessageDef& kFollowingMsg = message(MessageId::tlm_following);
+inline constexpr const MessageDef& kSlidingXMsg = message(MessageId::tlm_sliding_x);
+inline constexpr const MessageDef& kSlidingYMsg = message(MessageId::tlm_sliding_y);
+inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
+inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
+
+inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
+inline constexpr const FieldDef& kCommandAxis = field(kCommandMsg, "axis");
+inline constexpr const FieldDef& kCommandArg = field(kCommandMsg, "arg");
+inline constexpr const FieldDef& kCommandValue = field(kCommandMsg, "value");
+
+inline constexpr const FieldDef& kAckRequest = field(kAckMsg, "request");
+inline constexpr const FieldDef& kAckCode = field(kAckMsg, "code");
+inline constexpr const FieldDef& kAckResult = field(kAckMsg, "result");
+inline constexpr const FieldDef& kAckState = field(kAckMsg, "state");
+inline constexpr const FieldDef& kAckFault = field(kAckMsg, "fault");
+inline constexpr const FieldDef& kAckDetail = field(kAckMsg, "detail");
+inline constexpr const FieldDef& kAckSequence = field(kAckMsg, "sequence");
+
+inline constexpr const FieldDef& kJogSpeedX = field(kJogMsg, "speed_x");
+inline constexpr const FieldDef& kJogSpeedY = field(kJogMsg, "speed_y");
+
+inline constexpr const FieldDef& kMoveAxis = field(kMoveMsg, "axis");
+inline constexpr const FieldDef& kMoveSpeed = field(kMoveMsg, "speed");
+inline constexpr const FieldDef& kMoveDistance = field(kMoveMsg, "distance");
+
+inline constexpr const FieldDef& kCircleRadius = field(kCircleMsg, "radius");
+inline constexpr const FieldDef& kCircleFeed = field(kCircleMsg, "feed");
+
+inline constexpr const FieldDef& kShaperAxis = field(kShaperMsg, "axis");
+inline constexpr const FieldDef& kShaperType = field(kShaperMsg, "type");
+inline constexpr const FieldDef& kShaperZeta = field(kShaperMsg, "zeta");
+inline constexpr const FieldDef& kShaperFreq = field(kShaperMsg, "freq");
+
+inline constexpr const FieldDef& kParamOp = field(kParamRequestMsg, "op");
+inline constexpr const FieldDef& kParamId = field(kParamRequestMsg, "param");
+inline constexpr const FieldDef& kParamValue = field(kParamRequestMsg, "value");
+inline constexpr const FieldDef& kReplyOp = field(kParamReplyMsg, "op");
+inline constexpr const FieldDef& kReplyResult = field(kParamReplyMsg, "result");
+inline constexpr const FieldDef& kReplyParam = field(kParamReplyMsg, "param");
+inline constexpr const FieldDef& kReplyValue = field(kParamReplyMsg, "value");
+
+inline constexpr const FieldDef& kCaptureOp = field(kCaptureControlMsg, "op");
+inline constexpr const FieldDef& kCaptureFrames = field(kCaptureControlMsg, "frames");
+inline constexpr const FieldDef& kCaptureOffset = field(kCaptureControlMsg, "offset");
+inline constexpr const FieldDef& kStatusState = field(kCaptureStatusMsg, "state");
+inline constexpr const FieldDef& kStatusResult = field(kCaptureStatusMsg, "result");
+inline constexpr const FieldDef& kStatusChannels = field(kCaptureStatusMsg, "channels");
+inline constexpr const FieldDef& kStatusDecimation = field(kCaptureStatusMsg, "decimation");
+inline constexpr const FieldDef& kStatusSamples = field(kCaptureStatusMsg, "samples");
+inline constexpr const FieldDef& kDataSequence = field(kCaptureDataMsg, "sequence");
+inline constexpr const FieldDef& kDataBytes = field(kCaptureDataMsg, "data");
+
+inline constexpr const FieldDef& kFaultReason = field(kFaultEventMsg, "reason");
+inline constexpr const FieldDef& kFaultAxis = field(kFaultEventMsg, "axis");
+inline constexpr const FieldDef& kFaultTick = field(kFaultEventMsg, "tick_low");
+inline constexpr const FieldDef& kFaultValue = field(kFaultEventMsg, "value");
+
+inline constexpr const FieldDef& kHbState = field(kHeartbeatMsg, "state");
+inline constexpr const FieldDef& kHbFault = field(kHeartbeatMsg, "fault");
+inline constexpr const FieldDef& kHbErrors = field(kHeartbeatMsg, "errors");
+inline constexpr const FieldDef& kHbOverruns = field(kHeartbeatMsg, "overruns");
+inline constexpr const FieldDef& kHbTick = field(kHeartbeatMsg, "tick_low");
+
+inline constexpr const FieldDef& kPosX = field(kPositionMsg, "x");
+inline constexpr const FieldDef& kPosY = field(kPositionMsg, "y");
+inline constexpr const FieldDef& kFollowX = field(kFollowingMsg, "x");
+inline constexpr const FieldDef& kFollowY = field(kFollowingMsg, "y");
+inline constexpr const FieldDef& kSlidingS = field(kSlidingXMsg, "s");
+inline constexpr const FieldDef& kSlidingDHat = field(kSlidingXMsg, "d_hat");
+inline constexpr const FieldDef& kOutputDacX = field(kOutputMsg, "dac_x");
+inline constexpr const FieldDef& kOutputDacY = field(kOutputMsg, "dac_y");
+inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
+inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
+inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");
+
+// Field index within its message (COMMAND_ACK.detail names the offending field).
+constexpr std::uint8_t index_of(const MessageDef& m, const FieldDef& f) noexcept {
+  for (std::size_t i = 0; i < m.fields.size(); ++i)
+    if (&m.fields[i] == &f) return static_cast<std::uint8_t>(i);
+  return 0;
+}
+
+}  // namespace tnv::fw::can::fields

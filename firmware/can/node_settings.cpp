@@ -1,0 +1,14 @@
+#include "firmware/can/node_settings.hpp"
+
+#include "firmware/can/capture_channels.hpp"
+
+namespace tnv::fw::can {
+
+NodeSettings default_node_settings() noexcept {
+  NodeSettings s;
+  s.firmware = default_firmware_config();
+  s.capture.channels = kDefaultCaptureChannels;
+  return s;
+}
+
+}  // namespace tnv::fw::can

@@ -1,0 +1,66 @@
+#pragma once
+// Everything a node can be told over CAN and keeps in storage: the
+// firmware config plus the bus, telemetry, motion-default, capture and
+// shaper settings. param_table.hpp maps each tunable to a parameter id.
+#include <array>
+#include <cstdint>
+
+#include "firmware/can/protocol_enums.hpp"
+#include "firmware/shaper/shaper_design.hpp"
+#include "firmware/tick/firmware_config.hpp"
+
+namespace tnv::fw::can {
+
+struct CanSettings {
+  std::uint32_t node_id = 1;          // 1..63; applies at the next start
+  std::uint32_t bitrate_kbit = 1000;  // 125, 250, 500, 1000; applies at the next start
+  std::uint32_t host_timeout_ms = 0;  // stop motion when the host is silent this long; 0 = off
+};
+
+// Period of each cyclic message, ms; 0 = off.
+struct TelemetryPeriods {
+  std::uint32_t heartbeat_ms = 100;
+  std::uint32_t position_ms = 10;
+  std::uint32_t following_ms = 10;
+  std::uint32_t sliding_ms = 0;
+  std::uint32_t output_ms = 0;
+  std::uint32_t contour_ms = 0;
+};
+
+// What MOVE and CIRCLE frames do not carry (CircleSpec / MoveSpec defaults).
+struct MotionDefaults {
+  double circle_ramp_s = 0.1;
+  double circle_dwell_s = 0.5;
+  double move_ramp_s = 0.02;
+  double move_dwell_s = 0.0;
+};
+
+struct CaptureSettings {
+  std::uint32_t channels = 0;  // bit mask of capture_channels.hpp; default set in default_node_settings()
+  CaptureTrigger trigger = CaptureTrigger::motion;
+  std::uint32_t decimation = 1;  // ticks per sample
+};
+
+struct ShaperSettings {
+  ShaperSpec spec{};     // type, mode.freq_hz, mode.zeta (one mode over CAN)
+  bool enabled = false;
+};
+
+struct ForceSensorSettings {
+  double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
+};
+
+struct NodeSettings {
+  FirmwareConfig firmware{};
+  CanSettings can{};
+  TelemetryPeriods telemetry{};
+  MotionDefaults motion{};
+  CaptureSettings capture{};
+  std::array<ShaperSettings, hal::kAxisCount> shaper{};
+  ForceSensorSettings force{};
+};
+
+// default_firmware_config() (the papers' values) and the defaults above.
+NodeSettings default_node_settings() noexcept;
+
+}  // namespace tnv::fw::can

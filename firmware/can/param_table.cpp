@@ -1,0 +1,275 @@
+#include "firmware/can/param_table.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+
+#include "firmware/can/capture_channels.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/shaper/impulse_design.hpp"
+
+namespace tnv::fw::can {
+namespace {
+
+// Accessor pairs for one settings member. REAL: a double; INT: an integer,
+// bool or enum member (the value is integral by check_value()).
+#define TNV_REAL(path)                                                          \
+  [](const NodeSettings& s) noexcept -> double { return s.path; },             \
+      [](NodeSettings& s, double v) noexcept { s.path = v; }, nullptr
+#define TNV_INT(path)                                                                                  \
+  [](const NodeSettings& s) noexcept -> double { return static_cast<double>(static_cast<long long>(s.path)); }, \
+      [](NodeSettings& s, double v) noexcept {                                                          \
+        s.path = static_cast<std::remove_cvref_t<decltype(s.path)>>(static_cast<long long>(v));         \
+      },                                                                                               \
+      nullptr
+#define TNV_RO(expr) [](const NodeSettings&) noexcept -> double { return static_cast<double>(expr); }, nullptr, nullptr
+
+std::size_t param_count() noexcept;
+
+constexpr const char* kOnOff = "0=off 1=on";
+constexpr const char* kControllers = "0=pid 1=dvsc 2=rdvsc";
+constexpr const char* kShaperTypes = "0=zv 1=zvd 2=zvdd 3=ei 4=mzv";
+constexpr double kBig = 1e9;
+
+bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
+
+// One axis' parameters: ax is the axis index, base its id block, p its name prefix.
+#define TNV_AXIS_PARAMS(ax, base, p)                                                                               \
+  {base + 0x00, p "controller", ParamType::enumeration, "", 0, 2, kControllers, Access::read_write, Apply::idle,   \
+   TNV_INT(firmware.axis[ax].controller), "active loop: PID baseline, DVSC+DDC or R-DVSC+DDC"},                    \
+      {base + 0x10, p "sliding.G_position_1_s", ParamType::f32, "1/s", 0, 1e5, "", Access::read_write, Apply::live, \
+       TNV_REAL(firmware.axis[ax].sliding.G_position_1_s), "G = [G_position, G_speed] (S1 eq. 5)"},               \
+      {base + 0x11, p "sliding.G_speed", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live,           \
+       TNV_REAL(firmware.axis[ax].sliding.G_speed), "speed weight of the surface (S1 eq. 5)"},                    \
+      {base + 0x12, p "sliding.eta_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,      \
+       TNV_REAL(firmware.axis[ax].sliding.eta_mm_s), "reaching-law gain eta (S1 eq. 4)"},                         \
+      {base + 0x13, p "sliding.phi_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,      \
+       TNV_REAL(firmware.axis[ax].sliding.phi_mm_s), "boundary layer phi (S1 eq. 4); > eta / (q + 1)"},           \
+      {base + 0x14, p "sliding.q", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                    \
+       TNV_REAL(firmware.axis[ax].sliding.q), "reaching-law pole q (S1 eq. 4), 0 < q < 1"},                       \
+      {base + 0x15, p "sliding.g", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                    \
+       TNV_REAL(firmware.axis[ax].sliding.g), "DDC gain g (S1 eq. 7), 0 < g < 1"},                                \
+      {base + 0x16, p "sliding.gamma", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                \
+       TNV_REAL(firmware.axis[ax].sliding.gamma), "recursive-surface weight gamma (S1 eq. 5); < min(1 - g, q)"},   \
+      {base + 0x17, p "sliding.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,    \
+       TNV_REAL(firmware.axis[ax].sliding.u_max_mm_s), "command clamp of DVSC/R-DVSC"},                           \
+      {base + 0x20, p "pid.kp", ParamType::f32, "1/s", 0, 1e6, "", Access::read_write, Apply::live,                  \
+       TNV_REAL(firmware.axis[ax].pid.kp), "proportional gain"},                                                  \
+      {base + 0x21, p "pid.ki", ParamType::f32, "1/s^2", 0, 1e8, "", Access::read_write, Apply::live,                \
+       TNV_REAL(firmware.axis[ax].pid.ki), "integral gain"},                                                      \
+      {base + 0x22, p "pid.kd", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live,                     \
+       TNV_REAL(firmware.axis[ax].pid.kd), "derivative gain"},                                                    \
+      {base + 0x23, p "pid.derivative_filter_tf_s", ParamType::f32, "s", 0, 1, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.axis[ax].pid.derivative_filter_tf_s), "derivative filter time constant; 0 = off"},       \
+      {base + 0x24, p "pid.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,        \
+       TNV_REAL(firmware.axis[ax].pid.u_max_mm_s), "command clamp of the PID"},                                   \
+      {base + 0x25, p "pid.feedforward", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
+       TNV_INT(firmware.axis[ax].pid.feedforward), "model velocity + acceleration feed-forward"},                 \
+      {base + 0x30, p "model.a11", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
+       TNV_REAL(firmware.axis[ax].model.A(0, 0)), "discrete model A(1,1) (S1 eq. 31)"},                           \
+      {base + 0x31, p "model.a12", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle,              \
+       TNV_REAL(firmware.axis[ax].model.A(0, 1)), "discrete model A(1,2)"},                                       \
+      {base + 0x32, p "model.a21", ParamType::f32, "1/s", -1e3, 1e3, "", Access::read_write, Apply::idle,            \
+       TNV_REAL(firmware.axis[ax].model.A(1, 0)), "discrete model A(2,1)"},                                       \
+      {base + 0x33, p "model.a22", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
+       TNV_REAL(firmware.axis[ax].model.A(1, 1)), "discrete model A(2,2)"},                                       \
+      {base + 0x34, p "model.b1", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
+       TNV_REAL(firmware.axis[ax].model.B(0)), "discrete model B(1) (position per command)"},                     \
+      {base + 0x35, p "model.b2", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,                \
+       TNV_REAL(firmware.axis[ax].model.B(1)), "discrete model B(2) (speed per command)"},                        \
+      {base + 0x40, p "shaper.type", ParamType::enumeration, "", 0, 4, kShaperTypes, Access::read_write, Apply::live, \
+       TNV_INT(shaper[ax].spec.type), "input-shaper family (applied at the next quiet reference)"},              \
+      {base + 0x41, p "shaper.freq_hz", ParamType::f32, "Hz", kShaperMinFreqHz, kShaperMaxFreqHz, "",                \
+       Access::read_write, Apply::live, TNV_REAL(shaper[ax].spec.mode.freq_hz), "mode frequency to cancel"},     \
+      {base + 0x42, p "shaper.zeta", ParamType::f32, "", 0, kShaperMaxZeta, "", Access::read_write, Apply::live,    \
+       TNV_REAL(shaper[ax].spec.mode.zeta), "mode damping ratio"},                                                \
+      {base + 0x43, p "shaper.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::live,       \
+       TNV_INT(shaper[ax].enabled), "input shaper on (takes effect at the next quiet reference)"},               \
+      {base + 0x50, p "limits.position_min_mm", ParamType::f32, "mm", -1e4, 1e4, "", Access::read_write,            \
+       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].position_min_mm), "soft travel limit, low"},            \
+      {base + 0x51, p "limits.position_max_mm", ParamType::f32, "mm", -1e4, 1e4, "", Access::read_write,            \
+       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].position_max_mm), "soft travel limit, high"},           \
+      {base + 0x52, p "limits.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.supervisor.axis[ax].speed_max_mm_s), "measured-speed limit"},                            \
+      {base + 0x53, p "limits.following_floor_mm", ParamType::f32, "mm", 0, 100, "", Access::read_write,            \
+       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].following.floor_mm),                                    \
+       "following-error limit at rest"},                                                                          \
+      {base + 0x54, p "limits.following_lag_s", ParamType::f32, "s", 0, 10, "", Access::read_write, Apply::idle,    \
+       TNV_REAL(firmware.supervisor.axis[ax].following.lag_s), "following-error limit growth per mm/s"},          \
+      {base + 0x60, p "jog.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::idle,    \
+       TNV_REAL(firmware.axis[ax].jog.speed_max_mm_s), "jog speed limit"},                                        \
+      {base + 0x61, p "jog.accel_mm_s2", ParamType::f32, "mm/s^2", 0, 1e6, "", Access::read_write, Apply::idle,     \
+       TNV_REAL(firmware.axis[ax].jog.accel_mm_s2), "jog acceleration"},                                          \
+      {base + 0x62, p "jog.deadman_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::idle,         \
+       TNV_REAL(firmware.axis[ax].jog.deadman_s), "longest silence of the jog stream before the axis stops"},     \
+      {base + 0x70, p "hw.count_mm", ParamType::f32, "mm", 1e-9, 1, "", Access::read_write, Apply::idle,            \
+       TNV_REAL(firmware.axis[ax].count_mm), "encoder count (lead / counts per rev, x4)"},                         \
+  {                                                                                                               \
+    base + 0x71, p "hw.dac_full_scale_mm_s", ParamType::f32, "mm/s", 0, 1e5, "", Access::read_write, Apply::idle,   \
+        TNV_REAL(firmware.axis[ax].dac.full_scale_mm_s), "speed at DAC full scale (+10 V)"                         \
+  }
+
+constexpr ParamDef kParams[] = {
+    {0x0000, "sys.protocol_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+     TNV_RO(kProtocolVersion), "protocol version; the host refuses a node with another"},
+    {0x0001, "sys.param_count", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+     TNV_RO(param_count()), "number of parameters"},
+    {0x0002, "sys.capture_capacity_words", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+     TNV_RO(kCaptureCapacityWords), "capture buffer, 32-bit words"},
+    {0x0010, "can.node_id", ParamType::u32, "", 1, 63, "", Access::read_write, Apply::restart,
+     TNV_INT(can.node_id), "this node's id (identifier bits 5..0)"},
+    {0x0011, "can.bitrate_kbit", ParamType::u32, "kbit/s", 125, 1000, "", Access::read_write, Apply::restart,
+     [](const NodeSettings& s) noexcept -> double { return s.can.bitrate_kbit; },
+     [](NodeSettings& s, double v) noexcept { s.can.bitrate_kbit = static_cast<std::uint32_t>(v); },
+     allowed_bitrate, "bus bit rate: 125, 250, 500 or 1000"},
+    {0x0012, "can.host_timeout_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(can.host_timeout_ms), "controlled stop when no frame came from the host this long while moving; 0 = off"},
+    {0x0020, "tlm.heartbeat_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.heartbeat_ms), "HEARTBEAT period; 0 = off"},
+    {0x0021, "tlm.position_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.position_ms), "TLM_POSITION period; 0 = off"},
+    {0x0022, "tlm.following_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.following_ms), "TLM_FOLLOWING period; 0 = off"},
+    {0x0023, "tlm.sliding_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.sliding_ms), "TLM_SLIDING_X/Y period; 0 = off"},
+    {0x0024, "tlm.output_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.output_ms), "TLM_OUTPUT period; 0 = off"},
+    {0x0025, "tlm.contour_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+     TNV_INT(telemetry.contour_ms), "TLM_CONTOUR period; 0 = off"},
+    {0x0030, "motion.circle_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live,
+     TNV_REAL(motion.circle_ramp_s), "feed ramp at the start and end of a circle"},
+    {0x0031, "motion.circle_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live,
+     TNV_REAL(motion.circle_dwell_s), "servo-on hold before a circle starts"},
+    {0x0032, "motion.move_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live,
+     TNV_REAL(motion.move_ramp_s), "speed ramp of a point-to-point move"},
+    {0x0033, "motion.move_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live,
+     TNV_REAL(motion.move_dwell_s), "servo-on hold before a move starts"},
+    {0x0040, "capture.channels", ParamType::u32, "", 1, kAllCaptureChannels, "", Access::read_write, Apply::live,
+     TNV_INT(capture.channels), "channel bit mask (capture_channels); busy while a capture is armed"},
+    {0x0041, "capture.trigger", ParamType::enumeration, "", 0, 2, "0=immediate 1=motion 2=fault", Access::read_write,
+     Apply::live, TNV_INT(capture.trigger), "when recording starts"},
+    {0x0042, "capture.decimation", ParamType::u32, "tick", 1, 255, "", Access::read_write, Apply::live,
+     TNV_INT(capture.decimation), "ticks per recorded sample"},
+    {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live,
+     TNV_REAL(force.n_per_volt), "force-sensor scale (ADC volts to N)"},
+    {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, 1000, "", Access::read_write, Apply::idle,
+     TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
+    TNV_AXIS_PARAMS(0, 0x0100, "x."),
+    TNV_AXIS_PARAMS(1, 0x0200, "y."),
+};
+
+#undef TNV_AXIS_PARAMS
+#undef TNV_REAL
+#undef TNV_INT
+#undef TNV_RO
+
+constexpr bool sorted_unique() {
+  for (std::size_t i = 1; i < std::size(kParams); ++i)
+    if (kParams[i].id <= kParams[i - 1].id) return false;
+  return true;
+}
+static_assert(sorted_unique(), "parameter ids must be sorted and unique");
+
+std::size_t param_count() noexcept { return std::size(kParams); }
+
+}  // namespace
+
+std::span<const ParamDef> param_table() noexcept { return kParams; }
+
+const ParamDef* find_param(std::uint16_t id) noexcept {
+  std::size_t lo = 0;
+  std::size_t hi = std::size(kParams);
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (kParams[mid].id < id) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < std::size(kParams) && kParams[lo].id == id ? &kParams[lo] : nullptr;
+}
+
+const ParamDef* find_param(const char* name) noexcept {
+  for (const ParamDef& p : kParams)
+    if (std::strcmp(p.name, name) == 0) return &p;
+  return nullptr;
+}
+
+ErrorCode check_value(const ParamDef& p, double value) noexcept {
+  if (p.access == Access::read_only) return ErrorCode::read_only;
+  if (!std::isfinite(value)) return ErrorCode::not_finite;
+  if (value < p.min || value > p.max) return ErrorCode::out_of_range;
+  if (p.type != ParamType::f32 && value != std::floor(value)) return ErrorCode::out_of_range;
+  if (p.allowed != nullptr && !p.allowed(value)) return ErrorCode::out_of_range;
+  return ErrorCode::ok;
+}
+
+std::uint32_t to_wire(const ParamDef& p, double value) noexcept {
+  switch (p.type) {
+    case ParamType::f32: return float_bits(static_cast<float>(value));
+    case ParamType::i32:
+      if (!(value >= -2147483648.0 && value <= 2147483647.0)) return 0;
+      return static_cast<std::uint32_t>(static_cast<std::int32_t>(value));
+    case ParamType::u32:
+    case ParamType::boolean:
+    case ParamType::enumeration:
+      if (!(value >= 0.0 && value <= 4294967295.0)) return 0;
+      return static_cast<std::uint32_t>(value);
+  }
+  return 0;
+}
+
+double from_wire(const ParamDef& p, std::uint32_t raw) noexcept {
+  switch (p.type) {
+    case ParamType::f32: return static_cast<double>(bits_float(raw));
+    case ParamType::i32: return static_cast<double>(static_cast<std::int32_t>(raw));
+    case ParamType::u32:
+    case ParamType::boolean:
+    case ParamType::enumeration: return static_cast<double>(raw);
+  }
+  return 0.0;
+}
+
+namespace {
+
+// The parameter a firmware ConfigError points at: "<axis>.<group>.<field>"
+// with the group from the error's section.
+std::uint16_t blame(const ConfigError& e) noexcept {
+  const char* axis = std::strncmp(e.section, "axis x", 6) == 0 ? "x." : std::strncmp(e.section, "axis y", 6) == 0 ? "y." : "";
+  const char* group = std::strstr(e.section, "sliding-mode") != nullptr ? "sliding."
+                      : std::strstr(e.section, "pid") != nullptr        ? "pid."
+                      : std::strstr(e.section, "jog") != nullptr        ? "jog."
+                                                                        : "";
+  const char* field = e.field;
+  if (std::strcmp(field, "G") == 0) field = "G_position_1_s";
+  if (std::strcmp(field, "model") == 0) {
+    group = "model.";
+    field = "b2";
+  }
+  char name[96] = {};
+  std::size_t n = 0;
+  for (const char* part : {axis, group, field})
+    for (const char* c = part; *c != '\0' && n + 1 < sizeof(name); ++c) name[n++] = *c;
+  const ParamDef* p = find_param(name);
+  return p != nullptr ? p->id : 0;
+}
+
+}  // namespace
+
+SettingsCheck validate(const NodeSettings& s) noexcept {
+  for (const ParamDef& p : kParams) {
+    if (p.access == Access::read_only) continue;
+    if (check_value(p, p.get(s)) != ErrorCode::ok) return {false, p.id, p.name, "outside the parameter's range"};
+  }
+  if (const ConfigError e = validate(s.firmware); !e.ok()) return {false, blame(e), e.section, e.reason};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    if (const ParamCheck c = validate(s.shaper[i].spec); !c.ok)
+      return {false, static_cast<std::uint16_t>(i == 0 ? 0x0141 : 0x0241), i == 0 ? "axis x: shaper" : "axis y: shaper",
+              c.reason};
+    const AxisLimits& lim = s.firmware.supervisor.axis[i];
+    if (!(lim.position_min_mm < lim.position_max_mm))
+      return {false, static_cast<std::uint16_t>(i == 0 ? 0x0150 : 0x0250), i == 0 ? "axis x: limits" : "axis y: limits",
+              "position_min_mm must be below position_max_mm"};
+  }
+  return {};
+}
+
+}  // namespace tnv::fw::can

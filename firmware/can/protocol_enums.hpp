@@ -1,0 +1,145 @@
+#pragma once
+// Enumerations carried in protocol fields. Their numbers are wire values:
+// append, never renumber.
+#include <cstdint>
+
+namespace tnv::fw::can {
+
+inline constexpr std::uint32_t kProtocolVersion = 1;
+
+// Result of every request (COMMAND_ACK.result, PARAM_REPLY.result).
+enum class ErrorCode : std::uint8_t {
+  ok = 0,
+  unknown_id,       // no parameter with this id
+  read_only,        // the parameter cannot be written
+  out_of_range,     // outside the parameter's range, or not one of its values
+  not_finite,       // NaN or infinity
+  busy,             // not allowed while the machine moves (or a transfer is running)
+  bad_length,       // the frame's DLC is not the message's length
+  unknown_command,  // unknown command code, operation or message
+  faulted,          // a fault is latched: clear it first
+  invalid,          // the set as a whole is inconsistent (e.g. phi <= eta/(q+1)); nothing applied
+  storage_error,    // saving or loading the parameters failed
+  storage_corrupt,  // the stored parameter image is damaged or from another version
+  not_ready,        // the request needs something that is not there (no capture, shaper not configured)
+  cause_present,    // clear faults refused: the cause (e.g. e-stop) is still asserted
+  bad_axis,         // axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all)
+};
+
+constexpr const char* to_string(ErrorCode e) noexcept {
+  switch (e) {
+    case ErrorCode::ok: return "ok";
+    case ErrorCode::unknown_id: return "unknown_id";
+    case ErrorCode::read_only: return "read_only";
+    case ErrorCode::out_of_range: return "out_of_range";
+    case ErrorCode::not_finite: return "not_finite";
+    case ErrorCode::busy: return "busy";
+    case ErrorCode::bad_length: return "bad_length";
+    case ErrorCode::unknown_command: return "unknown_command";
+    case ErrorCode::faulted: return "faulted";
+    case ErrorCode::invalid: return "invalid";
+    case ErrorCode::storage_error: return "storage_error";
+    case ErrorCode::storage_corrupt: return "storage_corrupt";
+    case ErrorCode::not_ready: return "not_ready";
+    case ErrorCode::cause_present: return "cause_present";
+    case ErrorCode::bad_axis: return "bad_axis";
+  }
+  return "?";
+}
+inline constexpr std::uint8_t kErrorCodeCount = 15;
+
+// COMMAND.code
+enum class CommandCode : std::uint8_t {
+  enable = 0,         // servo on, hold where the table stands
+  disable,            // servo off (DACs mid-scale, enables dropped)
+  stop,               // controlled stop: decelerate along the path, then hold
+  clear_faults,       // unlatch the fault if its cause is gone
+  zero,               // set the axis' position to COMMAND.value (mm); only when at rest
+  select_controller,  // COMMAND.arg = 0 pid, 1 dvsc, 2 rdvsc; only when at rest
+  shaper_enable,      // COMMAND.arg = 0 off, 1 on
+  save_params,        // write the live parameter set to storage
+  load_params,        // read the stored set and apply it whole; only when at rest
+  restore_defaults,   // the papers' defaults (not saved until save_params); only when at rest
+};
+inline constexpr std::uint8_t kCommandCodeCount = 10;
+
+constexpr const char* to_string(CommandCode c) noexcept {
+  switch (c) {
+    case CommandCode::enable: return "enable";
+    case CommandCode::disable: return "disable";
+    case CommandCode::stop: return "stop";
+    case CommandCode::clear_faults: return "clear_faults";
+    case CommandCode::zero: return "zero";
+    case CommandCode::select_controller: return "select_controller";
+    case CommandCode::shaper_enable: return "shaper_enable";
+    case CommandCode::save_params: return "save_params";
+    case CommandCode::load_params: return "load_params";
+    case CommandCode::restore_defaults: return "restore_defaults";
+  }
+  return "?";
+}
+
+// PARAM_REQUEST.op
+enum class ParamOp : std::uint8_t {
+  get = 0,   // read; the reply carries the value
+  set,       // write one parameter and apply it now (validated with the whole set)
+  stage,     // write into the pending set; nothing applied yet (range-checked now)
+  commit,    // validate the pending set with everything else and apply it whole, between ticks
+  discard,   // drop the pending set
+};
+inline constexpr std::uint8_t kParamOpCount = 5;
+
+// CAPTURE_CONTROL.op
+enum class CaptureOp : std::uint8_t {
+  arm = 0,  // start waiting for the trigger (capture.* parameters say what and when)
+  abort,    // stop recording; keeps what was recorded
+  status,   // reply with CAPTURE_STATUS
+  upload,   // send CAPTURE_CONTROL.frames CAPTURE_DATA frames from byte CAPTURE_CONTROL.offset
+};
+inline constexpr std::uint8_t kCaptureOpCount = 4;
+
+enum class CaptureState : std::uint8_t { idle = 0, armed, recording, done };
+
+enum class CaptureTrigger : std::uint8_t {
+  immediate = 0,  // recording starts at arm
+  motion,         // at the first tick of motion (circle, move or jog); stops when the motion ends
+  fault,          // at the tick a fault latches (post-mortem of what follows)
+};
+
+// HEARTBEAT.errors bits
+enum HeartbeatBit : std::uint16_t {
+  kHbStorageFault = 1u << 0,
+  kHbParamsUnsaved = 1u << 1,
+  kHbTxDropped = 1u << 2,
+  kHbJogDeadman = 1u << 3,
+  kHbCaptureRecording = 1u << 4,
+  kHbCaptureDone = 1u << 5,
+  kHbBoardBusErrors = 1u << 6,
+  kHbLateTicks = 1u << 7,
+  kHbParamsStaged = 1u << 8,
+  kHbShaperX = 1u << 9,
+  kHbShaperY = 1u << 10,
+  kHbHostTimeout = 1u << 11,
+};
+
+struct HeartbeatBitDoc {
+  std::uint16_t mask;
+  const char* name;
+  const char* doc;
+};
+inline constexpr HeartbeatBitDoc kHeartbeatBits[] = {
+    {kHbStorageFault, "storage_fault", "the last save/load (or the load at start-up) failed"},
+    {kHbParamsUnsaved, "params_unsaved", "the live parameters differ from what was last saved or loaded"},
+    {kHbTxDropped, "tx_dropped", "frames were dropped because the transmit queue was full"},
+    {kHbJogDeadman, "jog_deadman", "a jog stopped because its stream went silent"},
+    {kHbCaptureRecording, "capture_recording", "a capture is armed or recording"},
+    {kHbCaptureDone, "capture_done", "a finished capture is ready for upload"},
+    {kHbBoardBusErrors, "board_bus_errors", "the I/O-board register bus reported errors"},
+    {kHbLateTicks, "late_ticks", "ticks with a measured period beyond tolerance"},
+    {kHbParamsStaged, "params_staged", "a pending (staged) parameter set waits for commit"},
+    {kHbShaperX, "shaper_x", "input shaper on, x"},
+    {kHbShaperY, "shaper_y", "input shaper on, y"},
+    {kHbHostTimeout, "host_timeout", "motion was stopped because the host went silent"},
+};
+
+}  // namespace tnv::fw::can

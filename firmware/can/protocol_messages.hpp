@@ -1,0 +1,213 @@
+#pragma once
+// THE protocol table, part 1: every CAN message. The firmware codec, the
+// host codec, docs/tnv.dbc and docs/can-protocol.md all come from here
+// (tools/protogen writes the two documents; a test compares them with the
+// checked-in copies). Identifier = (id << 6) | node (can_id.hpp).
+// Parameters are in param_table.hpp, capture channels in capture_channels.hpp.
+#include <array>
+
+#include "firmware/can/protocol_enums.hpp"
+#include "firmware/can/wire.hpp"
+
+namespace tnv::fw::can {
+
+enum class MessageId : std::uint8_t {
+  estop = 0x00,
+  fault_event = 0x01,
+  command = 0x02,
+  command_ack = 0x03,
+  jog = 0x04,
+  move = 0x05,
+  circle = 0x06,
+  shaper = 0x07,
+  param_request = 0x08,
+  param_reply = 0x09,
+  capture_control = 0x0A,
+  capture_status = 0x0B,
+  heartbeat = 0x0C,
+  tlm_position = 0x10,
+  tlm_following = 0x11,
+  tlm_sliding_x = 0x12,
+  tlm_sliding_y = 0x13,
+  tlm_output = 0x14,
+  tlm_contour = 0x15,
+  capture_data = 0x18,
+};
+
+namespace detail {
+
+inline constexpr const char* kStateValues = "0=disabled 1=dwell 2=moving 3=holding 4=faulted";
+inline constexpr const char* kFaultValues =
+    "0=none 1=bus_error 2=stale_snapshot 3=missed_ticks 4=estop 5=servo_alarm 6=limit_switch "
+    "7=watchdog_tripped 8=following_error 9=position_limit 10=speed_limit 11=non_finite_command 12=remote_estop "
+    "13=encoder_error 14=dac_error 15=late_tick";
+inline constexpr const char* kErrorValues =
+    "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
+    "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis";
+inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
+
+inline constexpr FieldDef kFaultEvent[] = {
+    {"reason", WireType::u8, 0, 1, "", kFaultValues, "the latched fault"},
+    {"axis", WireType::i8, 1, 1, "", "-1=none 0=x 1=y", "axis it concerns"},
+    {"tick_low", WireType::u16, 2, 1, "tick", "", "low 16 bits of the tick count when it latched"},
+    {"value", WireType::f32, 4, 1, "", "", "the offending value (mm, mm/s or ticks, by reason)"},
+};
+inline constexpr FieldDef kCommand[] = {
+    {"code", WireType::u8, 0, 1, "",
+     "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
+     "8=load_params 9=restore_defaults",
+     "what to do"},
+    {"axis", WireType::u8, 1, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
+    {"arg", WireType::u16, 2, 1, "", "", "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on"},
+    {"value", WireType::f32, 4, 1, "mm", "", "zero: the position to assign"},
+};
+inline constexpr FieldDef kCommandAck[] = {
+    {"request", WireType::u8, 0, 1, "", "", "message id of the request acknowledged"},
+    {"code", WireType::u8, 1, 1, "", "", "the request's command code (COMMAND), else 0"},
+    {"result", WireType::u8, 2, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
+    {"state", WireType::u8, 3, 1, "", kStateValues, "motion state after the request"},
+    {"fault", WireType::u8, 4, 1, "", kFaultValues, "latched fault after the request"},
+    {"detail", WireType::u8, 5, 1, "", "", "request-specific: index of the offending field, or 0"},
+    {"sequence", WireType::u16, 6, 1, "", "", "count of requests this node has answered (mod 65536)"},
+};
+inline constexpr FieldDef kJog[] = {
+    {"speed_x", WireType::f32, 0, 1, "mm/s", "", "target speed, x; repeat within jog.deadman_s"},
+    {"speed_y", WireType::f32, 4, 1, "mm/s", "", "target speed, y"},
+};
+inline constexpr FieldDef kMove[] = {
+    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis to move; the other holds"},
+    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"speed", WireType::u16, 2, 0.01, "mm/s", "", "cruise speed"},
+    {"distance", WireType::f32, 4, 1, "mm", "", "signed distance from where the axis stands"},
+};
+inline constexpr FieldDef kCircle[] = {
+    {"radius", WireType::f32, 0, 1, "mm", "", "radius; the table stands on the circle at (+r, 0) from its centre"},
+    {"feed", WireType::f32, 4, 1, "mm/s", "", "path speed"},
+};
+inline constexpr FieldDef kShaper[] = {
+    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis"},
+    {"type", WireType::u8, 1, 1, "", "0=zv 1=zvd 2=zvdd 3=ei 4=mzv", "shaper family"},
+    {"zeta", WireType::u16, 2, 0.0001, "", "", "damping ratio of the mode"},
+    {"freq", WireType::f32, 4, 1, "Hz", "", "mode frequency"},
+};
+inline constexpr FieldDef kParamRequest[] = {
+    {"op", WireType::u8, 0, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "operation"},
+    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"param", WireType::u16, 2, 1, "", "", "parameter id (param_table)"},
+    {"value", WireType::raw32, 4, 1, "", "", "set/stage: the value, f32 or u32/i32 by the parameter's type"},
+};
+inline constexpr FieldDef kParamReply[] = {
+    {"op", WireType::u8, 0, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "the request's operation"},
+    {"result", WireType::u8, 1, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
+    {"param", WireType::u16, 2, 1, "", "", "parameter id; commit/discard: number of staged parameters"},
+    {"value", WireType::raw32, 4, 1, "", "",
+     "value read back after the request (for a refused set: the unchanged value; unknown id: 0)"},
+};
+inline constexpr FieldDef kCaptureControl[] = {
+    {"op", WireType::u8, 0, 1, "", "0=arm 1=abort 2=status 3=upload", "operation"},
+    {"frames", WireType::u8, 1, 1, "", "", "upload: number of CAPTURE_DATA frames to send (1..255)"},
+    {"reserved", WireType::u16, 2, 1, "", "", "0"},
+    {"offset", WireType::u32, 4, 1, "byte", "", "upload: first byte of the capture image to send"},
+};
+inline constexpr FieldDef kCaptureStatus[] = {
+    {"state", WireType::u8, 0, 1, "", "0=idle 1=armed 2=recording 3=done", "capture state"},
+    {"result", WireType::u8, 1, 1, "", kErrorValues, "result of the request that caused this reply"},
+    {"channels", WireType::u8, 2, 1, "", "", "number of channels per sample"},
+    {"decimation", WireType::u8, 3, 1, "tick", "", "ticks per sample"},
+    {"samples", WireType::u32, 4, 1, "", "", "samples recorded; the image is samples x channels x 4 bytes"},
+};
+inline constexpr FieldDef kCaptureData[] = {
+    {"sequence", WireType::u8, 0, 1, "", "", "frame index within the upload block, from 0"},
+    {"data", WireType::bytes7, 1, 1, "", "", "7 bytes of the capture image (little-endian 32-bit values, "
+                                              "sample-major, channels in bit order)"},
+};
+inline constexpr FieldDef kHeartbeat[] = {
+    {"state", WireType::u8, 0, 1, "", kStateValues, "motion state"},
+    {"fault", WireType::u8, 1, 1, "", kFaultValues, "latched fault reason"},
+    {"errors", WireType::u16, 2, 1, "", "", "sub-system bits (protocol_enums.hpp HeartbeatBit)"},
+    {"overruns", WireType::u16, 4, 1, "tick", "", "missed + late ticks since start (saturates)"},
+    {"tick_low", WireType::u16, 6, 1, "tick", "", "low 16 bits of the tick count"},
+};
+inline constexpr FieldDef kTlmPosition[] = {
+    {"x", WireType::i32, 0, 1e-6, "mm", "", "encoder position, x"},
+    {"y", WireType::i32, 4, 1e-6, "mm", "", "encoder position, y"},
+};
+inline constexpr FieldDef kTlmFollowing[] = {
+    {"x", WireType::i32, 0, 1e-6, "mm", "", "reference - position, x"},
+    {"y", WireType::i32, 4, 1e-6, "mm", "", "reference - position, y"},
+};
+inline constexpr FieldDef kTlmSliding[] = {
+    {"s", WireType::f32, 0, 1, "mm/s", "", "sliding variable s_k (S1 eq. 5)"},
+    {"d_hat", WireType::f32, 4, 1, "mm/s", "", "disturbance estimate d^_k (S1 eq. 7)"},
+};
+inline constexpr FieldDef kTlmOutput[] = {
+    {"dac_x", WireType::u16, 0, 1, "", "", "DAC code, x (offset binary)"},
+    {"dac_y", WireType::u16, 2, 1, "", "", "DAC code, y"},
+    {"force", WireType::f32, 4, 1, "N", "", "force sensor (force.n_per_volt x ADC volts)"},
+};
+inline constexpr FieldDef kTlmContour[] = {
+    {"contour", WireType::f32, 0, 1, "um", "", "contour error of the running circle (S1 eq. 33), 0 otherwise"},
+    {"motion_tick", WireType::i32, 4, 1, "tick", "", "ticks since the start of motion, -1 outside motion"},
+};
+
+}  // namespace detail
+
+inline constexpr std::array<MessageDef, 20> kMessages{{
+    {0x00, "estop", Direction::to_node, 0, {},
+     "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
+     "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
+    {0x01, "fault_event", Direction::from_node, 8, detail::kFaultEvent,
+     "Sent once when a fault latches."},
+    {0x02, "command", Direction::to_node, 8, detail::kCommand,
+     "Commands without a motion profile. Answered by COMMAND_ACK. stop is also accepted on node 0."},
+    {0x03, "command_ack", Direction::from_node, 8, detail::kCommandAck,
+     "Answer to COMMAND, JOG, MOVE, CIRCLE and SHAPER: accepted (ok) or why not."},
+    {0x04, "jog", Direction::to_node, 8, detail::kJog,
+     "Operator jog stream (both axes). Starts a jog from holding; each frame must follow the last within "
+     "jog.deadman_s of the jogging axes or they stop. Answered by COMMAND_ACK."},
+    {0x05, "move", Direction::to_node, 8, detail::kMove,
+     "Point-to-point move of one axis with motion.move_ramp_s speed ramps. Answered by COMMAND_ACK."},
+    {0x06, "circle", Direction::to_node, 8, detail::kCircle,
+     "The S1 circle, counter-clockwise from where the table stands, with motion.circle_dwell_s and "
+     "motion.circle_ramp_s. Answered by COMMAND_ACK."},
+    {0x07, "shaper", Direction::to_node, 8, detail::kShaper,
+     "Input-shaper design for one axis (same as staging its shaper.* parameters and committing); applied at "
+     "the next quiet reference. Answered by COMMAND_ACK."},
+    {0x08, "param_request", Direction::to_node, 8, detail::kParamRequest,
+     "Generic parameter access by id. Answered by PARAM_REPLY."},
+    {0x09, "param_reply", Direction::from_node, 8, detail::kParamReply, "Answer to every PARAM_REQUEST."},
+    {0x0A, "capture_control", Direction::to_node, 8, detail::kCaptureControl,
+     "On-target capture. arm/abort/status are answered by CAPTURE_STATUS; upload by CAPTURE_DATA frames, or "
+     "by CAPTURE_STATUS with an error."},
+    {0x0B, "capture_status", Direction::from_node, 8, detail::kCaptureStatus, "Capture state."},
+    {0x0C, "heartbeat", Direction::from_node, 8, detail::kHeartbeat,
+     "Status, every tlm.heartbeat_ms (0 = off)."},
+    {0x10, "tlm_position", Direction::from_node, 8, detail::kTlmPosition,
+     "Telemetry every tlm.position_ms (0 = off)."},
+    {0x11, "tlm_following", Direction::from_node, 8, detail::kTlmFollowing,
+     "Telemetry every tlm.following_ms (0 = off)."},
+    {0x12, "tlm_sliding_x", Direction::from_node, 8, detail::kTlmSliding,
+     "Telemetry every tlm.sliding_ms (0 = off): x controller internals (0 for PID)."},
+    {0x13, "tlm_sliding_y", Direction::from_node, 8, detail::kTlmSliding,
+     "Telemetry every tlm.sliding_ms (0 = off): y controller internals (0 for PID)."},
+    {0x14, "tlm_output", Direction::from_node, 8, detail::kTlmOutput,
+     "Telemetry every tlm.output_ms (0 = off)."},
+    {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
+     "Telemetry every tlm.contour_ms (0 = off)."},
+    {0x18, "capture_data", Direction::from_node, 8, detail::kCaptureData,
+     "One segment of a capture upload. Lowest priority: never delays control traffic."},
+}};
+
+constexpr const MessageDef* find_message(std::uint8_t id) noexcept {
+  for (const MessageDef& m : kMessages)
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+consteval const MessageDef& message(MessageId id) {
+  for (const MessageDef& m : kMessages)
+    if (m.id == static_cast<std::uint8_t>(id)) return m;
+  throw "no such message";
+}
+
+}  // namespace tnv::fw::can

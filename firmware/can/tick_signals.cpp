@@ -1,0 +1,34 @@
+#include "firmware/can/tick_signals.hpp"
+
+#include <cmath>
+
+#include "hal/io_board_registers.hpp"
+
+namespace tnv::fw::can {
+namespace {
+constexpr double kAdcFullScaleV = 10.0;  // docs/register-map.md: ADC_FORCE 0-10 V
+}
+
+double contour_um(const TickTask& task, const TickRecord& r) noexcept {
+  if (r.motion_tick < 0 || !task.circle_motion()) return 0.0;
+  const double cx = task.circle_centre_mm(hal::Axis::x);
+  const double cy = task.circle_centre_mm(hal::Axis::y);
+  const AxisTickRecord& x = r.axis[0];
+  const AxisTickRecord& y = r.axis[1];
+  // S1 eq. (33); with the centre at the origin exactly tnv-hil's contour_error_mm().
+  const double e_mm = std::fabs(std::hypot(x.reference_mm - cx, y.reference_mm - cy) -
+                                std::hypot(x.position_mm - cx, y.position_mm - cy));
+  return e_mm * 1000.0;
+}
+
+double force_n(const TickRecord& r, const NodeSettings& settings) noexcept {
+  constexpr double kMaxCode = static_cast<double>((1u << hal::regs::kAdcBits) - 1u);
+  return settings.force.n_per_volt * static_cast<double>(r.force_code) * kAdcFullScaleV / kMaxCode;
+}
+
+TickSignals tick_signals(const TickTask& task, const NodeSettings& settings) noexcept {
+  const TickRecord& r = task.last_record();
+  return {contour_um(task, r), force_n(r, settings)};
+}
+
+}  // namespace tnv::fw::can

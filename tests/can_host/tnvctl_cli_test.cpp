@@ -1,0 +1,192 @@
+// tnvctl as a script sees it: exit codes (0 ok, 1 refused / failed, 2 bad
+// input with nothing sent), one-line errors naming what is wrong, JSON,
+// scripts on one emulated session, parameters persisting through storage.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tests/can_host/tnvctl_runner.hpp"
+
+namespace tnv {
+namespace {
+
+using test::ToolRun;
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::string script_args(const std::filesystem::path& script) {
+  std::string args = "--emu script ";
+  return args.append(script.string());
+}
+
+TEST(TnvctlCli, ChoosingNoNodeOrBothTransportsIsBadInput) {
+  const auto state = test::state_dir("transport");
+  ToolRun r = test::tnvctl(state, "params list");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "--iface IFACE")) << r.err;
+  EXPECT_TRUE(has(r.err, "--emu")) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  r = test::tnvctl(state, "--iface can0 --emu status");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "excludes")) << r.err;
+  EXPECT_EQ(test::tnvctl(state, "--emu-seed 3 status").exit_code, 2) << "--emu-seed needs --emu";
+  EXPECT_EQ(test::tnvctl(state, "--emu --node 64 status").exit_code, 2);
+  EXPECT_EQ(test::tnvctl(state, "").exit_code, 2);
+  r = test::tnvctl(state, "--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(has(r.out, "Exit codes: 0 ok; 1 refused")) << "documented in --help";
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, AMissingInterfaceIsADeviceErrorNamingIt) {
+  const auto state = test::state_dir("iface");
+  const ToolRun r = test::tnvctl(state, "--iface tnvnosuchcan9 status");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "tnvnosuchcan9: no such network interface")) << r.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, BadParameterNamesAndValuesAreRefusedBeforeAnythingIsSent) {
+  const auto state = test::state_dir("badparam");
+  ToolRun r = test::tnvctl(state, "--emu params set x.sliding.gama=0.2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "no parameter 'x.sliding.gama' (did you mean x.sliding.gamma?)")) << r.err;
+  r = test::tnvctl(state, "--emu params set x.sliding.gamma=2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "x.sliding.gamma: 2 is outside 0 .. 1")) << r.err;
+  r = test::tnvctl(state, "--emu params set x.sliding.gamma=nan");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "not a finite number")) << r.err;
+  r = test::tnvctl(state, "--emu params set x.controller=fuzzy");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "{pid, dvsc, rdvsc}")) << r.err;
+  r = test::tnvctl(state, "--emu capture --channels pos_x,bogus --circle");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "unknown capture channel 'bogus'")) << r.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, RefusalsByTheNodeExitWith1NamingTheErrorCodeAndTheParameter) {
+  const auto state = test::state_dir("refused");
+  // In range, but the set as a whole is invalid: gamma < min(1 - g, q) (S1 Theorem 5).
+  ToolRun r = test::tnvctl(state, "--emu params set x.sliding.gamma=0.9");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "refused 'commit': invalid")) << r.err;
+  EXPECT_TRUE(has(r.err, "x.sliding.gamma")) << r.err;
+  // An idle-only parameter while the circle runs: busy.
+  const auto script = test::write_file(state / "busy.tnvctl", "circle --no-wait\nparams set x.controller=pid\n");
+  r = test::tnvctl(state, script_args(script));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "busy")) << r.err;
+  EXPECT_TRUE(has(r.err, "x.controller can only change at rest")) << r.err;
+  EXPECT_TRUE(has(r.err, "busy.tnvctl:2")) << "the failing line: " << r.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, AScriptIsParsedWholeBeforeItsFirstLineRuns) {
+  const auto state = test::state_dir("script");
+  const auto storage = state / "node.params";
+  const auto script = test::write_file(state / "bad.tnvctl", "params save\n\n# fine so far\nparams sett x=1\n");
+  std::string args = "--emu --emu-storage ";
+  const ToolRun r = test::tnvctl(state, args.append(storage.string()).append(" script ").append(script.string()));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "bad.tnvctl:4:")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(storage)) << "line 1 must not have run";
+  // Values are checked before the first line too, not only the syntax.
+  const auto bad_value = test::write_file(state / "value.tnvctl", "params save\nparams set x.sliding.gamma=2\n");
+  std::string value_args = "--emu --emu-storage ";
+  const ToolRun v = test::tnvctl(state, value_args.append(storage.string()).append(" script ").append(bad_value.string()));
+  EXPECT_EQ(v.exit_code, 2);
+  EXPECT_TRUE(has(v.err, "value.tnvctl:2: x.sliding.gamma: 2 is outside 0 .. 1")) << v.err;
+  EXPECT_FALSE(std::filesystem::exists(storage)) << "line 1 must not have run";
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, SavedParametersSurviveTheProcessAndLoadRestoresThem) {
+  const auto state = test::state_dir("storage");
+  const auto script = test::write_file(state / "save.tnvctl",
+                                       "params set x.sliding.eta_mm_s=1.5 y.pid.kp=400\nparams save\n"
+                                       "params set x.sliding.eta_mm_s=2\n");
+  ToolRun r = test::tnvctl(state, script_args(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(state / "tnvctl" / "emu-node.params")) << "default path under XDG_STATE_HOME";
+  r = test::tnvctl(state, "--emu --json params get x.sliding.eta_mm_s y.pid.kp");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["params"][0]["value"], 1.5) << "the saved value, not the unsaved 2";
+  EXPECT_EQ(j["params"][1]["value"], 400.0);
+  const auto reload = test::write_file(state / "reload.tnvctl",
+                                       "params set x.sliding.eta_mm_s=0.5\nparams load\nparams get x.sliding.eta_mm_s\n");
+  r = test::tnvctl(state, script_args(reload));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "x.sliding.eta_mm_s = 1.5 mm/s")) << r.out;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, JsonErrorsCarryTheExitCodeAndTheMessage) {
+  const auto state = test::state_dir("json");
+  const ToolRun r = test::tnvctl(state, "--emu --json params set x.sliding.gamma=2");
+  EXPECT_EQ(r.exit_code, 2);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["ok"], false);
+  EXPECT_EQ(j["exit_code"], 2);
+  EXPECT_TRUE(has(j["error"].get<std::string>(), "x.sliding.gamma")) << j.dump();
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, MotionsRunAndReportTheirEndState) {
+  const auto state = test::state_dir("motion");
+  const auto script = test::write_file(state / "motion.tnvctl",
+                                       "enable\nmove --axis x --distance 1 --speed 5\n"
+                                       "jog --axis y --speed -2 --duration 0.2\nestop\nclear-faults\n");
+  std::string args = "--emu --json script ";
+  const ToolRun r = test::tnvctl(state, args.append(script.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::vector<nlohmann::json> out;
+  while (std::getline(lines, line)) out.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(out.size(), 6u) << r.out;  // five commands and the script
+  EXPECT_EQ(out[1]["status"]["state"], "holding");
+  EXPECT_EQ(out[2]["status"]["state"], "holding");
+  EXPECT_GE(out[2]["frames"].get<int>(), 4) << "0.2 s of JOG frames every 50 ms, and the stop";
+  EXPECT_EQ(out[3]["status"]["state"], "faulted");
+  EXPECT_EQ(out[4]["state"], "disabled");
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, PlotComparesSavedCapturesWithoutANode) {
+  const auto state = test::state_dir("plot");
+  std::string csv = "t_s,pos_x_mm,pos_y_mm,ref_x_mm,ref_y_mm,contour_um,motion_tick\n";
+  csv += "0.000,6.000000,0.000000,6.000000,0.000000,0,-1\n";
+  csv += "0.001,6.000000,0.000100,6.000000,0.000120,0.5,0\n";
+  csv += "0.002,5.999999,0.000300,6.000000,0.000320,1.5,1\n";
+  const auto a = test::write_file(state / "a.csv", csv);
+  const auto b = test::write_file(state / "b.csv", csv);
+  std::string args = "plot --csv ";
+  args.append(a.string()).append(" --csv ").append(b.string()).append(" --label first --label second --out ");
+  args.append((state / "cmp.svg").string());
+  ToolRun r = test::tnvctl(state, args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "first                    max 1.5000 um   mean 1.0000 um   std 0.5000 um")) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(state / "cmp.svg"));
+  const auto bad = test::write_file(state / "bad.csv", "t_s,pos_x_mm\n0,1\n0.001\n");
+  std::string bad_args = "plot --csv ";
+  r = test::tnvctl(state, bad_args.append(bad.string()).append(" --out x.svg"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "bad.csv: line 3: 1 values, the header has 2")) << r.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlCli, DumpDbcNeedsNoNode) {
+  const auto state = test::state_dir("dbc");
+  const ToolRun r = test::tnvctl(state, "dump-dbc");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "BO_ ")) << r.out.substr(0, 200);
+  EXPECT_TRUE(has(r.out, "PARAM_REPLY")) << r.out.substr(0, 200);
+  std::filesystem::remove_all(state);
+}
+
+}  // namespace
+}  // namespace tnv

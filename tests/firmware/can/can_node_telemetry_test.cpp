@@ -1,0 +1,153 @@
+// Heartbeat and cyclic telemetry: each message at its own period, counted
+// over many ticks; FAULT_EVENT exactly once per latched fault.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "firmware/can/telemetry_scheduler.hpp"
+#include "tests/firmware/can/node_bench.hpp"
+
+namespace tnv::test {
+namespace {
+
+using fw::can::MessageId;
+
+TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount) {
+  fw::can::TelemetryScheduler s;
+  fw::can::TelemetryPeriods p{100, 10, 0, 3, 0, 1};
+  std::map<int, int> sent;
+  for (int k = 0; k < 1000; ++k) {
+    const std::uint32_t due = s.advance(p, 1);
+    for (int bit = 0; bit < 6; ++bit) sent[bit] += (due >> bit) & 1u;
+  }
+  EXPECT_EQ(sent[0], 10);
+  EXPECT_EQ(sent[1], 100);
+  EXPECT_EQ(sent[2], 0) << "0 = off";
+  EXPECT_EQ(sent[3], 333);
+  EXPECT_EQ(sent[5], 1000);
+  p.heartbeat_ms = 50;
+  int hb = 0;
+  for (int k = 0; k < 49; ++k) hb += s.advance(p, 1) & 1u;
+  EXPECT_EQ(hb, 0) << "the first frame after a change comes one new period later";
+  EXPECT_EQ(s.advance(p, 1) & 1u, 1u);
+}
+
+TEST(CanNodeTelemetry, FrameCountsOverTwoSecondsMatchThePeriods) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry = {100, 10, 20, 50, 7, 0};
+  NodeBench b(s);
+  b.port.drain();
+  constexpr int kTicks = 2000;
+  std::map<MessageId, int> count;
+  for (int k = 0; k < kTicks; ++k) {
+    b.step();
+    for (const hal::CanFrame& f : b.port.drain()) ++count[static_cast<MessageId>(fw::can::message_of(f.id))];
+  }
+  EXPECT_EQ(count[MessageId::heartbeat], kTicks / 100);
+  EXPECT_EQ(count[MessageId::tlm_position], kTicks / 10);
+  EXPECT_EQ(count[MessageId::tlm_following], kTicks / 20);
+  EXPECT_EQ(count[MessageId::tlm_sliding_x], kTicks / 50);
+  EXPECT_EQ(count[MessageId::tlm_sliding_y], kTicks / 50);
+  EXPECT_EQ(count[MessageId::tlm_output], kTicks / 7);
+  EXPECT_EQ(count[MessageId::tlm_contour], 0) << "off";
+  EXPECT_EQ(b.node->counters().tx_dropped, 0u);
+}
+
+TEST(CanNodeTelemetry, APeriodSetOverCanTakesEffect) {
+  NodeBench b;
+  b.reply(param_request(kNode, fw::can::ParamOp::set, fw::can::find_param("tlm.heartbeat_ms")->id, 5));
+  int hb = 0;
+  for (int k = 0; k < 100; ++k) {
+    b.step();
+    hb += static_cast<int>(only(b.port.drain(), MessageId::heartbeat).size());
+  }
+  EXPECT_EQ(hb, 20);
+}
+
+TEST(CanNodeTelemetry, HeartbeatCarriesStateFaultAndTick) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry.heartbeat_ms = 10;
+  NodeBench b(s);
+  b.reply(command(kNode, fw::can::CommandCode::enable));
+  std::vector<hal::CanFrame> hb;
+  std::uint64_t sent_at = 0;
+  for (int k = 0; k < 10 && hb.empty(); ++k) {
+    b.step();
+    hb = only(b.port.drain(), MessageId::heartbeat);
+    sent_at = b.task.last_record().tick;
+  }
+  ASSERT_EQ(hb.size(), 1u);
+  EXPECT_EQ(sent_at % 10, 0u) << "every 10th tick";
+  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "state"), static_cast<std::uint32_t>(fw::MotionState::holding));
+  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "fault"), 0u);
+  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "tick_low"), sent_at & 0xFFFFu);
+  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "errors"), 0u);
+}
+
+TEST(CanNodeTelemetry, PositionTelemetryIsTheEncoderPositionInNanometres) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry.position_ms = 1;
+  NodeBench b(s);
+  b.board.counts = {480, 0xFFFF - 23};  // +0.2 mm and -24 counts (16-bit wrap)
+  b.step();
+  const std::vector<hal::CanFrame> pos = only(b.port.drain(), MessageId::tlm_position);
+  ASSERT_EQ(pos.size(), 1u);
+  EXPECT_NEAR(value_of(pos[0], MessageId::tlm_position, "x"), 6.2, 1e-6);
+  EXPECT_NEAR(value_of(pos[0], MessageId::tlm_position, "y"), -24 * 10.0 / 24000.0, 1e-6);
+}
+
+TEST(CanNodeTelemetry, FaultEventIsSentOnceAndAgainOnlyAfterAClearAndANewFault) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry.heartbeat_ms = 10;
+  NodeBench b(s);
+  b.reply(command(kNode, fw::can::CommandCode::enable));
+  b.board.in.estop = true;  // the e-stop input
+  int events = 0;
+  for (int k = 0; k < 200; ++k) {
+    b.step();
+    for (const hal::CanFrame& f : only(b.port.drain(), MessageId::fault_event)) {
+      ++events;
+      EXPECT_EQ(raw_of(f, MessageId::fault_event, "reason"), static_cast<std::uint32_t>(fw::FaultReason::estop));
+      EXPECT_EQ(raw_of(f, MessageId::fault_event, "tick_low"), b.task.fault().tick & 0xFFFFu);
+    }
+  }
+  EXPECT_EQ(events, 1);
+  const hal::CanFrame refused = b.reply(command(kNode, fw::can::CommandCode::clear_faults));
+  EXPECT_EQ(raw_of(refused, MessageId::command_ack, "result"), static_cast<std::uint32_t>(fw::can::ErrorCode::cause_present));
+  b.board.in.estop = false;
+  b.step();
+  b.port.drain();
+  const hal::CanFrame cleared = b.reply(command(kNode, fw::can::CommandCode::clear_faults));
+  EXPECT_EQ(raw_of(cleared, MessageId::command_ack, "result"), 0u);
+  EXPECT_EQ(raw_of(cleared, MessageId::command_ack, "fault"), 0u);
+  b.step(50);
+  EXPECT_TRUE(only(b.port.drain(), MessageId::fault_event).empty());
+  const std::vector<hal::CanFrame> out = b.request(frame_to(MessageId::estop, kNode));
+  EXPECT_EQ(only(out, MessageId::fault_event).size(), 1u) << "a new fault: a new event";
+  EXPECT_EQ(b.task.fault().reason, fw::FaultReason::remote_estop);
+  b.step(50);
+  EXPECT_TRUE(only(b.port.drain(), MessageId::fault_event).empty());
+}
+
+TEST(CanNodeTelemetry, AFullTransmitQueueDropsTelemetryButKeepsRepliesInOrder) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry = {1, 1, 1, 0, 0, 0};
+  NodeBench b(s);
+  b.port.tx_capacity = 2;  // the bus takes two frames until the host drains it
+  b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0000));
+  b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0001));
+  b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0002));
+  b.step();
+  EXPECT_GT(b.node->counters().tx_dropped, 0u) << "telemetry had no room";
+  std::vector<std::uint32_t> params;
+  for (int k = 0; k < 5; ++k) {
+    for (const hal::CanFrame& f : only(b.port.drain(), MessageId::param_reply))
+      params.push_back(raw_of(f, MessageId::param_reply, "param"));
+    b.node->service();
+  }
+  EXPECT_EQ(params, (std::vector<std::uint32_t>{0, 1, 2})) << "every reply, in order";
+  EXPECT_NE(b.node->heartbeat_errors() & fw::can::kHbTxDropped, 0);
+}
+
+}  // namespace
+}  // namespace tnv::test

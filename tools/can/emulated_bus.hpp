@@ -1,0 +1,82 @@
+#pragma once
+// The in-process emulated controller behind a virtual CAN bus: the real
+// firmware (fw::TickTask + fw::can::CanNode) on the emulated board and
+// table (hil::HilRig), with its parameters loaded from a file at start as
+// a real node loads them from flash. Time is simulated: waiting for a
+// frame runs ticks (machine.advance_to_next_tick, task.tick, node.service)
+// until the frame arrives or the simulated timeout passes; the wire
+// between host and node is a VirtualCanBus at the node's bit rate.
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "emulator/scenario.hpp"
+#include "firmware/can/can_node.hpp"
+#include "tools/can/file_param_storage.hpp"
+#include "tools/can/host_bus.hpp"
+#include "tools/can/virtual_can_bus.hpp"
+#include "tools/hil/hil_rig.hpp"
+
+namespace tnv::can_host {
+
+struct EmulatedNodeOptions {
+  std::string scenario = "no-cut";  // built-in name or TOML file
+  int seed = 0;                     // hil::seeded(); 0 = the scenario as written (tnv-hil circle's default)
+  std::string storage_path;         // "" = default_emulated_storage_path()
+  std::uint8_t node = 1;            // the id of a node that has nothing stored yet
+};
+
+class EmulatedBus final : public HostBus {
+ public:
+  // nullptr with a one-line `error` when the scenario or the stored
+  // parameters cannot make a node (a damaged image is not an error: the
+  // node starts with defaults and reports it, like a real one; see
+  // startup_note()).
+  static std::unique_ptr<EmulatedBus> create(const EmulatedNodeOptions& options, std::string& error);
+  ~EmulatedBus() override;
+
+  void send(const hal::CanFrame& frame) override;
+  std::optional<hal::CanFrame> receive(Micros timeout) override;
+  Micros now() override;
+  std::string describe() const override;
+  BusCounters counters() const override;
+
+  // One tick of the node: advance the machine, deliver what the wire
+  // finished, tick, service.
+  void step();
+  // Simulated time follows the wall clock while on (for `monitor`).
+  void set_realtime(bool on);
+  // Frames the node sends pass through `keep` before the wire; false drops
+  // one (to test recovery from lost frames). Empty = keep all.
+  void set_node_tx_filter(std::function<bool(const hal::CanFrame&)> keep) { node_tx_filter_ = std::move(keep); }
+
+  std::uint8_t node_id() const noexcept;
+  const emu::Scenario& scenario() const noexcept { return scenario_; }
+  const std::string& storage_path() const noexcept { return storage_.path(); }
+  // What happened to the stored parameters at start ("" when they loaded or none were stored).
+  const std::string& startup_note() const noexcept { return startup_note_; }
+  fw::can::CanNode& node() noexcept { return *node_; }
+  const fw::can::CanNode& node() const noexcept { return *node_; }
+  hil::HilRig& rig() noexcept { return *rig_; }
+  const VirtualCanBus& wire() const noexcept { return wire_; }
+
+ private:
+  class NodePort;
+  EmulatedBus(const emu::Scenario& scenario, const std::string& storage_path, std::uint32_t bitrate_bit_s);
+
+  emu::Scenario scenario_;
+  int seed_ = 0;
+  FileParamStorage storage_;
+  VirtualCanBus wire_;
+  std::unique_ptr<NodePort> port_;
+  std::unique_ptr<hil::HilRig> rig_;
+  std::unique_ptr<fw::can::CanNode> node_;
+  std::function<bool(const hal::CanFrame&)> node_tx_filter_;
+  std::string startup_note_;
+  BusCounters host_counters_{};
+  bool realtime_ = false;
+  Micros realtime_sim_origin_{0};
+  std::chrono::steady_clock::time_point realtime_wall_origin_{};
+};
+
+}  // namespace tnv::can_host

@@ -1,0 +1,298 @@
+#include "tools/can/node_client.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "firmware/can/can_id.hpp"
+#include "tools/can/param_text.hpp"
+
+namespace tnv::can_host {
+
+namespace {
+
+using can::MessageId;
+
+std::string ms_text(Micros t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f ms", static_cast<double>(t.count()) / 1000.0);
+  return buf;
+}
+
+bool in_motion(fw::MotionState s) { return s == fw::MotionState::dwell || s == fw::MotionState::moving; }
+
+}  // namespace
+
+NodeClient::NodeClient(HostBus& bus, std::uint8_t node, ClientOptions options)
+    : bus_(bus), node_(node), options_(options) {}
+
+std::optional<can::MessageId> NodeClient::ours(const hal::CanFrame& frame) const {
+  const can::MessageDef* m = can::classify(frame);
+  if (m == nullptr || m->direction != can::Direction::from_node || can::node_of(frame.id) != node_) return std::nullopt;
+  if (frame.dlc != m->dlc) return std::nullopt;  // a malformed frame is nobody's reply
+  return static_cast<MessageId>(m->id);
+}
+
+void NodeClient::dispatch(const hal::CanFrame& frame, can::MessageId id) {
+  if (id == MessageId::heartbeat) heartbeat_ = read_heartbeat(frame);
+  if (id == MessageId::fault_event) fault_event_ = read_fault_event(frame);
+  if (listener_) listener_(frame, id);
+}
+
+std::optional<hal::CanFrame> NodeClient::wait_for(const Match& match, Micros deadline) {
+  for (;;) {
+    const Micros left = deadline - bus_.now();
+    if (left <= Micros{0}) return std::nullopt;
+    const std::optional<hal::CanFrame> frame = bus_.receive(left);
+    if (!frame) continue;  // a signal or the deadline: the loop head decides
+    const std::optional<MessageId> id = ours(*frame);
+    if (!id) continue;
+    dispatch(*frame, *id);
+    if (match(*frame, *id)) return frame;
+  }
+}
+
+std::string NodeClient::timeout_text(const std::string& what, can::MessageId reply, Micros waited) const {
+  std::string out = "no ";
+  out.append(message_label(reply)).append(" from node ").append(std::to_string(node_));
+  out.append(" on ").append(bus_.describe()).append(" within ").append(ms_text(waited));
+  out.append(" to '").append(what).append("'");
+  return out;
+}
+
+hal::CanFrame NodeClient::transact(const hal::CanFrame& request, can::MessageId reply, const Match& match,
+                                   const std::string& what) {
+  bus_.send(request);
+  const Micros deadline = bus_.now() + options_.timeout;
+  const auto frame = wait_for([&](const hal::CanFrame& f, MessageId id) { return id == reply && match(f, id); },
+                              deadline);
+  if (!frame) throw RequestError(RequestError::Kind::timeout, timeout_text(what, reply, options_.timeout));
+  return *frame;
+}
+
+// --- parameters
+
+ParamReply NodeClient::param_op(can::ParamOp op, const can::ParamDef* p, std::uint32_t raw, const std::string& what) {
+  const std::uint16_t id = p != nullptr ? p->id : 0;
+  const hal::CanFrame f = transact(param_request(node_, op, id, raw), MessageId::param_reply,
+                                   [&](const hal::CanFrame& frame, MessageId) {
+                                     const ParamReply r = read_param_reply(frame);
+                                     return r.op == op && (p == nullptr || r.param == id);
+                                   },
+                                   what);
+  const ParamReply r = read_param_reply(f);
+  if (r.result != can::ErrorCode::ok) {
+    std::string message = "node ";
+    message.append(std::to_string(node_)).append(" refused '").append(what).append("': ");
+    message += can::to_string(r.result);
+    if (p != nullptr) {
+      message.append(" (").append(p->name);
+      if (r.result == can::ErrorCode::out_of_range) message.append(" range ").append(range_text(*p));
+      if (r.result == can::ErrorCode::busy)
+        message.append(" can only change at rest (apply: ").append(can::to_string(p->apply)).append(")");
+      if (r.result != can::ErrorCode::unknown_id)
+        message.append(", value now ").append(format_param_value(*p, can::from_wire(*p, r.value_raw)));
+      message += ")";
+    }
+    throw RequestError(RequestError::Kind::refused, message, r.result);
+  }
+  return r;
+}
+
+double NodeClient::get(const can::ParamDef& p) {
+  const ParamReply r = param_op(can::ParamOp::get, &p, 0, std::string("get ") + p.name);
+  return can::from_wire(p, r.value_raw);
+}
+
+double NodeClient::set(const can::ParamDef& p, double value) {
+  std::string what = "set ";
+  what.append(p.name).append(" = ").append(format_param_value(p, value));
+  const ParamReply r = param_op(can::ParamOp::set, &p, can::to_wire(p, value), what);
+  return can::from_wire(p, r.value_raw);
+}
+
+double NodeClient::stage(const can::ParamDef& p, double value) {
+  std::string what = "stage ";
+  what.append(p.name).append(" = ").append(format_param_value(p, value));
+  const ParamReply r = param_op(can::ParamOp::stage, &p, can::to_wire(p, value), what);
+  return can::from_wire(p, r.value_raw);
+}
+
+std::uint16_t NodeClient::commit() { return param_op(can::ParamOp::commit, nullptr, 0, "commit").param; }
+
+void NodeClient::discard() { param_op(can::ParamOp::discard, nullptr, 0, "discard"); }
+
+// --- commands
+
+CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t code, const std::string& what) {
+  const std::uint8_t request_id = can::message_of(request.id);
+  const hal::CanFrame f = transact(request, MessageId::command_ack,
+                                   [&](const hal::CanFrame& frame, MessageId) {
+                                     const CommandAck a = read_command_ack(frame);
+                                     return a.request == request_id && a.code == code;
+                                   },
+                                   what);
+  const CommandAck a = read_command_ack(f);
+  if (a.result != can::ErrorCode::ok) {
+    std::string message = "node ";
+    message.append(std::to_string(node_)).append(" refused '").append(what).append("': ");
+    message.append(can::to_string(a.result)).append(" (state ").append(fw::to_string(a.state));
+    if (a.fault != fw::FaultReason::none) message.append(", fault ").append(fw::to_string(a.fault));
+    if (a.detail != 0) message.append(", field ").append(std::to_string(a.detail));
+    message += ")";
+    throw RequestError(RequestError::Kind::refused, message, a.result);
+  }
+  return a;
+}
+
+CommandAck NodeClient::command(can::CommandCode code, std::uint8_t axis, std::uint16_t arg, double value) {
+  return checked(command_request(node_, code, axis, arg, value), static_cast<std::uint8_t>(code), can::to_string(code));
+}
+
+CommandAck NodeClient::move(std::uint8_t axis, double distance_mm, double speed_mm_s) {
+  char what[96];
+  std::snprintf(what, sizeof what, "move %s by %g mm at %g mm/s", axis == 0 ? "x" : "y", distance_mm, speed_mm_s);
+  return checked(move_request(node_, axis, distance_mm, speed_mm_s), 0, what);
+}
+
+CommandAck NodeClient::circle(double radius_mm, double feed_mm_s) {
+  char what[96];
+  std::snprintf(what, sizeof what, "circle radius %g mm at %g mm/s", radius_mm, feed_mm_s);
+  return checked(circle_request(node_, radius_mm, feed_mm_s), 0, what);
+}
+
+CommandAck NodeClient::jog(double speed_x_mm_s, double speed_y_mm_s) {
+  char what[96];
+  std::snprintf(what, sizeof what, "jog x %g mm/s, y %g mm/s", speed_x_mm_s, speed_y_mm_s);
+  return checked(jog_request(node_, speed_x_mm_s, speed_y_mm_s), 0, what);
+}
+
+CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {
+  char what[96];
+  std::snprintf(what, sizeof what, "shaper %s type %u at %g Hz, zeta %g", axis == 0 ? "x" : "y", type, freq_hz, zeta);
+  return checked(shaper_request(node_, axis, type, freq_hz, zeta), 0, what);
+}
+
+void NodeClient::estop(bool broadcast) { bus_.send(estop_request(broadcast ? can::kBroadcastNode : node_)); }
+
+// --- status
+
+Heartbeat NodeClient::wait_heartbeat(Micros timeout) {
+  const auto f = wait_for([](const hal::CanFrame&, MessageId id) { return id == MessageId::heartbeat; },
+                          bus_.now() + timeout);
+  if (!f) {
+    std::string message = timeout_text("wait for status", MessageId::heartbeat, timeout);
+    message += " (is tlm.heartbeat_ms 0?)";
+    throw RequestError(RequestError::Kind::timeout, message);
+  }
+  return read_heartbeat(*f);
+}
+
+Heartbeat NodeClient::wait_at_rest(Micros timeout) {
+  const auto f = wait_for(
+      [](const hal::CanFrame& frame, MessageId id) {
+        return id == MessageId::heartbeat && !in_motion(read_heartbeat(frame).state);
+      },
+      bus_.now() + timeout);
+  if (!f) {
+    std::string message = "node ";
+    message.append(std::to_string(node_)).append(" still moving after ").append(ms_text(timeout));
+    if (!heartbeat_) message += " (no HEARTBEAT seen: is tlm.heartbeat_ms 0?)";
+    throw RequestError(RequestError::Kind::timeout, message);
+  }
+  return read_heartbeat(*f);
+}
+
+void NodeClient::pump(Micros duration) {
+  wait_for([](const hal::CanFrame&, MessageId) { return false; }, bus_.now() + duration);
+}
+
+// --- capture
+
+CaptureStatus NodeClient::capture(can::CaptureOp op) {
+  const char* names[] = {"capture arm", "capture abort", "capture status", "capture upload"};
+  const std::string what = names[static_cast<std::size_t>(op) % 4];
+  const hal::CanFrame f = transact(capture_request(node_, op, 0, 0), MessageId::capture_status,
+                                   [](const hal::CanFrame&, MessageId) { return true; }, what);
+  const CaptureStatus s = read_capture_status(f);
+  if (s.result != can::ErrorCode::ok) {
+    std::string message = "node ";
+    message.append(std::to_string(node_)).append(" refused '").append(what).append("': ");
+    message += can::to_string(s.result);
+    throw RequestError(RequestError::Kind::refused, message, s.result);
+  }
+  return s;
+}
+
+CaptureStatus NodeClient::wait_capture_done(Micros timeout, Micros poll_period) {
+  const Micros deadline = bus_.now() + timeout;
+  for (;;) {
+    const CaptureStatus s = capture(can::CaptureOp::status);
+    if (s.state == can::CaptureState::done) return s;
+    if (bus_.now() >= deadline) {
+      std::string message = "capture on node ";
+      message.append(std::to_string(node_)).append(" not done after ").append(ms_text(timeout));
+      message.append(" (state ").append(s.state == can::CaptureState::armed ? "armed: no trigger yet" : "recording");
+      message += ")";
+      throw RequestError(RequestError::Kind::timeout, message);
+    }
+    pump(std::min(poll_period, deadline - bus_.now()));
+  }
+}
+
+std::vector<std::uint8_t> NodeClient::upload(const CaptureStatus& status, const UploadProgress& progress) {
+  constexpr std::uint64_t kBytesPerFrame = 7;
+  const std::uint64_t total = status.image_bytes();
+  std::vector<std::uint8_t> image(total);
+  std::uint64_t offset = 0;
+  int stalls = 0;
+  while (offset < total) {
+    if (offset > 0xFFFFFFFFull) throw RequestError(RequestError::Kind::protocol, "capture image beyond 4 GiB");
+    const std::uint64_t frames_left = (total - offset + kBytesPerFrame - 1) / kBytesPerFrame;
+    const auto n = static_cast<std::uint8_t>(std::min<std::uint64_t>(options_.upload_block_frames, frames_left));
+    bus_.send(capture_request(node_, can::CaptureOp::upload, n, static_cast<std::uint32_t>(offset)));
+    std::vector<bool> got(n, false);
+    Micros deadline = bus_.now() + options_.timeout;
+    for (;;) {
+      const auto f = wait_for(
+          [](const hal::CanFrame&, MessageId id) {
+            return id == MessageId::capture_data || id == MessageId::capture_status;
+          },
+          deadline);
+      if (!f) break;  // silent: whatever is missing is asked for again
+      if (can::message_of(f->id) == static_cast<std::uint8_t>(MessageId::capture_status)) {
+        const CaptureStatus s = read_capture_status(*f);
+        if (s.result == can::ErrorCode::ok) continue;
+        std::string message = "node ";
+        message.append(std::to_string(node_)).append(" refused 'capture upload' at byte ");
+        message.append(std::to_string(offset)).append(": ").append(can::to_string(s.result));
+        throw RequestError(RequestError::Kind::refused, message, s.result);
+      }
+      const CaptureData d = read_capture_data(*f);
+      if (d.sequence >= n) continue;  // from an earlier block
+      got[d.sequence] = true;
+      const std::uint64_t at = offset + d.sequence * kBytesPerFrame;
+      for (std::uint64_t i = 0; i < kBytesPerFrame && at + i < total; ++i) image[at + i] = d.bytes[i];
+      deadline = bus_.now() + options_.timeout;
+      if (d.sequence == n - 1) break;
+    }
+    const auto first_missing = static_cast<std::uint64_t>(std::find(got.begin(), got.end(), false) - got.begin());
+    offset += first_missing * kBytesPerFrame;
+    if (first_missing < n) {
+      ++upload_rerequests_;
+      stalls = first_missing == 0 ? stalls + 1 : 0;
+      if (stalls > options_.upload_retries) {
+        std::string message = "capture upload from node ";
+        message.append(std::to_string(node_)).append(" stalled at byte ").append(std::to_string(offset));
+        message.append(" of ").append(std::to_string(total)).append(" after ");
+        message.append(std::to_string(stalls)).append(" re-requests");
+        throw RequestError(RequestError::Kind::timeout, message);
+      }
+    } else {
+      stalls = 0;
+    }
+    if (progress) progress(std::min(offset, total), total);
+  }
+  return image;
+}
+
+}  // namespace tnv::can_host

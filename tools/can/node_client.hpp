@@ -1,0 +1,100 @@
+#pragma once
+// The host's side of the conversation with one node: parameters by id,
+// commands with their acknowledgement checked, heartbeat tracking, and
+// the capture download with gap recovery. Every wait is measured on the
+// bus clock (HostBus::now), so the same code runs on SocketCAN and on the
+// emulated controller. Failures throw RequestError (timeout, refusal,
+// protocol) or BusError (transport).
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tools/can/host_bus.hpp"
+#include "tools/can/node_messages.hpp"
+#include "tools/can/request_error.hpp"
+
+namespace tnv::can_host {
+
+struct ClientOptions {
+  Micros timeout{250'000};           // per request, for its reply
+  int upload_retries = 8;            // re-requests of one block without progress before giving up
+  std::uint8_t upload_block_frames = 255;
+};
+
+// Frames from this node other than the reply being waited for
+// (telemetry, heartbeat, fault events, stale replies).
+using FrameListener = std::function<void(const hal::CanFrame&, can::MessageId)>;
+using UploadProgress = std::function<void(std::uint64_t done_bytes, std::uint64_t total_bytes)>;
+
+class NodeClient {
+ public:
+  NodeClient(HostBus& bus, std::uint8_t node, ClientOptions options = {});
+
+  // --- parameters: physical values (integers, booleans and enums as numbers)
+  double get(const can::ParamDef& p);
+  double set(const can::ParamDef& p, double value);    // returns the value read back
+  double stage(const can::ParamDef& p, double value);  // returns the staged value read back
+  std::uint16_t commit();                              // returns the number of parameters applied
+  void discard();
+
+  // --- commands; a refusal throws RequestError(refused) naming the code
+  CommandAck command(can::CommandCode code, std::uint8_t axis = 0, std::uint16_t arg = 0, double value = 0.0);
+  CommandAck move(std::uint8_t axis, double distance_mm, double speed_mm_s);
+  CommandAck circle(double radius_mm, double feed_mm_s);
+  CommandAck jog(double speed_x_mm_s, double speed_y_mm_s);
+  CommandAck shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
+  // Never acknowledged; broadcast = node 0 (every node on the bus).
+  void estop(bool broadcast);
+
+  // --- status
+  // The next heartbeat (throws a timeout naming HEARTBEAT).
+  Heartbeat wait_heartbeat(Micros timeout);
+  // Until a heartbeat shows the motion is over (state not dwell/moving).
+  Heartbeat wait_at_rest(Micros timeout);
+  // Receives and dispatches frames for `duration`.
+  void pump(Micros duration);
+  const std::optional<Heartbeat>& last_heartbeat() const noexcept { return heartbeat_; }
+  const std::optional<FaultEvent>& last_fault_event() const noexcept { return fault_event_; }
+  void set_listener(FrameListener listener) { listener_ = std::move(listener); }
+
+  // --- capture
+  CaptureStatus capture(can::CaptureOp op);  // arm, abort or status
+  // Polls status until the recording is done (or idle with samples).
+  CaptureStatus wait_capture_done(Micros timeout, Micros poll_period);
+  // The whole image (status.image_bytes()), block by block; a block with a
+  // gap in its sequence or a silent tail is re-requested from the first
+  // missing frame.
+  std::vector<std::uint8_t> upload(const CaptureStatus& status, const UploadProgress& progress = {});
+  std::uint64_t upload_rerequests() const noexcept { return upload_rerequests_; }
+
+  HostBus& bus() noexcept { return bus_; }
+  std::uint8_t node() const noexcept { return node_; }
+  const ClientOptions& options() const noexcept { return options_; }
+
+ private:
+  // Sends `request`, then receives until `match` accepts a frame of
+  // message `reply` from this node; every other frame is dispatched.
+  using Match = std::function<bool(const hal::CanFrame&, can::MessageId)>;
+  hal::CanFrame transact(const hal::CanFrame& request, can::MessageId reply, const Match& match,
+                         const std::string& what);
+  // Receives (dispatching everything from this node) until `match` accepts
+  // a frame; nullopt at the deadline.
+  std::optional<hal::CanFrame> wait_for(const Match& match, Micros deadline);
+  void dispatch(const hal::CanFrame& frame, can::MessageId id);
+  std::optional<can::MessageId> ours(const hal::CanFrame& frame) const;
+  ParamReply param_op(can::ParamOp op, const can::ParamDef* p, std::uint32_t raw, const std::string& what);
+  CommandAck checked(const hal::CanFrame& request, std::uint8_t code, const std::string& what);
+  std::string timeout_text(const std::string& what, can::MessageId reply, Micros waited) const;
+
+  HostBus& bus_;
+  std::uint8_t node_;
+  ClientOptions options_;
+  std::optional<Heartbeat> heartbeat_;
+  std::optional<FaultEvent> fault_event_;
+  FrameListener listener_;
+  std::uint64_t upload_rerequests_ = 0;
+};
+
+}  // namespace tnv::can_host

@@ -1,0 +1,85 @@
+#pragma once
+// Typed host-side views of the protocol messages: each request is built
+// and each reply read through the table-driven frame codec
+// (firmware/can/frame_codec.hpp), field by field, by name.
+#include <array>
+#include <cstdint>
+
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/param_table.hpp"
+#include "firmware/supervisor/fault.hpp"
+#include "firmware/tick/tick_record.hpp"
+
+namespace tnv::can_host {
+
+namespace can = tnv::fw::can;
+
+struct Heartbeat {
+  fw::MotionState state = fw::MotionState::disabled;
+  fw::FaultReason fault = fw::FaultReason::none;
+  std::uint16_t errors = 0;  // can::HeartbeatBit
+  std::uint16_t overruns = 0;
+  std::uint16_t tick_low = 0;
+};
+
+struct CommandAck {
+  std::uint8_t request = 0;  // message id acknowledged
+  std::uint8_t code = 0;
+  can::ErrorCode result = can::ErrorCode::ok;
+  fw::MotionState state = fw::MotionState::disabled;
+  fw::FaultReason fault = fw::FaultReason::none;
+  std::uint8_t detail = 0;
+  std::uint16_t sequence = 0;
+};
+
+struct ParamReply {
+  can::ParamOp op = can::ParamOp::get;
+  can::ErrorCode result = can::ErrorCode::ok;
+  std::uint16_t param = 0;
+  std::uint32_t value_raw = 0;
+};
+
+struct CaptureStatus {
+  can::CaptureState state = can::CaptureState::idle;
+  can::ErrorCode result = can::ErrorCode::ok;
+  std::uint8_t channels = 0;
+  std::uint8_t decimation = 0;
+  std::uint32_t samples = 0;
+  std::uint64_t image_bytes() const noexcept { return static_cast<std::uint64_t>(samples) * channels * 4u; }
+};
+
+struct CaptureData {
+  std::uint8_t sequence = 0;
+  std::array<std::uint8_t, 7> bytes{};
+};
+
+struct FaultEvent {
+  fw::FaultReason reason = fw::FaultReason::none;
+  std::int8_t axis = -1;
+  std::uint16_t tick_low = 0;
+  double value = 0.0;
+};
+
+// Requests (to node).
+hal::CanFrame param_request(std::uint8_t node, can::ParamOp op, std::uint16_t param, std::uint32_t value_raw);
+hal::CanFrame command_request(std::uint8_t node, can::CommandCode code, std::uint8_t axis, std::uint16_t arg,
+                              double value);
+hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance_mm, double speed_mm_s);
+hal::CanFrame circle_request(std::uint8_t node, double radius_mm, double feed_mm_s);
+hal::CanFrame jog_request(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s);
+hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
+hal::CanFrame capture_request(std::uint8_t node, can::CaptureOp op, std::uint8_t frames, std::uint32_t offset);
+hal::CanFrame estop_request(std::uint8_t node);
+
+// Replies (from node). Callers check the message id first (classify()).
+Heartbeat read_heartbeat(const hal::CanFrame& frame);
+CommandAck read_command_ack(const hal::CanFrame& frame);
+ParamReply read_param_reply(const hal::CanFrame& frame);
+CaptureStatus read_capture_status(const hal::CanFrame& frame);
+CaptureData read_capture_data(const hal::CanFrame& frame);
+FaultEvent read_fault_event(const hal::CanFrame& frame);
+
+// Message name in upper case as the DBC spells it ("PARAM_REPLY").
+std::string message_label(can::MessageId id);
+
+}  // namespace tnv::can_host

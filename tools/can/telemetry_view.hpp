@@ -1,0 +1,37 @@
+#pragma once
+// The latest value of everything a node streams (heartbeat and the cyclic
+// TLM_* messages), decoded through the protocol table, plus what it cost
+// on the bus. Feed it from NodeClient's listener.
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "tools/can/node_messages.hpp"
+
+namespace tnv::can_host {
+
+struct OutputTelemetry {
+  std::array<double, 2> dac_code{};
+  double force_n = 0.0;
+};
+
+struct ContourTelemetry {
+  double contour_um = 0.0;
+  double motion_tick = -1.0;
+};
+
+struct TelemetryView {
+  std::optional<Heartbeat> heartbeat;
+  std::optional<std::array<double, 2>> position_mm;   // x, y
+  std::optional<std::array<double, 2>> following_mm;  // reference - position, x, y
+  std::optional<std::array<double, 2>> s_mm_s;        // sliding variable, x, y (0 for PID)
+  std::optional<std::array<double, 2>> d_hat_mm_s;    // disturbance estimate, x, y
+  std::optional<OutputTelemetry> output;
+  std::optional<ContourTelemetry> contour;
+  std::uint64_t frames = 0;  // every frame taken
+  std::uint64_t bits = 0;    // their nominal bits on the wire (no stuff bits)
+
+  void take(const hal::CanFrame& frame, can::MessageId id);
+};
+
+}  // namespace tnv::can_host

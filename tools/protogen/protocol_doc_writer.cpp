@@ -1,0 +1,195 @@
+#include "tools/protogen/protocol_doc_writer.hpp"
+
+#include "firmware/can/can_id.hpp"
+#include "firmware/can/capture_channels.hpp"
+#include "firmware/can/param_table.hpp"
+#include "firmware/can/protocol_messages.hpp"
+#include "tools/protogen/bus_load.hpp"
+#include "tools/protogen/text_format.hpp"
+
+namespace tnv::protogen {
+
+namespace {
+
+using namespace fw::can;
+
+std::string hex(unsigned v, int digits) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "0x%0*X", digits, v);
+  return buf;
+}
+
+std::string percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f %%", 100.0 * fraction);
+  return buf;
+}
+
+// Table cells: a '|' would split the cell.
+std::string cell(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+void framing(std::string& out, const NodeSettings& d) {
+  append(out, "## Framing\n\n",
+         "- Classic CAN (2.0A), 11-bit identifiers, default bit rate ", std::to_string(d.can.bitrate_kbit),
+         " kbit/s (parameter `can.bitrate_kbit`). Every message has a fixed length; all but ESTOP carry 8 bytes.\n",
+         "- Identifier = message id << 6 | node id. The message id (5 bits) is in the high bits, so arbitration ",
+         "orders by message: an ESTOP to any node wins over every other frame on the bus. Node ids are 1..",
+         std::to_string(kMaxNodeId), " (parameter `can.node_id`, default ", std::to_string(d.can.node_id),
+         "); node 0 is broadcast and carries only ESTOP and COMMAND `stop`.\n",
+         "- Requests go host -> node with the node's id; the node answers with its own id.\n",
+         "- Fields are little-endian and byte-aligned; physical value = raw x scale. `f32` is an IEEE-754 ",
+         "single; `raw32` holds a parameter value: the f32 bits, or the integer, by the parameter's type.\n",
+         "- CAN FD is not used; the payloads fit classic frames.\n\n");
+}
+
+void message_summary(std::string& out) {
+  append(out, "## Messages\n\n| id | identifier, node 1 | message | direction | DLC | what it is |\n",
+         "|---|---|---|---|---|---|\n");
+  for (const MessageDef& m : kMessages)
+    append(out, "| ", hex(m.id, 2), " | ", hex(make_can_id(m.id, 1), 3), " | ", upper(m.name), " | ",
+           m.direction == Direction::to_node ? "host -> node" : "node -> host", " | ", std::to_string(m.dlc), " | ",
+           cell(m.doc), " |\n");
+  out += '\n';
+}
+
+void message_layouts(std::string& out) {
+  for (const MessageDef& m : kMessages) {
+    if (m.fields.empty()) continue;
+    append(out, "### ", upper(m.name), " (", hex(m.id, 2), ")\n\n| bytes | field | type | scale | unit | values | meaning |\n",
+           "|---|---|---|---|---|---|---|\n");
+    for (const FieldDef& f : m.fields) {
+      const std::size_t last = f.byte_offset + wire_size(f.type) - 1;
+      const std::string bytes =
+          last == f.byte_offset ? std::to_string(f.byte_offset) : std::to_string(f.byte_offset) + "-" + std::to_string(last);
+      append(out, "| ", bytes, " | ", f.name, " | ", to_string(f.type), " | ", number(f.scale), " | ", f.unit, " | ",
+             cell(f.values), " | ", cell(f.doc), " |\n");
+    }
+    out += '\n';
+  }
+}
+
+void codes(std::string& out) {
+  out += "## Result codes\n\nCOMMAND_ACK.result, PARAM_REPLY.result and CAPTURE_STATUS.result. A refused request changes nothing.\n\n| code | name |\n|---|---|\n";
+  for (std::uint8_t i = 0; i < kErrorCodeCount; ++i)
+    append(out, "| ", std::to_string(i), " | ", to_string(static_cast<ErrorCode>(i)), " |\n");
+  out += "\n## Commands (COMMAND.code)\n\n| code | name |\n|---|---|\n";
+  for (std::uint8_t i = 0; i < kCommandCodeCount; ++i)
+    append(out, "| ", std::to_string(i), " | ", to_string(static_cast<CommandCode>(i)), " |\n");
+  out += "\nzero, select_controller, load_params and restore_defaults need the machine at rest (else busy); save_params too.\n";
+  out += "\n## Heartbeat error bits (HEARTBEAT.errors)\n\n| bit | name | meaning |\n|---|---|---|\n";
+  for (const HeartbeatBitDoc& b : kHeartbeatBits) {
+    int bit = 0;
+    while ((1u << bit) != b.mask) ++bit;
+    append(out, "| ", std::to_string(bit), " | ", b.name, " | ", b.doc, " |\n");
+  }
+  out += '\n';
+}
+
+void parameters(std::string& out, const NodeSettings& d) {
+  append(out, "## Parameters\n\n",
+         "PARAM_REQUEST `get` reads, `set` writes one parameter and applies it, `stage` collects writes that ",
+         "`commit` applies together between two ticks (or refuses together), `discard` drops them. Apply: ",
+         "`live` any time, also while moving; `idle` only at rest (refused with busy while a motion runs); ",
+         "`restart` stored now, used from the next start. Defaults are the papers' values (S1 Tables 1/2, ",
+         "eq. 31) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
+         "| id | name | type | unit | range | default | access | apply | meaning |\n",
+         "|---|---|---|---|---|---|---|---|---|\n");
+  for (const ParamDef& p : param_table()) {
+    std::string range = p.access == Access::read_only ? std::string("-") : number(p.min) + " .. " + number(p.max);
+    if (p.values[0] != '\0') range = p.values;
+    append(out, "| ", hex(p.id, 4), " | `", p.name, "` | ", to_string(p.type), " | ", p.unit, " | ", cell(range), " | ",
+           number(p.get(d)), " | ", to_string(p.access), " | ", to_string(p.apply), " | ", cell(p.doc), " |\n");
+  }
+  out += '\n';
+}
+
+void capture(std::string& out, const NodeSettings& d) {
+  append(out, "## Capture channels\n\n",
+         "Bit n of `capture.channels` records channel n, one 32-bit little-endian value per tick (or every ",
+         "`capture.decimation` ticks). The image is sample-major with the selected channels in bit order; the ",
+         "buffer holds ", std::to_string(kCaptureCapacityWords), " values. Upload: CAPTURE_CONTROL upload (offset, ",
+         "frames) -> that many CAPTURE_DATA frames, sequence 0.., 7 image bytes each; a gap in the sequence means ",
+         "re-request the block. At ", std::to_string(d.can.bitrate_kbit), " kbit/s an upload moves about ",
+         number(capture_upload_bytes_per_s(d.can.bitrate_kbit) / 1000.0), " kB/s.\n\n",
+         "| bit | channel | type | scale | unit | meaning |\n|---|---|---|---|---|---|\n");
+  for (const ChannelDef& c : kCaptureChannels)
+    append(out, "| ", std::to_string(c.bit), " | ", c.name, " | ", to_string(c.type), " | ", number(c.scale), " | ",
+           c.unit, " | ", cell(c.doc), " |\n");
+  out += "\nDefault channels:";
+  for (const ChannelDef& c : kCaptureChannels)
+    if ((kDefaultCaptureChannels >> c.bit) & 1u) append(out, " ", c.name);
+  out += ".\n\n";
+}
+
+void malformed(std::string& out) {
+  out += R"(## Malformed and foreign frames
+
+| frame | what the node does |
+|---|---|
+| extended (29-bit) identifier | ignored |
+| another node's id | ignored |
+| a node -> host message id (another node's reply or telemetry) | ignored |
+| unused message id | ignored (counted) |
+| known request with the wrong DLC | the request's reply with `bad_length`; nothing changes |
+| ESTOP with any DLC | acted on (safety first) |
+| COMMAND with an unknown code | COMMAND_ACK `unknown_command` |
+| COMMAND / MOVE / SHAPER with a bad axis byte | COMMAND_ACK `bad_axis` |
+| PARAM_REQUEST with an unknown op | PARAM_REPLY `unknown_command` |
+| PARAM_REQUEST for an unknown id | PARAM_REPLY `unknown_id`, value 0 |
+| set / stage of a read-only parameter | `read_only` |
+| NaN or infinity (any f32 field) | `not_finite` |
+| value outside the range, or not one of the allowed values | `out_of_range` |
+| a set that breaks a cross-parameter rule | `invalid`; PARAM_REPLY.value is the unchanged value |
+| idle-only parameter or command while moving | `busy` |
+| CAPTURE_CONTROL with an unknown op | CAPTURE_STATUS `unknown_command` |
+| upload past the end of the image, or with no capture | CAPTURE_STATUS `not_ready` |
+| broadcast (node 0) other than ESTOP / COMMAND stop | ignored |
+
+)";
+}
+
+void bus_load(std::string& out, const NodeSettings& d) {
+  const BusLoad load = telemetry_load(d);
+  append(out, "## Bus load\n\n",
+         "A classic 8-byte frame with an 11-bit identifier takes ", std::to_string(frame_bits_nominal(8)),
+         " bit times including the interframe space, and up to ", std::to_string(frame_bits_worst(8)),
+         " with worst-case bit stuffing. The default cyclic set (HEARTBEAT every ", std::to_string(d.telemetry.heartbeat_ms),
+         " ms, TLM_POSITION every ", std::to_string(d.telemetry.position_ms), " ms, TLM_FOLLOWING every ",
+         std::to_string(d.telemetry.following_ms), " ms) is ", number(load.frames_per_s), " frames/s: ",
+         percent(load.load_nominal), " to ", percent(load.load_worst), " of ", std::to_string(d.can.bitrate_kbit),
+         " kbit/s. Streaming two 8-byte frames per 1 ms tick instead would take ",
+         percent(2000.0 * frame_bits_nominal(8) / (1000.0 * d.can.bitrate_kbit)), " to ",
+         percent(2000.0 * frame_bits_worst(8) / (1000.0 * d.can.bitrate_kbit)),
+         ": that is why full-rate traces are captured on the node and uploaded afterwards.\n");
+}
+
+}  // namespace
+
+std::string write_protocol_doc() {
+  const NodeSettings d = default_node_settings();
+  std::string out;
+  append(out, "# TNV-40 CAN protocol, version ", std::to_string(kProtocolVersion), "\n\n",
+         "Generated by `tnv-protogen` from the protocol table in `firmware/can/` (protocol_messages.hpp, ",
+         "param_table.cpp, capture_channels.hpp, protocol_enums.hpp). Do not edit: change the table and run ",
+         "`cmake --build build/release --target update-protocol-docs`. A test fails when this file or ",
+         "`docs/tnv.dbc` differs from what the table generates. The same table drives the firmware and the host ",
+         "codec.\n\n");
+  framing(out, d);
+  message_summary(out);
+  message_layouts(out);
+  codes(out);
+  parameters(out, d);
+  capture(out, d);
+  malformed(out);
+  bus_load(out, d);
+  return out;
+}
+
+}  // namespace tnv::protogen

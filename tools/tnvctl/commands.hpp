@@ -1,0 +1,62 @@
+#pragma once
+// Each tnvctl command family registers its subcommands here (one file per
+// family, like tools/tnv-hil). A subcommand's parse callback fills the
+// action slot; the caller runs it on a Session: main() for one command,
+// `script` for many on one session.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tools/tnvctl/session.hpp"
+
+namespace tnv::tnvctl {
+
+struct Action {
+  Action(std::string name_, bool needs_device_, std::function<int(Session&, Report&)> run_,
+         std::function<void()> check_ = {})
+      : name(std::move(name_)), needs_device(needs_device_), run(std::move(run_)), check(std::move(check_)) {}
+  std::string name;            // the command, for messages ("params set")
+  bool needs_device = true;    // false: runs without --iface / --emu (dump-dbc, plot)
+  std::function<int(Session&, Report&)> run;
+  // Checks that need no node (names, ranges, files); throws BadInput. A
+  // script runs every line's check before the first line is sent.
+  std::function<void()> check;
+};
+using ActionSlot = std::optional<Action>;
+
+void add_params_commands(CLI::App& app, ActionSlot& slot);   // params list | get | set | save | load | defaults
+void add_motion_commands(CLI::App& app, ActionSlot& slot);   // circle, move, jog, stop, estop, enable, disable,
+                                                             // clear-faults, zero, controller, status
+void add_shaper_commands(CLI::App& app, ActionSlot& slot);   // shaper
+void add_monitor_commands(CLI::App& app, ActionSlot& slot);  // monitor
+void add_capture_commands(CLI::App& app, ActionSlot& slot);  // capture
+void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
+void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
+
+// Every family above except `script` (what a script line may use).
+void add_device_commands(CLI::App& app, ActionSlot& slot);
+
+// One command line (without global options) parsed into an action, as a
+// script line or `capture --run` does; nullopt with a one-line `error`.
+std::optional<Action> parse_command_line(const std::vector<std::string>& args, std::string& error);
+
+// Shell-like words of one line: blanks separate, '...' and "..." quote,
+// backslash escapes, '#' starting a word comments out the rest; nullopt
+// with `error` for an open quote.
+std::optional<std::vector<std::string>> split_words(const std::string& line, std::string& error);
+
+// Runs an action: exceptions become a message on stderr (and a JSON error
+// object with --json) and the exit code.
+int run_action(const Action& action, Session& session);
+
+// Shared helpers for the families.
+std::uint8_t parse_axis(const std::string& name);  // "x" -> 0, "y" -> 1
+const fw::can::ParamDef& param_named(const std::string& name);  // from the table, or throws BadInput
+// Throws RunFailed when the node ended in a fault: names the reason.
+void require_no_fault(const can_host::Heartbeat& hb, can_host::NodeClient& client, const std::string& what);
+nlohmann::json heartbeat_json(const can_host::Heartbeat& hb);
+std::string heartbeat_text(const can_host::Heartbeat& hb);
+
+}  // namespace tnv::tnvctl

@@ -1,0 +1,76 @@
+// tnvctl: tune a TNV-40 node over CAN from a laptop, on a real bus
+// (SocketCAN) or on the in-process emulated controller. The command
+// families live in *_commands.cpp.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "tools/tnvctl/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace tnv::tnvctl;
+  CLI::App app{
+      "tnvctl: read and change a TNV-40 node's parameters, run motions, monitor it and capture at full tick rate, "
+      "over CAN (--iface can0) or on the emulated controller (--emu)"};
+  app.footer(
+      "Exit codes: 0 ok; 1 refused by the node (the message names the ErrorCode and the parameter), timeout, "
+      "device or bus error, a motion that ended in a fault, an output not written; 2 bad command line or input "
+      "(nothing was sent).\n"
+      "--json prints one JSON object per command on stdout (one per line in `script`), with \"ok\", "
+      "\"exit_code\" and \"error\".\n"
+      "With --emu the node lives inside this process: use `tnvctl --emu script FILE` for several steps on one "
+      "node; its parameters persist only through `params save` (--emu-storage).");
+  app.require_subcommand(1);
+  app.fallthrough();  // global options may also follow the subcommand
+
+  GlobalOptions g;
+  CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface, e.g. can0");
+  CLI::Option* emu = app.add_flag("--emu", g.emu, "the in-process emulated controller (real firmware, emulated table)");
+  iface->excludes(emu);
+  app.add_option("--node", g.node, "node id")->check(CLI::Range(1, 63))->capture_default_str();
+  app.add_flag("--json", g.json, "machine-readable output on stdout");
+  app.add_option("--timeout-ms", g.timeout_ms, "reply timeout per request (emulated: simulated ms)")
+      ->check(CLI::Range(1, 600000))
+      ->capture_default_str();
+  app.add_option("--emu-scenario", g.emu_scenario, "emulated table: built-in scenario name or TOML file")
+      ->needs(emu)
+      ->capture_default_str();
+  app.add_option("--emu-seed", g.emu_seed, "emulated encoder phase / cutting phase seed (0: as written, tnv-hil's default)")
+      ->needs(emu)
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  app.add_option("--emu-storage", g.emu_storage,
+                 "emulated node's parameter file (default $XDG_STATE_HOME/tnvctl/emu-node.params or "
+                 "~/.local/state/tnvctl/emu-node.params)")
+      ->needs(emu);
+
+  ActionSlot slot;
+  add_device_commands(app, slot);
+  add_script_commands(app, slot);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+  if (!slot) return kExitBadInput;
+  if (slot->needs_device && g.iface.empty() && !g.emu) {
+    std::fprintf(stderr, "tnvctl: %s: which node? give --iface IFACE (SocketCAN, e.g. can0) or --emu (the emulated controller)\n",
+                 slot->name.c_str());
+    return kExitBadInput;
+  }
+  Session session(g);
+  const int code = run_action(*slot, session);
+  // The emulated node ends with this process: say so when changes would be lost.
+  if (const tnv::can_host::EmulatedBus* emulated = session.opened_emulation();
+      emulated != nullptr && emulated->node().params_unsaved())
+    std::fprintf(stderr,
+                 "tnvctl: note: the emulated node's unsaved parameter changes end with this process "
+                 "(`params save` keeps them in %s)\n",
+                 emulated->storage_path().c_str());
+  return code;
+}

@@ -1,0 +1,131 @@
+// tnvctl monitor: live status from the heartbeat and the cyclic telemetry.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "firmware/can/param_table.hpp"
+#include "tools/can/telemetry_view.hpp"
+#include "tools/tnvctl/commands.hpp"
+
+namespace tnv::tnvctl {
+
+namespace {
+
+namespace can = fw::can;
+using can::MessageId;
+using can_host::Micros;
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_interrupt(int) { g_interrupted = true; }
+
+struct MonitorOptions {
+  double duration_s = 0.0;  // 0: until Ctrl-C
+  double rate_hz = 10.0;
+};
+
+nlohmann::json sample_json(const can_host::TelemetryView& l, double t_s, double load) {
+  nlohmann::json j = {{"t_s", t_s}, {"frames", l.frames}, {"bus_load", load}};
+  if (l.heartbeat) j["status"] = heartbeat_json(*l.heartbeat);
+  if (l.position_mm) j["position_mm"] = *l.position_mm;
+  if (l.following_mm) j["following_um"] = {(*l.following_mm)[0] * 1e3, (*l.following_mm)[1] * 1e3};
+  if (l.s_mm_s) j["s_mm_s"] = *l.s_mm_s;
+  if (l.d_hat_mm_s) j["d_hat_mm_s"] = *l.d_hat_mm_s;
+  if (l.output)
+    j["output"] = {{"dac_x", l.output->dac_code[0]}, {"dac_y", l.output->dac_code[1]}, {"force_n", l.output->force_n}};
+  if (l.contour) j["contour"] = {{"um", l.contour->contour_um}, {"motion_tick", l.contour->motion_tick}};
+  return j;
+}
+
+std::string sample_text(const can_host::TelemetryView& l, double t_s) {
+  char buf[320];
+  int n = std::snprintf(buf, sizeof buf, "t %7.2f s  %-8s %-10s", t_s,
+                        l.heartbeat ? fw::to_string(l.heartbeat->state) : "?",
+                        l.heartbeat ? fw::to_string(l.heartbeat->fault) : "?");
+  auto room = [&] { return sizeof buf - static_cast<std::size_t>(std::min<int>(n, sizeof buf - 1)); };
+  if (l.position_mm)
+    n += std::snprintf(buf + n, room(), "  x %10.6f y %10.6f mm", (*l.position_mm)[0], (*l.position_mm)[1]);
+  if (l.following_mm)
+    n += std::snprintf(buf + n, room(), "  following x %8.2f y %8.2f um", (*l.following_mm)[0] * 1e3,
+                       (*l.following_mm)[1] * 1e3);
+  if (l.contour) n += std::snprintf(buf + n, room(), "  contour %7.3f um", l.contour->contour_um);
+  if (l.s_mm_s) n += std::snprintf(buf + n, room(), "  s %8.4f %8.4f", (*l.s_mm_s)[0], (*l.s_mm_s)[1]);
+  if (l.output)
+    n += std::snprintf(buf + n, room(), "  dac %5.0f %5.0f  force %7.2f N", l.output->dac_code[0],
+                       l.output->dac_code[1], l.output->force_n);
+  return buf;
+}
+
+void check_monitor(const MonitorOptions& o) {
+  if (!(o.rate_hz > 0.0 && o.rate_hz <= 1000.0)) throw BadInput("--rate-hz must be in (0, 1000]");
+  if (!(o.duration_s >= 0.0 && o.duration_s <= 1e6)) throw BadInput("--duration must be in [0, 1e6] s");
+}
+
+int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
+  check_monitor(o);
+  can_host::NodeClient& client = session.client();
+  const double bitrate_bit_s = client.get(*can::find_param("can.bitrate_kbit")) * 1000.0;
+  can_host::EmulatedBus* emu = session.emulated();
+  can_host::TelemetryView latest;
+  client.set_listener([&latest](const hal::CanFrame& f, MessageId id) { latest.take(f, id); });
+  g_interrupted = false;
+  auto previous = std::signal(SIGINT, on_interrupt);
+  if (emu != nullptr) emu->set_realtime(true);  // simulated time at wall-clock pace: it looks live
+  const Micros start = client.bus().now();
+  const Micros period{static_cast<long long>(1e6 / o.rate_hz)};
+  const Micros end = o.duration_s > 0.0 ? start + Micros{static_cast<long long>(o.duration_s * 1e6)} : Micros::max();
+  std::uint64_t lines = 0;
+  try {
+    for (Micros next = start + period; !g_interrupted && client.bus().now() < end; next += period) {
+      const Micros wait = std::min(next, end) - client.bus().now();
+      if (wait > Micros{0}) client.pump(wait);
+      const double t_s = static_cast<double>((client.bus().now() - start).count()) * 1e-6;
+      const double load = t_s > 0.0 ? static_cast<double>(latest.bits) / (t_s * bitrate_bit_s) : 0.0;
+      if (report.json_mode()) std::cout << sample_json(latest, t_s, load).dump() << '\n';
+      else std::cout << sample_text(latest, t_s) << '\n';
+      std::cout.flush();
+      ++lines;
+    }
+  } catch (...) {
+    if (emu != nullptr) emu->set_realtime(false);
+    std::signal(SIGINT, previous);
+    client.set_listener({});
+    throw;
+  }
+  if (emu != nullptr) emu->set_realtime(false);
+  std::signal(SIGINT, previous);
+  client.set_listener({});
+  const double t_s = static_cast<double>((client.bus().now() - start).count()) * 1e-6;
+  const double frames_per_s = t_s > 0.0 ? static_cast<double>(latest.frames) / t_s : 0.0;
+  const double load = t_s > 0.0 ? static_cast<double>(latest.bits) / (t_s * bitrate_bit_s) : 0.0;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "%.2f s: %llu frames from node %d (%.1f frames/s), %.2f%% of %.0f kbit/s (nominal frame bits, no "
+                "stuffing)",
+                t_s, static_cast<unsigned long long>(latest.frames), client.node(), frames_per_s, load * 100.0,
+                bitrate_bit_s / 1000.0);
+  report.line(buf);
+  report.data["duration_s"] = t_s;
+  report.data["frames"] = latest.frames;
+  report.data["frames_per_s"] = frames_per_s;
+  report.data["bus_load"] = load;
+  report.data["lines"] = lines;
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_monitor_commands(CLI::App& app, ActionSlot& slot) {
+  auto o = std::make_shared<MonitorOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "monitor", "live status from the heartbeat and telemetry (emulated: paced to the wall clock); Ctrl-C ends");
+  cmd->add_option("--duration", o->duration_s, "seconds; 0 = until Ctrl-C")->capture_default_str();
+  cmd->add_option("--rate-hz", o->rate_hz, "status lines per second")->capture_default_str();
+  cmd->callback([&slot, o] {
+    slot = Action{"monitor", true, [o](Session& s, Report& r) { return run_monitor(*o, s, r); },
+                  [o] { check_monitor(*o); }};
+  });
+}
+
+}  // namespace tnv::tnvctl

@@ -1,0 +1,68 @@
+#include "tools/tnvctl/session.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+#include "firmware/can/param_table.hpp"
+#include "tools/can/socketcan_bus.hpp"
+
+namespace tnv::tnvctl {
+
+void Report::line(const std::string& text) const {
+  if (json_) return;
+  std::cout << text << '\n';
+  std::cout.flush();
+}
+
+void Session::open() {
+  const auto node = static_cast<std::uint8_t>(options_.node);
+  if (options_.emu) {
+    can_host::EmulatedNodeOptions emu;
+    emu.scenario = options_.emu_scenario;
+    emu.seed = options_.emu_seed;
+    emu.storage_path = options_.emu_storage;
+    emu.node = node;
+    std::string error;
+    std::unique_ptr<can_host::EmulatedBus> bus = can_host::EmulatedBus::create(emu, error);
+    if (!bus) throw BadInput(error);
+    if (!bus->startup_note().empty()) std::fprintf(stderr, "tnvctl: %s\n", bus->startup_note().c_str());
+    if (bus->node_id() != node) {
+      std::string message = "the emulated node has id ";
+      message.append(std::to_string(bus->node_id())).append(" (can.node_id stored in ").append(bus->storage_path());
+      message.append("); use --node ").append(std::to_string(bus->node_id()));
+      throw RunFailed(message);
+    }
+    emulated_ = bus.get();
+    bus_ = std::move(bus);
+  } else {
+    can_host::SocketCanOptions socket;
+    socket.interface_name = options_.iface;
+    socket.node = node;
+    bus_ = std::make_unique<can_host::SocketCanBus>(can_host::linux_socket_api(), socket);
+  }
+  can_host::ClientOptions client;
+  client.timeout = can_host::Micros{static_cast<long long>(options_.timeout_ms) * 1000};
+  client_ = std::make_unique<can_host::NodeClient>(*bus_, node, client);
+  // The first exchange: is there a node, and does it speak our protocol?
+  const fw::can::ParamDef* version = fw::can::find_param("sys.protocol_version");
+  const double theirs = client_->get(*version);
+  if (theirs != static_cast<double>(fw::can::kProtocolVersion)) {
+    std::string message = "node ";
+    message.append(std::to_string(options_.node)).append(" speaks protocol version ");
+    message.append(std::to_string(static_cast<long long>(theirs))).append(", tnvctl version ");
+    message.append(std::to_string(fw::can::kProtocolVersion));
+    throw RunFailed(message);
+  }
+}
+
+can_host::NodeClient& Session::client() {
+  if (!client_) open();
+  return *client_;
+}
+
+can_host::EmulatedBus* Session::emulated() {
+  client();
+  return emulated_;
+}
+
+}  // namespace tnv::tnvctl
