@@ -152,7 +152,9 @@ class ScenarioReader {
       if (!read_fault_kind(table, path, f)) return false;
       const FaultKeys keys = fault_keys(f.kind);
       bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false;
-      for (auto&& [field_key, field_node] : table) {
+      for (auto&& entry : table) {  // not a structured binding: clang 14 cannot capture one in a lambda
+        const toml::key& field_key = entry.first;
+        const toml::node& field_node = entry.second;
         const std::string_view name = field_key.str();
         const std::string field_path = path + "." + std::string(name);
         const auto not_for_kind = [&] {
@@ -237,7 +239,9 @@ class ScenarioReader {
                     std::span<const Field> fields) {
     const toml::table* table = node.as_table();
     if (table == nullptr) return fail(key, path, std::string("expected a table, got ") + type_name(node));
-    for (auto&& [field_key, field_node] : *table) {
+    for (auto&& entry : *table) {  // not a structured binding: clang 14 cannot capture one in a lambda
+      const toml::key& field_key = entry.first;
+      const toml::node& field_node = entry.second;
       const std::string field_path = path + "." + std::string(field_key.str());
       const Field* field = nullptr;
       for (const Field& f : fields) {
@@ -328,7 +332,8 @@ ScenarioResult parse_scenario_text(std::string_view text, std::string_view sourc
   }
   Scenario scenario;
   ScenarioReader reader(source_name);
-  if (!reader.read(root, scenario) || !reader.check(scenario)) return {std::nullopt, reader.error()};
+  // one_line: a key or value quoted from the file may hold a newline (found by fuzzing).
+  if (!reader.read(root, scenario) || !reader.check(scenario)) return {std::nullopt, one_line(reader.error())};
   return {std::move(scenario), {}};
 }
 

@@ -95,6 +95,8 @@ void check_circle(Rules& r, const CircleParams& c) {
   }
 }
 
+constexpr double kMaxFaultTimeS = 1e9;  // 31 years of machine time
+
 void check_faults(Rules& r, const Scenario& s) {
   const std::uint32_t max_code = (std::uint32_t{1} << (s.dac.bits >= 8 && s.dac.bits <= 16 ? s.dac.bits : 16)) - 1;
   for (std::size_t i = 0; i < s.faults.size() && !r.found; ++i) {
@@ -103,6 +105,10 @@ void check_faults(Rules& r, const Scenario& s) {
     const FaultKeys keys = fault_keys(f.kind);
     r.non_negative(key + "start_s", f.start_s);
     if (keys.duration) r.non_negative(key + "duration_s", f.duration_s);
+    // The timeline counts 10 us sub-steps in a uint64 (found by fuzzing: start_s = 5e25 overflowed it).
+    if (f.start_s > kMaxFaultTimeS) r.fail_text(key + "start_s", "must be <= 1e9 s (got " + format_number(f.start_s) + ")");
+    if (keys.duration && f.duration_s > kMaxFaultTimeS)
+      r.fail_text(key + "duration_s", "must be <= 1e9 s (got " + format_number(f.duration_s) + ")");
     if (keys.code) r.int_range(key + "code", f.dac_code, 0, max_code);
     if (keys.ticks) r.int_range(key + "ticks", f.ticks, 1, kMaxMissedTicks);
     if (keys.delay && !(std::isfinite(f.delay_us) && f.delay_us > 0.0 && f.delay_us <= kMaxLateTickDelayUs)) {

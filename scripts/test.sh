@@ -1,15 +1,49 @@
 #!/usr/bin/env bash
-# Builds and runs every test: the release build (with benchmarks compiled)
-# and the ASan+UBSan build of the whole suite.
+# Builds and runs every test stage, stops at the first failure and prints
+# how long each stage took:
+#   release  unity build (tests and benchmarks compiled), every test but the
+#            kernel ones
+#   asan     the same suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
+#   fuzz     every libFuzzer target for 60 s                   (scripts/fuzz.sh)
+#   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
+#   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
+#            build's binaries                                  (scripts/kernel-tests.sh)
+# TNV_STAGES="release asan" scripts/test.sh runs a subset (default: all).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-scripts/install-deps.sh
+stages=(${TNV_STAGES:-release asan tsan fuzz arm64 kernel})
 jobs=$(nproc)
-for preset in release asan; do
-  echo "=== ${preset}: configure and build"
+declare -a report=()
+
+run_stage() {
+  local name=$1
+  shift
+  local start=$SECONDS
+  echo "=== ${name}"
+  "$@"
+  report+=("$(printf '%-8s %4d s' "${name}" $((SECONDS - start)))")
+}
+
+build_and_test() {
+  local preset=$1
   cmake --preset "${preset}" >/dev/null
   cmake --build --preset "${preset}" -j "${jobs}"
-  echo "=== ${preset}: test"
-  ctest --preset "${preset}" -j "${jobs}"
+  ctest --preset "${preset}" -j "${jobs}" -LE kernel
+}
+
+scripts/install-deps.sh
+for stage in "${stages[@]}"; do
+  case "${stage}" in
+    release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
+    tsan) run_stage tsan scripts/tsan.sh ;;
+    fuzz) run_stage fuzz scripts/fuzz.sh --seconds 60 ;;
+    arm64) run_stage arm64 scripts/arm64.sh ;;
+    kernel) run_stage kernel scripts/kernel-tests.sh build/release ;;
+    *) echo "unknown stage '${stage}' (release asan tsan fuzz arm64 kernel)" >&2; exit 2 ;;
+  esac
 done
+
+echo "=== all stages passed"
+printf '%s\n' "${report[@]}"

@@ -15,10 +15,11 @@ namespace tnv::fw::can {
 using namespace fields;
 
 CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
-                 bool storage_fault) noexcept
+                 bool storage_fault, hal::ParamStorage* previous_storage) noexcept
     : task_(task),
       can_(can),
       storage_(storage),
+      previous_storage_(previous_storage),
       settings_(settings),
       node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
       storage_fault_(storage_fault) {

@@ -35,7 +35,10 @@
 
 namespace tnv::fw::can {
 
-inline constexpr int kMaxRxPerService = 16;
+// A saturated 1 Mbit/s wire delivers up to 21 frames per ms (47-bit frames):
+// reading more than that per tick keeps the receive FIFO from overflowing
+// (an e-stop could be among the frames lost; docs/safety.md "Bus flood").
+inline constexpr int kMaxRxPerService = 24;
 inline constexpr int kMaxTxPerService = 32;
 
 struct NodeCounters {
@@ -54,8 +57,10 @@ class CanNode {
   // heartbeat until a save or load succeeds). The constructor brings the
   // task in line with `settings` (controller per axis, enabled shapers);
   // the task must be at rest (it is, right after construction).
+  // `previous_storage`: the generation saved before the current one (see
+  // param_fallback.hpp), read by load_params when the current image fails.
   CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
-          bool storage_fault = false) noexcept;
+          bool storage_fault = false, hal::ParamStorage* previous_storage = nullptr) noexcept;
   CanNode(const CanNode&) = delete;
   CanNode& operator=(const CanNode&) = delete;
 
@@ -129,6 +134,7 @@ class CanNode {
   TickTask& task_;
   hal::CanPort& can_;
   hal::ParamStorage& storage_;
+  hal::ParamStorage* previous_storage_ = nullptr;
   NodeSettings settings_;
   std::uint8_t node_id_;
   NodeCounters counters_{};

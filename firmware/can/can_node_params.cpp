@@ -1,11 +1,11 @@
 // CanNode: PARAM_REQUEST (get / set / stage / commit / discard), applying a
 // whole parameter set, and the storage commands.
-#include <array>
 
 #include "firmware/can/can_node.hpp"
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/param_fallback.hpp"
 #include "firmware/can/param_image.hpp"
 
 namespace tnv::fw::can {
@@ -130,23 +130,19 @@ ErrorCode CanNode::command_save() noexcept {
 
 ErrorCode CanNode::command_load() noexcept {
   if (moving()) return ErrorCode::busy;
-  std::array<std::uint8_t, kParamImageMaxBytes> image{};
-  std::size_t size = 0;
-  const hal::HalStatus st = storage_.read(image, size);
-  if (st == hal::HalStatus::not_present) return ErrorCode::not_ready;
-  if (st != hal::HalStatus::ok || size > image.size()) {
-    storage_fault_ = true;
-    return ErrorCode::storage_error;
-  }
+  // The current image, else the previous generation (still reported as a
+  // storage fault), else nothing changes.
   NodeSettings next = settings_;
-  if (const ErrorCode e = decode_image(std::span<const std::uint8_t>(image.data(), size), next); e != ErrorCode::ok) {
+  const LoadReport loaded = load_settings_with_fallback(storage_, previous_storage_, next);
+  if (loaded.source == LoadSource::nothing_stored) return ErrorCode::not_ready;
+  if (loaded.source == LoadSource::neither) {
     storage_fault_ = true;
-    return e;
+    return loaded.result();
   }
   const ErrorCode e = apply_settings(next, true);
   if (e == ErrorCode::ok) {
-    unsaved_ = false;
-    storage_fault_ = false;
+    unsaved_ = loaded.fault();  // the previous set is not what was last saved
+    storage_fault_ = loaded.fault();
   }
   return e;
 }

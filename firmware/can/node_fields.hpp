@@ -1,10 +1,11 @@
 #pragma once
 // The fields the node reads and writes, looked up by name at compile time
-// (a typo is a compile error). Internal to the CAN node's implementation.
+// (a typo is a compile error). Shared by the node and the host tools.
 #include "firmware/can/protocol_messages.hpp"
 
 namespace tnv::fw::can::fields {
 
+inline constexpr const MessageDef& kEstopMsg = message(MessageId::estop);
 inline constexpr const MessageDef& kCommandMsg = message(MessageId::command);
 inline constexpr const MessageDef& kAckMsg = message(MessageId::command_ack);
 inline constexpr const MessageDef& kJogMsg = message(MessageId::jog);

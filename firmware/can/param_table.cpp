@@ -104,9 +104,21 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
        TNV_REAL(firmware.axis[ax].jog.deadman_s), "longest silence of the jog stream before the axis stops"},     \
       {base + 0x70, p "hw.count_mm", ParamType::f32, "mm", 1e-9, 1, "", Access::read_write, Apply::idle,            \
        TNV_REAL(firmware.axis[ax].count_mm), "encoder count (lead / counts per rev, x4)"},                         \
+      {base + 0x71, p "hw.dac_full_scale_mm_s", ParamType::f32, "mm/s", 0, 1e5, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.axis[ax].dac.full_scale_mm_s), "speed at DAC full scale (+10 V)"},                       \
+      {base + 0x80, p "friction.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
+       TNV_INT(firmware.axis[ax].friction.enabled), "friction feed-forward on (docs/autotune.md)"},               \
+      {base + 0x81, p "friction.coulomb_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.axis[ax].friction.coulomb_mm_s), "Coulomb friction f_c (table-speed equivalent)"},       \
+      {base + 0x82, p "friction.stiction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write,             \
+       Apply::idle, TNV_REAL(firmware.axis[ax].friction.stiction_mm_s), "stiction f_s >= f_c"},                   \
+      {base + 0x83, p "friction.stribeck_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,          \
+       Apply::idle, TNV_REAL(firmware.axis[ax].friction.stribeck_mm_s), "Stribeck speed v_s"},                    \
+      {base + 0x84, p "friction.gain", ParamType::f32, "", 1e-6, 1e3, "", Access::read_write, Apply::idle,          \
+       TNV_REAL(firmware.axis[ax].friction.gain), "speed-loop gain K the feed-forward divides by"},               \
   {                                                                                                               \
-    base + 0x71, p "hw.dac_full_scale_mm_s", ParamType::f32, "mm/s", 0, 1e5, "", Access::read_write, Apply::idle,   \
-        TNV_REAL(firmware.axis[ax].dac.full_scale_mm_s), "speed at DAC full scale (+10 V)"                         \
+    base + 0x85, p "friction.fraction", ParamType::f32, "", 0, 1.5, "", Access::read_write, Apply::idle,            \
+        TNV_REAL(firmware.axis[ax].friction.fraction), "share of the friction model fed forward"                   \
   }
 
 constexpr ParamDef kParams[] = {
@@ -237,6 +249,7 @@ std::uint16_t blame(const ConfigError& e) noexcept {
   const char* group = std::strstr(e.section, "sliding-mode") != nullptr ? "sliding."
                       : std::strstr(e.section, "pid") != nullptr        ? "pid."
                       : std::strstr(e.section, "jog") != nullptr        ? "jog."
+                      : std::strstr(e.section, "friction") != nullptr   ? "friction."
                                                                         : "";
   const char* field = e.field;
   if (std::strcmp(field, "G") == 0) field = "G_position_1_s";

@@ -16,7 +16,7 @@ constexpr const char* kRule =
     "the same phase margin, capped at max_phase_margin_deg (default 60 deg)";
 
 constexpr int kTdGridPoints = 600;
-constexpr int kBisections = 80;
+constexpr int kPidBisections = 80;
 
 double hz(double rad_s) noexcept { return rad_s / (2.0 * std::numbers::pi); }
 
@@ -97,7 +97,7 @@ PidTuningReport tune_pid_equal_crossover(const AxisModel& nominal, const Sliding
     }
     if (pm0 < target && pm1 >= target && pm1 - pm0 < 90.0) {
       double a = td_at(i - 1), b = td1;
-      for (int it = 0; it < kBisections; ++it) {
+      for (int it = 0; it < kPidBisections; ++it) {
         const double mid = std::sqrt(a * b);
         (shape.phase_margin_deg(mid) < target ? a : b) = mid;
       }

@@ -3,6 +3,7 @@
 // reaches the tick: a bad set is rejected entire, never half-applied.
 #include <array>
 
+#include "firmware/compensation/friction_feedforward.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/control/axis_model.hpp"
 #include "firmware/control/param_check.hpp"
@@ -25,6 +26,7 @@ struct AxisConfig {
   PidParams pid{};
   ControllerKind controller = ControllerKind::rdvsc;
   JogLimits jog{};                   // operator jog: speed, acceleration, dead-man timeout
+  FrictionFeedForward friction{};    // friction feed-forward (issue 7); off by default
 };
 
 struct FirmwareConfig {

@@ -268,6 +268,16 @@ void TickTask::tick() noexcept {
 
   // 3. reference x_ref,k and x_ref,k+1
   update_reference();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    if (!excite_[i].active()) continue;
+    if (state_ != MotionState::holding) {
+      excite_[i] = ExcitationGenerator{};  // a motion, disable or fault cancels it
+      continue;
+    }
+    // Open loop: the reference follows the table, so the following error stays 0.
+    hold_[i] = {record_.axis[i].position_mm, 0.0};
+    set_reference(i, hold_[i], hold_[i]);
+  }
 
   // 4. axis controllers -> speed commands
   const bool on = servo_on();
@@ -283,11 +293,19 @@ void TickTask::tick() noexcept {
     AxisTickRecord& r = record_.axis[i];
     double u_mm_s = 0.0;
     AxisController& ctl = axis_[i].active();
-    if (on) {
+    if (on && excite_[i].active()) {
+      u_mm_s = excite_[i].next(axis_[i].encoder.counts() - excite_start_counts_[i]);
+      if (!excite_[i].active()) {
+        // Holding resumes from where the axis came to rest, bumpless.
+        ctl.reset();
+        shaping_[i].shaper.reset(hold_[i]);
+      }
+    } else if (on) {
       const AxisState x{r.position_mm, r.speed_mm_s};
       const AxisReference ref{r.reference_mm, r.reference_speed_mm_s, next_[i].position_mm,
                               next_[i].speed_mm_s};
       u_mm_s = ctl.update(x, ref);
+      u_mm_s += friction_feedforward_mm_s(config_.axis[i].friction, r.reference_speed_mm_s, next_[i].speed_mm_s);
     }
     const ControllerSignals sig = ctl.signals();
     r.command_mm_s = u_mm_s;
@@ -508,7 +526,8 @@ bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfi
     const AxisConfig& b = to.axis[i];
     if (!same(from.supervisor.axis[i], to.supervisor.axis[i])) return false;
     if (a.count_mm != b.count_mm || a.dac.bits != b.dac.bits || a.dac.full_scale_mm_s != b.dac.full_scale_mm_s ||
-        a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog))
+        a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog) ||
+        !same(a.friction, b.friction))
       return false;
     // PID: kp, ki, kd and the clamp are live; the filter and the feed-forward switch are not.
     if (a.pid.derivative_filter_tf_s != b.pid.derivative_filter_tf_s || a.pid.feedforward != b.pid.feedforward)
@@ -590,6 +609,22 @@ CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
   r.unshaped_reference_mm += delta_mm;
   shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
   return CommandStatus::ok;
+}
+
+CommandStatus TickTask::start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept {
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ != MotionState::holding || exciting()) return CommandStatus::busy;
+  excite_start_counts_[a] = axis_[a].encoder.counts();
+  excite_[a].start(spec);
+  return CommandStatus::ok;
+}
+
+bool TickTask::exciting() const noexcept {
+  for (const ExcitationGenerator& e : excite_)
+    if (e.active()) return true;
+  return false;
 }
 
 CommandStatus TickTask::estop() noexcept {

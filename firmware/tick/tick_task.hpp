@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 
+#include "firmware/compensation/excitation.hpp"
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/shaper/shaper_design.hpp"
@@ -79,6 +80,14 @@ class TickTask {
   CommandStatus configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept;
   CommandStatus enable_shaper(hal::Axis axis, bool on) noexcept;
   CommandStatus select_controller(hal::Axis axis, ControllerKind kind) noexcept;
+  // Plant identification (issue 7): the axis' speed command comes from an
+  // open-loop excitation (excitation.hpp) instead of its controller; its
+  // reference follows the measured position, the other axis holds. Only
+  // while holding with no excitation running (busy otherwise), invalid for a
+  // bad spec. Ends by itself (the axis then holds where it came to rest);
+  // leaving holding (a motion, disable, fault) cancels it.
+  CommandStatus start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept;
+  bool exciting() const noexcept;
   CommandStatus disable() noexcept;
   CommandStatus clear_fault() noexcept;
 
@@ -219,6 +228,8 @@ class TickTask {
   std::array<double, hal::kAxisCount> centre_mm_{};  // circle centre
   std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
   std::array<AxisShaping, hal::kAxisCount> shaping_{};
+  std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
+  std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
 };
 
 }  // namespace tnv::fw

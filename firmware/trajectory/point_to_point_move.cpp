@@ -10,6 +10,10 @@ const char* validate(const MoveSpec& spec) noexcept {
   if (!std::isfinite(spec.dwell_s) || spec.dwell_s < 0.0) return "dwell_s must be >= 0 and finite";
   if (spec.speed_mm_s * spec.ramp_s > std::fabs(spec.distance_mm))
     return "ramp_s too long for distance_mm at speed_mm_s: the two ramps do not fit (speed * ramp <= |distance|)";
+  // The tick task counts a motion's ticks in an int64; nothing on the bench takes 10^6 s.
+  if (spec.dwell_s > 1e6) return "dwell_s must be <= 1e6 s";
+  if (std::fabs(spec.distance_mm) / spec.speed_mm_s + spec.ramp_s > 1e6)
+    return "speed_mm_s too low for distance_mm: the move would take more than 1e6 s";
   return "";
 }
 

@@ -9,44 +9,44 @@ namespace {
 namespace can = fw::can;
 using can_host::parse_param_value;
 
-const can::ParamDef& param(const char* name) { return *can::find_param(name); }
+const can::ParamDef& param_def(const char* name) { return *can::find_param(name); }
 
 TEST(ParamText, EnumsAndBooleansByNameNumbersAsNumbers) {
   std::string error;
-  EXPECT_EQ(parse_param_value(param("x.controller"), "pid", error), 0.0);
-  EXPECT_EQ(parse_param_value(param("x.controller"), "2", error), 2.0);
-  EXPECT_EQ(parse_param_value(param("y.shaper.enable"), "on", error), 1.0);
-  EXPECT_EQ(parse_param_value(param("y.shaper.enable"), "false", error), 0.0);
-  EXPECT_EQ(parse_param_value(param("x.sliding.gamma"), "0.25", error), 0.25);
-  EXPECT_EQ(parse_param_value(param("capture.channels"), "0x8001", error), 32769.0);
+  EXPECT_EQ(parse_param_value(param_def("x.controller"), "pid", error), 0.0);
+  EXPECT_EQ(parse_param_value(param_def("x.controller"), "2", error), 2.0);
+  EXPECT_EQ(parse_param_value(param_def("y.shaper.enable"), "on", error), 1.0);
+  EXPECT_EQ(parse_param_value(param_def("y.shaper.enable"), "false", error), 0.0);
+  EXPECT_EQ(parse_param_value(param_def("x.sliding.gamma"), "0.25", error), 0.25);
+  EXPECT_EQ(parse_param_value(param_def("capture.channels"), "0x8001", error), 32769.0);
 }
 
 TEST(ParamText, RefusalsNameTheParameterAndTheAllowedValues) {
   std::string error;
-  EXPECT_FALSE(parse_param_value(param("x.controller"), "fuzzy", error));
+  EXPECT_FALSE(parse_param_value(param_def("x.controller"), "fuzzy", error));
   EXPECT_EQ(error, "x.controller: 'fuzzy' is not a value of {pid, dvsc, rdvsc}");
-  EXPECT_FALSE(parse_param_value(param("x.sliding.gamma"), "1.5", error));
+  EXPECT_FALSE(parse_param_value(param_def("x.sliding.gamma"), "1.5", error));
   EXPECT_EQ(error, "x.sliding.gamma: 1.5 is outside 0 .. 1");
-  EXPECT_FALSE(parse_param_value(param("x.sliding.gamma"), "nan", error));
+  EXPECT_FALSE(parse_param_value(param_def("x.sliding.gamma"), "nan", error));
   EXPECT_EQ(error, "x.sliding.gamma: not a finite number");
-  EXPECT_FALSE(parse_param_value(param("can.bitrate_kbit"), "300", error));
+  EXPECT_FALSE(parse_param_value(param_def("can.bitrate_kbit"), "300", error));
   EXPECT_NE(error.find("{125, 250, 500, 1000}"), std::string::npos) << error;
-  EXPECT_FALSE(parse_param_value(param("tlm.heartbeat_ms"), "2.5", error));
+  EXPECT_FALSE(parse_param_value(param_def("tlm.heartbeat_ms"), "2.5", error));
   EXPECT_NE(error.find("whole numbers"), std::string::npos) << error;
-  EXPECT_FALSE(parse_param_value(param("sys.protocol_version"), "2", error));
+  EXPECT_FALSE(parse_param_value(param_def("sys.protocol_version"), "2", error));
   EXPECT_EQ(error, "sys.protocol_version: read-only");
 }
 
 TEST(ParamText, Float32ValuesPrintAsTheShortestTextThatReadsBack) {
-  EXPECT_EQ(can_host::format_param_value(param("x.sliding.gamma"), static_cast<double>(0.4155f)), "0.4155");
-  EXPECT_EQ(can_host::format_param_value(param("x.sliding.gamma"), 0.25), "0.25");
-  EXPECT_EQ(can_host::format_param_value(param("x.controller"), 1), "dvsc");
-  EXPECT_EQ(can_host::format_param_value(param("tlm.heartbeat_ms"), 100), "100");
+  EXPECT_EQ(can_host::format_param_value(param_def("x.sliding.gamma"), static_cast<double>(0.4155f)), "0.4155");
+  EXPECT_EQ(can_host::format_param_value(param_def("x.sliding.gamma"), 0.25), "0.25");
+  EXPECT_EQ(can_host::format_param_value(param_def("x.controller"), 1), "dvsc");
+  EXPECT_EQ(can_host::format_param_value(param_def("tlm.heartbeat_ms"), 100), "100");
 }
 
 TEST(ParamText, FindsByNameOrIdAndSuggestsCloseNames) {
-  EXPECT_EQ(can_host::find_param_by_text("x.sliding.gamma"), &param("x.sliding.gamma"));
-  EXPECT_EQ(can_host::find_param_by_text("0x0116"), &param("x.sliding.gamma"));
+  EXPECT_EQ(can_host::find_param_by_text("x.sliding.gamma"), &param_def("x.sliding.gamma"));
+  EXPECT_EQ(can_host::find_param_by_text("0x0116"), &param_def("x.sliding.gamma"));
   EXPECT_EQ(can_host::find_param_by_text("x.sliding.gama"), nullptr);
   EXPECT_EQ(can_host::closest_param_name("x.sliding.gama"), "x.sliding.gamma");
   EXPECT_EQ(can_host::closest_param_name("completely.different"), "");

@@ -10,6 +10,7 @@
 #include "emulator/quadrature_encoder.hpp"
 #include "emulator/scenario_validation.hpp"
 #include "hal/io_board_registers.hpp"
+#include "tests/emulator/machine_register_read.hpp"
 
 namespace tnv::emu {
 namespace {
@@ -17,11 +18,7 @@ namespace {
 namespace regs = hal::regs;
 using hal::Axis;
 
-std::uint32_t read(Machine& m, std::uint16_t word) {
-  std::uint32_t value = 0;
-  EXPECT_TRUE(m.read_register(word, value)) << "read of 0x" << std::hex << word;
-  return value;
-}
+using test_support::read;
 
 Scenario with_fault(const FaultSpec& f) {
   Scenario s;

@@ -100,13 +100,13 @@ TEST(FaultScheduleFile, MissedTickDefaultsToOneTick) {
   EXPECT_EQ(r.scenario->faults.at(0).ticks, 1u);
 }
 
-struct BadCase {
+struct BadScheduleCase {
   std::string text;
   std::string error;
 };
 
 TEST(FaultScheduleFile, ErrorsNameFileLineAndKey) {
-  const BadCase cases[] = {
+  const BadScheduleCase cases[] = {
       {"fault = 3\n", "bad.toml:1:1: fault: expected an array of tables ([[fault]]), got an integer"},
       {"[fault]\nkind = \"estop\"\n", "bad.toml:1:2: fault: expected an array of tables ([[fault]]), got a table"},
       {"[[fault]]\nstart_s = 1\n",
@@ -147,7 +147,7 @@ TEST(FaultScheduleFile, ErrorsNameFileLineAndKey) {
       {"[[fault]]\nkind = \"late_tick\"\ndelay_us = 0\nstart_s = 1\n",
        "bad.toml:3:1: fault[0].delay_us: must be > 0 and <= 1000000 (got 0)"},
   };
-  for (const BadCase& c : cases) {
+  for (const BadScheduleCase& c : cases) {
     const ScenarioResult r = parse_scenario_text(c.text, "bad.toml");
     EXPECT_FALSE(r.scenario) << c.text;
     EXPECT_THAT(r.error, HasSubstr(c.error)) << c.text;

@@ -10,6 +10,7 @@
 #include "emulator/force_adc.hpp"
 #include "emulator/scenario_file.hpp"
 #include "hal/io_board_registers.hpp"
+#include "tests/emulator/machine_register_read.hpp"
 
 namespace tnv::emu {
 namespace {
@@ -17,11 +18,7 @@ namespace {
 namespace regs = hal::regs;
 using hal::Axis;
 
-std::uint32_t read(Machine& m, std::uint16_t word) {
-  std::uint32_t value = 0;
-  EXPECT_TRUE(m.read_register(word, value));
-  return value;
-}
+using test_support::read;
 
 void servo_on(Machine& m, std::uint32_t dac_x = 2048, std::uint32_t dac_y = 2048) {
   ASSERT_TRUE(m.write_register(regs::kDacX, dac_x));

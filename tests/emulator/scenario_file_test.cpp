@@ -140,18 +140,18 @@ TEST(ScenarioFile, LoadsFromDisk) {
   EXPECT_TRUE(r.scenario->cutting.enabled);
 }
 
-struct BadCase {
+struct BadScenarioCase {
   const char* what;
   const char* text;
   const char* expected;  // the whole line after "scen.toml:"
 };
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.what; }
+void PrintTo(const BadScenarioCase& c, std::ostream* os) { *os << c.what; }
 
-class ScenarioFileErrors : public ::testing::TestWithParam<BadCase> {};
+class ScenarioFileErrors : public ::testing::TestWithParam<BadScenarioCase> {};
 
 TEST_P(ScenarioFileErrors, OneLineNamingFileLineAndKey) {
-  const BadCase& c = GetParam();
+  const BadScenarioCase& c = GetParam();
   const ScenarioResult r = parse_scenario_text(c.text, "scen.toml");
   EXPECT_FALSE(r.scenario) << c.what << ": accepted";
   EXPECT_EQ(r.error, std::string("scen.toml:") + c.expected) << c.what;
@@ -161,51 +161,51 @@ TEST_P(ScenarioFileErrors, OneLineNamingFileLineAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     EveryErrorClass, ScenarioFileErrors,
     ::testing::Values(
-        BadCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
-        BadCase{"unknown section", "[plant.z]\ntau_s = 1\n", "1:8: plant.z: unknown section"},
-        BadCase{"unknown top section", "[spindle]\nrpm = 1\n", "1:2: spindle: unknown section"},
-        BadCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
-        BadCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
-        BadCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},
-        BadCase{"float for integer", "[dac]\nbits = 12.0\n", "2:1: dac.bits: expected an integer, got a float"},
-        BadCase{"wrong bool type", "[cutting]\nenabled = 1\n", "2:1: cutting.enabled: expected a boolean, got an integer"},
-        BadCase{"section not a table", "cutting = 3\n", "1:1: cutting: expected a table, got an integer"},
-        BadCase{"name not a string", "name = 3\n", "1:1: name: expected a string, got an integer"},
-        BadCase{"nan", "[plant.y]\ngain = nan\n", "2:1: plant.y.gain: must be > 0 and finite (got nan)"},
-        BadCase{"inf", "[encoder]\noffset_counts_x = -inf\n", "2:1: encoder.offset_counts_x: must be finite (got -inf)"},
-        BadCase{"stiction below coulomb", "[plant.x]\ncoulomb_mm_s = 2\nstiction_mm_s = 1.5\n",
+        BadScenarioCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
+        BadScenarioCase{"unknown section", "[plant.z]\ntau_s = 1\n", "1:8: plant.z: unknown section"},
+        BadScenarioCase{"unknown top section", "[spindle]\nrpm = 1\n", "1:2: spindle: unknown section"},
+        BadScenarioCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
+        BadScenarioCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
+        BadScenarioCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},
+        BadScenarioCase{"float for integer", "[dac]\nbits = 12.0\n", "2:1: dac.bits: expected an integer, got a float"},
+        BadScenarioCase{"wrong bool type", "[cutting]\nenabled = 1\n", "2:1: cutting.enabled: expected a boolean, got an integer"},
+        BadScenarioCase{"section not a table", "cutting = 3\n", "1:1: cutting: expected a table, got an integer"},
+        BadScenarioCase{"name not a string", "name = 3\n", "1:1: name: expected a string, got an integer"},
+        BadScenarioCase{"nan", "[plant.y]\ngain = nan\n", "2:1: plant.y.gain: must be > 0 and finite (got nan)"},
+        BadScenarioCase{"inf", "[encoder]\noffset_counts_x = -inf\n", "2:1: encoder.offset_counts_x: must be finite (got -inf)"},
+        BadScenarioCase{"stiction below coulomb", "[plant.x]\ncoulomb_mm_s = 2\nstiction_mm_s = 1.5\n",
                 "3:1: plant.x.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1.5)"},
-        BadCase{"coulomb above default stiction", "[plant.y]\ncoulomb_mm_s = 4\n",
+        BadScenarioCase{"coulomb above default stiction", "[plant.y]\ncoulomb_mm_s = 4\n",
                 "2:1: plant.y.coulomb_mm_s: must be <= stiction_mm_s = 3 (got 4)"},
-        BadCase{"negative friction", "[plant.x]\ncoulomb_mm_s = -0.1\n",
+        BadScenarioCase{"negative friction", "[plant.x]\ncoulomb_mm_s = -0.1\n",
                 "2:1: plant.x.coulomb_mm_s: must be >= 0 and finite (got -0.1)"},
-        BadCase{"stribeck zero", "[plant.x]\nstribeck_mm_s = 0\n", "2:1: plant.x.stribeck_mm_s: must be > 0 and finite (got 0)"},
-        BadCase{"mode above nyquist", "[plant.x]\nmode_hz = 50000\n",
+        BadScenarioCase{"stribeck zero", "[plant.x]\nstribeck_mm_s = 0\n", "2:1: plant.x.stribeck_mm_s: must be > 0 and finite (got 0)"},
+        BadScenarioCase{"mode above nyquist", "[plant.x]\nmode_hz = 50000\n",
                 "2:1: plant.x.mode_hz: must be >= 0 and below the sub-step Nyquist frequency 50000 Hz (got 50000)"},
-        BadCase{"zeta one", "[plant.y]\nmode_zeta = 1\n", "2:1: plant.y.mode_zeta: must be >= 0 and below 1 (got 1)"},
-        BadCase{"spindle zero", "[cutting]\nspindle_rpm = 0\n", "2:1: cutting.spindle_rpm: must be > 0 and finite (got 0)"},
-        BadCase{"no flutes", "[cutting]\nflutes = 0\n", "2:1: cutting.flutes: must be >= 1 (got 0)"},
-        BadCase{"huge flutes", "[cutting]\nflutes = 9999999999\n", "2:1: cutting.flutes: out of range (got 9999999999)"},
-        BadCase{"negative amplitude", "[cutting]\namplitude_mm_s = -1\n",
+        BadScenarioCase{"zeta one", "[plant.y]\nmode_zeta = 1\n", "2:1: plant.y.mode_zeta: must be >= 0 and below 1 (got 1)"},
+        BadScenarioCase{"spindle zero", "[cutting]\nspindle_rpm = 0\n", "2:1: cutting.spindle_rpm: must be > 0 and finite (got 0)"},
+        BadScenarioCase{"no flutes", "[cutting]\nflutes = 0\n", "2:1: cutting.flutes: must be >= 1 (got 0)"},
+        BadScenarioCase{"huge flutes", "[cutting]\nflutes = 9999999999\n", "2:1: cutting.flutes: out of range (got 9999999999)"},
+        BadScenarioCase{"negative amplitude", "[cutting]\namplitude_mm_s = -1\n",
                 "2:1: cutting.amplitude_mm_s: must be >= 0 and finite (got -1)"},
-        BadCase{"counts not x4", "[encoder]\ncounts_per_rev = 1001\n",
+        BadScenarioCase{"counts not x4", "[encoder]\ncounts_per_rev = 1001\n",
                 "2:1: encoder.counts_per_rev: must be a positive multiple of 4 (x4 decoding) (got 1001)"},
-        BadCase{"lead zero", "[encoder]\nlead_mm = 0\n", "2:1: encoder.lead_mm: must be > 0 and finite (got 0)"},
-        BadCase{"dac bits", "[dac]\nbits = 17\n", "2:1: dac.bits: must be in 8..16 (got 17)"},
-        BadCase{"dac volts", "[dac]\nfull_scale_v = 0\n", "2:1: dac.full_scale_v: must be > 0 and finite (got 0)"},
-        BadCase{"dac rpm", "[dac]\nrpm_at_full_scale = -5\n", "2:1: dac.rpm_at_full_scale: must be > 0 and finite (got -5)"},
-        BadCase{"force volts", "[force_sensor]\nvolts_per_mm_s = -1\n",
+        BadScenarioCase{"lead zero", "[encoder]\nlead_mm = 0\n", "2:1: encoder.lead_mm: must be > 0 and finite (got 0)"},
+        BadScenarioCase{"dac bits", "[dac]\nbits = 17\n", "2:1: dac.bits: must be in 8..16 (got 17)"},
+        BadScenarioCase{"dac volts", "[dac]\nfull_scale_v = 0\n", "2:1: dac.full_scale_v: must be > 0 and finite (got 0)"},
+        BadScenarioCase{"dac rpm", "[dac]\nrpm_at_full_scale = -5\n", "2:1: dac.rpm_at_full_scale: must be > 0 and finite (got -5)"},
+        BadScenarioCase{"force volts", "[force_sensor]\nvolts_per_mm_s = -1\n",
                 "2:1: force_sensor.volts_per_mm_s: must be >= 0 and finite (got -1)"},
-        BadCase{"clock negative", "[board]\nclock_start = -1\n", "2:1: board.clock_start: must be in 0..4294967295 (got -1)"},
-        BadCase{"clock too big", "[board]\nclock_start = 4294967296\n",
+        BadScenarioCase{"clock negative", "[board]\nclock_start = -1\n", "2:1: board.clock_start: must be in 0..4294967295 (got -1)"},
+        BadScenarioCase{"clock too big", "[board]\nclock_start = 4294967296\n",
                 "2:1: board.clock_start: must be in 0..4294967295 (got 4294967296)"},
-        BadCase{"radius", "[circle]\nradius_mm = 0\n", "2:1: circle.radius_mm: must be > 0 and finite (got 0)"},
-        BadCase{"feed", "[circle]\nfeed_mm_s = -2\n", "2:1: circle.feed_mm_s: must be > 0 and finite (got -2)"},
-        BadCase{"dwell", "[circle]\ndwell_s = -0.5\n", "2:1: circle.dwell_s: must be >= 0 and finite (got -0.5)"},
-        BadCase{"ramps too long", "[circle]\nramp_s = 20\n",
+        BadScenarioCase{"radius", "[circle]\nradius_mm = 0\n", "2:1: circle.radius_mm: must be > 0 and finite (got 0)"},
+        BadScenarioCase{"feed", "[circle]\nfeed_mm_s = -2\n", "2:1: circle.feed_mm_s: must be > 0 and finite (got -2)"},
+        BadScenarioCase{"dwell", "[circle]\ndwell_s = -0.5\n", "2:1: circle.dwell_s: must be >= 0 and finite (got -0.5)"},
+        BadScenarioCase{"ramps too long", "[circle]\nramp_s = 20\n",
                 "2:1: circle.ramp_s: both ramps must fit in the circle: feed_mm_s * ramp_s = 40 mm > 2 pi radius_mm = "
                 "37.69911184307752 mm"}),
-    [](const ::testing::TestParamInfo<BadCase>& param_info) {
+    [](const ::testing::TestParamInfo<BadScenarioCase>& param_info) {
       std::string name = param_info.param.what;
       for (char& ch : name) {
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';

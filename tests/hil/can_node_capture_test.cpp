@@ -21,7 +21,6 @@ using fw::can::CaptureOp;
 using fw::can::ErrorCode;
 using fw::can::MessageId;
 
-constexpr auto kOk = static_cast<std::uint32_t>(ErrorCode::ok);
 
 // Encoded here, independently of the firmware's channel code.
 std::uint32_t nm(double mm) { return static_cast<std::uint32_t>(static_cast<std::int32_t>(std::llround(mm * 1e6))); }

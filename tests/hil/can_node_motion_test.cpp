@@ -16,7 +16,6 @@ using fw::can::ErrorCode;
 using fw::can::MessageId;
 using fw::can::ParamOp;
 
-constexpr auto kOk = static_cast<std::uint32_t>(ErrorCode::ok);
 constexpr auto kBusy = static_cast<std::uint32_t>(ErrorCode::busy);
 constexpr auto kInvalid = static_cast<std::uint32_t>(ErrorCode::invalid);
 

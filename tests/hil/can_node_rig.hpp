@@ -68,4 +68,7 @@ struct CanRig {
 
 inline std::uint16_t param_id(const char* name) { return fw::can::find_param(name)->id; }
 
+// The result field of a reply that accepted the request.
+inline constexpr auto kOk = static_cast<std::uint32_t>(fw::can::ErrorCode::ok);
+
 }  // namespace tnv::test

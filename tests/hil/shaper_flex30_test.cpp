@@ -20,7 +20,7 @@
 namespace tnv::hil {
 namespace {
 
-constexpr int kSeeds = 5;
+constexpr int kFlexSeeds = 5;
 constexpr double kDistancesMm[] = {5.0, 10.0, 20.0};
 
 struct Case {
@@ -54,7 +54,7 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
       request.scenario = flex;
       request.move = {hal::Axis::x, distance_mm, 100.0, 0.02, 0.0};
       request.shaper = fw::ShaperSpec{c.type, {c.design_hz, zeta}, {0.0, 0.0}};
-      const MoveComparison cmp = compare_move(request, fw::default_firmware_config(), kSeeds);
+      const MoveComparison cmp = compare_move(request, fw::default_firmware_config(), kFlexSeeds);
       ASSERT_TRUE(cmp.error.empty()) << cmp.error;
       for (const MovePair& p : cmp.pairs) {
         const std::string where = std::string(fw::to_string(c.type)) + " designed at " + std::to_string(c.design_hz) +

@@ -13,17 +13,17 @@ namespace {
 
 using test::CliRun;
 
-CliRun run(const std::string& args) { return test::run_tnv_hil(args); }
+using test::run_tnv_hil;
 
 TEST(ArscCli, DesignPrintsTheSevenGainsOrSaysSingular) {
-  CliRun r = run("arsc design --poles case1 --json");
+  CliRun r = run_tnv_hil("arsc design --poles case1 --json");
   ASSERT_EQ(r.exit_code, 0);
   nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["status"], "ok");
   for (const char* key : {"gamma01", "k", "gamma11", "gamma13", "gamma22", "gamma31", "gamma32"})
     EXPECT_TRUE(j["gains"].contains(key)) << key;
   EXPECT_LT(j["max_coefficient_error"].get<double>(), 1e-9);
-  r = run("arsc design --poles case2 --json");
+  r = run_tnv_hil("arsc design --poles case2 --json");
   ASSERT_EQ(r.exit_code, 0);
   j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["status"], "singular");
@@ -32,7 +32,7 @@ TEST(ArscCli, DesignPrintsTheSevenGainsOrSaysSingular) {
 }
 
 TEST(ArscCli, RunReportsTheIssueKeysAndTheTrace) {
-  const CliRun r = run("arsc run --poles case4 --variant robust --json");
+  const CliRun r = run_tnv_hil("arsc run --poles case4 --variant robust --json");
   ASSERT_EQ(r.exit_code, 0);
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_LT(j["force_error_max_pct"].get<double>(), 10.0);
@@ -44,7 +44,7 @@ TEST(ArscCli, RunReportsTheIssueKeysAndTheTrace) {
 }
 
 TEST(ArscCli, TickAtOnePeriodReportsErrorPeriodAndSaturation) {
-  const CliRun r = run("arsc tick --period-ms 1 --speedup 4 --json");
+  const CliRun r = run_tnv_hil("arsc tick --period-ms 1 --speedup 4 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_DOUBLE_EQ(j["period_s"].get<double>(), 0.001);
@@ -57,7 +57,7 @@ TEST(ArscCli, TickAtOnePeriodReportsErrorPeriodAndSaturation) {
 }
 
 TEST(ArscCli, TickWithoutAPeriodComparesTheRates) {
-  const CliRun r = run("arsc tick --json");
+  const CliRun r = run_tnv_hil("arsc tick --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["runs"].size(), 6u);
@@ -76,13 +76,13 @@ TEST(ArscCli, TickWithoutAPeriodComparesTheRates) {
 }
 
 TEST(ArscCli, BadArgumentsAreExitCode2) {
-  EXPECT_EQ(run("arsc run --poles case5 --variant robust").exit_code, 2);
-  EXPECT_EQ(run("arsc run --poles case1 --variant literal").exit_code, 2);
-  EXPECT_EQ(run("arsc design").exit_code, 2);
-  EXPECT_EQ(run("arsc tick --period-ms 0").exit_code, 2);
-  EXPECT_EQ(run("arsc tick --poles case9").exit_code, 2);
-  EXPECT_EQ(run("arsc tick --period-ms 1 --speedup -2").exit_code, 2);
-  EXPECT_EQ(run("arsc tick --speedup 4").exit_code, 2);  // only with --period-ms
+  EXPECT_EQ(run_tnv_hil("arsc run --poles case5 --variant robust").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc run --poles case1 --variant literal").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc design").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc tick --period-ms 0").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc tick --poles case9").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc tick --period-ms 1 --speedup -2").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc tick --speedup 4").exit_code, 2);  // only with --period-ms
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ namespace {
 
 using test::CliRun;
 
-CliRun run(const std::string& args) { return test::run_tnv_hil(args); }
+using test::run_tnv_hil;
 
 std::filesystem::path temp_file(const std::string& name, const std::string& content) {
   const auto p = std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
@@ -26,7 +26,7 @@ std::filesystem::path temp_file(const std::string& name, const std::string& cont
 
 TEST(TnvHilCli, BadScenarioFileIsOneLineNamingFileLineAndKeyWithExitCode2) {
   const auto path = temp_file("bad.toml", "name = \"x\"\n[plant.x]\ntau_s = 0.005\ntua_s = 1.0\n");
-  const CliRun r = run("circle --scenario " + path.string());
+  const CliRun r = run_tnv_hil("circle --scenario " + path.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(r.out.empty()) << "nothing may run: " << r.out;
   EXPECT_NE(r.err.find(path.filename().string()), std::string::npos) << r.err;
@@ -38,11 +38,11 @@ TEST(TnvHilCli, BadScenarioFileIsOneLineNamingFileLineAndKeyWithExitCode2) {
 
 TEST(TnvHilCli, NonFiniteAndOutOfRangeValuesAreRefused) {
   const auto nan_path = temp_file("nan.toml", "[circle]\nfeed_mm_s = nan\n");
-  CliRun r = run("circle --scenario " + nan_path.string());
+  CliRun r = run_tnv_hil("circle --scenario " + nan_path.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("feed_mm_s"), std::string::npos) << r.err;
   const auto neg_path = temp_file("neg.toml", "[plant.y]\ntau_s = -0.001\n");
-  r = run("circle --scenario " + neg_path.string());
+  r = run_tnv_hil("circle --scenario " + neg_path.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("tau_s"), std::string::npos) << r.err;
   std::filesystem::remove(nan_path);
@@ -50,15 +50,15 @@ TEST(TnvHilCli, NonFiniteAndOutOfRangeValuesAreRefused) {
 }
 
 TEST(TnvHilCli, MissingScenarioAndBadOptionsExitWith2) {
-  EXPECT_EQ(run("circle --scenario /nonexistent/nothing.toml").exit_code, 2);
-  EXPECT_EQ(run("circle --controller fuzzy").exit_code, 2);
-  EXPECT_EQ(run("table3 --seeds 0").exit_code, 2);
-  EXPECT_EQ(run("").exit_code, 2);
-  EXPECT_EQ(run("--help").exit_code, 0);
+  EXPECT_EQ(run_tnv_hil("circle --scenario /nonexistent/nothing.toml").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("circle --controller fuzzy").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("table3 --seeds 0").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("--help").exit_code, 0);
 }
 
 TEST(TnvHilCli, Table3JsonHasTwelveRowsAndThePidGains) {
-  const CliRun r = run("table3 --seeds 1 --json");
+  const CliRun r = run_tnv_hil("table3 --seeds 1 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["results"].size(), 12u);
@@ -73,7 +73,7 @@ TEST(TnvHilCli, Table3JsonHasTwelveRowsAndThePidGains) {
 TEST(TnvHilCli, CircleWritesPlotAndCsv) {
   const auto dir = std::filesystem::temp_directory_path() / ("tnv_hil_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const CliRun r = run("circle --controller pid --scenario cut-1500 --json --plot " + (dir / "c.svg").string() +
+  const CliRun r = run_tnv_hil("circle --controller pid --scenario cut-1500 --json --plot " + (dir / "c.svg").string() +
                     " --csv " + (dir / "c.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);

@@ -3,7 +3,7 @@
 #include <thread>
 
 #include "emulator/scenario_file.hpp"
-#include "firmware/can/param_image.hpp"
+#include "firmware/can/param_fallback.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/seeded_scenario.hpp"
 
@@ -61,15 +61,17 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   settings.motion.circle_dwell_s = scenario.circle.dwell_s;
   settings.can.node_id = options.node;
 
-  // Start-up load, before the tick task is built, as on a real node.
-  FileParamStorage storage(path);
-  const can::ErrorCode loaded = can::load_settings(storage, settings);
+  // Start-up load, before the tick task is built, as on a real node: the
+  // current image, else the previous generation, else the defaults.
+  drivers::FileParamStorage storage(path);
+  const can::LoadReport loaded = can::load_settings_with_fallback(storage, &storage.previous(), settings);
   std::string note;
-  if (loaded != can::ErrorCode::ok) {
+  if (loaded.fault()) {
     note = path;
-    note.append(": stored parameters not loaded (").append(can::to_string(loaded));
+    note.append(": stored parameters not loaded (").append(can::to_string(loaded.current));
     if (!storage.last_error().empty()) note.append(": ").append(storage.last_error());
-    note += "); the node starts with defaults";
+    note += loaded.source == can::LoadSource::previous ? "); the node starts with the previous saved set"
+                                                        : "); the node starts with defaults";
   }
   // The board's hardware facts (encoder, DAC, home) come from the scenario.
   settings.firmware = hil::firmware_config_for(scenario, settings.firmware);
@@ -86,7 +88,7 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   bus->rig_ = hil::HilRig::create(scenario, settings.firmware, settings.firmware.axis[0].controller, error);
   if (!bus->rig_) return nullptr;
   bus->node_ = std::make_unique<can::CanNode>(bus->rig_->task, *bus->port_, bus->storage_, settings,
-                                              loaded != can::ErrorCode::ok);
+                                              loaded.fault(), &bus->storage_.previous());
   return bus;
 }
 

@@ -12,7 +12,8 @@
 
 #include "emulator/scenario.hpp"
 #include "firmware/can/can_node.hpp"
-#include "tools/can/file_param_storage.hpp"
+#include "drivers/storage/file_param_storage.hpp"
+#include "tools/can/emulated_storage_path.hpp"
 #include "tools/can/host_bus.hpp"
 #include "tools/can/virtual_can_bus.hpp"
 #include "tools/hil/hil_rig.hpp"
@@ -66,7 +67,7 @@ class EmulatedBus final : public HostBus {
 
   emu::Scenario scenario_;
   int seed_ = 0;
-  FileParamStorage storage_;
+  drivers::FileParamStorage storage_;
   VirtualCanBus wire_;
   std::unique_ptr<NodePort> port_;
   std::unique_ptr<hil::HilRig> rig_;

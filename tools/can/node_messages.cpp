@@ -3,28 +3,29 @@
 #include <cctype>
 #include <string>
 
+#include "firmware/can/node_fields.hpp"
+
 namespace tnv::can_host {
 
 namespace {
 
 using can::field;
-using can::message;
 using can::MessageId;
 
-constexpr const can::MessageDef& kParamRequest = message(MessageId::param_request);
-constexpr const can::MessageDef& kParamReply = message(MessageId::param_reply);
-constexpr const can::MessageDef& kCommand = message(MessageId::command);
-constexpr const can::MessageDef& kCommandAck = message(MessageId::command_ack);
-constexpr const can::MessageDef& kMove = message(MessageId::move);
-constexpr const can::MessageDef& kCircle = message(MessageId::circle);
-constexpr const can::MessageDef& kJog = message(MessageId::jog);
-constexpr const can::MessageDef& kShaper = message(MessageId::shaper);
-constexpr const can::MessageDef& kCaptureControl = message(MessageId::capture_control);
-constexpr const can::MessageDef& kCaptureStatus = message(MessageId::capture_status);
-constexpr const can::MessageDef& kCaptureData = message(MessageId::capture_data);
-constexpr const can::MessageDef& kHeartbeat = message(MessageId::heartbeat);
-constexpr const can::MessageDef& kFaultEvent = message(MessageId::fault_event);
-constexpr const can::MessageDef& kEstop = message(MessageId::estop);
+using can::fields::kParamRequestMsg;
+using can::fields::kParamReplyMsg;
+using can::fields::kCommandMsg;
+using can::fields::kAckMsg;
+using can::fields::kMoveMsg;
+using can::fields::kCircleMsg;
+using can::fields::kJogMsg;
+using can::fields::kShaperMsg;
+using can::fields::kCaptureControlMsg;
+using can::fields::kCaptureStatusMsg;
+using can::fields::kCaptureDataMsg;
+using can::fields::kHeartbeatMsg;
+using can::fields::kFaultEventMsg;
+using can::fields::kEstopMsg;
 
 template <typename T>
 T raw_as(const hal::CanFrame& frame, const can::FieldDef& f) {
@@ -34,119 +35,119 @@ T raw_as(const hal::CanFrame& frame, const can::FieldDef& f) {
 }  // namespace
 
 hal::CanFrame param_request(std::uint8_t node, can::ParamOp op, std::uint16_t param, std::uint32_t value_raw) {
-  hal::CanFrame f = can::make_frame(kParamRequest, node);
-  can::write_raw(f, field(kParamRequest, "op"), static_cast<std::uint32_t>(op));
-  can::write_raw(f, field(kParamRequest, "param"), param);
-  can::write_raw(f, field(kParamRequest, "value"), value_raw);
+  hal::CanFrame f = can::make_frame(kParamRequestMsg, node);
+  can::write_raw(f, field(kParamRequestMsg, "op"), static_cast<std::uint32_t>(op));
+  can::write_raw(f, field(kParamRequestMsg, "param"), param);
+  can::write_raw(f, field(kParamRequestMsg, "value"), value_raw);
   return f;
 }
 
 hal::CanFrame command_request(std::uint8_t node, can::CommandCode code, std::uint8_t axis, std::uint16_t arg,
                               double value) {
-  hal::CanFrame f = can::make_frame(kCommand, node);
-  can::write_raw(f, field(kCommand, "code"), static_cast<std::uint32_t>(code));
-  can::write_raw(f, field(kCommand, "axis"), axis);
-  can::write_raw(f, field(kCommand, "arg"), arg);
-  can::write(f, field(kCommand, "value"), value);
+  hal::CanFrame f = can::make_frame(kCommandMsg, node);
+  can::write_raw(f, field(kCommandMsg, "code"), static_cast<std::uint32_t>(code));
+  can::write_raw(f, field(kCommandMsg, "axis"), axis);
+  can::write_raw(f, field(kCommandMsg, "arg"), arg);
+  can::write(f, field(kCommandMsg, "value"), value);
   return f;
 }
 
 hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance_mm, double speed_mm_s) {
-  hal::CanFrame f = can::make_frame(kMove, node);
-  can::write_raw(f, field(kMove, "axis"), axis);
+  hal::CanFrame f = can::make_frame(kMoveMsg, node);
+  can::write_raw(f, field(kMoveMsg, "axis"), axis);
   // The caller range-checks the speed (0.01 mm/s steps, at most 655.35 mm/s).
-  can::write(f, field(kMove, "speed"), speed_mm_s);
-  can::write(f, field(kMove, "distance"), distance_mm);
+  can::write(f, field(kMoveMsg, "speed"), speed_mm_s);
+  can::write(f, field(kMoveMsg, "distance"), distance_mm);
   return f;
 }
 
 hal::CanFrame circle_request(std::uint8_t node, double radius_mm, double feed_mm_s) {
-  hal::CanFrame f = can::make_frame(kCircle, node);
-  can::write(f, field(kCircle, "radius"), radius_mm);
-  can::write(f, field(kCircle, "feed"), feed_mm_s);
+  hal::CanFrame f = can::make_frame(kCircleMsg, node);
+  can::write(f, field(kCircleMsg, "radius"), radius_mm);
+  can::write(f, field(kCircleMsg, "feed"), feed_mm_s);
   return f;
 }
 
 hal::CanFrame jog_request(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s) {
-  hal::CanFrame f = can::make_frame(kJog, node);
-  can::write(f, field(kJog, "speed_x"), speed_x_mm_s);
-  can::write(f, field(kJog, "speed_y"), speed_y_mm_s);
+  hal::CanFrame f = can::make_frame(kJogMsg, node);
+  can::write(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
+  can::write(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
   return f;
 }
 
 hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {
-  hal::CanFrame f = can::make_frame(kShaper, node);
-  can::write_raw(f, field(kShaper, "axis"), axis);
-  can::write_raw(f, field(kShaper, "type"), type);
-  can::write(f, field(kShaper, "zeta"), zeta);
-  can::write(f, field(kShaper, "freq"), freq_hz);
+  hal::CanFrame f = can::make_frame(kShaperMsg, node);
+  can::write_raw(f, field(kShaperMsg, "axis"), axis);
+  can::write_raw(f, field(kShaperMsg, "type"), type);
+  can::write(f, field(kShaperMsg, "zeta"), zeta);
+  can::write(f, field(kShaperMsg, "freq"), freq_hz);
   return f;
 }
 
 hal::CanFrame capture_request(std::uint8_t node, can::CaptureOp op, std::uint8_t frames, std::uint32_t offset) {
-  hal::CanFrame f = can::make_frame(kCaptureControl, node);
-  can::write_raw(f, field(kCaptureControl, "op"), static_cast<std::uint32_t>(op));
-  can::write_raw(f, field(kCaptureControl, "frames"), frames);
-  can::write_raw(f, field(kCaptureControl, "offset"), offset);
+  hal::CanFrame f = can::make_frame(kCaptureControlMsg, node);
+  can::write_raw(f, field(kCaptureControlMsg, "op"), static_cast<std::uint32_t>(op));
+  can::write_raw(f, field(kCaptureControlMsg, "frames"), frames);
+  can::write_raw(f, field(kCaptureControlMsg, "offset"), offset);
   return f;
 }
 
-hal::CanFrame estop_request(std::uint8_t node) { return can::make_frame(kEstop, node); }
+hal::CanFrame estop_request(std::uint8_t node) { return can::make_frame(kEstopMsg, node); }
 
 Heartbeat read_heartbeat(const hal::CanFrame& frame) {
   Heartbeat h;
-  h.state = raw_as<fw::MotionState>(frame, field(kHeartbeat, "state"));
-  h.fault = raw_as<fw::FaultReason>(frame, field(kHeartbeat, "fault"));
-  h.errors = raw_as<std::uint16_t>(frame, field(kHeartbeat, "errors"));
-  h.overruns = raw_as<std::uint16_t>(frame, field(kHeartbeat, "overruns"));
-  h.tick_low = raw_as<std::uint16_t>(frame, field(kHeartbeat, "tick_low"));
+  h.state = raw_as<fw::MotionState>(frame, field(kHeartbeatMsg, "state"));
+  h.fault = raw_as<fw::FaultReason>(frame, field(kHeartbeatMsg, "fault"));
+  h.errors = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "errors"));
+  h.overruns = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "overruns"));
+  h.tick_low = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "tick_low"));
   return h;
 }
 
 CommandAck read_command_ack(const hal::CanFrame& frame) {
   CommandAck a;
-  a.request = raw_as<std::uint8_t>(frame, field(kCommandAck, "request"));
-  a.code = raw_as<std::uint8_t>(frame, field(kCommandAck, "code"));
-  a.result = raw_as<can::ErrorCode>(frame, field(kCommandAck, "result"));
-  a.state = raw_as<fw::MotionState>(frame, field(kCommandAck, "state"));
-  a.fault = raw_as<fw::FaultReason>(frame, field(kCommandAck, "fault"));
-  a.detail = raw_as<std::uint8_t>(frame, field(kCommandAck, "detail"));
-  a.sequence = raw_as<std::uint16_t>(frame, field(kCommandAck, "sequence"));
+  a.request = raw_as<std::uint8_t>(frame, field(kAckMsg, "request"));
+  a.code = raw_as<std::uint8_t>(frame, field(kAckMsg, "code"));
+  a.result = raw_as<can::ErrorCode>(frame, field(kAckMsg, "result"));
+  a.state = raw_as<fw::MotionState>(frame, field(kAckMsg, "state"));
+  a.fault = raw_as<fw::FaultReason>(frame, field(kAckMsg, "fault"));
+  a.detail = raw_as<std::uint8_t>(frame, field(kAckMsg, "detail"));
+  a.sequence = raw_as<std::uint16_t>(frame, field(kAckMsg, "sequence"));
   return a;
 }
 
 ParamReply read_param_reply(const hal::CanFrame& frame) {
   ParamReply r;
-  r.op = raw_as<can::ParamOp>(frame, field(kParamReply, "op"));
-  r.result = raw_as<can::ErrorCode>(frame, field(kParamReply, "result"));
-  r.param = raw_as<std::uint16_t>(frame, field(kParamReply, "param"));
-  r.value_raw = can::read_raw(frame, field(kParamReply, "value"));
+  r.op = raw_as<can::ParamOp>(frame, field(kParamReplyMsg, "op"));
+  r.result = raw_as<can::ErrorCode>(frame, field(kParamReplyMsg, "result"));
+  r.param = raw_as<std::uint16_t>(frame, field(kParamReplyMsg, "param"));
+  r.value_raw = can::read_raw(frame, field(kParamReplyMsg, "value"));
   return r;
 }
 
 CaptureStatus read_capture_status(const hal::CanFrame& frame) {
   CaptureStatus s;
-  s.state = raw_as<can::CaptureState>(frame, field(kCaptureStatus, "state"));
-  s.result = raw_as<can::ErrorCode>(frame, field(kCaptureStatus, "result"));
-  s.channels = raw_as<std::uint8_t>(frame, field(kCaptureStatus, "channels"));
-  s.decimation = raw_as<std::uint8_t>(frame, field(kCaptureStatus, "decimation"));
-  s.samples = can::read_raw(frame, field(kCaptureStatus, "samples"));
+  s.state = raw_as<can::CaptureState>(frame, field(kCaptureStatusMsg, "state"));
+  s.result = raw_as<can::ErrorCode>(frame, field(kCaptureStatusMsg, "result"));
+  s.channels = raw_as<std::uint8_t>(frame, field(kCaptureStatusMsg, "channels"));
+  s.decimation = raw_as<std::uint8_t>(frame, field(kCaptureStatusMsg, "decimation"));
+  s.samples = can::read_raw(frame, field(kCaptureStatusMsg, "samples"));
   return s;
 }
 
 CaptureData read_capture_data(const hal::CanFrame& frame) {
   CaptureData d;
-  d.sequence = raw_as<std::uint8_t>(frame, field(kCaptureData, "sequence"));
-  can::read_bytes(frame, field(kCaptureData, "data"), d.bytes);
+  d.sequence = raw_as<std::uint8_t>(frame, field(kCaptureDataMsg, "sequence"));
+  can::read_bytes(frame, field(kCaptureDataMsg, "data"), d.bytes);
   return d;
 }
 
 FaultEvent read_fault_event(const hal::CanFrame& frame) {
   FaultEvent e;
-  e.reason = raw_as<fw::FaultReason>(frame, field(kFaultEvent, "reason"));
-  e.axis = static_cast<std::int8_t>(can::read(frame, field(kFaultEvent, "axis")));
-  e.tick_low = raw_as<std::uint16_t>(frame, field(kFaultEvent, "tick_low"));
-  e.value = can::read(frame, field(kFaultEvent, "value"));
+  e.reason = raw_as<fw::FaultReason>(frame, field(kFaultEventMsg, "reason"));
+  e.axis = static_cast<std::int8_t>(can::read(frame, field(kFaultEventMsg, "axis")));
+  e.tick_low = raw_as<std::uint16_t>(frame, field(kFaultEventMsg, "tick_low"));
+  e.value = can::read(frame, field(kFaultEventMsg, "value"));
   return e;
 }
 

@@ -1,5 +1,6 @@
 #include "tools/can/telemetry_view.hpp"
 
+#include "firmware/can/node_fields.hpp"
 #include "tools/can/virtual_can_bus.hpp"
 
 namespace tnv::can_host {
@@ -7,15 +8,14 @@ namespace tnv::can_host {
 namespace {
 
 using can::field;
-using can::message;
 using can::MessageId;
 
-constexpr const can::MessageDef& kPosition = message(MessageId::tlm_position);
-constexpr const can::MessageDef& kFollowing = message(MessageId::tlm_following);
-constexpr const can::MessageDef& kSlidingX = message(MessageId::tlm_sliding_x);
-constexpr const can::MessageDef& kSlidingY = message(MessageId::tlm_sliding_y);
-constexpr const can::MessageDef& kOutput = message(MessageId::tlm_output);
-constexpr const can::MessageDef& kContour = message(MessageId::tlm_contour);
+using can::fields::kPositionMsg;
+using can::fields::kFollowingMsg;
+using can::fields::kSlidingXMsg;
+using can::fields::kSlidingYMsg;
+using can::fields::kOutputMsg;
+using can::fields::kContourMsg;
 
 void set_axis(std::optional<std::array<double, 2>>& slot, std::size_t axis, double v) {
   if (!slot) slot = std::array<double, 2>{0.0, 0.0};
@@ -30,25 +30,25 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
   switch (id) {
     case MessageId::heartbeat: heartbeat = read_heartbeat(f); break;
     case MessageId::tlm_position:
-      position_mm = {can::read(f, field(kPosition, "x")), can::read(f, field(kPosition, "y"))};
+      position_mm = {can::read(f, field(kPositionMsg, "x")), can::read(f, field(kPositionMsg, "y"))};
       break;
     case MessageId::tlm_following:
-      following_mm = {can::read(f, field(kFollowing, "x")), can::read(f, field(kFollowing, "y"))};
+      following_mm = {can::read(f, field(kFollowingMsg, "x")), can::read(f, field(kFollowingMsg, "y"))};
       break;
     case MessageId::tlm_sliding_x:
-      set_axis(s_mm_s, 0, can::read(f, field(kSlidingX, "s")));
-      set_axis(d_hat_mm_s, 0, can::read(f, field(kSlidingX, "d_hat")));
+      set_axis(s_mm_s, 0, can::read(f, field(kSlidingXMsg, "s")));
+      set_axis(d_hat_mm_s, 0, can::read(f, field(kSlidingXMsg, "d_hat")));
       break;
     case MessageId::tlm_sliding_y:
-      set_axis(s_mm_s, 1, can::read(f, field(kSlidingY, "s")));
-      set_axis(d_hat_mm_s, 1, can::read(f, field(kSlidingY, "d_hat")));
+      set_axis(s_mm_s, 1, can::read(f, field(kSlidingYMsg, "s")));
+      set_axis(d_hat_mm_s, 1, can::read(f, field(kSlidingYMsg, "d_hat")));
       break;
     case MessageId::tlm_output:
-      output = OutputTelemetry{{can::read(f, field(kOutput, "dac_x")), can::read(f, field(kOutput, "dac_y"))},
-                               can::read(f, field(kOutput, "force"))};
+      output = OutputTelemetry{{can::read(f, field(kOutputMsg, "dac_x")), can::read(f, field(kOutputMsg, "dac_y"))},
+                               can::read(f, field(kOutputMsg, "force"))};
       break;
     case MessageId::tlm_contour:
-      contour = ContourTelemetry{can::read(f, field(kContour, "contour")), can::read(f, field(kContour, "motion_tick"))};
+      contour = ContourTelemetry{can::read(f, field(kContourMsg, "contour")), can::read(f, field(kContourMsg, "motion_tick"))};
       break;
     default: break;
   }

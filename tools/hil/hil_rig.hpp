@@ -14,6 +14,9 @@
 
 namespace tnv::hil {
 
+// The firmware's control tick, as the rig steps it.
+inline constexpr double kTickPeriodS = 1e-3;
+
 class HilRig {
  public:
   // Validates the scenario and the firmware config made for it from

@@ -28,6 +28,10 @@ nlohmann::json model_json(const fw::AxisModel& m) {
 
 }  // namespace
 
+nlohmann::json contour_stats_json(const ContourStats& s) {
+  return {{"max_um", s.max_um}, {"mean_um", s.mean_um}, {"std_um", s.std_um}, {"samples", s.samples}};
+}
+
 nlohmann::json results_json(const std::vector<SweepCell>& cells, int seeds) {
   nlohmann::json rows = nlohmann::json::array();
   for (const SweepCell& c : cells) {

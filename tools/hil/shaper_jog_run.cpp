@@ -12,7 +12,6 @@
 namespace tnv::hil {
 
 namespace {
-constexpr double kPeriodS = 1e-3;
 constexpr double kLongestStreamS = 600.0;
 
 bool parse_number(const std::string& field, double& out) {
@@ -108,13 +107,13 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     result.axis[i].shaper_delay_s = task.shaper_delay_s(hal::axis_from_index(i));
   }
 
-  const auto last_row_tick = static_cast<std::int64_t>(std::llround(request.commands.back().t_s / kPeriodS));
-  const auto window_ticks = static_cast<std::int64_t>(std::llround(request.window_s / kPeriodS));
+  const auto last_row_tick = static_cast<std::int64_t>(std::llround(request.commands.back().t_s / kTickPeriodS));
+  const auto window_ticks = static_cast<std::int64_t>(std::llround(request.window_s / kTickPeriodS));
   std::int64_t stop_tick = -1;  // first tick of the final rest, -1 while moving
   std::size_t row = 0;
   std::vector<std::array<double, 3>> tool_samples;  // t, tool x, tool y
   for (std::int64_t k = 0;; ++k) {
-    const double t_s = static_cast<double>(k) * kPeriodS;
+    const double t_s = static_cast<double>(k) * kTickPeriodS;
     // The pendant: hold the current row, silent after the last one.
     while (row + 1 < request.commands.size() && request.commands[row + 1].t_s <= t_s + 1e-9) ++row;
     if (k <= last_row_tick && request.commands[row].t_s <= t_s + 1e-9) {
@@ -157,7 +156,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     result.error = "the axes did not come to rest";
     return result;
   }
-  result.stop_s = static_cast<double>(stop_tick) * kPeriodS;
+  result.stop_s = static_cast<double>(stop_tick) * kTickPeriodS;
   for (std::size_t i = 0; i < 2; ++i) {
     JogAxisResult& a = result.axis[i];
     a.end_mm = task.last_record().axis[i].reference_mm;
@@ -174,7 +173,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     }
     a.residual_pp_um = hi - lo;
     if (!last_outside_s || *last_outside_s < tool_samples.back()[0])
-      a.settling_s = std::round(std::max(0.0, last_outside_s.value_or(0.0) + kPeriodS - result.stop_s) * 1e6) / 1e6;
+      a.settling_s = std::round(std::max(0.0, last_outside_s.value_or(0.0) + kTickPeriodS - result.stop_s) * 1e6) / 1e6;
   }
   result.completed = true;
   return result;

@@ -11,7 +11,6 @@
 namespace tnv::hil {
 
 namespace {
-constexpr double kPeriodS = 1e-3;
 }  // namespace
 
 MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& base_config) {
@@ -40,10 +39,10 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
   result.move_time_s = planned.duration_s();
   result.target_mm = planned.end_mm();
   result.shaper_delay_s = task.shaper_delay_s(axis);
-  result.shaper_duration_s = static_cast<double>(task.shaper(axis).span_samples()) * kPeriodS;
+  result.shaper_duration_s = static_cast<double>(task.shaper(axis).span_samples()) * kTickPeriodS;
 
-  const auto dwell_ticks = static_cast<std::int64_t>(std::llround(request.move.dwell_s / kPeriodS));
-  const auto motion_ticks = static_cast<std::int64_t>(std::ceil((result.move_time_s + request.window_s) / kPeriodS));
+  const auto dwell_ticks = static_cast<std::int64_t>(std::llround(request.move.dwell_s / kTickPeriodS));
+  const auto motion_ticks = static_cast<std::int64_t>(std::ceil((result.move_time_s + request.window_s) / kTickPeriodS));
   if (request.keep_trace) result.trace.reserve(static_cast<std::size_t>(motion_ticks + 1));
   std::vector<std::pair<double, double>> tool_um;  // (t, tool - target)
   tool_um.reserve(static_cast<std::size_t>(motion_ticks + 1));
@@ -55,7 +54,7 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
     if (task.state() == fw::MotionState::faulted) break;
     const fw::TickRecord& rec = task.last_record();
     if (rec.motion_tick < 0 && !command_end_s && k < dwell_ticks) continue;
-    const double t_s = static_cast<double>(k - dwell_ticks) * kPeriodS;
+    const double t_s = static_cast<double>(k - dwell_ticks) * kTickPeriodS;
     const fw::AxisTickRecord& r = rec.axis[a];
     if (!command_end_s && task.state() == fw::MotionState::holding) command_end_s = t_s;
     result.max_following_error_um =
@@ -94,7 +93,7 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
     result.settling_s = 0.0;
   } else if (*last_outside_s < end_s) {
     // Whole microseconds: the tick grid is 1 ms, the rest is rounding noise.
-    result.settling_s = std::round(std::max(0.0, *last_outside_s + kPeriodS - result.move_time_s) * 1e6) / 1e6;
+    result.settling_s = std::round(std::max(0.0, *last_outside_s + kTickPeriodS - result.move_time_s) * 1e6) / 1e6;
   }
   result.completed = true;
   return result;

@@ -14,10 +14,9 @@ namespace tnv::hil {
 
 namespace {
 
-constexpr double kPeriodS = 1e-3;
 constexpr std::int64_t kEncoderModulus = std::int64_t{1} << hal::regs::kEncoderBits;
 
-std::int64_t ticks_for(double seconds) { return static_cast<std::int64_t>(std::llround(seconds / kPeriodS)); }
+std::int64_t ticks_for(double seconds) { return static_cast<std::int64_t>(std::llround(seconds / kTickPeriodS)); }
 
 std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b != 0) && ((a < 0) != (b < 0))); }
 
@@ -188,7 +187,7 @@ class SoakBench {
   std::array<std::int64_t, hal::kAxisCount> first_count_{};
   std::array<std::int64_t, hal::kAxisCount> last_count_{};
   std::uint64_t progress_every_ = std::max<std::uint64_t>(
-      1000, static_cast<std::uint64_t>(request_.duration_s / kPeriodS / 100.0));
+      1000, static_cast<std::uint64_t>(request_.duration_s / kTickPeriodS / 100.0));
 };
 
 SoakMetric metric(const std::vector<SoakCycle>& cycles, std::size_t first, std::size_t count,

@@ -41,12 +41,12 @@ json all_gains_json(const ArscGains& g) {
   return j;
 }
 
-struct DesignOptions {
+struct ArscDesignOptions {
   std::string poles = "case1";
   bool json = false;
 };
 
-int run_design(const DesignOptions& o) {
+int run_arsc_design(const ArscDesignOptions& o) {
   const PoleSet set = *parse_pole_set(o.poles);
   const Arv2Model model = paper_initial_model();
   const std::array<double, 7> d_star = desired_coefficients(paper_poles(set));
@@ -425,11 +425,11 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
   arsc->require_subcommand(1);
   const auto pole_check = CLI::IsMember({"case1", "case2", "case3", "case4"});
 
-  auto design = std::make_shared<DesignOptions>();
+  auto design = std::make_shared<ArscDesignOptions>();
   CLI::App* d = arsc->add_subcommand("design", "the paper's gains (25)+(26) at its starting estimates (29), or 'singular'");
   d->add_option("--poles", design->poles, "case1 | case2 | case3 | case4 (S3 Fig. 7)")->required()->check(pole_check);
   d->add_flag("--json", design->json, "print JSON on stdout");
-  d->callback([&run, design] { run = [design] { return run_design(*design); }; });
+  d->callback([&run, design] { run = [design] { return run_arsc_design(*design); }; });
 
   auto r = std::make_shared<RunOptions>();
   CLI::App* rc = arsc->add_subcommand("run", "one 30 s S3 simulation run (T = 0.15 s, depth 0.2 -> 1.0 -> 0.2 mm)");

@@ -88,12 +88,9 @@ struct Table3Options {
 };
 
 int run_table3_command(const Table3Options& o) {
-  std::vector<emu::Scenario> scenarios;
-  for (const char* name : {"no-cut", "cut-900", "cut-1200", "cut-1500"}) {
-    auto s = resolve_scenario_or_report(name);
-    if (!s) return kExitFailure;
-    scenarios.push_back(*s);
-  }
+  const auto table3 = resolve_table3_scenarios_or_report();
+  if (!table3) return kExitFailure;
+  const std::vector<emu::Scenario>& scenarios = *table3;
   const fw::FirmwareConfig config = fw::default_firmware_config();
   Progress progress("table3");
   const auto started = std::chrono::steady_clock::now();
@@ -144,11 +141,10 @@ struct PlantCheckOptions {
 };
 
 int run_plant_check_command(const PlantCheckOptions& o) {
-  const bool json = o.json;
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!scenario) return kExitBadInput;
   const auto axes = hil::plant_check(*scenario);
-  if (json)
+  if (o.json)
     std::cout << hil::plant_check_json(axes).dump(2) << '\n';
   else
     std::cout << hil::plant_check_text(axes);

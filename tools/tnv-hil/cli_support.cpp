@@ -38,6 +38,16 @@ std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_
   return std::nullopt;
 }
 
+std::optional<std::vector<emu::Scenario>> resolve_table3_scenarios_or_report() {
+  std::vector<emu::Scenario> scenarios;
+  for (const char* name : {"no-cut", "cut-900", "cut-1200", "cut-1500"}) {
+    auto s = resolve_scenario_or_report(name);
+    if (!s) return std::nullopt;
+    scenarios.push_back(*s);
+  }
+  return scenarios;
+}
+
 bool write_text(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::trunc);
   out << content;

@@ -36,6 +36,10 @@ class Progress {
 // returns nullopt when neither works.
 std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file);
 
+// The four scenarios of S1 Table 3 (no-cut, cut-900, cut-1200, cut-1500);
+// nullopt, after the error is printed, when one cannot be built.
+std::optional<std::vector<emu::Scenario>> resolve_table3_scenarios_or_report();
+
 // Write helpers: print a one-line error on failure and return false.
 bool write_text(const std::string& path, const std::string& content);
 bool write_svg(const std::string& path, const hil::SvgWriter& svg);

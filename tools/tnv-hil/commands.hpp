@@ -13,5 +13,6 @@ void add_soak_commands(CLI::App& app, Runner& run);    // soak (safety: long run
 void add_boring_commands(CLI::App& app, Runner& run);  // boring (S4)
 void add_arsc_commands(CLI::App& app, Runner& run);    // arsc design | run | compare | tick (S3)
 void add_shaper_commands(CLI::App& app, Runner& run);  // shaper design | move | jog | grid (S2)
+void add_best_circle_commands(CLI::App& app, Runner& run);  // best-circle, identify (issue 7)
 
 }  // namespace tnv::cli

@@ -48,7 +48,7 @@ std::string seconds_or_never(const std::optional<double>& v) {
 }
 
 // --------------------------------------------------------------- design
-struct DesignOptions {
+struct ShaperDesignOptions {
   std::string type;
   double freq_hz = 0.0;
   double freq2_hz = 0.0;
@@ -57,7 +57,7 @@ struct DesignOptions {
   std::string plot;
 };
 
-int run_design(const DesignOptions& o) {
+int run_shaper_design(const ShaperDesignOptions& o) {
   const fw::ShaperSpec spec{*fw::parse_shaper_type(o.type), {o.freq_hz, o.zeta}, {o.freq2_hz, o.zeta}};
   if (!check_spec(spec)) return kExitBadInput;
   if (o.json)
@@ -378,7 +378,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
       app.add_subcommand("shaper", "input shaper: design, HIL point-to-point move, HIL jog stream, grid methods");
   shaper->require_subcommand(1);
 
-  auto d = std::make_shared<DesignOptions>();
+  auto d = std::make_shared<ShaperDesignOptions>();
   CLI::App* design =
       shaper->add_subcommand("design", "impulses, taps on the 1 ms grid, delay, residual vibration, 5 % band");
   design->add_option("--type", d->type, kTypes)->required()->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}));
@@ -387,7 +387,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   design->add_option("--zeta", d->zeta, "damping ratio of the mode(s), 0..0.3")->capture_default_str();
   design->add_flag("--json", d->json, "print JSON on stdout");
   design->add_option("--plot", d->plot, "write the sensitivity curves (SVG)");
-  design->callback([&run, d] { run = [d] { return run_design(*d); }; });
+  design->callback([&run, d] { run = [d] { return run_shaper_design(*d); }; });
 
   auto m = std::make_shared<MoveOptions>();
   CLI::App* move =

@@ -13,6 +13,7 @@
 #include "tools/hil/soak_run.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
+#include "tools/hil/report.hpp"
 
 namespace tnv::cli {
 
@@ -25,10 +26,6 @@ struct SoakOptions {
   bool json = false;
   std::string plot;
 };
-
-nlohmann::json stats_json(const hil::ContourStats& s) {
-  return {{"max_um", s.max_um}, {"mean_um", s.mean_um}, {"std_um", s.std_um}, {"samples", s.samples}};
-}
 
 nlohmann::json metric_json(const hil::SoakMetric& m) { return {{"mean", m.mean}, {"std", m.std}}; }
 
@@ -81,7 +78,7 @@ int run_soak_command(const SoakOptions& o) {
     nlohmann::json cycles = nlohmann::json::array();
     for (const hil::SoakCycle& c : r.cycles) {
       cycles.push_back({{"start_s", c.start_s},
-                        {"circle", stats_json(c.circle)},
+                        {"circle", hil::contour_stats_json(c.circle)},
                         {"rest_error_um", c.rest_error_um},
                         {"rest_d_hat_mm_s", c.rest_d_hat_mm_s},
                         {"max_abs_d_hat_mm_s", c.max_abs_d_hat_mm_s},

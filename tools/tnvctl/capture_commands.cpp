@@ -19,6 +19,7 @@
 #include "tools/can/capture_score.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/tnvctl/commands.hpp"
+#include "tools/hil/report.hpp"
 
 namespace tnv::tnvctl {
 
@@ -265,8 +266,7 @@ int run_capture(const CaptureOptions& o, Session& session, Report& report) {
     std::snprintf(buf, sizeof buf, "contour error: max %.4f um   mean %.4f um   std %.4f um   (%zu samples in motion)",
                   stats->max_um, stats->mean_um, stats->std_um, stats->samples);
     report.line(buf);
-    report.data["circle"] = {
-        {"max_um", stats->max_um}, {"mean_um", stats->mean_um}, {"std_um", stats->std_um}, {"samples", stats->samples}};
+    report.data["circle"] = hil::contour_stats_json(*stats);
   }
   write_outputs(o, *table, stats, session, report);
   return kExitOk;

@@ -11,6 +11,7 @@
 #include "tools/can/capture_score.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/tnvctl/commands.hpp"
+#include "tools/hil/report.hpp"
 
 namespace tnv::tnvctl {
 
@@ -61,7 +62,7 @@ int run_plot(const PlotOptions& o, Session&, Report& report) {
     std::string error;
     nlohmann::json row = {{"csv", o.csv[i]}, {"label", label}};
     if (const auto stats = can_host::score_circle(tables[i], error)) {
-      row["circle"] = {{"max_um", stats->max_um}, {"mean_um", stats->mean_um}, {"std_um", stats->std_um}};
+      row["circle"] = hil::contour_stats_json(*stats);
       char buf[200];
       std::snprintf(buf, sizeof buf, "%-24s max %.4f um   mean %.4f um   std %.4f um", label.c_str(), stats->max_um,
                     stats->mean_um, stats->std_um);

@@ -48,8 +48,6 @@ Snapshot snapshot(const NodeBench& b) {
   return s;
 }
 
-std::uint16_t id_of(const char* name) { return fw::can::find_param(name)->id; }
-
 struct Case {
   std::string name;
   hal::CanFrame frame;

@@ -12,7 +12,6 @@ using fw::can::ErrorCode;
 using fw::can::MessageId;
 using fw::can::ParamOp;
 
-std::uint16_t id_of(const char* name) { return fw::can::find_param(name)->id; }
 ErrorCode result_of(const hal::CanFrame& r) { return static_cast<ErrorCode>(raw_of(r, MessageId::param_reply, "result")); }
 std::uint32_t value_of_reply(const hal::CanFrame& r) { return raw_of(r, MessageId::param_reply, "value"); }
 

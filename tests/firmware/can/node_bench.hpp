@@ -60,4 +60,7 @@ struct NodeBench {
   std::unique_ptr<fw::can::CanNode> node;
 };
 
+// Parameter id by name; the name must be in the table.
+inline std::uint16_t id_of(const char* name) { return fw::can::find_param(name)->id; }
+
 }  // namespace tnv::test

@@ -11,12 +11,13 @@
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/pid_tuning.hpp"
 #include "tests/firmware/control/nominal_plant.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
 using test::NominalPlant;
-constexpr double kT = 1e-3;
+using test_units::kPeriodS;
 
 PidParams tuned(hal::Axis axis) { return pid_params_from(paper_pid_tuning(axis)); }
 
@@ -25,7 +26,7 @@ TEST(PidController, FeedForwardAloneTracksAFeasibleRampExactly) {
   PidController ctl(model, tuned(hal::Axis::x));
   NominalPlant plant{model, Eigen::Vector2d(0.0, 2.0)};  // already moving at 2 mm/s
   for (int k = 0; k < 1000; ++k) {
-    const AxisReference ref = test::reference_at(k, kT, [](double t) { return 2.0 * t; }, [](double) { return 2.0; });
+    const AxisReference ref = test::reference_at(k, kPeriodS, [](double t) { return 2.0 * t; }, [](double) { return 2.0; });
     ASSERT_NEAR(ref.position_mm - plant.x(0), 0.0, 1e-12) << "tick " << k;
     const double u = ctl.update(plant.state(), ref);
     ASSERT_NEAR(u, 2.0, 1e-6) << "tick " << k << ": u_ff for a 2 mm/s ramp must be 2 mm/s";
@@ -53,7 +54,7 @@ TEST(PidController, TunedPidWithFeedForwardTracksARampFromRestWithNearZeroSteady
       NominalPlant plant{model, Eigen::Vector2d::Zero()};
       double late_um = 0.0;
       for (int k = 0; k < 3000; ++k) {
-        const AxisReference ref = test::reference_at(k, kT, ramp_position_mm, ramp_speed_mm_s);
+        const AxisReference ref = test::reference_at(k, kPeriodS, ramp_position_mm, ramp_speed_mm_s);
         const double e_um = (ref.position_mm - plant.x(0)) * 1e3;
         peak_um[with_ff] = std::max(peak_um[with_ff], std::fabs(e_um));
         if (k >= 1000) late_um = std::max(late_um, std::fabs(e_um));
@@ -83,8 +84,8 @@ double step_overshoot_mm(hal::Axis axis, double step_mm, bool with_anti_windup, 
       if (saturated_ticks && ctl.signals().saturated) ++*saturated_ticks;
     } else {
       const double e = step_mm - plant.x(0);
-      integral += p.ki * kT * e;
-      u = std::clamp(p.kp * e + integral + p.kd * (e - e_prev) / kT, -p.u_max_mm_s, p.u_max_mm_s);
+      integral += p.ki * kPeriodS * e;
+      u = std::clamp(p.kp * e + integral + p.kd * (e - e_prev) / kPeriodS, -p.u_max_mm_s, p.u_max_mm_s);
       e_prev = e;
     }
     overshoot_mm = std::max(overshoot_mm, plant.x(0) - step_mm);
@@ -118,7 +119,7 @@ TEST(PidController, FirstTickHasNoDerivativeKick) {
   PidController ctl(paper_axis_model(hal::Axis::x), p);
   const double e = 0.01;
   const double u = ctl.update({1.0 - e, 0.0}, test::resting_reference(1.0));
-  EXPECT_NEAR(u, p.kp * e + p.ki * kT * e, 1e-12);
+  EXPECT_NEAR(u, p.kp * e + p.ki * kPeriodS * e, 1e-12);
 }
 
 TEST(PidController, RejectedParameterSetLeavesTheOldOneInForce) {
@@ -162,7 +163,7 @@ TEST(PidController, GainChangeIsBumpless) {
   NominalPlant plant{model, Eigen::Vector2d::Zero()};
   double u_prev = 0.0;
   for (int k = 0; k < 400; ++k) {
-    const AxisReference ref = test::reference_at(k, kT, [](double t) { return 0.5 * t * t; }, [](double t) { return t; });
+    const AxisReference ref = test::reference_at(k, kPeriodS, [](double t) { return 0.5 * t * t; }, [](double t) { return t; });
     if (k == 200) {
       PidParams p = ctl.params();
       p.kp *= 0.5;

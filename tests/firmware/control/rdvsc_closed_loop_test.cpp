@@ -13,14 +13,15 @@
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/control/unit_saturation.hpp"
 #include "tests/firmware/control/nominal_plant.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
 using test::NominalPlant;
 
-constexpr double kT = 1e-3;
-constexpr double kPi = std::numbers::pi;
+using test_units::kPeriodS;
+using test_units::kPi;
 
 struct Case {
   hal::Axis axis;
@@ -50,7 +51,7 @@ Trace run(const Case& c, const SlidingModeParams& p, int ticks, Eigen::Vector2d 
   NominalPlant plant{model, x0};
   Trace tr;
   for (int k = 0; k < ticks; ++k) {
-    const AxisReference ref = test::reference_at(k, kT, ref_pos, ref_speed);
+    const AxisReference ref = test::reference_at(k, kPeriodS, ref_pos, ref_speed);
     const double u = ctl.update(plant.state(), ref);
     const ControllerSignals sig = ctl.signals();
     const double d = disturbance(k);
@@ -83,7 +84,7 @@ TEST(RdvscClosedLoop, Eq8AndEq9HoldEveryTickInsideAndOutsideTheBoundaryLayer) {
     std::uniform_real_distribution<double> noise(-0.5, 0.5);
     std::vector<double> dist(ticks + 1);
     for (int k = 0; k <= ticks; ++k) {
-      const double t = k * kT;
+      const double t = k * kPeriodS;
       dist[k] = (k >= 500 ? 3.0 : 0.0) + (k >= 2000 ? 60.0 : 0.0) + (k >= 3000 ? -45.0 : 0.0) +
                 1.5 * std::sin(2 * kPi * 40.0 * t + 0.3) + noise(rng);
     }
@@ -155,7 +156,7 @@ TEST(RdvscClosedLoop, Eq9StillHoldsWhileTheCommandIsClamped) {
     const double gb = gb_of(p, model);
     RdvscController ctl(c.kind, model, p);
     NominalPlant plant{model, Eigen::Vector2d::Zero()};
-    auto dist = [](int k) { return 2.0 + 1.0 * std::sin(2 * kPi * 30.0 * k * kT) + (k >= 600 ? -300.0 : 0.0); };
+    auto dist = [](int k) { return 2.0 + 1.0 * std::sin(2 * kPi * 30.0 * k * kPeriodS) + (k >= 600 ? -300.0 : 0.0); };
     double s_prev = 0.0, d_tilde_prev = 0.0, u_gap_prev = 0.0;
     int clamped = 0;
     for (int k = 0; k < 1500; ++k) {
@@ -188,7 +189,7 @@ TEST(RdvscClosedLoop, Theorem2SlidingVariableEntersAndStaysInsideTheUltimateBoun
     ASSERT_LT(bound, p.phi_mm_s) << label(c);
     // Slowly varying disturbance (2 Hz, 0.5 mm/s, offset 0.3 mm/s): |GB d~| stays
     // well below eta, the theorem's assumption. Initial error 50 um, s_0 >> phi.
-    auto dist = [](int k) { return 0.3 + 0.5 * std::sin(2 * kPi * 2.0 * k * kT); };
+    auto dist = [](int k) { return 0.3 + 0.5 * std::sin(2 * kPi * 2.0 * k * kPeriodS); };
     auto pos = [](double) { return 1.0; };
     auto spd = [](double) { return 0.0; };
     const int ticks = 3000;
@@ -229,7 +230,7 @@ TEST(RdvscClosedLoop, Remark2RdvscHasTheSmallerUltimateSurfaceErrorForCuttingFre
   for (hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
     for (double f_hz : {30.0, 40.0, 50.0}) {
       const double amp = 1.0;  // mm/s
-      auto dist = [&](int k) { return amp * std::sin(2 * kPi * f_hz * k * kT); };
+      auto dist = [&](int k) { return amp * std::sin(2 * kPi * f_hz * k * kPeriodS); };
       auto pos = [](double) { return 0.0; };
       auto spd = [](double) { return 0.0; };
       double peak[2] = {0.0, 0.0};
@@ -252,7 +253,7 @@ TEST(RdvscClosedLoop, Remark2RdvscHasTheSmallerUltimateSurfaceErrorForCuttingFre
                                      << bound[i] << " mm/s";
       }
       const double gamma = paper_rdvsc_params(axis).gamma;
-      const double predicted = std::abs(1.0 - gamma * std::polar(1.0, -2 * kPi * f_hz * kT));
+      const double predicted = std::abs(1.0 - gamma * std::polar(1.0, -2 * kPi * f_hz * kPeriodS));
       EXPECT_LT(peak[1], peak[0]) << hal::axis_name(axis) << " " << f_hz << " Hz: R-DVSC |G e| " << peak[1]
                                   << " mm/s, DVSC " << peak[0] << " mm/s";
       EXPECT_NEAR(peak[1] / peak[0], predicted, 0.02)

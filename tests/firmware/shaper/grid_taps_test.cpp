@@ -13,11 +13,12 @@
 
 #include "firmware/shaper/residual_vibration.hpp"
 #include "firmware/shaper/shaper_design.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kPeriodS = 1e-3;
+using test_units::kPeriodS;
 
 // One test: 391 frequencies x 3 damping ratios x 5 types, each with two
 // band searches. Failures are counted and the first few reported.

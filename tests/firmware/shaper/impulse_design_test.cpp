@@ -8,11 +8,12 @@
 #include <numbers>
 
 #include "firmware/shaper/residual_vibration.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test_units::kPi;
 
 struct Expected {
   double t[4];

@@ -8,11 +8,12 @@
 
 #include "firmware/trajectory/jog_stream.hpp"
 #include "firmware/trajectory/point_to_point_move.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kPeriodS = 1e-3;
+using test_units::kPeriodS;
 
 TEST(PointToPointMove, SCurveWithTheStatedMoveTime) {
   const MoveSpec spec{hal::Axis::y, -12.0, 60.0, 0.05, 0.0};

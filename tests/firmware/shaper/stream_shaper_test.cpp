@@ -11,11 +11,12 @@
 #include <vector>
 
 #include "firmware/shaper/shaper_design.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kPeriodS = 1e-3;
+using test_units::kPeriodS;
 
 TapSet taps_for(ShaperType type, double f_hz, double zeta = 0.0, double f2_hz = 0.0) {
   return design_shaper({type, {f_hz, zeta}, {f2_hz, zeta}}, kPeriodS).taps;

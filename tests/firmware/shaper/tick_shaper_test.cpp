@@ -9,13 +9,14 @@
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tests/firmware/fake_io_board.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kCountMm = 10.0 / 24000.0;
+using test_units::kCountMm;
 constexpr double kHomeMm = 6.0;
-constexpr double kPeriodS = 1e-3;
+using test_units::kPeriodS;
 
 class TickShaperTest : public ::testing::Test {
  protected:
@@ -46,7 +47,7 @@ class TickShaperTest : public ::testing::Test {
     ASSERT_EQ(task.state(), MotionState::holding);
   }
 
-  test::FakeIoBoard board;
+  tnv::test::FakeIoBoard board;
   TickTask task;
 };
 

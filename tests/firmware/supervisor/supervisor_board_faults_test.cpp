@@ -9,7 +9,7 @@
 namespace tnv::fw {
 namespace {
 
-SupervisorInput healthy() {
+SupervisorInput healthy_with_period() {
   SupervisorInput in;
   in.tick = 7;
   in.servo_on = true;
@@ -20,13 +20,13 @@ SupervisorInput healthy() {
 
 TEST(SupervisorBoardFaults, EncoderAndDacLatchesFaultTheirAxis) {
   const SupervisorConfig cfg;
-  SupervisorInput in = healthy();
+  SupervisorInput in = healthy_with_period();
   in.inputs.encoder_error[1] = true;
   FaultRecord f = check(cfg, in);
   EXPECT_EQ(f.reason, FaultReason::encoder_error);
   EXPECT_EQ(f.axis, 1);
   EXPECT_EQ(f.tick, 7u);
-  in = healthy();
+  in = healthy_with_period();
   in.inputs.dac_error[0] = true;
   in.servo_on = false;  // checked with the servo off too: the board latch is a hardware fault
   f = check(cfg, in);
@@ -36,7 +36,7 @@ TEST(SupervisorBoardFaults, EncoderAndDacLatchesFaultTheirAxis) {
 
 TEST(SupervisorBoardFaults, PeriodBeyondHalfATickIsALateTick) {
   const SupervisorConfig cfg;
-  SupervisorInput in = healthy();
+  SupervisorInput in = healthy_with_period();
   in.period_clocks = 15'000;
   EXPECT_FALSE(check(cfg, in).active()) << "exactly the tolerance is accepted";
   in.period_clocks = 15'001;
@@ -52,7 +52,7 @@ TEST(SupervisorBoardFaults, PeriodBeyondHalfATickIsALateTick) {
 
 TEST(SupervisorBoardFaults, PeriodIsJudgedOverTheTicksItSpans) {
   const SupervisorConfig cfg;
-  SupervisorInput in = healthy();
+  SupervisorInput in = healthy_with_period();
   in.ticks_missed = 2;  // tolerated, and the period spans 3 nominal periods
   in.period_clocks = 30'000;
   EXPECT_FALSE(check(cfg, in).active());

@@ -47,11 +47,11 @@ TEST(Supervisor, FollowingErrorIsNotCheckedWithServoOff) {
 
 TEST(Supervisor, EachInputFaultHasItsReason) {
   const SupervisorConfig cfg;
-  struct Case {
+  struct InputCase {
     void (*arm)(SupervisorInput&);
     FaultReason reason;
   };
-  const Case cases[] = {
+  const InputCase cases[] = {
       {[](SupervisorInput& i) { i.bus_ok = false; }, FaultReason::bus_error},
       {[](SupervisorInput& i) { i.snapshot_advanced = false; }, FaultReason::stale_snapshot},
       {[](SupervisorInput& i) { i.ticks_missed = 3; }, FaultReason::missed_ticks},
@@ -66,7 +66,7 @@ TEST(Supervisor, EachInputFaultHasItsReason) {
       {[](SupervisorInput& i) { i.axis[0].position_mm = std::numeric_limits<double>::quiet_NaN(); },
        FaultReason::following_error},
   };
-  for (const Case& c : cases) {
+  for (const InputCase& c : cases) {
     SupervisorInput in = healthy();
     c.arm(in);
     EXPECT_EQ(check(cfg, in).reason, c.reason) << to_string(c.reason);

@@ -3,11 +3,12 @@
 #include <gtest/gtest.h>
 
 #include "tests/firmware/fake_io_board.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kCountMm = 10.0 / 24000.0;
+using test_units::kCountMm;
 
 class TickTaskTest : public ::testing::Test {
  protected:
@@ -25,7 +26,7 @@ class TickTaskTest : public ::testing::Test {
     task.tick();
   }
 
-  test::FakeIoBoard board;
+  tnv::test::FakeIoBoard board;
   TickTask task;
 };
 

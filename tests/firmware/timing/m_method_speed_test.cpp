@@ -5,11 +5,12 @@
 #include <random>
 
 #include "firmware/timing/encoder_position.hpp"
+#include "tests/firmware/test_units.hpp"
 
 namespace tnv::fw {
 namespace {
 
-constexpr double kCountMm = 10.0 / 24000.0;
+using test_units::kCountMm;
 
 TEST(MMethodSpeed, UsesTheMeasuredPeriodNotANominalOne) {
   // 48 counts in 1.2 ms is 16.667 mm/s; assuming 1 ms would say 20 mm/s.

@@ -8,13 +8,11 @@
 
 #include <cerrno>
 
-#include "tools/can/socket_api.hpp"
+#include "drivers/linux/socket_api.hpp"
 
-namespace tnv::can_host {
+namespace tnv::drivers {
 
 namespace {
-
-SysResult result_of(long value) { return {value, value < 0 ? errno : 0}; }
 
 class LinuxSocketApi final : public SocketApi {
  public:
@@ -75,4 +73,4 @@ SocketApi& linux_socket_api() {
   return api;
 }
 
-}  // namespace tnv::can_host
+}  // namespace tnv::drivers

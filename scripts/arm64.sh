@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# The arm64 cross stage: builds the firmware, emulator and driver unit tests
+# (and the Linux backend's, when its dependencies exist for arm64) with
+# Debian's aarch64 cross compiler and runs them under qemu-user.
+#   scripts/arm64.sh [BUILD_DIR]     default build/arm64
+# GoogleTest is cross-built from Debian's /usr/src/googletest; the
+# header-only dependencies (Eigen, toml++, CLI11, nlohmann-json) are used
+# from the host's headers through small config shims, so no arm64
+# multiarch packages are needed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo=$PWD
+out=${1:-build/arm64}
+mkdir -p "$out"; out=$(cd "$out" && pwd)
+t0=$SECONDS
+die() { echo "[arm64] FAIL: $*" >&2; exit 1; }
+
+scripts/install-deps.sh
+scripts/install-missing.sh arm64 g++-aarch64-linux-gnu qemu-user googletest
+command -v qemu-aarch64 >/dev/null || die "qemu-aarch64 missing (qemu-user)"
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+
+# 1. GoogleTest for aarch64 (once per build dir).
+deps=$out/deps
+if [[ ! -f $deps/lib/cmake/GTest/GTestConfig.cmake ]]; then
+  echo "[arm64] cross-building GoogleTest from /usr/src/googletest"
+  cmake -S /usr/src/googletest -B "$out/gtest-build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_TOOLCHAIN_FILE="$repo/scripts/arm64/toolchain.cmake" -DCMAKE_INSTALL_PREFIX="$deps" \
+    "${launcher[@]}" >/dev/null
+  cmake --build "$out/gtest-build" -j "$(nproc)" >/dev/null
+  cmake --install "$out/gtest-build" >/dev/null
+fi
+
+# 2. Shims for the header-only packages: only their own include dirs (never
+#    the host's /usr/include, whose libc headers are x86-64's).
+shim=$out/shim
+mkdir -p "$shim/include"
+ln -sfn /usr/include/eigen3 "$shim/include/eigen3"
+for d in toml++ CLI nlohmann; do ln -sfn "/usr/include/$d" "$shim/include/$d"; done
+write_shim() {  # NAME VERSION TARGET INCLUDE_DIR [DEFINES]
+  mkdir -p "$shim/$1"
+  cat > "$shim/$1/$1Config.cmake" <<EOC
+if(NOT TARGET $3)
+  add_library($3 INTERFACE IMPORTED)
+  set_target_properties($3 PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "$4" INTERFACE_COMPILE_DEFINITIONS "${5:-}")
+endif()
+set($1_FOUND TRUE)
+EOC
+  cat > "$shim/$1/$1ConfigVersion.cmake" <<EOC
+set(PACKAGE_VERSION "$2")
+if(PACKAGE_FIND_VERSION VERSION_GREATER PACKAGE_VERSION)
+  set(PACKAGE_VERSION_COMPATIBLE FALSE)
+else()
+  set(PACKAGE_VERSION_COMPATIBLE TRUE)
+endif()
+EOC
+}
+write_shim Eigen3 3.4.0 Eigen3::Eigen "$shim/include/eigen3"
+write_shim tomlplusplus 3.3.0 tomlplusplus::tomlplusplus "$shim/include" "TOML_HEADER_ONLY=1"
+write_shim CLI11 2.3.0 CLI11::CLI11 "$shim/include"
+write_shim nlohmann_json 3.11.2 nlohmann_json::nlohmann_json "$shim/include"
+
+# 3. Configure and build only the unit-test binaries that matter on the board.
+#    No arm64 libgpiod: pkg-config looks only at the (absent) arm64 dir.
+echo "[arm64] configure"
+PKG_CONFIG_LIBDIR=/usr/lib/aarch64-linux-gnu/pkgconfig PKG_CONFIG_PATH="" \
+cmake -S "$repo" -B "$out/tnv" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON \
+  -DCMAKE_TOOLCHAIN_FILE="$repo/scripts/arm64/toolchain.cmake" "${launcher[@]}" \
+  -DTNV_BUILD_BENCHMARKS=OFF -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
+  -DGTest_DIR="$deps/lib/cmake/GTest" -DEigen3_DIR="$shim/Eigen3" -Dtomlplusplus_DIR="$shim/tomlplusplus" \
+  -DCLI11_DIR="$shim/CLI11" -Dnlohmann_json_DIR="$shim/nlohmann_json" >/dev/null
+suites=(test_firmware test_emulator test_drivers)
+if ninja -C "$out/tnv" -t targets all 2>/dev/null | grep -q '^test_linux:'; then suites+=(test_linux); fi
+t_build=$SECONDS
+echo "[arm64] build ${suites[*]}"
+cmake --build "$out/tnv" -j "$(nproc)" --target "${suites[@]}"
+t_run=$SECONDS
+
+# 4. Run each suite once under qemu-user (one process per suite: far faster
+#    than one emulator start per test case).
+failed=()
+for s in "${suites[@]}"; do
+  exe=$(find "$out/tnv/tests" -maxdepth 1 -name "$s" -type f)
+  [[ -x $exe ]] || { failed+=("$s(not built)"); continue; }
+  file "$exe" 2>/dev/null | grep -q aarch64 || [[ $(head -c 20 "$exe" | od -An -tx1 | awk '{print $19 $20}') == b700 ]] \
+    || die "$exe is not an aarch64 binary"
+  echo "[arm64] qemu-aarch64 $s"
+  (cd "$repo" && qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1) || failed+=("$s")
+done
+echo "[arm64] configure+deps $((t_build - t0)) s, build $((t_run - t_build)) s, run $((SECONDS - t_run)) s"
+((${#failed[@]} == 0)) || die "failed under qemu-aarch64: ${failed[*]}"
+echo "[arm64] ${#suites[@]} passed, 0 failed (${suites[*]})"

@@ -1,0 +1,51 @@
+// The checked-in fuzz corpus as regression tests of the normal build: every
+// file of tests/fuzz/corpus/<target>/ through the same entry the libFuzzer
+// target calls (fuzz_entries.hpp), so a fix stays fixed in every CI build.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "tests/fuzz/fuzz_entries.hpp"
+
+namespace tnv {
+namespace {
+
+namespace fs = std::filesystem;
+using Entry = std::string (*)(const std::uint8_t*, std::size_t);
+
+// Returns how many files ran.
+int run_corpus(const char* target, Entry entry) {
+  const fs::path dir = fs::path(TNV_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / target;
+  int files = 0;
+  if (!fs::is_directory(dir)) return 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(entry(bytes.data(), bytes.size()), "") << e.path().filename().string();
+    ++files;
+  }
+  return files;
+}
+
+constexpr int kMinSeeds = 20;  // a corpus, not a token file
+
+TEST(FuzzCorpus, CanFrames) { EXPECT_GE(run_corpus("can_frames", fuzz::can_frames), kMinSeeds); }
+TEST(FuzzCorpus, ParamSet) { EXPECT_GE(run_corpus("param_set", fuzz::param_set), kMinSeeds); }
+TEST(FuzzCorpus, ScenarioToml) { EXPECT_GE(run_corpus("scenario_toml", fuzz::scenario_toml), kMinSeeds); }
+TEST(FuzzCorpus, ParamImage) { EXPECT_GE(run_corpus("param_image", fuzz::param_image), kMinSeeds); }
+
+// The empty input (libFuzzer's first) is a valid input for every entry.
+TEST(FuzzCorpus, EmptyInputsAreHandled) {
+  EXPECT_EQ(fuzz::can_frames(nullptr, 0), "");
+  EXPECT_EQ(fuzz::param_set(nullptr, 0), "");
+  EXPECT_EQ(fuzz::scenario_toml(reinterpret_cast<const std::uint8_t*>(""), 0), "");
+  EXPECT_EQ(fuzz::param_image(nullptr, 0), "");
+}
+
+}  // namespace
+}  // namespace tnv

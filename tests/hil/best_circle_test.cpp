@@ -1,0 +1,51 @@
+// Issue 7, item 4: the product's best circle configuration (identified on
+// the emulated table, R-DVSC+DDC gains by the design rule, Coulomb friction
+// feed-forward) on the reference no-cut circle, seed-averaged, beside the
+// papers' R-DVSC+DDC with its default config (Table 3's protocol).
+//
+// The issue's goal (max <= 1.0 um, mean <= 0.15 um) is NOT met yet (8-seed
+// average max 1.09 um, mean 0.162 um: `tnv-hil best-circle`,
+// docs/autotune.md). This test holds what is achieved, so a regression
+// fails; it is not the goal.
+#include <gtest/gtest.h>
+
+#include "emulator/scenario_file.hpp"
+#include "tools/hil/best_circle.hpp"
+#include "tools/hil/tune_design.hpp"
+
+namespace tnv::hil {
+namespace {
+
+constexpr int kBestCircleSeeds = 4;
+
+BestCircleRow run_no_cut() {
+  const emu::Scenario no_cut = *emu::builtin_scenario("no-cut");
+  std::array<AxisDesign, 2> d{};
+  for (std::size_t i = 0; i < 2; ++i) {
+    d[i] = design_axis(identify_axis_on_emulator(no_cut, hal::axis_from_index(i)));
+    EXPECT_TRUE(d[i].ok) << d[i].error;
+  }
+  const fw::FirmwareConfig best = apply_designs(fw::default_firmware_config(), d[0], d[1]);
+  EXPECT_TRUE(fw::validate(best).ok());
+  BestCircleRequest request;
+  request.scenarios = {no_cut};
+  request.seeds = kBestCircleSeeds;
+  const std::vector<BestCircleRow> rows = run_best_circle(request, best);
+  EXPECT_EQ(rows.size(), 1u);
+  return rows.empty() ? BestCircleRow{} : rows[0];
+}
+
+TEST(BestCircle, CompensatedCircleBeatsThePapersOnEveryStatistic) {
+  const BestCircleRow r = run_no_cut();
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  // The comparison is the papers' own: R-DVSC+DDC keeps its reversal glitch.
+  EXPECT_GT(r.rdvsc.max_um, 2.0) << "papers' R-DVSC+DDC max " << r.rdvsc.max_um << " um";
+  // Reversal glitches gone: less than half the papers' max, and below 1.2 um.
+  EXPECT_LE(r.best.max_um, 1.2) << "best configuration: max " << r.best.max_um << " um (" << kBestCircleSeeds << "-seed average)";
+  EXPECT_LT(r.best.max_um, 0.5 * r.rdvsc.max_um);
+  EXPECT_LT(r.best.mean_um, r.rdvsc.mean_um) << "best mean " << r.best.mean_um << " um vs " << r.rdvsc.mean_um;
+  EXPECT_LT(r.best.std_um, 0.8 * r.rdvsc.std_um) << "best std " << r.best.std_um << " um vs " << r.rdvsc.std_um;
+}
+
+}  // namespace
+}  // namespace tnv::hil

@@ -1,0 +1,84 @@
+// The daemon in-process against a board-server thread (the emulated board
+// advancing one tick per snapshot read) and a host on the Unix-socket CAN
+// link: parameter round trip, heartbeat, a circle, stop from the controlling thread
+// with the outputs left safe. Exercises the loop thread, its start/stop
+// and the histogram hand-off under TSan.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <thread>
+
+#include "drivers/linux/register_server.hpp"
+#include "drivers/linux/unix_seqpacket.hpp"
+#include "emulator/machine.hpp"
+#include "emulator/scenario_file.hpp"
+#include "tests/linux/rig_support.hpp"
+#include "tools/tnv-board-emu/ticking_bus.hpp"
+#include "tools/tnv-fw/daemon.hpp"
+
+namespace tnv {
+namespace {
+
+TEST(Daemon, ServesParametersAndHeartbeatsThenStopsWithOutputsSafe) {
+  test::ScratchDir dir;
+  const fwd::DaemonConfig config = test::rig_config(dir);
+
+  emu::Machine machine(*emu::resolve_scenario("no-cut").scenario);
+  board_emu::TickingBus ticking(machine);
+  std::string error;
+  const int listen_fd = drivers::listen_seqpacket(config.board.path, error);
+  ASSERT_GE(listen_fd, 0) << error;
+  drivers::ServeEnd end = drivers::ServeEnd::link_error;
+  std::thread server([&] {
+    const int fd = drivers::accept_seqpacket(listen_fd);
+    drivers::ServeStats stats;
+    end = drivers::serve_register_connection(fd, ticking, -1, stats);
+    ::close(fd);
+  });
+
+  std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, {}, error);
+  ASSERT_TRUE(daemon) << error;
+  ASSERT_EQ(daemon->start(), "");
+  {
+    test::HostLink host(config.can.interface_name.substr(5));
+    const can_host::Heartbeat hb = host.client.wait_heartbeat(can_host::Micros{3'000'000});
+    EXPECT_EQ(hb.state, fw::MotionState::disabled);
+    EXPECT_EQ(hb.fault, fw::FaultReason::none);
+    const double before = host.client.get(test::gamma_x());
+    const double target = before == 0.25 ? 0.3 : 0.25;
+    EXPECT_DOUBLE_EQ(host.client.set(test::gamma_x(), target), target);
+    EXPECT_DOUBLE_EQ(host.client.get(test::gamma_x()), target) << "read back over CAN";
+    EXPECT_GE(host.bus.counters().rx_frames, 4u);
+    // A whole circle on wall-clock ticks: the table starts at (R, 0) of the
+    // scenario's 6 mm circle; 20 mm/s keeps it under 3 s.
+    EXPECT_EQ(host.client.circle(6.0, 20.0).result, fw::can::ErrorCode::ok);
+    const can_host::Heartbeat done = host.client.wait_at_rest(can_host::Micros{20'000'000});
+    EXPECT_EQ(done.fault, fw::FaultReason::none);
+  }
+  const fwd::SafeStateReport safe = daemon->stop();
+  EXPECT_TRUE(safe.safe) << safe.one_line();
+  EXPECT_GT(daemon->loop_counters().cycles, 10u);
+  EXPECT_EQ(daemon->latency().count, daemon->loop_counters().cycles);
+  const std::string summary = daemon->summary();
+  EXPECT_NE(summary.find("wake-up latency: min"), std::string::npos) << summary;
+  daemon.reset();  // closes the register link: the server sees the peer leave
+  server.join();
+  ::close(listen_fd);
+  EXPECT_EQ(end, drivers::ServeEnd::peer_closed);
+  EXPECT_TRUE(machine.board_outputs().safe(machine.dac_mid_code()));
+  EXPECT_GT(ticking.ticks_served(), 2000u) << "dwell + circle at 1 tick per ms";
+  EXPECT_NEAR(machine.truth(hal::Axis::x).position_mm, 6.0, 0.05) << "back at the circle's start";
+  EXPECT_NEAR(machine.truth(hal::Axis::y).position_mm, 0.0, 0.05);
+}
+
+TEST(Daemon, AMissingBoardIsAOneLineErrorNamingTheSocket) {
+  test::ScratchDir dir;
+  fwd::DaemonConfig config = test::rig_config(dir);
+  config.board.connect_timeout_ms = 0;
+  std::string error;
+  EXPECT_FALSE(fwd::Daemon::open(config, {}, error));
+  EXPECT_EQ(error, config.board.path + ": cannot connect to the board: No such file or directory");
+}
+
+}  // namespace
+}  // namespace tnv

@@ -1,0 +1,111 @@
+// The two-process rig on one machine: tnv-board-emu serving the emulated
+// board on a Unix socket and tnv-fw (no tick line: clock_nanosleep
+// deadlines) talking CAN over the Unix-socket link; the test is the host.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "tests/linux/rig_support.hpp"
+
+extern char** environ;
+
+namespace tnv {
+namespace {
+
+pid_t spawn(const std::vector<std::string>& args, const std::string& out_file) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0) << args[0];
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_config(const std::string& path, const fwd::DaemonConfig& c) {
+  std::ofstream out(path);
+  out << "[board]\ntransport = \"socket\"\npath = \"" << c.board.path << "\"\nreply_timeout_ms = 2000\n"
+      << "[can]\ninterface = \"" << c.can.interface_name << "\"\nnode_id = 1\n"
+      << "[rt]\npriority = 0\nrequire = false\n"
+      << "[tick]\nperiod_us = 1000\n"
+      << "[params]\nfile = \"" << c.params.file << "\"\n";
+}
+
+TEST(TwoProcessRig, ParameterRoundTripOverCanThenSigtermLeavesTheOutputsSafe) {
+  test::ScratchDir dir;
+  const fwd::DaemonConfig config = test::rig_config(dir);
+  const std::string config_file = dir.file("tnv-fw.toml");
+  write_config(config_file, config);
+
+  const pid_t emu = spawn({TNV_BOARD_EMU_EXE, "--socket", config.board.path, "--scenario", "no-cut", "--once"},
+                          dir.file("emu.log"));
+  const pid_t fw = spawn({TNV_FW_EXE, "--config", config_file}, dir.file("fw.log"));
+  // The firmware binds its CAN socket once the board has answered.
+  const std::string can_socket = config.can.interface_name.substr(5);
+  for (int i = 0; i < 500 && !std::filesystem::exists(can_socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(std::filesystem::exists(can_socket)) << read_file(dir.file("fw.log"));
+  {
+    test::HostLink host(can_socket);
+    EXPECT_EQ(host.client.wait_heartbeat(can_host::Micros{3'000'000}).fault, fw::FaultReason::none);
+    EXPECT_DOUBLE_EQ(host.client.set(test::gamma_x(), 0.25), 0.25);
+    EXPECT_DOUBLE_EQ(host.client.get(test::gamma_x()), 0.25);
+  }
+  ASSERT_EQ(::kill(fw, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(fw), 0);
+  EXPECT_EQ(wait_exit(emu), 0) << "--once: the emulator ends when the firmware leaves";
+  const std::string fw_log = read_file(dir.file("fw.log"));
+  EXPECT_NE(fw_log.find("tnv-fw: stopped (SIGTERM); outputs safe: DAC x 2048, DAC y 2048 (mid-scale 2048), enables 0x0"),
+            std::string::npos)
+      << fw_log;
+  const std::string emu_log = read_file(dir.file("emu.log"));
+  EXPECT_NE(emu_log.find("tnv-board-emu: firmware disconnected after"), std::string::npos) << emu_log;
+}
+
+TEST(TwoProcessRig, ABadConfigExitsWithCode2AndOneLine) {
+  test::ScratchDir dir;
+  const std::string config_file = dir.file("bad.toml");
+  std::ofstream(config_file) << "[board]\ntransport = \"socket\"\npath = \"/x\"\n[rt]\npriority = 100\n";
+  const pid_t fw = spawn({TNV_FW_EXE, "--config", config_file}, dir.file("fw.log"));
+  EXPECT_EQ(wait_exit(fw), 2);
+  EXPECT_EQ(read_file(dir.file("fw.log")), "tnv-fw: " + config_file + ":5: rt.priority: must be 0..99 (got 100)\n");
+}
+
+TEST(TwoProcessRig, LatencyTestPrintsACyclictestLikeSummary) {
+  test::ScratchDir dir;
+  const pid_t fw = spawn({TNV_FW_EXE, "--latency-test", "0.05"}, dir.file("lat.log"));
+  EXPECT_EQ(wait_exit(fw), 0);
+  const std::string log = read_file(dir.file("lat.log"));
+  EXPECT_NE(log.find("# tnv-fw latency test: period 1000 us, 50 cycles"), std::string::npos) << log;
+  EXPECT_NE(log.find("p99 "), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace tnv

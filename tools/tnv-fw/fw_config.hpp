@@ -1,0 +1,59 @@
+#pragma once
+// tnv-fw's configuration file (TOML; docs/install-board.md lists every
+// key, packaging/tnv-fw.toml is the default). Read whole and validated
+// before anything is opened: a bad file gives one line naming the file,
+// the line and the key, and the daemon exits with code 2.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "drivers/linux/gpio_lines.hpp"
+
+namespace tnv::fwd {
+
+struct BoardConfig {
+  std::string transport;             // "socket" (board-emulator process) or "spidev" (FPGA over SPI)
+  std::string path;                  // socket path or /dev/spidevB.C
+  std::uint32_t spi_speed_hz = 10'000'000;  // spidev only
+  int connect_timeout_ms = 5000;     // socket only: wait for the server to come up
+  int reply_timeout_ms = 20;         // one register transfer
+};
+
+struct CanConfig {
+  std::string interface_name = "can0";  // or "unix:/path" (CAN frames over a Unix datagram socket)
+  std::uint8_t node_id = 1;             // 1..63; overrides the stored parameter image's id
+};
+
+struct RtConfig {
+  int priority = 80;   // SCHED_FIFO 1..99; 0 = no real-time priority
+  int cpu = -1;        // CPU to pin the control thread to; -1 = any
+  bool require = true; // refuse to run without SCHED_FIFO / mlockall
+};
+
+struct TickConfig {
+  std::uint32_t period_us = 1000;  // board tick period (the FPGA's TICK_DIVIDER) and the deadline period
+};
+
+struct ParamsConfig {
+  std::string file = "/var/lib/tnv-fw/params.bin";
+};
+
+struct DaemonConfig {
+  BoardConfig board;
+  CanConfig can;
+  drivers::LineConfig lines;
+  RtConfig rt;
+  TickConfig tick;
+  ParamsConfig params;
+};
+
+struct ConfigResult {
+  std::optional<DaemonConfig> config;
+  std::string error;  // "FILE:LINE: key: what is wrong" when config is empty
+};
+
+ConfigResult parse_daemon_config(std::string_view text, const std::string& source_name);
+ConfigResult load_daemon_config(const std::string& path);
+
+}  // namespace tnv::fwd
