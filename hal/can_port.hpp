@@ -19,6 +19,9 @@ class CanPort {
   virtual ~CanPort() = default;
   virtual HalStatus try_send(const CanFrame& frame) noexcept = 0;  // timeout when the queue is full
   virtual bool try_receive(CanFrame& frame) noexcept = 0;          // false when nothing is pending
+  // CAN error frames seen since start (bus errors, error-passive, bus-off);
+  // 0 from a port that cannot see them. Reported in the heartbeat.
+  virtual std::uint64_t error_frames() const noexcept { return 0; }
 };
 
 }  // namespace tnv::hal

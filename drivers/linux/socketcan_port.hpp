@@ -59,6 +59,7 @@ class SocketCanPort final : public hal::CanPort {
 
   hal::HalStatus try_send(const hal::CanFrame& frame) noexcept override;
   bool try_receive(hal::CanFrame& frame) noexcept override;
+  std::uint64_t error_frames() const noexcept override { return rx_error_frames_.load(std::memory_order_relaxed); }
 
   CanPortCounters counters() const noexcept;
   bool bus_off() const noexcept { return bus_off_.load(std::memory_order_relaxed); }

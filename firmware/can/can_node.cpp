@@ -36,6 +36,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
   deadman_stops_seen_ = task_.jog_deadman_stops();
   bus_errors_at_heartbeat_ = task_.counters().bus_errors;
   late_ticks_at_heartbeat_ = task_.counters().late_ticks;
+  can_errors_at_heartbeat_ = can_.error_frames();
 }
 
 const NodeSettings& CanNode::settings() const noexcept { return settings_; }
@@ -241,6 +242,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(task_.shaper(hal::Axis::x).shaping(), kHbShaperX);
   set(task_.shaper(hal::Axis::y).shaping(), kHbShaperY);
   set(host_timeout_, kHbHostTimeout);
+  set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
   return bits;
 }
 
@@ -261,6 +263,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     tx_dropped_since_heartbeat_ = false;
     bus_errors_at_heartbeat_ = c.bus_errors;
     late_ticks_at_heartbeat_ = c.late_ticks;
+    can_errors_at_heartbeat_ = can_.error_frames();
     emit(f);
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {

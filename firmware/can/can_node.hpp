@@ -156,6 +156,7 @@ class CanNode {
   bool host_timeout_ = false;           // sticky until the next accepted motion request
   bool tx_dropped_since_heartbeat_ = false;
   std::uint64_t bus_errors_at_heartbeat_ = 0;
+  std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;
   CaptureRecorder capture_{};           // last: the big buffer
 };

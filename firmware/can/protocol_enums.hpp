@@ -120,6 +120,7 @@ enum HeartbeatBit : std::uint16_t {
   kHbShaperX = 1u << 9,
   kHbShaperY = 1u << 10,
   kHbHostTimeout = 1u << 11,
+  kHbCanErrors = 1u << 12,
 };
 
 struct HeartbeatBitDoc {
@@ -140,6 +141,7 @@ inline constexpr HeartbeatBitDoc kHeartbeatBits[] = {
     {kHbShaperX, "shaper_x", "input shaper on, x"},
     {kHbShaperY, "shaper_y", "input shaper on, y"},
     {kHbHostTimeout, "host_timeout", "motion was stopped because the host went silent"},
+    {kHbCanErrors, "can_errors", "the CAN controller reported error frames (bus error, error-passive, bus-off)"},
 };
 
 }  // namespace tnv::fw::can

@@ -71,6 +71,7 @@ TEST(SocketCanPort, ErrorFramesAreCountedNeverReturnedAndShortReadsDiscarded) {
   const drivers::CanPortCounters c = port->counters();
   EXPECT_EQ(c.rx_frames, 1u);
   EXPECT_EQ(c.rx_error_frames, 2u);
+  EXPECT_EQ(port->error_frames(), 2u) << "what the node's heartbeat reports";
   EXPECT_EQ(c.error_passive_events, 1u);
   EXPECT_EQ(c.rx_short_reads, 1u);
 }

@@ -123,16 +123,8 @@ const fw::can::ParamDef& param_named(const std::string& name) {
 
 nlohmann::json heartbeat_json(const can_host::Heartbeat& hb) {
   nlohmann::json bits = nlohmann::json::array();
-  static const std::pair<std::uint16_t, const char*> kBits[] = {
-      {fw::can::kHbStorageFault, "storage_fault"},   {fw::can::kHbParamsUnsaved, "params_unsaved"},
-      {fw::can::kHbTxDropped, "tx_dropped"},         {fw::can::kHbJogDeadman, "jog_deadman"},
-      {fw::can::kHbCaptureRecording, "capture_recording"}, {fw::can::kHbCaptureDone, "capture_done"},
-      {fw::can::kHbBoardBusErrors, "board_bus_errors"}, {fw::can::kHbLateTicks, "late_ticks"},
-      {fw::can::kHbParamsStaged, "params_staged"},   {fw::can::kHbShaperX, "shaper_x"},
-      {fw::can::kHbShaperY, "shaper_y"},             {fw::can::kHbHostTimeout, "host_timeout"},
-  };
-  for (const auto& [bit, name] : kBits)
-    if ((hb.errors & bit) != 0) bits.push_back(name);
+  for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
+    if ((hb.errors & b.mask) != 0) bits.push_back(b.name);
   return {{"state", fw::to_string(hb.state)},
           {"fault", fw::to_string(hb.fault)},
           {"flags", bits},

@@ -84,6 +84,27 @@ TEST(CanNodeTelemetry, HeartbeatCarriesStateFaultAndTick) {
   EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "errors"), 0u);
 }
 
+// The error bits of the next heartbeat from the node (at most 20 ticks away).
+std::uint32_t next_heartbeat_errors(NodeBench& b) {
+  for (int k = 0; k < 20; ++k) {
+    b.step();
+    const std::vector<hal::CanFrame> hb = only(b.port.drain(), MessageId::heartbeat);
+    if (!hb.empty()) return raw_of(hb.back(), MessageId::heartbeat, "errors");
+  }
+  ADD_FAILURE() << "no heartbeat within 20 ticks";
+  return 0;
+}
+
+TEST(CanNodeTelemetry, CanErrorFramesRaiseTheHeartbeatBitUntilTheNextHeartbeat) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry.heartbeat_ms = 10;
+  NodeBench b(s);
+  EXPECT_EQ(next_heartbeat_errors(b) & fw::can::kHbCanErrors, 0u) << "no error frames yet";
+  b.port.error_frame_count = 3;  // the controller saw three error frames
+  EXPECT_NE(next_heartbeat_errors(b) & fw::can::kHbCanErrors, 0u);
+  EXPECT_EQ(next_heartbeat_errors(b) & fw::can::kHbCanErrors, 0u) << "none since the last heartbeat";
+}
+
 TEST(CanNodeTelemetry, PositionTelemetryIsTheEncoderPositionInNanometres) {
   fw::can::NodeSettings s = quiet_settings();
   s.telemetry.position_ms = 1;

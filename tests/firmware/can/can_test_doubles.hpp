@@ -53,6 +53,7 @@ class FakeCanPort final : public hal::CanPort {
     return from_node.push(frame) ? hal::HalStatus::ok : hal::HalStatus::timeout;
   }
   bool try_receive(hal::CanFrame& frame) noexcept override { return to_node.pop(frame); }
+  std::uint64_t error_frames() const noexcept override { return error_frame_count; }
 
   // Host side.
   void send(const hal::CanFrame& f) { to_node.push(f); }
@@ -66,6 +67,7 @@ class FakeCanPort final : public hal::CanPort {
   FrameRing<1024> to_node;
   FrameRing<8192> from_node;
   std::size_t tx_capacity = 0;
+  std::uint64_t error_frame_count = 0;  // what the CAN controller reported
 };
 
 class MemoryStorage final : public hal::ParamStorage {
