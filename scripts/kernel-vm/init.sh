@@ -23,11 +23,12 @@ for m in $(cat /modules.order); do
 done
 mount -t configfs configfs /sys/kernel/config || { say "ERROR configfs"; finish 91; }
 
-script=""; workdir=""; args=""
+script=""; args=""; repo=""
 for kv in $(cat /proc/cmdline); do
   case "$kv" in
     tnv.script=*) script=${kv#tnv.script=} ;;
     tnv.args=*) args=$(echo "${kv#tnv.args=}" | tr ',' ' ') ;;
+    tnv.repo=*) repo=${kv#tnv.repo=} ;;
   esac
 done
 
@@ -39,6 +40,11 @@ mount -t proc proc /host/proc && mount -t sysfs sysfs /host/sys && mount -t devt
 mount -t tmpfs tmpfs /host/tmp
 mount -t tmpfs tmpfs /host/run
 mkdir -p /host/dev/shm && mount -t tmpfs tmpfs /host/dev/shm
+# The repository at its own path, on top of the tmpfs mounts above.
+if [ -n "$repo" ]; then
+  mkdir -p "/host$repo" && mount -t 9p -o trans=virtio,version=9p2000.L,ro,cache=loose,msize=262144 repo "/host$repo" \
+    || { say "ERROR 9p mount of $repo"; finish 95; }
+fi
 ip link set lo up 2>/dev/null
 
 [ -n "$script" ] || { say "ERROR no tnv.script= on the kernel command line"; finish 94; }

@@ -2,7 +2,9 @@
 # Boots the cached Debian kernel under qemu-system-x86_64 (TCG, -smp 1) with
 # the test initramfs and the host root over 9p (read-only), runs GUEST_SCRIPT
 # inside (chrooted into the host root) and exits with the guest script's exit
-# code. The console goes to LOG and to stdout.
+# code. The repository is shared a second time and mounted at its own path
+# inside the guest, after the guest's tmpfs /tmp and /run: a clone under
+# /tmp stays visible. The console goes to LOG and to stdout.
 # Usage: run-vm.sh KERNEL_ROOT RELEASE INITRAMFS LOG TIMEOUT_S GUEST_SCRIPT [ARG,ARG...]
 set -euo pipefail
 kroot=$1 release=$2 initrd=$3 log=$4 timeout_s=$5 script=$6 args=${7:-}
@@ -13,9 +15,11 @@ kernel="$kroot/../vmlinux"
 [[ -f "$kernel" ]] || kernel="$kroot/boot/vmlinuz-$release"
 [[ -f "$kernel" ]] || die "no kernel image for $release"
 [[ "$args" != *" "* ]] || die "guest args are comma-separated, without spaces"
+repo=$(cd "$(dirname "$0")/../.." && pwd)
+[[ "$repo" != *" "* && "$repo" != *","* ]] || die "the repository path '$repo' has a space or a comma"
 
 append="console=ttyS0 quiet loglevel=3 panic=-1 oops=panic clocksource=hpet mitigations=off nokaslr"
-append+=" tnv.script=$script"
+append+=" tnv.script=$script tnv.repo=$repo"
 [[ -n "$args" ]] && append+=" tnv.args=$args"
 
 set +e
@@ -26,6 +30,8 @@ timeout --foreground -k 5 "$timeout_s" qemu-system-x86_64 \
   -device isa-debug-exit,iobase=0xf4,iosize=0x04 \
   -fsdev local,id=hostroot,path=/,security_model=none,readonly=on,multidevs=remap \
   -device virtio-9p-pci,fsdev=hostroot,mount_tag=hostroot \
+  -fsdev local,id=repo,path="$repo",security_model=none,readonly=on,multidevs=remap \
+  -device virtio-9p-pci,fsdev=repo,mount_tag=repo \
   < /dev/null 2>&1 | tee "$log"
 qemu_rc=${PIPESTATUS[0]}
 set -e
