@@ -2,6 +2,7 @@
 #include <array>
 
 #include "hal/axis.hpp"
+#include "hal/status.hpp"
 
 namespace tnv::hal {
 
@@ -23,6 +24,10 @@ class DiscreteIo {
   virtual ~DiscreteIo() = default;
   virtual DiscreteInputs inputs() const noexcept = 0;
   virtual void set_servo_enable(Axis axis, bool enabled) noexcept = 0;
+  // Resets the board's sticky trips (encoder_error, dac_error, a watchdog
+  // trip) on the operator's clear command, between ticks, never in one.
+  // The next snapshot shows whether a cause is still there.
+  virtual HalStatus clear_latched_faults() noexcept = 0;
 };
 
 }  // namespace tnv::hal

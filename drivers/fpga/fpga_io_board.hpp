@@ -59,7 +59,7 @@ class FpgaIoBoard final : public hal::IoBoard {
   // (CONTROL bits 1 and 0; the watchdog re-arms at the next kick), in one
   // bus write: the operator's reset between ticks, never part of the tick.
   // The next snapshot shows whether the cause is still there.
-  hal::HalStatus clear_latched_faults() noexcept;
+  hal::HalStatus clear_latched_faults() noexcept override;
 
  private:
   static constexpr std::uint16_t kMidCode = 1u << (hal::regs::kDacBits - 1);

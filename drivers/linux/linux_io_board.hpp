@@ -30,6 +30,7 @@ class LinuxIoBoard final : public hal::IoBoard {
   unsigned dac_bits() const noexcept override { return board_.dac_bits(); }
   hal::DiscreteInputs inputs() const noexcept override;
   void set_servo_enable(hal::Axis axis, bool enabled) noexcept override;
+  hal::HalStatus clear_latched_faults() noexcept override { return board_.clear_latched_faults(); }
   std::uint16_t latched_force_code() const noexcept override { return board_.latched_force_code(); }
   unsigned adc_bits() const noexcept override { return board_.adc_bits(); }
   void kick() noexcept override { board_.kick(); }

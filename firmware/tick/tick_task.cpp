@@ -486,6 +486,13 @@ CommandStatus TickTask::disable() noexcept {
 
 CommandStatus TickTask::clear_fault() noexcept {
   if (state_ != MotionState::faulted) return CommandStatus::ok;
+  // The board's trips are sticky: reset them here, between ticks. This
+  // clear still answers cause_present; once a snapshot shows them gone,
+  // the next clear succeeds (if the cause is real, they latch again).
+  bool board_latched = last_inputs_.watchdog_tripped;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    board_latched = board_latched || last_inputs_.encoder_error[i] || last_inputs_.dac_error[i];
+  if (board_latched) (void)board_.clear_latched_faults();
   if (fault_cause_present(last_inputs_)) return CommandStatus::cause_present;
   fault_ = {};
   state_ = MotionState::disabled;

@@ -89,6 +89,10 @@ class TickTask {
   CommandStatus start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept;
   bool exciting() const noexcept;
   CommandStatus disable() noexcept;
+  // Clears a latched fault once its cause is gone (cause_present while
+  // it is not). Board trips (encoder, DAC, watchdog) are sticky: a clear
+  // resets them on the board and answers cause_present; the next clear
+  // after a tick succeeds if they stayed clear.
   CommandStatus clear_fault() noexcept;
 
   // --- commands for the CAN node (between ticks)

@@ -55,6 +55,15 @@ class FakeIoBoard final : public hal::IoBoard {
   unsigned dac_bits() const noexcept override { return 12; }
   hal::DiscreteInputs inputs() const noexcept override { return in; }
   void set_servo_enable(hal::Axis a, bool e) noexcept override { staged_enable[hal::index(a)] = e; }
+  // Like the FPGA: the sticky trips read back clear until raised again.
+  hal::HalStatus clear_latched_faults() noexcept override {
+    ++latch_clears;
+    in.encoder_error = {};
+    in.dac_error = {};
+    in.watchdog_tripped = false;
+    return hal::HalStatus::ok;
+  }
+  int latch_clears = 0;
   std::uint16_t latched_force_code() const noexcept override { return force_code; }
   unsigned adc_bits() const noexcept override { return 12; }
   void kick() noexcept override { kick_staged = true; }

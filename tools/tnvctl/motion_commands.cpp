@@ -283,7 +283,7 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
       {"clear-faults", can::CommandCode::clear_faults},
   };
   const char* simple_help[] = {"servo on, hold where the table stands", "servo off (DACs mid-scale)",
-                               "unlatch the fault if its cause is gone"};
+                               "unlatch the fault if its cause is gone (a board trip: the first resets it, the next unlatches)"};
   for (std::size_t i = 0; i < std::size(simple); ++i) {
     const auto [name, code] = simple[i];
     app.add_subcommand(name, simple_help[i])->callback([&slot, name = std::string(name), code = code] {

@@ -115,6 +115,31 @@ TEST_F(TickTaskTest, EstopFaultCannotBeClearedWhileAsserted) {
   EXPECT_EQ(task.clear_fault(), CommandStatus::ok);
 }
 
+TEST_F(TickTaskTest, ABoardLatchedEncoderErrorIsResetByTheFirstClearAndClearedByTheNext) {
+  tick();
+  board.in.encoder_error[1] = true;  // sticky on the board until reset
+  tick();
+  EXPECT_EQ(task.fault().reason, FaultReason::encoder_error);
+  tick();
+  EXPECT_EQ(board.latch_clears, 0) << "the tick never resets the board";
+  EXPECT_EQ(task.clear_fault(), CommandStatus::cause_present) << "the last snapshot still shows the latch";
+  EXPECT_EQ(board.latch_clears, 1);
+  tick();
+  EXPECT_EQ(task.state(), MotionState::faulted) << "still latched in the firmware";
+  EXPECT_EQ(task.clear_fault(), CommandStatus::ok) << "the new snapshot shows the latch gone";
+  EXPECT_EQ(board.latch_clears, 1);
+  tick();
+  EXPECT_EQ(task.state(), MotionState::disabled);
+}
+
+TEST_F(TickTaskTest, AnEstopClearDoesNotTouchTheBoardLatches) {
+  tick();
+  board.in.estop = true;
+  tick();
+  EXPECT_EQ(task.clear_fault(), CommandStatus::cause_present);
+  EXPECT_EQ(board.latch_clears, 0);
+}
+
 TEST_F(TickTaskTest, StaleSnapshotIsAFaultNotASilentReuse) {
   tick();
   ASSERT_EQ(task.start_circle(CircleSpec{}), CommandStatus::ok);
