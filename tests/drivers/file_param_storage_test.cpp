@@ -265,12 +265,23 @@ TEST(FileParamStorage, AWriterKilledAtRandomPointsLeavesTheOldOrTheNewSetBitExac
 #endif
   int saw_a = 0, saw_b = 0, killed_mid_save = 0;
   for (int k = 0; k < kKills; ++k) {
+    // The child says when its save loop starts, so the random delay counts
+    // from there and not from fork(), whose cost varies (30 ms under ASan).
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
+      ::close(ready[0]);
       drivers::FileParamStorage writer(path);
+      const char go = 1;
+      if (::write(ready[1], &go, 1) != 1) ::_exit(3);
       for (unsigned n = 0;; ++n) writer.write((n % 2 == 0) ? b : a);
     }
+    ::close(ready[1]);
+    char go = 0;
+    ASSERT_EQ(::read(ready[0], &go, 1), 1) << "kill " << k << ": the writer never started";
+    ::close(ready[0]);
     const long us = delay_us(rng);
     if (us > 0) ::usleep(static_cast<useconds_t>(us));
     ::kill(child, SIGKILL);
