@@ -41,6 +41,8 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
     case regs::kEncoderY:
     case regs::kInputs:
     case regs::kAdcForce:
+    case regs::kAdcAccelX:
+    case regs::kAdcAccelY:
     case regs::kFaults: value = snapshot_[word - regs::kSnapshotFirst]; return true;
     case regs::kDacX: value = dac_codes_[0]; return true;
     case regs::kDacY: value = dac_codes_[1]; return true;
@@ -121,6 +123,8 @@ void IoBoard::fill_snapshot(const TickSamples& samples) noexcept {
   snapshot_[regs::kInputs - regs::kSnapshotFirst] = live_inputs();
   snapshot_[regs::kAdcForce - regs::kSnapshotFirst] = samples.adc_force_code;
   snapshot_[regs::kFaults - regs::kSnapshotFirst] = faults_;
+  snapshot_[regs::kAdcAccelX - regs::kSnapshotFirst] = samples.adc_accel_codes[0];
+  snapshot_[regs::kAdcAccelY - regs::kSnapshotFirst] = samples.adc_accel_codes[1];
 }
 
 void IoBoard::set_input(std::uint32_t bit, bool asserted) noexcept {

@@ -22,7 +22,7 @@
 //   enable bits; while tripped, DAC/OUTPUTS writes are stored but the outputs
 //   stay forced off (u = 0) and kicks are ignored, until CONTROL
 //   kControlClearWatchdog (which also disarms until the next kick).
-// - INPUTS (with the board's own watchdog-tripped bit), ADC_FORCE and FAULTS
+// - INPUTS (with the board's own watchdog-tripped bit), ADC_FORCE, ADC_ACCEL_X/Y and FAULTS
 //   are snapshot words like the rest: they change only at ticks.
 // - The WATCHDOG_KICK word reads back the last value written; CONTROL reads 0.
 // - The DAC output is the register's code unless a fault sticks it. At each
@@ -47,6 +47,8 @@ namespace tnv::emu {
 struct TickSamples {
   std::array<std::uint32_t, hal::kAxisCount> encoder_registers{};  // already wrapped to kEncoderBits
   std::uint32_t adc_force_code = 0;
+  // Tool-side accelerometers (offset binary; mid-scale = 0 mm/s^2).
+  std::array<std::uint32_t, hal::kAxisCount> adc_accel_codes{1u << (hal::regs::kAdcBits - 1), 1u << (hal::regs::kAdcBits - 1)};
 };
 
 class IoBoard {

@@ -17,6 +17,7 @@
 #include "emulator/scenario_validation.hpp"
 #include "emulator/structural_mode.hpp"
 #include "emulator/substep_timing.hpp"
+#include "emulator/tool_accelerometer.hpp"
 
 namespace tnv::emu {
 
@@ -99,6 +100,15 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
   samples.adc_force_code = force_adc_code(magnitude_mm_s, scenario.force_sensor.volts_per_mm_s);
   // With [milling] on, the sensor reads the milling force instead (same ADC scaling law, volts per N).
   if (milling.enabled()) samples.adc_force_code = force_adc_code(milling.force_n(), scenario.force_sensor.volts_per_n);
+  // Tool-side accelerometers: table acceleration with the inputs of the
+  // sub-step that ends at the tick, plus the mode's deflection acceleration.
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double disturbance_mm_s = applied_cutting.component(hal::axis_from_index(i)) +
+                                    (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
+    const double table_mm_s2 =
+        table_acceleration_mm_s2(plants[i], drive_sign[i] * applied_command_mm_s[i], disturbance_mm_s);
+    samples.adc_accel_codes[i] = accel_adc_code(table_mm_s2 + modes[i].deflection_accel_mm_s2(table_mm_s2));
+  }
   return samples;
 }
 

@@ -30,6 +30,8 @@ StructuralMode::StructuralMode(double mode_hz, double zeta, double step_s) noexc
   phi22_ = static_cast<double>(p22);
   gamma1_ = static_cast<double>(-(1.0L - p11) / (w * w));
   gamma2_ = static_cast<double>(p21 / (w * w));
+  two_zeta_w_ = static_cast<double>(2.0L * sigma);
+  w2_ = static_cast<double>(w * w);
 }
 
 }  // namespace tnv::emu

@@ -27,6 +27,13 @@ class StructuralMode {
     s.deflection_speed_mm_s = phi21_ * x + phi22_ * xdot + gamma2_ * table_accel_mm_s2;
   }
 
+  // x_d'' now for a table acceleration a: -a - 2 zeta w x_d' - w^2 x_d
+  // (0 without a mode). The tool point accelerates at a + x_d''.
+  double deflection_accel_mm_s2(double table_accel_mm_s2) const noexcept {
+    if (!enabled_) return 0.0;
+    return -table_accel_mm_s2 - two_zeta_w_ * state_.deflection_speed_mm_s - w2_ * state_.deflection_mm;
+  }
+
   double deflection_mm() const noexcept { return state_.deflection_mm; }
   double deflection_speed_mm_s() const noexcept { return state_.deflection_speed_mm_s; }
   const ModeState& state() const noexcept { return state_; }
@@ -40,6 +47,7 @@ class StructuralMode {
   // Zero-order-hold transition matrix and input vector for one step.
   double phi11_ = 1.0, phi12_ = 0.0, phi21_ = 0.0, phi22_ = 1.0;
   double gamma1_ = 0.0, gamma2_ = 0.0;
+  double two_zeta_w_ = 0.0, w2_ = 0.0;  // 2 zeta w (1/s), w^2 (1/s^2)
   ModeState state_{};
 };
 

@@ -12,7 +12,7 @@ inline constexpr std::uint16_t kVersion = 0x001;     // major << 16 | minor
 inline constexpr std::uint16_t kClockLive = 0x002;   // free-running 10 MHz counter, now
 
 inline constexpr std::uint32_t kIdValue = 0x544E5634;  // "TNV4"
-inline constexpr std::uint32_t kVersionValue = 0x00010001;  // 1.1: DAC readback fault bits
+inline constexpr std::uint32_t kVersionValue = 0x00010002;  // 1.2: tool-side accelerometers (1.1: DAC readback fault bits)
 
 // --- snapshot window (read-only, latched at each tick, read in one block)
 inline constexpr std::uint16_t kSnapshotFirst = 0x010;
@@ -24,7 +24,9 @@ inline constexpr std::uint16_t kInputs = 0x014;        // kInput* bits, active =
 inline constexpr std::uint16_t kAdcForce = 0x015;      // force sensor code (kAdcBits wide)
 inline constexpr std::uint16_t kFaults = 0x016;        // kFault* bits, sticky
 inline constexpr std::uint16_t kClockAtRead = 0x017;   // 10 MHz counter when this word is read
-inline constexpr std::uint16_t kSnapshotWords = 8;
+inline constexpr std::uint16_t kAdcAccelX = 0x018;     // tool-side accelerometer code, x (kAdcBits, offset binary)
+inline constexpr std::uint16_t kAdcAccelY = 0x019;     // same for y
+inline constexpr std::uint16_t kSnapshotWords = 10;
 
 // --- output window (read/write, written in one block each tick)
 inline constexpr std::uint16_t kOutputFirst = 0x020;
@@ -71,6 +73,10 @@ inline constexpr std::uint32_t kWatchdogKickKey = 0x4B49434B;  // "KICK"
 inline constexpr unsigned kEncoderBits = 16;
 inline constexpr unsigned kDacBits = 12;
 inline constexpr unsigned kAdcBits = 12;
+// Tool-side accelerometers (ADC_ACCEL_X/Y): offset binary, 0 = -full scale,
+// 2^(kAdcBits-1) = 0, 2^kAdcBits - 1 = +full scale - 1 LSB; +-2 g
+// (docs/register-map.md says why), so 1 LSB = 9.5766 mm/s^2.
+inline constexpr double kAccelFullScaleMmS2 = 2.0 * 9806.65;
 inline constexpr std::uint32_t kDefaultTickDivider = 10'000;
 inline constexpr std::uint32_t kDefaultWatchdogTimeout = 30'000;
 // The DAC readback comparator latches kFaultDac* at a tick when the output

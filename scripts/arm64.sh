@@ -79,14 +79,23 @@ t_run=$SECONDS
 
 # 4. Run each suite once under qemu-user (one process per suite: far faster
 #    than one emulator start per test case).
+# The suites run side by side (one per core), each into its own log.
 failed=()
+declare -A pid_of=()
 for s in "${suites[@]}"; do
   exe=$(find "$out/tnv/tests" -maxdepth 1 -name "$s" -type f)
   [[ -x $exe ]] || { failed+=("$s(not built)"); continue; }
   file "$exe" 2>/dev/null | grep -q aarch64 || [[ $(head -c 20 "$exe" | od -An -tx1 | awk '{print $19 $20}') == b700 ]] \
     || die "$exe is not an aarch64 binary"
+  while (($(jobs -rp | wc -l) >= $(nproc))); do sleep 0.2; done
   echo "[arm64] qemu-aarch64 $s"
-  (cd "$repo" && qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1) || failed+=("$s")
+  (cd "$repo" && qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1) >"$out/$s.log" 2>&1 &
+  pid_of[$s]=$!
+done
+for s in "${!pid_of[@]}"; do
+  wait "${pid_of[$s]}" || failed+=("$s")
+  echo "[arm64] --- $s"
+  cat "$out/$s.log"
 done
 echo "[arm64] configure+deps $((t_build - t0)) s, build $((t_run - t_build)) s, run $((SECONDS - t_run)) s"
 ((${#failed[@]} == 0)) || die "failed under qemu-aarch64: ${failed[*]}"

@@ -82,6 +82,11 @@ std::uint16_t FpgaIoBoard::latched_force_code() const noexcept {
   return static_cast<std::uint16_t>(snapshot_[slot(regs::kAdcForce)] & ((1u << regs::kAdcBits) - 1u));
 }
 
+std::uint16_t FpgaIoBoard::latched_accel_code(hal::Axis axis) const noexcept {
+  const std::uint16_t reg = axis == hal::Axis::x ? regs::kAdcAccelX : regs::kAdcAccelY;
+  return static_cast<std::uint16_t>(snapshot_[slot(reg)] & ((1u << regs::kAdcBits) - 1u));
+}
+
 std::uint32_t FpgaIoBoard::latched_fault_bits() const noexcept { return snapshot_[slot(regs::kFaults)]; }
 
 hal::HalStatus FpgaIoBoard::clear_latched_faults() noexcept {

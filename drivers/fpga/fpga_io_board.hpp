@@ -49,6 +49,7 @@ class FpgaIoBoard final : public hal::IoBoard {
   // hal::AnalogInput
   std::uint16_t latched_force_code() const noexcept override;
   unsigned adc_bits() const noexcept override { return hal::regs::kAdcBits; }
+  std::uint16_t latched_accel_code(hal::Axis axis) const noexcept override;
   // hal::Watchdog
   void kick() noexcept override { kick_pending_ = true; }
 

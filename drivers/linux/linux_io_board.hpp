@@ -33,6 +33,7 @@ class LinuxIoBoard final : public hal::IoBoard {
   hal::HalStatus clear_latched_faults() noexcept override { return board_.clear_latched_faults(); }
   std::uint16_t latched_force_code() const noexcept override { return board_.latched_force_code(); }
   unsigned adc_bits() const noexcept override { return board_.adc_bits(); }
+  std::uint16_t latched_accel_code(hal::Axis axis) const noexcept override { return board_.latched_accel_code(axis); }
   void kick() noexcept override { board_.kick(); }
 
   // Outputs safe now, outside the tick: DACs mid-scale, enables off, one

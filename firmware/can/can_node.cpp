@@ -71,6 +71,11 @@ void CanNode::service() noexcept {
 
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   capture_.on_tick(task_.last_record(), tick_signals(task_, settings_));
+  if (excite_capture_ && !task_.exciting()) {
+    // The excitation's last tick (or the one that cancelled it) is recorded: the capture is done.
+    excite_capture_ = false;
+    capture_.abort();
+  }
   check_fault();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
     deadman_stops_seen_ = stops;
@@ -151,6 +156,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     case MessageId::move: handle_move(frame); return;
     case MessageId::circle: handle_circle(frame); return;
     case MessageId::shaper: handle_shaper(frame); return;
+    case MessageId::excite: handle_excite(frame); return;
     case MessageId::param_request: handle_param(frame); return;
     case MessageId::capture_control: handle_capture(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)

@@ -107,6 +107,7 @@ class CanNode {
   void handle_move(const hal::CanFrame& frame) noexcept;
   void handle_circle(const hal::CanFrame& frame) noexcept;
   void handle_shaper(const hal::CanFrame& frame) noexcept;
+  void handle_excite(const hal::CanFrame& frame) noexcept;
   void handle_param(const hal::CanFrame& frame) noexcept;
   void handle_capture(const hal::CanFrame& frame) noexcept;
   // COMMAND codes with more to them than one TickTask call
@@ -155,6 +156,7 @@ class CanNode {
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request
   bool tx_dropped_since_heartbeat_ = false;
+  bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
   std::uint64_t bus_errors_at_heartbeat_ = 0;
   std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;

@@ -23,9 +23,11 @@ void CanNode::handle_capture(const hal::CanFrame& frame) noexcept {
     case CaptureOp::arm:
       if (st == CaptureState::recording || upload_.active) return reply_capture(ErrorCode::busy);
       capture_.arm(settings_.capture);
+      excite_capture_ = false;
       return reply_capture(ErrorCode::ok);
     case CaptureOp::abort:
       capture_.abort();
+      excite_capture_ = false;
       upload_ = {};
       return reply_capture(ErrorCode::ok);
     case CaptureOp::status: return reply_capture(ErrorCode::ok);

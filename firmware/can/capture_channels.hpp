@@ -19,7 +19,7 @@ struct ChannelDef {
   const char* doc;
 };
 
-inline constexpr std::array<ChannelDef, 20> kCaptureChannels{{
+inline constexpr std::array<ChannelDef, 22> kCaptureChannels{{
     {0, "pos_x", WireType::i32, 1e-6, "mm", "encoder position, x"},
     {1, "pos_y", WireType::i32, 1e-6, "mm", "encoder position, y"},
     {2, "ref_x", WireType::i32, 1e-6, "mm", "reference the loop follows (after the shaper), x"},
@@ -40,6 +40,8 @@ inline constexpr std::array<ChannelDef, 20> kCaptureChannels{{
     {17, "state", WireType::u32, 1, "", "motion state (0 disabled 1 dwell 2 moving 3 holding 4 faulted)"},
     {18, "unshaped_x", WireType::i32, 1e-6, "mm", "reference before the input shaper, x"},
     {19, "unshaped_y", WireType::i32, 1e-6, "mm", "reference before the input shaper, y"},
+    {20, "accel_x", WireType::f32, 1, "mm/s2", "tool-side accelerometer, x (ADC_ACCEL_X)"},
+    {21, "accel_y", WireType::f32, 1, "mm/s2", "tool-side accelerometer, y (ADC_ACCEL_Y)"},
 }};
 
 // The default set: enough to score a circle and plot the tracking.

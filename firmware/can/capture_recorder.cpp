@@ -51,6 +51,8 @@ std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSign
     case 17: return static_cast<std::uint32_t>(r.state);
     case 18: return i32_word(x.unshaped_reference_mm, c->scale);
     case 19: return i32_word(y.unshaped_reference_mm, c->scale);
+    case 20: return f32_word(x.accel_mm_s2);
+    case 21: return f32_word(y.accel_mm_s2);
     default: return 0;
   }
 }

@@ -12,6 +12,7 @@ inline constexpr const MessageDef& kJogMsg = message(MessageId::jog);
 inline constexpr const MessageDef& kMoveMsg = message(MessageId::move);
 inline constexpr const MessageDef& kCircleMsg = message(MessageId::circle);
 inline constexpr const MessageDef& kShaperMsg = message(MessageId::shaper);
+inline constexpr const MessageDef& kExciteMsg = message(MessageId::excite);
 inline constexpr const MessageDef& kParamRequestMsg = message(MessageId::param_request);
 inline constexpr const MessageDef& kParamReplyMsg = message(MessageId::param_reply);
 inline constexpr const MessageDef& kCaptureControlMsg = message(MessageId::capture_control);
@@ -53,6 +54,11 @@ inline constexpr const FieldDef& kShaperAxis = field(kShaperMsg, "axis");
 inline constexpr const FieldDef& kShaperType = field(kShaperMsg, "type");
 inline constexpr const FieldDef& kShaperZeta = field(kShaperMsg, "zeta");
 inline constexpr const FieldDef& kShaperFreq = field(kShaperMsg, "freq");
+
+inline constexpr const FieldDef& kExciteAxis = field(kExciteMsg, "axis");
+inline constexpr const FieldDef& kExciteKind = field(kExciteMsg, "kind");
+inline constexpr const FieldDef& kExciteDuration = field(kExciteMsg, "duration");
+inline constexpr const FieldDef& kExciteLevel = field(kExciteMsg, "level");
 
 inline constexpr const FieldDef& kParamOp = field(kParamRequestMsg, "op");
 inline constexpr const FieldDef& kParamId = field(kParamRequestMsg, "param");

@@ -96,6 +96,11 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
        "following-error limit at rest"},                                                                          \
       {base + 0x54, p "limits.following_lag_s", ParamType::f32, "s", 0, 10, "", Access::read_write, Apply::idle,    \
        TNV_REAL(firmware.supervisor.axis[ax].following.lag_s), "following-error limit growth per mm/s"},          \
+      {base + 0x55, p "limits.stall_command_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write,          \
+       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].stall.command_mm_s),                                    \
+       "stall monitor: |command| that must move the encoder (above the breakaway)"},                             \
+      {base + 0x56, p "limits.stall_ticks", ParamType::u32, "tick", 1, 1000, "", Access::read_write, Apply::idle,    \
+       TNV_INT(firmware.supervisor.axis[ax].stall.ticks), "stall monitor: ticks without a count that trip"},       \
       {base + 0x60, p "jog.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::idle,    \
        TNV_REAL(firmware.axis[ax].jog.speed_max_mm_s), "jog speed limit"},                                        \
       {base + 0x61, p "jog.accel_mm_s2", ParamType::f32, "mm/s^2", 0, 1e6, "", Access::read_write, Apply::idle,     \
@@ -116,9 +121,24 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
        Apply::idle, TNV_REAL(firmware.axis[ax].friction.stribeck_mm_s), "Stribeck speed v_s"},                    \
       {base + 0x84, p "friction.gain", ParamType::f32, "", 1e-6, 1e3, "", Access::read_write, Apply::idle,          \
        TNV_REAL(firmware.axis[ax].friction.gain), "speed-loop gain K the feed-forward divides by"},               \
+      {base + 0x85, p "friction.fraction", ParamType::f32, "", 0, 1.5, "", Access::read_write, Apply::idle,         \
+       TNV_REAL(firmware.axis[ax].friction.fraction), "share of the friction model fed forward"},                 \
+      {base + 0x90, p "observer.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
+       TNV_INT(firmware.axis[ax].observer.enabled), "speed observer fed back instead of the M-method speed"},      \
+      {base + 0x91, p "observer.use_position", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write,            \
+       Apply::idle, TNV_INT(firmware.axis[ax].observer.use_position), "also feed back the estimated position"},   \
+      {base + 0x92, p "observer.gain_position", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.axis[ax].observer.gain_position), "observer gain l_p (Kalman, speed_observer.hpp)"},      \
+      {base + 0x93, p "observer.gain_speed_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,          \
+       Apply::idle, TNV_REAL(firmware.axis[ax].observer.gain_speed_1_s), "observer gain l_v"},                    \
+      {base + 0x94, p "observer.gain_disturbance_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,    \
+       Apply::idle, TNV_REAL(firmware.axis[ax].observer.gain_disturbance_1_s), "observer gain l_d"},              \
+      {base + 0x95, p "observer.friction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write, Apply::idle, \
+       TNV_REAL(firmware.axis[ax].observer.friction_mm_s), "Coulomb friction f_c / K the observer's model takes out"}, \
   {                                                                                                               \
-    base + 0x85, p "friction.fraction", ParamType::f32, "", 0, 1.5, "", Access::read_write, Apply::idle,            \
-        TNV_REAL(firmware.axis[ax].friction.fraction), "share of the friction model fed forward"                   \
+    base + 0x96, p "observer.friction_deadband_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,    \
+        Apply::idle, TNV_REAL(firmware.axis[ax].observer.friction_deadband_mm_s),                                  \
+        "|estimated speed| below which the observer assumes no friction"                                          \
   }
 
 constexpr ParamDef kParams[] = {
@@ -250,6 +270,7 @@ std::uint16_t blame(const ConfigError& e) noexcept {
                       : std::strstr(e.section, "pid") != nullptr        ? "pid."
                       : std::strstr(e.section, "jog") != nullptr        ? "jog."
                       : std::strstr(e.section, "friction") != nullptr   ? "friction."
+                      : std::strstr(e.section, "observer") != nullptr   ? "observer."
                                                                         : "";
   const char* field = e.field;
   if (std::strcmp(field, "G") == 0) field = "G_position_1_s";

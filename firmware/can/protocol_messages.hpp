@@ -25,6 +25,7 @@ enum class MessageId : std::uint8_t {
   capture_control = 0x0A,
   capture_status = 0x0B,
   heartbeat = 0x0C,
+  excite = 0x0D,
   tlm_position = 0x10,
   tlm_following = 0x11,
   tlm_sliding_x = 0x12,
@@ -40,7 +41,7 @@ inline constexpr const char* kStateValues = "0=disabled 1=dwell 2=moving 3=holdi
 inline constexpr const char* kFaultValues =
     "0=none 1=bus_error 2=stale_snapshot 3=missed_ticks 4=estop 5=servo_alarm 6=limit_switch "
     "7=watchdog_tripped 8=following_error 9=position_limit 10=speed_limit 11=non_finite_command 12=remote_estop "
-    "13=encoder_error 14=dac_error 15=late_tick";
+    "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall";
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
     "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis";
@@ -89,6 +90,12 @@ inline constexpr FieldDef kShaper[] = {
     {"type", WireType::u8, 1, 1, "", "0=zv 1=zvd 2=zvdd 3=ei 4=mzv", "shaper family"},
     {"zeta", WireType::u16, 2, 0.0001, "", "", "damping ratio of the mode"},
     {"freq", WireType::f32, 4, 1, "Hz", "", "mode frequency"},
+};
+inline constexpr FieldDef kExcite[] = {
+    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis to excite; the other holds"},
+    {"kind", WireType::u8, 1, 1, "", "0=step 1=ramp", "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|"},
+    {"duration", WireType::u16, 2, 0.001, "s", "", "step length / longest ramp (0.001 .. 10 s)"},
+    {"level", WireType::f32, 4, 1, "mm/s", "", "step level, or the ramp's sign and largest |u| (0 < |level| <= 100)"},
 };
 inline constexpr FieldDef kParamRequest[] = {
     {"op", WireType::u8, 0, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "operation"},
@@ -152,7 +159,7 @@ inline constexpr FieldDef kTlmContour[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 20> kMessages{{
+inline constexpr std::array<MessageDef, 21> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -161,7 +168,7 @@ inline constexpr std::array<MessageDef, 20> kMessages{{
     {0x02, "command", Direction::to_node, 8, detail::kCommand,
      "Commands without a motion profile. Answered by COMMAND_ACK. stop is also accepted on node 0."},
     {0x03, "command_ack", Direction::from_node, 8, detail::kCommandAck,
-     "Answer to COMMAND, JOG, MOVE, CIRCLE and SHAPER: accepted (ok) or why not."},
+     "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER and EXCITE: accepted (ok) or why not."},
     {0x04, "jog", Direction::to_node, 8, detail::kJog,
      "Operator jog stream (both axes). Starts a jog from holding; each frame must follow the last within "
      "jog.deadman_s of the jogging axes or they stop. Answered by COMMAND_ACK."},
@@ -182,6 +189,11 @@ inline constexpr std::array<MessageDef, 20> kMessages{{
     {0x0B, "capture_status", Direction::from_node, 8, detail::kCaptureStatus, "Capture state."},
     {0x0C, "heartbeat", Direction::from_node, 8, detail::kHeartbeat,
      "Status, every tlm.heartbeat_ms (0 = off)."},
+    {0x0D, "excite", Direction::to_node, 8, detail::kExcite,
+     "Open-loop excitation of one axis for identification (docs/autotune.md): its speed command comes from "
+     "the generator instead of its controller, the other axis holds; settle 0.2 s after, ramp rate 2 mm/s^2, a "
+     "ramp ends after 12 encoder counts. Only while holding (busy otherwise). A capture armed with trigger "
+     "motion records the excitation from its first tick to its last. Answered by COMMAND_ACK."},
     {0x10, "tlm_position", Direction::from_node, 8, detail::kTlmPosition,
      "Telemetry every tlm.position_ms (0 = off)."},
     {0x11, "tlm_following", Direction::from_node, 8, detail::kTlmFollowing,

@@ -21,6 +21,7 @@ enum class FaultReason : std::uint8_t {
   encoder_error,       // the board's decoder latched an illegal A/B transition
   dac_error,           // the board's DAC readback differs from the code written
   late_tick,           // tick period off nominal by more than the tolerance
+  encoder_stall,       // no encoder count for N ticks while driven hard: dead encoder or jammed axis
 };
 
 constexpr const char* to_string(FaultReason r) noexcept {
@@ -41,6 +42,7 @@ constexpr const char* to_string(FaultReason r) noexcept {
     case FaultReason::encoder_error: return "encoder_error";
     case FaultReason::dac_error: return "dac_error";
     case FaultReason::late_tick: return "late_tick";
+    case FaultReason::encoder_stall: return "encoder_stall";
   }
   return "unknown";
 }

@@ -6,6 +6,8 @@ namespace {
 
 bool finite_positive(double v) noexcept { return std::isfinite(v) && v > 0.0; }
 
+constexpr std::uint32_t kMaxStallTicks = 1000;
+
 FaultRecord fault(FaultReason reason, const SupervisorInput& in, int axis = -1, double value = 0.0,
                   double limit = 0.0) noexcept {
   return {reason, static_cast<std::int8_t>(axis), in.tick, value, limit};
@@ -22,6 +24,8 @@ const char* validate(const SupervisorConfig& config) noexcept {
     if (!finite_positive(a.following.floor_mm)) return "following-error floor_mm must be > 0 and finite";
     if (!std::isfinite(a.following.lag_s) || a.following.lag_s < 0.0)
       return "following-error lag_s must be >= 0 and finite";
+    if (!finite_positive(a.stall.command_mm_s)) return "stall command_mm_s must be > 0 and finite";
+    if (a.stall.ticks < 1 || a.stall.ticks > kMaxStallTicks) return "stall ticks must be 1..1000";
   }
   if (config.tick_period_clocks == 0) return "tick_period_clocks must be > 0";
   if (config.period_tolerance_clocks == 0 || config.period_tolerance_clocks >= config.tick_period_clocks)
@@ -61,6 +65,9 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
       return fault(FaultReason::speed_limit, in, axis, a.speed_mm_s, lim.speed_max_mm_s);
     if (!in.servo_on) continue;
     if (!std::isfinite(a.command_mm_s)) return fault(FaultReason::non_finite_command, in, axis);
+    // Before the following error: a frozen count is the root cause it would only see later.
+    if (a.stalled_ticks >= lim.stall.ticks)
+      return fault(FaultReason::encoder_stall, in, axis, a.stall_command_mm_s, lim.stall.command_mm_s);
     const double error_mm = a.reference_mm - a.position_mm;
     const double limit_mm = lim.following.at(a.reference_speed_mm_s);
     if (!(std::fabs(error_mm) <= limit_mm)) return fault(FaultReason::following_error, in, axis, error_mm, limit_mm);

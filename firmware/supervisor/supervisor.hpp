@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "firmware/supervisor/fault.hpp"
+#include "firmware/supervisor/stall_monitor.hpp"
 #include "hal/axis.hpp"
 #include "hal/discrete_io.hpp"
 
@@ -26,6 +27,7 @@ struct AxisLimits {
   double position_max_mm = 250.0;
   double speed_max_mm_s = 150.0;
   FollowingErrorLimit following{};
+  StallLimit stall{};
 };
 
 struct SupervisorConfig {
@@ -47,6 +49,8 @@ struct AxisCheckInput {
   double reference_mm = 0.0;
   double reference_speed_mm_s = 0.0;
   double command_mm_s = 0.0;
+  std::uint32_t stalled_ticks = 0;  // StallMonitor: ticks without a count while driven
+  double stall_command_mm_s = 0.0;  // the command that acted over the last of them
 };
 
 struct SupervisorInput {

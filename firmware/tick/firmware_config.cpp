@@ -50,6 +50,8 @@ ConfigError validate(const FirmwareConfig& config) noexcept {
     if (const ParamCheck c = validate(a.jog); !c.ok) return axis_error(i, "axis x: jog", "axis y: jog", c);
     if (const ParamCheck c = validate(a.friction); !c.ok)
       return axis_error(i, "axis x: friction feed-forward", "axis y: friction feed-forward", c);
+    if (const ParamCheck c = validate(a.observer, a.model); !c.ok)
+      return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
   }
   if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
   return {};

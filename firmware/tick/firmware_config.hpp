@@ -9,6 +9,7 @@
 #include "firmware/control/param_check.hpp"
 #include "firmware/control/pid_params.hpp"
 #include "firmware/control/sliding_mode_params.hpp"
+#include "firmware/control/speed_observer.hpp"
 #include "firmware/io/dac_code.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/trajectory/jog_stream.hpp"
@@ -27,6 +28,7 @@ struct AxisConfig {
   ControllerKind controller = ControllerKind::rdvsc;
   JogLimits jog{};                   // operator jog: speed, acceleration, dead-man timeout
   FrictionFeedForward friction{};    // friction feed-forward (issue 7); off by default
+  SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
 };
 
 struct FirmwareConfig {

@@ -38,6 +38,7 @@ struct AxisTickRecord {
   bool enabled = false;
   double s = 0.0;
   double d_hat_mm_s = 0.0;
+  double accel_mm_s2 = 0.0;  // tool-side accelerometer at this tick's latch
 };
 
 struct TickRecord {

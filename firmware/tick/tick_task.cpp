@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "firmware/io/accel_code.hpp"
 #include "firmware/io/dac_code.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/timing/m_method_speed.hpp"
@@ -24,7 +25,9 @@ TickTask::AxisLoop::AxisLoop(const AxisConfig& config) noexcept
     : pid(config.model, config.pid),
       dvsc(ControllerKind::dvsc, config.model, config.sliding),
       rdvsc(ControllerKind::rdvsc, config.model, config.sliding),
-      kind(config.controller) {}
+      kind(config.controller) {
+  observer.configure(config.model, config.observer);
+}
 
 AxisController& TickTask::AxisLoop::active() noexcept {
   switch (kind) {
@@ -260,10 +263,24 @@ void TickTask::tick() noexcept {
   if (bus_ok) last_inputs_ = board_.inputs();
   record_.force_code = board_.latched_force_code();
 
-  // 2. measured state
+  // 2. measured state; record_ still holds the previous tick's outputs,
+  // which acted over the interval this snapshot ends (stall monitor)
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     record_.axis[i].position_mm = origin_mm_[i] + static_cast<double>(axis_[i].encoder.counts()) * config_.axis[i].count_mm;
     record_.axis[i].speed_mm_s = axis_[i].speed_mm_s;
+    if (config_.axis[i].observer.enabled) {
+      // Speed observer (speed_observer.hpp): predicted with the command the
+      // DAC applied over the last tick, corrected with this count. Restarted
+      // from the measurement while the outputs were off or a tick was lost.
+      const AxisTickRecord& r = record_.axis[i];  // this tick's measurement, last tick's outputs
+      if (r.enabled && advanced && ticks_missed == 0)
+        axis_[i].observer.update(r.position_mm, dac_code_to_speed_mm_s(r.dac_code, config_.axis[i].dac));
+      else
+        axis_[i].observer.reset(r.position_mm, r.speed_mm_s);
+    }
+    record_.axis[i].accel_mm_s2 = accel_code_to_mm_s2(board_.latched_accel_code(hal::axis_from_index(i)));
+    stall_[i].update(axis_[i].encoder.counts(), record_.axis[i].command_mm_s, record_.axis[i].enabled,
+                     config_.supervisor.axis[i].stall);
   }
 
   // 3. reference x_ref,k and x_ref,k+1
@@ -281,6 +298,7 @@ void TickTask::tick() noexcept {
 
   // 4. axis controllers -> speed commands
   const bool on = servo_on();
+  std::array<double, hal::kAxisCount> stall_applied_mm_s{};
   SupervisorInput check_in;
   check_in.tick = counters_.ticks;
   check_in.bus_ok = bus_ok;
@@ -291,6 +309,7 @@ void TickTask::tick() noexcept {
   check_in.servo_on = on;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     AxisTickRecord& r = record_.axis[i];
+    stall_applied_mm_s[i] = r.command_mm_s;  // before this tick's command overwrites it
     double u_mm_s = 0.0;
     AxisController& ctl = axis_[i].active();
     if (on && excite_[i].active()) {
@@ -301,7 +320,11 @@ void TickTask::tick() noexcept {
         shaping_[i].shaper.reset(hold_[i]);
       }
     } else if (on) {
-      const AxisState x{r.position_mm, r.speed_mm_s};
+      AxisState x{r.position_mm, r.speed_mm_s};
+      if (const SpeedObserverParams& obs = config_.axis[i].observer; obs.enabled) {
+        x.speed_mm_s = axis_[i].observer.speed_mm_s();
+        if (obs.use_position) x.position_mm = axis_[i].observer.position_mm();
+      }
       const AxisReference ref{r.reference_mm, r.reference_speed_mm_s, next_[i].position_mm,
                               next_[i].speed_mm_s};
       u_mm_s = ctl.update(x, ref);
@@ -311,7 +334,8 @@ void TickTask::tick() noexcept {
     r.command_mm_s = u_mm_s;
     r.s = on ? sig.s : 0.0;
     r.d_hat_mm_s = on ? sig.d_hat_mm_s : 0.0;
-    check_in.axis[i] = {r.position_mm, r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s, u_mm_s};
+    check_in.axis[i] = {r.position_mm,      r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s,
+                        u_mm_s,             stall_[i].stalled_ticks(), stall_applied_mm_s[i]};
   }
 
   // 5. supervisor: a fault makes this very tick's outputs safe
@@ -521,7 +545,8 @@ bool same(const JogLimits& a, const JogLimits& b) noexcept {
 bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
   return a.position_min_mm == b.position_min_mm && a.position_max_mm == b.position_max_mm &&
          a.speed_max_mm_s == b.speed_max_mm_s && a.following.floor_mm == b.following.floor_mm &&
-         a.following.lag_s == b.following.lag_s;
+         a.following.lag_s == b.following.lag_s && a.stall.command_mm_s == b.stall.command_mm_s &&
+         a.stall.ticks == b.stall.ticks;
 }
 
 }  // namespace
@@ -534,7 +559,7 @@ bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfi
     if (!same(from.supervisor.axis[i], to.supervisor.axis[i])) return false;
     if (a.count_mm != b.count_mm || a.dac.bits != b.dac.bits || a.dac.full_scale_mm_s != b.dac.full_scale_mm_s ||
         a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog) ||
-        !same(a.friction, b.friction))
+        !same(a.friction, b.friction) || !same(a.observer, b.observer))
       return false;
     // PID: kp, ki, kd and the clamp are live; the filter and the feed-forward switch are not.
     if (a.pid.derivative_filter_tf_s != b.pid.derivative_filter_tf_s || a.pid.feedforward != b.pid.feedforward)
@@ -565,6 +590,10 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
         loop.dvsc.set_params(a.sliding);
         loop.rdvsc.set_params(a.sliding);
       }
+    }
+    if (!same(a.model, old.model) || !same(a.observer, old.observer)) {
+      loop.observer.configure(a.model, a.observer);
+      loop.observer.reset(record_.axis[i].position_mm, loop.speed_mm_s);
     }
     if (a.count_mm != old.count_mm) {
       // Re-base: the position reading stays where it is, later counts use the new scale.
@@ -614,6 +643,7 @@ CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
   r.position_mm += delta_mm;
   r.reference_mm += delta_mm;
   r.unshaped_reference_mm += delta_mm;
+  axis_[a].observer.shift(delta_mm);
   shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
   return CommandStatus::ok;
 }

@@ -21,6 +21,7 @@
 #include "firmware/compensation/excitation.hpp"
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
+#include "firmware/control/speed_observer.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
@@ -171,6 +172,7 @@ class TickTask {
     ControllerKind kind;
     EncoderPosition encoder;
     double speed_mm_s = 0.0;
+    SpeedObserver observer{};  // config.observer (issue 7); untouched while off
     AxisController& active() noexcept;
   };
 
@@ -234,6 +236,7 @@ class TickTask {
   std::array<AxisShaping, hal::kAxisCount> shaping_{};
   std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
   std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
+  std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
 };
 
 }  // namespace tnv::fw

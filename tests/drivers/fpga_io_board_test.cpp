@@ -100,6 +100,8 @@ TEST(FpgaIoBoard, DecodesTheSnapshotWindow) {
   bus.regs_file[regs::kEncoderY] = 0xFFFF;
   bus.regs_file[regs::kInputs] = regs::kInputEstop | regs::kInputAlarmY | regs::kInputLimitXNeg | regs::kInputWatchdogTripped;
   bus.regs_file[regs::kAdcForce] = 4095;
+  bus.regs_file[regs::kAdcAccelX] = 0x1000 | 2100;  // bits above the ADC width ignored
+  bus.regs_file[regs::kAdcAccelY] = 17;
   FpgaIoBoard board(bus);
   ASSERT_EQ(board.read_inputs(), hal::HalStatus::ok);
   EXPECT_EQ(board.latched_tick().sequence, 77u);
@@ -114,6 +116,8 @@ TEST(FpgaIoBoard, DecodesTheSnapshotWindow) {
   EXPECT_FALSE(in.limit_positive[0]);
   EXPECT_TRUE(in.watchdog_tripped);
   EXPECT_EQ(board.latched_force_code(), 4095);
+  EXPECT_EQ(board.latched_accel_code(hal::Axis::x), 2100);
+  EXPECT_EQ(board.latched_accel_code(hal::Axis::y), 17);
 }
 
 TEST(EmulatedRegisterBus, TheDriverRunsAgainstTheEmulatedBoard) {

@@ -223,14 +223,14 @@ TEST(IoBoard, FaultsAreStickyUntilCleared) {
 TEST(IoBoard, UnmappedAndReadOnlyAccessIsRefused) {
   IoBoard board = make_board();
   std::uint32_t value = 0;
-  for (int address : {0x003, 0x00F, 0x018, 0x01F, 0x024, 0x02F, 0x033, 0x100, 0xFFFF}) {
+  for (int address : {0x003, 0x00F, 0x01A, 0x01F, 0x024, 0x02F, 0x033, 0x100, 0xFFFF}) {
     const auto word = static_cast<std::uint16_t>(address);
     EXPECT_FALSE(board.read_register(word, value)) << "read of unmapped 0x" << std::hex << word;
     EXPECT_FALSE(board.write_register(word, 1)) << "write to unmapped 0x" << std::hex << word;
   }
   for (std::uint16_t word : {regs::kId, regs::kVersion, regs::kClockLive, regs::kTickSequence, regs::kTickClock,
                              regs::kEncoderX, regs::kEncoderY, regs::kInputs, regs::kAdcForce, regs::kFaults,
-                             regs::kClockAtRead}) {
+                             regs::kClockAtRead, regs::kAdcAccelX, regs::kAdcAccelY}) {
     const std::uint32_t before = read(board, word);
     EXPECT_FALSE(board.write_register(word, 0x5A5A)) << "write to read-only 0x" << std::hex << word;
     if (word != regs::kClockLive && word != regs::kClockAtRead) {

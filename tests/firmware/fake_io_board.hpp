@@ -66,6 +66,8 @@ class FakeIoBoard final : public hal::IoBoard {
   int latch_clears = 0;
   std::uint16_t latched_force_code() const noexcept override { return force_code; }
   unsigned adc_bits() const noexcept override { return 12; }
+  std::array<std::uint16_t, 2> accel_code{2048, 2048};  // offset binary: 2048 = 0 mm/s^2
+  std::uint16_t latched_accel_code(hal::Axis a) const noexcept override { return accel_code[hal::index(a)]; }
   void kick() noexcept override { kick_staged = true; }
 };
 

@@ -1,12 +1,13 @@
 // Issue 7, item 4: the product's best circle configuration (identified on
 // the emulated table, R-DVSC+DDC gains by the design rule, Coulomb friction
-// feed-forward) on the reference no-cut circle, seed-averaged, beside the
-// papers' R-DVSC+DDC with its default config (Table 3's protocol).
+// feed-forward, the speed observer with the identified friction) on the
+// reference no-cut circle, seed-averaged over 8 seeds exactly as the goal
+// is stated, beside the papers' R-DVSC+DDC with its default config
+// (Table 3's protocol).
 //
-// The issue's goal (max <= 1.0 um, mean <= 0.15 um) is NOT met yet (8-seed
-// average max 1.09 um, mean 0.162 um: `tnv-hil best-circle`,
-// docs/autotune.md). This test holds what is achieved, so a regression
-// fails; it is not the goal.
+// The goal: max <= 1.0 um and mean <= 0.15 um. Achieved when written:
+// 0.8228 / 0.1416 / 0.1070 um (`tnv-hil best-circle --seeds 8`,
+// docs/autotune.md), margins 18% on the max and 6% on the mean.
 #include <gtest/gtest.h>
 
 #include "emulator/scenario_file.hpp"
@@ -16,7 +17,7 @@
 namespace tnv::hil {
 namespace {
 
-constexpr int kBestCircleSeeds = 4;
+constexpr int kBestCircleSeeds = 8;  // the goal is an 8-seed average
 
 BestCircleRow run_no_cut() {
   const emu::Scenario no_cut = *emu::builtin_scenario("no-cut");
@@ -35,15 +36,15 @@ BestCircleRow run_no_cut() {
   return rows.empty() ? BestCircleRow{} : rows[0];
 }
 
-TEST(BestCircle, CompensatedCircleBeatsThePapersOnEveryStatistic) {
+TEST(BestCircle, MeetsTheIssueGoalOnTheNoCutCircle) {
   const BestCircleRow r = run_no_cut();
   ASSERT_TRUE(r.error.empty()) << r.error;
   // The comparison is the papers' own: R-DVSC+DDC keeps its reversal glitch.
   EXPECT_GT(r.rdvsc.max_um, 2.0) << "papers' R-DVSC+DDC max " << r.rdvsc.max_um << " um";
-  // Reversal glitches gone: less than half the papers' max, and below 1.2 um.
-  EXPECT_LE(r.best.max_um, 1.2) << "best configuration: max " << r.best.max_um << " um (" << kBestCircleSeeds << "-seed average)";
-  EXPECT_LT(r.best.max_um, 0.5 * r.rdvsc.max_um);
-  EXPECT_LT(r.best.mean_um, r.rdvsc.mean_um) << "best mean " << r.best.mean_um << " um vs " << r.rdvsc.mean_um;
+  EXPECT_LE(r.best.max_um, 1.0) << "best configuration: max " << r.best.max_um << " um (" << kBestCircleSeeds
+                                << "-seed average), goal <= 1.0 um";
+  EXPECT_LE(r.best.mean_um, 0.15) << "best configuration: mean " << r.best.mean_um << " um (" << kBestCircleSeeds
+                                  << "-seed average), goal <= 0.15 um";
   EXPECT_LT(r.best.std_um, 0.8 * r.rdvsc.std_um) << "best std " << r.best.std_um << " um vs " << r.rdvsc.std_um;
 }
 

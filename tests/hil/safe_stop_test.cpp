@@ -25,9 +25,10 @@ void start_and_run(test::HilRig& rig, int ticks) {
   for (int i = 0; i < ticks; ++i) rig.tick();
 }
 
-TEST(SafeStop, FollowingErrorTripZeroesTheDacsAndDropsEnablesInTheSameTick) {
+TEST(SafeStop, AJammedAxisTripZeroesTheDacsAndDropsEnablesInTheSameTick) {
   // A jammed X axis (stiction above the DAC's full-scale command) cannot
-  // follow the circle: the following error grows until the limit trips.
+  // follow the circle: the loop drives harder and harder without a count
+  // until the stall monitor trips (before the following error would).
   emu::Scenario jammed = *emu::builtin_scenario("no-cut");
   jammed.plant[0].coulomb_mm_s = 200.0;
   jammed.plant[0].stiction_mm_s = 200.0;
@@ -43,10 +44,10 @@ TEST(SafeStop, FollowingErrorTripZeroesTheDacsAndDropsEnablesInTheSameTick) {
     }
   }
   ASSERT_EQ(rig.task.state(), fw::MotionState::faulted) << "the jammed axis never tripped";
-  EXPECT_EQ(rig.task.fault().reason, fw::FaultReason::following_error);
+  EXPECT_EQ(rig.task.fault().reason, fw::FaultReason::encoder_stall);
   EXPECT_EQ(rig.task.fault().axis, 0);
   EXPECT_EQ(rig.task.fault().tick, rig.task.counters().ticks);
-  expect_outputs_safe(rig, "following-error trip");
+  expect_outputs_safe(rig, "stall trip");
 }
 
 TEST(SafeStop, EstopMidCircleMakesOutputsSafeAtTheNextTick) {

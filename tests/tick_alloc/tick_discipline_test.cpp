@@ -21,6 +21,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/can/can_node.hpp"
+#include "firmware/control/speed_observer_design.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tests/hil/hil_rig.hpp"
 
@@ -70,19 +71,26 @@ std::unique_ptr<test::HilRig> running_rig() {
   return rig;
 }
 
+// Heap allocations counted over `ticks` ticks of the running rig (only
+// inside TickTask::tick(), not in the emulator between them).
+long allocations_over_ticks(test::HilRig& rig, int ticks) {
+  long allocations = 0;
+  for (int i = 0; i < ticks; ++i) {
+    rig.machine.advance_to_next_tick();
+    g_allocations = 0;
+    g_counting = true;
+    rig.task.tick();
+    g_counting = false;
+    allocations += g_allocations;
+  }
+  return allocations;
+}
+
 TEST(TickDiscipline, TheTickAllocatesNothingOver10000Ticks) {
   auto rig = running_rig();
   ASSERT_TRUE(rig && rig->init_ok);
   ASSERT_EQ(rig->task.state(), fw::MotionState::moving);
-  long allocations = 0;
-  for (int i = 0; i < kTicks; ++i) {
-    rig->machine.advance_to_next_tick();
-    g_allocations = 0;
-    g_counting = true;
-    rig->task.tick();
-    g_counting = false;
-    allocations += g_allocations;
-  }
+  const long allocations = allocations_over_ticks(*rig, kTicks);
   EXPECT_EQ(allocations, 0) << "heap allocations inside the tick";
   EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "the rig must still be running the circle";
   EXPECT_EQ(rig->task.counters().ticks, static_cast<std::uint64_t>(kTicks + 603));
@@ -174,6 +182,41 @@ TEST(TickDiscipline, TheTickMakesNoSystemCallOver10000Ticks) {
   if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": the tick made a system call"
                                       : "the circle stopped running inside the child");
+}
+
+// The speed observer (issue 7) switched on for both axes, with gains from
+// the Kalman rule on the paper's models: the circle's ticks still allocate
+// nothing.
+TEST(TickDiscipline, TheObserverTickAllocatesNothingOver10000Ticks) {
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  for (auto& axis : config.axis) {
+    const fw::ObserverDesign d = fw::steady_state_kalman_gain(axis.model, {0.5, 2.0, axis.count_mm});
+    ASSERT_TRUE(d.ok);
+    axis.observer = d.params;
+    axis.observer.enabled = true;
+    axis.observer.use_position = true;
+  }
+  auto rig = std::make_unique<test::HilRig>(*emu::builtin_scenario("cut-1200"), config);
+  ASSERT_TRUE(rig->init_ok);
+  ASSERT_TRUE(rig->task.config().axis[0].observer.enabled);
+  for (int i = 0; i < 3; ++i) rig->tick();
+  ASSERT_EQ(rig->task.start_circle(circle_spec_for(rig->scenario)), fw::CommandStatus::ok);
+  for (int i = 0; i < 600; ++i) rig->tick();
+  const long allocations = allocations_over_ticks(*rig, kTicks);
+  EXPECT_EQ(allocations, 0) << "heap allocations inside the tick with the observer on";
+  EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "fault: " << fw::to_string(rig->task.fault().reason);
+#if !defined(__SANITIZE_ADDRESS__)
+  const int result = run_without_syscalls([&] {
+    for (int i = 0; i < 2000; ++i) {
+      rig->machine.advance_to_next_tick();
+      rig->task.tick();
+    }
+    return rig->task.state() == fw::MotionState::moving ? 0 : 3;
+  });
+  if (result != 77) {  // 77: seccomp not available on this kernel
+    EXPECT_EQ(result, 0) << "the observer tick made a system call (or the circle stopped)";
+  }
+#endif
 }
 
 TEST(TickDiscipline, TheSeccompGuardCatchesASystemCall) {

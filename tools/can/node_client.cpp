@@ -172,6 +172,13 @@ CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_
   return checked(shaper_request(node_, axis, type, freq_hz, zeta), 0, what);
 }
 
+CommandAck NodeClient::excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s) {
+  char what[96];
+  std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", axis == 0 ? "x" : "y", kind == 0 ? "step" : "ramp",
+                level_mm_s, duration_s);
+  return checked(excite_request(node_, axis, kind, level_mm_s, duration_s), 0, what);
+}
+
 void NodeClient::estop(bool broadcast) { bus_.send(estop_request(broadcast ? can::kBroadcastNode : node_)); }
 
 // --- status

@@ -20,6 +20,7 @@ using can::fields::kMoveMsg;
 using can::fields::kCircleMsg;
 using can::fields::kJogMsg;
 using can::fields::kShaperMsg;
+using can::fields::kExciteMsg;
 using can::fields::kCaptureControlMsg;
 using can::fields::kCaptureStatusMsg;
 using can::fields::kCaptureDataMsg;
@@ -81,6 +82,17 @@ hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t 
   can::write_raw(f, field(kShaperMsg, "type"), type);
   can::write(f, field(kShaperMsg, "zeta"), zeta);
   can::write(f, field(kShaperMsg, "freq"), freq_hz);
+  return f;
+}
+
+hal::CanFrame excite_request(std::uint8_t node, std::uint8_t axis, std::uint8_t kind, double level_mm_s,
+                             double duration_s) {
+  hal::CanFrame f = can::make_frame(kExciteMsg, node);
+  can::write_raw(f, field(kExciteMsg, "axis"), axis);
+  can::write_raw(f, field(kExciteMsg, "kind"), kind);
+  // Out of the u16 range (or NaN): 0 s, which the node refuses as out of range.
+  if (!can::write(f, field(kExciteMsg, "duration"), duration_s)) can::write_raw(f, field(kExciteMsg, "duration"), 0);
+  can::write(f, field(kExciteMsg, "level"), level_mm_s);
   return f;
 }
 

@@ -68,6 +68,9 @@ hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance
 hal::CanFrame circle_request(std::uint8_t node, double radius_mm, double feed_mm_s);
 hal::CanFrame jog_request(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s);
 hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
+// EXCITE: kind 0 step, 1 ramp (duration rounded to 1 ms).
+hal::CanFrame excite_request(std::uint8_t node, std::uint8_t axis, std::uint8_t kind, double level_mm_s,
+                             double duration_s);
 hal::CanFrame capture_request(std::uint8_t node, can::CaptureOp op, std::uint8_t frames, std::uint32_t offset);
 hal::CanFrame estop_request(std::uint8_t node);
 

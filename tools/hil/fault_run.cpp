@@ -167,7 +167,7 @@ std::vector<FaultCase> standard_fault_cases() {
       {"encoder_illegal", {.kind = FaultKind::encoder_illegal, .start_s = t, .axis = Axis::x}, FaultMotion::circle,
        FaultReason::encoder_error, FaultReason::none, 1.0, "board FAULTS bit 0"},
       {"encoder_dead", {.kind = FaultKind::encoder_dead, .start_s = t, .axis = Axis::y}, FaultMotion::circle,
-       FaultReason::following_error, FaultReason::none, 1.0, "Y count frozen at 1.35 mm/s"},
+       FaultReason::encoder_stall, FaultReason::none, 1.0, "Y count frozen at 1.35 mm/s"},
       {"dac_stuck", {.kind = FaultKind::dac_stuck, .start_s = t, .axis = Axis::x, .dac_code = 2048 + 600},
        FaultMotion::circle, FaultReason::dac_error, FaultReason::none, 1.0, "X output stuck at +48.8 mm/s; board FAULTS bit 2"},
       {"missed_tick_1", {.kind = FaultKind::missed_tick, .start_s = t, .ticks = 1}, FaultMotion::circle,

@@ -57,6 +57,7 @@ AxisDesign design_axis(const AxisIdentification& id) {
   }
   d.pid = fw::pid_params_from(d.pid_report, p.u_max_mm_s);
   d.friction = friction_feedforward_from(id);
+  d.shaper = shaper_for_mode(id.mode_found, id.mode_hz, id.mode_zeta);
   d.rdvsc_spectral_radius = sliding_loop_spectral_radius(d.model, p);
   d.dvsc_spectral_radius = sliding_loop_spectral_radius(d.model, dvsc);
   d.pid_spectral_radius = d.pid_report.pid_closed_loop_spectral_radius;
@@ -64,8 +65,22 @@ AxisDesign design_axis(const AxisIdentification& id) {
     d.error = "a designed loop is not stable on the identified model";
     return d;
   }
+  d.observer_noise = {kObserverSpeedNoise_mm_s, kObserverDisturbanceNoise_mm_s, 10.0 / 24000.0};
+  const fw::ObserverDesign obs = design_observer(d.model, d.observer_noise);
+  if (!obs.ok) {
+    d.error = "observer design: the Riccati iteration gave no stable observer";
+    return d;
+  }
+  d.observer = obs.params;
+  d.observer.friction_mm_s = id.coulomb_mm_s / id.gain;  // the identified Coulomb friction, command terms
+  d.observer.friction_deadband_mm_s = kObserverFrictionDeadband_mm_s;
+  d.observer.enabled = true;
   d.ok = true;
   return d;
+}
+
+fw::ObserverDesign design_observer(const fw::AxisModel& model, const fw::ObserverNoise& noise) {
+  return fw::steady_state_kalman_gain(model, noise);
 }
 
 fw::FirmwareConfig apply_designs(const fw::FirmwareConfig& base, const AxisDesign& x, const AxisDesign& y) {
@@ -77,6 +92,7 @@ fw::FirmwareConfig apply_designs(const fw::FirmwareConfig& base, const AxisDesig
     a.sliding = designs[i]->sliding;
     a.pid = designs[i]->pid;
     a.friction = designs[i]->friction;
+    a.observer = designs[i]->observer;
   }
   return config;
 }
@@ -102,6 +118,17 @@ nlohmann::json design_json(const AxisDesign& d) {
             {"stiction_mm_s", d.friction.stiction_mm_s},
             {"stribeck_mm_s", d.friction.stribeck_mm_s},
             {"gain", d.friction.gain}}},
+          {"observer",
+           {{"enabled", d.observer.enabled},
+            {"use_position", d.observer.use_position},
+            {"sigma_speed_mm_s", d.observer_noise.speed_mm_s},
+            {"sigma_disturbance_mm_s", d.observer_noise.disturbance_mm_s},
+            {"gain_position", d.observer.gain_position},
+            {"gain_speed_1_s", d.observer.gain_speed_1_s},
+            {"gain_disturbance_1_s", d.observer.gain_disturbance_1_s},
+            {"friction_mm_s", d.observer.friction_mm_s},
+            {"friction_deadband_mm_s", d.observer.friction_deadband_mm_s}}},
+          {"shaper", shaper_choice_json(d.shaper)},
           {"spectral_radius", {{"rdvsc", d.rdvsc_spectral_radius}, {"dvsc", d.dvsc_spectral_radius}, {"pid", d.pid_spectral_radius}}}};
 }
 

@@ -19,7 +19,15 @@
 //   friction  Coulomb feed-forward from the identified f_c and K
 //             (friction_feedforward_from: the stiction/Stribeck part is
 //             left to the DDC, see there)
-//   shaper    none: no structural mode is identified from the table encoder
+//   shaper    ZVD at the mode identified from the tool-side accelerometer,
+//             none without one (shaper_for_mode in tune_mode.hpp says why)
+//   observer  steady-state Kalman gain on the identified model augmented with
+//             a constant disturbance (fw::steady_state_kalman_gain), noise
+//             per tick sigma_v = kObserverSpeedNoise_mm_s, sigma_d =
+//             kObserverDisturbanceNoise_mm_s, R = one count^2 / 12; the
+//             identified Coulomb friction f_c / K taken out of its model
+//             (dead band kObserverFrictionDeadband_mm_s); on, the estimated
+//             speed fed back (speed_observer.hpp, docs/autotune.md)
 //
 // Checked: fw::validate() of the whole config (the theorems' conditions
 // among others) and the linearised closed loop's spectral radius < 1 on
@@ -30,6 +38,7 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/control/pid_tuning.hpp"
+#include "firmware/control/speed_observer_design.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "tools/hil/tune_identify.hpp"
 
@@ -46,7 +55,19 @@ struct AxisDesign {
   double rdvsc_spectral_radius = 0.0;  // linearised R-DVSC+DDC on the identified model
   double dvsc_spectral_radius = 0.0;
   double pid_spectral_radius = 0.0;
+  fw::ObserverNoise observer_noise{};  // the stated noise the observer gain is designed for
+  fw::SpeedObserverParams observer{};  // speed observer, enabled by the rule
+  ShaperChoice shaper{};               // x.shaper.* / y.shaper.*: ZVD at the identified mode, or none
 };
+
+// The observer rule's noise levels (per 1 ms tick).
+inline constexpr double kObserverSpeedNoise_mm_s = 0.2;
+inline constexpr double kObserverDisturbanceNoise_mm_s = 1.0;
+inline constexpr double kObserverFrictionDeadband_mm_s = 0.02;
+
+// The observer of the rule above for `model` and `noise`; ok false if the
+// Riccati iteration did not give a stable observer.
+fw::ObserverDesign design_observer(const fw::AxisModel& model, const fw::ObserverNoise& noise);
 
 AxisDesign design_axis(const AxisIdentification& id);
 

@@ -6,7 +6,9 @@
 #include <limits>
 
 #include "firmware/io/dac_code.hpp"
+#include "hal/io_board_registers.hpp"
 #include "tools/hil/hil_rig.hpp"
+#include "tools/hil/tune_sequence.hpp"
 
 namespace tnv::hil {
 
@@ -85,6 +87,25 @@ StepFit fit_step(const std::vector<double>& position_mm, double period_s) {
   return out;
 }
 
+namespace {
+// The mode from the accelerometer windows of every step (tune_mode.hpp).
+void identify_mode(AxisIdentification& id, double period_s) {
+  std::vector<AccelWindow> windows;
+  for (std::size_t i = 0; i < id.step_records.size() && i < id.steps.size(); ++i) {
+    const StepRecord& s = id.step_records[i];
+    if (s.accel_mm_s2.empty() || s.position_mm.size() < 2) continue;
+    for (AccelWindow& w : step_accel_windows(s.accel_mm_s2, s.position_mm.size() - 1, id.tau_s,
+                                             id.steps[i].speed_mm_s, id.coulomb_mm_s, period_s))
+      windows.push_back(std::move(w));
+  }
+  if (windows.empty()) return;
+  id.mode_fit = fit_mode(windows, period_s, hal::regs::kAccelFullScaleMmS2 / (1u << (hal::regs::kAdcBits - 1)));
+  id.mode_found = id.mode_fit.found;
+  id.mode_hz = id.mode_found ? id.mode_fit.freq_hz : 0.0;
+  id.mode_zeta = id.mode_found ? id.mode_fit.zeta : 0.0;
+}
+}  // namespace
+
 AxisIdentification identify_from_records(hal::Axis axis, const std::vector<StepRecord>& steps,
                                          const std::vector<RampRecord>& ramps, double period_s) {
   AxisIdentification id;
@@ -135,6 +156,7 @@ AxisIdentification identify_from_records(hal::Axis axis, const std::vector<StepR
   // The axis breaks away when K |u| > f_s.
   id.stiction_mm_s = std::max(id.coulomb_mm_s, id.gain * breakaway_sum / broke);
   id.model = fw::zoh_axis_model(id.tau_s, id.gain, period_s);
+  identify_mode(id, period_s);
   id.ok = fw::is_finite(id.model);
   if (!id.ok) id.error = "the identified model is not finite";
   return id;
@@ -148,10 +170,11 @@ void hold_ticks(HilRig& rig, int ticks) {
 
 // One excitation; positions from the start tick on, and the DAC commands.
 bool run_excitation(HilRig& rig, hal::Axis axis, const fw::ExcitationSpec& spec, std::vector<double>& position_mm,
-                    std::vector<double>& command_mm_s, std::string& error) {
+                    std::vector<double>& command_mm_s, std::vector<double>& accel_mm_s2, std::string& error) {
   const std::size_t a = hal::index(axis);
   position_mm.clear();
   command_mm_s.clear();
+  accel_mm_s2.clear();
   if (const fw::CommandStatus st = rig.task.start_excitation(axis, spec); st != fw::CommandStatus::ok) {
     error = std::string("start_excitation refused: ") + fw::to_string(st);
     return false;
@@ -162,6 +185,7 @@ bool run_excitation(HilRig& rig, hal::Axis axis, const fw::ExcitationSpec& spec,
     const fw::AxisTickRecord& r = rig.task.last_record().axis[a];
     // This tick's position (the previous command's result) and the command it now applies.
     position_mm.push_back(r.position_mm);
+    accel_mm_s2.push_back(r.accel_mm_s2);
     command_mm_s.push_back(fw::dac_code_to_speed_mm_s(r.dac_code, dac));
     if (rig.task.state() == fw::MotionState::faulted) {
       error = std::string("fault during the excitation: ") + fw::to_string(rig.task.fault().reason);
@@ -189,39 +213,16 @@ AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal:
   std::vector<RampRecord> ramps;
   std::vector<double> pos;
   std::vector<double> cmd;
-  for (const double level : {10.0, -10.0, 20.0, -20.0}) {
-    fw::ExcitationSpec spec;
-    spec.kind = fw::ExcitationKind::step;
-    spec.level_mm_s = level;
-    spec.duration_s = 0.15;
-    spec.settle_s = 0.2;
-    if (!run_excitation(*rig, axis, spec, pos, cmd, failed.error)) return failed;
-    const auto drive = static_cast<std::size_t>(std::llround(spec.duration_s / kTickPeriodS));
-    StepRecord s;
-    s.level_mm_s = cmd.front();
-    s.position_mm.assign(pos.begin(), pos.begin() + static_cast<std::ptrdiff_t>(std::min(drive + 1, pos.size())));
-    steps.push_back(std::move(s));
+  std::vector<double> accel;
+  for (const fw::ExcitationSpec& spec : identification_steps()) {
+    if (!run_excitation(*rig, axis, spec, pos, cmd, accel, failed.error)) return failed;
+    steps.push_back(step_record_from(spec, pos, cmd));
+    steps.back().accel_mm_s2 = accel;  // the whole excitation: drive and settle
     hold_ticks(*rig, 300);
   }
-  for (const double level : {10.0, -10.0}) {
-    fw::ExcitationSpec spec;
-    spec.kind = fw::ExcitationKind::ramp;
-    spec.level_mm_s = level;
-    spec.rate_mm_s2 = 2.0;
-    spec.duration_s = 5.0;
-    spec.settle_s = 0.2;
-    spec.breakaway_counts = 12;
-    if (!run_excitation(*rig, axis, spec, pos, cmd, failed.error)) return failed;
-    RampRecord r;
-    for (std::size_t j = 1; j < pos.size() && j - 1 < cmd.size(); ++j) {
-      if (pos[j] != pos[0]) {
-        // pos[j] is the first moved reading; the command before it broke the axis away.
-        r.broke_away = true;
-        r.breakaway_mm_s = cmd[j - 1];
-        break;
-      }
-    }
-    ramps.push_back(r);
+  for (const fw::ExcitationSpec& spec : identification_ramps()) {
+    if (!run_excitation(*rig, axis, spec, pos, cmd, accel, failed.error)) return failed;
+    ramps.push_back(ramp_record_from(pos, cmd));
     hold_ticks(*rig, 300);
   }
   return identify_from_records(axis, steps, ramps, kTickPeriodS);
@@ -263,7 +264,8 @@ nlohmann::json identification_json(const AxisIdentification& id) {
           {"A", {{id.model.A(0, 0), id.model.A(0, 1)}, {id.model.A(1, 0), id.model.A(1, 1)}}},
           {"B", {id.model.B(0), id.model.B(1)}},
           {"steps", steps},
-          {"ramps", ramps}};
+          {"ramps", ramps},
+          {"mode", mode_fit_json(id.mode_fit)}};
 }
 
 }  // namespace tnv::hil

@@ -9,12 +9,14 @@
 //          V = K U - sign(U) f_c over the four steps                 -> K, f_c
 //   ramps  +- (slow): the DAC command at the first tick the encoder
 //          moves is the breakaway level f_s / K                      -> f_s
+//   mode   the steps' tool-side accelerometer samples, when present: the
+//          ringing after each pulse (tune_mode.hpp)                  -> f, zeta
 //
 // Not identified: the Stribeck speed v_s (the Stribeck branch has a
-// negative slope, an open-loop axis jumps across it) and a structural mode
-// (the reference plant's mode deflects the tool, not the table the encoder
-// reads). friction_feedforward_from() feeds Coulomb friction only (the
-// reason is given there).
+// negative slope, an open-loop axis jumps across it). The encoder cannot
+// see a structural mode (it deflects the tool, not the table): the mode
+// comes from the accelerometer only. friction_feedforward_from() feeds
+// Coulomb friction only (the reason is given there).
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "firmware/compensation/friction_feedforward.hpp"
 #include "firmware/control/axis_model.hpp"
 #include "hal/axis.hpp"
+#include "tools/hil/tune_mode.hpp"
 
 namespace tnv::hil {
 
@@ -32,6 +35,9 @@ inline constexpr double kAssumedStribeck_mm_s = 0.1;
 struct StepRecord {
   double level_mm_s = 0.0;            // the command the DAC applied (quantised)
   std::vector<double> position_mm;    // encoder position at the ticks after the step started: p(jT), j = 0..n
+  // Tool-side accelerometer at the ticks j = 0.. from the step start through
+  // the settle (longer than position_mm); empty: no accelerometer.
+  std::vector<double> accel_mm_s2;
 };
 
 struct RampRecord {
@@ -60,6 +66,12 @@ struct AxisIdentification {
   std::vector<StepFit> steps;        // one per step record
   std::vector<StepRecord> step_records;
   std::vector<RampRecord> ramps;
+  // Structural mode from the tool-side accelerometer (tune_mode.hpp); only
+  // looked for when the step records carry accelerometer samples.
+  bool mode_found = false;
+  double mode_hz = 0.0;
+  double mode_zeta = 0.0;
+  ModeFit mode_fit{};
 };
 
 // The fit from the records (the same on the emulator and over CAN).

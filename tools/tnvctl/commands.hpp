@@ -32,6 +32,7 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot);   // circle, move, jo
 void add_shaper_commands(CLI::App& app, ActionSlot& slot);   // shaper
 void add_monitor_commands(CLI::App& app, ActionSlot& slot);  // monitor
 void add_capture_commands(CLI::App& app, ActionSlot& slot);  // capture
+void add_tune_commands(CLI::App& app, ActionSlot& slot);     // identify, autotune
 void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
 

@@ -168,6 +168,24 @@ int run_simple_command(can::CommandCode code, Session& session, Report& report) 
   return kExitOk;
 }
 
+// A board trip (watchdog, encoder or DAC latch) takes two clears: the
+// first resets the board's latch and is refused with cause_present, the
+// next unlatches once a snapshot shows the latch gone. So one retry, a few
+// ticks later; a cause that is still there after it (an e-stop held, a
+// limit switch pressed) is the node's refusal, reported as it is.
+int run_clear_faults(Session& session, Report& report) {
+  can_host::NodeClient& client = session.client();
+  try {
+    return run_simple_command(can::CommandCode::clear_faults, session, report);
+  } catch (const can_host::RequestError& e) {
+    if (e.kind() != can_host::RequestError::Kind::refused || e.code() != can::ErrorCode::cause_present) throw;
+  }
+  client.pump(Micros{5'000});
+  report.line("clear_faults: cause_present (a board latch is reset by the first clear); sent again 5 ms later");
+  report.data["retried"] = true;
+  return run_simple_command(can::CommandCode::clear_faults, session, report);
+}
+
 int run_stop(bool no_wait, Session& session, Report& report) {
   run_simple_command(can::CommandCode::stop, session, report);
   if (!no_wait) finish(session.client(), "stop", 10.0, report);
@@ -280,16 +298,21 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   const std::pair<const char*, can::CommandCode> simple[] = {
       {"enable", can::CommandCode::enable},
       {"disable", can::CommandCode::disable},
-      {"clear-faults", can::CommandCode::clear_faults},
   };
-  const char* simple_help[] = {"servo on, hold where the table stands", "servo off (DACs mid-scale)",
-                               "unlatch the fault if its cause is gone (a board trip: the first resets it, the next unlatches)"};
+  const char* simple_help[] = {"servo on, hold where the table stands", "servo off (DACs mid-scale)"};
   for (std::size_t i = 0; i < std::size(simple); ++i) {
     const auto [name, code] = simple[i];
     app.add_subcommand(name, simple_help[i])->callback([&slot, name = std::string(name), code = code] {
       slot = Action{name, true, [code](Session& s, Report& r) { return run_simple_command(code, s, r); }};
     });
   }
+
+  app.add_subcommand("clear-faults",
+                     "unlatch the fault if its cause is gone (a board trip takes two clears: sent again once, "
+                     "5 ms later)")
+      ->callback([&slot] {
+        slot = Action{"clear-faults", true, [](Session& s, Report& r) { return run_clear_faults(s, r); }};
+      });
 
   auto zero_axis = std::make_shared<std::string>();
   auto zero_position = std::make_shared<double>(0.0);

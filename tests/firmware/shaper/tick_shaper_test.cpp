@@ -26,6 +26,9 @@ class TickShaperTest : public ::testing::Test {
     FirmwareConfig c = default_firmware_config();
     c.axis[0].home_position_mm = kHomeMm;
     c.axis[1].home_position_mm = 0.0;
+    // The table below follows the reference whatever the DAC says, so the
+    // loop winds up against it; that is not a stall worth a fault here.
+    for (auto& a : c.supervisor.axis) a.stall.command_mm_s = 1e4;
     return c;
   }
 

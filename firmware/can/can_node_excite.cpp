@@ -1,0 +1,51 @@
+// CanNode: EXCITE, the open-loop excitation for identification
+// (TickTask::start_excitation, docs/autotune.md). Answered by one
+// COMMAND_ACK (detail = index of the offending field); every check comes
+// first, a refused request changes nothing. The frame carries axis, kind,
+// duration and level; the ramp rate, the settle time and the breakaway
+// count are ExcitationSpec's defaults (2 mm/s^2, 0.2 s, 12 counts), the
+// values of the host's identification sequence (tools/hil/tune_sequence.hpp).
+#include <cmath>
+
+#include "firmware/can/can_node.hpp"
+#include "firmware/can/command_result.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
+  const std::uint32_t axis = read_raw(frame, kExciteAxis);
+  const std::uint32_t kind = read_raw(frame, kExciteKind);
+  const double duration_s = read(frame, kExciteDuration);
+  const double level_mm_s = read(frame, kExciteLevel);
+  const std::uint8_t id = kExciteMsg.id;
+  if (axis > 1) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
+  if (kind > 1) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
+  const std::uint8_t level = index_of(kExciteMsg, kExciteLevel);
+  if (!std::isfinite(level_mm_s)) return reply_ack(id, 0, ErrorCode::not_finite, level);
+  if (!(std::fabs(level_mm_s) > 0.0) || std::fabs(level_mm_s) > 100.0)
+    return reply_ack(id, 0, ErrorCode::out_of_range, level);
+  const std::uint8_t duration = index_of(kExciteMsg, kExciteDuration);
+  if (duration_s < 0.001 || duration_s > 10.0) return reply_ack(id, 0, ErrorCode::out_of_range, duration);
+  ExcitationSpec spec;  // rate, settle and breakaway: the defaults (see the top of this file)
+  spec.kind = kind == 0 ? ExcitationKind::step : ExcitationKind::ramp;
+  spec.level_mm_s = level_mm_s;
+  spec.duration_s = duration_s;
+  if (!validate(spec).ok) return reply_ack(id, 0, ErrorCode::invalid, duration);
+  const CommandStatus st = task_.start_excitation(hal::axis_from_index(axis), spec);
+  if (st != CommandStatus::ok) return reply_ack(id, 0, to_error(st), 0);
+  motion_accepted();
+  // A capture waiting for a motion records the excitation, first tick to last.
+  if (capture_.state() == CaptureState::armed && settings_.capture.trigger == CaptureTrigger::motion) {
+    CaptureSettings now = settings_.capture;
+    now.trigger = CaptureTrigger::immediate;
+    capture_.arm(now);
+    excite_capture_ = true;
+  }
+  reply_ack(id, 0, ErrorCode::ok, 0);
+}
+
+}  // namespace tnv::fw::can
