@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "emulator/scenario_validation.hpp"
+#include "emulator/toml_type_name.hpp"
 
 namespace tnv::emu {
 
@@ -30,21 +31,6 @@ std::string one_line(std::string_view text) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   return out;
-}
-
-const char* type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
-  }
 }
 
 // Walks the parsed document into a Scenario, remembering where each key was.
@@ -122,7 +108,7 @@ class ScenarioReader {
  private:
   bool read_plant(const toml::key& key, const toml::node& node, Scenario& s) {
     const toml::table* table = node.as_table();
-    if (table == nullptr) return fail(key, "plant", std::string("expected a table, got ") + type_name(node));
+    if (table == nullptr) return fail(key, "plant", std::string("expected a table, got ") + toml_type_name(node));
     for (auto&& [axis_key, axis_node] : *table) {
       const std::string path = "plant." + std::string(axis_key.str());
       AxisPlantParams* p = axis_key.str() == "x" ? &s.plant[0] : axis_key.str() == "y" ? &s.plant[1] : nullptr;
@@ -143,7 +129,7 @@ class ScenarioReader {
   bool read_faults(const toml::key& key, const toml::node& node, Scenario& s) {
     const toml::array* list = node.as_array();
     if (list == nullptr || !list->is_array_of_tables()) {
-      return fail(key, "fault", std::string("expected an array of tables ([[fault]]), got ") + type_name(node));
+      return fail(key, "fault", std::string("expected an array of tables ([[fault]]), got ") + toml_type_name(node));
     }
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& table = *list->get(i)->as_table();
@@ -238,7 +224,7 @@ class ScenarioReader {
   bool read_section(const toml::key& key, const std::string& path, const toml::node& node,
                     std::span<const Field> fields) {
     const toml::table* table = node.as_table();
-    if (table == nullptr) return fail(key, path, std::string("expected a table, got ") + type_name(node));
+    if (table == nullptr) return fail(key, path, std::string("expected a table, got ") + toml_type_name(node));
     for (auto&& entry : *table) {  // not a structured binding: clang 14 cannot capture one in a lambda
       const toml::key& field_key = entry.first;
       const toml::node& field_node = entry.second;
@@ -261,13 +247,13 @@ class ScenarioReader {
     } else if (const auto* i = node.as_integer()) {
       *target = static_cast<double>(i->get());
     } else {
-      return fail(key, path, std::string("expected a number, got ") + type_name(node));
+      return fail(key, path, std::string("expected a number, got ") + toml_type_name(node));
     }
     return remember(key, path);
   }
   bool assign(const toml::key& key, const std::string& path, const toml::node& node, int* target) {
     const auto* i = node.as_integer();
-    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + type_name(node));
+    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + toml_type_name(node));
     if (i->get() < std::numeric_limits<int>::min() || i->get() > std::numeric_limits<int>::max()) {
       return fail(key, path, "out of range (got " + std::to_string(i->get()) + ")");
     }
@@ -276,7 +262,7 @@ class ScenarioReader {
   }
   bool assign(const toml::key& key, const std::string& path, const toml::node& node, std::uint32_t* target) {
     const auto* i = node.as_integer();
-    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + type_name(node));
+    if (i == nullptr) return fail(key, path, std::string("expected an integer, got ") + toml_type_name(node));
     if (i->get() < 0 || i->get() > std::int64_t{std::numeric_limits<std::uint32_t>::max()}) {
       return fail(key, path, "must be in 0..4294967295 (got " + std::to_string(i->get()) + ")");
     }
@@ -285,13 +271,13 @@ class ScenarioReader {
   }
   bool assign(const toml::key& key, const std::string& path, const toml::node& node, bool* target) {
     const auto* b = node.as_boolean();
-    if (b == nullptr) return fail(key, path, std::string("expected a boolean, got ") + type_name(node));
+    if (b == nullptr) return fail(key, path, std::string("expected a boolean, got ") + toml_type_name(node));
     *target = b->get();
     return remember(key, path);
   }
   bool assign(const toml::key& key, const std::string& path, const toml::node& node, std::string* target) {
     const auto* text = node.as_string();
-    if (text == nullptr) return fail(key, path, std::string("expected a string, got ") + type_name(node));
+    if (text == nullptr) return fail(key, path, std::string("expected a string, got ") + toml_type_name(node));
     *target = text->get();
     return remember(key, path);
   }

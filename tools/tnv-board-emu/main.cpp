@@ -12,6 +12,7 @@
 #include <string>
 
 #include "drivers/linux/register_server.hpp"
+#include "drivers/linux/stop_signals.hpp"
 #include "drivers/linux/unix_seqpacket.hpp"
 #include "emulator/machine.hpp"
 #include "emulator/scenario_file.hpp"
@@ -20,15 +21,6 @@
 namespace {
 
 using namespace tnv;
-
-int blocked_signal_fd() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  return signalfd(-1, &set, SFD_CLOEXEC);
-}
 
 void report(const emu::Machine& machine, std::uint64_t ticks, const char* why) {
   std::printf("tnv-board-emu: %s after %llu ticks (t = %.3f s, x = %.4f mm, y = %.4f mm)\n", why,
@@ -62,7 +54,8 @@ int main(int argc, char** argv) {
   emu::Machine machine(*found.scenario);
   board_emu::TickingBus bus(machine);
 
-  const int stop_fd = blocked_signal_fd();
+  const sigset_t stop_signals = drivers::block_stop_signals();
+  const int stop_fd = signalfd(-1, &stop_signals, SFD_CLOEXEC);
   std::string error;
   const int listen_fd = drivers::listen_seqpacket(socket_path, error);
   if (listen_fd < 0) {

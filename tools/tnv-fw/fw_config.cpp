@@ -6,21 +6,11 @@
 #include <limits>
 #include <sstream>
 
+#include "emulator/toml_type_name.hpp"
+
 namespace tnv::fwd {
 
 namespace {
-
-const char* type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date or time";
-  }
-}
 
 // Collects the first error; every check names the key and the line.
 class Reader {
@@ -57,7 +47,7 @@ class Reader {
     const toml::node* n = root.get(name);
     if (n == nullptr) return nullptr;
     if (!n->is_table()) {
-      fail(*n, std::string(name), std::string("must be a table, not ") + type_name(*n));
+      fail(*n, std::string(name), std::string("must be a table, not ") + emu::toml_type_name(*n));
       return nullptr;
     }
     return n->as_table();
@@ -66,7 +56,7 @@ class Reader {
   void text(const toml::table& t, const std::string& prefix, std::string_view key, std::string& out) {
     const toml::node* n = t.get(key);
     if (n == nullptr) return;
-    if (!n->is_string()) return fail(*n, prefix + std::string(key), std::string("must be a string, not ") + type_name(*n));
+    if (!n->is_string()) return fail(*n, prefix + std::string(key), std::string("must be a string, not ") + emu::toml_type_name(*n));
     out = n->as_string()->get();
     if (out.empty()) fail(*n, prefix + std::string(key), "must not be empty");
   }
@@ -78,7 +68,7 @@ class Reader {
     if (n == nullptr) return;
     const std::string name = prefix + std::string(key);
     const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
-    if (!n->is_integer()) return fail(*n, name, "must be an integer " + range + ", not " + type_name(*n));
+    if (!n->is_integer()) return fail(*n, name, "must be an integer " + range + ", not " + emu::toml_type_name(*n));
     const std::int64_t v = n->as_integer()->get();
     if (v < lo || v > hi) return fail(*n, name, "must be " + range + " (got " + std::to_string(v) + ")");
     out = static_cast<Int>(v);
@@ -87,7 +77,7 @@ class Reader {
   void boolean(const toml::table& t, const std::string& prefix, std::string_view key, bool& out) {
     const toml::node* n = t.get(key);
     if (n == nullptr) return;
-    if (!n->is_boolean()) return fail(*n, prefix + std::string(key), std::string("must be true or false, not ") + type_name(*n));
+    if (!n->is_boolean()) return fail(*n, prefix + std::string(key), std::string("must be true or false, not ") + emu::toml_type_name(*n));
     out = n->as_boolean()->get();
   }
 
@@ -97,7 +87,7 @@ class Reader {
     const std::string name = "lines." + std::string(key);
     if (!n->is_table()) {
       return fail(*n, name, std::string("must be a table {chip = \"gpiochip0\", offset = N} or {name = \"LINE\"}, not ") +
-                                type_name(*n));
+                                emu::toml_type_name(*n));
     }
     const toml::table& t = *n->as_table();
     only(t, name + ".", {"chip", "offset", "name", "active_low"});

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <string>
 
+#include "drivers/linux/stop_signals.hpp"
 #include "tools/tnv-fw/daemon.hpp"
 #include "tools/tnv-fw/fw_config.hpp"
 #include "tools/tnv-fw/latency_test.hpp"
@@ -19,20 +20,8 @@ namespace {
 
 using namespace tnv;
 
-// SIGTERM and SIGINT are blocked in every thread (the loop thread inherits
-// the mask) and taken synchronously here: no handler runs concurrently
-// with anything.
-sigset_t block_stop_signals() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  return set;
-}
-
 int run(const fwd::DaemonConfig& config, const fwd::DaemonOptions& options) {
-  const sigset_t stop_signals = block_stop_signals();
+  const sigset_t stop_signals = drivers::block_stop_signals();  // the loop thread inherits the mask
   std::string error;
   std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, options, error);
   if (!daemon) {
