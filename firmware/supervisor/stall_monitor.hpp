@@ -29,16 +29,20 @@ class StallMonitor {
     const bool moved = !primed_ || counts != last_counts_;
     primed_ = true;
     last_counts_ = counts;
+    applied_command_mm_s_ = applied_command_mm_s;
     const bool driven = applied_live && std::fabs(applied_command_mm_s) >= limit.command_mm_s;
     stalled_ticks_ = (!moved && driven) ? stalled_ticks_ + 1 : 0;
     return stalled_ticks_;
   }
   std::uint32_t stalled_ticks() const noexcept { return stalled_ticks_; }
+  // The command of the last update (what the fault record reports).
+  double applied_command_mm_s() const noexcept { return applied_command_mm_s_; }
   void reset() noexcept { *this = StallMonitor{}; }
 
  private:
   bool primed_ = false;
   std::int64_t last_counts_ = 0;
+  double applied_command_mm_s_ = 0.0;
   std::uint32_t stalled_ticks_ = 0;
 };
 

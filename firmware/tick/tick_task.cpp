@@ -298,7 +298,6 @@ void TickTask::tick() noexcept {
 
   // 4. axis controllers -> speed commands
   const bool on = servo_on();
-  std::array<double, hal::kAxisCount> stall_applied_mm_s{};
   SupervisorInput check_in;
   check_in.tick = counters_.ticks;
   check_in.bus_ok = bus_ok;
@@ -309,7 +308,6 @@ void TickTask::tick() noexcept {
   check_in.servo_on = on;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     AxisTickRecord& r = record_.axis[i];
-    stall_applied_mm_s[i] = r.command_mm_s;  // before this tick's command overwrites it
     double u_mm_s = 0.0;
     AxisController& ctl = axis_[i].active();
     if (on && excite_[i].active()) {
@@ -335,7 +333,7 @@ void TickTask::tick() noexcept {
     r.s = on ? sig.s : 0.0;
     r.d_hat_mm_s = on ? sig.d_hat_mm_s : 0.0;
     check_in.axis[i] = {r.position_mm,      r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s,
-                        u_mm_s,             stall_[i].stalled_ticks(), stall_applied_mm_s[i]};
+                        u_mm_s,             stall_[i].stalled_ticks(), stall_[i].applied_command_mm_s()};
   }
 
   // 5. supervisor: a fault makes this very tick's outputs safe

@@ -19,6 +19,7 @@ TEST(StallMonitor, CountsTicksWithoutACountWhileDrivenHard) {
   EXPECT_EQ(m.update(100, 20.0, true, lim), 1u);
   EXPECT_EQ(m.update(100, -20.0, true, lim), 2u) << "either sign drives";
   EXPECT_EQ(m.update(100, 8.0, true, lim), 3u) << "the level itself counts";
+  EXPECT_EQ(m.applied_command_mm_s(), 8.0) << "the command the fault record reports";
   EXPECT_EQ(m.update(101, 20.0, true, lim), 0u) << "one count is motion";
   EXPECT_EQ(m.update(101, 20.0, true, lim), 1u);
 }
