@@ -13,26 +13,26 @@ using fw::can::ErrorCode;
 using fw::can::MessageId;
 using fw::can::ParamOp;
 
-ErrorCode ack_result(const hal::CanFrame& r) {
+ErrorCode commission_ack(const hal::CanFrame& r) {
   EXPECT_TRUE(is(r, MessageId::command_ack));
   return static_cast<ErrorCode>(raw_of(r, MessageId::command_ack, "result"));
 }
-ErrorCode param_result(const hal::CanFrame& r) {
+ErrorCode commission_reply(const hal::CanFrame& r) {
   EXPECT_TRUE(is(r, MessageId::param_reply));
   return static_cast<ErrorCode>(raw_of(r, MessageId::param_reply, "result"));
 }
-bool commissioning_bit(const NodeBench& b) { return (b.node->heartbeat_errors() & fw::can::kHbCommissioning) != 0; }
+bool mode_bit(const NodeBench& b) { return (b.node->heartbeat_errors() & fw::can::kHbCommissioning) != 0; }
 
-hal::CanFrame set_f32(const char* name, float value) {
+hal::CanFrame f32_set(const char* name, float value) {
   return param_request(kNode, ParamOp::set, id_of(name), f32_raw(value));
 }
 
 // The issue's abuse, one value per safety function it defeated.
-struct Abuse {
+struct SafetyAbuse {
   const char* name;
   double value;
 };
-constexpr Abuse kAbuse[] = {{"x.limits.following_floor_mm", 1.5},  // in range, but a safety parameter
+constexpr SafetyAbuse kSafetyAbuse[] = {{"x.limits.following_floor_mm", 1.5},  // in range, but a safety parameter
                             {"x.limits.following_lag_s", 0.2},
                             {"y.limits.position_max_mm", 900.0},
                             {"supervisor.max_missed_ticks", 8},
@@ -42,7 +42,7 @@ constexpr Abuse kAbuse[] = {{"x.limits.following_floor_mm", 1.5},  // in range, 
                             {"x.hw.dac_full_scale_mm_s", 300.0},
                             {"x.jog.deadman_s", 0.5}};
 
-hal::CanFrame set_value(ParamOp op, const Abuse& a) {
+hal::CanFrame safety_write(ParamOp op, const SafetyAbuse& a) {
   const fw::can::ParamDef& p = NodeBench::find(a.name);
   return param_request(kNode, op, p.id, fw::can::to_wire(p, a.value));
 }
@@ -50,12 +50,12 @@ hal::CanFrame set_value(ParamOp op, const Abuse& a) {
 TEST(CanNodeCommissioning, EverySafetyParameterIsRefusedOutsideTheModeAndNothingChanges) {
   NodeBench b;
   const fw::can::NodeSettings before = b.node->settings();
-  for (const Abuse& a : kAbuse) {
+  for (const SafetyAbuse& a : kSafetyAbuse) {
     SCOPED_TRACE(a.name);
     const fw::can::ParamDef& p = NodeBench::find(a.name);
     ASSERT_TRUE(fw::can::safety_param(p));
-    const hal::CanFrame r = b.reply(set_value(ParamOp::set, a));
-    EXPECT_EQ(param_result(r), ErrorCode::commissioning_required);
+    const hal::CanFrame r = b.reply(safety_write(ParamOp::set, a));
+    EXPECT_EQ(commission_reply(r), ErrorCode::commissioning_required);
     EXPECT_EQ(raw_of(r, MessageId::param_reply, "value"), fw::can::to_wire(p, p.get(before))) << "the unchanged value";
     EXPECT_EQ(p.get(b.node->settings()), p.get(before));
   }
@@ -63,65 +63,65 @@ TEST(CanNodeCommissioning, EverySafetyParameterIsRefusedOutsideTheModeAndNothing
   EXPECT_FALSE(b.node->params_unsaved());
   // Writing back the value it has is no change, and allowed.
   const fw::can::ParamDef& floor = NodeBench::find("x.limits.following_floor_mm");
-  EXPECT_EQ(param_result(b.reply(param_request(kNode, ParamOp::set, floor.id, fw::can::to_wire(floor, floor.get(before))))),
+  EXPECT_EQ(commission_reply(b.reply(param_request(kNode, ParamOp::set, floor.id, fw::can::to_wire(floor, floor.get(before))))),
             ErrorCode::ok);
 }
 
 TEST(CanNodeCommissioning, TheIssuesAbuseIsOutOfRangeEvenInTheMode) {
   NodeBench b;
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.following_floor_mm", 100.0f))), ErrorCode::out_of_range);
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.following_lag_s", 10.0f))), ErrorCode::out_of_range);
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.position_min_mm", -10000.0f))), ErrorCode::out_of_range);
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.position_max_mm", 10000.0f))), ErrorCode::out_of_range);
-  EXPECT_EQ(param_result(b.reply(param_request(kNode, ParamOp::set, id_of("supervisor.max_missed_ticks"), 1000))),
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.following_floor_mm", 100.0f))), ErrorCode::out_of_range);
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.following_lag_s", 10.0f))), ErrorCode::out_of_range);
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.position_min_mm", -10000.0f))), ErrorCode::out_of_range);
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.position_max_mm", 10000.0f))), ErrorCode::out_of_range);
+  EXPECT_EQ(commission_reply(b.reply(param_request(kNode, ParamOp::set, id_of("supervisor.max_missed_ticks"), 1000))),
             ErrorCode::out_of_range);
   EXPECT_EQ(b.param("x.limits.following_floor_mm"), quiet_settings().firmware.supervisor.axis[0].following.floor_mm);
 }
 
 TEST(CanNodeCommissioning, InTheModeEverySafetyParameterChangesAndReachesTheTask) {
   NodeBench b;
-  EXPECT_FALSE(commissioning_bit(b));
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_FALSE(mode_bit(b));
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
   EXPECT_TRUE(b.node->commissioning());
-  EXPECT_TRUE(commissioning_bit(b)) << "shown in the heartbeat";
-  for (const Abuse& a : kAbuse) {
+  EXPECT_TRUE(mode_bit(b)) << "shown in the heartbeat";
+  for (const SafetyAbuse& a : kSafetyAbuse) {
     SCOPED_TRACE(a.name);
-    EXPECT_EQ(param_result(b.reply(set_value(ParamOp::set, a))), ErrorCode::ok);
+    EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, a))), ErrorCode::ok);
     const fw::can::ParamDef& p = NodeBench::find(a.name);
     EXPECT_EQ(fw::can::to_wire(p, p.get(b.node->settings())), fw::can::to_wire(p, a.value));
   }
   EXPECT_NEAR(b.task.config().supervisor.axis[0].following.floor_mm, 1.5, 1e-6) << "the task runs it";
   EXPECT_EQ(b.task.config().supervisor.max_consecutive_missed_ticks, 8u);
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok);
-  EXPECT_FALSE(commissioning_bit(b));
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.following_floor_mm", 0.05f))), ErrorCode::commissioning_required);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok);
+  EXPECT_FALSE(mode_bit(b));
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.following_floor_mm", 0.05f))), ErrorCode::commissioning_required);
 }
 
 TEST(CanNodeCommissioning, StagingASafetyParameterIsRefusedOutsideTheMode) {
   NodeBench b;
-  EXPECT_EQ(param_result(b.reply(set_value(ParamOp::stage, kAbuse[0]))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::stage, kSafetyAbuse[0]))), ErrorCode::commissioning_required);
   EXPECT_EQ(b.node->staged_count(), 0u);
   // Refused before the range check: the issue's floor of 100 mm names commissioning, not the range.
-  EXPECT_EQ(param_result(b.reply(set_f32("x.limits.following_floor_mm", 100.0f))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_reply(b.reply(f32_set("x.limits.following_floor_mm", 100.0f))), ErrorCode::commissioning_required);
 }
 
 TEST(CanNodeCommissioning, ASetStagedInTheModeIsRefusedWholeAtCommitAfterLeavingNamingTheParameter) {
   NodeBench b;
   const double kp0 = b.param("x.pid.kp");
-  EXPECT_EQ(param_result(b.reply(param_request(kNode, ParamOp::stage, id_of("x.pid.kp"), f32_raw(400.0f)))),
+  EXPECT_EQ(commission_reply(b.reply(param_request(kNode, ParamOp::stage, id_of("x.pid.kp"), f32_raw(400.0f)))),
             ErrorCode::ok);
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(param_result(b.reply(set_value(ParamOp::stage, kAbuse[0]))), ErrorCode::ok);
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::stage, kSafetyAbuse[0]))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok);
   const hal::CanFrame c = b.reply(param_request(kNode, ParamOp::commit, 0));
-  EXPECT_EQ(param_result(c), ErrorCode::commissioning_required);
-  EXPECT_EQ(raw_of(c, MessageId::param_reply, "value"), id_of(kAbuse[0].name)) << "names the parameter";
+  EXPECT_EQ(commission_reply(c), ErrorCode::commissioning_required);
+  EXPECT_EQ(raw_of(c, MessageId::param_reply, "value"), id_of(kSafetyAbuse[0].name)) << "names the parameter";
   EXPECT_EQ(b.param("x.pid.kp"), kp0) << "refused whole";
   EXPECT_EQ(b.node->staged_count(), 2u) << "kept for a fix or a discard";
   // Back in the mode the same pending set commits.
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(param_result(b.reply(param_request(kNode, ParamOp::commit, 0))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_reply(b.reply(param_request(kNode, ParamOp::commit, 0))), ErrorCode::ok);
   EXPECT_EQ(b.param("x.pid.kp"), static_cast<double>(400.0f));
   EXPECT_NEAR(b.param("x.limits.following_floor_mm"), 1.5, 1e-6);
 }
@@ -129,81 +129,81 @@ TEST(CanNodeCommissioning, ASetStagedInTheModeIsRefusedWholeAtCommitAfterLeaving
 TEST(CanNodeCommissioning, EnteredOnlyWhileDisabledAndLeftOnEnable) {
   NodeBench b;
   b.reply(command(kNode, CommandCode::enable));
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::busy) << "holding";
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::busy) << "holding";
   EXPECT_FALSE(b.node->commissioning());
   b.reply(command(kNode, CommandCode::disable));
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
   b.reply(command(kNode, CommandCode::enable));
   EXPECT_FALSE(b.node->commissioning()) << "enable leaves it";
   b.reply(command(kNode, CommandCode::disable));
   b.step(2);
   EXPECT_FALSE(b.node->commissioning()) << "and it does not come back by disabling";
-  EXPECT_EQ(param_result(b.reply(set_value(ParamOp::set, kAbuse[0]))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, kSafetyAbuse[0]))), ErrorCode::commissioning_required);
 }
 
 TEST(CanNodeCommissioning, LeftOnMotionAndOnAFault) {
   NodeBench b;
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(ack_result(b.reply(circle(kNode, 6.0, 2.0))), ErrorCode::ok);  // starts with a servo-on dwell
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_ack(b.reply(circle(kNode, 6.0, 2.0))), ErrorCode::ok);  // starts with a servo-on dwell
   EXPECT_FALSE(b.node->commissioning()) << "motion leaves it";
   b.reply(command(kNode, CommandCode::stop));
   b.step(5);
   b.reply(command(kNode, CommandCode::disable));
   b.step();
 
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
   b.request(frame_to(MessageId::estop, kNode));
   b.step();
   EXPECT_FALSE(b.node->commissioning()) << "a fault leaves it";
-  EXPECT_FALSE(commissioning_bit(b));
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::faulted);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::clear_faults))), ErrorCode::ok);
+  EXPECT_FALSE(mode_bit(b));
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::faulted);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::clear_faults))), ErrorCode::ok);
   EXPECT_FALSE(b.node->commissioning()) << "clearing the fault does not bring it back";
-  EXPECT_EQ(param_result(b.reply(set_value(ParamOp::set, kAbuse[0]))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, kSafetyAbuse[0]))), ErrorCode::commissioning_required);
 }
 
 TEST(CanNodeCommissioning, WithoutTheLocalPermissionEnterIsNotPermitted) {
   NodeBench b;
   b.node->allow_commissioning(false);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::not_permitted);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::not_permitted);
   EXPECT_FALSE(b.node->commissioning());
-  EXPECT_EQ(param_result(b.reply(set_value(ParamOp::set, kAbuse[0]))), ErrorCode::commissioning_required);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok) << "always fine";
+  EXPECT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, kSafetyAbuse[0]))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok) << "always fine";
 }
 
 TEST(CanNodeCommissioning, TheReservedCodesAreUnknown) {
   NodeBench b;
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::reserved_10))), ErrorCode::unknown_command);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::reserved_11))), ErrorCode::unknown_command);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::reserved_10))), ErrorCode::unknown_command);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::reserved_11))), ErrorCode::unknown_command);
 }
 
 TEST(CanNodeCommissioning, RestoreDefaultsKeepsTheSafetyParametersOutsideTheMode) {
   NodeBench b;
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  ASSERT_EQ(param_result(b.reply(set_value(ParamOp::set, kAbuse[0]))), ErrorCode::ok);
-  ASSERT_EQ(param_result(b.reply(set_f32("x.pid.kp", 400.0f))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  ASSERT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, kSafetyAbuse[0]))), ErrorCode::ok);
+  ASSERT_EQ(commission_reply(b.reply(f32_set("x.pid.kp", 400.0f))), ErrorCode::ok);
   b.reply(command(kNode, CommandCode::leave_commissioning));
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::ok);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::ok);
   const fw::can::NodeSettings d = quiet_settings();
   EXPECT_EQ(b.param("x.pid.kp"), d.firmware.axis[0].pid.kp) << "tuning restored";
   EXPECT_NEAR(b.param("x.limits.following_floor_mm"), 1.5, 1e-6) << "the commissioned limit kept";
   // In the mode the defaults include the limits.
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::ok);
   EXPECT_EQ(b.param("x.limits.following_floor_mm"), d.firmware.supervisor.axis[0].following.floor_mm);
 }
 
 TEST(CanNodeCommissioning, LoadingAStoredSetWithOtherSafetyValuesNeedsTheMode) {
   NodeBench b;
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  ASSERT_EQ(param_result(b.reply(set_value(ParamOp::set, kAbuse[0]))), ErrorCode::ok);
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::save_params))), ErrorCode::ok);
-  ASSERT_EQ(param_result(b.reply(set_f32("x.limits.following_floor_mm", 0.05f))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  ASSERT_EQ(commission_reply(b.reply(safety_write(ParamOp::set, kSafetyAbuse[0]))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::save_params))), ErrorCode::ok);
+  ASSERT_EQ(commission_reply(b.reply(f32_set("x.limits.following_floor_mm", 0.05f))), ErrorCode::ok);
   b.reply(command(kNode, CommandCode::leave_commissioning));
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::load_params))), ErrorCode::commissioning_required);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::load_params))), ErrorCode::commissioning_required);
   EXPECT_NEAR(b.param("x.limits.following_floor_mm"), 0.05, 1e-6) << "nothing loaded";
-  ASSERT_EQ(ack_result(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
-  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::load_params))), ErrorCode::ok);
+  ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);
+  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::load_params))), ErrorCode::ok);
   EXPECT_NEAR(b.param("x.limits.following_floor_mm"), 1.5, 1e-6);
 }
 
