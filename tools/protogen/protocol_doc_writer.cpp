@@ -83,6 +83,9 @@ void codes(std::string& out) {
   for (std::uint8_t i = 0; i < kCommandCodeCount; ++i)
     append(out, "| ", std::to_string(i), " | ", to_string(static_cast<CommandCode>(i)), " |\n");
   out += "\nzero, select_controller, load_params and restore_defaults need the machine at rest (else busy); save_params too.\n";
+  out += "enter_commissioning needs the servo disabled (else busy) and no fault latched (else faulted), and on tnv-fw "
+         "the config's [safety] allow_commissioning (else not_permitted); the mode ends at leave_commissioning, enable, "
+         "any accepted motion or a fault (docs/safety.md \"Commissioning\"). 10 and 11 are reserved (unknown_command).\n";
   out += "\n## Heartbeat error bits (HEARTBEAT.errors)\n\n| bit | name | meaning |\n|---|---|---|\n";
   for (const HeartbeatBitDoc& b : kHeartbeatBits) {
     int bit = 0;
