@@ -63,8 +63,10 @@ void CanNode::service() noexcept {
     due = on_new_tick(ticks);
   }
   flush_replies();
+  check_commissioning();
   receive();
   check_fault();
+  check_commissioning();
   send_telemetry(due);
   send_upload();
 }
@@ -249,6 +251,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(task_.shaper(hal::Axis::y).shaping(), kHbShaperY);
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
+  set(commissioning(), kHbCommissioning);
   return bits;
 }
 

@@ -66,6 +66,13 @@ class CanNode {
 
   void service() noexcept;
 
+  // Local permission for COMMAND enter_commissioning (docs/safety.md
+  // "Commissioning"): without it the node answers not_permitted. Allowed
+  // unless the integration says otherwise (tnv-fw: [safety] allow_commissioning).
+  void allow_commissioning(bool allowed) noexcept;
+  // In commissioning mode: safety parameters may change.
+  bool commissioning() const noexcept;
+
   // The live parameter set (what PARAM_REQUEST get reads back).
   const NodeSettings& settings() const noexcept;
   // The id this node answers to: settings().can.node_id at construction
@@ -117,6 +124,13 @@ class CanNode {
   ErrorCode command_save() noexcept;
   ErrorCode command_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
+  ErrorCode command_enter_commissioning() noexcept;
+  // A set / stage writing `raw` into `p` (now `current`): commissioning_required
+  // for a safety parameter that would change outside commissioning mode, else ok.
+  ErrorCode commissioning_check(const ParamDef& p, std::uint32_t raw, std::uint32_t current) noexcept;
+  // Leaves commissioning mode when the machine no longer allows it (not
+  // disabled, or a fault latched); called each service() and before a change.
+  void check_commissioning() noexcept;
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole
   ErrorCode apply_settings(const NodeSettings& next, bool idle_touched) noexcept;
@@ -157,6 +171,8 @@ class CanNode {
   bool host_timeout_ = false;           // sticky until the next accepted motion request
   bool tx_dropped_since_heartbeat_ = false;
   bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
+  bool commissioning_ = false;          // safety parameters writable (entered while disabled)
+  bool commissioning_allowed_ = true;   // the local permission to enter it
   std::uint64_t bus_errors_at_heartbeat_ = 0;
   std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;

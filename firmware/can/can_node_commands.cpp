@@ -23,6 +23,7 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 }  // namespace
 
 void CanNode::motion_accepted() noexcept {
+  commissioning_ = false;
   jog_deadman_ = false;
   host_timeout_ = false;
 }
@@ -37,6 +38,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
   ErrorCode e = ErrorCode::ok;
   switch (static_cast<CommandCode>(code_raw)) {
     case CommandCode::enable:
+      commissioning_ = false;  // asked for, even if refused
       e = to_error(task_.hold_position());
       break;
     case CommandCode::disable: e = to_error(task_.disable()); break;
@@ -48,6 +50,10 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::save_params: e = command_save(); break;
     case CommandCode::load_params: e = command_load(); break;
     case CommandCode::restore_defaults: e = command_restore_defaults(); break;
+    case CommandCode::reserved_10:
+    case CommandCode::reserved_11: e = ErrorCode::unknown_command; break;
+    case CommandCode::enter_commissioning: e = command_enter_commissioning(); break;
+    case CommandCode::leave_commissioning: commissioning_ = false; break;
   }
   reply_ack(kCommandMsg.id, code_raw, e, detail);
 }

@@ -43,6 +43,13 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched) n
     blamed_param_ = c.param;
     return ErrorCode::invalid;
   }
+  // Safety parameters change only in commissioning mode (docs/safety.md).
+  check_commissioning();
+  if (!commissioning_)
+    if (const std::uint16_t id = first_safety_change(settings_, next); id != 0) {
+      blamed_param_ = id;
+      return ErrorCode::commissioning_required;
+    }
   if (idle_touched && moving()) return ErrorCode::busy;
   if (capture_change_refused(next)) return ErrorCode::busy;
   // Gains, limits, controller selection: the task checks again and applies whole.
@@ -82,7 +89,8 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     blamed_param_ = 0;
     const ErrorCode e = apply_settings(next, idle);
     if (e == ErrorCode::ok) staged_.clear();  // refused: the pending set stays for a fix or a discard
-    reply_param(op_raw, e, n, e == ErrorCode::invalid ? blamed_param_ : 0u);
+    const bool blamed = e == ErrorCode::invalid || e == ErrorCode::commissioning_required;
+    reply_param(op_raw, e, n, blamed ? blamed_param_ : 0u);
     return;
   }
   if (op == ParamOp::discard) {
@@ -99,6 +107,11 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   const std::uint32_t current = to_wire(*p, p->get(settings_));
   if (op == ParamOp::get) {
     reply_param(op_raw, ErrorCode::ok, id, current);
+    return;
+  }
+  // set / stage of a safety parameter: authorised before anything else is checked.
+  if (const ErrorCode e = commissioning_check(*p, raw, current); e != ErrorCode::ok) {
+    reply_param(op_raw, e, id, current);
     return;
   }
   // set / stage: the value exactly as it arrived (an f32 stays that float).
@@ -150,6 +163,7 @@ ErrorCode CanNode::command_load() noexcept {
 // The papers' defaults, except what describes this machine and this node:
 // the encoder count and DAC scale (commissioning facts) and the bus
 // identity (node id, bit rate), so the node stays reachable and sane.
+// Outside commissioning mode the safety parameters are kept as well.
 ErrorCode CanNode::command_restore_defaults() noexcept {
   if (moving()) return ErrorCode::busy;
   NodeSettings next = default_node_settings();
@@ -160,6 +174,8 @@ ErrorCode CanNode::command_restore_defaults() noexcept {
   }
   next.can.node_id = settings_.can.node_id;
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
+  check_commissioning();
+  if (!commissioning_) keep_safety_params(settings_, next);
   return apply_settings(next, true);
 }
 

@@ -31,161 +31,229 @@ constexpr const char* kControllers = "0=pid 1=dvsc 2=rdvsc";
 constexpr const char* kShaperTypes = "0=zv 1=zvd 2=zvdd 3=ei 4=mzv";
 constexpr double kBig = 1e9;
 
+constexpr Guard kOpen = Guard::open;
+constexpr Guard kSafety = Guard::commissioning;
+
+// Ranges of the safety parameters: what a TNV-40-class table (ball screws
+// of 5..20 mm lead, under 1 m of travel, servopacks up to a few thousand
+// rpm) can use. Wider values only let a fault run further before it trips
+// (a following-error floor of 100 mm let a runaway run 117 mm).
+// Soft travel limits: no table of this class travels 1 m.
+constexpr double kTravelLimitMm = 1000.0;
+// Measured-speed limit: 1000 mm/s is 3000 rpm on a 20 mm lead, the fastest
+// drive of the class; below 1 mm/s the limit trips on encoder noise.
+constexpr double kSpeedLimitMinMmS = 1.0;
+constexpr double kSpeedLimitMaxMmS = 1000.0;
+// Following-error floor: 1 um (2.4 counts) keeps quantisation from
+// tripping it; 2 mm covers a first commissioning with rough gains (the
+// tuned default is 0.05 mm).
+constexpr double kFollowingFloorMinMm = 0.001;
+constexpr double kFollowingFloorMaxMm = 2.0;
+// Following-error lag: a position loop of 4 1/s lags 0.25 s; a slower
+// loop cannot track a contour, so more lag only hides a runaway.
+constexpr double kFollowingLagMaxS = 0.25;
+// Stall level: above 0.5 mm/s (below any breakaway worth detecting; the
+// reference plant's is 3 mm/s) and at most 100 mm/s, beyond which a
+// stalled axis is driven near full scale before it counts.
+constexpr double kStallCommandMinMmS = 0.5;
+constexpr double kStallCommandMaxMmS = 100.0;
+// Stall time: 100 ticks (100 ms) of drive without a count is already a
+// long runaway with a lost encoder.
+constexpr double kStallTicksMax = 100;
+// Missed ticks: every missed tick is 1 ms of stale output; 10 in a row
+// is the most a loop can ride through.
+constexpr double kMissedTicksMax = 10;
+// Host timeout: 0 = off (the default); a stop later than 5 s after the
+// host went silent supervises nothing.
+constexpr double kHostTimeoutMaxMs = 5000;
+// Jog dead man: one tick at least; a jog that runs on for over 1 s after
+// its operator went silent defeats the dead man.
+constexpr double kJogDeadmanMinS = 0.001;
+constexpr double kJogDeadmanMaxS = 1.0;
+// Encoder count: 1 nm (the finest linear scales) to 10 um (1000 lines x4
+// on a 40 mm lead); the TNV-40's is 0.417 um.
+constexpr double kCountMinMm = 1e-6;
+constexpr double kCountMaxMm = 0.01;
+// DAC full scale: 10 mm/s .. 2000 mm/s (6000 rpm on a 20 mm lead); the
+// TNV-40's is 166.7 mm/s. A wrong scale mis-sizes every command.
+constexpr double kDacFullScaleMinMmS = 10.0;
+constexpr double kDacFullScaleMaxMmS = 2000.0;
+
 bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
 
 // One axis' parameters: ax is the axis index, base its id block, p its name prefix.
-#define TNV_AXIS_PARAMS(ax, base, p)                                                                               \
-  {base + 0x00, p "controller", ParamType::enumeration, "", 0, 2, kControllers, Access::read_write, Apply::idle,   \
-   TNV_INT(firmware.axis[ax].controller), "active loop: PID baseline, DVSC+DDC or R-DVSC+DDC"},                    \
-      {base + 0x10, p "sliding.G_position_1_s", ParamType::f32, "1/s", 0, 1e5, "", Access::read_write, Apply::live, \
-       TNV_REAL(firmware.axis[ax].sliding.G_position_1_s), "G = [G_position, G_speed] (S1 eq. 5)"},               \
-      {base + 0x11, p "sliding.G_speed", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live,           \
-       TNV_REAL(firmware.axis[ax].sliding.G_speed), "speed weight of the surface (S1 eq. 5)"},                    \
-      {base + 0x12, p "sliding.eta_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,      \
-       TNV_REAL(firmware.axis[ax].sliding.eta_mm_s), "reaching-law gain eta (S1 eq. 4)"},                         \
-      {base + 0x13, p "sliding.phi_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,      \
-       TNV_REAL(firmware.axis[ax].sliding.phi_mm_s), "boundary layer phi (S1 eq. 4); > eta / (q + 1)"},           \
-      {base + 0x14, p "sliding.q", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                    \
-       TNV_REAL(firmware.axis[ax].sliding.q), "reaching-law pole q (S1 eq. 4), 0 < q < 1"},                       \
-      {base + 0x15, p "sliding.g", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                    \
-       TNV_REAL(firmware.axis[ax].sliding.g), "DDC gain g (S1 eq. 7), 0 < g < 1"},                                \
-      {base + 0x16, p "sliding.gamma", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live,                \
-       TNV_REAL(firmware.axis[ax].sliding.gamma), "recursive-surface weight gamma (S1 eq. 5); < min(1 - g, q)"},   \
-      {base + 0x17, p "sliding.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,    \
-       TNV_REAL(firmware.axis[ax].sliding.u_max_mm_s), "command clamp of DVSC/R-DVSC"},                           \
-      {base + 0x20, p "pid.kp", ParamType::f32, "1/s", 0, 1e6, "", Access::read_write, Apply::live,                  \
-       TNV_REAL(firmware.axis[ax].pid.kp), "proportional gain"},                                                  \
-      {base + 0x21, p "pid.ki", ParamType::f32, "1/s^2", 0, 1e8, "", Access::read_write, Apply::live,                \
-       TNV_REAL(firmware.axis[ax].pid.ki), "integral gain"},                                                      \
-      {base + 0x22, p "pid.kd", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live,                     \
-       TNV_REAL(firmware.axis[ax].pid.kd), "derivative gain"},                                                    \
-      {base + 0x23, p "pid.derivative_filter_tf_s", ParamType::f32, "s", 0, 1, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.axis[ax].pid.derivative_filter_tf_s), "derivative filter time constant; 0 = off"},       \
-      {base + 0x24, p "pid.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live,        \
-       TNV_REAL(firmware.axis[ax].pid.u_max_mm_s), "command clamp of the PID"},                                   \
-      {base + 0x25, p "pid.feedforward", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
-       TNV_INT(firmware.axis[ax].pid.feedforward), "model velocity + acceleration feed-forward"},                 \
-      {base + 0x30, p "model.a11", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
-       TNV_REAL(firmware.axis[ax].model.A(0, 0)), "discrete model A(1,1) (S1 eq. 31)"},                           \
-      {base + 0x31, p "model.a12", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle,              \
-       TNV_REAL(firmware.axis[ax].model.A(0, 1)), "discrete model A(1,2)"},                                       \
-      {base + 0x32, p "model.a21", ParamType::f32, "1/s", -1e3, 1e3, "", Access::read_write, Apply::idle,            \
-       TNV_REAL(firmware.axis[ax].model.A(1, 0)), "discrete model A(2,1)"},                                       \
-      {base + 0x33, p "model.a22", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
-       TNV_REAL(firmware.axis[ax].model.A(1, 1)), "discrete model A(2,2)"},                                       \
-      {base + 0x34, p "model.b1", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle,               \
-       TNV_REAL(firmware.axis[ax].model.B(0)), "discrete model B(1) (position per command)"},                     \
-      {base + 0x35, p "model.b2", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle,                \
-       TNV_REAL(firmware.axis[ax].model.B(1)), "discrete model B(2) (speed per command)"},                        \
-      {base + 0x40, p "shaper.type", ParamType::enumeration, "", 0, 4, kShaperTypes, Access::read_write, Apply::live, \
-       TNV_INT(shaper[ax].spec.type), "input-shaper family (applied at the next quiet reference)"},              \
-      {base + 0x41, p "shaper.freq_hz", ParamType::f32, "Hz", kShaperMinFreqHz, kShaperMaxFreqHz, "",                \
-       Access::read_write, Apply::live, TNV_REAL(shaper[ax].spec.mode.freq_hz), "mode frequency to cancel"},     \
-      {base + 0x42, p "shaper.zeta", ParamType::f32, "", 0, kShaperMaxZeta, "", Access::read_write, Apply::live,    \
-       TNV_REAL(shaper[ax].spec.mode.zeta), "mode damping ratio"},                                                \
-      {base + 0x43, p "shaper.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::live,       \
-       TNV_INT(shaper[ax].enabled), "input shaper on (takes effect at the next quiet reference)"},               \
-      {base + 0x50, p "limits.position_min_mm", ParamType::f32, "mm", -1e4, 1e4, "", Access::read_write,            \
-       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].position_min_mm), "soft travel limit, low"},            \
-      {base + 0x51, p "limits.position_max_mm", ParamType::f32, "mm", -1e4, 1e4, "", Access::read_write,            \
-       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].position_max_mm), "soft travel limit, high"},           \
-      {base + 0x52, p "limits.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.supervisor.axis[ax].speed_max_mm_s), "measured-speed limit"},                            \
-      {base + 0x53, p "limits.following_floor_mm", ParamType::f32, "mm", 0, 100, "", Access::read_write,            \
-       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].following.floor_mm),                                    \
-       "following-error limit at rest"},                                                                          \
-      {base + 0x54, p "limits.following_lag_s", ParamType::f32, "s", 0, 10, "", Access::read_write, Apply::idle,    \
-       TNV_REAL(firmware.supervisor.axis[ax].following.lag_s), "following-error limit growth per mm/s"},          \
-      {base + 0x55, p "limits.stall_command_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write,          \
-       Apply::idle, TNV_REAL(firmware.supervisor.axis[ax].stall.command_mm_s),                                    \
-       "stall monitor: |command| that must move the encoder (above the breakaway)"},                             \
-      {base + 0x56, p "limits.stall_ticks", ParamType::u32, "tick", 1, 1000, "", Access::read_write, Apply::idle,    \
-       TNV_INT(firmware.supervisor.axis[ax].stall.ticks), "stall monitor: ticks without a count that trip"},       \
-      {base + 0x60, p "jog.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::idle,    \
-       TNV_REAL(firmware.axis[ax].jog.speed_max_mm_s), "jog speed limit"},                                        \
-      {base + 0x61, p "jog.accel_mm_s2", ParamType::f32, "mm/s^2", 0, 1e6, "", Access::read_write, Apply::idle,     \
-       TNV_REAL(firmware.axis[ax].jog.accel_mm_s2), "jog acceleration"},                                          \
-      {base + 0x62, p "jog.deadman_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::idle,         \
-       TNV_REAL(firmware.axis[ax].jog.deadman_s), "longest silence of the jog stream before the axis stops"},     \
-      {base + 0x70, p "hw.count_mm", ParamType::f32, "mm", 1e-9, 1, "", Access::read_write, Apply::idle,            \
-       TNV_REAL(firmware.axis[ax].count_mm), "encoder count (lead / counts per rev, x4)"},                         \
-      {base + 0x71, p "hw.dac_full_scale_mm_s", ParamType::f32, "mm/s", 0, 1e5, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.axis[ax].dac.full_scale_mm_s), "speed at DAC full scale (+10 V)"},                       \
-      {base + 0x80, p "friction.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
-       TNV_INT(firmware.axis[ax].friction.enabled), "friction feed-forward on (docs/autotune.md)"},               \
-      {base + 0x81, p "friction.coulomb_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.axis[ax].friction.coulomb_mm_s), "Coulomb friction f_c (table-speed equivalent)"},       \
-      {base + 0x82, p "friction.stiction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write,             \
-       Apply::idle, TNV_REAL(firmware.axis[ax].friction.stiction_mm_s), "stiction f_s >= f_c"},                   \
-      {base + 0x83, p "friction.stribeck_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,          \
-       Apply::idle, TNV_REAL(firmware.axis[ax].friction.stribeck_mm_s), "Stribeck speed v_s"},                    \
-      {base + 0x84, p "friction.gain", ParamType::f32, "", 1e-6, 1e3, "", Access::read_write, Apply::idle,          \
-       TNV_REAL(firmware.axis[ax].friction.gain), "speed-loop gain K the feed-forward divides by"},               \
-      {base + 0x85, p "friction.fraction", ParamType::f32, "", 0, 1.5, "", Access::read_write, Apply::idle,         \
-       TNV_REAL(firmware.axis[ax].friction.fraction), "share of the friction model fed forward"},                 \
-      {base + 0x90, p "observer.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle,     \
-       TNV_INT(firmware.axis[ax].observer.enabled), "speed observer fed back instead of the M-method speed"},      \
-      {base + 0x91, p "observer.use_position", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write,            \
-       Apply::idle, TNV_INT(firmware.axis[ax].observer.use_position), "also feed back the estimated position"},   \
-      {base + 0x92, p "observer.gain_position", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.axis[ax].observer.gain_position), "observer gain l_p (Kalman, speed_observer.hpp)"},      \
-      {base + 0x93, p "observer.gain_speed_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,          \
-       Apply::idle, TNV_REAL(firmware.axis[ax].observer.gain_speed_1_s), "observer gain l_v"},                    \
-      {base + 0x94, p "observer.gain_disturbance_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,    \
-       Apply::idle, TNV_REAL(firmware.axis[ax].observer.gain_disturbance_1_s), "observer gain l_d"},              \
-      {base + 0x95, p "observer.friction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write, Apply::idle, \
-       TNV_REAL(firmware.axis[ax].observer.friction_mm_s), "Coulomb friction f_c / K the observer's model takes out"}, \
-  {                                                                                                               \
-    base + 0x96, p "observer.friction_deadband_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,    \
-        Apply::idle, TNV_REAL(firmware.axis[ax].observer.friction_deadband_mm_s),                                  \
-        "|estimated speed| below which the observer assumes no friction"                                          \
+#define TNV_AXIS_PARAMS(ax, base, p)                                                                                     \
+  {base + 0x00, p "controller", ParamType::enumeration, "", 0, 2, kControllers,                                          \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+   TNV_INT(firmware.axis[ax].controller), "active loop: PID baseline, DVSC+DDC or R-DVSC+DDC"},                          \
+      {base + 0x10, p "sliding.G_position_1_s", ParamType::f32, "1/s", 0, 1e5, "",                                       \
+       Access::read_write, Apply::live, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].sliding.G_position_1_s), "G = [G_position, G_speed] (S1 eq. 5)"},                      \
+      {base + 0x11, p "sliding.G_speed", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live, kOpen,         \
+       TNV_REAL(firmware.axis[ax].sliding.G_speed), "speed weight of the surface (S1 eq. 5)"},                           \
+      {base + 0x12, p "sliding.eta_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live, kOpen,    \
+       TNV_REAL(firmware.axis[ax].sliding.eta_mm_s), "reaching-law gain eta (S1 eq. 4)"},                                \
+      {base + 0x13, p "sliding.phi_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live, kOpen,    \
+       TNV_REAL(firmware.axis[ax].sliding.phi_mm_s), "boundary layer phi (S1 eq. 4); > eta / (q + 1)"},                  \
+      {base + 0x14, p "sliding.q", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live, kOpen,                 \
+       TNV_REAL(firmware.axis[ax].sliding.q), "reaching-law pole q (S1 eq. 4), 0 < q < 1"},                              \
+      {base + 0x15, p "sliding.g", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live, kOpen,                 \
+       TNV_REAL(firmware.axis[ax].sliding.g), "DDC gain g (S1 eq. 7), 0 < g < 1"},                                       \
+      {base + 0x16, p "sliding.gamma", ParamType::f32, "", 0, 1, "", Access::read_write, Apply::live, kOpen,             \
+       TNV_REAL(firmware.axis[ax].sliding.gamma), "recursive-surface weight gamma (S1 eq. 5); < min(1 - g, q)"},         \
+      {base + 0x17, p "sliding.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "",                                          \
+       Access::read_write, Apply::live, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].sliding.u_max_mm_s), "command clamp of DVSC/R-DVSC"},                                  \
+      {base + 0x20, p "pid.kp", ParamType::f32, "1/s", 0, 1e6, "", Access::read_write, Apply::live, kOpen,               \
+       TNV_REAL(firmware.axis[ax].pid.kp), "proportional gain"},                                                         \
+      {base + 0x21, p "pid.ki", ParamType::f32, "1/s^2", 0, 1e8, "", Access::read_write, Apply::live, kOpen,             \
+       TNV_REAL(firmware.axis[ax].pid.ki), "integral gain"},                                                             \
+      {base + 0x22, p "pid.kd", ParamType::f32, "", 0, 1e3, "", Access::read_write, Apply::live, kOpen,                  \
+       TNV_REAL(firmware.axis[ax].pid.kd), "derivative gain"},                                                           \
+      {base + 0x23, p "pid.derivative_filter_tf_s", ParamType::f32, "s", 0, 1, "",                                       \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].pid.derivative_filter_tf_s), "derivative filter time constant; 0 = off"},              \
+      {base + 0x24, p "pid.u_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "", Access::read_write, Apply::live, kOpen,      \
+       TNV_REAL(firmware.axis[ax].pid.u_max_mm_s), "command clamp of the PID"},                                          \
+      {base + 0x25, p "pid.feedforward", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,   \
+       TNV_INT(firmware.axis[ax].pid.feedforward), "model velocity + acceleration feed-forward"},                        \
+      {base + 0x30, p "model.a11", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,            \
+       TNV_REAL(firmware.axis[ax].model.A(0, 0)), "discrete model A(1,1) (S1 eq. 31)"},                                  \
+      {base + 0x31, p "model.a12", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,           \
+       TNV_REAL(firmware.axis[ax].model.A(0, 1)), "discrete model A(1,2)"},                                              \
+      {base + 0x32, p "model.a21", ParamType::f32, "1/s", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,         \
+       TNV_REAL(firmware.axis[ax].model.A(1, 0)), "discrete model A(2,1)"},                                              \
+      {base + 0x33, p "model.a22", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,            \
+       TNV_REAL(firmware.axis[ax].model.A(1, 1)), "discrete model A(2,2)"},                                              \
+      {base + 0x34, p "model.b1", ParamType::f32, "s", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,            \
+       TNV_REAL(firmware.axis[ax].model.B(0)), "discrete model B(1) (position per command)"},                            \
+      {base + 0x35, p "model.b2", ParamType::f32, "", -1e3, 1e3, "", Access::read_write, Apply::idle, kOpen,             \
+       TNV_REAL(firmware.axis[ax].model.B(1)), "discrete model B(2) (speed per command)"},                               \
+      {base + 0x40, p "shaper.type", ParamType::enumeration, "", 0, 4, kShaperTypes,                                     \
+       Access::read_write, Apply::live, kOpen,                                                                           \
+       TNV_INT(shaper[ax].spec.type), "input-shaper family (applied at the next quiet reference)"},                      \
+      {base + 0x41, p "shaper.freq_hz", ParamType::f32, "Hz", kShaperMinFreqHz, kShaperMaxFreqHz, "",                    \
+       Access::read_write, Apply::live, kOpen, TNV_REAL(shaper[ax].spec.mode.freq_hz), "mode frequency to cancel"},      \
+      {base + 0x42, p "shaper.zeta", ParamType::f32, "", 0, kShaperMaxZeta, "",                                          \
+       Access::read_write, Apply::live, kOpen,                                                                           \
+       TNV_REAL(shaper[ax].spec.mode.zeta), "mode damping ratio"},                                                       \
+      {base + 0x43, p "shaper.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::live, kOpen,     \
+       TNV_INT(shaper[ax].enabled), "input shaper on (takes effect at the next quiet reference)"},                       \
+      {base + 0x50, p "limits.position_min_mm", ParamType::f32, "mm", -kTravelLimitMm, kTravelLimitMm, "",               \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].position_min_mm), "soft travel limit, low"},                                \
+      {base + 0x51, p "limits.position_max_mm", ParamType::f32, "mm", -kTravelLimitMm, kTravelLimitMm, "",               \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].position_max_mm), "soft travel limit, high"},                               \
+      {base + 0x52, p "limits.speed_max_mm_s", ParamType::f32, "mm/s", kSpeedLimitMinMmS, kSpeedLimitMaxMmS, "",         \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].speed_max_mm_s), "measured-speed limit"},                                   \
+      {base + 0x53, p "limits.following_floor_mm", ParamType::f32, "mm", kFollowingFloorMinMm, kFollowingFloorMaxMm, "", \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].following.floor_mm), "following-error limit at rest"},                      \
+      {base + 0x54, p "limits.following_lag_s", ParamType::f32, "s", 0, kFollowingLagMaxS, "",                           \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].following.lag_s), "following-error limit growth per mm/s"},                 \
+      {base + 0x55, p "limits.stall_command_mm_s", ParamType::f32, "mm/s", kStallCommandMinMmS, kStallCommandMaxMmS, "", \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.supervisor.axis[ax].stall.command_mm_s),                                                        \
+       "stall monitor: |command| that must move the encoder (above the breakaway)"},                                     \
+      {base + 0x56, p "limits.stall_ticks", ParamType::u32, "tick", 1, kStallTicksMax, "",                               \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_INT(firmware.supervisor.axis[ax].stall.ticks), "stall monitor: ticks without a count that trip"},             \
+      {base + 0x60, p "jog.speed_max_mm_s", ParamType::f32, "mm/s", 0, 1e4, "",                                          \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].jog.speed_max_mm_s), "jog speed limit"},                                               \
+      {base + 0x61, p "jog.accel_mm_s2", ParamType::f32, "mm/s^2", 0, 1e6, "", Access::read_write, Apply::idle, kOpen,   \
+       TNV_REAL(firmware.axis[ax].jog.accel_mm_s2), "jog acceleration"},                                                 \
+      {base + 0x62, p "jog.deadman_s", ParamType::f32, "s", kJogDeadmanMinS, kJogDeadmanMaxS, "",                        \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.axis[ax].jog.deadman_s), "longest silence of the jog stream before the axis stops"},            \
+      {base + 0x70, p "hw.count_mm", ParamType::f32, "mm", kCountMinMm, kCountMaxMm, "",                                 \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.axis[ax].count_mm), "encoder count (lead / counts per rev, x4)"},                               \
+      {base + 0x71, p "hw.dac_full_scale_mm_s", ParamType::f32, "mm/s", kDacFullScaleMinMmS, kDacFullScaleMaxMmS, "",    \
+       Access::read_write, Apply::idle, kSafety,                                                                         \
+       TNV_REAL(firmware.axis[ax].dac.full_scale_mm_s), "speed at DAC full scale (+10 V)"},                              \
+      {base + 0x80, p "friction.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,   \
+       TNV_INT(firmware.axis[ax].friction.enabled), "friction feed-forward on (docs/autotune.md)"},                      \
+      {base + 0x81, p "friction.coulomb_mm_s", ParamType::f32, "mm/s", 0, 1e3, "",                                       \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].friction.coulomb_mm_s), "Coulomb friction f_c (table-speed equivalent)"},              \
+      {base + 0x82, p "friction.stiction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "", Access::read_write,                  \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].friction.stiction_mm_s), "stiction f_s >= f_c"},                   \
+      {base + 0x83, p "friction.stribeck_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,               \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].friction.stribeck_mm_s), "Stribeck speed v_s"},                    \
+      {base + 0x84, p "friction.gain", ParamType::f32, "", 1e-6, 1e3, "", Access::read_write, Apply::idle, kOpen,        \
+       TNV_REAL(firmware.axis[ax].friction.gain), "speed-loop gain K the feed-forward divides by"},                      \
+      {base + 0x85, p "friction.fraction", ParamType::f32, "", 0, 1.5, "", Access::read_write, Apply::idle, kOpen,       \
+       TNV_REAL(firmware.axis[ax].friction.fraction), "share of the friction model fed forward"},                        \
+      {base + 0x90, p "observer.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,   \
+       TNV_INT(firmware.axis[ax].observer.enabled), "speed observer fed back instead of the M-method speed"},            \
+      {base + 0x91, p "observer.use_position", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write,                 \
+       Apply::idle, kOpen, TNV_INT(firmware.axis[ax].observer.use_position), "also feed back the estimated position"},   \
+      {base + 0x92, p "observer.gain_position", ParamType::f32, "", -1e3, 1e3, "",                                       \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].observer.gain_position), "observer gain l_p (Kalman, speed_observer.hpp)"},            \
+      {base + 0x93, p "observer.gain_speed_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,               \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].observer.gain_speed_1_s), "observer gain l_v"},                    \
+      {base + 0x94, p "observer.gain_disturbance_1_s", ParamType::f32, "1/s", -1e6, 1e6, "", Access::read_write,         \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].observer.gain_disturbance_1_s), "observer gain l_d"},              \
+      {base + 0x95, p "observer.friction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "",                                      \
+       Access::read_write, Apply::idle, kOpen,                                                                           \
+       TNV_REAL(firmware.axis[ax].observer.friction_mm_s), "Coulomb friction f_c / K the observer's model takes out"},   \
+  {                                                                                                                      \
+    base + 0x96, p "observer.friction_deadband_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,         \
+        Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].observer.friction_deadband_mm_s),                                 \
+        "|estimated speed| below which the observer assumes no friction"                                                 \
   }
 
 constexpr ParamDef kParams[] = {
-    {0x0000, "sys.protocol_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+    {0x0000, "sys.protocol_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
      TNV_RO(kProtocolVersion), "protocol version; the host refuses a node with another"},
-    {0x0001, "sys.param_count", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+    {0x0001, "sys.param_count", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
      TNV_RO(param_count()), "number of parameters"},
-    {0x0002, "sys.capture_capacity_words", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live,
+    {0x0002, "sys.capture_capacity_words", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
      TNV_RO(kCaptureCapacityWords), "capture buffer, 32-bit words"},
-    {0x0010, "can.node_id", ParamType::u32, "", 1, 63, "", Access::read_write, Apply::restart,
+    {0x0010, "can.node_id", ParamType::u32, "", 1, 63, "", Access::read_write, Apply::restart, kOpen,
      TNV_INT(can.node_id), "this node's id (identifier bits 5..0)"},
-    {0x0011, "can.bitrate_kbit", ParamType::u32, "kbit/s", 125, 1000, "", Access::read_write, Apply::restart,
+    {0x0011, "can.bitrate_kbit", ParamType::u32, "kbit/s", 125, 1000, "", Access::read_write, Apply::restart, kOpen,
      [](const NodeSettings& s) noexcept -> double { return s.can.bitrate_kbit; },
      [](NodeSettings& s, double v) noexcept { s.can.bitrate_kbit = static_cast<std::uint32_t>(v); },
      allowed_bitrate, "bus bit rate: 125, 250, 500 or 1000"},
-    {0x0012, "can.host_timeout_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0012, "can.host_timeout_ms", ParamType::u32, "ms", 0, kHostTimeoutMaxMs, "", Access::read_write, Apply::live,
+     kSafety,
      TNV_INT(can.host_timeout_ms), "controlled stop when no frame came from the host this long while moving; 0 = off"},
-    {0x0020, "tlm.heartbeat_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0020, "tlm.heartbeat_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.heartbeat_ms), "HEARTBEAT period; 0 = off"},
-    {0x0021, "tlm.position_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0021, "tlm.position_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.position_ms), "TLM_POSITION period; 0 = off"},
-    {0x0022, "tlm.following_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0022, "tlm.following_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.following_ms), "TLM_FOLLOWING period; 0 = off"},
-    {0x0023, "tlm.sliding_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0023, "tlm.sliding_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.sliding_ms), "TLM_SLIDING_X/Y period; 0 = off"},
-    {0x0024, "tlm.output_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0024, "tlm.output_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.output_ms), "TLM_OUTPUT period; 0 = off"},
-    {0x0025, "tlm.contour_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live,
+    {0x0025, "tlm.contour_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.contour_ms), "TLM_CONTOUR period; 0 = off"},
-    {0x0030, "motion.circle_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live,
+    {0x0030, "motion.circle_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.circle_ramp_s), "feed ramp at the start and end of a circle"},
-    {0x0031, "motion.circle_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live,
+    {0x0031, "motion.circle_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.circle_dwell_s), "servo-on hold before a circle starts"},
-    {0x0032, "motion.move_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live,
+    {0x0032, "motion.move_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.move_ramp_s), "speed ramp of a point-to-point move"},
-    {0x0033, "motion.move_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live,
+    {0x0033, "motion.move_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.move_dwell_s), "servo-on hold before a move starts"},
-    {0x0040, "capture.channels", ParamType::u32, "", 1, kAllCaptureChannels, "", Access::read_write, Apply::live,
+    {0x0040, "capture.channels", ParamType::u32, "", 1, kAllCaptureChannels, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(capture.channels), "channel bit mask (capture_channels); busy while a capture is armed"},
     {0x0041, "capture.trigger", ParamType::enumeration, "", 0, 2, "0=immediate 1=motion 2=fault", Access::read_write,
-     Apply::live, TNV_INT(capture.trigger), "when recording starts"},
-    {0x0042, "capture.decimation", ParamType::u32, "tick", 1, 255, "", Access::read_write, Apply::live,
+     Apply::live, kOpen, TNV_INT(capture.trigger), "when recording starts"},
+    {0x0042, "capture.decimation", ParamType::u32, "tick", 1, 255, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(capture.decimation), "ticks per recorded sample"},
-    {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live,
+    {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(force.n_per_volt), "force-sensor scale (ADC volts to N)"},
-    {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, 1000, "", Access::read_write, Apply::idle,
-     TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
+    {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, kMissedTicksMax, "", Access::read_write, Apply::idle,
+     kSafety, TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
     TNV_AXIS_PARAMS(0, 0x0100, "x."),
     TNV_AXIS_PARAMS(1, 0x0200, "y."),
 };
@@ -205,6 +273,17 @@ static_assert(sorted_unique(), "parameter ids must be sorted and unique");
 std::size_t param_count() noexcept { return std::size(kParams); }
 
 }  // namespace
+
+std::uint16_t first_safety_change(const NodeSettings& live, const NodeSettings& next) noexcept {
+  for (const ParamDef& p : kParams)
+    if (safety_param(p) && to_wire(p, p.get(live)) != to_wire(p, p.get(next))) return p.id;
+  return 0;
+}
+
+void keep_safety_params(const NodeSettings& from, NodeSettings& to) noexcept {
+  for (const ParamDef& p : kParams)
+    if (safety_param(p)) p.set(to, p.get(from));
+}
 
 std::span<const ParamDef> param_table() noexcept { return kParams; }
 

@@ -19,6 +19,14 @@ enum class Apply : std::uint8_t {
   idle,     // only at rest (disabled or holding): refused with "busy" while moving
   restart,  // stored at once, used from the next start (node id, bit rate)
 };
+// Who may change a parameter. A safety parameter is one whose wrong value
+// defeats a safety function (a supervisor limit, the missed-tick limit,
+// the host timeout, the jog dead man, the encoder and DAC scales): it
+// changes only in commissioning mode (docs/safety.md "Commissioning").
+enum class Guard : std::uint8_t {
+  open,           // any write the access and apply rules allow
+  commissioning,  // a change outside commissioning mode is refused (commissioning_required)
+};
 
 constexpr const char* to_string(ParamType t) noexcept {
   switch (t) {
@@ -31,6 +39,7 @@ constexpr const char* to_string(ParamType t) noexcept {
   return "?";
 }
 constexpr const char* to_string(Access a) noexcept { return a == Access::read_only ? "ro" : "rw"; }
+constexpr const char* to_string(Guard g) noexcept { return g == Guard::commissioning ? "commissioning" : "open"; }
 constexpr const char* to_string(Apply a) noexcept {
   switch (a) {
     case Apply::live: return "live";
@@ -50,6 +59,7 @@ struct ParamDef {
   const char* values;  // enumeration / boolean names "0=pid 1=dvsc 2=rdvsc"; "" otherwise
   Access access;
   Apply apply;
+  Guard guard;
   double (*get)(const NodeSettings&) noexcept;
   void (*set)(NodeSettings&, double) noexcept;  // nullptr for read-only
   bool (*allowed)(double) noexcept;             // extra membership test (e.g. bit rates); nullptr = none
@@ -60,6 +70,16 @@ struct ParamDef {
 std::span<const ParamDef> param_table() noexcept;
 const ParamDef* find_param(std::uint16_t id) noexcept;
 const ParamDef* find_param(const char* name) noexcept;
+
+// A safety parameter (Guard::commissioning).
+constexpr bool safety_param(const ParamDef& p) noexcept { return p.guard == Guard::commissioning; }
+
+// The first safety parameter whose value differs between `live` and
+// `next` (compared as the wire carries it, so a value read back and
+// written again is no change); 0 if none.
+std::uint16_t first_safety_change(const NodeSettings& live, const NodeSettings& next) noexcept;
+// Copies every safety parameter of `from` into `to`.
+void keep_safety_params(const NodeSettings& from, NodeSettings& to) noexcept;
 
 // Range / type check of one value for one parameter: ok, not_finite,
 // out_of_range (also for a non-integer value of an integer type) or

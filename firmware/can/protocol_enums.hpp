@@ -24,6 +24,8 @@ enum class ErrorCode : std::uint8_t {
   not_ready,        // the request needs something that is not there (no capture, shaper not configured)
   cause_present,    // clear faults refused: the cause (e.g. e-stop) is still asserted
   bad_axis,         // axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all)
+  commissioning_required,  // a safety parameter changes only in commissioning mode; nothing applied
+  not_permitted,           // this node's local configuration forbids it (tnv-fw: [safety] allow_commissioning)
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
@@ -43,10 +45,12 @@ constexpr const char* to_string(ErrorCode e) noexcept {
     case ErrorCode::not_ready: return "not_ready";
     case ErrorCode::cause_present: return "cause_present";
     case ErrorCode::bad_axis: return "bad_axis";
+    case ErrorCode::commissioning_required: return "commissioning_required";
+    case ErrorCode::not_permitted: return "not_permitted";
   }
   return "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 15;
+inline constexpr std::uint8_t kErrorCodeCount = 17;
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {
@@ -60,8 +64,12 @@ enum class CommandCode : std::uint8_t {
   save_params,        // write the live parameter set to storage
   load_params,        // read the stored set and apply it whole; only when at rest
   restore_defaults,   // the papers' defaults (not saved until save_params); only when at rest
+  reserved_10,        // reserved for command ownership; answered unknown_command
+  reserved_11,        // reserved for command ownership; answered unknown_command
+  enter_commissioning,  // safety parameters become writable; only while disabled (docs/safety.md)
+  leave_commissioning,  // back to normal; also left on enable, motion or a fault
 };
-inline constexpr std::uint8_t kCommandCodeCount = 10;
+inline constexpr std::uint8_t kCommandCodeCount = 14;
 
 constexpr const char* to_string(CommandCode c) noexcept {
   switch (c) {
@@ -75,6 +83,10 @@ constexpr const char* to_string(CommandCode c) noexcept {
     case CommandCode::save_params: return "save_params";
     case CommandCode::load_params: return "load_params";
     case CommandCode::restore_defaults: return "restore_defaults";
+    case CommandCode::reserved_10: return "reserved_10";
+    case CommandCode::reserved_11: return "reserved_11";
+    case CommandCode::enter_commissioning: return "enter_commissioning";
+    case CommandCode::leave_commissioning: return "leave_commissioning";
   }
   return "?";
 }
@@ -121,6 +133,7 @@ enum HeartbeatBit : std::uint16_t {
   kHbShaperY = 1u << 10,
   kHbHostTimeout = 1u << 11,
   kHbCanErrors = 1u << 12,
+  kHbCommissioning = 1u << 13,
 };
 
 struct HeartbeatBitDoc {
@@ -142,6 +155,7 @@ inline constexpr HeartbeatBitDoc kHeartbeatBits[] = {
     {kHbShaperY, "shaper_y", "input shaper on, y"},
     {kHbHostTimeout, "host_timeout", "motion was stopped because the host went silent"},
     {kHbCanErrors, "can_errors", "the CAN controller reported error frames (bus error, error-passive, bus-off)"},
+    {kHbCommissioning, "commissioning", "commissioning mode: safety parameters are writable (docs/safety.md)"},
 };
 
 }  // namespace tnv::fw::can

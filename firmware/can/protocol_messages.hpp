@@ -44,7 +44,8 @@ inline constexpr const char* kFaultValues =
     "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall";
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
-    "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis";
+    "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "
+    "15=commissioning_required 16=not_permitted";
 inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
 
 inline constexpr FieldDef kFaultEvent[] = {
@@ -56,7 +57,7 @@ inline constexpr FieldDef kFaultEvent[] = {
 inline constexpr FieldDef kCommand[] = {
     {"code", WireType::u8, 0, 1, "",
      "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
-     "8=load_params 9=restore_defaults",
+     "8=load_params 9=restore_defaults 10=reserved_10 11=reserved_11 12=enter_commissioning 13=leave_commissioning",
      "what to do"},
     {"axis", WireType::u8, 1, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
     {"arg", WireType::u16, 2, 1, "", "", "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on"},

@@ -17,6 +17,7 @@ using fw::can::MessageId;
 using fw::can::ParamOp;
 
 constexpr auto kBusy = static_cast<std::uint32_t>(ErrorCode::busy);
+constexpr auto kCommissioningRequired = static_cast<std::uint32_t>(ErrorCode::commissioning_required);
 constexpr auto kInvalid = static_cast<std::uint32_t>(ErrorCode::invalid);
 
 // A rig with the scenario's circle running (past the dwell).
@@ -47,7 +48,9 @@ TEST(CanNodeMoving, IdleParametersAreRefusedBusyWhileACircleRunsAndLiveOnesApply
     ASSERT_EQ(def.apply, fw::can::Apply::idle);
     const std::vector<hal::CanFrame> out = r->request(param_request(kRigNode, ParamOp::set, def.id, p.raw));
     ASSERT_EQ(out.size(), 1u);
-    EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "result"), kBusy);
+    // A safety parameter is refused before the apply rule: commissioning mode needs a disabled servo.
+    EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "result"),
+              fw::can::safety_param(def) ? kCommissioningRequired : kBusy);
     EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "value"), fw::can::to_wire(def, def.get(settings_before)))
         << "the unchanged value read back";
     r->step();
@@ -59,7 +62,7 @@ TEST(CanNodeMoving, IdleParametersAreRefusedBusyWhileACircleRunsAndLiveOnesApply
   EXPECT_EQ(r->result(command(kRigNode, CommandCode::zero, 0, 0, 0.0)), kBusy);
   // A staged idle parameter makes the whole commit busy, the live one in it included.
   r->request(param_request(kRigNode, ParamOp::stage, param_id("x.sliding.gamma"), f32_raw(0.3f)));
-  r->request(param_request(kRigNode, ParamOp::stage, param_id("x.limits.following_floor_mm"), f32_raw(0.06f)));
+  r->request(param_request(kRigNode, ParamOp::stage, param_id("y.pid.derivative_filter_tf_s"), f32_raw(0.002f)));
   EXPECT_EQ(r->result(param_request(kRigNode, ParamOp::commit, 0)), kBusy);
   EXPECT_EQ(r->task().sliding_params(hal::Axis::x).gamma, before.axis[0].sliding.gamma);
   r->request(param_request(kRigNode, ParamOp::discard, 0));
@@ -80,7 +83,13 @@ TEST(CanNodeMoving, IdleParametersAreRefusedBusyWhileACircleRunsAndLiveOnesApply
   EXPECT_EQ(r->task().state(), fw::MotionState::moving);
   ASSERT_TRUE(r->run_until(fw::MotionState::holding, 25'000)) << "the circle finishes, no fault: "
                                                                << fw::to_string(r->task().fault().reason);
-  // At rest the idle one is accepted.
+  // At rest the idle one is accepted; the safety one after disable, in commissioning mode.
+  EXPECT_EQ(r->result(param_request(kRigNode, ParamOp::set, param_id("y.jog.accel_mm_s2"), f32_raw(500.0f))), kOk);
+  EXPECT_EQ(r->task().config().axis[1].jog.accel_mm_s2, 500.0);
+  EXPECT_EQ(r->result(param_request(kRigNode, ParamOp::set, param_id("x.limits.speed_max_mm_s"), f32_raw(120.0f))),
+            kCommissioningRequired);
+  ASSERT_EQ(r->result(command(kRigNode, CommandCode::disable)), kOk);
+  ASSERT_EQ(r->result(command(kRigNode, CommandCode::enter_commissioning)), kOk);
   EXPECT_EQ(r->result(param_request(kRigNode, ParamOp::set, param_id("x.limits.speed_max_mm_s"), f32_raw(120.0f))), kOk);
   EXPECT_EQ(r->task().config().supervisor.axis[0].speed_max_mm_s, 120.0);
 }
@@ -257,6 +266,7 @@ TEST(CanNodeMoving, AJogStreamThatGoesSilentStopsByItsDeadMan) {
 TEST(CanNodeMoving, ASilentHostStopsTheMotionWhenItsTimeoutIsSet) {
   auto r = CanRig::make();
   ASSERT_TRUE(r);
+  ASSERT_EQ(r->result(command(kRigNode, CommandCode::enter_commissioning)), kOk);  // a safety parameter
   ASSERT_EQ(r->result(param_request(kRigNode, ParamOp::set, param_id("can.host_timeout_ms"), 300)), kOk);
   ASSERT_EQ(r->result(circle(kRigNode, r->scenario.circle.radius_mm, r->scenario.circle.feed_mm_s)), kOk);
   // The dwell is 500 ms: the host's silence runs out during it.

@@ -26,6 +26,7 @@ TEST(DaemonConfig, AMinimalFileTakesTheDefaults) {
   EXPECT_TRUE(r.config->rt.require);
   EXPECT_EQ(r.config->tick.period_us, 1000u);
   EXPECT_FALSE(r.config->lines.any());
+  EXPECT_FALSE(r.config->safety.allow_commissioning) << "commissioning is off unless the file allows it";
 }
 
 TEST(DaemonConfig, EveryKeyIsRead) {
@@ -46,6 +47,8 @@ require = false
 period_us = 10000
 [params]
 file = "/tmp/p.bin"
+[safety]
+allow_commissioning = true
 )";
   const fwd::ConfigResult r = fwd::parse_daemon_config(text, "fw.toml");
   ASSERT_TRUE(r.config) << r.error;
@@ -66,6 +69,7 @@ file = "/tmp/p.bin"
   EXPECT_FALSE(c.rt.require);
   EXPECT_EQ(c.tick.period_us, 10000u);
   EXPECT_EQ(c.params.file, "/tmp/p.bin");
+  EXPECT_TRUE(c.safety.allow_commissioning);
 }
 
 TEST(DaemonConfig, RefusalsAreOneLineWithFileLineAndKey) {
@@ -88,6 +92,9 @@ TEST(DaemonConfig, RefusalsAreOneLineWithFileLineAndKey) {
        "fw.toml:5: can.interface: a network interface name has at most 15 characters"},
       {board + "[rt]\npriority = 150\n", "fw.toml:5: rt.priority: must be 0..99 (got 150)"},
       {board + "[rt]\nrequire = 1\n", "fw.toml:5: rt.require: must be true or false, not an integer"},
+      {board + "[safety]\nallow_commissioning = \"yes\"\n",
+       "fw.toml:5: safety.allow_commissioning: must be true or false, not a string"},
+      {board + "[safety]\nallow = true\n", "fw.toml:5: safety.allow: unknown key (known: allow_commissioning)"},
       {board + "[rt]\ncpu = -2\n", "fw.toml:5: rt.cpu: must be -1..1023 (got -2)"},
       {board + "[tick]\nperiod_us = 50\n", "fw.toml:5: tick.period_us: must be 100..100000 (got 50)"},
       {board + "[lines]\ntick = 4\n",
@@ -101,7 +108,7 @@ TEST(DaemonConfig, RefusalsAreOneLineWithFileLineAndKey) {
       {board + "[lines]\nalarm_x = { name = \"A\", pull = \"up\" }\n",
        "fw.toml:5: lines.alarm_x.pull: unknown key (known: chip offset name active_low)"},
       {board + "[params]\nfile = \"\"\n", "fw.toml:5: params.file: must not be empty"},
-      {board + "[watchdog]\n", "fw.toml:4: watchdog: unknown key (known: board can lines rt tick params)"},
+      {board + "[watchdog]\n", "fw.toml:4: watchdog: unknown key (known: board can lines rt tick params safety)"},
       {board + "[rt\n", "fw.toml:4: TOML syntax: "},
   };
   for (const Case& c : cases) {
@@ -125,6 +132,7 @@ TEST(DaemonConfig, ThePackagedDefaultConfigIsValid) {
   ASSERT_TRUE(r.config) << r.error;
   EXPECT_EQ(r.config->board.transport, "spidev");
   EXPECT_TRUE(r.config->rt.require) << "the board default refuses to run without SCHED_FIFO";
+  EXPECT_FALSE(r.config->safety.allow_commissioning) << "the shipped board refuses commissioning";
 }
 
 }  // namespace

@@ -71,6 +71,56 @@ TEST(Daemon, ServesParametersAndHeartbeatsThenStopsWithOutputsSafe) {
   EXPECT_NEAR(machine.truth(hal::Axis::y).position_mm, 0.0, 0.05);
 }
 
+// Commissioning mode on the board needs [safety] allow_commissioning: by
+// default enter_commissioning is not_permitted and a safety parameter
+// stays locked; with the key the same requests go through.
+TEST(Daemon, CommissioningNeedsTheLocalPermission) {
+  for (const bool allowed : {false, true}) {
+    SCOPED_TRACE(allowed ? "allowed" : "default");
+    test::ScratchDir dir;
+    fwd::DaemonConfig config = test::rig_config(dir);
+    config.safety.allow_commissioning = allowed;
+    emu::Machine machine(*emu::resolve_scenario("no-cut").scenario);
+    board_emu::TickingBus ticking(machine);
+    std::string error;
+    const int listen_fd = drivers::listen_seqpacket(config.board.path, error);
+    ASSERT_GE(listen_fd, 0) << error;
+    std::thread server([&] {
+      const int fd = drivers::accept_seqpacket(listen_fd);
+      drivers::ServeStats stats;
+      drivers::serve_register_connection(fd, ticking, -1, stats);
+      ::close(fd);
+    });
+    std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, {}, error);
+    ASSERT_TRUE(daemon) << error;
+    ASSERT_EQ(daemon->start(), "");
+    {
+      test::HostLink host(config.can.interface_name.substr(5));
+      host.client.wait_heartbeat(can_host::Micros{3'000'000});
+      const fw::can::ParamDef& floor = *fw::can::find_param("x.limits.following_floor_mm");
+      fw::can::ErrorCode enter = fw::can::ErrorCode::ok;
+      try {
+        host.client.command(fw::can::CommandCode::enter_commissioning);
+      } catch (const can_host::RequestError& e) {
+        enter = e.code();
+      }
+      fw::can::ErrorCode set = fw::can::ErrorCode::ok;
+      try {
+        host.client.set(floor, 0.08);
+      } catch (const can_host::RequestError& e) {
+        set = e.code();
+      }
+      EXPECT_EQ(enter, allowed ? fw::can::ErrorCode::ok : fw::can::ErrorCode::not_permitted);
+      EXPECT_EQ(set, allowed ? fw::can::ErrorCode::ok : fw::can::ErrorCode::commissioning_required);
+      EXPECT_NEAR(host.client.get(floor), allowed ? 0.08 : 0.05, 1e-6);
+    }
+    EXPECT_TRUE(daemon->stop().safe);
+    daemon.reset();
+    server.join();
+    ::close(listen_fd);
+  }
+}
+
 TEST(Daemon, AMissingBoardIsAOneLineErrorNamingTheSocket) {
   test::ScratchDir dir;
   fwd::DaemonConfig config = test::rig_config(dir);

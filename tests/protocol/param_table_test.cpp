@@ -2,11 +2,14 @@
 // survive the wire, x and y describe the same things.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
@@ -117,6 +120,38 @@ TEST(ParamTable, EveryTunableTheIssueNamesIsThere) {
     }
   for (const char* name : {"can.node_id", "can.bitrate_kbit", "tlm.heartbeat_ms", "tlm.position_ms"})
     EXPECT_NE(find_param(name), nullptr) << name;
+}
+
+// The safety parameters are exactly the ones docs/safety.md "Commissioning"
+// lists: every supervisor limit, the stall levels, the missed-tick limit,
+// the host timeout, the jog dead man and the encoder and DAC scales.
+TEST(ParamTable, SafetyParametersAreTheSupervisorsLimitsAndTheScales) {
+  std::vector<std::string> safety;
+  for (const ParamDef& p : param_table())
+    if (safety_param(p)) safety.emplace_back(p.name);
+  std::vector<std::string> expected = {"can.host_timeout_ms", "supervisor.max_missed_ticks"};
+  for (const char* axis : {"x.", "y."})
+    for (const char* name : {"limits.position_min_mm", "limits.position_max_mm", "limits.speed_max_mm_s",
+                             "limits.following_floor_mm", "limits.following_lag_s", "limits.stall_command_mm_s",
+                             "limits.stall_ticks", "jog.deadman_s", "hw.count_mm", "hw.dac_full_scale_mm_s"})
+      expected.push_back(std::string(axis) + name);
+  std::sort(safety.begin(), safety.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(safety, expected);
+  for (const ParamDef& p : param_table())
+    if (safety_param(p)) {
+      EXPECT_EQ(p.access, Access::read_write) << p.name;
+    }
+}
+
+// The values the issue used to defeat the supervisor are outside the ranges.
+TEST(ParamTable, TheIssuesAbuseIsOutOfRange) {
+  const std::pair<const char*, double> abuse[] = {{"x.limits.following_floor_mm", 100.0},
+                                                  {"x.limits.following_lag_s", 10.0},
+                                                  {"x.limits.position_min_mm", -10000.0},
+                                                  {"x.limits.position_max_mm", 10000.0},
+                                                  {"supervisor.max_missed_ticks", 1000.0}};
+  for (const auto& [name, value] : abuse) EXPECT_EQ(check_value(*find_param(name), value), ErrorCode::out_of_range) << name;
 }
 
 TEST(CaptureChannels, BitsAreDenseAndValuesAre32Bit) {

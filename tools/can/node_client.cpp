@@ -93,6 +93,12 @@ ParamReply NodeClient::param_op(can::ParamOp op, const can::ParamDef* p, std::ui
         message.append(", value now ").append(format_param_value(*p, can::from_wire(*p, r.value_raw)));
       message += ")";
     }
+    if (r.result == can::ErrorCode::commissioning_required) {
+      // A commit names the safety parameter in its value field.
+      const can::ParamDef* blamed = p != nullptr ? p : can::find_param(static_cast<std::uint16_t>(r.value_raw));
+      message.append(": ").append(blamed != nullptr ? blamed->name : "a parameter");
+      message += " is a safety parameter: enter commissioning mode first";
+    }
     throw RequestError(RequestError::Kind::refused, message, r.result);
   }
   return r;

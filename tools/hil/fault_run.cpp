@@ -49,11 +49,13 @@ const char* to_string(FaultMotion motion) noexcept {
 }
 
 FaultObservation run_fault_case(const emu::Scenario& scenario, const FaultCase& fault_case,
-                                 fw::ControllerKind controller, std::unique_ptr<HilRig>* rig_out) {
+                                 fw::ControllerKind controller, std::unique_ptr<HilRig>* rig_out,
+                                 const fw::FirmwareConfig* config) {
   FaultObservation obs;
   emu::Scenario with_fault = scenario;
   with_fault.faults.push_back(fault_case.fault);
-  std::unique_ptr<HilRig> rig = HilRig::create(with_fault, fw::default_firmware_config(), controller, obs.error);
+  std::unique_ptr<HilRig> rig = HilRig::create(
+      with_fault, config != nullptr ? *config : fw::default_firmware_config(), controller, obs.error);
   if (!rig) return obs;
   emu::Machine& machine = rig->machine;
   fw::TickTask& task = rig->task;

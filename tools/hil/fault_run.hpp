@@ -66,10 +66,12 @@ struct FaultObservation {
 };
 
 // Runs one case on a fresh rig; `rig_out`, if given, receives the rig
-// afterwards (to go on ticking, clear the fault, ...).
+// afterwards (to go on ticking, clear the fault, ...). `config`: the
+// firmware's configuration (default_firmware_config() if null).
 FaultObservation run_fault_case(const emu::Scenario& scenario, const FaultCase& fault_case,
                                  fw::ControllerKind controller = fw::ControllerKind::rdvsc,
-                                 std::unique_ptr<HilRig>* rig_out = nullptr);
+                                 std::unique_ptr<HilRig>* rig_out = nullptr,
+                                 const fw::FirmwareConfig* config = nullptr);
 
 // The firmware stops ticking at hang_s (mid-circle) while the board runs on:
 // when does the board's watchdog make the outputs safe, and what does the

@@ -83,6 +83,9 @@ void codes(std::string& out) {
   for (std::uint8_t i = 0; i < kCommandCodeCount; ++i)
     append(out, "| ", std::to_string(i), " | ", to_string(static_cast<CommandCode>(i)), " |\n");
   out += "\nzero, select_controller, load_params and restore_defaults need the machine at rest (else busy); save_params too.\n";
+  out += "enter_commissioning needs the servo disabled (else busy) and no fault latched (else faulted), and on tnv-fw "
+         "the config's [safety] allow_commissioning (else not_permitted); the mode ends at leave_commissioning, enable, "
+         "any accepted motion or a fault (docs/safety.md \"Commissioning\"). 10 and 11 are reserved (unknown_command).\n";
   out += "\n## Heartbeat error bits (HEARTBEAT.errors)\n\n| bit | name | meaning |\n|---|---|---|\n";
   for (const HeartbeatBitDoc& b : kHeartbeatBits) {
     int bit = 0;
@@ -97,7 +100,9 @@ void parameters(std::string& out, const NodeSettings& d) {
          "PARAM_REQUEST `get` reads, `set` writes one parameter and applies it, `stage` collects writes that ",
          "`commit` applies together between two ticks (or refuses together), `discard` drops them. Apply: ",
          "`live` any time, also while moving; `idle` only at rest (refused with busy while a motion runs); ",
-         "`restart` stored now, used from the next start. Defaults are the papers' values (S1 Tables 1/2, ",
+         "`restart` stored now, used from the next start. Access `rw commissioning`: a safety parameter, changed only in ",
+         "commissioning mode (COMMAND enter_commissioning while disabled; outside it a change is refused with ",
+         "commissioning_required, docs/safety.md \"Commissioning\"). Defaults are the papers' values (S1 Tables 1/2, ",
          "eq. 31) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
          "| id | name | type | unit | range | default | access | apply | meaning |\n",
          "|---|---|---|---|---|---|---|---|---|\n");
@@ -105,7 +110,7 @@ void parameters(std::string& out, const NodeSettings& d) {
     std::string range = p.access == Access::read_only ? std::string("-") : number(p.min) + " .. " + number(p.max);
     if (p.values[0] != '\0') range = p.values;
     append(out, "| ", hex(p.id, 4), " | `", p.name, "` | ", to_string(p.type), " | ", p.unit, " | ", cell(range), " | ",
-           number(p.get(d)), " | ", to_string(p.access), " | ", to_string(p.apply), " | ", cell(p.doc), " |\n");
+           number(p.get(d)), " | ", safety_param(p) ? "rw commissioning" : to_string(p.access), " | ", to_string(p.apply), " | ", cell(p.doc), " |\n");
   }
   out += '\n';
 }

@@ -127,7 +127,7 @@ ConfigResult parse_daemon_config(std::string_view text, const std::string& sourc
 
   Reader r(source_name);
   DaemonConfig c;
-  r.only(root, "", {"board", "can", "lines", "rt", "tick", "params"});
+  r.only(root, "", {"board", "can", "lines", "rt", "tick", "params", "safety"});
 
   const toml::table* board = r.table(root, "board");
   if (board != nullptr) {
@@ -190,6 +190,11 @@ ConfigResult parse_daemon_config(std::string_view text, const std::string& sourc
   if (const toml::table* params = r.table(root, "params"); params != nullptr) {
     r.only(*params, "params.", {"file"});
     r.text(*params, "params.", "file", c.params.file);
+  }
+
+  if (const toml::table* safety = r.table(root, "safety"); safety != nullptr) {
+    r.only(*safety, "safety.", {"allow_commissioning"});
+    r.boolean(*safety, "safety.", "allow_commissioning", c.safety.allow_commissioning);
   }
 
   if (r.failed()) return {std::nullopt, r.error()};

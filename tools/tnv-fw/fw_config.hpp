@@ -39,6 +39,11 @@ struct ParamsConfig {
   std::string file = "/var/lib/tnv-fw/params.bin";
 };
 
+// Local permissions no CAN frame can grant (docs/safety.md "Commissioning").
+struct SafetyConfig {
+  bool allow_commissioning = false;  // COMMAND enter_commissioning accepted; else refused not_permitted
+};
+
 struct DaemonConfig {
   BoardConfig board;
   CanConfig can;
@@ -46,6 +51,7 @@ struct DaemonConfig {
   RtConfig rt;
   TickConfig tick;
   ParamsConfig params;
+  SafetyConfig safety;
 };
 
 struct ConfigResult {

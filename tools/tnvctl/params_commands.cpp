@@ -1,5 +1,7 @@
 // tnvctl params list | get | set | save | load | defaults
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <set>
 
@@ -25,7 +27,26 @@ std::string access_text(const can::ParamDef& p) {
   if (p.access == can::Access::read_only) return "ro";
   std::string out = "rw/";
   out += can::to_string(p.apply);
+  if (can::safety_param(p)) out += "/safety";
   return out;
+}
+
+constexpr const char* kEnterCommissioning = "enter commissioning mode first (tnvctl commissioning enter, servo disabled)";
+
+// "x.limits.following_floor_mm is a safety parameter: enter ..." for the
+// safety parameters among `changes` (the node refused commissioning_required).
+template <typename Changes>
+std::string safety_refusal(const Changes& changes) {
+  std::string names;
+  int n = 0;
+  for (const auto& c : changes)
+    if (can::safety_param(*c.param)) {
+      names.append(n == 0 ? "" : ", ").append(c.param->name);
+      ++n;
+    }
+  if (n == 0) names = "the set";  // the node saw a change this host did not ask for
+  names.append(n > 1 ? " are safety parameters: " : " is a safety parameter: ").append(kEnterCommissioning);
+  return names;
 }
 
 nlohmann::json value_json(const can::ParamDef& p, double v) {
@@ -41,6 +62,7 @@ nlohmann::json param_json(const can::ParamDef& p, double v) {
           {"unit", p.unit},
           {"range", can_host::range_text(p)},
           {"access", p.access == can::Access::read_only ? "ro" : "rw"},
+          {"safety", can::safety_param(p)},
           {"apply", can::to_string(p.apply)},
           {"doc", p.doc}};
 }
@@ -89,6 +111,21 @@ int run_get(const std::vector<std::string>& names, Session& session, Report& rep
   return kExitOk;
 }
 
+// A safety parameter's value outside its range still goes to the node,
+// which answers commissioning_required outside commissioning mode before
+// it checks the range (and out_of_range in it): the refusal that matters
+// comes first. Only a number the wire carries exactly is sent.
+std::optional<double> safety_value_for_the_node(const can::ParamDef& p, const std::string& text) {
+  char* end = nullptr;
+  const double number = std::strtod(text.c_str(), &end);
+  if (text.empty() || end == nullptr || *end != '\0') return std::nullopt;
+  const std::optional<double> v = number;
+  if (can::check_value(p, *v) != can::ErrorCode::out_of_range) return std::nullopt;
+  if (p.type != can::ParamType::f32 && can::from_wire(p, can::to_wire(p, *v)) != *v) return std::nullopt;
+  if (p.type == can::ParamType::f32 && !std::isfinite(static_cast<float>(*v))) return std::nullopt;
+  return v;
+}
+
 struct Change {
   const can::ParamDef* param = nullptr;
   double requested = 0.0;
@@ -106,7 +143,8 @@ std::vector<Change> parse_assignments(const std::vector<std::string>& assignment
     }
     const can::ParamDef& p = param_named(a.substr(0, eq));
     std::string error;
-    const std::optional<double> v = can_host::parse_param_value(p, a.substr(eq + 1), error);
+    std::optional<double> v = can_host::parse_param_value(p, a.substr(eq + 1), error);
+    if (!v && can::safety_param(p)) v = safety_value_for_the_node(p, a.substr(eq + 1));
     if (!v) throw BadInput(error);
     if (!seen.insert(p.id).second) {
       std::string message = p.name;
@@ -147,6 +185,8 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
       } catch (const std::exception&) {
         // The refusal is what matters; the node drops a stale stage at the next commit anyway.
       }
+      if (e.code() == can::ErrorCode::commissioning_required)
+        throw RequestError(RequestError::Kind::refused, safety_refusal(changes), e.code());
     }
     throw;
   }
@@ -156,6 +196,7 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
   } catch (const RequestError& e) {
     if (e.kind() != RequestError::Kind::refused) throw;
     std::string message = e.what();
+    if (e.code() == can::ErrorCode::commissioning_required) message = safety_refusal(changes);
     if (e.code() == can::ErrorCode::invalid)
       if (const std::string why = explain_invalid(client, changes); !why.empty()) message.append(": ").append(why);
     if (e.code() == can::ErrorCode::busy) {
@@ -188,7 +229,14 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
 
 int run_storage_command(can::CommandCode code, Session& session, Report& report) {
   can_host::NodeClient& client = session.client();
-  client.command(code);
+  try {
+    client.command(code);
+  } catch (const RequestError& e) {
+    if (e.kind() != RequestError::Kind::refused || e.code() != can::ErrorCode::commissioning_required) throw;
+    std::string message = e.what();
+    message.append(": the stored set changes safety parameters: ").append(kEnterCommissioning);
+    throw RequestError(RequestError::Kind::refused, message, e.code());
+  }
   std::string text;
   switch (code) {
     case can::CommandCode::save_params: text = "parameters saved"; break;

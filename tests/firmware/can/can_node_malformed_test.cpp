@@ -132,9 +132,17 @@ std::vector<Case> cases() {
   // Each value in range, the set as a whole not: phi below eta / (q + 1) (S1 Theorem 2).
   add(c, "set phi below eta/(q+1)", param_request(kNode, ParamOp::set, id_of("x.sliding.phi_mm_s"), f32_raw(0.05f)),
                MessageId::param_reply, ErrorCode::invalid);
+  // Safety parameters outside commissioning mode: refused before any other check.
   add(c, "set position_min above max", param_request(kNode, ParamOp::set, id_of("y.limits.position_min_mm"),
                                                            f32_raw(300.0f)),
-               MessageId::param_reply, ErrorCode::invalid);
+               MessageId::param_reply, ErrorCode::commissioning_required);
+  add(c, "set following floor 100 mm", param_request(kNode, ParamOp::set, id_of("x.limits.following_floor_mm"),
+                                                           f32_raw(100.0f)),
+               MessageId::param_reply, ErrorCode::commissioning_required);
+  add(c, "stage max missed ticks 1000", param_request(kNode, ParamOp::stage, id_of("supervisor.max_missed_ticks"), 1000),
+               MessageId::param_reply, ErrorCode::commissioning_required);
+  add(c, "enter commissioning while holding", command(kNode, CommandCode::enter_commissioning), MessageId::command_ack,
+               ErrorCode::busy);
   // Bad axes.
   add(c, "zero axis 2", command(kNode, CommandCode::zero, 2, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
   add(c, "zero axis 255", command(kNode, CommandCode::zero, 255, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis);
