@@ -77,6 +77,7 @@ class MotionInterpolator {
   MotionReference tick() noexcept;
 
   MotionState state() const noexcept { return state_; }
+  double path_speed_mm_s() const noexcept { return follower_.speed_mm_s(); }
   bool at_rest() const noexcept;  // planner and filter output both at rest
   const MotionStats& stats() const noexcept;
   const DerivedLimits& derived() const noexcept { return queue_.derived(); }

@@ -91,6 +91,12 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
       return {FollowerPhase::holding, tag_};
     }
     const bool at_end = front.geometry.length_mm - distance_mm_ <= kArrived_mm;
+    if (at_end && continues_into_next(queue, queue.head_seq())) {
+      // Arrived on a corner (a slow one brakes to it): go on from the next segment.
+      queue.pop_front();
+      distance_mm_ = 0.0;
+      continue;
+    }
     if (at_end && !continues_into_next(queue, queue.head_seq()) && speed_mm_s_ <= d.path_accel_mm_s2 * d.dt_s) {
       finish_front(queue);
       if (hold_ticks_ > 0) {

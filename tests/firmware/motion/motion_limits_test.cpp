@@ -42,6 +42,14 @@ TEST(MotionLimits, SquareCornersKeepAccelerationAndJerkWithinLimitsAtEveryFeed) 
     expect_within_limits(run, "square");
     EXPECT_EQ(m.stats().follower.guard_failures, 0u);
     EXPECT_EQ(m.stats().follower.brake_shortfalls, 0u);
+    double max_x = 0.0, max_y = 0.0;
+    for (const PlanePoint& p : run.position_mm) {
+      max_x = std::max(max_x, p[0]);
+      max_y = std::max(max_y, p[1]);
+    }
+    EXPECT_GT(max_x, 20.0 - 0.005) << "feed " << feed << ": the square was not run to its corners";
+    EXPECT_GT(max_y, 20.0 - 0.005) << "feed " << feed;
+    EXPECT_NEAR(std::hypot(run.position_mm.back()[0], run.position_mm.back()[1]), 0.0, 1e-9);
     // Ramps use a quarter of the jerk limit (half the acceleration budget
     // through a filter sized for a full reversal): it must show.
     EXPECT_GT(run.jerk_ratio_max, 0.2) << "feed " << feed;
