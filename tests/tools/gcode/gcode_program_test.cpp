@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+
+#include "tests/tools/gcode/test_piece_path.hpp"
 
 namespace tnv::gcode {
 namespace {
+
+using test::test_piece_path;
 
 using fw::motion::SegmentKind;
 
@@ -107,7 +112,7 @@ TEST(GcodeProgram, ErrorsNameLineAndColumnAndUnsupportedWordsByName) {
 TEST(GcodeProgram, TheRepositoryTestPiecesParse) {
   for (const char* name : {"nas979_diamond_circle_square.ngc", "corners_90deg.ngc", "circle_chords_0p1mm.ngc",
                            "spiral.ngc"}) {
-    const GcodeResult r = parse_gcode_file(std::string(TNV_SOURCE_DIR) + "/tests/data/paths/" + name);
+    const GcodeResult r = parse_gcode_file(test_piece_path(name));
     ASSERT_FALSE(r.error.has_value()) << name << ": " << to_string(*r.error);
     EXPECT_TRUE(r.program.ended) << name;
     EXPECT_GT(r.program.segments.size(), 3u) << name;

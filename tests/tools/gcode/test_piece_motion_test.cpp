@@ -8,11 +8,14 @@
 #include <string>
 
 #include "tests/firmware/motion/motion_run.hpp"
+#include "tests/tools/gcode/test_piece_path.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/gcode/path_distance.hpp"
 
 namespace tnv::gcode {
 namespace {
+
+using test::test_piece_path;
 
 using fw::motion::MotionInterpolator;
 using fw::motion::Segment;
@@ -27,7 +30,7 @@ struct PieceResult {
 };
 
 GcodeProgram load(const char* name) {
-  const GcodeResult r = parse_gcode_file(std::string(TNV_SOURCE_DIR) + "/tests/data/paths/" + name);
+  const GcodeResult r = parse_gcode_file(test_piece_path(name));
   EXPECT_FALSE(r.error.has_value()) << name;
   return r.program;
 }
