@@ -55,7 +55,17 @@ ProgrammedPath::ProgrammedPath(std::vector<SegmentGeometry> elements) {
 
 double ProgrammedPath::distance_mm(const PlanePoint& p) const noexcept {
   double best = 1e300;
-  for (const SegmentGeometry& g : elements_) best = std::min(best, distance_to_segment_mm(g, p));
+  for (const SegmentGeometry& g : elements_) {
+    if (g.kind == SegmentKind::arc_cw || g.kind == SegmentKind::arc_ccw) {
+      // No point of the arc is nearer than the band between its radii: skip the angle test.
+      const double from_centre = std::hypot(p[0] - g.centre_mm[0], p[1] - g.centre_mm[1]);
+      const double r_lo = std::min(g.start_radius_mm, g.end_radius_mm);
+      const double r_hi = std::max(g.start_radius_mm, g.end_radius_mm);
+      const double band = from_centre < r_lo ? r_lo - from_centre : from_centre > r_hi ? from_centre - r_hi : 0.0;
+      if (band >= best) continue;
+    }
+    best = std::min(best, distance_to_segment_mm(g, p));
+  }
   return best;
 }
 
