@@ -49,9 +49,10 @@ bool MotionInterpolator::at_rest() const noexcept {
   return follower_.at_rest() && filter_.settled() && out_mm_[0] == out_mm_[3];
 }
 
-const MotionStats& MotionInterpolator::stats() const noexcept {
-  stats_.follower = follower_.stats();
-  return stats_;
+MotionStats MotionInterpolator::stats() const noexcept {
+  MotionStats s = stats_;
+  s.follower = follower_.stats();
+  return s;
 }
 
 MotionReference MotionInterpolator::tick() noexcept {

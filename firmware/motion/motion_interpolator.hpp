@@ -79,7 +79,7 @@ class MotionInterpolator {
   MotionState state() const noexcept { return state_; }
   double path_speed_mm_s() const noexcept { return follower_.speed_mm_s(); }
   bool at_rest() const noexcept;  // planner and filter output both at rest
-  const MotionStats& stats() const noexcept;
+  MotionStats stats() const noexcept;
   const DerivedLimits& derived() const noexcept { return queue_.derived(); }
   const MotionLimits& limits() const noexcept { return queue_.limits(); }
 
@@ -95,7 +95,7 @@ class MotionInterpolator {
   bool program_open_ = false;
   FollowerPhase last_phase_ = FollowerPhase::drained;
   MotionState state_ = MotionState::idle;
-  mutable MotionStats stats_{};
+  MotionStats stats_{};  // follower counts are added by stats()
 };
 
 }  // namespace tnv::fw::motion
