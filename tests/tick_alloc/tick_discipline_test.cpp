@@ -22,6 +22,7 @@
 #include "emulator/scenario_file.hpp"
 #include "firmware/can/can_node.hpp"
 #include "firmware/control/speed_observer_design.hpp"
+#include "firmware/motion/motion_interpolator.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tests/hil/hil_rig.hpp"
 
@@ -310,6 +311,40 @@ TEST(TickDiscipline, TheCanServiceMakesNoSystemCall) {
   if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": service() made a system call"
                                       : "the commit did not apply inside the child");
+}
+
+// The motion core (firmware/motion/): pushing segments and ticking through
+// lines, corners and arcs allocates nothing and makes no system call.
+TEST(TickDiscipline, TheMotionCoreAllocatesNothingAndMakesNoSystemCall) {
+  using namespace fw::motion;
+  std::vector<Segment> program;
+  for (int i = 1; i <= 200; ++i) program.push_back(line_to({0.5 * i, (i % 2) * 0.5}, 20.0));
+  program.push_back(arc_to(false, {100.0, 0.0}, {100.0, 5.0}, 20.0));
+  program.push_back(dwell_for(0.01));
+  const auto run = [&program](MotionInterpolator& m, int ticks) {
+    std::size_t next = 0;
+    for (int k = 0; k < ticks; ++k) {
+      while (next < program.size() && m.free_slots() > 0) (void)m.push(program[next++]);
+      if (k == ticks / 2) (void)m.set_feed_override(1.2);
+      (void)m.tick();
+    }
+    return m.stats().segments_accepted == program.size() ? 0 : 3;
+  };
+  MotionInterpolator counted;
+  ASSERT_STREQ(counted.configure({}, {0.0, 0.0}), "");
+  g_allocations = 0;
+  g_counting = true;
+  const int counted_result = run(counted, 20000);
+  g_counting = false;
+  EXPECT_EQ(counted_result, 0) << "the program did not run through";
+  EXPECT_EQ(g_allocations, 0) << "heap allocations in the motion core";
+
+  MotionInterpolator sealed;
+  ASSERT_STREQ(sealed.configure({}, {0.0, 0.0}), "");
+  const int result = run_without_syscalls([&] { return run(sealed, 20000); });
+  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": the motion core made a system call"
+                                      : "the program did not run through");
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+#pragma once
+// The motion core the tick runs: a segment queue, the look-ahead planner
+// (bounded backward pass + per-tick path follower) and the jerk filter.
+// Producers push() segments; the tick calls tick() once per period and feeds
+// the result's x_ref,k and x_ref,k+1 to the axis loops. Everything is fixed
+// size: no allocation, no exceptions, no locks.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "firmware/control/axis_controller.hpp"
+#include "firmware/motion/jerk_filter.hpp"
+#include "firmware/motion/lookahead_planner.hpp"
+#include "firmware/motion/path_follower.hpp"
+#include "firmware/motion/segment_queue.hpp"
+
+namespace tnv::fw::motion {
+
+inline constexpr double kMaxFeedOverride = 1.5;
+
+enum class MotionState : std::uint8_t {
+  idle = 0,      // nothing queued, reference at rest
+  running = 1,
+  holding = 2,   // feed hold: braking or at rest on the path, queue kept
+  stopping = 3,  // controlled stop: braking on the path, then the queue is dropped
+  starved = 4,   // the queue ran dry before the program's end: at rest on the path, resumes on push
+};
+
+constexpr const char* to_string(MotionState s) noexcept {
+  switch (s) {
+    case MotionState::idle: return "idle";
+    case MotionState::running: return "running";
+    case MotionState::holding: return "holding";
+    case MotionState::stopping: return "stopping";
+    case MotionState::starved: return "starved";
+  }
+  return "?";
+}
+
+struct MotionReference {
+  std::array<AxisReference, hal::kAxisCount> axis{};  // x_ref,k and x_ref,k+1 per axis
+  double path_speed_mm_s = 0.0;  // the planner's path speed (before the jerk filter)
+  std::uint32_t tag = 0;         // tag of the segment being run
+  MotionState state = MotionState::idle;
+};
+
+struct MotionStats {
+  std::uint64_t underruns = 0;            // queue ran dry while the program was open
+  std::uint64_t segments_accepted = 0;
+  std::uint64_t segments_refused = 0;
+  std::size_t max_replan_examined = 0;    // most segments one tick's backward pass examined
+  FollowerStats follower{};
+};
+
+class MotionInterpolator {
+ public:
+  // Empty string when the limits are valid (the interpolator is then reset
+  // at position_mm, at rest); otherwise the reason, and nothing changes.
+  const char* configure(const MotionLimits& limits, const PlanePoint& position_mm) noexcept;
+
+  SegmentRefusal push(const Segment& segment) noexcept;
+  std::size_t free_slots() const noexcept { return queue_.free_slots(); }
+  std::size_t queued() const noexcept { return queue_.size(); }
+
+  // 0 ... 1.5; false (and no change) outside that range or not finite.
+  bool set_feed_override(double ratio) noexcept;
+  double feed_override() const noexcept { return override_; }
+
+  void hold() noexcept { hold_ = true; }
+  void resume() noexcept { hold_ = false; }
+  // Brake on the path; once at rest, drop whatever is still queued.
+  void stop() noexcept { stopping_ = true; }
+  // The producer has sent its last segment: running dry now is the end, not an underrun.
+  void end_program() noexcept { program_open_ = false; }
+
+  // Once per tick.
+  MotionReference tick() noexcept;
+
+  MotionState state() const noexcept { return state_; }
+  double path_speed_mm_s() const noexcept { return follower_.speed_mm_s(); }
+  bool at_rest() const noexcept;  // planner and filter output both at rest
+  MotionStats stats() const noexcept;
+  const DerivedLimits& derived() const noexcept { return queue_.derived(); }
+  const MotionLimits& limits() const noexcept { return queue_.limits(); }
+
+ private:
+  SegmentQueue queue_{};
+  LookaheadPlanner planner_{};
+  PathFollower follower_{};
+  JerkFilter filter_{};
+  std::array<PlanePoint, 4> out_mm_{};  // filter output at k-1, k, k+1, k+2
+  double override_ = 1.0;
+  bool hold_ = false;
+  bool stopping_ = false;
+  bool program_open_ = false;
+  FollowerPhase last_phase_ = FollowerPhase::drained;
+  MotionState state_ = MotionState::idle;
+  MotionStats stats_{};  // follower counts are added by stats()
+};
+
+}  // namespace tnv::fw::motion

@@ -1,0 +1,55 @@
+#include "firmware/motion/motion_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tnv::fw::motion {
+
+namespace {
+
+bool positive_finite(double v) noexcept { return std::isfinite(v) && v > 0.0; }
+
+double filter_taps_exact(const MotionLimits& limits) noexcept {
+  // Output jerk of the moving average is at most 2 * a_in / (taps * dt)
+  // (the input acceleration can swing from +a to -a), so taps >= 2 a / (j dt).
+  double accel = limits.axis[0].accel_mm_s2;
+  for (const AxisLimits& a : limits.axis) accel = std::min(accel, a.accel_mm_s2);
+  double taps = 1.0;
+  for (const AxisLimits& a : limits.axis) taps = std::max(taps, 2.0 * accel / (a.jerk_mm_s3 * limits.tick_period_s));
+  return taps;
+}
+
+}  // namespace
+
+const char* validate(const MotionLimits& limits) noexcept {
+  for (const AxisLimits& a : limits.axis) {
+    if (!positive_finite(a.speed_mm_s)) return "axis speed_mm_s must be > 0 and finite";
+    if (!positive_finite(a.accel_mm_s2)) return "axis accel_mm_s2 must be > 0 and finite";
+    if (!positive_finite(a.jerk_mm_s3)) return "axis jerk_mm_s3 must be > 0 and finite";
+  }
+  if (!positive_finite(limits.tick_period_s) || limits.tick_period_s > 0.1) return "tick_period_s must be in (0, 0.1]";
+  if (!positive_finite(limits.path_tolerance_mm)) return "path_tolerance_mm must be > 0 and finite";
+  if (!positive_finite(limits.arc_radius_tolerance_mm)) return "arc_radius_tolerance_mm must be > 0 and finite";
+  if (!positive_finite(limits.min_segment_mm)) return "min_segment_mm must be > 0 and finite";
+  if (!positive_finite(limits.min_arc_radius_mm)) return "min_arc_radius_mm must be > 0 and finite";
+  if (!positive_finite(limits.max_dwell_s)) return "max_dwell_s must be > 0 and finite";
+  if (!std::isfinite(limits.position_min_mm) || !std::isfinite(limits.position_max_mm) ||
+      limits.position_min_mm >= limits.position_max_mm)
+    return "position_min_mm must be below position_max_mm, both finite";
+  if (std::ceil(filter_taps_exact(limits)) > static_cast<double>(kMaxFilterTaps))
+    return "jerk limits too low for the acceleration limits: the jerk filter would need more than 128 taps";
+  return "";
+}
+
+DerivedLimits derive(const MotionLimits& limits) noexcept {
+  DerivedLimits d;
+  d.accel_mm_s2 = limits.axis[0].accel_mm_s2;
+  for (const AxisLimits& a : limits.axis) d.accel_mm_s2 = std::min(d.accel_mm_s2, a.accel_mm_s2);
+  d.path_accel_mm_s2 = 0.5 * d.accel_mm_s2;
+  d.dt_s = limits.tick_period_s;
+  d.filter_taps = static_cast<std::size_t>(std::ceil(filter_taps_exact(limits) - 1e-9));
+  if (d.filter_taps < 1) d.filter_taps = 1;
+  return d;
+}
+
+}  // namespace tnv::fw::motion

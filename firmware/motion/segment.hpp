@@ -1,0 +1,87 @@
+#pragma once
+// One programmed path element as a producer (G-code, CAN stream, the circle,
+// move and jog generators) hands it to the motion queue. Positions are
+// absolute table coordinates; a line or arc starts where the previous
+// element ended.
+#include <array>
+#include <cstdint>
+
+#include "hal/axis.hpp"
+
+namespace tnv::fw::motion {
+
+using PlanePoint = std::array<double, hal::kAxisCount>;  // [x_mm, y_mm]
+
+enum class SegmentKind : std::uint8_t { line = 0, arc_cw = 1, arc_ccw = 2, dwell = 3 };
+
+struct Segment {
+  SegmentKind kind = SegmentKind::line;
+  PlanePoint end_mm{};     // line and arc end point
+  PlanePoint centre_mm{};  // arc centre (end == start: a full circle)
+  double feed_mm_s = 0.0;  // path speed for this element (ignored by a dwell)
+  double dwell_s = 0.0;    // dwell only
+  bool exact_stop = false; // come to rest at the end before the next element
+  std::uint32_t tag = 0;   // producer's reference (G-code line number), reported back
+};
+
+constexpr Segment line_to(PlanePoint end_mm, double feed_mm_s, std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = SegmentKind::line;
+  s.end_mm = end_mm;
+  s.feed_mm_s = feed_mm_s;
+  s.tag = tag;
+  return s;
+}
+
+constexpr Segment arc_to(bool clockwise, PlanePoint end_mm, PlanePoint centre_mm, double feed_mm_s,
+                         std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = clockwise ? SegmentKind::arc_cw : SegmentKind::arc_ccw;
+  s.end_mm = end_mm;
+  s.centre_mm = centre_mm;
+  s.feed_mm_s = feed_mm_s;
+  s.tag = tag;
+  return s;
+}
+
+constexpr Segment dwell_for(double dwell_s, std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = SegmentKind::dwell;
+  s.dwell_s = dwell_s;
+  s.tag = tag;
+  return s;
+}
+
+// Why the queue refused a segment (the queue is then unchanged).
+enum class SegmentRefusal : std::uint8_t {
+  none = 0,
+  queue_full = 1,
+  not_finite = 2,          // a NaN or infinite number
+  bad_kind = 3,
+  zero_length = 4,         // line or arc shorter than MotionLimits::min_segment_mm
+  arc_radius_mismatch = 5, // |start - centre| and |end - centre| differ beyond the tolerance
+  arc_radius_too_small = 6,
+  feed_not_positive = 7,
+  feed_above_limit = 8,    // feed above what the axis speed limits allow on this element
+  outside_workspace = 9,   // end point outside the soft limits
+  bad_dwell = 10,          // dwell time <= 0 or too long
+};
+
+constexpr const char* to_string(SegmentRefusal r) noexcept {
+  switch (r) {
+    case SegmentRefusal::none: return "none";
+    case SegmentRefusal::queue_full: return "queue_full";
+    case SegmentRefusal::not_finite: return "not_finite";
+    case SegmentRefusal::bad_kind: return "bad_kind";
+    case SegmentRefusal::zero_length: return "zero_length";
+    case SegmentRefusal::arc_radius_mismatch: return "arc_radius_mismatch";
+    case SegmentRefusal::arc_radius_too_small: return "arc_radius_too_small";
+    case SegmentRefusal::feed_not_positive: return "feed_not_positive";
+    case SegmentRefusal::feed_above_limit: return "feed_above_limit";
+    case SegmentRefusal::outside_workspace: return "outside_workspace";
+    case SegmentRefusal::bad_dwell: return "bad_dwell";
+  }
+  return "?";
+}
+
+}  // namespace tnv::fw::motion

@@ -1,0 +1,117 @@
+#include "firmware/motion/segment_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace tnv::fw::motion {
+
+namespace {
+
+bool finite(const PlanePoint& p) noexcept { return std::isfinite(p[0]) && std::isfinite(p[1]); }
+
+bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
+  return p[0] >= limits.position_min_mm && p[0] <= limits.position_max_mm && p[1] >= limits.position_min_mm &&
+         p[1] <= limits.position_max_mm;
+}
+
+// Tangent of an arc at angle theta; ccw: +90 degrees from the radius vector.
+PlanePoint arc_tangent(double theta, bool ccw) noexcept {
+  const double sign = ccw ? 1.0 : -1.0;
+  return {-sign * std::sin(theta), sign * std::cos(theta)};
+}
+
+}  // namespace
+
+PlanePoint SegmentGeometry::point_at(double distance_mm) const noexcept {
+  if (kind == SegmentKind::dwell || length_mm <= 0.0) return start_mm;
+  const double f = std::clamp(distance_mm / length_mm, 0.0, 1.0);
+  if (kind == SegmentKind::line) {
+    return {start_mm[0] + f * (end_mm[0] - start_mm[0]), start_mm[1] + f * (end_mm[1] - start_mm[1])};
+  }
+  if (f >= 1.0) return end_mm;
+  const double theta = start_angle_rad + f * sweep_rad;
+  const double r = start_radius_mm + f * (end_radius_mm - start_radius_mm);
+  return {centre_mm[0] + r * std::cos(theta), centre_mm[1] + r * std::sin(theta)};
+}
+
+double SegmentGeometry::axis_speed_cap_mm_s(const MotionLimits& limits) const noexcept {
+  double cap = 1e300;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double v = limits.axis[i].speed_mm_s;
+    if (kind != SegmentKind::line) {
+      cap = std::min(cap, v);  // an arc may sweep along any axis
+    } else if (const double u = std::fabs(unit_start[i]); u > 1e-12) {
+      cap = std::min(cap, v / u);
+    }
+  }
+  return cap;
+}
+
+SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const MotionLimits& limits,
+                       SegmentGeometry& out) noexcept {
+  SegmentGeometry g;
+  g.kind = segment.kind;
+  g.start_mm = start_mm;
+  switch (segment.kind) {
+    case SegmentKind::dwell: {
+      if (!std::isfinite(segment.dwell_s)) return SegmentRefusal::not_finite;
+      if (segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s) return SegmentRefusal::bad_dwell;
+      g.end_mm = start_mm;
+      out = g;
+      return SegmentRefusal::none;
+    }
+    case SegmentKind::line: {
+      if (!finite(segment.end_mm) || !std::isfinite(segment.feed_mm_s)) return SegmentRefusal::not_finite;
+      const double dx = segment.end_mm[0] - start_mm[0];
+      const double dy = segment.end_mm[1] - start_mm[1];
+      g.length_mm = std::hypot(dx, dy);
+      if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
+      g.end_mm = segment.end_mm;
+      g.unit_start = {dx / g.length_mm, dy / g.length_mm};
+      g.unit_end = g.unit_start;
+      break;
+    }
+    case SegmentKind::arc_cw:
+    case SegmentKind::arc_ccw: {
+      if (!finite(segment.end_mm) || !finite(segment.centre_mm) || !std::isfinite(segment.feed_mm_s))
+        return SegmentRefusal::not_finite;
+      const bool ccw = segment.kind == SegmentKind::arc_ccw;
+      const PlanePoint& c = segment.centre_mm;
+      g.centre_mm = c;
+      g.end_mm = segment.end_mm;
+      g.start_radius_mm = std::hypot(start_mm[0] - c[0], start_mm[1] - c[1]);
+      g.end_radius_mm = std::hypot(segment.end_mm[0] - c[0], segment.end_mm[1] - c[1]);
+      if (std::fabs(g.start_radius_mm - g.end_radius_mm) > limits.arc_radius_tolerance_mm)
+        return SegmentRefusal::arc_radius_mismatch;
+      if (g.min_radius_mm() < limits.min_arc_radius_mm) return SegmentRefusal::arc_radius_too_small;
+      g.start_angle_rad = std::atan2(start_mm[1] - c[1], start_mm[0] - c[0]);
+      const double end_angle = std::atan2(segment.end_mm[1] - c[1], segment.end_mm[0] - c[0]);
+      constexpr double two_pi = 2.0 * std::numbers::pi;
+      double sweep = end_angle - g.start_angle_rad;
+      if (ccw) {
+        while (sweep <= 0.0) sweep += two_pi;
+      } else {
+        while (sweep >= 0.0) sweep -= two_pi;
+      }
+      // End on the start point (within the minimum length): a full circle.
+      const bool closed = std::hypot(segment.end_mm[0] - start_mm[0], segment.end_mm[1] - start_mm[1]) <
+                          limits.min_segment_mm;
+      if (closed) sweep = ccw ? two_pi : -two_pi;
+      g.sweep_rad = sweep;
+      g.length_mm = 0.5 * (g.start_radius_mm + g.end_radius_mm) * std::fabs(sweep);
+      if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
+      g.unit_start = arc_tangent(g.start_angle_rad, ccw);
+      g.unit_end = arc_tangent(g.start_angle_rad + sweep, ccw);
+      break;
+    }
+    default: return SegmentRefusal::bad_kind;
+  }
+  if (!inside(g.end_mm, limits)) return SegmentRefusal::outside_workspace;
+  if (!(segment.feed_mm_s > 0.0)) return SegmentRefusal::feed_not_positive;
+  if (segment.feed_mm_s > g.axis_speed_cap_mm_s(limits) * (1.0 + 1e-12)) return SegmentRefusal::feed_above_limit;
+  out = g;
+  return SegmentRefusal::none;
+}
+
+}  // namespace tnv::fw::motion

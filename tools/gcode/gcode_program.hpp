@@ -1,0 +1,53 @@
+#pragma once
+// RS274/NGC subset reader for the motion queue (host side): G0 G1 G2 G3
+// (I/J and R forms) G4 G17 G20 G21 G90 G91, F, M2 M30, comments ( ) and ;,
+// line numbers N and modal state. Every segment is checked against the
+// firmware's limits exactly as the queue will check it, so a program that
+// parses is a program the queue accepts; an error names line and column and
+// no segment is returned.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "firmware/motion/motion_limits.hpp"
+#include "firmware/motion/segment.hpp"
+#include "firmware/motion/segment_geometry.hpp"
+
+namespace tnv::gcode {
+
+using fw::motion::PlanePoint;
+
+struct GcodeOptions {
+  PlanePoint start_mm{0.0, 0.0};   // where the table is when the program starts
+  double rapid_feed_mm_s = 50.0;   // G0 path speed
+  fw::motion::MotionLimits limits{};
+};
+
+struct GcodeError {
+  int line = 0;    // 1-based
+  int column = 0;  // 1-based, the word (or character) at fault
+  std::string message;
+};
+
+struct GcodeProgram {
+  std::vector<fw::motion::Segment> segments;           // tag = source line
+  std::vector<fw::motion::SegmentGeometry> geometry;   // one per segment, with its start point
+  bool ended = false;                                  // M2 or M30 seen
+  double programmed_length_mm() const noexcept;
+  // Sum of length / feed over the feed moves (G1 G2 G3); dwells add their time.
+  double programmed_time_s() const noexcept;
+};
+
+struct GcodeResult {
+  GcodeProgram program;
+  std::optional<GcodeError> error;  // set: program is empty
+};
+
+GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options = {});
+GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options = {});
+
+std::string to_string(const GcodeError& error);
+
+}  // namespace tnv::gcode
