@@ -12,7 +12,7 @@
 namespace tnv::test {
 namespace {
 
-class CountingJob final : public hal::StorageJob {
+class CountingStorageJob final : public hal::StorageJob {
  public:
   void run() noexcept override {
     started = true;
@@ -27,7 +27,7 @@ class CountingJob final : public hal::StorageJob {
 };
 
 // Polls done() as the real-time loop would, once per ms, for up to 5 s.
-bool wait_done(hal::StorageWorker& w) {
+bool wait_storage_job_done(hal::StorageWorker& w) {
   for (int k = 0; k < 5000; ++k) {
     if (w.done()) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -37,25 +37,25 @@ bool wait_done(hal::StorageWorker& w) {
 
 TEST(ThreadStorageWorker, RunsTheJobOnItsOwnThreadAndReportsItDoneOnce) {
   drivers::ThreadStorageWorker worker(std::chrono::microseconds(200));
-  CountingJob job;
+  CountingStorageJob job;
   job.hold = true;
   EXPECT_FALSE(worker.done()) << "nothing posted";
   ASSERT_TRUE(worker.post(job));
-  CountingJob other;
+  CountingStorageJob other;
   EXPECT_FALSE(worker.post(other)) << "one job at a time";
   EXPECT_FALSE(worker.done()) << "still running";
   job.hold = false;
-  ASSERT_TRUE(wait_done(worker));
+  ASSERT_TRUE(wait_storage_job_done(worker));
   EXPECT_EQ(job.runs, 1);
   EXPECT_NE(job.ran_on, std::this_thread::get_id());
   EXPECT_FALSE(worker.done()) << "reported once";
   ASSERT_TRUE(worker.post(other)) << "free again after done()";
-  ASSERT_TRUE(wait_done(worker));
+  ASSERT_TRUE(wait_storage_job_done(worker));
   EXPECT_EQ(other.runs, 1);
 }
 
 TEST(ThreadStorageWorker, DestructionWaitsForARunningJob) {
-  CountingJob job;
+  CountingStorageJob job;
   std::thread release;
   {
     drivers::ThreadStorageWorker worker(std::chrono::microseconds(200));
@@ -74,7 +74,7 @@ TEST(ThreadStorageWorker, DestructionWaitsForARunningJob) {
 
 TEST(SteppedStorageWorker, RunsOnlyWhenTheRigStepsIt) {
   drivers::SteppedStorageWorker worker;
-  CountingJob job;
+  CountingStorageJob job;
   EXPECT_TRUE(worker.idle());
   EXPECT_FALSE(worker.run_pending());
   ASSERT_TRUE(worker.post(job));

@@ -14,13 +14,13 @@ using fw::can::CommandCode;
 using fw::can::MessageId;
 
 // Burns `ns` of this thread's CPU time (what the rig charges), however long the OS makes it take.
-void burn_cpu_ns(std::int64_t ns) {
+void burn_thread_cpu_ns(std::int64_t ns) {
   const std::int64_t start = hil::thread_cpu_ns();
   while (hil::thread_cpu_ns() - start < ns) {
   }
 }
 
-std::unique_ptr<CanRig> holding_rig() {
+std::unique_ptr<CanRig> holding_charged_rig() {
   auto r = CanRig::make();
   if (!r || r->result(command(kRigNode, CommandCode::enable)) != kOk) return nullptr;
   if (!r->run_until(fw::MotionState::holding, 10)) return nullptr;
@@ -46,10 +46,10 @@ TEST(ChargedTime, TheWholeNoCutCircleChargesNothing) {
 }
 
 TEST(ChargedTime, ASlowCallShowsAsMissedTicks) {
-  auto r = holding_rig();
+  auto r = holding_charged_rig();
   ASSERT_TRUE(r);
   ASSERT_EQ(r->task().counters().missed_ticks, 0u);
-  r->rig->charged_call([] { burn_cpu_ns(2'500'000); });  // 2.5 ms in one call of the loop
+  r->rig->charged_call([] { burn_thread_cpu_ns(2'500'000); });  // 2.5 ms in one call of the loop
   for (int k = 0; k < 5; ++k) r->step();
   EXPECT_EQ(r->rig->charged().charged_calls, 1u);
   EXPECT_GE(r->task().counters().missed_ticks, 2u);
@@ -58,18 +58,18 @@ TEST(ChargedTime, ASlowCallShowsAsMissedTicks) {
 }
 
 TEST(ChargedTime, WithoutChargingTheSameCallIsInvisible) {
-  auto r = holding_rig();
+  auto r = holding_charged_rig();
   ASSERT_TRUE(r);
   r->rig->charging.enabled = false;
-  r->rig->charged_call([] { burn_cpu_ns(2'500'000); });
+  r->rig->charged_call([] { burn_thread_cpu_ns(2'500'000); });
   for (int k = 0; k < 5; ++k) r->step();
   EXPECT_EQ(r->task().counters().missed_ticks, 0u);
 }
 
 TEST(ChargedTime, ACallLongerThanTheWatchdogTimeoutTripsTheBoard) {
-  auto r = holding_rig();
+  auto r = holding_charged_rig();
   ASSERT_TRUE(r);
-  r->rig->charged_call([] { burn_cpu_ns(5'000'000); });  // the board watchdog's timeout is 3 ms
+  r->rig->charged_call([] { burn_thread_cpu_ns(5'000'000); });  // the board watchdog's timeout is 3 ms
   r->step();
   EXPECT_TRUE(r->rig->machine.board_outputs().watchdog_tripped);
   EXPECT_TRUE(r->task().fault().active());
@@ -80,7 +80,7 @@ TEST(ChargedTime, ACallLongerThanTheWatchdogTimeoutTripsTheBoard) {
 class SlowStorage final : public hal::ParamStorage {
  public:
   hal::HalStatus write(std::span<const std::uint8_t> image) noexcept override {
-    burn_cpu_ns(4'000'000);
+    burn_thread_cpu_ns(4'000'000);
     return inner.write(image);
   }
   hal::HalStatus read(std::span<std::uint8_t> out, std::size_t& size) noexcept override { return inner.read(out, size); }

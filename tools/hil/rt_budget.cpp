@@ -17,7 +17,9 @@
 
 namespace tnv::hil {
 
-namespace {
+// A named namespace, not an anonymous one: its alias and using-directive
+// must not reach the other files of a unity batch.
+namespace rt_budget_detail {
 
 namespace can = fw::can;
 using namespace can::fields;
@@ -267,9 +269,10 @@ class BudgetSession {
   bool uploading_ = false;
 };
 
-}  // namespace
+}  // namespace rt_budget_detail
 
 RtBudgetResult run_rt_budget(const RtBudgetOptions& options) {
+  using namespace rt_budget_detail;
   RtBudgetResult failed;
   emu::ScenarioResult found = emu::resolve_scenario(options.scenario);
   if (!found.scenario) {
