@@ -121,7 +121,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
 // --- restore_defaults (idle only; save and load: can_node_storage.cpp)
 
 // The papers' defaults, except what describes this machine and this node:
-// the encoder count and DAC scale (commissioning facts) and the bus
+// the encoder count, DAC scale and tick period (commissioning and board facts) and the bus
 // identity (node id, bit rate), so the node stays reachable and sane.
 // The defaults are a copy made at construction: default_node_settings()
 // runs the PID tuning (milliseconds), which must not run in service().
@@ -133,6 +133,9 @@ ErrorCode CanNode::command_restore_defaults() noexcept {
     next.firmware.axis[i].dac = settings_.firmware.axis[i].dac;
     next.firmware.axis[i].home_position_mm = settings_.firmware.axis[i].home_position_mm;
   }
+  // The board's tick period is the board's fact too (tnv-fw sets it from the board).
+  next.firmware.supervisor.tick_period_clocks = settings_.firmware.supervisor.tick_period_clocks;
+  next.firmware.supervisor.period_tolerance_clocks = settings_.firmware.supervisor.period_tolerance_clocks;
   next.can.node_id = settings_.can.node_id;
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
   return apply_settings(next, true);
