@@ -23,7 +23,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       previous_storage_(previous_storage),
       storage_worker_(storage_worker),
       settings_(settings),
-      defaults_(default_node_settings()),
+      defaults_(cached_default_node_settings()),
       node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
       storage_fault_(storage_fault) {
   // The task at rest takes the whole firmware part (controller per axis

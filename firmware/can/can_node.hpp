@@ -64,7 +64,7 @@ class CanNode {
   // `previous_storage`: the generation saved before the current one (see
   // param_fallback.hpp), read by load_params when the current image fails.
   // `storage_worker`: runs save/load off the real-time thread (nullptr: in
-  // service()). The constructor computes the defaults restore_defaults
+  // service()). The first node built computes the defaults restore_defaults
   // copies (the PID tuning takes milliseconds: never in service()).
   CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
           bool storage_fault = false, hal::ParamStorage* previous_storage = nullptr,
@@ -151,7 +151,7 @@ class CanNode {
   hal::ParamStorage* previous_storage_ = nullptr;
   hal::StorageWorker* storage_worker_ = nullptr;
   NodeSettings settings_;
-  NodeSettings defaults_;               // restore_defaults' base, computed once at construction
+  const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
   // The storage request in flight: the frame as it came (the deferred
   // COMMAND_ACK answers it), and the job the worker runs.
   CommandCode storage_code_ = CommandCode::save_params;

@@ -123,7 +123,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
 // The papers' defaults, except what describes this machine and this node:
 // the encoder count, DAC scale and tick period (commissioning and board facts) and the bus
 // identity (node id, bit rate), so the node stays reachable and sane.
-// The defaults are a copy made at construction: default_node_settings()
+// The defaults were computed once, when the first node was built: default_node_settings()
 // runs the PID tuning (milliseconds), which must not run in service().
 ErrorCode CanNode::command_restore_defaults() noexcept {
   if (moving()) return ErrorCode::busy;
