@@ -15,12 +15,15 @@ namespace tnv::fw::can {
 using namespace fields;
 
 CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
-                 bool storage_fault, hal::ParamStorage* previous_storage) noexcept
+                 bool storage_fault, hal::ParamStorage* previous_storage,
+                 hal::StorageWorker* storage_worker) noexcept
     : task_(task),
       can_(can),
       storage_(storage),
       previous_storage_(previous_storage),
+      storage_worker_(storage_worker),
       settings_(settings),
+      defaults_(cached_default_node_settings()),
       node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
       storage_fault_(storage_fault) {
   // The task at rest takes the whole firmware part (controller per axis
@@ -49,6 +52,7 @@ std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return 
 std::size_t CanNode::staged_count() const noexcept { return staged_.size(); }
 bool CanNode::storage_fault() const noexcept { return storage_fault_; }
 bool CanNode::params_unsaved() const noexcept { return unsaved_; }
+bool CanNode::storage_in_flight() const noexcept { return storage_pending_; }
 std::uint16_t CanNode::reply_sequence() const noexcept { return sequence_; }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
@@ -64,6 +68,7 @@ void CanNode::service() noexcept {
   }
   flush_replies();
   check_commissioning();
+  collect_storage();
   receive();
   check_fault();
   check_commissioning();

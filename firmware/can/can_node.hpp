@@ -7,8 +7,10 @@
 // parameter set, a command) therefore lands between two ticks, whole; a
 // tick never sees half of it. service() does bounded work (at most
 // kMaxRxPerService received frames, kMaxTxPerService sent frames), does not
-// allocate, throw, lock or log; storage writes (save/load) are the only
-// calls that may take long and happen only on request.
+// allocate, throw, lock or log. Storage (save/load) is posted to a
+// hal::StorageWorker that does the I/O off the real-time thread; the
+// COMMAND_ACK goes out in the service() that sees the job done. Without a
+// worker (unit tests) the job runs inside service(), as before.
 //
 // Per new tick (TickTask::last_record().tick advanced since the last call)
 // service() records the capture sample, counts the telemetry periods and
@@ -27,11 +29,13 @@
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/protocol_messages.hpp"
 #include "firmware/can/staged_params.hpp"
+#include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
 #include "firmware/can/tx_queue.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 #include "hal/param_storage.hpp"
+#include "hal/storage_worker.hpp"
 
 namespace tnv::fw::can {
 
@@ -59,8 +63,12 @@ class CanNode {
   // the task must be at rest (it is, right after construction).
   // `previous_storage`: the generation saved before the current one (see
   // param_fallback.hpp), read by load_params when the current image fails.
+  // `storage_worker`: runs save/load off the real-time thread (nullptr: in
+  // service()). The first node built computes the defaults restore_defaults
+  // copies (the PID tuning takes milliseconds: never in service()).
   CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, const NodeSettings& settings,
-          bool storage_fault = false, hal::ParamStorage* previous_storage = nullptr) noexcept;
+          bool storage_fault = false, hal::ParamStorage* previous_storage = nullptr,
+          hal::StorageWorker* storage_worker = nullptr) noexcept;
   CanNode(const CanNode&) = delete;
   CanNode& operator=(const CanNode&) = delete;
 
@@ -91,6 +99,7 @@ class CanNode {
   std::size_t staged_count() const noexcept;  // parameters waiting for commit
   bool storage_fault() const noexcept;
   bool params_unsaved() const noexcept;
+  bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
   std::uint16_t reply_sequence() const noexcept;  // COMMAND_ACK.sequence of the last answer
 
  private:
@@ -121,8 +130,12 @@ class CanNode {
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  ErrorCode command_save() noexcept;
-  ErrorCode command_load() noexcept;
+  // save / load: ok when posted (answered later by finish_storage()), else the refusal to answer now
+  ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
+  void collect_storage() noexcept;  // service() step: answers a job the worker has finished
+  void finish_storage() noexcept;
+  ErrorCode finish_save() noexcept;
+  ErrorCode finish_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
   ErrorCode command_enter_commissioning() noexcept;
   // A set / stage writing `raw` into `p` (now `current`): commissioning_required
@@ -150,7 +163,16 @@ class CanNode {
   hal::CanPort& can_;
   hal::ParamStorage& storage_;
   hal::ParamStorage* previous_storage_ = nullptr;
+  hal::StorageWorker* storage_worker_ = nullptr;
   NodeSettings settings_;
+  const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
+  // The storage request in flight: the frame as it came (the deferred
+  // COMMAND_ACK answers it), and the job the worker runs.
+  CommandCode storage_code_ = CommandCode::save_params;
+  bool storage_pending_ = false;
+  hal::CanFrame storage_request_{};
+  SaveJob save_job_{};
+  LoadJob load_job_{};
   std::uint8_t node_id_;
   NodeCounters counters_{};
   StagedParams staged_{};

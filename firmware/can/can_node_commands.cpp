@@ -47,8 +47,11 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::zero: e = command_zero(frame, detail); break;
     case CommandCode::select_controller: e = command_select_controller(frame, detail); break;
     case CommandCode::shaper_enable: e = command_shaper_enable(frame, detail); break;
-    case CommandCode::save_params: e = command_save(); break;
-    case CommandCode::load_params: e = command_load(); break;
+    case CommandCode::save_params:
+    case CommandCode::load_params:
+      e = begin_storage(frame, static_cast<CommandCode>(code_raw));
+      if (e == ErrorCode::ok) return;  // answered when the storage job is done
+      break;
     case CommandCode::restore_defaults: e = command_restore_defaults(); break;
     case CommandCode::reserved_10:
     case CommandCode::reserved_11: e = ErrorCode::unknown_command; break;

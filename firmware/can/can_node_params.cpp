@@ -5,8 +5,6 @@
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
-#include "firmware/can/param_fallback.hpp"
-#include "firmware/can/param_image.hpp"
 
 namespace tnv::fw::can {
 
@@ -39,6 +37,8 @@ bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
 // validated, refused busy where it must wait for rest, then applied between
 // two ticks (this runs in service()), all of it or none of it.
 ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched) noexcept {
+  // A save or load in flight works on the set as it was: no change until it is answered.
+  if (storage_pending_) return ErrorCode::busy;
   if (const SettingsCheck c = validate(next); !c.ok) {
     blamed_param_ = c.param;
     return ErrorCode::invalid;
@@ -131,47 +131,25 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   reply_param(op_raw, e, id, to_wire(*p, p->get(settings_)));
 }
 
-// --- storage commands (idle only)
-
-ErrorCode CanNode::command_save() noexcept {
-  if (moving()) return ErrorCode::busy;
-  const ErrorCode e = save_settings(storage_, settings_);
-  storage_fault_ = e != ErrorCode::ok;
-  if (e == ErrorCode::ok) unsaved_ = false;
-  return e;
-}
-
-ErrorCode CanNode::command_load() noexcept {
-  if (moving()) return ErrorCode::busy;
-  // The current image, else the previous generation (still reported as a
-  // storage fault), else nothing changes.
-  NodeSettings next = settings_;
-  const LoadReport loaded = load_settings_with_fallback(storage_, previous_storage_, next);
-  if (loaded.source == LoadSource::nothing_stored) return ErrorCode::not_ready;
-  if (loaded.source == LoadSource::neither) {
-    storage_fault_ = true;
-    return loaded.result();
-  }
-  const ErrorCode e = apply_settings(next, true);
-  if (e == ErrorCode::ok) {
-    unsaved_ = loaded.fault();  // the previous set is not what was last saved
-    storage_fault_ = loaded.fault();
-  }
-  return e;
-}
+// --- restore_defaults (idle only; save and load: can_node_storage.cpp)
 
 // The papers' defaults, except what describes this machine and this node:
-// the encoder count and DAC scale (commissioning facts) and the bus
+// the encoder count, DAC scale and tick period (commissioning and board facts) and the bus
 // identity (node id, bit rate), so the node stays reachable and sane.
+// The defaults were computed once, when the first node was built: default_node_settings()
+// runs the PID tuning (milliseconds), which must not run in service().
 // Outside commissioning mode the safety parameters are kept as well.
 ErrorCode CanNode::command_restore_defaults() noexcept {
   if (moving()) return ErrorCode::busy;
-  NodeSettings next = default_node_settings();
+  NodeSettings next = defaults_;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     next.firmware.axis[i].count_mm = settings_.firmware.axis[i].count_mm;
     next.firmware.axis[i].dac = settings_.firmware.axis[i].dac;
     next.firmware.axis[i].home_position_mm = settings_.firmware.axis[i].home_position_mm;
   }
+  // The board's tick period is the board's fact too (tnv-fw sets it from the board).
+  next.firmware.supervisor.tick_period_clocks = settings_.firmware.supervisor.tick_period_clocks;
+  next.firmware.supervisor.period_tolerance_clocks = settings_.firmware.supervisor.period_tolerance_clocks;
   next.can.node_id = settings_.can.node_id;
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
   check_commissioning();

@@ -11,4 +11,9 @@ NodeSettings default_node_settings() noexcept {
   return s;
 }
 
+const NodeSettings& cached_default_node_settings() noexcept {
+  static const NodeSettings defaults = default_node_settings();
+  return defaults;
+}
+
 }  // namespace tnv::fw::can

@@ -61,6 +61,11 @@ struct NodeSettings {
 };
 
 // default_firmware_config() (the papers' values) and the defaults above.
+// Runs the PID tuning rule (milliseconds): never in the real-time loop.
 NodeSettings default_node_settings() noexcept;
+
+// default_node_settings(), computed on the first call (at a node's
+// construction) and kept: the node's restore_defaults copies from it.
+const NodeSettings& cached_default_node_settings() noexcept;
 
 }  // namespace tnv::fw::can

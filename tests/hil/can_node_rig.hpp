@@ -2,13 +2,16 @@
 // The CAN node on the emulated bench: tools/hil's HilRig (emulated TNV-40,
 // register bus, real FPGA driver, the firmware tick) plus the node, an
 // in-memory CAN port and storage. step() = one tick, then service(), as
-// the firmware's main loop runs them.
+// the firmware's main loop runs them, both charged to the board (HilRig's
+// charged time); then the storage worker runs a posted save/load, outside
+// the charged time, as a non-real-time thread would.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/can/can_node.hpp"
+#include "drivers/storage/stepped_storage_worker.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/hil_rig.hpp"
@@ -30,18 +33,31 @@ struct CanRig {
     fw::can::NodeSettings s = fw::can::default_node_settings();
     s.firmware = r->rig->task.config();
     s.telemetry = {0, 0, 0, 0, 0, 0};
-    r->node = std::make_unique<fw::can::CanNode>(r->rig->task, r->port, r->storage, s);
+    r->node = std::make_unique<fw::can::CanNode>(r->rig->task, r->port, r->storage, s, false, nullptr, &r->worker);
     return r;
   }
   fw::TickTask& task() { return rig->task; }
   void step() {
     rig->tick();
-    node->service();
+    service();
+    worker.run_pending();
+  }
+  void service() {
+    rig->charged_call([this]() noexcept { node->service(); });
   }
   std::vector<hal::CanFrame> request(const hal::CanFrame& f) {
     port.send(f);
-    node->service();
+    service();
     return port.drain();
+  }
+  // A request whose answer may come later (save, load): steps until a frame comes out (or max_ticks).
+  std::vector<hal::CanFrame> request_and_wait(const hal::CanFrame& f, int max_ticks = 10) {
+    std::vector<hal::CanFrame> out = request(f);
+    for (int k = 0; k < max_ticks && out.empty(); ++k) {
+      step();
+      out = port.drain();
+    }
+    return out;
   }
   // The result byte of the single answer (COMMAND_ACK / PARAM_REPLY / CAPTURE_STATUS), 255 if not one answer.
   std::uint32_t result(const hal::CanFrame& f) {
@@ -63,6 +79,7 @@ struct CanRig {
   std::unique_ptr<hil::HilRig> rig;
   FakeCanPort port;
   MemoryStorage storage;
+  drivers::SteppedStorageWorker worker;
   std::unique_ptr<fw::can::CanNode> node;
 };
 

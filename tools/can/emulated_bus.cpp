@@ -88,7 +88,7 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   bus->rig_ = hil::HilRig::create(scenario, settings.firmware, settings.firmware.axis[0].controller, error);
   if (!bus->rig_) return nullptr;
   bus->node_ = std::make_unique<can::CanNode>(bus->rig_->task, *bus->port_, bus->storage_, settings,
-                                              loaded.fault(), &bus->storage_.previous());
+                                              loaded.fault(), &bus->storage_.previous(), &bus->storage_worker_);
   return bus;
 }
 
@@ -98,10 +98,12 @@ Micros EmulatedBus::now() {
 }
 
 void EmulatedBus::step() {
+  rig_->settle_charge();
   rig_->machine.advance_to_next_tick();
   wire_.advance_to(now());
-  rig_->task.tick();
-  node_->service();
+  rig_->charged_call([this]() noexcept { rig_->task.tick(); });
+  rig_->charged_call([this]() noexcept { node_->service(); });
+  storage_worker_.run_pending();
   if (realtime_) {
     const auto sim = now() - realtime_sim_origin_;
     std::this_thread::sleep_until(realtime_wall_origin_ + sim);

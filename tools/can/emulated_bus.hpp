@@ -13,6 +13,7 @@
 #include "emulator/scenario.hpp"
 #include "firmware/can/can_node.hpp"
 #include "drivers/storage/file_param_storage.hpp"
+#include "drivers/storage/stepped_storage_worker.hpp"
 #include "tools/can/emulated_storage_path.hpp"
 #include "tools/can/host_bus.hpp"
 #include "tools/can/virtual_can_bus.hpp"
@@ -43,7 +44,8 @@ class EmulatedBus final : public HostBus {
   BusCounters counters() const override;
 
   // One tick of the node: advance the machine, deliver what the wire
-  // finished, tick, service.
+  // finished, tick, service (both charged to the board, HilRig's charged
+  // time), then the storage worker's save or load, outside the charged time.
   void step();
   // Simulated time follows the wall clock while on (for `monitor`).
   void set_realtime(bool on);
@@ -68,6 +70,7 @@ class EmulatedBus final : public HostBus {
   emu::Scenario scenario_;
   int seed_ = 0;
   drivers::FileParamStorage storage_;
+  drivers::SteppedStorageWorker storage_worker_;
   VirtualCanBus wire_;
   std::unique_ptr<NodePort> port_;
   std::unique_ptr<hil::HilRig> rig_;

@@ -67,6 +67,7 @@ FaultObservation run_fault_case(const emu::Scenario& scenario, const FaultCase& 
   const std::uint64_t give_up_substep =
       injected_substep + emu::substep_at_or_after(fault_case.give_up_s) + 2 * emu::kSubstepsPerSecond / 1000;
   for (;;) {
+    rig->settle_charge();  // charged time (hil_rig.hpp)
     machine.advance_to_next_tick();
     // A tick latched on the fault's own boundary cannot see it: the fault
     // takes effect just after that latch.
@@ -79,7 +80,7 @@ FaultObservation run_fault_case(const emu::Scenario& scenario, const FaultCase& 
       }
     }
     operator_input(*rig, fault_case.motion);
-    task.tick();
+    rig->charged_call([&task]() noexcept { task.tick(); });
     const bool faulted = task.state() == fw::MotionState::faulted;
     if (!after) {
       if (faulted) {

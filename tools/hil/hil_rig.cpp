@@ -5,6 +5,23 @@
 
 namespace tnv::hil {
 
+void HilRig::charge(std::int64_t call_ns) noexcept {
+  ++charged_.calls;
+  charged_.last_call_ns = call_ns;
+  if (call_ns > charged_.max_call_ns) charged_.max_call_ns = call_ns;
+  if (call_ns <= charging.threshold_ns) return;
+  ++charged_.charged_calls;
+  charged_.charged_ns += call_ns;
+  pending_ns_ += call_ns;
+}
+
+void HilRig::settle_charge() noexcept {
+  if (pending_ns_ <= 0) return;
+  // The board counts 10 MHz clocks (100 ns each).
+  machine.advance_clocks(static_cast<std::uint64_t>((pending_ns_ + 99) / 100));
+  pending_ns_ = 0;
+}
+
 HilRig::HilRig(const emu::Scenario& scenario, const fw::FirmwareConfig& config)
     : machine(scenario), bus(machine), board(bus), task(board, config) {}
 

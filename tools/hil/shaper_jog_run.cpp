@@ -100,8 +100,9 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     result.error = "servo-on refused";
     return result;
   }
+  rig->settle_charge();  // charged time (hil_rig.hpp)
   machine.advance_to_next_tick();
-  task.tick();
+  rig->charged_call([&task]() noexcept { task.tick(); });
   for (std::size_t i = 0; i < 2; ++i) {
     result.axis[i].start_mm = task.last_record().axis[i].reference_mm;
     result.axis[i].shaper_delay_s = task.shaper_delay_s(hal::axis_from_index(i));
@@ -124,9 +125,10 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
         if (task.jog(hal::axis_from_index(i), v) != fw::CommandStatus::ok) ++result.refused_commands;
       }
     }
+    rig->settle_charge();  // charged time (hil_rig.hpp)
     machine.advance_to_next_tick();
     const emu::AxisTruth tx = machine.truth(hal::Axis::x), ty = machine.truth(hal::Axis::y);
-    task.tick();
+    rig->charged_call([&task]() noexcept { task.tick(); });
     if (task.state() == fw::MotionState::faulted) break;
     const fw::TickRecord& rec = task.last_record();
     tool_samples.push_back({t_s, tx.tool_position_mm, ty.tool_position_mm});

@@ -48,9 +48,10 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
   tool_um.reserve(static_cast<std::size_t>(motion_ticks + 1));
   std::optional<double> command_end_s;
   for (std::int64_t k = 0; k < dwell_ticks + motion_ticks; ++k) {
+    rig->settle_charge();  // charged time (hil_rig.hpp)
     machine.advance_to_next_tick();
     const emu::AxisTruth truth = machine.truth(axis);  // at this tick's latch
-    task.tick();
+    rig->charged_call([&task]() noexcept { task.tick(); });
     if (task.state() == fw::MotionState::faulted) break;
     const fw::TickRecord& rec = task.last_record();
     if (rec.motion_tick < 0 && !command_end_s && k < dwell_ticks) continue;

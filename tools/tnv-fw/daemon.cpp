@@ -85,8 +85,9 @@ std::unique_ptr<Daemon> Daemon::open(const DaemonConfig& config, const DaemonOpt
     return nullptr;
   }
   d->task_ = std::make_unique<fw::TickTask>(*d->board_, settings.firmware);
+  d->storage_worker_ = std::make_unique<drivers::ThreadStorageWorker>();
   d->node_ = std::make_unique<can::CanNode>(*d->task_, *d->can_, *d->storage_, settings, loaded.fault(),
-                                            &d->storage_->previous());
+                                            &d->storage_->previous(), d->storage_worker_.get());
   d->node_->allow_commissioning(config.safety.allow_commissioning);
 
   // The tick: the board's tick line when wired, else absolute deadlines.

@@ -18,6 +18,7 @@
 #include "drivers/linux/socket_api.hpp"
 #include "drivers/linux/socketcan_port.hpp"
 #include "drivers/storage/file_param_storage.hpp"
+#include "drivers/storage/thread_storage_worker.hpp"
 #include "firmware/can/can_node.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "tools/tnv-fw/fw_config.hpp"
@@ -74,6 +75,9 @@ class Daemon {
   std::unique_ptr<drivers::FileParamStorage> storage_;
   std::unique_ptr<fw::TickTask> task_;
   std::unique_ptr<fw::can::CanNode> node_;
+  // Runs save/load for the node off the real-time thread. Declared after
+  // the node and the storage: joined before either is destroyed.
+  std::unique_ptr<drivers::ThreadStorageWorker> storage_worker_;
   std::unique_ptr<drivers::TickSource> tick_source_;
   drivers::LatencyHistogram latency_;
   std::unique_ptr<drivers::RtLoop> loop_;

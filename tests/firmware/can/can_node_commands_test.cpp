@@ -97,6 +97,19 @@ TEST(CanNodeCommands, SelectControllerAtRestAndShaperEnableNeedsNoConfiguringFir
   EXPECT_TRUE(b.node->settings().shaper[1].enabled);
 }
 
+// A board ticking at 2 ms (a slowed tick line): restore_defaults keeps the
+// period the node was started with, like the encoder and DAC scales.
+TEST(CanNodeCommands, RestoreDefaultsKeepsTheBoardsTickPeriod) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.firmware.supervisor.tick_period_clocks = 20'000;
+  s.firmware.supervisor.period_tolerance_clocks = 10'000;
+  NodeBench b(s);
+  EXPECT_EQ(ack_result(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::ok);
+  EXPECT_EQ(b.node->settings().firmware.supervisor.tick_period_clocks, 20'000u);
+  EXPECT_EQ(b.task.config().supervisor.tick_period_clocks, 20'000u);
+  EXPECT_EQ(b.task.config().supervisor.period_tolerance_clocks, 10'000u);
+}
+
 TEST(CanNodeCommands, SaveLoadAndRestoreDefaults) {
   NodeBench b;
   const std::uint16_t kp = fw::can::find_param("y.pid.kp")->id;

@@ -1,0 +1,39 @@
+#include "firmware/can/storage_jobs.hpp"
+
+#include <span>
+
+namespace tnv::fw::can {
+
+void SaveJob::prepare(hal::ParamStorage& storage, const NodeSettings& settings) noexcept {
+  storage_ = &storage;
+  size_ = encode_image(settings, image_);
+  result_ = ErrorCode::ok;
+}
+
+void SaveJob::run() noexcept {
+  if (storage_ == nullptr || size_ == 0) {
+    result_ = ErrorCode::storage_error;
+    return;
+  }
+  result_ = storage_->write(std::span<const std::uint8_t>(image_.data(), size_)) == hal::HalStatus::ok
+                ? ErrorCode::ok
+                : ErrorCode::storage_error;
+}
+
+void LoadJob::prepare(hal::ParamStorage& current, hal::ParamStorage* previous, const NodeSettings& base) noexcept {
+  current_ = &current;
+  previous_ = previous;
+  settings_ = base;
+  report_ = {};
+}
+
+void LoadJob::run() noexcept {
+  if (current_ == nullptr) {
+    report_.source = LoadSource::neither;
+    report_.current = ErrorCode::storage_error;
+    return;
+  }
+  report_ = load_settings_with_fallback(*current_, previous_, settings_);
+}
+
+}  // namespace tnv::fw::can
