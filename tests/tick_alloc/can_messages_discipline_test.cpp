@@ -65,7 +65,7 @@ struct MessageCase {
 
 std::ostream& operator<<(std::ostream& os, const MessageCase& c) { return os << c.name; }
 
-std::vector<MessageCase> cases() {
+std::vector<MessageCase> message_cases() {
   std::vector<MessageCase> out;
   for (const can::MessageDef& m : can::kMessages) {
     if (m.direction != can::Direction::to_node) continue;
@@ -104,14 +104,14 @@ hal::CanFrame frame_for(const MessageCase& c, const can::NodeSettings& live) {
   return frame;
 }
 
-struct Bench {
+struct MessageBench {
   std::unique_ptr<CanRig> rig;
   hal::CanFrame frame{};
   std::uint16_t answered_before = 0;
 };
 
-Bench holding_bench(const MessageCase& c) {
-  Bench b;
+MessageBench holding_message_bench(const MessageCase& c) {
+  MessageBench b;
   b.rig = CanRig::make();
   if (!b.rig) return b;
   b.rig->storage.bytes.reserve(can::kParamImageMaxBytes);  // the double's save then allocates nothing
@@ -124,47 +124,47 @@ Bench holding_bench(const MessageCase& c) {
 }
 
 // The frame, its service() and the ticks after it: what runs under the guards.
-void exercise(Bench& b) noexcept {
+void exercise_message(MessageBench& b) noexcept {
   b.rig->port.to_node.push(b.frame);
   b.rig->node->service();
   for (int i = 0; i < kTicksAfter; ++i) b.rig->step();
 }
 
 // The node did something with it: an answer, or (e-stop, never answered) a latched fault.
-bool handled(const Bench& b) noexcept {
+bool message_handled(const MessageBench& b) noexcept {
   return b.rig->node->reply_sequence() != b.answered_before || b.rig->task().fault().active();
 }
 
 class CanMessages : public ::testing::TestWithParam<MessageCase> {};
 
 TEST_P(CanMessages, ServiceAndTicksAllocateNothing) {
-  Bench b = holding_bench(GetParam());
+  MessageBench b = holding_message_bench(GetParam());
   ASSERT_TRUE(b.rig);
-  const long heap_calls = heap_calls_in([&] { exercise(b); });
-  EXPECT_TRUE(handled(b)) << "the node neither answered nor latched a fault";
+  const long heap_calls = heap_calls_in([&] { exercise_message(b); });
+  EXPECT_TRUE(message_handled(b)) << "the node neither answered nor latched a fault";
   EXPECT_EQ(heap_calls, 0) << "heap calls while handling " << GetParam().name;
 }
 
 TEST_P(CanMessages, ServiceAndTicksMakeNoSystemCall) {
   if (!kSeccompUsable) GTEST_SKIP() << "the sanitizer runtime makes its own system calls; proven in the plain build";
-  Bench b = holding_bench(GetParam());
+  MessageBench b = holding_message_bench(GetParam());
   ASSERT_TRUE(b.rig);
   const int result = run_without_syscalls([&] {
-    exercise(b);
-    return handled(b) ? 0 : 3;
+    exercise_message(b);
+    return message_handled(b) ? 0 : 3;
   });
   if (result == kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": a system call"
                                       : "the node neither answered nor latched a fault");
 }
 
-INSTANTIATE_TEST_SUITE_P(Every, CanMessages, ::testing::ValuesIn(cases()),
+INSTANTIATE_TEST_SUITE_P(Every, CanMessages, ::testing::ValuesIn(message_cases()),
                          [](const ::testing::TestParamInfo<MessageCase>& p) { return p.param.name; });
 
 // The table really drives the cases: every to-node message is there, every
 // COMMAND code among them, and most frames built this way are accepted.
 TEST(CanMessagesTable, EveryToNodeMessageAndCommandCodeHasACase) {
-  const std::vector<MessageCase> all = cases();
+  const std::vector<MessageCase> all = message_cases();
   for (const can::MessageDef& m : can::kMessages) {
     if (m.direction != can::Direction::to_node) continue;
     bool found = false;
@@ -179,9 +179,9 @@ TEST(CanMessagesTable, EveryToNodeMessageAndCommandCodeHasACase) {
 TEST(CanMessagesTable, TheBuiltFramesAreValidRequests) {
   // Each case's answer: a valid frame is refused only for a reason of state
   // (busy, faulted, not ready, cause present), never as malformed.
-  for (const MessageCase& c : cases()) {
+  for (const MessageCase& c : message_cases()) {
     if (c.message->id == static_cast<std::uint8_t>(can::MessageId::estop)) continue;
-    Bench b = holding_bench(c);
+    MessageBench b = holding_message_bench(c);
     ASSERT_TRUE(b.rig);
     const std::vector<hal::CanFrame> out = b.rig->request(b.frame);
     ASSERT_FALSE(out.empty()) << c.name << ": no answer";

@@ -21,17 +21,15 @@
 namespace tnv::hil {
 namespace {
 
-using test::HilRig;
-
 struct SourceCase {
   std::string name;
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
   bool friction_and_observer = false;      // friction feed-forward and the speed observer on, both axes
   std::vector<emu::FaultSpec> faults{};    // injected by the emulated board
   // The command(s) that start the case, right after the rig is at rest.
-  std::function<fw::CommandStatus(HilRig&)> start;
+  std::function<fw::CommandStatus(test::HilRig&)> start;
   // Called before tick k (1..ticks): jog repeats, a stop, an e-stop.
-  std::function<void(HilRig&, int)> between_ticks = [](HilRig&, int) {};
+  std::function<void(test::HilRig&, int)> between_ticks = [](test::HilRig&, int) {};
   int ticks = 1500;
   // Where the case must end: a motion state, or (fault != none) a latched fault.
   fw::MotionState end_state = fw::MotionState::moving;
@@ -40,7 +38,7 @@ struct SourceCase {
 
 std::ostream& operator<<(std::ostream& os, const SourceCase& c) { return os << c.name; }
 
-fw::FirmwareConfig config_for(const SourceCase& c) {
+fw::FirmwareConfig source_config(const SourceCase& c) {
   fw::FirmwareConfig config = fw::default_firmware_config();
   for (auto& axis : config.axis) {
     axis.controller = c.controller;
@@ -54,16 +52,16 @@ fw::FirmwareConfig config_for(const SourceCase& c) {
   return config;
 }
 
-std::unique_ptr<HilRig> rig_at_rest(const SourceCase& c) {
+std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
   emu::Scenario s = *emu::builtin_scenario("no-cut");
   s.faults = c.faults;
-  auto rig = std::make_unique<HilRig>(s, config_for(c));
+  auto rig = std::make_unique<test::HilRig>(s, source_config(c));
   for (int i = 0; i < 3; ++i) rig->tick();
   return rig;
 }
 
 // The case's commands and ticks; true when it ended where it must.
-bool run_case(const SourceCase& c, HilRig& rig) noexcept {
+bool run_source_case(const SourceCase& c, test::HilRig& rig) noexcept {
   if (c.start(rig) != fw::CommandStatus::ok) return false;
   for (int k = 1; k <= c.ticks; ++k) {
     c.between_ticks(rig, k);
@@ -74,13 +72,13 @@ bool run_case(const SourceCase& c, HilRig& rig) noexcept {
   return !rig.task.fault().active() && rig.task.state() == c.end_state;
 }
 
-std::string ended(const HilRig& rig) {
+std::string where_it_ended(const test::HilRig& rig) {
   return std::string("state ") + fw::to_string(rig.task.state()) + ", fault " + fw::to_string(rig.task.fault().reason);
 }
 
-fw::CommandStatus circle(HilRig& rig) { return rig.task.start_circle(circle_spec_for(rig.scenario)); }
+fw::CommandStatus start_test_circle(test::HilRig& rig) { return rig.task.start_circle(circle_spec_for(rig.scenario)); }
 
-std::vector<SourceCase> cases() {
+std::vector<SourceCase> source_cases() {
   std::vector<SourceCase> out;
   // Every controller kind on the circle (past the dwell, into the motion), plain and compensated.
   for (const fw::ControllerKind kind : {fw::ControllerKind::pid, fw::ControllerKind::dvsc, fw::ControllerKind::rdvsc}) {
@@ -89,14 +87,14 @@ std::vector<SourceCase> cases() {
       c.name = std::string("circle_") + fw::to_string(kind) + (compensated ? "_friction_observer" : "");
       c.controller = kind;
       c.friction_and_observer = compensated;
-      c.start = circle;
+      c.start = start_test_circle;
       out.push_back(c);
     }
   }
   {
     SourceCase c;  // point-to-point move of x, run to its end
     c.name = "start_move";
-    c.start = [](HilRig& rig) {
+    c.start = [](test::HilRig& rig) {
       const fw::CommandStatus held = rig.task.hold_position();
       return held != fw::CommandStatus::ok ? held : rig.task.start_move({hal::Axis::x, 2.0, 10.0, 0.02, 0.0});
     };
@@ -107,8 +105,8 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // the operator's jog stream, reversing, then released: back to holding
     c.name = "jog";
-    c.start = [](HilRig& rig) { return rig.task.hold_position(); };
-    c.between_ticks = [](HilRig& rig, int k) {
+    c.start = [](test::HilRig& rig) { return rig.task.hold_position(); };
+    c.between_ticks = [](test::HilRig& rig, int k) {
       if (k <= 900) rig.task.jog(hal::Axis::x, (k / 300) % 2 == 0 ? 5.0 : -5.0);
       if (k <= 900) rig.task.jog(hal::Axis::y, 2.0);
       if (k == 901) rig.task.jog(hal::Axis::x, 0.0);
@@ -120,8 +118,8 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // controlled stop of a running circle
     c.name = "circle_controlled_stop";
-    c.start = circle;
-    c.between_ticks = [](HilRig& rig, int k) {
+    c.start = start_test_circle;
+    c.between_ticks = [](test::HilRig& rig, int k) {
       if (k == 800) rig.task.stop();
     };
     c.end_state = fw::MotionState::holding;
@@ -130,8 +128,8 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // stop of a jog: both targets to 0
     c.name = "jog_stop";
-    c.start = [](HilRig& rig) { return rig.task.hold_position(); };
-    c.between_ticks = [](HilRig& rig, int k) {
+    c.start = [](test::HilRig& rig) { return rig.task.hold_position(); };
+    c.between_ticks = [](test::HilRig& rig, int k) {
       if (k < 300) rig.task.jog(hal::Axis::x, 8.0);
       if (k == 300) rig.task.stop();
     };
@@ -142,7 +140,7 @@ std::vector<SourceCase> cases() {
   for (const fw::ExcitationKind kind : {fw::ExcitationKind::step, fw::ExcitationKind::ramp}) {
     SourceCase c;  // open-loop excitation for identification, run out
     c.name = kind == fw::ExcitationKind::step ? "excitation_step" : "excitation_ramp";
-    c.start = [kind](HilRig& rig) {
+    c.start = [kind](test::HilRig& rig) {
       const fw::CommandStatus held = rig.task.hold_position();
       fw::ExcitationSpec spec;
       spec.kind = kind;
@@ -157,8 +155,8 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // the fault latch: a remote e-stop mid-circle, then faulted ticks
     c.name = "fault_latch_remote_estop";
-    c.start = circle;
-    c.between_ticks = [](HilRig& rig, int k) {
+    c.start = start_test_circle;
+    c.between_ticks = [](test::HilRig& rig, int k) {
       if (k == 700) rig.task.estop();
     };
     c.fault = fw::FaultReason::remote_estop;
@@ -167,7 +165,7 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // the stall trip: y's encoder goes dead mid-circle
     c.name = "stall_trip";
-    c.start = circle;
+    c.start = start_test_circle;
     c.faults = {{.kind = emu::FaultKind::encoder_dead, .start_s = 1.0004, .axis = hal::Axis::y}};
     c.ticks = 2000;
     c.fault = fw::FaultReason::encoder_stall;
@@ -176,7 +174,7 @@ std::vector<SourceCase> cases() {
   {
     SourceCase c;  // a fault the board reports: the e-stop input
     c.name = "fault_latch_estop_input";
-    c.start = circle;
+    c.start = start_test_circle;
     c.faults = {{.kind = emu::FaultKind::estop, .start_s = 0.9}};
     c.fault = fw::FaultReason::estop;
     out.push_back(c);
@@ -191,8 +189,8 @@ TEST_P(TickSources, CommandsAndTicksAllocateNothing) {
   auto rig = rig_at_rest(c);
   ASSERT_TRUE(rig->init_ok);
   bool ok = false;
-  const long heap_calls = test::heap_calls_in([&] { ok = run_case(c, *rig); });
-  EXPECT_TRUE(ok) << "the case did not end where it must: " << ended(*rig);
+  const long heap_calls = test::heap_calls_in([&] { ok = run_source_case(c, *rig); });
+  EXPECT_TRUE(ok) << "the case did not end where it must: " << where_it_ended(*rig);
   EXPECT_EQ(heap_calls, 0) << "heap calls in the commands and ticks of " << c.name;
 }
 
@@ -201,13 +199,13 @@ TEST_P(TickSources, CommandsAndTicksMakeNoSystemCall) {
   const SourceCase& c = GetParam();
   auto rig = rig_at_rest(c);
   ASSERT_TRUE(rig->init_ok);
-  const int result = test::run_without_syscalls([&] { return run_case(c, *rig) ? 0 : 3; });
+  const int result = test::run_without_syscalls([&] { return run_source_case(c, *rig) ? 0 : 3; });
   if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": a system call"
                                       : "the case did not end where it must");
 }
 
-INSTANTIATE_TEST_SUITE_P(Every, TickSources, ::testing::ValuesIn(cases()),
+INSTANTIATE_TEST_SUITE_P(Every, TickSources, ::testing::ValuesIn(source_cases()),
                          [](const ::testing::TestParamInfo<SourceCase>& p) { return p.param.name; });
 
 }  // namespace
