@@ -26,10 +26,13 @@ namespace can = fw::can;
 
 namespace {
 
-// Ticks one input may run in all: enough to record a capture and run an
-// upload out, to get a motion going and stop it; few enough that the run
-// spends its time on many inputs rather than on long ones.
-constexpr int kMaxTicksPerInput = 256;
+// Ticks one input may run in all: enough to record a capture, get a
+// circle past a short dwell and stop it; few enough that the run spends its
+// time on many inputs rather than on long ones (the ticks are most of an
+// input's cost: 64 gives about 6,000 inputs per CPU second, 256 about 4,000).
+// What only ends after hundreds of ticks (a default dwell, an excitation's
+// settle, the jog dead-man) is left to the unit and HIL tests.
+constexpr int kMaxTicksPerInput = 64;
 
 // The node, its task and the doubles, built once. A reset rebuilds the
 // task and the node in place (no heap allocation, no PID tuning: the

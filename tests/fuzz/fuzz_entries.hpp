@@ -17,7 +17,7 @@ namespace tnv::fuzz {
 // CanNode::service on an in-memory port; one node for the whole run, reset
 // in place between inputs), 12 bytes a frame: flags, id u16 LE, dlc, 8
 // data bytes. Flags: bit 0 extended; bit 1 run ticks first, bits 2..4 how
-// many (2^k, at most 256 in one input); bit 5 the id is message id (low 5
+// many (2^k, at most 64 in one input); bit 5 the id is message id (low 5
 // bits of the id's first byte) to this node.
 std::string can_frames(const std::uint8_t* data, std::size_t size);
 

@@ -104,7 +104,7 @@ void seed_can_frames(const fs::path& dir) {
   Bytes deep;
   add_frame(deep, param_request(n, ParamOp::set, id_of("capture.trigger"), immediate));
   add_frame(deep, capture_control(n, can::CaptureOp::arm));
-  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 6);
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 5);
   add_frame(deep, capture_control(n, can::CaptureOp::abort));
   add_frame(deep, capture_control(n, can::CaptureOp::upload, 255, 0));
   add_frame(deep, param_request(2, ParamOp::get, id_of("x.sliding.gamma")), true);
@@ -117,10 +117,10 @@ void seed_can_frames(const fs::path& dir) {
   add_frame(deep, param_request(n, ParamOp::stage, id_of("tlm.position_ms"), 1));
   add_frame(deep, param_request(n, ParamOp::commit, 0));
   add_frame(deep, param_request(n, ParamOp::set, id_of("motion.circle_dwell_s"), wire("motion.circle_dwell_s", 0.05)));
-  add_frame(deep, command(n, CommandCode::enable), true, 4);
+  add_frame(deep, command(n, CommandCode::enable), true);
   add_frame(deep, circle(n, 6.0, 2.0), true);
-  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 7);
-  add_frame(deep, command(n, CommandCode::stop), true, 7);
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 6);  // past the 50-tick dwell
+  add_frame(deep, command(n, CommandCode::stop), true);
   add_frame(deep, command(n, CommandCode::clear_faults), true, 5);
   put(deep);
   deep.clear();
@@ -129,7 +129,7 @@ void seed_can_frames(const fs::path& dir) {
   set_value(excite, MessageId::excite, "level", 2.0);
   add_frame(deep, command(n, CommandCode::enable));
   add_frame(deep, excite, true, 2);
-  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 6);
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 5);
   add_frame(deep, command(n, CommandCode::save_params), true);
   add_frame(deep, command(n, CommandCode::load_params));
   put(deep);
