@@ -58,7 +58,7 @@ void operator delete[](void* p, std::align_val_t) noexcept { delete_block(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { delete_block(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { delete_block(p); }
 
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(TNV_SANITIZER_OWNS_MALLOC)
 // glibc's allocator under its internal names: what malloc & co are when
 // nothing replaces them.
 extern "C" {

@@ -11,7 +11,8 @@
 
 namespace tnv::test {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TNV_SANITIZER_OWNS_MALLOC 1
 inline constexpr bool kMallocCounted = false;
 #else
 inline constexpr bool kMallocCounted = true;
