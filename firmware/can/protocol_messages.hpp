@@ -220,7 +220,8 @@ constexpr const MessageDef* find_message(std::uint8_t id) noexcept {
 consteval const MessageDef& message(MessageId id) {
   for (const MessageDef& m : kMessages)
     if (m.id == static_cast<std::uint8_t>(id)) return m;
-  throw "no such message";
+  detail::no_such_message();  // not a constant expression: compile error
+  return kMessages[0];
 }
 
 }  // namespace tnv::fw::can

@@ -68,12 +68,22 @@ struct MessageDef {
   const char* doc;
 };
 
+namespace detail {
+// Never defined and not constexpr: a consteval lookup that reaches one of
+// these is not a constant expression, so a typo fails the build with the
+// function's name as the message (a `throw` would do the same, but the
+// firmware builds with -fno-exceptions).
+void no_such_field_in_this_message();
+void no_such_message();
+}  // namespace detail
+
 // Compile-time field lookup by name: a typo is a compile error, not a
 // silent wrong byte.
 consteval const FieldDef& field(const MessageDef& m, std::string_view name) {
   for (const FieldDef& f : m.fields)
     if (name == f.name) return f;
-  throw "no such field in this message";  // not a constant expression: compile error
+  detail::no_such_field_in_this_message();
+  return m.fields[0];
 }
 
 }  // namespace tnv::fw::can

@@ -35,6 +35,7 @@ int run_corpus(const char* target, Entry entry) {
 constexpr int kMinSeeds = 20;  // a corpus, not a token file
 
 TEST(FuzzCorpus, CanFrames) { EXPECT_GE(run_corpus("can_frames", fuzz::can_frames), kMinSeeds); }
+TEST(FuzzCorpus, FrameCodec) { EXPECT_GE(run_corpus("frame_codec", fuzz::frame_codec), kMinSeeds); }
 TEST(FuzzCorpus, ParamSet) { EXPECT_GE(run_corpus("param_set", fuzz::param_set), kMinSeeds); }
 TEST(FuzzCorpus, ScenarioToml) { EXPECT_GE(run_corpus("scenario_toml", fuzz::scenario_toml), kMinSeeds); }
 TEST(FuzzCorpus, ParamImage) { EXPECT_GE(run_corpus("param_image", fuzz::param_image), kMinSeeds); }
@@ -42,6 +43,7 @@ TEST(FuzzCorpus, ParamImage) { EXPECT_GE(run_corpus("param_image", fuzz::param_i
 // The empty input (libFuzzer's first) is a valid input for every entry.
 TEST(FuzzCorpus, EmptyInputsAreHandled) {
   EXPECT_EQ(fuzz::can_frames(nullptr, 0), "");
+  EXPECT_EQ(fuzz::frame_codec(nullptr, 0), "");
   EXPECT_EQ(fuzz::param_set(nullptr, 0), "");
   EXPECT_EQ(fuzz::scenario_toml(reinterpret_cast<const std::uint8_t*>(""), 0), "");
   EXPECT_EQ(fuzz::param_image(nullptr, 0), "");

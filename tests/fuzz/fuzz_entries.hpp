@@ -13,10 +13,17 @@
 
 namespace tnv::fuzz {
 
-// Raw CAN frames into the firmware node (frame_codec + CanNode::service on
-// an in-memory port), 12 bytes a frame: flags (bit 0 extended, bit 1 run a
-// tick first), id u16 LE, dlc, 8 data bytes.
+// Raw CAN frames and tick steps into the firmware node (frame_codec +
+// CanNode::service on an in-memory port; one node for the whole run, reset
+// in place between inputs), 12 bytes a frame: flags, id u16 LE, dlc, 8
+// data bytes. Flags: bit 0 extended; bit 1 run ticks first, bits 2..4 how
+// many (2^k, at most 64 in one input); bit 5 the id is message id (low 5
+// bits of the id's first byte) to this node.
 std::string can_frames(const std::uint8_t* data, std::size_t size);
+
+// The frame codec alone: classify() and every field's read / write round
+// trip, 12 bytes a frame as for can_frames (flags bit 0 extended).
+std::string frame_codec(const std::uint8_t* data, std::size_t size);
 
 // PARAM_REQUEST sequences (get / set / stage / commit / discard) against a
 // model of the staged set, 6 bytes a request: op, parameter index (table

@@ -1,4 +1,4 @@
-// tnv-fuzz-seed DIR: writes the seed corpus of the four fuzz targets into
+// tnv-fuzz-seed DIR: writes the seed corpus of the five fuzz targets into
 // DIR/<target>/ from real protocol frames, request sequences, scenario
 // files (the documented keys, every fault kind, typical mistakes) and
 // parameter images. Run once and check the result in (tests/fuzz/corpus/).
@@ -29,9 +29,10 @@ void write(const fs::path& dir, const std::string& name, const Bytes& bytes) {
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
-// can_frames record: flags, id u16 LE, dlc, 8 data bytes.
-void add_frame(Bytes& out, const CanFrame& f, bool tick_first = false) {
-  out.push_back(static_cast<std::uint8_t>((f.extended ? 1 : 0) | (tick_first ? 2 : 0)));
+// can_frames record: flags, id u16 LE, dlc, 8 data bytes. tick_exponent k
+// (with tick_first): 2^k ticks before the frame.
+void add_frame(Bytes& out, const CanFrame& f, bool tick_first = false, unsigned tick_exponent = 0) {
+  out.push_back(static_cast<std::uint8_t>((f.extended ? 1 : 0) | (tick_first ? 2 : 0) | (tick_exponent & 7u) << 2));
   out.push_back(static_cast<std::uint8_t>(f.id));
   out.push_back(static_cast<std::uint8_t>(f.id >> 8));
   out.push_back(f.dlc);
@@ -96,6 +97,63 @@ void seed_can_frames(const fs::path& dir) {
   put(frames({frame_to(MessageId::heartbeat, n), frame_to(MessageId::param_reply, n), frame_to(MessageId::capture_data, n)}));
   CanFrame unknown{can::make_can_id(0x1F, n), false, 8, {}};
   put(frames({unknown}));
+  // Deep states, with tick steps between the frames: a capture recorded and
+  // uploaded while foreign frames arrive mid-upload, a commit of a staged
+  // set, a circle past its dwell, an excitation run out.
+  const std::uint32_t immediate = static_cast<std::uint32_t>(can::CaptureTrigger::immediate);
+  Bytes deep;
+  add_frame(deep, param_request(n, ParamOp::set, id_of("capture.trigger"), immediate));
+  add_frame(deep, capture_control(n, can::CaptureOp::arm));
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 5);
+  add_frame(deep, capture_control(n, can::CaptureOp::abort));
+  add_frame(deep, capture_control(n, can::CaptureOp::upload, 255, 0));
+  add_frame(deep, param_request(2, ParamOp::get, id_of("x.sliding.gamma")), true);
+  add_frame(deep, command(5, CommandCode::enable), true);
+  add_frame(deep, capture_control(n, can::CaptureOp::upload, 40, 28), true, 3);
+  put(deep);
+  deep.clear();
+  add_frame(deep, param_request(n, ParamOp::stage, id_of("x.sliding.gamma"), wire("x.sliding.gamma", 0.3)));
+  add_frame(deep, param_request(n, ParamOp::stage, id_of("tlm.heartbeat_ms"), 10));
+  add_frame(deep, param_request(n, ParamOp::stage, id_of("tlm.position_ms"), 1));
+  add_frame(deep, param_request(n, ParamOp::commit, 0));
+  add_frame(deep, param_request(n, ParamOp::set, id_of("motion.circle_dwell_s"), wire("motion.circle_dwell_s", 0.05)));
+  add_frame(deep, command(n, CommandCode::enable), true);
+  add_frame(deep, circle(n, 6.0, 2.0), true);
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 6);  // past the 50-tick dwell
+  add_frame(deep, command(n, CommandCode::stop), true);
+  add_frame(deep, command(n, CommandCode::clear_faults), true, 5);
+  put(deep);
+  deep.clear();
+  CanFrame excite = frame_to(MessageId::excite, n);
+  set_raw(excite, MessageId::excite, "duration", 100);
+  set_value(excite, MessageId::excite, "level", 2.0);
+  add_frame(deep, command(n, CommandCode::enable));
+  add_frame(deep, excite, true, 2);
+  add_frame(deep, capture_control(n, can::CaptureOp::status), true, 5);
+  add_frame(deep, command(n, CommandCode::save_params), true);
+  add_frame(deep, command(n, CommandCode::load_params));
+  put(deep);
+}
+
+// frame_codec: every message of the table, to and from the node, with
+// typical field values, plus foreign and malformed identifiers.
+void seed_frame_codec(const fs::path& dir) {
+  int k = 0;
+  const auto put = [&](const Bytes& b) { write(dir, "seed-" + std::to_string(k++), b); };
+  for (const can::MessageDef& m : can::kMessages) {
+    Bytes b;
+    CanFrame f = can::make_frame(m, 1);
+    add_frame(b, f);
+    for (std::size_t i = 0; i < f.data.size(); ++i) f.data[i] = static_cast<std::uint8_t>(0x11 * (i + 1));
+    add_frame(b, f);
+    f.data.fill(0xFF);
+    add_frame(b, f);
+    put(b);
+  }
+  CanFrame ext = can::make_frame(can::kMessages[2], 1);
+  ext.extended = true;
+  CanFrame unknown{can::make_can_id(0x1F, 1), false, 8, {}};
+  put(frames({ext, unknown}));
 }
 
 void seed_param_set(const fs::path& dir) {
@@ -221,6 +279,7 @@ int main(int argc, char** argv) {
   }
   const fs::path root(argv[1]);
   seed_can_frames(root / "can_frames");
+  seed_frame_codec(root / "frame_codec");
   seed_param_set(root / "param_set");
   seed_scenarios(root / "scenario_toml");
   seed_images(root / "param_image");

@@ -1,23 +1,18 @@
 // Tick-path discipline (design notes "The tick"): over 10,000 ticks of the
 // full HIL rig the tick allocates nothing, throws nothing and makes no
 // system call (so it can neither block on a lock, sleep, log nor do I/O).
-//  - allocations: global operator new/delete are replaced in this binary
-//    and count while armed;
+//  - allocations: the allocation guard (alloc_guard.hpp) counts every heap
+//    call, operator new/delete and the malloc family alike;
 //  - exceptions: tick() is noexcept (checked at compile time);
 //  - system calls: a forked child runs the ticks under a seccomp filter that
-//    kills the process on any system call except exit.
+//    kills the process on any system call except exit (seccomp_guard.hpp).
+// tick_sources_test.cpp and can_messages_discipline_test.cpp run every
+// controller, motion source, fault path and CAN message under both.
 #include <gtest/gtest.h>
-#include <linux/filter.h>
-#include <linux/seccomp.h>
-#include <sys/prctl.h>
-#include <sys/syscall.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cstddef>
 #include <cstdlib>
-#include <new>
+#include <vector>
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/can/can_node.hpp"
@@ -25,36 +20,8 @@
 #include "firmware/motion/motion_interpolator.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tests/hil/hil_rig.hpp"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-
-void* counted_alloc(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* counted_aligned_alloc(std::size_t n, std::align_val_t a) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  const auto align = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(align, ((n + align - 1) / align) * align)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t n) { return counted_alloc(n); }
-void* operator new[](std::size_t n) { return counted_alloc(n); }
-void* operator new(std::size_t n, std::align_val_t a) { return counted_aligned_alloc(n, a); }
-void* operator new[](std::size_t n, std::align_val_t a) { return counted_aligned_alloc(n, a); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+#include "tests/tick_alloc/alloc_guard.hpp"
+#include "tests/tick_alloc/seccomp_guard.hpp"
 
 namespace tnv::hil {
 namespace {
@@ -78,11 +45,7 @@ long allocations_over_ticks(test::HilRig& rig, int ticks) {
   long allocations = 0;
   for (int i = 0; i < ticks; ++i) {
     rig.machine.advance_to_next_tick();
-    g_allocations = 0;
-    g_counting = true;
-    rig.task.tick();
-    g_counting = false;
-    allocations += g_allocations;
+    allocations += test::heap_calls_in([&] { rig.task.tick(); });
   }
   return allocations;
 }
@@ -105,66 +68,49 @@ TEST(TickDiscipline, TheShapedJogAllocatesNothingOver10000Ticks) {
   ASSERT_TRUE(rig->init_ok);
   for (int i = 0; i < 3; ++i) rig->tick();
   const fw::ShaperSpec spec{fw::ShaperType::zvdd, {30.0, 0.02}, {11.0, 0.02}};
-  g_allocations = 0;
-  g_counting = true;
-  const fw::CommandStatus configured = rig->task.configure_shaper(hal::Axis::x, spec);
-  const fw::CommandStatus enabled = rig->task.enable_shaper(hal::Axis::x, true);
-  const fw::CommandStatus held = rig->task.hold_position();
-  g_counting = false;
+  fw::CommandStatus configured{}, enabled{}, held{};
+  const long design_allocations = test::heap_calls_in([&] {
+    configured = rig->task.configure_shaper(hal::Axis::x, spec);
+    enabled = rig->task.enable_shaper(hal::Axis::x, true);
+    held = rig->task.hold_position();
+  });
   ASSERT_EQ(configured, fw::CommandStatus::ok);
   ASSERT_EQ(enabled, fw::CommandStatus::ok);
   ASSERT_EQ(held, fw::CommandStatus::ok);
-  EXPECT_EQ(g_allocations, 0) << "heap allocations while designing the shaper";
+  EXPECT_EQ(design_allocations, 0) << "heap allocations while designing the shaper";
   long allocations = 0;
   for (int i = 0; i < kTicks; ++i) {
     rig->machine.advance_to_next_tick();
-    g_allocations = 0;
-    g_counting = true;
-    rig->task.jog(hal::Axis::x, (i / 500) % 2 == 0 ? 20.0 : -20.0);
-    rig->task.tick();
-    g_counting = false;
-    allocations += g_allocations;
+    allocations += test::heap_calls_in([&] {
+      rig->task.jog(hal::Axis::x, (i / 500) % 2 == 0 ? 20.0 : -20.0);
+      rig->task.tick();
+    });
   }
   EXPECT_EQ(allocations, 0) << "heap allocations inside the shaped tick";
   EXPECT_TRUE(rig->task.shaper(hal::Axis::x).shaping());
   EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "fault: " << fw::to_string(rig->task.fault().reason);
 }
 
-TEST(TickDiscipline, TheCounterSeesAnAllocationWhenThereIsOne) {
-  // Guards the guard: the replaced operator new really counts.
-  g_allocations = 0;
-  g_counting = true;
-  auto* p = new std::vector<int>(100);
-  g_counting = false;
+// Guards the guard: a new, a malloc (Eigen's way in) and a calloc all count.
+TEST(TickDiscipline, TheGuardSeesANew) {
+  std::vector<int>* p = nullptr;
+  EXPECT_GE(test::heap_calls_in([&] { p = new std::vector<int>(100); }), 1);
   delete p;
-  EXPECT_GE(g_allocations.load(), 1);
 }
 
-// Runs body() in a forked child under a seccomp filter that allows only
-// exit/exit_group. Returns the child's exit code, or -signal if killed,
-// or 77 if seccomp could not be installed.
-template <typename Body>
-int run_without_syscalls(Body body) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    struct sock_filter filter[] = {
-        BPF_STMT(BPF_LD | BPF_W | BPF_ABS, offsetof(struct seccomp_data, nr)),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, __NR_exit_group, 0, 1),
-        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
-        BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, __NR_exit, 0, 1),
-        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_ALLOW),
-        BPF_STMT(BPF_RET | BPF_K, SECCOMP_RET_KILL_PROCESS),
-    };
-    struct sock_fprog prog = {static_cast<unsigned short>(sizeof filter / sizeof filter[0]), filter};
-    if (::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0) ::_exit(77);
-    if (::prctl(PR_SET_SECCOMP, SECCOMP_MODE_FILTER, &prog) != 0) ::_exit(77);
-    const int code = body();
-    ::syscall(SYS_exit_group, code);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return WIFSIGNALED(status) ? -WTERMSIG(status) : -1000;
+TEST(TickDiscipline, TheGuardSeesAMallocAndACalloc) {
+  if (!test::kMallocCounted) GTEST_SKIP() << "the sanitizer owns malloc; proven in the plain build";
+  void* volatile p = nullptr;
+  EXPECT_GE(test::heap_calls_in([&] { p = std::malloc(64); }), 1);
+  EXPECT_GE(test::heap_calls_in([&] { std::free(p); }), 1);
+  EXPECT_GE(test::heap_calls_in([&] { p = std::calloc(8, 8); }), 1);
+  EXPECT_GE(test::heap_calls_in([&] { p = std::realloc(p, 256); }), 1);
+  std::free(p);
+  void* q = nullptr;
+  EXPECT_GE(test::heap_calls_in([&] { (void)posix_memalign(&q, 64, 128); }), 1);
+  std::free(q);
+  EXPECT_GE(test::heap_calls_in([&] { q = std::aligned_alloc(64, 128); }), 1);
+  std::free(q);
 }
 
 TEST(TickDiscipline, TheTickMakesNoSystemCallOver10000Ticks) {
@@ -173,14 +119,14 @@ TEST(TickDiscipline, TheTickMakesNoSystemCallOver10000Ticks) {
 #endif
   auto rig = running_rig();
   ASSERT_TRUE(rig && rig->init_ok);
-  const int result = run_without_syscalls([&] {
+  const int result = test::run_without_syscalls([&] {
     for (int i = 0; i < kTicks; ++i) {
       rig->machine.advance_to_next_tick();
       rig->task.tick();
     }
     return rig->task.state() == fw::MotionState::moving ? 0 : 3;
   });
-  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": the tick made a system call"
                                       : "the circle stopped running inside the child");
 }
@@ -207,14 +153,14 @@ TEST(TickDiscipline, TheObserverTickAllocatesNothingOver10000Ticks) {
   EXPECT_EQ(allocations, 0) << "heap allocations inside the tick with the observer on";
   EXPECT_EQ(rig->task.state(), fw::MotionState::moving) << "fault: " << fw::to_string(rig->task.fault().reason);
 #if !defined(__SANITIZE_ADDRESS__)
-  const int result = run_without_syscalls([&] {
+  const int result = test::run_without_syscalls([&] {
     for (int i = 0; i < 2000; ++i) {
       rig->machine.advance_to_next_tick();
       rig->task.tick();
     }
     return rig->task.state() == fw::MotionState::moving ? 0 : 3;
   });
-  if (result != 77) {  // 77: seccomp not available on this kernel
+  if (result != test::kSeccompUnavailable) {
     EXPECT_EQ(result, 0) << "the observer tick made a system call (or the circle stopped)";
   }
 #endif
@@ -224,8 +170,8 @@ TEST(TickDiscipline, TheSeccompGuardCatchesASystemCall) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "sanitizer build";
 #endif
-  const int result = run_without_syscalls([] { return ::getppid() > 0 ? 0 : 1; });
-  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  const int result = test::run_without_syscalls([] { return ::getppid() > 0 ? 0 : 1; });
+  if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, -SIGSYS) << "a getppid() under the filter must kill the child";
 }
 
@@ -273,11 +219,7 @@ TEST(TickDiscipline, TheCanServiceAllocatesNothingForAParamSetACommitAndACapture
     b.host(k);
     b.rig->machine.advance_to_next_tick();
     b.rig->task.tick();
-    g_allocations = 0;
-    g_counting = true;
-    b.node->service();
-    g_counting = false;
-    allocations += g_allocations;
+    allocations += test::heap_calls_in([&] { b.node->service(); });
     for (const hal::CanFrame& f : b.port.drain()) {  // the host's side allocates, outside the count
       data_frames += test::is(f, fw::can::MessageId::capture_data) ? 1 : 0;
       replies += test::is(f, fw::can::MessageId::param_reply) ? 1 : 0;
@@ -298,7 +240,7 @@ TEST(TickDiscipline, TheCanServiceMakesNoSystemCall) {
   auto rig = running_rig();
   ASSERT_TRUE(rig && rig->init_ok);
   CanBench b(std::move(rig));
-  const int result = run_without_syscalls([&] {
+  const int result = test::run_without_syscalls([&] {
     for (int k = 0; k < 400; ++k) {
       b.host(k);  // the fake port's rings: no allocation, no system call
       b.rig->machine.advance_to_next_tick();
@@ -308,7 +250,7 @@ TEST(TickDiscipline, TheCanServiceMakesNoSystemCall) {
     }
     return b.rig->task.pid_params(hal::Axis::x).kp == 500.0 ? 0 : 3;
   });
-  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": service() made a system call"
                                       : "the commit did not apply inside the child");
 }

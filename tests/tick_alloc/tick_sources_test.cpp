@@ -1,0 +1,212 @@
+// Tick discipline for every controller kind, motion source and fault path
+// (issue 15): each case starts from the HIL rig at rest, then its commands
+// and every tick run under the allocation guard (operator new and the
+// malloc family, alloc_guard.hpp) and, in a forked child on a fresh rig,
+// under the seccomp guard (seccomp_guard.hpp). Each case also checks where
+// it ended (state or latched fault), so a case that silently did nothing
+// cannot pass.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emulator/scenario_file.hpp"
+#include "firmware/control/speed_observer_design.hpp"
+#include "tests/hil/hil_rig.hpp"
+#include "tests/tick_alloc/alloc_guard.hpp"
+#include "tests/tick_alloc/seccomp_guard.hpp"
+
+namespace tnv::hil {
+namespace {
+
+struct SourceCase {
+  std::string name;
+  fw::ControllerKind controller = fw::ControllerKind::rdvsc;
+  bool friction_and_observer = false;      // friction feed-forward and the speed observer on, both axes
+  std::vector<emu::FaultSpec> faults{};    // injected by the emulated board
+  // The command(s) that start the case, right after the rig is at rest.
+  std::function<fw::CommandStatus(test::HilRig&)> start;
+  // Called before tick k (1..ticks): jog repeats, a stop, an e-stop.
+  std::function<void(test::HilRig&, int)> between_ticks = [](test::HilRig&, int) {};
+  int ticks = 1500;
+  // Where the case must end: a motion state, or (fault != none) a latched fault.
+  fw::MotionState end_state = fw::MotionState::moving;
+  fw::FaultReason fault = fw::FaultReason::none;
+};
+
+std::ostream& operator<<(std::ostream& os, const SourceCase& c) { return os << c.name; }
+
+fw::FirmwareConfig source_config(const SourceCase& c) {
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  for (auto& axis : config.axis) {
+    axis.controller = c.controller;
+    if (!c.friction_and_observer) continue;
+    axis.friction.enabled = true;
+    const fw::ObserverDesign d = fw::steady_state_kalman_gain(axis.model, {0.5, 2.0, axis.count_mm});
+    axis.observer = d.params;
+    axis.observer.enabled = d.ok;
+    axis.observer.use_position = d.ok;
+  }
+  return config;
+}
+
+std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
+  emu::Scenario s = *emu::builtin_scenario("no-cut");
+  s.faults = c.faults;
+  auto rig = std::make_unique<test::HilRig>(s, source_config(c));
+  for (int i = 0; i < 3; ++i) rig->tick();
+  return rig;
+}
+
+// The case's commands and ticks; true when it ended where it must.
+bool run_source_case(const SourceCase& c, test::HilRig& rig) noexcept {
+  if (c.start(rig) != fw::CommandStatus::ok) return false;
+  for (int k = 1; k <= c.ticks; ++k) {
+    c.between_ticks(rig, k);
+    rig.machine.advance_to_next_tick();
+    rig.task.tick();
+  }
+  if (c.fault != fw::FaultReason::none) return rig.task.fault().reason == c.fault;
+  return !rig.task.fault().active() && rig.task.state() == c.end_state;
+}
+
+std::string where_it_ended(const test::HilRig& rig) {
+  return std::string("state ") + fw::to_string(rig.task.state()) + ", fault " + fw::to_string(rig.task.fault().reason);
+}
+
+fw::CommandStatus start_test_circle(test::HilRig& rig) { return rig.task.start_circle(circle_spec_for(rig.scenario)); }
+
+std::vector<SourceCase> source_cases() {
+  std::vector<SourceCase> out;
+  // Every controller kind on the circle (past the dwell, into the motion), plain and compensated.
+  for (const fw::ControllerKind kind : {fw::ControllerKind::pid, fw::ControllerKind::dvsc, fw::ControllerKind::rdvsc}) {
+    for (const bool compensated : {false, true}) {
+      SourceCase c;
+      c.name = std::string("circle_") + fw::to_string(kind) + (compensated ? "_friction_observer" : "");
+      c.controller = kind;
+      c.friction_and_observer = compensated;
+      c.start = start_test_circle;
+      out.push_back(c);
+    }
+  }
+  {
+    SourceCase c;  // point-to-point move of x, run to its end
+    c.name = "start_move";
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      return held != fw::CommandStatus::ok ? held : rig.task.start_move({hal::Axis::x, 2.0, 10.0, 0.02, 0.0});
+    };
+    c.ticks = 800;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // the operator's jog stream, reversing, then released: back to holding
+    c.name = "jog";
+    c.start = [](test::HilRig& rig) { return rig.task.hold_position(); };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k <= 900) rig.task.jog(hal::Axis::x, (k / 300) % 2 == 0 ? 5.0 : -5.0);
+      if (k <= 900) rig.task.jog(hal::Axis::y, 2.0);
+      if (k == 901) rig.task.jog(hal::Axis::x, 0.0);
+      if (k == 901) rig.task.jog(hal::Axis::y, 0.0);
+    };
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // controlled stop of a running circle
+    c.name = "circle_controlled_stop";
+    c.start = start_test_circle;
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k == 800) rig.task.stop();
+    };
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // stop of a jog: both targets to 0
+    c.name = "jog_stop";
+    c.start = [](test::HilRig& rig) { return rig.task.hold_position(); };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k < 300) rig.task.jog(hal::Axis::x, 8.0);
+      if (k == 300) rig.task.stop();
+    };
+    c.ticks = 1000;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  for (const fw::ExcitationKind kind : {fw::ExcitationKind::step, fw::ExcitationKind::ramp}) {
+    SourceCase c;  // open-loop excitation for identification, run out
+    c.name = kind == fw::ExcitationKind::step ? "excitation_step" : "excitation_ramp";
+    c.start = [kind](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      fw::ExcitationSpec spec;
+      spec.kind = kind;
+      spec.level_mm_s = kind == fw::ExcitationKind::step ? 5.0 : 20.0;
+      spec.duration_s = kind == fw::ExcitationKind::step ? 0.15 : 3.0;
+      return held != fw::CommandStatus::ok ? held : rig.task.start_excitation(hal::Axis::y, spec);
+    };
+    c.ticks = 3500;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // the fault latch: a remote e-stop mid-circle, then faulted ticks
+    c.name = "fault_latch_remote_estop";
+    c.start = start_test_circle;
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k == 700) rig.task.estop();
+    };
+    c.fault = fw::FaultReason::remote_estop;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // the stall trip: y's encoder goes dead mid-circle
+    c.name = "stall_trip";
+    c.start = start_test_circle;
+    c.faults = {{.kind = emu::FaultKind::encoder_dead, .start_s = 1.0004, .axis = hal::Axis::y}};
+    c.ticks = 2000;
+    c.fault = fw::FaultReason::encoder_stall;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // a fault the board reports: the e-stop input
+    c.name = "fault_latch_estop_input";
+    c.start = start_test_circle;
+    c.faults = {{.kind = emu::FaultKind::estop, .start_s = 0.9}};
+    c.fault = fw::FaultReason::estop;
+    out.push_back(c);
+  }
+  return out;
+}
+
+class TickSources : public ::testing::TestWithParam<SourceCase> {};
+
+TEST_P(TickSources, CommandsAndTicksAllocateNothing) {
+  const SourceCase& c = GetParam();
+  auto rig = rig_at_rest(c);
+  ASSERT_TRUE(rig->init_ok);
+  bool ok = false;
+  const long heap_calls = test::heap_calls_in([&] { ok = run_source_case(c, *rig); });
+  EXPECT_TRUE(ok) << "the case did not end where it must: " << where_it_ended(*rig);
+  EXPECT_EQ(heap_calls, 0) << "heap calls in the commands and ticks of " << c.name;
+}
+
+TEST_P(TickSources, CommandsAndTicksMakeNoSystemCall) {
+  if (!test::kSeccompUsable) GTEST_SKIP() << "the sanitizer runtime makes its own system calls; proven in the plain build";
+  const SourceCase& c = GetParam();
+  auto rig = rig_at_rest(c);
+  ASSERT_TRUE(rig->init_ok);
+  const int result = test::run_without_syscalls([&] { return run_source_case(c, *rig) ? 0 : 3; });
+  if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": a system call"
+                                      : "the case did not end where it must");
+}
+
+INSTANTIATE_TEST_SUITE_P(Every, TickSources, ::testing::ValuesIn(source_cases()),
+                         [](const ::testing::TestParamInfo<SourceCase>& p) { return p.param.name; });
+
+}  // namespace
+}  // namespace tnv::hil
