@@ -105,22 +105,6 @@ const char* check_sent(test::FakeCanPort& port, bool& refused) {
   return "";
 }
 
-// COMMAND restore_defaults re-runs the PID tuning rule (milliseconds under
-// the sanitizers): in the libFuzzer build it is left out so the run spends
-// its time on the protocol, not on one command (the corpus regression test
-// of the normal build still sends it). Drop this once the node's defaults
-// are computed once.
-#if defined(TNV_FUZZ_SKIP_RESTORE_DEFAULTS)
-constexpr bool kSkipRestoreDefaults = true;
-#else
-constexpr bool kSkipRestoreDefaults = false;
-#endif
-
-bool restore_defaults_command(const hal::CanFrame& f) {
-  return test::is(f, can::MessageId::command) &&
-         test::raw_of(f, can::MessageId::command, "code") == static_cast<std::uint32_t>(can::CommandCode::restore_defaults);
-}
-
 // Ticks a record asks for before its frame: flags bit 1 on, bits 2..4 the
 // count k: 2^k ticks, 1 .. 128.
 int ticks_of(std::uint8_t flags) {
@@ -141,8 +125,6 @@ std::string can_frames(const std::uint8_t* data, std::size_t size) {
       // bit 5: message id (rec[1], 5 bits) addressed to this node, so mutations stay on the node's messages
       frame.id = can::make_can_id(static_cast<std::uint8_t>(rec[1] & 0x1Fu), test::kNode);
     }
-
-    if (kSkipRestoreDefaults && restore_defaults_command(frame)) continue;
 
     bool refused = false;
     for (int t = std::min(ticks_of(rec[0]), ticks_left); t > 0; --t, --ticks_left) {
