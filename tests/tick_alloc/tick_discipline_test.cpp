@@ -274,17 +274,15 @@ TEST(TickDiscipline, TheMotionCoreAllocatesNothingAndMakesNoSystemCall) {
   };
   MotionInterpolator counted;
   ASSERT_STREQ(counted.configure({}, {0.0, 0.0}), "");
-  g_allocations = 0;
-  g_counting = true;
-  const int counted_result = run(counted, 20000);
-  g_counting = false;
+  int counted_result = -1;
+  const long heap_calls = test::heap_calls_in([&] { counted_result = run(counted, 20000); });
   EXPECT_EQ(counted_result, 0) << "the program did not run through";
-  EXPECT_EQ(g_allocations, 0) << "heap allocations in the motion core";
+  EXPECT_EQ(heap_calls, 0) << "heap allocations in the motion core";
 
   MotionInterpolator sealed;
   ASSERT_STREQ(sealed.configure({}, {0.0, 0.0}), "");
-  const int result = run_without_syscalls([&] { return run(sealed, 20000); });
-  if (result == 77) GTEST_SKIP() << "seccomp is not available on this kernel";
+  const int result = test::run_without_syscalls([&] { return run(sealed, 20000); });
+  if (result == test::kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
   EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": the motion core made a system call"
                                       : "the program did not run through");
 }
