@@ -24,6 +24,8 @@ enum class ErrorCode : std::uint8_t {
   not_ready,        // the request needs something that is not there (no capture, shaper not configured)
   cause_present,    // clear faults refused: the cause (e.g. e-stop) is still asserted
   bad_axis,         // axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all)
+  no_host,          // the request's tag names host 0: only ESTOP and the broadcast stop may be anonymous
+  not_owner,        // needs command ownership, which another host (or no host) holds
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
@@ -43,10 +45,12 @@ constexpr const char* to_string(ErrorCode e) noexcept {
     case ErrorCode::not_ready: return "not_ready";
     case ErrorCode::cause_present: return "cause_present";
     case ErrorCode::bad_axis: return "bad_axis";
+    case ErrorCode::no_host: return "no_host";
+    case ErrorCode::not_owner: return "not_owner";
   }
   return "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 15;
+inline constexpr std::uint8_t kErrorCodeCount = 17;
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {
@@ -60,8 +64,10 @@ enum class CommandCode : std::uint8_t {
   save_params,        // write the live parameter set to storage
   load_params,        // read the stored set and apply it whole; only when at rest
   restore_defaults,   // the papers' defaults (not saved until save_params); only when at rest
+  take_ownership,     // the requesting host becomes the one that may command (if nobody else holds it)
+  release_ownership,  // the owner gives command ownership up
 };
-inline constexpr std::uint8_t kCommandCodeCount = 10;
+inline constexpr std::uint8_t kCommandCodeCount = 12;
 
 constexpr const char* to_string(CommandCode c) noexcept {
   switch (c) {
@@ -75,6 +81,8 @@ constexpr const char* to_string(CommandCode c) noexcept {
     case CommandCode::save_params: return "save_params";
     case CommandCode::load_params: return "load_params";
     case CommandCode::restore_defaults: return "restore_defaults";
+    case CommandCode::take_ownership: return "take_ownership";
+    case CommandCode::release_ownership: return "release_ownership";
   }
   return "?";
 }
