@@ -20,6 +20,11 @@
 
 namespace tnv::can_host {
 
+// Frames the emulated node's CAN port holds for the wire (a controller's
+// transmit mailboxes, or a short kernel queue): the rest wait in the node's
+// priority queue.
+inline constexpr std::size_t kNodeFramesInFlight = 3;
+
 struct EmulatedNodeOptions {
   std::string scenario = "no-cut";  // built-in name or TOML file
   int seed = 0;                     // hil::seeded(); 0 = the scenario as written (tnv-hil circle's default)

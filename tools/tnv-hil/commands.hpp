@@ -14,5 +14,6 @@ void add_boring_commands(CLI::App& app, Runner& run);  // boring (S4)
 void add_arsc_commands(CLI::App& app, Runner& run);    // arsc design | run | compare | tick (S3)
 void add_shaper_commands(CLI::App& app, Runner& run);  // shaper design | move | jog | grid (S2)
 void add_best_circle_commands(CLI::App& app, Runner& run);  // best-circle, identify (issue 7)
+void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 
 }  // namespace tnv::cli

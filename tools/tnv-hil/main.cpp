@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   add_boring_commands(app, run);
   add_arsc_commands(app, run);
   add_shaper_commands(app, run);
+  add_bus_stress_commands(app, run);
 
   try {
     app.parse(argc, argv);
