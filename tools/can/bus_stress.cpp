@@ -189,7 +189,10 @@ BusStressResult run_bus_stress(const BusStressOptions& o) {
     // The hosts: one request outstanding each.
     const Micros now = bus->now();
     for (Host& h : hosts) {
-      if (h.waiting && now - h.sent_at > kReplyTimeout) h.waiting = false;  // lost: counted by what arrived
+      if (h.waiting && now - h.sent_at > kReplyTimeout) {  // lost: the host gives up on it and goes on
+        h.waiting = false;
+        ++h.next;
+      }
       if (h.waiting || h.next >= h.script.size() || now < h.resume_at) continue;
       bus->send(request_for(node, h, bus->node().settings(), h.expected));
       h.waiting = true;
