@@ -5,7 +5,8 @@
 
 namespace tnv::fw::can {
 
-inline constexpr std::uint32_t kProtocolVersion = 1;
+// 2: request tags (byte 0 of every answered request, echoed by its reply), hosts and ownership.
+inline constexpr std::uint32_t kProtocolVersion = 2;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result).
 enum class ErrorCode : std::uint8_t {
