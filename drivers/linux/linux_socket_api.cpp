@@ -33,6 +33,10 @@ class LinuxSocketApi final : public SocketApi {
     return result_of(::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &mask, sizeof mask));
   }
 
+  SysResult set_send_buffer(int fd, int bytes) override {
+    return result_of(::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &bytes, sizeof bytes));
+  }
+
   SysResult set_nonblocking(int fd) override {
     const int flags = ::fcntl(fd, F_GETFL, 0);
     if (flags < 0) return {-1, errno};

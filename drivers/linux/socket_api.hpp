@@ -33,6 +33,8 @@ class SocketApi {
   virtual SysResult set_filters(int fd, std::span<const can_filter> filters) = 0;  // CAN_RAW_FILTER
   virtual SysResult set_error_mask(int fd, can_err_mask_t mask) = 0;               // CAN_RAW_ERR_FILTER
   virtual SysResult set_nonblocking(int fd) = 0;
+  // SO_SNDBUF (the kernel rounds up to its minimum). Default: not supported, nothing done.
+  virtual SysResult set_send_buffer(int /*fd*/, int /*bytes*/) { return {}; }
   virtual SysResult bind_can(int fd, int ifindex) = 0;
   // poll() on one descriptor; value = revents (0 on timeout).
   virtual SysResult poll_one(int fd, short events, int timeout_ms) = 0;

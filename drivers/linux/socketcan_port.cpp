@@ -53,6 +53,12 @@ std::unique_ptr<SocketCanPort> SocketCanPort::open(SocketApi& api, const SocketC
   // Every error class: bus-off and restarts drive the recovery, the rest is counted.
   if (const SysResult r = api.set_error_mask(fd, CAN_ERR_MASK); r.failed())
     return fail("cannot enable error frames", r.error);
+  // The kernel's transmit path is first come, first served: keep what waits
+  // there short (the smallest send buffer the kernel allows, a few frames)
+  // so that the node's own priority queue decides what goes out next and a
+  // FAULT_EVENT or a reply never waits behind a backlog of telemetry.
+  if (const SysResult r = api.set_send_buffer(fd, kSendBufferBytes); r.failed())
+    return fail("cannot shorten the socket's send buffer", r.error);
   if (const SysResult r = api.set_nonblocking(fd); r.failed())
     return fail("cannot make the socket non-blocking", r.error);
   if (const SysResult r = api.bind_can(fd, static_cast<int>(index.value)); r.failed())

@@ -21,6 +21,10 @@
 
 namespace tnv::drivers {
 
+// SO_SNDBUF of the node's CAN socket: 1 byte asks for the kernel's minimum
+// (SOCK_MIN_SNDBUF, about 4.6 KiB: a handful of CAN frames in flight).
+inline constexpr int kSendBufferBytes = 1;
+
 struct SocketCanPortOptions {
   std::string interface_name = "can0";
   std::uint8_t node_id = 1;

@@ -8,6 +8,7 @@
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/request_tag.hpp"
 #include "firmware/can/tick_signals.hpp"
 
 namespace tnv::fw::can {
@@ -49,7 +50,13 @@ CaptureState CanNode::capture_state() const noexcept { return capture_.state(); 
 std::uint32_t CanNode::capture_samples() const noexcept { return capture_.samples(); }
 std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.channel_mask(); }
 std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.words(); }
-std::size_t CanNode::staged_count() const noexcept { return staged_.size(); }
+std::size_t CanNode::staged_count() const noexcept { return staged_.total(); }
+std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
+  const StagedParams* s = staged_.find(host);
+  return s != nullptr ? s->size() : 0;
+}
+std::uint8_t CanNode::owner() const noexcept { return owner_; }
+std::size_t CanNode::tx_pending() const noexcept { return tx_.size(); }
 bool CanNode::storage_fault() const noexcept { return storage_fault_; }
 bool CanNode::params_unsaved() const noexcept { return unsaved_; }
 bool CanNode::storage_in_flight() const noexcept { return storage_pending_; }
@@ -66,13 +73,14 @@ void CanNode::service() noexcept {
     last_tick_ = tick;
     due = on_new_tick(ticks);
   }
-  flush_replies();
+  flush();
   check_commissioning();
   collect_storage();
   receive();
   check_fault();
   check_commissioning();
   send_telemetry(due);
+  flush();
   send_upload();
 }
 
@@ -88,12 +96,16 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
     deadman_stops_seen_ = stops;
     jog_deadman_ = true;
   }
-  // Host timeout: while moving, no valid frame for can.host_timeout_ms -> controlled stop.
+  // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
+  // ownership, and motion (which only the owner may have started) comes to a controlled stop.
   silent_ticks_ += ticks;
   const std::uint32_t timeout = settings_.can.host_timeout_ms;
-  if (timeout > 0 && task_.moving() && !task_.stopping() && silent_ticks_ >= timeout) {
-    task_.stop();
-    host_timeout_ = true;
+  if (timeout > 0 && silent_ticks_ >= timeout) {
+    owner_ = kAnonymousHost;
+    if (task_.moving() && !task_.stopping()) {
+      task_.stop();
+      host_timeout_ = true;
+    }
   }
   return telemetry_.advance(settings_.telemetry, ticks);
 }
@@ -143,20 +155,32 @@ void CanNode::receive() noexcept {
 void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   ++counters_.rx_frames;
   const auto id = static_cast<MessageId>(m.id);
-  if (id == MessageId::estop) {  // whatever its length
+  if (id == MessageId::estop) {  // whatever its length, from anyone
     task_.estop();
-    silent_ticks_ = 0;
     return;
   }
+  // Every other to-node message starts with its tag (byte 0); a frame too
+  // short to hold one is answered with tag 0.
+  tag_ = frame.dlc > 0 ? frame.data[0] : 0;
+  broadcast_ = node_of(frame.id) == kBroadcastNode;
+  const auto refuse = [&](ErrorCode e) noexcept {
+    switch (id) {
+      case MessageId::param_request: reply_param(e, 0, 0); return;
+      case MessageId::capture_control: reply_capture(e); return;
+      default: reply_ack(m.id, 0, e, 0); return;
+    }
+  };
   if (frame.dlc != m.dlc) {
     ++counters_.rx_malformed;
-    switch (id) {
-      case MessageId::param_request: reply_param(0, ErrorCode::bad_length, 0, 0); return;
-      case MessageId::capture_control: reply_capture(ErrorCode::bad_length); return;
-      default: reply_ack(m.id, 0, ErrorCode::bad_length, 0); return;
-    }
+    return refuse(ErrorCode::bad_length);
   }
-  silent_ticks_ = 0;  // a valid frame from the host
+  const std::uint8_t host = host_of_tag(tag_);
+  // Host 0 is anonymous: only the broadcast stop (checked in receive()) may come from it.
+  if (host == kAnonymousHost && !broadcast_) {
+    ++counters_.rx_malformed;
+    return refuse(ErrorCode::no_host);
+  }
+  if (host != kAnonymousHost && host == owner_) silent_ticks_ = 0;  // a valid frame from the owner
   switch (id) {
     case MessageId::command: handle_command(frame); return;
     case MessageId::jog: handle_jog(frame); return;
@@ -173,6 +197,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
 // --- replies
 
 void CanNode::count_result(ErrorCode result) noexcept {
+  ++sequence_;  // every answer passes here
   if (result == ErrorCode::ok) return;
   ++counters_.requests_refused;
   if (result == ErrorCode::unknown_command) ++counters_.rx_malformed;
@@ -181,36 +206,36 @@ void CanNode::count_result(ErrorCode result) noexcept {
 void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
   count_result(result);
   hal::CanFrame frame = make_frame(kAckMsg, node_id_);
+  write_raw(frame, kAckTag, tag_);
   write_raw(frame, kAckRequest, request);
   write_raw(frame, kAckCode, code);
   write_raw(frame, kAckResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kAckState, static_cast<std::uint32_t>(task_.state()));
   write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
   write_raw(frame, kAckDetail, detail);
-  write_raw(frame, kAckSequence, ++sequence_);
+  write_raw(frame, kAckOwner, owner_);
   send_reply(frame);
 }
 
-void CanNode::reply_param(std::uint8_t op, ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
+void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
   count_result(result);
   hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
-  write_raw(frame, kReplyOp, op);
+  write_raw(frame, kReplyTag, tag_);
   write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kReplyParam, param);
   write_raw(frame, kReplyValue, value);
-  ++sequence_;
   send_reply(frame);
 }
 
 void CanNode::reply_capture(ErrorCode result) noexcept {
   count_result(result);
   hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
+  write_raw(frame, kStatusTag, tag_);
   write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
   write_raw(frame, kStatusResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kStatusChannels, capture_.channel_count());
   write_raw(frame, kStatusDecimation, std::min<std::uint32_t>(capture_.decimation(), 255u));
-  write_raw(frame, kStatusSamples, capture_.samples());
-  ++sequence_;
+  write_raw(frame, kStatusSamples, std::min<std::uint32_t>(capture_.samples(), 0xFFFFFFu));
   send_reply(frame);
 }
 
@@ -226,13 +251,22 @@ void CanNode::dropped() noexcept {
   tx_dropped_since_heartbeat_ = true;
 }
 
-void CanNode::send_reply(const hal::CanFrame& frame) noexcept {
-  if (replies_.empty() && send_now(frame)) return;
-  if (!replies_.push(frame)) dropped();  // kept in order for the next service()
+void CanNode::queue(const hal::CanFrame& frame, bool droppable) noexcept {
+  switch (tx_.push(frame, droppable)) {
+    case TxPriorityQueue::Push::queued: return;
+    case TxPriorityQueue::Push::evicted_other:  // only telemetry is ever evicted
+      ++counters_.telemetry_dropped;
+      dropped();
+      return;
+    case TxPriorityQueue::Push::dropped:
+      if (droppable) ++counters_.telemetry_dropped;
+      dropped();
+      return;
+  }
 }
 
-void CanNode::flush_replies() noexcept {
-  while (!replies_.empty() && send_now(replies_.front())) replies_.pop();
+void CanNode::flush() noexcept {
+  while (!tx_.empty() && send_now(tx_.top())) tx_.pop();
 }
 
 // --- heartbeat and telemetry
@@ -263,9 +297,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
 void CanNode::send_telemetry(std::uint32_t due) noexcept {
   if (due == 0) return;
   const TickRecord& r = task_.last_record();
-  const auto emit = [this](const hal::CanFrame& frame) noexcept {
-    if (!send_now(frame)) dropped();
-  };
+  const auto emit = [this](const hal::CanFrame& frame) noexcept { queue(frame, true); };
   if ((due & cyclic_bit(Cyclic::heartbeat)) != 0) {
     hal::CanFrame f = make_frame(kHeartbeatMsg, node_id_);
     const TickCounters& c = task_.counters();
@@ -273,12 +305,13 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
     write_raw(f, kHbErrors, heartbeat_errors());
     write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFFFu)));
-    write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFFFu));
+    write_raw(f, kHbOwner, owner_);
+    write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
     tx_dropped_since_heartbeat_ = false;
     bus_errors_at_heartbeat_ = c.bus_errors;
     late_ticks_at_heartbeat_ = c.late_ticks;
     can_errors_at_heartbeat_ = can_.error_frames();
-    emit(f);
+    queue(f, false);  // never dropped for telemetry's sake
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
     // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.

@@ -17,6 +17,18 @@
 // the host timeout, and notices a newly latched fault (FAULT_EVENT, once).
 // Calling service() more than once per tick only handles more frames.
 //
+// Hosts: every answered request carries a tag (request_tag.hpp) naming its
+// host (1..15); the reply echoes it. Each host has its own staged
+// parameter set (host_staged_sets.hpp). Commands that move or change the
+// machine need command ownership, taken and released explicitly
+// (COMMAND take_ownership / release_ownership) and lost when its host is
+// silent for can.host_timeout_ms; reads are open to every host.
+//
+// Transmit order: every frame goes through a priority queue
+// (tx_priority_queue.hpp) and leaves in CAN-id order; telemetry is dropped
+// first when it is full, a capture upload only goes out when nothing else
+// waits.
+//
 // Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
 // words, 512 KiB): give it static storage or build it on the heap.
 #include <array>
@@ -30,8 +42,9 @@
 #include "firmware/can/protocol_messages.hpp"
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/storage_jobs.hpp"
+#include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
-#include "firmware/can/tx_queue.hpp"
+#include "firmware/can/tx_priority_queue.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 #include "hal/param_storage.hpp"
@@ -50,7 +63,8 @@ struct NodeCounters {
   std::uint64_t rx_ignored = 0;      // frames for other nodes, from other nodes, or not ours
   std::uint64_t rx_malformed = 0;    // answered with an error code (bad length, unknown op, ...)
   std::uint64_t tx_frames = 0;
-  std::uint64_t tx_dropped = 0;      // the transmit queue was full
+  std::uint64_t tx_dropped = 0;      // the transmit queue was full (telemetry_dropped included)
+  std::uint64_t telemetry_dropped = 0;  // telemetry frames dropped to make room (or for want of it)
   std::uint64_t requests_refused = 0;
 };
 
@@ -96,11 +110,14 @@ class CanNode {
   // The capture image as 32-bit words: samples x channels, sample-major,
   // channels in bit order (CAPTURE_DATA carries these little-endian).
   std::span<const std::uint32_t> capture_words() const noexcept;
-  std::size_t staged_count() const noexcept;  // parameters waiting for commit
+  std::size_t staged_count() const noexcept;  // parameters waiting for commit, all hosts
+  std::size_t staged_count(std::uint8_t host) const noexcept;  // the host's own pending set
+  std::uint8_t owner() const noexcept;  // host id holding command ownership, 0 none
+  std::size_t tx_pending() const noexcept;  // frames waiting in the priority queue
   bool storage_fault() const noexcept;
   bool params_unsaved() const noexcept;
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
-  std::uint16_t reply_sequence() const noexcept;  // COMMAND_ACK.sequence of the last answer
+  std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
 
  private:
   struct Upload {
@@ -144,6 +161,8 @@ class CanNode {
   // Leaves commissioning mode when the machine no longer allows it (not
   // disabled, or a fault latched); called each service() and before a change.
   void check_commissioning() noexcept;
+  ErrorCode command_ownership(CommandCode code) noexcept;  // take / release
+  bool owns() const noexcept;  // the current request's host holds command ownership
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole
   ErrorCode apply_settings(const NodeSettings& next, bool idle_touched) noexcept;
@@ -151,12 +170,13 @@ class CanNode {
   bool moving() const noexcept;
   // replies and frames
   void reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept;
-  void reply_param(std::uint8_t op, ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
+  void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
   void reply_capture(ErrorCode result) noexcept;
   void count_result(ErrorCode result) noexcept;
-  void send_reply(const hal::CanFrame& frame) noexcept;  // queued in order when the port is full
+  void queue(const hal::CanFrame& frame, bool droppable) noexcept;  // into the priority queue
+  void send_reply(const hal::CanFrame& frame) noexcept { queue(frame, false); }
   bool send_now(const hal::CanFrame& frame) noexcept;    // false: not sent
-  void flush_replies() noexcept;
+  void flush() noexcept;                                 // the queue into the port, in priority order
   void dropped() noexcept;
 
   TickTask& task_;
@@ -175,16 +195,19 @@ class CanNode {
   LoadJob load_job_{};
   std::uint8_t node_id_;
   NodeCounters counters_{};
-  StagedParams staged_{};
+  HostStagedSets staged_{};
   TelemetryScheduler telemetry_{};
-  TxQueue replies_{};
+  TxPriorityQueue tx_{};
   Upload upload_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
   int tx_budget_ = 0;                   // frames this service() may still send
-  std::uint16_t sequence_ = 0;          // answered requests, mod 65536
+  std::uint8_t tag_ = 0;                // tag of the request being handled (echoed by its reply)
+  std::uint16_t sequence_ = 0;          // requests answered, mod 65536 (tests and the fuzz invariant)
+  std::uint8_t owner_ = 0;              // host holding command ownership, 0 none
+  bool broadcast_ = false;              // the request being handled came on node 0
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
-  std::uint64_t silent_ticks_ = 0;      // ticks since the last valid frame from the host
+  std::uint64_t silent_ticks_ = 0;      // ticks since the last valid frame from the owner
   std::uint32_t deadman_stops_seen_ = 0;
   bool storage_fault_ = false;
   bool unsaved_ = false;

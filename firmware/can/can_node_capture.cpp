@@ -37,15 +37,16 @@ void CanNode::handle_capture(const hal::CanFrame& frame) noexcept {
       if (st == CaptureState::recording || upload_.active) return reply_capture(ErrorCode::busy);
       if (frames == 0) return reply_capture(ErrorCode::out_of_range);
       if (st != CaptureState::done || offset >= capture_.image_bytes()) return reply_capture(ErrorCode::not_ready);
-      upload_ = {true, offset, frames, 0};
-      ++sequence_;  // answered by the data frames
+      upload_ = {true, offset, frames, 0};  // answered by the data frames
       return;
     }
   }
 }
 
+// Lowest priority of all: a data frame goes out only when nothing else waits,
+// and waits (is not lost) while the port is full.
 void CanNode::send_upload() noexcept {
-  while (upload_.active) {
+  while (upload_.active && tx_.empty()) {
     hal::CanFrame frame = make_frame(kCaptureDataMsg, node_id_);
     write_raw(frame, kDataSequence, upload_.next);
     std::array<std::uint8_t, kDataBytesPerFrame> bytes{};

@@ -1,12 +1,15 @@
 // CanNode: COMMAND, JOG, MOVE, CIRCLE and SHAPER, each answered by one
 // COMMAND_ACK (detail = index of the offending field). Every check comes
-// before anything is started: a refused request changes nothing.
+// before anything is started: a refused request changes nothing. All of
+// them need command ownership (the broadcast stop excepted); taking and
+// releasing it are COMMAND codes too.
 #include <cmath>
 
 #include "firmware/can/can_node.hpp"
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/request_tag.hpp"
 
 namespace tnv::fw::can {
 
@@ -22,6 +25,27 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 
 }  // namespace
 
+bool CanNode::owns() const noexcept {
+  const std::uint8_t host = host_of_tag(tag_);
+  return host != kAnonymousHost && host == owner_;
+}
+
+// take: granted when nobody holds ownership or the host already does
+// (taking it again is harmless); release: only by the owner.
+ErrorCode CanNode::command_ownership(CommandCode code) noexcept {
+  const std::uint8_t host = host_of_tag(tag_);
+  if (host == kAnonymousHost) return ErrorCode::no_host;
+  if (code == CommandCode::take_ownership) {
+    if (owner_ != kAnonymousHost && owner_ != host) return ErrorCode::not_owner;
+    owner_ = host;
+    silent_ticks_ = 0;
+    return ErrorCode::ok;
+  }
+  if (owner_ != host) return ErrorCode::not_owner;
+  owner_ = kAnonymousHost;
+  return ErrorCode::ok;
+}
+
 void CanNode::motion_accepted() noexcept {
   commissioning_ = false;
   jog_deadman_ = false;
@@ -34,9 +58,15 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     reply_ack(kCommandMsg.id, code_raw, ErrorCode::unknown_command, index_of(kCommandMsg, kCommandCode));
     return;
   }
+  const auto code = static_cast<CommandCode>(code_raw);
+  const bool broadcast_stop = code == CommandCode::stop && broadcast_;
+  if (code != CommandCode::take_ownership && code != CommandCode::release_ownership && !broadcast_stop && !owns()) {
+    reply_ack(kCommandMsg.id, code_raw, ErrorCode::not_owner, 0);
+    return;
+  }
   std::uint8_t detail = 0;
   ErrorCode e = ErrorCode::ok;
-  switch (static_cast<CommandCode>(code_raw)) {
+  switch (code) {
     case CommandCode::enable:
       commissioning_ = false;  // asked for, even if refused
       e = to_error(task_.hold_position());
@@ -53,8 +83,8 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       if (e == ErrorCode::ok) return;  // answered when the storage job is done
       break;
     case CommandCode::restore_defaults: e = command_restore_defaults(); break;
-    case CommandCode::reserved_10:
-    case CommandCode::reserved_11: e = ErrorCode::unknown_command; break;
+    case CommandCode::take_ownership:
+    case CommandCode::release_ownership: e = command_ownership(code); break;
     case CommandCode::enter_commissioning: e = command_enter_commissioning(); break;
     case CommandCode::leave_commissioning: commissioning_ = false; break;
   }
@@ -112,6 +142,7 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
 }
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kJogMsg.id, 0, ErrorCode::not_owner, 0);
   const std::array<double, hal::kAxisCount> speed_mm_s{read(frame, kJogSpeedX), read(frame, kJogSpeedY)};
   const std::array<const FieldDef*, hal::kAxisCount> field{&kJogSpeedX, &kJogSpeedY};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -135,6 +166,7 @@ void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
 }
 
 void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kMoveAxis);
   const double speed_mm_s = read(frame, kMoveSpeed);
   const double distance_mm = read(frame, kMoveDistance);
@@ -162,6 +194,7 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
 // about the origin itself, exactly as tnv-hil runs it; anywhere else about
 // (standing - (r, 0)).
 void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_owner, 0);
   const double radius_mm = read(frame, kCircleRadius);
   const double feed_mm_s = read(frame, kCircleFeed);
   const std::uint8_t radius = index_of(kCircleMsg, kCircleRadius);
@@ -185,6 +218,7 @@ void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
 
 // Same as staging x|y.shaper.type/freq_hz/zeta and committing.
 void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kShaperAxis);
   const std::uint32_t type = read_raw(frame, kShaperType);
   const double zeta = read(frame, kShaperZeta);

@@ -1,10 +1,15 @@
 // CanNode: PARAM_REQUEST (get / set / stage / commit / discard), applying a
-// whole parameter set, and the storage commands.
+// whole parameter set, and the storage commands. stage / commit /
+// discard act on the requesting host's own staged set; set and commit need
+// command ownership, get and stage do not.
 
 #include "firmware/can/can_node.hpp"
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/param_fallback.hpp"
+#include "firmware/can/param_image.hpp"
+#include "firmware/can/request_tag.hpp"
 
 namespace tnv::fw::can {
 
@@ -73,62 +78,71 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   const auto id = static_cast<std::uint16_t>(read_raw(frame, kParamId));
   const std::uint32_t raw = read_raw(frame, kParamValue);
   if (op_raw >= kParamOpCount) {
-    reply_param(op_raw, ErrorCode::unknown_command, id, 0);
+    reply_param(ErrorCode::unknown_command, id, 0);
     return;
   }
   const auto op = static_cast<ParamOp>(op_raw);
+  const std::uint8_t host = host_of_tag(tag_);
+  if ((op == ParamOp::set || op == ParamOp::commit) && !owns()) {
+    reply_param(ErrorCode::not_owner, id, 0);
+    return;
+  }
   if (op == ParamOp::commit) {
-    const auto n = static_cast<std::uint16_t>(staged_.size());
+    const StagedParams* mine = staged_.find(host);
+    const auto n = static_cast<std::uint16_t>(mine != nullptr ? mine->size() : 0u);
+    if (mine == nullptr) {
+      reply_param(ErrorCode::ok, 0, 0);  // nothing staged by this host: nothing applied
+      return;
+    }
     NodeSettings next = settings_;
-    staged_.write_into(next);
+    mine->write_into(next);
     bool idle = false;
-    for (const StagedParam& s : staged_.items()) {
+    for (const StagedParam& s : mine->items()) {
       const ParamDef* p = find_param(s.id);
       idle = idle || (p != nullptr && p->apply == Apply::idle);
     }
     blamed_param_ = 0;
     const ErrorCode e = apply_settings(next, idle);
-    if (e == ErrorCode::ok) staged_.clear();  // refused: the pending set stays for a fix or a discard
+    if (e == ErrorCode::ok) staged_.clear(host);  // refused: the pending set stays for a fix or a discard
     const bool blamed = e == ErrorCode::invalid || e == ErrorCode::commissioning_required;
-    reply_param(op_raw, e, n, blamed ? blamed_param_ : 0u);
+    reply_param(e, n, blamed ? blamed_param_ : 0u);
     return;
   }
   if (op == ParamOp::discard) {
-    const auto n = static_cast<std::uint16_t>(staged_.size());
-    staged_.clear();
-    reply_param(op_raw, ErrorCode::ok, n, 0);
+    reply_param(ErrorCode::ok, static_cast<std::uint16_t>(staged_.clear(host)), 0);
     return;
   }
   const ParamDef* p = find_param(id);
   if (p == nullptr) {
-    reply_param(op_raw, ErrorCode::unknown_id, id, 0);
+    reply_param(ErrorCode::unknown_id, id, 0);
     return;
   }
   const std::uint32_t current = to_wire(*p, p->get(settings_));
   if (op == ParamOp::get) {
-    reply_param(op_raw, ErrorCode::ok, id, current);
+    reply_param(ErrorCode::ok, id, current);
     return;
   }
   // set / stage of a safety parameter: authorised before anything else is checked.
   if (const ErrorCode e = commissioning_check(*p, raw, current); e != ErrorCode::ok) {
-    reply_param(op_raw, e, id, current);
+    reply_param(e, id, current);
     return;
   }
   // set / stage: the value exactly as it arrived (an f32 stays that float).
   const double value = from_wire(*p, raw);
   if (const ErrorCode e = check_value(*p, value); e != ErrorCode::ok) {
-    reply_param(op_raw, e, id, current);
+    reply_param(e, id, current);
     return;
   }
   if (op == ParamOp::stage) {
-    const bool kept = staged_.put(id, value);
-    reply_param(op_raw, kept ? ErrorCode::ok : ErrorCode::busy, id, kept ? to_wire(*p, value) : current);
+    StagedParams* mine = staged_.find_or_claim(host);  // nullptr: every set is held by other hosts
+    const bool kept = mine != nullptr && mine->put(id, value);
+    reply_param(kept ? ErrorCode::ok : ErrorCode::busy, id, kept ? to_wire(*p, value) : current);
     return;
   }
   NodeSettings next = settings_;
   p->set(next, value);
   const ErrorCode e = apply_settings(next, p->apply == Apply::idle);
-  reply_param(op_raw, e, id, to_wire(*p, p->get(settings_)));
+  reply_param(e, id, to_wire(*p, p->get(settings_)));
 }
 
 // --- restore_defaults (idle only; save and load: can_node_storage.cpp)

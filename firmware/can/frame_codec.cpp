@@ -35,6 +35,7 @@ double read(const hal::CanFrame& frame, const FieldDef& f) noexcept {
   switch (f.type) {
     case WireType::u8:
     case WireType::u16:
+    case WireType::u24:
     case WireType::u32:
     case WireType::raw32: return static_cast<double>(raw) * f.scale;
     case WireType::i8: return static_cast<double>(static_cast<std::int8_t>(raw)) * f.scale;
@@ -64,6 +65,7 @@ bool write(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept {
   switch (f.type) {
     case WireType::u8: hi = 255.0; break;
     case WireType::u16: hi = 65535.0; break;
+    case WireType::u24: hi = 16777215.0; break;
     case WireType::u32:
     case WireType::raw32: hi = 4294967295.0; break;
     case WireType::i8: lo = -128.0; hi = 127.0; break;

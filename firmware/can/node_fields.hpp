@@ -27,18 +27,20 @@ inline constexpr const MessageDef& kSlidingYMsg = message(MessageId::tlm_sliding
 inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
 
+inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
 inline constexpr const FieldDef& kCommandAxis = field(kCommandMsg, "axis");
 inline constexpr const FieldDef& kCommandArg = field(kCommandMsg, "arg");
 inline constexpr const FieldDef& kCommandValue = field(kCommandMsg, "value");
 
+inline constexpr const FieldDef& kAckTag = field(kAckMsg, "tag");
 inline constexpr const FieldDef& kAckRequest = field(kAckMsg, "request");
 inline constexpr const FieldDef& kAckCode = field(kAckMsg, "code");
 inline constexpr const FieldDef& kAckResult = field(kAckMsg, "result");
 inline constexpr const FieldDef& kAckState = field(kAckMsg, "state");
 inline constexpr const FieldDef& kAckFault = field(kAckMsg, "fault");
 inline constexpr const FieldDef& kAckDetail = field(kAckMsg, "detail");
-inline constexpr const FieldDef& kAckSequence = field(kAckMsg, "sequence");
+inline constexpr const FieldDef& kAckOwner = field(kAckMsg, "owner");
 
 inline constexpr const FieldDef& kJogSpeedX = field(kJogMsg, "speed_x");
 inline constexpr const FieldDef& kJogSpeedY = field(kJogMsg, "speed_y");
@@ -63,7 +65,7 @@ inline constexpr const FieldDef& kExciteLevel = field(kExciteMsg, "level");
 inline constexpr const FieldDef& kParamOp = field(kParamRequestMsg, "op");
 inline constexpr const FieldDef& kParamId = field(kParamRequestMsg, "param");
 inline constexpr const FieldDef& kParamValue = field(kParamRequestMsg, "value");
-inline constexpr const FieldDef& kReplyOp = field(kParamReplyMsg, "op");
+inline constexpr const FieldDef& kReplyTag = field(kParamReplyMsg, "tag");
 inline constexpr const FieldDef& kReplyResult = field(kParamReplyMsg, "result");
 inline constexpr const FieldDef& kReplyParam = field(kParamReplyMsg, "param");
 inline constexpr const FieldDef& kReplyValue = field(kParamReplyMsg, "value");
@@ -71,6 +73,7 @@ inline constexpr const FieldDef& kReplyValue = field(kParamReplyMsg, "value");
 inline constexpr const FieldDef& kCaptureOp = field(kCaptureControlMsg, "op");
 inline constexpr const FieldDef& kCaptureFrames = field(kCaptureControlMsg, "frames");
 inline constexpr const FieldDef& kCaptureOffset = field(kCaptureControlMsg, "offset");
+inline constexpr const FieldDef& kStatusTag = field(kCaptureStatusMsg, "tag");
 inline constexpr const FieldDef& kStatusState = field(kCaptureStatusMsg, "state");
 inline constexpr const FieldDef& kStatusResult = field(kCaptureStatusMsg, "result");
 inline constexpr const FieldDef& kStatusChannels = field(kCaptureStatusMsg, "channels");
@@ -88,6 +91,7 @@ inline constexpr const FieldDef& kHbState = field(kHeartbeatMsg, "state");
 inline constexpr const FieldDef& kHbFault = field(kHeartbeatMsg, "fault");
 inline constexpr const FieldDef& kHbErrors = field(kHeartbeatMsg, "errors");
 inline constexpr const FieldDef& kHbOverruns = field(kHeartbeatMsg, "overruns");
+inline constexpr const FieldDef& kHbOwner = field(kHeartbeatMsg, "owner");
 inline constexpr const FieldDef& kHbTick = field(kHeartbeatMsg, "tick_low");
 
 inline constexpr const FieldDef& kPosX = field(kPositionMsg, "x");

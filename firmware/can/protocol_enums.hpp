@@ -5,7 +5,8 @@
 
 namespace tnv::fw::can {
 
-inline constexpr std::uint32_t kProtocolVersion = 1;
+// 2: request tags (byte 0 of every answered request, echoed by its reply), hosts and ownership.
+inline constexpr std::uint32_t kProtocolVersion = 2;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result).
 enum class ErrorCode : std::uint8_t {
@@ -26,6 +27,8 @@ enum class ErrorCode : std::uint8_t {
   bad_axis,         // axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all)
   commissioning_required,  // a safety parameter changes only in commissioning mode; nothing applied
   not_permitted,           // this node's local configuration forbids it (tnv-fw: [safety] allow_commissioning)
+  no_host,          // the request's tag names host 0: only ESTOP and the broadcast stop may be anonymous
+  not_owner,        // needs command ownership, which another host (or no host) holds
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
@@ -47,10 +50,12 @@ constexpr const char* to_string(ErrorCode e) noexcept {
     case ErrorCode::bad_axis: return "bad_axis";
     case ErrorCode::commissioning_required: return "commissioning_required";
     case ErrorCode::not_permitted: return "not_permitted";
+    case ErrorCode::no_host: return "no_host";
+    case ErrorCode::not_owner: return "not_owner";
   }
   return "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 17;
+inline constexpr std::uint8_t kErrorCodeCount = 19;
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {
@@ -64,8 +69,8 @@ enum class CommandCode : std::uint8_t {
   save_params,        // write the live parameter set to storage
   load_params,        // read the stored set and apply it whole; only when at rest
   restore_defaults,   // the papers' defaults (not saved until save_params); only when at rest
-  reserved_10,        // reserved for command ownership; answered unknown_command
-  reserved_11,        // reserved for command ownership; answered unknown_command
+  take_ownership,     // the requesting host becomes the one that may command (if nobody else holds it)
+  release_ownership,  // the owner gives command ownership up
   enter_commissioning,  // safety parameters become writable; only while disabled (docs/safety.md)
   leave_commissioning,  // back to normal; also left on enable, motion or a fault
 };
@@ -83,8 +88,8 @@ constexpr const char* to_string(CommandCode c) noexcept {
     case CommandCode::save_params: return "save_params";
     case CommandCode::load_params: return "load_params";
     case CommandCode::restore_defaults: return "restore_defaults";
-    case CommandCode::reserved_10: return "reserved_10";
-    case CommandCode::reserved_11: return "reserved_11";
+    case CommandCode::take_ownership: return "take_ownership";
+    case CommandCode::release_ownership: return "release_ownership";
     case CommandCode::enter_commissioning: return "enter_commissioning";
     case CommandCode::leave_commissioning: return "leave_commissioning";
   }

@@ -45,8 +45,12 @@ inline constexpr const char* kFaultValues =
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
     "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "
-    "15=commissioning_required 16=not_permitted";
+    "15=commissioning_required 16=not_permitted 17=no_host 18=not_owner";
 inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
+inline constexpr const char* kTagDoc =
+    "request tag: host id (high nibble, 1..15; 0 is refused) and the host's own sequence (low nibble); the reply "
+    "echoes it";
+inline constexpr const char* kReplyTagDoc = "the tag of the request answered (host id << 4 | its sequence)";
 
 inline constexpr FieldDef kFaultEvent[] = {
     {"reason", WireType::u8, 0, 1, "", kFaultValues, "the latched fault"},
@@ -55,74 +59,88 @@ inline constexpr FieldDef kFaultEvent[] = {
     {"value", WireType::f32, 4, 1, "", "", "the offending value (mm, mm/s or ticks, by reason)"},
 };
 inline constexpr FieldDef kCommand[] = {
-    {"code", WireType::u8, 0, 1, "",
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"code", WireType::u8, 1, 1, "",
      "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
-     "8=load_params 9=restore_defaults 10=reserved_10 11=reserved_11 12=enter_commissioning 13=leave_commissioning",
+     "8=load_params 9=restore_defaults 10=take_ownership 11=release_ownership 12=enter_commissioning 13=leave_commissioning",
      "what to do"},
-    {"axis", WireType::u8, 1, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
-    {"arg", WireType::u16, 2, 1, "", "", "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on"},
+    {"axis", WireType::u8, 2, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
+    {"arg", WireType::u8, 3, 1, "", "", "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on"},
     {"value", WireType::f32, 4, 1, "mm", "", "zero: the position to assign"},
 };
 inline constexpr FieldDef kCommandAck[] = {
-    {"request", WireType::u8, 0, 1, "", "", "message id of the request acknowledged"},
-    {"code", WireType::u8, 1, 1, "", "", "the request's command code (COMMAND), else 0"},
-    {"result", WireType::u8, 2, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
-    {"state", WireType::u8, 3, 1, "", kStateValues, "motion state after the request"},
-    {"fault", WireType::u8, 4, 1, "", kFaultValues, "latched fault after the request"},
-    {"detail", WireType::u8, 5, 1, "", "", "request-specific: index of the offending field, or 0"},
-    {"sequence", WireType::u16, 6, 1, "", "", "count of requests this node has answered (mod 65536)"},
+    {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
+    {"request", WireType::u8, 1, 1, "", "", "message id of the request acknowledged"},
+    {"code", WireType::u8, 2, 1, "", "", "the request's command code (COMMAND), else 0"},
+    {"result", WireType::u8, 3, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
+    {"state", WireType::u8, 4, 1, "", kStateValues, "motion state after the request"},
+    {"fault", WireType::u8, 5, 1, "", kFaultValues, "latched fault after the request"},
+    {"detail", WireType::u8, 6, 1, "", "", "request-specific: index of the offending field, or 0"},
+    {"owner", WireType::u8, 7, 1, "", "", "host id holding command ownership after the request, 0 none"},
 };
 inline constexpr FieldDef kJog[] = {
-    {"speed_x", WireType::f32, 0, 1, "mm/s", "", "target speed, x; repeat within jog.deadman_s"},
-    {"speed_y", WireType::f32, 4, 1, "mm/s", "", "target speed, y"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"speed_x", WireType::i16, 2, 0.01, "mm/s", "", "target speed, x; repeat within jog.deadman_s"},
+    {"speed_y", WireType::i16, 4, 0.01, "mm/s", "", "target speed, y"},
+    {"reserved2", WireType::u16, 6, 1, "", "", "0"},
 };
 inline constexpr FieldDef kMove[] = {
-    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis to move; the other holds"},
-    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to move; the other holds"},
     {"speed", WireType::u16, 2, 0.01, "mm/s", "", "cruise speed"},
     {"distance", WireType::f32, 4, 1, "mm", "", "signed distance from where the axis stands"},
 };
 inline constexpr FieldDef kCircle[] = {
-    {"radius", WireType::f32, 0, 1, "mm", "", "radius; the table stands on the circle at (+r, 0) from its centre"},
-    {"feed", WireType::f32, 4, 1, "mm/s", "", "path speed"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"feed", WireType::u16, 2, 0.01, "mm/s", "", "path speed"},
+    {"radius", WireType::f32, 4, 1, "mm", "", "radius; the table stands on the circle at (+r, 0) from its centre"},
 };
 inline constexpr FieldDef kShaper[] = {
-    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis"},
-    {"type", WireType::u8, 1, 1, "", "0=zv 1=zvd 2=zvdd 3=ei 4=mzv", "shaper family"},
-    {"zeta", WireType::u16, 2, 0.0001, "", "", "damping ratio of the mode"},
-    {"freq", WireType::f32, 4, 1, "Hz", "", "mode frequency"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis"},
+    {"type", WireType::u8, 2, 1, "", "0=zv 1=zvd 2=zvdd 3=ei 4=mzv", "shaper family"},
+    {"reserved", WireType::u8, 3, 1, "", "", "0"},
+    {"zeta", WireType::u16, 4, 0.0001, "", "", "damping ratio of the mode"},
+    {"freq", WireType::u16, 6, 0.01, "Hz", "", "mode frequency"},
 };
 inline constexpr FieldDef kExcite[] = {
-    {"axis", WireType::u8, 0, 1, "", "0=x 1=y", "axis to excite; the other holds"},
-    {"kind", WireType::u8, 1, 1, "", "0=step 1=ramp", "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|"},
-    {"duration", WireType::u16, 2, 0.001, "s", "", "step length / longest ramp (0.001 .. 10 s)"},
-    {"level", WireType::f32, 4, 1, "mm/s", "", "step level, or the ramp's sign and largest |u| (0 < |level| <= 100)"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to excite; the other holds"},
+    {"kind", WireType::u8, 2, 1, "", "0=step 1=ramp", "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|"},
+    {"reserved", WireType::u8, 3, 1, "", "", "0"},
+    {"duration", WireType::u16, 4, 0.001, "s", "", "step length / longest ramp (0.001 .. 10 s)"},
+    {"level", WireType::i16, 6, 0.01, "mm/s", "", "step level, or the ramp's sign and largest |u| (0 < |level| <= 100)"},
 };
 inline constexpr FieldDef kParamRequest[] = {
-    {"op", WireType::u8, 0, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "operation"},
-    {"reserved", WireType::u8, 1, 1, "", "", "0"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"op", WireType::u8, 1, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "operation"},
     {"param", WireType::u16, 2, 1, "", "", "parameter id (param_table)"},
     {"value", WireType::raw32, 4, 1, "", "", "set/stage: the value, f32 or u32/i32 by the parameter's type"},
 };
 inline constexpr FieldDef kParamReply[] = {
-    {"op", WireType::u8, 0, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "the request's operation"},
+    {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
     {"result", WireType::u8, 1, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
-    {"param", WireType::u16, 2, 1, "", "", "parameter id; commit/discard: number of staged parameters"},
+    {"param", WireType::u16, 2, 1, "", "",
+     "parameter id; commit/discard: number of the host's staged parameters applied / dropped"},
     {"value", WireType::raw32, 4, 1, "", "",
      "value read back after the request (for a refused set: the unchanged value; unknown id: 0)"},
 };
 inline constexpr FieldDef kCaptureControl[] = {
-    {"op", WireType::u8, 0, 1, "", "0=arm 1=abort 2=status 3=upload", "operation"},
-    {"frames", WireType::u8, 1, 1, "", "", "upload: number of CAPTURE_DATA frames to send (1..255)"},
-    {"reserved", WireType::u16, 2, 1, "", "", "0"},
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"op", WireType::u8, 1, 1, "", "0=arm 1=abort 2=status 3=upload", "operation"},
+    {"frames", WireType::u8, 2, 1, "", "", "upload: number of CAPTURE_DATA frames to send (1..255)"},
+    {"reserved", WireType::u8, 3, 1, "", "", "0"},
     {"offset", WireType::u32, 4, 1, "byte", "", "upload: first byte of the capture image to send"},
 };
 inline constexpr FieldDef kCaptureStatus[] = {
-    {"state", WireType::u8, 0, 1, "", "0=idle 1=armed 2=recording 3=done", "capture state"},
-    {"result", WireType::u8, 1, 1, "", kErrorValues, "result of the request that caused this reply"},
-    {"channels", WireType::u8, 2, 1, "", "", "number of channels per sample"},
-    {"decimation", WireType::u8, 3, 1, "tick", "", "ticks per sample"},
-    {"samples", WireType::u32, 4, 1, "", "", "samples recorded; the image is samples x channels x 4 bytes"},
+    {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
+    {"state", WireType::u8, 1, 1, "", "0=idle 1=armed 2=recording 3=done", "capture state"},
+    {"result", WireType::u8, 2, 1, "", kErrorValues, "result of the request that caused this reply"},
+    {"channels", WireType::u8, 3, 1, "", "", "number of channels per sample"},
+    {"decimation", WireType::u8, 4, 1, "tick", "", "ticks per sample"},
+    {"samples", WireType::u24, 5, 1, "", "", "samples recorded; the image is samples x channels x 4 bytes"},
 };
 inline constexpr FieldDef kCaptureData[] = {
     {"sequence", WireType::u8, 0, 1, "", "", "frame index within the upload block, from 0"},
@@ -134,7 +152,8 @@ inline constexpr FieldDef kHeartbeat[] = {
     {"fault", WireType::u8, 1, 1, "", kFaultValues, "latched fault reason"},
     {"errors", WireType::u16, 2, 1, "", "", "sub-system bits (protocol_enums.hpp HeartbeatBit)"},
     {"overruns", WireType::u16, 4, 1, "tick", "", "missed + late ticks since start (saturates)"},
-    {"tick_low", WireType::u16, 6, 1, "tick", "", "low 16 bits of the tick count"},
+    {"owner", WireType::u8, 6, 1, "", "", "host id holding command ownership, 0 none"},
+    {"tick_low", WireType::u8, 7, 1, "tick", "", "low 8 bits of the tick count"},
 };
 inline constexpr FieldDef kTlmPosition[] = {
     {"x", WireType::i32, 0, 1e-6, "mm", "", "encoder position, x"},
@@ -167,9 +186,13 @@ inline constexpr std::array<MessageDef, 21> kMessages{{
     {0x01, "fault_event", Direction::from_node, 8, detail::kFaultEvent,
      "Sent once when a fault latches."},
     {0x02, "command", Direction::to_node, 8, detail::kCommand,
-     "Commands without a motion profile. Answered by COMMAND_ACK. stop is also accepted on node 0."},
+     "Commands without a motion profile. Answered by COMMAND_ACK. Every code but take_ownership and "
+     "release_ownership needs command ownership (not_owner otherwise); take_ownership succeeds when nobody or the "
+     "requesting host holds it, and ownership is lost when can.host_timeout_ms passes without a frame from its "
+     "host. stop is also accepted on node 0 from any host, tag 0 included (the broadcast stop)."},
     {0x03, "command_ack", Direction::from_node, 8, detail::kCommandAck,
-     "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER and EXCITE: accepted (ok) or why not."},
+     "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER and EXCITE: accepted (ok) or why not; echoes the request's "
+     "tag."},
     {0x04, "jog", Direction::to_node, 8, detail::kJog,
      "Operator jog stream (both axes). Starts a jog from holding; each frame must follow the last within "
      "jog.deadman_s of the jogging axes or they stop. Answered by COMMAND_ACK."},
@@ -182,10 +205,13 @@ inline constexpr std::array<MessageDef, 21> kMessages{{
      "Input-shaper design for one axis (same as staging its shaper.* parameters and committing); applied at "
      "the next quiet reference. Answered by COMMAND_ACK."},
     {0x08, "param_request", Direction::to_node, 8, detail::kParamRequest,
-     "Generic parameter access by id. Answered by PARAM_REPLY."},
-    {0x09, "param_reply", Direction::from_node, 8, detail::kParamReply, "Answer to every PARAM_REQUEST."},
+     "Generic parameter access by id. Answered by PARAM_REPLY. stage/commit/discard act on the requesting "
+     "host's own staged set (up to 4 hosts at once, busy beyond); get from any host; set and commit need command "
+     "ownership."},
+    {0x09, "param_reply", Direction::from_node, 8, detail::kParamReply, "Answer to every PARAM_REQUEST; echoes its tag."},
     {0x0A, "capture_control", Direction::to_node, 8, detail::kCaptureControl,
-     "On-target capture. arm/abort/status are answered by CAPTURE_STATUS; upload by CAPTURE_DATA frames, or "
+     "On-target capture. arm/abort/status are answered by CAPTURE_STATUS (echoing the tag); upload by "
+     "CAPTURE_DATA frames, or "
      "by CAPTURE_STATUS with an error."},
     {0x0B, "capture_status", Direction::from_node, 8, detail::kCaptureStatus, "Capture state."},
     {0x0C, "heartbeat", Direction::from_node, 8, detail::kHeartbeat,

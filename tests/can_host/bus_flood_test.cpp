@@ -120,6 +120,7 @@ CircleRun run_circle(const char* name, bool flood, std::int64_t estop_at_motion_
   auto bus = make_flood_bus(name);
   if (!bus) return out;
   const emu::Scenario& sc = bus->scenario();
+  bus->send(test::command(kFloodNode, can::CommandCode::take_ownership));
   bus->send(test::circle(kFloodNode, sc.circle.radius_mm, sc.circle.feed_mm_s));
   const auto drain_host = [&] {
     while (bus->receive(Micros{0})) {

@@ -64,7 +64,7 @@ TEST(EmulatedBus, ABurstOfCaptureFramesTakesTheTimeTheWireNeeds) {
   client.set(param("tlm.position_ms"), 0);  // only the upload on the wire
   client.set(param("tlm.following_ms"), 0);
   client.set(param("tlm.heartbeat_ms"), 0);
-  bus->send(can_host::capture_request(1, can::CaptureOp::upload, 255, 0));
+  bus->send(can_host::capture_request(1, 0x11 /* host 1, sequence 1 */, can::CaptureOp::upload, 255, 0));
   const Micros t0 = bus->now();
   int frames = 0;
   Micros last{0};

@@ -62,7 +62,7 @@ CommandAck excite_ack(EmulatedBus& bus, const hal::CanFrame& frame) {
 }
 
 hal::CanFrame excite_frame(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s) {
-  return can_host::excite_request(1, axis, kind, level_mm_s, duration_s);
+  return can_host::excite_request(1, 0x11 /* host 1, sequence 1 */, axis, kind, level_mm_s, duration_s);
 }
 
 TEST(ExciteMessage, FrameRoundTripsThroughTheTableCodec) {
@@ -85,6 +85,7 @@ TEST(ExciteMessage, MalformedAndRefusedRequestsChangeNothing) {
   NodeClient client(*bus, 1);
   const can::ParamDef& eta = *can::find_param("x.sliding.eta_mm_s");
   const double eta_before = client.get(eta);
+  client.take_ownership();  // host 1: the raw frames below carry its tag too
 
   // Disabled: start_excitation needs holding.
   CommandAck a = excite_ack(*bus, excite_frame(0, 0, 10.0, 0.15));
@@ -105,10 +106,11 @@ TEST(ExciteMessage, MalformedAndRefusedRequestsChangeNothing) {
   short_frame.dlc = 7;
   std::vector<Bad> cases{
       {"7-byte frame", short_frame, can::ErrorCode::bad_length, nullptr},
-      {"NaN level", excite_frame(0, 0, std::numeric_limits<double>::quiet_NaN(), 0.15), can::ErrorCode::not_finite,
+      // level is i16 at 0.01 mm/s: NaN goes out as 0, infinity as the largest code; both refused.
+      {"NaN level", excite_frame(0, 0, std::numeric_limits<double>::quiet_NaN(), 0.15), can::ErrorCode::out_of_range,
        &fields::kExciteLevel},
-      {"infinite level", excite_frame(0, 0, std::numeric_limits<double>::infinity(), 0.15), can::ErrorCode::not_finite,
-       &fields::kExciteLevel},
+      {"infinite level", excite_frame(0, 0, std::numeric_limits<double>::infinity(), 0.15),
+       can::ErrorCode::out_of_range, &fields::kExciteLevel},
       {"axis 2", excite_frame(2, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
       {"axis 255", excite_frame(255, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
       {"kind 2", excite_frame(0, 2, 10.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteKind},

@@ -3,6 +3,8 @@
 // ignored, and a capture upload recovers from lost frames.
 #include <gtest/gtest.h>
 
+#include "firmware/can/request_tag.hpp"
+
 #include "firmware/can/can_id.hpp"
 #include "tests/can_host/scripted_node_bus.hpp"
 #include "tools/can/node_client.hpp"
@@ -21,11 +23,12 @@ using test::ScriptedNodeBus;
 constexpr std::uint8_t kNode = 3;
 const can::ParamDef& gamma_x() { return *can::find_param("x.sliding.gamma"); }
 
-hal::CanFrame param_reply(std::uint8_t node, can::ParamOp op, can::ErrorCode result, std::uint16_t param,
+// A PARAM_REPLY echoing `req`'s tag.
+hal::CanFrame param_reply(std::uint8_t node, const hal::CanFrame& req, can::ErrorCode result, std::uint16_t param,
                           std::uint32_t value) {
   constexpr const can::MessageDef& m = message(MessageId::param_reply);
   hal::CanFrame f = can::make_frame(m, node);
-  can::write_raw(f, field(m, "op"), static_cast<std::uint32_t>(op));
+  can::write_raw(f, field(m, "tag"), req.data[0]);
   can::write_raw(f, field(m, "result"), static_cast<std::uint32_t>(result));
   can::write_raw(f, field(m, "param"), param);
   can::write_raw(f, field(m, "value"), value);
@@ -63,10 +66,11 @@ TEST(NodeClient, ARefusalNamesTheErrorCodeTheParameterAndItsRange) {
   ScriptedNodeBus bus;
   bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
     const std::uint32_t unchanged = can::float_bits(0.3f);
-    b.reply(param_reply(kNode, can::ParamOp::set, can::ErrorCode::out_of_range, gamma_x().id, unchanged));
-    (void)req;
+    b.reply(param_reply(kNode, req, can::ErrorCode::out_of_range, gamma_x().id, unchanged));
   };
-  NodeClient client(bus, kNode);
+  can_host::ClientOptions no_take;
+  no_take.take_ownership_when_needed = false;
+  NodeClient client(bus, kNode, no_take);
   try {
     client.set(gamma_x(), 2.0);
     FAIL() << "expected a refusal";
@@ -82,15 +86,15 @@ TEST(NodeClient, ARefusalNamesTheErrorCodeTheParameterAndItsRange) {
 
 TEST(NodeClient, FramesOfOtherNodesOtherMessagesAndBadLengthAreNotTakenAsTheReply) {
   ScriptedNodeBus bus;
-  bus.on_request = [](const hal::CanFrame&, ScriptedNodeBus& b) {
+  bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
     const std::uint32_t wrong = can::float_bits(0.9f);
-    b.reply(param_reply(kNode + 1, can::ParamOp::get, can::ErrorCode::ok, gamma_x().id, wrong));  // other node
-    hal::CanFrame short_frame = param_reply(kNode, can::ParamOp::get, can::ErrorCode::ok, gamma_x().id, wrong);
+    b.reply(param_reply(kNode + 1, req, can::ErrorCode::ok, gamma_x().id, wrong));  // other node
+    hal::CanFrame short_frame = param_reply(kNode, req, can::ErrorCode::ok, gamma_x().id, wrong);
     short_frame.dlc = 7;
     b.reply(short_frame);                                                                     // malformed
-    b.reply(param_reply(kNode, can::ParamOp::get, can::ErrorCode::ok, gamma_x().id + 1, wrong));  // other param
+    b.reply(param_reply(kNode, req, can::ErrorCode::ok, gamma_x().id + 1, wrong));  // other param
     b.reply(heartbeat(kNode, fw::MotionState::holding));
-    b.reply(param_reply(kNode, can::ParamOp::get, can::ErrorCode::ok, gamma_x().id, can::float_bits(0.25f)));
+    b.reply(param_reply(kNode, req, can::ErrorCode::ok, gamma_x().id, can::float_bits(0.25f)));
   };
   NodeClient client(bus, kNode);
   EXPECT_EQ(client.get(gamma_x()), 0.25);
@@ -98,17 +102,40 @@ TEST(NodeClient, FramesOfOtherNodesOtherMessagesAndBadLengthAreNotTakenAsTheRepl
   EXPECT_EQ(client.last_heartbeat()->state, fw::MotionState::holding);
 }
 
+// A stale reply (an earlier tag of this host) and another host's reply to the
+// same parameter come first: neither is taken, both are counted.
+TEST(NodeClient, RepliesWithAnotherTagAreDiscardedAndCounted) {
+  ScriptedNodeBus bus;
+  bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
+    const std::uint32_t wrong = can::float_bits(0.9f);
+    hal::CanFrame stale_req = req;
+    stale_req.data[0] = static_cast<std::uint8_t>((req.data[0] & 0xF0u) | ((req.data[0] - 1u) & 0x0Fu));
+    b.reply(param_reply(kNode, stale_req, can::ErrorCode::ok, gamma_x().id, wrong));
+    hal::CanFrame other_host = req;
+    other_host.data[0] = static_cast<std::uint8_t>(0x20u | (req.data[0] & 0x0Fu));
+    b.reply(param_reply(kNode, other_host, can::ErrorCode::ok, gamma_x().id, wrong));
+    b.reply(param_reply(kNode, req, can::ErrorCode::ok, gamma_x().id, can::float_bits(0.25f)));
+  };
+  NodeClient client(bus, kNode);
+  EXPECT_EQ(client.get(gamma_x()), 0.25);
+  EXPECT_EQ(client.replies_discarded(), 2u);
+  EXPECT_EQ(can::host_of_tag(bus.sent.back().data[0]), 1) << "host id 1 by default";
+}
+
 TEST(NodeClient, ACommandRefusalNamesTheCodeAndTheState) {
   ScriptedNodeBus bus;
   bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
     constexpr const can::MessageDef& m = message(MessageId::command_ack);
     hal::CanFrame f = can::make_frame(m, kNode);
+    can::write_raw(f, field(m, "tag"), req.data[0]);
     can::write_raw(f, field(m, "request"), can::message_of(req.id));
     can::write_raw(f, field(m, "result"), static_cast<std::uint32_t>(can::ErrorCode::busy));
     can::write_raw(f, field(m, "state"), static_cast<std::uint32_t>(fw::MotionState::moving));
     b.reply(f);
   };
-  NodeClient client(bus, kNode);
+  can_host::ClientOptions no_take;
+  no_take.take_ownership_when_needed = false;
+  NodeClient client(bus, kNode, no_take);
   const std::string e = message_of([&] { client.circle(6.0, 2.0); });
   EXPECT_NE(e.find("refused 'circle radius 6 mm at 2 mm/s': busy (state moving)"), std::string::npos) << e;
 }
@@ -200,9 +227,10 @@ TEST(NodeClient, AnUploadThatNeverProgressesGivesUpNamingTheByte) {
 
 TEST(NodeClient, AnUploadRefusalIsSurfacedWithItsCode) {
   ScriptedNodeBus bus;
-  bus.on_request = [](const hal::CanFrame&, ScriptedNodeBus& b) {
+  bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
     constexpr const can::MessageDef& m = message(MessageId::capture_status);
     hal::CanFrame f = can::make_frame(m, kNode);
+    can::write_raw(f, field(m, "tag"), req.data[0]);
     can::write_raw(f, field(m, "result"), static_cast<std::uint32_t>(can::ErrorCode::not_ready));
     b.reply(f);
   };

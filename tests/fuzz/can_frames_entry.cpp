@@ -66,6 +66,9 @@ FuzzNode& fresh_node() {
   node->board.next_tick();
   node->task.tick();
   node->node.service();
+  // the test host (kTestTag) holds command ownership, as on test::NodeBench
+  node->port.to_node.push(test::command(test::kNode, can::CommandCode::take_ownership));
+  node->node.service();
   node->port.from_node.clear();
   return *node;
 }

@@ -81,6 +81,15 @@ void seed_can_frames(const fs::path& dir) {
              true));
   put(frames({command(n, CommandCode::save_params), command(n, CommandCode::load_params),
               command(n, CommandCode::restore_defaults)}));
+  // a second host: its own staged set, refused commands, ownership handed over
+  put(frames({with_tag(param_request(n, ParamOp::stage, id_of("x.sliding.gamma"), wire("x.sliding.gamma", 0.3)), 0x21),
+              param_request(n, ParamOp::stage, id_of("y.sliding.gamma"), wire("y.sliding.gamma", 0.3)),
+              with_tag(param_request(n, ParamOp::commit, 0), 0x22), param_request(n, ParamOp::commit, 0),
+              with_tag(param_request(n, ParamOp::discard, 0), 0x23)}));
+  put(frames({with_tag(command(n, CommandCode::enable), 0x21), with_tag(command(n, CommandCode::take_ownership), 0x22),
+              command(n, CommandCode::release_ownership), with_tag(command(n, CommandCode::take_ownership), 0x23),
+              with_tag(command(n, CommandCode::enable), 0x24)}));
+  put(frames({with_tag(command(n, CommandCode::enable), 0x00), with_tag(param_request(n, ParamOp::get, 1), 0x0F)}));
   CanFrame shaper = frame_to(MessageId::shaper, n);
   put(frames({shaper}));
   // other nodes, extended, wrong lengths, to-host messages sent to the node

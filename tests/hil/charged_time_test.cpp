@@ -99,6 +99,7 @@ struct SlowStorageBench {
     s.telemetry = {0, 0, 0, 0, 0, 0};
     node = std::make_unique<fw::can::CanNode>(rig->task, port, storage, s, false, nullptr,
                                               with_worker ? &worker : nullptr);
+    port.send(command(kRigNode, CommandCode::take_ownership));
     port.send(command(kRigNode, CommandCode::enable));
     for (int k = 0; k < 20; ++k) step();
     port.drain();

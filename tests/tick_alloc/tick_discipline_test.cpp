@@ -192,6 +192,7 @@ struct CanBench {
     using fw::can::ParamOp;
     const std::uint16_t gamma = fw::can::find_param("x.sliding.gamma")->id;
     const std::uint16_t kp = fw::can::find_param("x.pid.kp")->id;
+    if (k == 5) port.send(test::command(1, fw::can::CommandCode::take_ownership));  // set and commit need it
     if (k == 10) port.send(test::capture_control(1, fw::can::CaptureOp::arm));
     if (k == 100) port.send(test::capture_control(1, fw::can::CaptureOp::abort));
     if (k == 200) port.send(test::param_request(1, ParamOp::set, gamma, test::f32_raw(0.3f)));

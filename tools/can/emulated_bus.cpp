@@ -14,6 +14,11 @@ namespace {
 VirtualCanBusOptions wire_options(std::uint32_t bitrate_bit_s) {
   VirtualCanBusOptions o;
   o.bitrate_bit_s = bitrate_bit_s;
+  // Frames in flight between the node and the wire, kept short as tnv-fw
+  // keeps its SocketCAN socket's kernel queue short (drivers/linux/
+  // socketcan_port.cpp): the port sends what it holds first come, first
+  // served, so the node's priority order holds only if little waits there.
+  o.node_tx_capacity = kNodeFramesInFlight;
   return o;
 }
 

@@ -21,6 +21,13 @@
 
 namespace tnv::can_host {
 
+// Frames the emulated node's CAN port holds for the wire (a short kernel
+// queue): the rest wait in the node's priority queue. 10 frames keep the
+// wire busy for one tick (9 eight-byte frames per ms at 1 Mbit/s, so an
+// upload runs at wire speed) and bound what a FAULT_EVENT or a reply can
+// wait behind to about 1.1 ms.
+inline constexpr std::size_t kNodeFramesInFlight = 10;
+
 struct EmulatedNodeOptions {
   std::string scenario = "no-cut";  // built-in name or TOML file
   int seed = 0;                     // hil::seeded(); 0 = the scenario as written (tnv-hil circle's default)

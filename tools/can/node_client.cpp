@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "firmware/can/can_id.hpp"
+#include "firmware/can/request_tag.hpp"
 #include "tools/can/param_text.hpp"
 
 namespace tnv::can_host {
@@ -24,6 +25,24 @@ bool in_motion(fw::MotionState s) { return s == fw::MotionState::dwell || s == f
 
 NodeClient::NodeClient(HostBus& bus, std::uint8_t node, ClientOptions options)
     : bus_(bus), node_(node), options_(options) {}
+
+std::uint8_t NodeClient::next_tag() {
+  sequence_ = static_cast<std::uint8_t>((sequence_ + 1) & 0x0Fu);
+  return can::make_tag(options_.host_id, sequence_);
+}
+
+namespace {
+
+std::optional<std::uint8_t> reply_tag(const hal::CanFrame& frame, can::MessageId id) {
+  switch (id) {
+    case can::MessageId::command_ack: return read_command_ack(frame).tag;
+    case can::MessageId::param_reply: return read_param_reply(frame).tag;
+    case can::MessageId::capture_status: return read_capture_status(frame).tag;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
 
 std::optional<can::MessageId> NodeClient::ours(const hal::CanFrame& frame) const {
   const can::MessageDef* m = can::classify(frame);
@@ -59,12 +78,20 @@ std::string NodeClient::timeout_text(const std::string& what, can::MessageId rep
   return out;
 }
 
-hal::CanFrame NodeClient::transact(const hal::CanFrame& request, can::MessageId reply, const Match& match,
-                                   const std::string& what) {
+hal::CanFrame NodeClient::transact(const hal::CanFrame& request, std::uint8_t tag, can::MessageId reply,
+                                   const Match& match, const std::string& what) {
   bus_.send(request);
   const Micros deadline = bus_.now() + options_.timeout;
-  const auto frame = wait_for([&](const hal::CanFrame& f, MessageId id) { return id == reply && match(f, id); },
-                              deadline);
+  const auto frame = wait_for(
+      [&](const hal::CanFrame& f, MessageId id) {
+        if (id != reply) return false;
+        if (reply_tag(f, id) != tag) {
+          ++replies_discarded_;  // a stale reply, or another host's
+          return false;
+        }
+        return match(f, id);
+      },
+      deadline);
   if (!frame) throw RequestError(RequestError::Kind::timeout, timeout_text(what, reply, options_.timeout));
   return *frame;
 }
@@ -73,10 +100,11 @@ hal::CanFrame NodeClient::transact(const hal::CanFrame& request, can::MessageId 
 
 ParamReply NodeClient::param_op(can::ParamOp op, const can::ParamDef* p, std::uint32_t raw, const std::string& what) {
   const std::uint16_t id = p != nullptr ? p->id : 0;
-  const hal::CanFrame f = transact(param_request(node_, op, id, raw), MessageId::param_reply,
+  const std::uint8_t tag = next_tag();
+  const hal::CanFrame f = transact(param_request(node_, tag, op, id, raw), tag, MessageId::param_reply,
                                    [&](const hal::CanFrame& frame, MessageId) {
                                      const ParamReply r = read_param_reply(frame);
-                                     return r.op == op && (p == nullptr || r.param == id);
+                                     return p == nullptr || r.param == id || r.result != can::ErrorCode::ok;
                                    },
                                    what);
   const ParamReply r = read_param_reply(f);
@@ -104,6 +132,15 @@ ParamReply NodeClient::param_op(can::ParamOp op, const can::ParamDef* p, std::ui
   return r;
 }
 
+void NodeClient::need_ownership() {
+  if (owned_ || !options_.take_ownership_when_needed) return;
+  take_ownership();
+}
+
+void NodeClient::release_ownership_if_taken() {
+  if (owned_) release_ownership();
+}
+
 double NodeClient::get(const can::ParamDef& p) {
   const ParamReply r = param_op(can::ParamOp::get, &p, 0, std::string("get ") + p.name);
   return can::from_wire(p, r.value_raw);
@@ -112,6 +149,7 @@ double NodeClient::get(const can::ParamDef& p) {
 double NodeClient::set(const can::ParamDef& p, double value) {
   std::string what = "set ";
   what.append(p.name).append(" = ").append(format_param_value(p, value));
+  need_ownership();
   const ParamReply r = param_op(can::ParamOp::set, &p, can::to_wire(p, value), what);
   return can::from_wire(p, r.value_raw);
 }
@@ -123,66 +161,91 @@ double NodeClient::stage(const can::ParamDef& p, double value) {
   return can::from_wire(p, r.value_raw);
 }
 
-std::uint16_t NodeClient::commit() { return param_op(can::ParamOp::commit, nullptr, 0, "commit").param; }
+std::uint16_t NodeClient::commit() {
+  need_ownership();
+  return param_op(can::ParamOp::commit, nullptr, 0, "commit").param;
+}
 
 void NodeClient::discard() { param_op(can::ParamOp::discard, nullptr, 0, "discard"); }
 
 // --- commands
 
-CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t code, const std::string& what) {
+CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t tag, std::uint8_t code,
+                               const std::string& what) {
   const std::uint8_t request_id = can::message_of(request.id);
-  const hal::CanFrame f = transact(request, MessageId::command_ack,
+  const hal::CanFrame f = transact(request, tag, MessageId::command_ack,
                                    [&](const hal::CanFrame& frame, MessageId) {
                                      const CommandAck a = read_command_ack(frame);
                                      return a.request == request_id && a.code == code;
                                    },
                                    what);
   const CommandAck a = read_command_ack(f);
+  if (a.result == can::ErrorCode::not_owner) owned_ = false;  // lost (host timeout) or never held
   if (a.result != can::ErrorCode::ok) {
     std::string message = "node ";
     message.append(std::to_string(node_)).append(" refused '").append(what).append("': ");
     message.append(can::to_string(a.result)).append(" (state ").append(fw::to_string(a.state));
     if (a.fault != fw::FaultReason::none) message.append(", fault ").append(fw::to_string(a.fault));
     if (a.detail != 0) message.append(", field ").append(std::to_string(a.detail));
+    if (a.result == can::ErrorCode::not_owner) {
+      message.append(", command ownership held by ");
+      message.append(a.owner == 0 ? std::string("no host: take it first") : "host " + std::to_string(a.owner));
+    }
     message += ")";
     throw RequestError(RequestError::Kind::refused, message, a.result);
   }
   return a;
 }
 
-CommandAck NodeClient::command(can::CommandCode code, std::uint8_t axis, std::uint16_t arg, double value) {
-  return checked(command_request(node_, code, axis, arg, value), static_cast<std::uint8_t>(code), can::to_string(code));
+CommandAck NodeClient::command(can::CommandCode code, std::uint8_t axis, std::uint8_t arg, double value) {
+  const bool ownership = code == can::CommandCode::take_ownership || code == can::CommandCode::release_ownership;
+  if (!ownership) need_ownership();
+  const std::uint8_t tag = next_tag();
+  const CommandAck a = checked(command_request(node_, tag, code, axis, arg, value), tag,
+                               static_cast<std::uint8_t>(code), can::to_string(code));
+  if (ownership) owned_ = code == can::CommandCode::take_ownership;
+  return a;
 }
 
 CommandAck NodeClient::move(std::uint8_t axis, double distance_mm, double speed_mm_s) {
   char what[96];
   std::snprintf(what, sizeof what, "move %s by %g mm at %g mm/s", axis == 0 ? "x" : "y", distance_mm, speed_mm_s);
-  return checked(move_request(node_, axis, distance_mm, speed_mm_s), 0, what);
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(move_request(node_, tag, axis, distance_mm, speed_mm_s), tag, 0, what);
 }
 
 CommandAck NodeClient::circle(double radius_mm, double feed_mm_s) {
   char what[96];
   std::snprintf(what, sizeof what, "circle radius %g mm at %g mm/s", radius_mm, feed_mm_s);
-  return checked(circle_request(node_, radius_mm, feed_mm_s), 0, what);
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(circle_request(node_, tag, radius_mm, feed_mm_s), tag, 0, what);
 }
 
 CommandAck NodeClient::jog(double speed_x_mm_s, double speed_y_mm_s) {
   char what[96];
   std::snprintf(what, sizeof what, "jog x %g mm/s, y %g mm/s", speed_x_mm_s, speed_y_mm_s);
-  return checked(jog_request(node_, speed_x_mm_s, speed_y_mm_s), 0, what);
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(jog_request(node_, tag, speed_x_mm_s, speed_y_mm_s), tag, 0, what);
 }
 
 CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {
   char what[96];
   std::snprintf(what, sizeof what, "shaper %s type %u at %g Hz, zeta %g", axis == 0 ? "x" : "y", type, freq_hz, zeta);
-  return checked(shaper_request(node_, axis, type, freq_hz, zeta), 0, what);
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(shaper_request(node_, tag, axis, type, freq_hz, zeta), tag, 0, what);
 }
 
 CommandAck NodeClient::excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s) {
   char what[96];
   std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", axis == 0 ? "x" : "y", kind == 0 ? "step" : "ramp",
                 level_mm_s, duration_s);
-  return checked(excite_request(node_, axis, kind, level_mm_s, duration_s), 0, what);
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(excite_request(node_, tag, axis, kind, level_mm_s, duration_s), tag, 0, what);
 }
 
 void NodeClient::estop(bool broadcast) { bus_.send(estop_request(broadcast ? can::kBroadcastNode : node_)); }
@@ -224,7 +287,8 @@ void NodeClient::pump(Micros duration) {
 CaptureStatus NodeClient::capture(can::CaptureOp op) {
   const char* names[] = {"capture arm", "capture abort", "capture status", "capture upload"};
   const std::string what = names[static_cast<std::size_t>(op) % 4];
-  const hal::CanFrame f = transact(capture_request(node_, op, 0, 0), MessageId::capture_status,
+  const std::uint8_t tag = next_tag();
+  const hal::CanFrame f = transact(capture_request(node_, tag, op, 0, 0), tag, MessageId::capture_status,
                                    [](const hal::CanFrame&, MessageId) { return true; }, what);
   const CaptureStatus s = read_capture_status(f);
   if (s.result != can::ErrorCode::ok) {
@@ -262,7 +326,8 @@ std::vector<std::uint8_t> NodeClient::upload(const CaptureStatus& status, const 
     if (offset > 0xFFFFFFFFull) throw RequestError(RequestError::Kind::protocol, "capture image beyond 4 GiB");
     const std::uint64_t frames_left = (total - offset + kBytesPerFrame - 1) / kBytesPerFrame;
     const auto n = static_cast<std::uint8_t>(std::min<std::uint64_t>(options_.upload_block_frames, frames_left));
-    bus_.send(capture_request(node_, can::CaptureOp::upload, n, static_cast<std::uint32_t>(offset)));
+    const std::uint8_t tag = next_tag();
+    bus_.send(capture_request(node_, tag, can::CaptureOp::upload, n, static_cast<std::uint32_t>(offset)));
     std::vector<bool> got(n, false);
     Micros deadline = bus_.now() + options_.timeout;
     for (;;) {
@@ -274,6 +339,10 @@ std::vector<std::uint8_t> NodeClient::upload(const CaptureStatus& status, const 
       if (!f) break;  // silent: whatever is missing is asked for again
       if (can::message_of(f->id) == static_cast<std::uint8_t>(MessageId::capture_status)) {
         const CaptureStatus s = read_capture_status(*f);
+        if (s.tag != tag) {
+          ++replies_discarded_;
+          continue;
+        }
         if (s.result == can::ErrorCode::ok) continue;
         std::string message = "node ";
         message.append(std::to_string(node_)).append(" refused 'capture upload' at byte ");

@@ -21,6 +21,10 @@ struct ClientOptions {
   Micros timeout{250'000};           // per request, for its reply
   int upload_retries = 8;            // re-requests of one block without progress before giving up
   std::uint8_t upload_block_frames = 255;
+  std::uint8_t host_id = 1;          // request tags carry it (1..15); the node keys staging and ownership on it
+  // Before the first request that needs command ownership (commands, motions,
+  // set, commit), send take_ownership; release_ownership_if_taken() gives it back.
+  bool take_ownership_when_needed = true;
 };
 
 // Frames from this node other than the reply being waited for
@@ -36,11 +40,17 @@ class NodeClient {
   double get(const can::ParamDef& p);
   double set(const can::ParamDef& p, double value);    // returns the value read back
   double stage(const can::ParamDef& p, double value);  // returns the staged value read back
-  std::uint16_t commit();                              // returns the number of parameters applied
+  std::uint16_t commit();                              // returns the number of this host's parameters applied
   void discard();
 
   // --- commands; a refusal throws RequestError(refused) naming the code
-  CommandAck command(can::CommandCode code, std::uint8_t axis = 0, std::uint16_t arg = 0, double value = 0.0);
+  CommandAck command(can::CommandCode code, std::uint8_t axis = 0, std::uint8_t arg = 0, double value = 0.0);
+  // Command ownership (COMMAND take_ownership / release_ownership).
+  CommandAck take_ownership() { return command(can::CommandCode::take_ownership); }
+  CommandAck release_ownership() { return command(can::CommandCode::release_ownership); }
+  // Releases ownership this client took (explicitly or when needed); no-op otherwise.
+  void release_ownership_if_taken();
+  bool holds_ownership() const noexcept { return owned_; }
   CommandAck move(std::uint8_t axis, double distance_mm, double speed_mm_s);
   CommandAck circle(double radius_mm, double feed_mm_s);
   CommandAck jog(double speed_x_mm_s, double speed_y_mm_s);
@@ -70,6 +80,12 @@ class NodeClient {
   // missing frame.
   std::vector<std::uint8_t> upload(const CaptureStatus& status, const UploadProgress& progress = {});
   std::uint64_t upload_rerequests() const noexcept { return upload_rerequests_; }
+  // Replies of the awaited kind whose tag was not the request's (stale, or
+  // another host's): discarded, never taken for the answer.
+  std::uint64_t replies_discarded() const noexcept { return replies_discarded_; }
+  std::uint8_t host_id() const noexcept { return options_.host_id; }
+  // The tag of the next request (and advances the host's 4-bit sequence).
+  std::uint8_t next_tag();
 
   HostBus& bus() noexcept { return bus_; }
   std::uint8_t node() const noexcept { return node_; }
@@ -79,7 +95,8 @@ class NodeClient {
   // Sends `request`, then receives until `match` accepts a frame of
   // message `reply` from this node; every other frame is dispatched.
   using Match = std::function<bool(const hal::CanFrame&, can::MessageId)>;
-  hal::CanFrame transact(const hal::CanFrame& request, can::MessageId reply, const Match& match,
+  // The reply must carry `tag` (the request's); others of its kind are counted and discarded.
+  hal::CanFrame transact(const hal::CanFrame& request, std::uint8_t tag, can::MessageId reply, const Match& match,
                          const std::string& what);
   // Receives (dispatching everything from this node) until `match` accepts
   // a frame; nullopt at the deadline.
@@ -87,7 +104,7 @@ class NodeClient {
   void dispatch(const hal::CanFrame& frame, can::MessageId id);
   std::optional<can::MessageId> ours(const hal::CanFrame& frame) const;
   ParamReply param_op(can::ParamOp op, const can::ParamDef* p, std::uint32_t raw, const std::string& what);
-  CommandAck checked(const hal::CanFrame& request, std::uint8_t code, const std::string& what);
+  CommandAck checked(const hal::CanFrame& request, std::uint8_t tag, std::uint8_t code, const std::string& what);
   std::string timeout_text(const std::string& what, can::MessageId reply, Micros waited) const;
 
   HostBus& bus_;
@@ -97,6 +114,10 @@ class NodeClient {
   std::optional<FaultEvent> fault_event_;
   FrameListener listener_;
   std::uint64_t upload_rerequests_ = 0;
+  std::uint64_t replies_discarded_ = 0;
+  std::uint8_t sequence_ = 0;
+  bool owned_ = false;  // this client's last take_ownership succeeded and was not released since
+  void need_ownership();
 };
 
 }  // namespace tnv::can_host

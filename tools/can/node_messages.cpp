@@ -1,6 +1,8 @@
 #include "tools/can/node_messages.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 #include "firmware/can/node_fields.hpp"
@@ -35,17 +37,39 @@ T raw_as(const hal::CanFrame& frame, const can::FieldDef& f) {
 
 }  // namespace
 
-hal::CanFrame param_request(std::uint8_t node, can::ParamOp op, std::uint16_t param, std::uint32_t value_raw) {
+namespace {
+
+// An integer field written saturated: a value beyond its range arrives as
+// the nearest end (which the node range-checks), NaN as 0.
+void write_saturated(hal::CanFrame& f, const can::FieldDef& field, double physical) {
+  if (can::write(f, field, physical)) return;
+  double lo = 0.0;
+  double hi = 0.0;
+  switch (field.type) {
+    case can::WireType::i16: lo = -32768.0; hi = 32767.0; break;
+    case can::WireType::u16: hi = 65535.0; break;
+    default: return;
+  }
+  const double raw = std::isnan(physical) ? 0.0 : std::clamp(physical / field.scale, lo, hi);
+  can::write(f, field, raw * field.scale);
+}
+
+}  // namespace
+
+hal::CanFrame param_request(std::uint8_t node, std::uint8_t tag, can::ParamOp op, std::uint16_t param,
+                            std::uint32_t value_raw) {
   hal::CanFrame f = can::make_frame(kParamRequestMsg, node);
+  can::write_raw(f, field(kParamRequestMsg, "tag"), tag);
   can::write_raw(f, field(kParamRequestMsg, "op"), static_cast<std::uint32_t>(op));
   can::write_raw(f, field(kParamRequestMsg, "param"), param);
   can::write_raw(f, field(kParamRequestMsg, "value"), value_raw);
   return f;
 }
 
-hal::CanFrame command_request(std::uint8_t node, can::CommandCode code, std::uint8_t axis, std::uint16_t arg,
-                              double value) {
+hal::CanFrame command_request(std::uint8_t node, std::uint8_t tag, can::CommandCode code, std::uint8_t axis,
+                              std::uint8_t arg, double value) {
   hal::CanFrame f = can::make_frame(kCommandMsg, node);
+  can::write_raw(f, field(kCommandMsg, "tag"), tag);
   can::write_raw(f, field(kCommandMsg, "code"), static_cast<std::uint32_t>(code));
   can::write_raw(f, field(kCommandMsg, "axis"), axis);
   can::write_raw(f, field(kCommandMsg, "arg"), arg);
@@ -53,8 +77,10 @@ hal::CanFrame command_request(std::uint8_t node, can::CommandCode code, std::uin
   return f;
 }
 
-hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance_mm, double speed_mm_s) {
+hal::CanFrame move_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, double distance_mm,
+                           double speed_mm_s) {
   hal::CanFrame f = can::make_frame(kMoveMsg, node);
+  can::write_raw(f, field(kMoveMsg, "tag"), tag);
   can::write_raw(f, field(kMoveMsg, "axis"), axis);
   // The caller range-checks the speed (0.01 mm/s steps, at most 655.35 mm/s).
   can::write(f, field(kMoveMsg, "speed"), speed_mm_s);
@@ -62,42 +88,49 @@ hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance
   return f;
 }
 
-hal::CanFrame circle_request(std::uint8_t node, double radius_mm, double feed_mm_s) {
+hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_mm, double feed_mm_s) {
   hal::CanFrame f = can::make_frame(kCircleMsg, node);
+  can::write_raw(f, field(kCircleMsg, "tag"), tag);
   can::write(f, field(kCircleMsg, "radius"), radius_mm);
-  can::write(f, field(kCircleMsg, "feed"), feed_mm_s);
+  write_saturated(f, field(kCircleMsg, "feed"), feed_mm_s);
   return f;
 }
 
-hal::CanFrame jog_request(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s) {
+hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, double speed_x_mm_s, double speed_y_mm_s) {
   hal::CanFrame f = can::make_frame(kJogMsg, node);
-  can::write(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
-  can::write(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
+  can::write_raw(f, field(kJogMsg, "tag"), tag);
+  write_saturated(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
+  write_saturated(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
   return f;
 }
 
-hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {
+hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, std::uint8_t type,
+                             double freq_hz, double zeta) {
   hal::CanFrame f = can::make_frame(kShaperMsg, node);
+  can::write_raw(f, field(kShaperMsg, "tag"), tag);
   can::write_raw(f, field(kShaperMsg, "axis"), axis);
   can::write_raw(f, field(kShaperMsg, "type"), type);
-  can::write(f, field(kShaperMsg, "zeta"), zeta);
-  can::write(f, field(kShaperMsg, "freq"), freq_hz);
+  write_saturated(f, field(kShaperMsg, "zeta"), zeta);
+  write_saturated(f, field(kShaperMsg, "freq"), freq_hz);
   return f;
 }
 
-hal::CanFrame excite_request(std::uint8_t node, std::uint8_t axis, std::uint8_t kind, double level_mm_s,
-                             double duration_s) {
+hal::CanFrame excite_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, std::uint8_t kind,
+                             double level_mm_s, double duration_s) {
   hal::CanFrame f = can::make_frame(kExciteMsg, node);
+  can::write_raw(f, field(kExciteMsg, "tag"), tag);
   can::write_raw(f, field(kExciteMsg, "axis"), axis);
   can::write_raw(f, field(kExciteMsg, "kind"), kind);
   // Out of the u16 range (or NaN): 0 s, which the node refuses as out of range.
   if (!can::write(f, field(kExciteMsg, "duration"), duration_s)) can::write_raw(f, field(kExciteMsg, "duration"), 0);
-  can::write(f, field(kExciteMsg, "level"), level_mm_s);
+  write_saturated(f, field(kExciteMsg, "level"), level_mm_s);
   return f;
 }
 
-hal::CanFrame capture_request(std::uint8_t node, can::CaptureOp op, std::uint8_t frames, std::uint32_t offset) {
+hal::CanFrame capture_request(std::uint8_t node, std::uint8_t tag, can::CaptureOp op, std::uint8_t frames,
+                              std::uint32_t offset) {
   hal::CanFrame f = can::make_frame(kCaptureControlMsg, node);
+  can::write_raw(f, field(kCaptureControlMsg, "tag"), tag);
   can::write_raw(f, field(kCaptureControlMsg, "op"), static_cast<std::uint32_t>(op));
   can::write_raw(f, field(kCaptureControlMsg, "frames"), frames);
   can::write_raw(f, field(kCaptureControlMsg, "offset"), offset);
@@ -112,25 +145,27 @@ Heartbeat read_heartbeat(const hal::CanFrame& frame) {
   h.fault = raw_as<fw::FaultReason>(frame, field(kHeartbeatMsg, "fault"));
   h.errors = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "errors"));
   h.overruns = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "overruns"));
-  h.tick_low = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "tick_low"));
+  h.owner = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "owner"));
+  h.tick_low = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "tick_low"));
   return h;
 }
 
 CommandAck read_command_ack(const hal::CanFrame& frame) {
   CommandAck a;
+  a.tag = raw_as<std::uint8_t>(frame, field(kAckMsg, "tag"));
   a.request = raw_as<std::uint8_t>(frame, field(kAckMsg, "request"));
   a.code = raw_as<std::uint8_t>(frame, field(kAckMsg, "code"));
   a.result = raw_as<can::ErrorCode>(frame, field(kAckMsg, "result"));
   a.state = raw_as<fw::MotionState>(frame, field(kAckMsg, "state"));
   a.fault = raw_as<fw::FaultReason>(frame, field(kAckMsg, "fault"));
   a.detail = raw_as<std::uint8_t>(frame, field(kAckMsg, "detail"));
-  a.sequence = raw_as<std::uint16_t>(frame, field(kAckMsg, "sequence"));
+  a.owner = raw_as<std::uint8_t>(frame, field(kAckMsg, "owner"));
   return a;
 }
 
 ParamReply read_param_reply(const hal::CanFrame& frame) {
   ParamReply r;
-  r.op = raw_as<can::ParamOp>(frame, field(kParamReplyMsg, "op"));
+  r.tag = raw_as<std::uint8_t>(frame, field(kParamReplyMsg, "tag"));
   r.result = raw_as<can::ErrorCode>(frame, field(kParamReplyMsg, "result"));
   r.param = raw_as<std::uint16_t>(frame, field(kParamReplyMsg, "param"));
   r.value_raw = can::read_raw(frame, field(kParamReplyMsg, "value"));
@@ -139,6 +174,7 @@ ParamReply read_param_reply(const hal::CanFrame& frame) {
 
 CaptureStatus read_capture_status(const hal::CanFrame& frame) {
   CaptureStatus s;
+  s.tag = raw_as<std::uint8_t>(frame, field(kCaptureStatusMsg, "tag"));
   s.state = raw_as<can::CaptureState>(frame, field(kCaptureStatusMsg, "state"));
   s.result = raw_as<can::ErrorCode>(frame, field(kCaptureStatusMsg, "result"));
   s.channels = raw_as<std::uint8_t>(frame, field(kCaptureStatusMsg, "channels"));

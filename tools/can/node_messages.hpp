@@ -19,27 +19,30 @@ struct Heartbeat {
   fw::FaultReason fault = fw::FaultReason::none;
   std::uint16_t errors = 0;  // can::HeartbeatBit
   std::uint16_t overruns = 0;
-  std::uint16_t tick_low = 0;
+  std::uint8_t owner = 0;  // host id holding command ownership, 0 none
+  std::uint8_t tick_low = 0;
 };
 
 struct CommandAck {
+  std::uint8_t tag = 0;      // the request's tag, echoed
   std::uint8_t request = 0;  // message id acknowledged
   std::uint8_t code = 0;
   can::ErrorCode result = can::ErrorCode::ok;
   fw::MotionState state = fw::MotionState::disabled;
   fw::FaultReason fault = fw::FaultReason::none;
   std::uint8_t detail = 0;
-  std::uint16_t sequence = 0;
+  std::uint8_t owner = 0;  // host id holding command ownership after the request, 0 none
 };
 
 struct ParamReply {
-  can::ParamOp op = can::ParamOp::get;
+  std::uint8_t tag = 0;
   can::ErrorCode result = can::ErrorCode::ok;
   std::uint16_t param = 0;
   std::uint32_t value_raw = 0;
 };
 
 struct CaptureStatus {
+  std::uint8_t tag = 0;
   can::CaptureState state = can::CaptureState::idle;
   can::ErrorCode result = can::ErrorCode::ok;
   std::uint8_t channels = 0;
@@ -60,18 +63,25 @@ struct FaultEvent {
   double value = 0.0;
 };
 
-// Requests (to node).
-hal::CanFrame param_request(std::uint8_t node, can::ParamOp op, std::uint16_t param, std::uint32_t value_raw);
-hal::CanFrame command_request(std::uint8_t node, can::CommandCode code, std::uint8_t axis, std::uint16_t arg,
-                              double value);
-hal::CanFrame move_request(std::uint8_t node, std::uint8_t axis, double distance_mm, double speed_mm_s);
-hal::CanFrame circle_request(std::uint8_t node, double radius_mm, double feed_mm_s);
-hal::CanFrame jog_request(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s);
-hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
-// EXCITE: kind 0 step, 1 ramp (duration rounded to 1 ms).
-hal::CanFrame excite_request(std::uint8_t node, std::uint8_t axis, std::uint8_t kind, double level_mm_s,
-                             double duration_s);
-hal::CanFrame capture_request(std::uint8_t node, can::CaptureOp op, std::uint8_t frames, std::uint32_t offset);
+// Requests (to node). `tag`: request_tag.hpp (host id << 4 | the host's sequence).
+hal::CanFrame param_request(std::uint8_t node, std::uint8_t tag, can::ParamOp op, std::uint16_t param,
+                            std::uint32_t value_raw);
+hal::CanFrame command_request(std::uint8_t node, std::uint8_t tag, can::CommandCode code, std::uint8_t axis,
+                              std::uint8_t arg, double value);
+hal::CanFrame move_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, double distance_mm,
+                           double speed_mm_s);
+// Feed in 0.01 mm/s steps (0 .. 655.35); the caller range-checks.
+hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_mm, double feed_mm_s);
+// Speeds in 0.01 mm/s steps (+-327.67); out of range or NaN: the node refuses the clamped value.
+hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, double speed_x_mm_s, double speed_y_mm_s);
+// Frequency in 0.01 Hz steps (0 .. 655.35 Hz).
+hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, std::uint8_t type,
+                             double freq_hz, double zeta);
+// EXCITE: kind 0 step, 1 ramp (duration rounded to 1 ms, level to 0.01 mm/s).
+hal::CanFrame excite_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, std::uint8_t kind,
+                             double level_mm_s, double duration_s);
+hal::CanFrame capture_request(std::uint8_t node, std::uint8_t tag, can::CaptureOp op, std::uint8_t frames,
+                              std::uint32_t offset);
 hal::CanFrame estop_request(std::uint8_t node);
 
 // Replies (from node). Callers check the message id first (classify()).

@@ -13,6 +13,7 @@
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/request_tag.hpp"
 
 namespace tnv::hil {
 
@@ -24,6 +25,7 @@ namespace can = fw::can;
 using namespace can::fields;
 
 constexpr std::uint8_t kBudgetNode = 1;
+constexpr std::uint8_t kBudgetHost = 1;  // the bench host's id in every request tag
 
 // The bench's wire: what the host sent waits for the node, what the node
 // sent is read back by the session after every service().
@@ -181,8 +183,11 @@ class BudgetSession {
     // The non-real-time side: a posted save or load runs now, outside the charged time.
     if (worker_.run_pending()) ++result_.storage_jobs;
   }
+  // Every request goes out as host 1 with its own sequence in the tag (byte 0).
   void request(const hal::CanFrame& frame, const char* kind, int idle_cycles = 3) {
-    cycle(&frame, kind);
+    hal::CanFrame tagged = frame;
+    tagged.data[0] = can::make_tag(kBudgetHost, sequence_++);
+    cycle(&tagged, kind);
     for (int k = 0; k < idle_cycles; ++k) cycle(nullptr, "");
   }
   // Idle cycles until the node holds again at rest (an excitation ended) or max.
@@ -274,6 +279,7 @@ class BudgetSession {
   BudgetStorage storage_;
   drivers::SteppedStorageWorker worker_;
   std::unique_ptr<can::CanNode> node_;
+  std::uint8_t sequence_ = 0;
   BudgetCallLog log_;
   RtBudgetResult result_;
   bool uploading_ = false;
@@ -307,6 +313,7 @@ RtBudgetResult run_rt_budget(const RtBudgetOptions& options) {
   // Every telemetry message on, at 10 ms (heartbeat 100 ms): the session's background traffic.
   settings.telemetry = {100, 10, 10, 10, 10, 10};
   BudgetSession session(std::move(rig), settings);
+  session.request(budget_command(can::CommandCode::take_ownership), "take_ownership");
   session.request(budget_command(can::CommandCode::enable), "enable");
   session.run_until_holding(100);
   if (session.rig().task.state() != fw::MotionState::holding) {

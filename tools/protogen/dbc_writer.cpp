@@ -29,6 +29,7 @@ void raw_range(const FieldDef& f, double& lo, double& hi) {
     case WireType::u8: lo = 0; hi = 255; break;
     case WireType::i8: lo = -128; hi = 127; break;
     case WireType::u16: lo = 0; hi = 65535; break;
+    case WireType::u24: lo = 0; hi = 16777215.0; break;
     case WireType::i16: lo = -32768; hi = 32767; break;
     case WireType::u32:
     case WireType::raw32: lo = 0; hi = 4294967295.0; break;

@@ -15,5 +15,6 @@ void add_arsc_commands(CLI::App& app, Runner& run);    // arsc design | run | co
 void add_shaper_commands(CLI::App& app, Runner& run);  // shaper design | move | jog | grid (S2)
 void add_best_circle_commands(CLI::App& app, Runner& run);  // best-circle, identify (issue 7)
 void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN service cost on the real-time loop)
+void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 
 }  // namespace tnv::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_arsc_commands(app, run);
   add_shaper_commands(app, run);
   add_rt_budget_commands(app, run);
+  add_bus_stress_commands(app, run);
 
   try {
     app.parse(argc, argv);

@@ -130,7 +130,8 @@ nlohmann::json heartbeat_json(const can_host::Heartbeat& hb) {
   return {{"state", fw::to_string(hb.state)},
           {"fault", fw::to_string(hb.fault)},
           {"flags", bits},
-          {"overruns", hb.overruns}};
+          {"overruns", hb.overruns},
+          {"owner", hb.owner}};
 }
 
 std::string heartbeat_text(const can_host::Heartbeat& hb) {
@@ -142,6 +143,7 @@ std::string heartbeat_text(const can_host::Heartbeat& hb) {
     for (const auto& f : j["flags"]) out.append(" ").append(f.get<std::string>());
   }
   if (hb.overruns != 0) out.append(", overruns ").append(std::to_string(hb.overruns));
+  if (hb.owner != 0) out.append(", command owner host ").append(std::to_string(hb.owner));
   return out;
 }
 

@@ -27,6 +27,11 @@ int main(int argc, char** argv) {
   CLI::Option* emu = app.add_flag("--emu", g.emu, "the in-process emulated controller (real firmware, emulated table)");
   iface->excludes(emu);
   app.add_option("--node", g.node, "node id")->check(CLI::Range(1, 63))->capture_default_str();
+  app.add_option("--host-id", g.host_id,
+                 "this host's id on the bus (request tags, its own staged parameter set, command ownership: taken "
+                 "when a command needs it, released at the end)")
+      ->check(CLI::Range(1, 15))
+      ->capture_default_str();
   app.add_flag("--json", g.json, "machine-readable output on stdout");
   app.add_option("--timeout-ms", g.timeout_ms, "reply timeout per request (emulated: simulated ms)")
       ->check(CLI::Range(1, 600000))
@@ -65,6 +70,7 @@ int main(int argc, char** argv) {
   }
   Session session(g);
   const int code = run_action(*slot, session);
+  session.end();
   // The emulated node ends with this process: say so when changes would be lost.
   if (const tnv::can_host::EmulatedBus* emulated = session.opened_emulation();
       emulated != nullptr && emulated->node().params_unsaved())

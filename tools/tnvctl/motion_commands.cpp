@@ -222,7 +222,7 @@ int run_zero(const std::string& axis_name, double position_mm, Session& session,
 
 int run_controller(const std::string& axis_name, const std::string& kind, Session& session, Report& report) {
   const std::uint8_t axis = axis_name == "all" ? 255 : parse_axis(axis_name);
-  const std::uint16_t arg = kind == "pid" ? 0 : kind == "dvsc" ? 1 : 2;
+  const std::uint8_t arg = kind == "pid" ? 0 : kind == "dvsc" ? 1 : 2;
   session.client().command(can::CommandCode::select_controller, axis, arg);
   std::string text = "controller of ";
   report.line(text.append(axis_name).append(": ").append(kind));

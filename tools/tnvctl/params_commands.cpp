@@ -1,4 +1,5 @@
 // tnvctl params list | get | set | save | load | defaults
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -176,8 +177,9 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
   can_host::NodeClient& client = session.client();
   std::vector<double> before;
   for (const Change& c : changes) before.push_back(client.get(*c.param));
+  std::vector<double> staged;  // what the node said it staged, per change
   try {
-    for (const Change& c : changes) client.stage(*c.param, c.requested);
+    for (const Change& c : changes) staged.push_back(client.stage(*c.param, c.requested));
   } catch (const RequestError& e) {
     if (e.kind() == RequestError::Kind::refused) {
       try {
@@ -211,10 +213,33 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
     }
     throw RequestError(RequestError::Kind::refused, message, e.code());
   }
+  // The commit must have applied exactly this host's stages, and each must read back as staged.
+  std::vector<std::uint16_t> ids;
+  for (const Change& c : changes)
+    if (std::find(ids.begin(), ids.end(), c.param->id) == ids.end()) ids.push_back(c.param->id);
+  if (applied != ids.size()) {
+    std::string message = "the node's commit applied ";
+    message.append(std::to_string(applied)).append(" parameters, tnvctl staged ").append(std::to_string(ids.size()));
+    message.append(" (another host's stages, or stages lost): check the values with `params get`");
+    throw RunFailed(message);
+  }
+  std::vector<double> after;
+  for (const Change& c : changes) after.push_back(client.get(*c.param));
+  for (std::size_t i = 0; i < changes.size(); ++i) {
+    // A later change of the same parameter wins; compare the last one only.
+    bool last = true;
+    for (std::size_t j = i + 1; j < changes.size(); ++j) last = last && changes[j].param != changes[i].param;
+    if (!last || can::to_wire(*changes[i].param, after[i]) == can::to_wire(*changes[i].param, staged[i])) continue;
+    const can::ParamDef& p = *changes[i].param;
+    std::string message = "read back ";
+    message.append(p.name).append(" = ").append(format_param_value(p, after[i])).append(" after the commit, staged ");
+    message.append(format_param_value(p, staged[i])).append(": another host changed it, or the commit did not apply it");
+    throw RunFailed(message);
+  }
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < changes.size(); ++i) {
     const can::ParamDef& p = *changes[i].param;
-    const double now = client.get(p);
+    const double now = after[i];
     std::string text = p.name;
     text.append(" = ").append(with_unit(p, now)).append(" (was ").append(format_param_value(p, before[i])).append(")");
     report.line(text);

@@ -42,6 +42,7 @@ void Session::open() {
   }
   can_host::ClientOptions client;
   client.timeout = can_host::Micros{static_cast<long long>(options_.timeout_ms) * 1000};
+  client.host_id = static_cast<std::uint8_t>(options_.host_id);
   client_ = std::make_unique<can_host::NodeClient>(*bus_, node, client);
   // The first exchange: is there a node, and does it speak our protocol?
   const fw::can::ParamDef* version = fw::can::find_param("sys.protocol_version");
@@ -58,6 +59,15 @@ void Session::open() {
 can_host::NodeClient& Session::client() {
   if (!client_) open();
   return *client_;
+}
+
+void Session::end() noexcept {
+  if (!client_ || !client_->holds_ownership()) return;
+  try {
+    client_->release_ownership();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tnvctl: could not release command ownership: %s\n", e.what());
+  }
 }
 
 can_host::EmulatedBus* Session::emulated() {

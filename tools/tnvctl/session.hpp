@@ -33,6 +33,7 @@ struct GlobalOptions {
   std::string iface;  // SocketCAN interface
   bool emu = false;   // the in-process emulated controller
   int node = 1;
+  int host_id = 1;  // request tags, staged set and command ownership are this host's
   bool json = false;
   int timeout_ms = 250;
   std::string emu_scenario = "no-cut";
@@ -63,6 +64,9 @@ class Session {
   // The emulated controller, or nullptr on SocketCAN (opens the connection).
   can_host::EmulatedBus* emulated();
   bool is_emulated() const noexcept { return options_.emu; }
+  // Gives back command ownership if this session took it (at the end of
+  // tnvctl); a failure is reported on stderr, never thrown.
+  void end() noexcept;
   // The emulated node, if this session opened one (never opens it).
   can_host::EmulatedBus* opened_emulation() const noexcept { return emulated_; }
   const GlobalOptions& options() const noexcept { return options_; }

@@ -17,19 +17,20 @@ ErrorCode ack_result(const hal::CanFrame& r) {
   return static_cast<ErrorCode>(raw_of(r, MessageId::command_ack, "result"));
 }
 
-TEST(CanNodeCommands, EnableDisableAndTheAckCarriesStateCodeAndSequence) {
+TEST(CanNodeCommands, EnableDisableAndTheAckCarriesStateCodeTagAndOwner) {
   NodeBench b;
   const hal::CanFrame on = b.reply(command(kNode, CommandCode::enable));
   EXPECT_EQ(ack_result(on), ErrorCode::ok);
   EXPECT_EQ(raw_of(on, MessageId::command_ack, "request"), static_cast<std::uint32_t>(MessageId::command));
   EXPECT_EQ(raw_of(on, MessageId::command_ack, "code"), static_cast<std::uint32_t>(CommandCode::enable));
   EXPECT_EQ(raw_of(on, MessageId::command_ack, "state"), static_cast<std::uint32_t>(fw::MotionState::holding));
-  const std::uint32_t seq = raw_of(on, MessageId::command_ack, "sequence");
+  EXPECT_EQ(raw_of(on, MessageId::command_ack, "tag"), kTestTag);
+  EXPECT_EQ(raw_of(on, MessageId::command_ack, "owner"), 1u);
   b.step();
   EXPECT_TRUE(b.board.written_enable[0]);
-  const hal::CanFrame off = b.reply(command(kNode, CommandCode::disable));
+  const hal::CanFrame off = b.reply(with_tag(command(kNode, CommandCode::disable), 0x1E));
   EXPECT_EQ(raw_of(off, MessageId::command_ack, "state"), static_cast<std::uint32_t>(fw::MotionState::disabled));
-  EXPECT_EQ(raw_of(off, MessageId::command_ack, "sequence"), seq + 1);
+  EXPECT_EQ(raw_of(off, MessageId::command_ack, "tag"), 0x1Eu) << "the reply echoes the request's tag";
   b.step();
   EXPECT_FALSE(b.board.written_enable[0]);
 }

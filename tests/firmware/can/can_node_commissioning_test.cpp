@@ -171,12 +171,6 @@ TEST(CanNodeCommissioning, WithoutTheLocalPermissionEnterIsNotPermitted) {
   EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::leave_commissioning))), ErrorCode::ok) << "always fine";
 }
 
-TEST(CanNodeCommissioning, TheReservedCodesAreUnknown) {
-  NodeBench b;
-  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::reserved_10))), ErrorCode::unknown_command);
-  EXPECT_EQ(commission_ack(b.reply(command(kNode, CommandCode::reserved_11))), ErrorCode::unknown_command);
-}
-
 TEST(CanNodeCommissioning, RestoreDefaultsKeepsTheSafetyParametersOutsideTheMode) {
   NodeBench b;
   ASSERT_EQ(commission_ack(b.reply(command(kNode, CommandCode::enter_commissioning))), ErrorCode::ok);

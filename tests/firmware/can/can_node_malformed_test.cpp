@@ -30,6 +30,7 @@ struct Snapshot {
   fw::FaultReason fault;
   std::size_t staged;
   fw::can::CaptureState capture;
+  std::uint8_t owner;
   bool operator==(const Snapshot&) const = default;
 };
 
@@ -45,6 +46,7 @@ Snapshot snapshot(const NodeBench& b) {
   s.fault = b.task.fault().reason;
   s.staged = b.node->staged_count();
   s.capture = b.node->capture_state();
+  s.owner = b.node->owner();
   return s;
 }
 
@@ -91,7 +93,7 @@ std::vector<Case> cases() {
   }
   // Unknown codes and operations.
   add(c, "unknown command code", command(kNode, static_cast<CommandCode>(fw::can::kCommandCodeCount)),
-               MessageId::command_ack, ErrorCode::unknown_command, {}, 0);
+               MessageId::command_ack, ErrorCode::unknown_command, {}, 1u);
   add(c, "command code 255", command(kNode, static_cast<CommandCode>(255)), MessageId::command_ack,
                ErrorCode::unknown_command);
   add(c, "unknown param op", param_request(kNode, static_cast<ParamOp>(fw::can::kParamOpCount), gamma, f32_raw(0.2f)),
@@ -144,44 +146,56 @@ std::vector<Case> cases() {
   add(c, "enter commissioning while holding", command(kNode, CommandCode::enter_commissioning), MessageId::command_ack,
                ErrorCode::busy);
   // Bad axes.
-  add(c, "zero axis 2", command(kNode, CommandCode::zero, 2, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
+  add(c, "zero axis 2", command(kNode, CommandCode::zero, 2, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 2u);
   add(c, "zero axis 255", command(kNode, CommandCode::zero, 255, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis);
   add(c, "select_controller axis 7", command(kNode, CommandCode::select_controller, 7, 0), MessageId::command_ack,
-               ErrorCode::bad_axis, {}, 1u);
+               ErrorCode::bad_axis, {}, 2u);
   add(c, "select_controller kind 3", command(kNode, CommandCode::select_controller, 0, 3), MessageId::command_ack,
-               ErrorCode::out_of_range, {}, 2u);
+               ErrorCode::out_of_range, {}, 3u);
   add(c, "shaper_enable axis 2", command(kNode, CommandCode::shaper_enable, 2, 1), MessageId::command_ack,
                ErrorCode::bad_axis);
   add(c, "shaper_enable arg 2", command(kNode, CommandCode::shaper_enable, 0, 2), MessageId::command_ack,
                ErrorCode::out_of_range);
-  add(c, "move axis 2", move(kNode, 2, 10.0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 0u);
+  add(c, "move axis 2", move(kNode, 2, 10.0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
   {
     hal::CanFrame f = frame_to(MessageId::shaper, kNode);
     set_raw(f, MessageId::shaper, "axis", 3);
     set_raw(f, MessageId::shaper, "type", 1);
     set_value(f, MessageId::shaper, "freq", 30.0);
-    add(c, "shaper axis 3", f, MessageId::command_ack, ErrorCode::bad_axis, {}, 0u);
+    add(c, "shaper axis 3", f, MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
     set_raw(f, MessageId::shaper, "axis", 0);
     set_raw(f, MessageId::shaper, "type", 9);
-    add(c, "shaper type 9", f, MessageId::command_ack, ErrorCode::out_of_range, {}, 1u);
+    add(c, "shaper type 9", f, MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
     set_raw(f, MessageId::shaper, "type", 1);
-    set_value(f, MessageId::shaper, "freq", kNaN);
-    add(c, "shaper freq NaN", f, MessageId::command_ack, ErrorCode::not_finite, {}, 3u);
+    set_value(f, MessageId::shaper, "freq", 0.0);  // u16 at 0.01 Hz: NaN is not representable
+    add(c, "shaper freq 0 Hz", f, MessageId::command_ack, ErrorCode::out_of_range, {}, 5u);
     set_value(f, MessageId::shaper, "freq", 1.0);
-    add(c, "shaper freq 1 Hz", f, MessageId::command_ack, ErrorCode::out_of_range, {}, 3u);
+    add(c, "shaper freq 1 Hz", f, MessageId::command_ack, ErrorCode::out_of_range, {}, 5u);
   }
   // Motion requests with numbers that are not.
-  add(c, "zero to NaN", command(kNode, CommandCode::zero, 0, 0, kNaN), MessageId::command_ack, ErrorCode::not_finite, {}, 3u);
+  add(c, "zero to NaN", command(kNode, CommandCode::zero, 0, 0, kNaN), MessageId::command_ack, ErrorCode::not_finite, {}, 4u);
   add(c, "zero beyond the soft limit", command(kNode, CommandCode::zero, 0, 0, 1e4), MessageId::command_ack,
                ErrorCode::out_of_range);
   add(c, "move distance inf", move(kNode, 0, 10.0, kInf), MessageId::command_ack, ErrorCode::not_finite, {}, 3u);
   add(c, "move speed 0", move(kNode, 0, 0.0, 1.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
   add(c, "move beyond the soft limit", move(kNode, 0, 10.0, 400.0), MessageId::command_ack, ErrorCode::out_of_range);
-  add(c, "circle radius NaN", circle(kNode, kNaN, 2.0), MessageId::command_ack, ErrorCode::not_finite, {}, 0u);
-  add(c, "circle feed -inf", circle(kNode, 6.0, -kInf), MessageId::command_ack, ErrorCode::not_finite, {}, 1u);
-  add(c, "circle radius -6", circle(kNode, -6.0, 2.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 0u);
-  add(c, "jog x NaN", jog(kNode, kNaN, 0.0), MessageId::command_ack, ErrorCode::not_finite, {}, 0u);
-  add(c, "jog y beyond its limit", jog(kNode, 0.0, 1e4), MessageId::command_ack, ErrorCode::out_of_range, {}, 1u);
+  add(c, "circle radius NaN", circle(kNode, kNaN, 2.0), MessageId::command_ack, ErrorCode::not_finite, {}, 3u);
+  add(c, "circle feed 0", circle(kNode, 6.0, 0.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
+  add(c, "circle radius -6", circle(kNode, -6.0, 2.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 3u);
+  add(c, "jog x beyond its limit", jog(kNode, -300.0, 0.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
+  add(c, "jog y beyond its limit", jog(kNode, 0.0, 300.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 3u);
+  // Hosts: tag 0 is anonymous, and commands need command ownership (the bench's host 1 holds it).
+  add(c, "enable from host 0", with_tag(command(kNode, CommandCode::enable), 0x01), MessageId::command_ack,
+      ErrorCode::no_host);
+  add(c, "get from host 0", with_tag(param_request(kNode, ParamOp::get, gamma), 0x00), MessageId::param_reply,
+      ErrorCode::no_host);
+  add(c, "disable from host 2", with_tag(command(kNode, CommandCode::disable), 0x21), MessageId::command_ack,
+      ErrorCode::not_owner);
+  add(c, "circle from host 2", with_tag(circle(kNode, 6.0, 2.0), 0x21), MessageId::command_ack, ErrorCode::not_owner);
+  add(c, "set from host 2", with_tag(param_request(kNode, ParamOp::set, gamma, f32_raw(0.2f)), 0x21),
+      MessageId::param_reply, ErrorCode::not_owner);
+  add(c, "take ownership from host 2", with_tag(command(kNode, CommandCode::take_ownership), 0x21),
+      MessageId::command_ack, ErrorCode::not_owner);
   add(c, "upload 0 frames", capture_control(kNode, CaptureOp::upload, 0, 0), MessageId::capture_status,
                ErrorCode::out_of_range);
   add(c, "upload with no capture", capture_control(kNode, CaptureOp::upload, 4, 0), MessageId::capture_status,
@@ -218,7 +232,7 @@ TEST(CanNodeMalformed, EveryBadFrameIsAnsweredOrIgnoredAsTheProtocolSaysAndChang
     SCOPED_TRACE(c.name);
     NodeBench b;
     // Not at power-up: servo on, holding (a state a stray frame could disturb).
-    ASSERT_EQ(b.reply(command(kNode, CommandCode::enable)).data[2], 0);
+    ASSERT_EQ(raw_of(b.reply(command(kNode, CommandCode::enable)), MessageId::command_ack, "result"), 0u);
     b.step(5);
     const Snapshot before = snapshot(b);
     const fw::can::NodeCounters counts_before = b.node->counters();

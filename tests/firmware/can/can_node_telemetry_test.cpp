@@ -2,6 +2,8 @@
 // over many ticks; FAULT_EVENT exactly once per latched fault.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <map>
 
 #include "firmware/can/telemetry_scheduler.hpp"
@@ -150,23 +152,45 @@ TEST(CanNodeTelemetry, FaultEventIsSentOnceAndAgainOnlyAfterAClearAndANewFault) 
   EXPECT_TRUE(only(b.port.drain(), MessageId::fault_event).empty());
 }
 
-TEST(CanNodeTelemetry, AFullTransmitQueueDropsTelemetryButKeepsRepliesInOrder) {
+// The port takes one frame at a time: everything else waits in the node's
+// priority queue, which fills with heartbeats and telemetry. Telemetry is
+// what gets dropped (and counted); replies then leave first, in order,
+// then the heartbeats, telemetry last.
+TEST(CanNodeTelemetry, RepliesAndHeartbeatsLeaveBeforeTelemetryAndAFullQueueDropsTelemetryFirst) {
   fw::can::NodeSettings s = quiet_settings();
   s.telemetry = {1, 1, 1, 0, 0, 0};
   NodeBench b(s);
-  b.port.tx_capacity = 2;  // the bus takes two frames until the host drains it
+  b.port.tx_capacity = 1;
+  b.step(40);  // 40 heartbeats and 80 telemetry frames offered; 48 places in the queue
+  const fw::can::NodeCounters& c = b.node->counters();
+  EXPECT_GT(c.telemetry_dropped, 0u) << "the queue must have filled";
+  EXPECT_EQ(c.tx_dropped, c.telemetry_dropped) << "only telemetry may be dropped";
   b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0000));
   b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0001));
   b.port.send(param_request(kNode, fw::can::ParamOp::get, 0x0002));
-  b.step();
-  EXPECT_GT(b.node->counters().tx_dropped, 0u) << "telemetry had no room";
-  std::vector<std::uint32_t> params;
-  for (int k = 0; k < 5; ++k) {
-    for (const hal::CanFrame& f : only(b.port.drain(), MessageId::param_reply))
-      params.push_back(raw_of(f, MessageId::param_reply, "param"));
+  b.node->service();
+  b.port.drain();  // the frame the port held before the requests came
+  std::vector<hal::CanFrame> out;
+  for (int k = 0; k < 100; ++k) {
     b.node->service();
+    for (const hal::CanFrame& f : b.port.drain()) out.push_back(f);
   }
-  EXPECT_EQ(params, (std::vector<std::uint32_t>{0, 1, 2})) << "every reply, in order";
+  ASSERT_GE(out.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(is(out[i], MessageId::param_reply)) << "frame " << i << " is not a reply";
+    EXPECT_EQ(raw_of(out[i], MessageId::param_reply, "param"), i) << "replies in the order asked";
+  }
+  std::size_t last_heartbeat = 0;
+  std::size_t first_telemetry = out.size();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (is(out[i], MessageId::heartbeat)) last_heartbeat = i;
+    if (fw::can::message_of(out[i].id) >= static_cast<std::uint8_t>(MessageId::tlm_position))
+      first_telemetry = std::min(first_telemetry, i);
+  }
+  EXPECT_GT(last_heartbeat, 0u) << "no heartbeat came out";
+  EXPECT_LT(last_heartbeat, first_telemetry) << "a heartbeat waited behind telemetry";
+  EXPECT_LT(first_telemetry, out.size()) << "the telemetry kept in the queue never went out";
+  EXPECT_EQ(b.node->tx_pending(), 0u);
   EXPECT_NE(b.node->heartbeat_errors() & fw::can::kHbTxDropped, 0);
 }
 

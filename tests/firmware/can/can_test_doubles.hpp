@@ -107,7 +107,24 @@ inline const fw::can::FieldDef& fld(fw::can::MessageId id, const char* name) {
   return msg(id).fields[0];  // a test typo shows up as a wrong value
 }
 
-inline hal::CanFrame frame_to(fw::can::MessageId id, std::uint8_t node) { return fw::can::make_frame(msg(id), node); }
+// The tag the test host puts in byte 0 of every tagged request: host 1, sequence 1.
+inline constexpr std::uint8_t kTestTag = 0x11;
+
+inline bool has_tag(const fw::can::MessageDef& m) {
+  return !m.fields.empty() && std::string_view(m.fields[0].name) == "tag";
+}
+
+// An empty frame of message `id`; to-node messages with a tag carry kTestTag.
+inline hal::CanFrame frame_to(fw::can::MessageId id, std::uint8_t node) {
+  hal::CanFrame f = fw::can::make_frame(msg(id), node);
+  if (msg(id).direction == fw::can::Direction::to_node && has_tag(msg(id))) f.data[0] = kTestTag;
+  return f;
+}
+// The same frame from another host (tag = host << 4 | sequence).
+inline hal::CanFrame with_tag(hal::CanFrame f, std::uint8_t tag) {
+  f.data[0] = tag;
+  return f;
+}
 
 inline void set_raw(hal::CanFrame& f, fw::can::MessageId id, const char* name, std::uint32_t raw) {
   fw::can::write_raw(f, fld(id, name), raw);

@@ -28,6 +28,8 @@ struct NodeBench {
       : task(board, s.firmware),
         node(std::make_unique<fw::can::CanNode>(task, port, storage, s, storage_fault)) {
     step();  // the first tick reads home
+    port.send(command(static_cast<std::uint8_t>(s.can.node_id), fw::can::CommandCode::take_ownership));  // the test host (kTestTag) commands
+    node->service();
     port.drain();
   }
   // One tick, then the node's service().
