@@ -137,7 +137,8 @@ class ScenarioReader {
       FaultSpec f;
       if (!read_fault_kind(table, path, f)) return false;
       const FaultKeys keys = fault_keys(f.kind);
-      bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false;
+      bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false,
+           has_counts = false;
       for (auto&& entry : table) {  // not a structured binding: clang 14 cannot capture one in a lambda
         const toml::key& field_key = entry.first;
         const toml::node& field_node = entry.second;
@@ -170,6 +171,9 @@ class ScenarioReader {
         } else if (name == "delay_us") {
           ok = keys.delay ? assign(field_key, field_path, field_node, &f.delay_us) : not_for_kind();
           has_delay = true;
+        } else if (name == "counts") {
+          ok = keys.counts ? assign(field_key, field_path, field_node, &f.counts) : not_for_kind();
+          has_counts = true;
         } else {
           ok = unknown(field_key, field_path, field_node);
         }
@@ -184,6 +188,7 @@ class ScenarioReader {
       if (keys.side && !has_side) return missing("side");
       if (keys.code && !has_code) return missing("code");
       if (keys.delay && !has_delay) return missing("delay_us");
+      if (keys.counts && !has_counts) return missing("counts");
       s.faults.push_back(f);
     }
     return true;

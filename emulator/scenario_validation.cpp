@@ -111,6 +111,10 @@ void check_faults(Rules& r, const Scenario& s) {
       r.fail_text(key + "duration_s", "must be <= 1e9 s (got " + format_number(f.duration_s) + ")");
     if (keys.code) r.int_range(key + "code", f.dac_code, 0, max_code);
     if (keys.ticks) r.int_range(key + "ticks", f.ticks, 1, kMaxMissedTicks);
+    if (keys.counts) {
+      r.int_range(key + "counts", f.counts, -kMaxEncoderJumpCounts, kMaxEncoderJumpCounts);
+      if (f.counts == 0) r.fail_text(key + "counts", "must be nonzero (got 0)");
+    }
     if (keys.delay && !(std::isfinite(f.delay_us) && f.delay_us > 0.0 && f.delay_us <= kMaxLateTickDelayUs)) {
       r.fail_text(key + "delay_us", "must be > 0 and <= " + std::to_string(static_cast<long long>(kMaxLateTickDelayUs)) + " (got " +
                                         format_number(f.delay_us) + ")");
