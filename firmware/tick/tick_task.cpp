@@ -260,6 +260,7 @@ void TickTask::tick() noexcept {
   // 1. one batched read of the latched snapshot
   const bool bus_ok = board_.read_inputs() == hal::HalStatus::ok;
   if (!bus_ok) ++counters_.bus_errors;
+  board_answering_ = bus_ok;
   std::uint32_t ticks_missed = 0;
   bool advanced = true;
   read_timebase(bus_ok, ticks_missed, advanced);
@@ -362,9 +363,11 @@ void TickTask::tick() noexcept {
     board_.set_servo_enable(hal::axis_from_index(i), outputs_live);
   }
   board_.kick();
-  if (board_.write_outputs() != hal::HalStatus::ok) {
+  if (const hal::HalStatus written = board_.write_outputs(); written != hal::HalStatus::ok) {
     ++counters_.bus_errors;
-    latch_fault({FaultReason::bus_error, -1, counters_.ticks, 0.0, 0.0});
+    const FaultReason reason =
+        written == hal::HalStatus::output_failed ? FaultReason::output_write_failed : FaultReason::bus_error;
+    latch_fault({reason, -1, counters_.ticks, 0.0, 0.0});
   }
   record_.state = state_;
 }
@@ -527,6 +530,8 @@ CommandStatus TickTask::clear_fault() noexcept {
     board_latched = board_latched || last_inputs_.encoder_error[i] || last_inputs_.dac_error[i];
   if (board_latched) (void)board_.clear_latched_faults();
   if (fault_cause_present(last_inputs_)) return CommandStatus::cause_present;
+  // The board did not answer the last tick's read: nothing says the cause is gone.
+  if (!board_answering_) return CommandStatus::cause_present;
   fault_ = {};
   state_ = MotionState::disabled;
   return CommandStatus::ok;

@@ -115,6 +115,17 @@ TEST(DaemonConfig, RefusalsAreOneLineWithFileLineAndKey) {
   }
 }
 
+TEST(DaemonConfig, APeriodOtherThan1msParsesButCannotRunTheFirmware) {
+  const fwd::ConfigResult r = fwd::parse_daemon_config(std::string(kMinimal) + "[tick]\nperiod_us = 10000\n", "fw.toml");
+  ASSERT_TRUE(r.config) << "--latency-test measures any period: " << r.error;
+  EXPECT_EQ(fwd::daemon_run_error(*r.config),
+            "tick.period_us: must be 1000 to run the firmware: its models, trajectories and late-tick check are built "
+            "for a 1 ms tick (got 10000; other periods are for --latency-test only)");
+  fwd::DaemonConfig ok = *r.config;
+  ok.tick.period_us = 1000;
+  EXPECT_EQ(fwd::daemon_run_error(ok), "");
+}
+
 TEST(DaemonConfig, AMissingFileIsNamed) {
   const fwd::ConfigResult r = fwd::load_daemon_config("/nonexistent/tnv-fw.toml");
   EXPECT_EQ(r.error, "/nonexistent/tnv-fw.toml: cannot open the config file");

@@ -5,6 +5,7 @@
 
 #include "emulator/fault_timeline.hpp"
 #include "emulator/substep_timing.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 
 namespace tnv::hil {
@@ -26,7 +27,7 @@ std::string start_motion(HilRig& rig, FaultMotion motion) {
     case FaultMotion::jog_x:
     case FaultMotion::hold: st = rig.task.hold_position(); break;
   }
-  if (st != fw::CommandStatus::ok) return std::string("motion refused: ") + fw::to_string(st);
+  if (st != fw::CommandStatus::ok) return "motion refused: " + command_status_text(st, rig.task);
   return {};
 }
 

@@ -204,4 +204,13 @@ ConfigResult load_daemon_config(const std::string& path) {
   return parse_daemon_config(text.str(), path);
 }
 
+std::string daemon_run_error(const DaemonConfig& config) {
+  if (config.tick.period_us != kFirmwarePeriodUs) {
+    return "tick.period_us: must be 1000 to run the firmware: its models, trajectories and late-tick check are built "
+           "for a 1 ms tick (got " +
+           std::to_string(config.tick.period_us) + "; other periods are for --latency-test only)";
+  }
+  return {};
+}
+
 }  // namespace tnv::fwd
