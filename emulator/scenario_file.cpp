@@ -1,10 +1,5 @@
 #include "emulator/scenario_file.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <span>
@@ -13,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "emulator/scenario_validation.hpp"
+#include "emulator/text_file.hpp"
 #include "emulator/toml_type_name.hpp"
 
 namespace tnv::emu {
@@ -329,17 +325,12 @@ ScenarioResult parse_scenario_text(std::string_view text, std::string_view sourc
 }
 
 ScenarioResult load_scenario_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return {std::nullopt, path + ": cannot read file: is a directory"};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path + ": cannot read file: " + std::strerror(errno)};
-  std::string text;
+  std::string text, error;
   try {
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!read_text_file(path, kMaxScenarioBytes, text, error)) return {std::nullopt, one_line(error)};
   } catch (const std::exception& e) {
     return {std::nullopt, path + ": cannot read file: " + one_line(e.what())};
   }
-  if (in.bad()) return {std::nullopt, path + ": cannot read file"};
   return parse_scenario_text(text, path);
 }
 

@@ -4,6 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cctype>
 
 #include <filesystem>
@@ -246,6 +249,20 @@ TEST(ScenarioFile, UnreadableFileIsNamed) {
   const ScenarioResult dir = load_scenario_file(std::filesystem::temp_directory_path().string());
   EXPECT_FALSE(dir.scenario);
   EXPECT_THAT(dir.error, HasSubstr("is a directory"));
+}
+
+TEST(ScenarioFile, AFifoOrADeviceIsRefusedAtOnceAndTheSizeIsCapped) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tnv_scen_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string fifo = (dir / "scen.fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(load_scenario_file(fifo).error, HasSubstr("not a regular file")) << "must not hang";
+  EXPECT_THAT(load_scenario_file("/dev/zero").error, HasSubstr("/dev/zero: cannot read file: not a regular file"));
+  const std::string big = (dir / "big.toml").string();
+  std::ofstream(big) << "# " << std::string(kMaxScenarioBytes, 'x') << "\n";
+  EXPECT_THAT(load_scenario_file(big).error, HasSubstr("a scenario may have"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ScenarioFile, IntegersAcceptedForNumbers) {

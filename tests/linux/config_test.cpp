@@ -128,7 +128,13 @@ TEST(DaemonConfig, APeriodOtherThan1msParsesButCannotRunTheFirmware) {
 
 TEST(DaemonConfig, AMissingFileIsNamed) {
   const fwd::ConfigResult r = fwd::load_daemon_config("/nonexistent/tnv-fw.toml");
-  EXPECT_EQ(r.error, "/nonexistent/tnv-fw.toml: cannot open the config file");
+  EXPECT_EQ(r.error, "/nonexistent/tnv-fw.toml: cannot open: No such file or directory");
+}
+
+TEST(DaemonConfig, ADeviceOrADirectoryAsTheConfigIsRefusedAtOnce) {
+  // /dev/zero took 4.5 GB in 8 s before the type and size checks.
+  EXPECT_EQ(fwd::load_daemon_config("/dev/zero").error, "/dev/zero: refused: a character device, not a regular file");
+  EXPECT_EQ(fwd::load_daemon_config("/").error, "/: refused: a directory, not a regular file");
 }
 
 TEST(DaemonConfig, ThePackagedDefaultConfigIsValid) {

@@ -3,6 +3,7 @@
 // key, packaging/tnv-fw.toml is the default). Read whole and validated
 // before anything is opened: a bad file gives one line naming the file,
 // the line and the key, and the daemon exits with code 2.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -35,6 +36,9 @@ struct RtConfig {
 // Other values parse (--latency-test measures any period) but the daemon
 // and --check-config refuse them: daemon_run_error().
 inline constexpr std::uint32_t kFirmwarePeriodUs = 1000;
+
+// A config file is a few kB; anything past 1 MiB is not one (e.g. /dev/zero).
+inline constexpr std::size_t kMaxConfigBytes = 1u << 20;
 
 struct TickConfig {
   std::uint32_t period_us = 1000;  // board tick period (the FPGA's TICK_DIVIDER) and the deadline period
