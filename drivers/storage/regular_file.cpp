@@ -11,7 +11,7 @@ namespace tnv::drivers {
 
 namespace {
 
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+std::string open_errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
 
 const char* type_name(mode_t mode) noexcept {
   if (S_ISDIR(mode)) return "a directory";
@@ -37,13 +37,13 @@ RegularFile open_regular_file(const std::string& path, std::size_t max_bytes, Li
       } else if (err == ELOOP && links == LinkPolicy::refuse) {
         f.error = path + ": refused: a symbolic link (this file is opened without following links)";
       } else {
-        f.error = path + ": cannot open: " + errno_text(err);
+        f.error = path + ": cannot open: " + open_errno_text(err);
       }
       return f;
     }
     struct stat st {};
     if (::fstat(fd, &st) != 0) {
-      f.error = path + ": cannot stat: " + errno_text(errno);
+      f.error = path + ": cannot stat: " + open_errno_text(errno);
       ::close(fd);
       return f;
     }
@@ -73,7 +73,7 @@ bool read_regular_file(const std::string& path, std::size_t max_bytes, LinkPolic
                        std::string& error) {
   RegularFile f = open_regular_file(path, max_bytes, links);
   if (f.fd < 0) {
-    error = f.missing ? path + ": cannot open: " + errno_text(ENOENT) : f.error;
+    error = f.missing ? path + ": cannot open: " + open_errno_text(ENOENT) : f.error;
     return false;
   }
   text.clear();
@@ -82,7 +82,7 @@ bool read_regular_file(const std::string& path, std::size_t max_bytes, LinkPolic
     const ssize_t n = ::read(f.fd, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      error = path + ": cannot read: " + errno_text(errno);
+      error = path + ": cannot read: " + open_errno_text(errno);
       ::close(f.fd);
       return false;
     }

@@ -20,13 +20,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ScratchDir {
-  explicit ScratchDir(const std::string& name) {
+struct StorageScratchDir {
+  explicit StorageScratchDir(const std::string& name) {
     path = fs::temp_directory_path() / ("tnv_files_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(path);
     fs::create_directories(path);
   }
-  ~ScratchDir() {
+  ~StorageScratchDir() {
     std::error_code ec;
     fs::remove_all(path, ec);
   }
@@ -40,7 +40,7 @@ std::string text_of(const std::string& path) {
 }
 
 TEST(FileSafety, ASymlinkPlantedAtTheTemporaryNameIsRefusedAndItsTargetUntouched) {
-  const ScratchDir dir("symlink_tmp");
+  const StorageScratchDir dir("symlink_tmp");
   const std::string victim = dir.file("victim");
   std::ofstream(victim) << "keep me";
   drivers::FileParamStorage storage(dir.file("node.params"));
@@ -53,7 +53,7 @@ TEST(FileSafety, ASymlinkPlantedAtTheTemporaryNameIsRefusedAndItsTargetUntouched
 }
 
 TEST(FileSafety, AStaleTemporaryImageOfOursIsReplaced) {
-  const ScratchDir dir("stale_tmp");
+  const StorageScratchDir dir("stale_tmp");
   drivers::FileParamStorage storage(dir.file("node.params"));
   std::ofstream(storage.path() + ".tmp") << "left by a killed save";
   const std::vector<std::uint8_t> image(32, 0x5A);
@@ -63,7 +63,7 @@ TEST(FileSafety, AStaleTemporaryImageOfOursIsReplaced) {
 }
 
 TEST(FileSafety, AFifoOrADeviceOrALinkAsTheParameterImageIsRefusedAtOnce) {
-  const ScratchDir dir("fifo_params");
+  const StorageScratchDir dir("fifo_params");
   std::array<std::uint8_t, 256> out{};
   std::size_t size = 0;
   {
@@ -87,7 +87,7 @@ TEST(FileSafety, AFifoOrADeviceOrALinkAsTheParameterImageIsRefusedAtOnce) {
 }
 
 TEST(FileSafety, ReadRegularFileCapsTheSizeAndNamesTheType) {
-  const ScratchDir dir("cap");
+  const StorageScratchDir dir("cap");
   std::string text, error;
   const std::string big = dir.file("big.toml");
   std::ofstream(big) << std::string(2000, 'x');

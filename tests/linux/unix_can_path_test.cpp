@@ -16,12 +16,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string scratch(const char* leaf) {
+std::string unix_can_scratch_path(const char* leaf) {
   return (fs::temp_directory_path() / ("tnv_unixcan_" + std::to_string(::getpid()) + "_" + leaf)).string();
 }
 
 TEST(UnixCanPath, ARegularFileAtThePathIsRefusedAndNotDeleted) {
-  const std::string path = scratch("file");
+  const std::string path = unix_can_scratch_path("file");
   std::ofstream(path) << "not a socket";
   drivers::UnixCanSocketApi api(path, drivers::UnixCanSocketApi::Role::node);
   const drivers::SysResult fd = api.open_can_raw();
@@ -35,7 +35,7 @@ TEST(UnixCanPath, ARegularFileAtThePathIsRefusedAndNotDeleted) {
 }
 
 TEST(UnixCanPath, AStaleSocketIsReplacedAndRemovedOnClose) {
-  const std::string path = scratch("sock");
+  const std::string path = unix_can_scratch_path("sock");
   for (int run = 0; run < 2; ++run) {  // the second run finds the first one's socket
     drivers::UnixCanSocketApi api(path, drivers::UnixCanSocketApi::Role::node);
     const drivers::SysResult fd = api.open_can_raw();

@@ -9,11 +9,11 @@
 namespace tnv::fw {
 namespace {
 
-constexpr double kCountMm = 10.0 / 24000.0;
-constexpr double kFullScaleMmS = 1000.0 * 10.0 / 60.0;
+constexpr double kTestCountMm = 10.0 / 24000.0;
+constexpr double kTestFullScaleMmS = 1000.0 * 10.0 / 60.0;
 
 // The paper's X model, stepped exactly (no disturbance) from `counts`.
-struct ModelTable {
+struct PlausibilityModelTable {
   AxisModel model{};
   double position_mm = 0.0;
   double speed_mm_s = 0.0;
@@ -24,16 +24,16 @@ struct ModelTable {
     speed_mm_s = model.A(1, 1) * speed_mm_s + model.B(1) * w;
     position_mm = p;
   }
-  std::int64_t counts() const { return static_cast<std::int64_t>(std::floor(position_mm / kCountMm)); }
+  std::int64_t counts() const { return static_cast<std::int64_t>(std::floor(position_mm / kTestCountMm)); }
 };
 
 struct MonitorRun {
   MotionPlausibility monitor;
-  ModelTable table;
+  PlausibilityModelTable table;
   PlausibilityLimit limit{};
   PlausibilityVerdict tick(double u_mm_s, std::int64_t extra_counts = 0) {
     table.step(u_mm_s);
-    return monitor.update(table.counts() + extra_counts, u_mm_s, true, table.model, kCountMm, kFullScaleMmS, limit);
+    return monitor.update(table.counts() + extra_counts, u_mm_s, true, table.model, kTestCountMm, kTestFullScaleMmS, limit);
   }
 };
 
@@ -71,7 +71,7 @@ TEST(MotionPlausibility, AStopDeadIsNeverAJump) {
   for (int k = 0; k < 60; ++k) r.tick(150.0);
   const std::int64_t frozen = r.table.counts();
   for (int k = 0; k < 5; ++k) {
-    const PlausibilityVerdict v = r.monitor.update(frozen, 150.0, true, r.table.model, kCountMm, kFullScaleMmS, r.limit);
+    const PlausibilityVerdict v = r.monitor.update(frozen, 150.0, true, r.table.model, kTestCountMm, kTestFullScaleMmS, r.limit);
     EXPECT_FALSE(v.jump) << k;
     EXPECT_FALSE(v.runaway) << k;
   }
@@ -104,7 +104,7 @@ TEST(MotionPlausibility, AnInvalidTickRestartsTheHistory) {
   r.table.step(10.0);
   r.table.step(10.0);
   const PlausibilityVerdict v =
-      r.monitor.update(r.table.counts() + 1000, 10.0, false, r.table.model, kCountMm, kFullScaleMmS, r.limit);
+      r.monitor.update(r.table.counts() + 1000, 10.0, false, r.table.model, kTestCountMm, kTestFullScaleMmS, r.limit);
   EXPECT_FALSE(v.checked);
   EXPECT_FALSE(r.tick(10.0).checked);
 }
