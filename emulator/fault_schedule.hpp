@@ -25,12 +25,15 @@ enum class FaultKind : std::uint8_t {
   stale_snapshot,   // the snapshot latch stops updating (sequence and clock frozen), ticks still fire
   runaway,          // the drive's gain sign is flipped (wrong motor phasing): u -> -u (axis)
   bus_read_error,   // every register read fails
+  encoder_jump,     // the count register jumps by `counts` and keeps the offset (noise burst, lost index) (axis)
+  snapshot_replayed,  // the next tick's snapshot is an older one again (sequence goes backwards)
 };
 
 inline constexpr std::array kFaultKinds{FaultKind::estop,          FaultKind::servo_alarm,   FaultKind::limit_switch,
                                         FaultKind::encoder_illegal, FaultKind::encoder_dead,  FaultKind::dac_stuck,
                                         FaultKind::missed_tick,     FaultKind::late_tick,     FaultKind::stale_snapshot,
-                                        FaultKind::runaway,         FaultKind::bus_read_error};
+                                        FaultKind::runaway,         FaultKind::bus_read_error, FaultKind::encoder_jump,
+                                        FaultKind::snapshot_replayed};
 
 constexpr const char* to_string(FaultKind kind) noexcept {
   switch (kind) {
@@ -45,6 +48,8 @@ constexpr const char* to_string(FaultKind kind) noexcept {
     case FaultKind::stale_snapshot: return "stale_snapshot";
     case FaultKind::runaway: return "runaway";
     case FaultKind::bus_read_error: return "bus_read_error";
+    case FaultKind::encoder_jump: return "encoder_jump";
+    case FaultKind::snapshot_replayed: return "snapshot_replayed";
   }
   return "?";
 }
@@ -63,6 +68,7 @@ struct FaultKeys {
   bool code = false;      // required (dac_stuck)
   bool ticks = false;     // optional, default 1 (missed_tick)
   bool delay = false;     // required (late_tick)
+  bool counts = false;    // required (encoder_jump)
 };
 
 constexpr FaultKeys fault_keys(FaultKind kind) noexcept {
@@ -78,12 +84,15 @@ constexpr FaultKeys fault_keys(FaultKind kind) noexcept {
     case FaultKind::stale_snapshot: return {.duration = true};
     case FaultKind::runaway: return {.axis = true, .duration = true};
     case FaultKind::bus_read_error: return {.duration = true};
+    case FaultKind::encoder_jump: return {.axis = true, .counts = true};
+    case FaultKind::snapshot_replayed: return {};
   }
   return {};
 }
 
 inline constexpr std::uint32_t kMaxMissedTicks = 10'000;
 inline constexpr double kMaxLateTickDelayUs = 1e6;
+inline constexpr std::int32_t kMaxEncoderJumpCounts = 1'000'000;  // |counts|; the register is 32 bits
 
 struct FaultSpec {
   FaultKind kind = FaultKind::estop;
@@ -94,6 +103,7 @@ struct FaultSpec {
   std::uint32_t dac_code = 0;    // dac_stuck: 0 .. 2^dac.bits - 1
   std::uint32_t ticks = 1;       // missed_tick: 1 .. kMaxMissedTicks
   double delay_us = 0.0;         // late_tick: > 0, rounded up to whole sub-steps
+  std::int32_t counts = 0;       // encoder_jump: nonzero, |counts| <= kMaxEncoderJumpCounts
 };
 
 }  // namespace tnv::emu

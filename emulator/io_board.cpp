@@ -104,8 +104,19 @@ void IoBoard::latch_tick(const TickSamples& samples) noexcept {
     if (apart > regs::kDacReadbackToleranceCodes) faults_ |= i == 0 ? regs::kFaultDacX : regs::kFaultDacY;
   }
   if (!snapshot_frozen_) {
+    if (live_snapshot_) {
+      snapshot_ = *live_snapshot_;  // the replay showed for one latch only
+      live_snapshot_.reset();
+    }
+    older_snapshot_ = previous_snapshot_;
+    previous_snapshot_ = snapshot_;
     ++snapshot_[kSeq];
     fill_snapshot(samples);
+    if (replay_next_) {
+      replay_next_ = false;
+      live_snapshot_ = snapshot_;
+      snapshot_ = older_snapshot_;
+    }
   }
   // Latest nominal tick at or before now; a divider >= one sub-step means
   // at most one is due per boundary except right after a divider write.

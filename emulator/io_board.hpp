@@ -30,7 +30,7 @@
 //   latches kFaultDac* when they are more than kDacReadbackToleranceCodes
 //   apart (the emulated readback is exact).
 // Fault injection (emulator/fault_schedule.hpp) acts through stick_dac,
-// freeze_snapshot, delay_next_tick, raise_faults and set_input.
+// freeze_snapshot, replay_next_tick, delay_next_tick, raise_faults and set_input.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -121,6 +121,9 @@ class IoBoard {
   // The tick timer stalls: the next tick latches `clocks` late (a multiple
   // of kSubstepClocks) and later ticks keep the period from it.
   void delay_next_tick(std::uint64_t clocks) noexcept { next_tick_clocks_ += clocks; }
+  // The next tick latch shows the snapshot from two latches ago (its
+  // sequence one below the last one read); the latch after it is live again.
+  void replay_next_tick() noexcept { replay_next_ = true; }
 
  private:
   // Snapshot slots, relative to kSnapshotFirst.
@@ -144,6 +147,10 @@ class IoBoard {
   std::array<std::uint32_t, hal::kAxisCount> dac_codes_{};
   std::array<std::optional<std::uint32_t>, hal::kAxisCount> stuck_dac_codes_{};
   bool snapshot_frozen_ = false;
+  bool replay_next_ = false;
+  std::array<std::uint32_t, hal::regs::kSnapshotWords> previous_snapshot_{};  // the last latch's before it
+  std::array<std::uint32_t, hal::regs::kSnapshotWords> older_snapshot_{};     // two latches back
+  std::optional<std::array<std::uint32_t, hal::regs::kSnapshotWords>> live_snapshot_;  // hidden by a replay
   std::uint32_t outputs_ = 0;
   std::uint32_t last_kick_word_ = 0;
   std::uint32_t inputs_ = 0;

@@ -200,6 +200,20 @@ void Machine::Impl::apply_fault_edge(const FaultEdge& edge) noexcept {
     case FaultKind::bus_read_error:
       read_errors = any_active(FaultKind::bus_read_error);
       return;
+    case FaultKind::encoder_jump:
+      // The register takes the extra counts at once and keeps them: from the
+      // next latch on it reads `counts` away from the table.
+      if (edge.begins) {
+        if (dead_encoder_count[i]) {
+          *dead_encoder_count[i] += f.counts;
+        } else {
+          encoder_slip_counts[i] += f.counts;
+        }
+      }
+      return;
+    case FaultKind::snapshot_replayed:
+      if (edge.begins) board.replay_next_tick();
+      return;
   }
 }
 

@@ -1,10 +1,5 @@
 #include "emulator/scenario_file.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <span>
@@ -13,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "emulator/scenario_validation.hpp"
+#include "emulator/text_file.hpp"
 #include "emulator/toml_type_name.hpp"
 
 namespace tnv::emu {
@@ -137,7 +133,8 @@ class ScenarioReader {
       FaultSpec f;
       if (!read_fault_kind(table, path, f)) return false;
       const FaultKeys keys = fault_keys(f.kind);
-      bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false;
+      bool has_start = false, has_axis = false, has_side = false, has_code = false, has_delay = false,
+           has_counts = false;
       for (auto&& entry : table) {  // not a structured binding: clang 14 cannot capture one in a lambda
         const toml::key& field_key = entry.first;
         const toml::node& field_node = entry.second;
@@ -170,6 +167,9 @@ class ScenarioReader {
         } else if (name == "delay_us") {
           ok = keys.delay ? assign(field_key, field_path, field_node, &f.delay_us) : not_for_kind();
           has_delay = true;
+        } else if (name == "counts") {
+          ok = keys.counts ? assign(field_key, field_path, field_node, &f.counts) : not_for_kind();
+          has_counts = true;
         } else {
           ok = unknown(field_key, field_path, field_node);
         }
@@ -184,6 +184,7 @@ class ScenarioReader {
       if (keys.side && !has_side) return missing("side");
       if (keys.code && !has_code) return missing("code");
       if (keys.delay && !has_delay) return missing("delay_us");
+      if (keys.counts && !has_counts) return missing("counts");
       s.faults.push_back(f);
     }
     return true;
@@ -324,17 +325,12 @@ ScenarioResult parse_scenario_text(std::string_view text, std::string_view sourc
 }
 
 ScenarioResult load_scenario_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return {std::nullopt, path + ": cannot read file: is a directory"};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path + ": cannot read file: " + std::strerror(errno)};
-  std::string text;
+  std::string text, error;
   try {
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!read_text_file(path, kMaxScenarioBytes, text, error)) return {std::nullopt, one_line(error)};
   } catch (const std::exception& e) {
     return {std::nullopt, path + ": cannot read file: " + one_line(e.what())};
   }
-  if (in.bad()) return {std::nullopt, path + ": cannot read file"};
   return parse_scenario_text(text, path);
 }
 

@@ -13,6 +13,7 @@
 // kind start_s and, by kind, axis side duration_s code ticks delay_us
 // (fault_schedule.hpp; errors name "fault[i].key", i from 0). Integers are
 // accepted where numbers are expected, not the other way round.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,9 @@ struct ScenarioResult {
   std::string error;  // empty on success
 };
 
+// A scenario is a few kB of TOML; past kMaxScenarioBytes (1 MiB) it is refused,
+// as is anything but a regular file (text_file.hpp).
+inline constexpr std::size_t kMaxScenarioBytes = std::size_t{1} << 20;
 ScenarioResult load_scenario_file(const std::string& path);
 ScenarioResult parse_scenario_text(std::string_view text, std::string_view source_name);
 

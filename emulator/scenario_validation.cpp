@@ -34,6 +34,11 @@ class Rules {
   void below(const std::string& key, double value, double limit, const std::string& what) {
     if (!(std::isfinite(value) && value >= 0.0 && value < limit)) fail(key, "must be >= 0 and below " + what, value);
   }
+  // Physically plausible: finite, within [low, high], with the reason the range has.
+  void plausible(const std::string& key, double value, double low, double high, const std::string& reason) {
+    if (found || (std::isfinite(value) && value >= low && value <= high)) return;
+    fail(key, "must be " + format_number(low) + ".." + format_number(high) + ": " + reason, value);
+  }
   void int_range(const std::string& key, long long value, long long low, long long high) {
     if (value < low || value > high) {
       fail(key, "must be in " + std::to_string(low) + ".." + std::to_string(high), static_cast<double>(value));
@@ -75,6 +80,13 @@ void check_plant(Rules& r, const AxisPlantParams& p, const std::string& section)
   const double nyquist_hz = static_cast<double>(kSubstepsPerSecond) / 2.0;
   r.below(section + ".mode_hz", p.mode_hz, nyquist_hz, "the sub-step Nyquist frequency " + format_number(nyquist_hz) + " Hz");
   r.below(section + ".mode_zeta", p.mode_zeta, 1.0, "1");
+  // Beyond these the model is no servo table: the numbers would only make
+  // the run fail later, far from the key that caused it.
+  r.plausible(section + ".tau_s", p.tau_s, 1e-4, 1.0, "a servo axis' speed loop settles in 0.1 ms to 1 s");
+  r.plausible(section + ".gain", p.gain, 0.1, 10.0, "the drive's speed per commanded speed");
+  r.plausible(section + ".coulomb_mm_s", p.coulomb_mm_s, 0.0, 1000.0, "friction above 1000 mm/s is no moving table (a jam is 200)");
+  r.plausible(section + ".stiction_mm_s", p.stiction_mm_s, 0.0, 1000.0, "friction above 1000 mm/s is no moving table (a jam is 200)");
+  r.plausible(section + ".stribeck_mm_s", p.stribeck_mm_s, 0.0, 1000.0, "the Stribeck speed of a table's guideways");
 }
 
 void check_circle(Rules& r, const CircleParams& c) {
@@ -82,6 +94,10 @@ void check_circle(Rules& r, const CircleParams& c) {
   r.positive("circle.feed_mm_s", c.feed_mm_s);
   r.non_negative("circle.ramp_s", c.ramp_s);
   r.non_negative("circle.dwell_s", c.dwell_s);
+  r.plausible("circle.radius_mm", c.radius_mm, 1e-3, 500.0, "a circle the table's travel can hold");
+  r.plausible("circle.feed_mm_s", c.feed_mm_s, 1e-3, 1000.0, "a contouring feed up to 60 m/min");
+  r.plausible("circle.ramp_s", c.ramp_s, 0.0, 3600.0, "an hour at most");
+  r.plausible("circle.dwell_s", c.dwell_s, 0.0, 3600.0, "an hour at most");
   if (r.found) return;
   // Each raised-cosine ramp covers F ramp / 2 of arc.
   const double ramps_mm = c.feed_mm_s * c.ramp_s;
@@ -111,6 +127,10 @@ void check_faults(Rules& r, const Scenario& s) {
       r.fail_text(key + "duration_s", "must be <= 1e9 s (got " + format_number(f.duration_s) + ")");
     if (keys.code) r.int_range(key + "code", f.dac_code, 0, max_code);
     if (keys.ticks) r.int_range(key + "ticks", f.ticks, 1, kMaxMissedTicks);
+    if (keys.counts) {
+      r.int_range(key + "counts", f.counts, -kMaxEncoderJumpCounts, kMaxEncoderJumpCounts);
+      if (f.counts == 0) r.fail_text(key + "counts", "must be nonzero (got 0)");
+    }
     if (keys.delay && !(std::isfinite(f.delay_us) && f.delay_us > 0.0 && f.delay_us <= kMaxLateTickDelayUs)) {
       r.fail_text(key + "delay_us", "must be > 0 and <= " + std::to_string(static_cast<long long>(kMaxLateTickDelayUs)) + " (got " +
                                         format_number(f.delay_us) + ")");
@@ -132,18 +152,26 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.non_negative("cutting.amplitude_mm_s", s.cutting.amplitude_mm_s);
   r.finite("cutting.exponent", s.cutting.exponent);
   r.finite("cutting.phase_rad", s.cutting.phase_rad);
+  r.plausible("cutting.spindle_rpm", s.cutting.spindle_rpm, 1.0, 100'000.0, "a machining spindle's speed");
+  r.plausible("cutting.mean_mm_s", s.cutting.mean_mm_s, 0.0, 1000.0, "a cutting load as a table speed");
+  r.plausible("cutting.amplitude_mm_s", s.cutting.amplitude_mm_s, 0.0, 1000.0, "a cutting load as a table speed");
+  r.plausible("cutting.exponent", s.cutting.exponent, -10.0, 10.0, "the spindle-speed law's exponent");
 
   if (s.encoder.counts_per_rev <= 0 || s.encoder.counts_per_rev % 4 != 0) {
     r.fail_text("encoder.counts_per_rev", "must be a positive multiple of 4 (x4 decoding) (got " +
                                                std::to_string(s.encoder.counts_per_rev) + ")");
   }
   r.positive("encoder.lead_mm", s.encoder.lead_mm);
+  r.plausible("encoder.lead_mm", s.encoder.lead_mm, 0.1, 100.0, "a ball screw's lead");
+  r.plausible("encoder.counts_per_rev", s.encoder.counts_per_rev, 4.0, 1e8, "a rotary encoder's counts per turn (x4)");
   r.finite("encoder.offset_counts_x", s.encoder.offset_counts_x);
   r.finite("encoder.offset_counts_y", s.encoder.offset_counts_y);
 
   r.int_range("dac.bits", s.dac.bits, 8, 16);
   r.positive("dac.full_scale_v", s.dac.full_scale_v);
   r.positive("dac.rpm_at_full_scale", s.dac.rpm_at_full_scale);
+  r.plausible("dac.full_scale_v", s.dac.full_scale_v, 0.5, 50.0, "a servo's analogue speed reference (10 V class)");
+  r.plausible("dac.rpm_at_full_scale", s.dac.rpm_at_full_scale, 1.0, 100'000.0, "a servo motor's speed");
 
   r.non_negative("force_sensor.volts_per_mm_s", s.force_sensor.volts_per_mm_s);
   r.non_negative("force_sensor.volts_per_n", s.force_sensor.volts_per_n);
@@ -154,6 +182,11 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.non_negative("milling.depth_peak_mm", s.milling.depth.peak_mm);
   r.non_negative("milling.rise_s", s.milling.depth.rise_s);
   r.non_negative("milling.fall_s", s.milling.depth.fall_s);
+  r.plausible("force_sensor.volts_per_mm_s", s.force_sensor.volts_per_mm_s, 0.0, 1000.0, "a force sensor's output range");
+  r.plausible("force_sensor.volts_per_n", s.force_sensor.volts_per_n, 0.0, 1000.0, "a force sensor's output range");
+  r.plausible("milling.time_constant_s", s.milling.time_constant_s, 1e-4, 100.0, "a cutting process' time constant");
+  r.plausible("milling.depth_start_mm", s.milling.depth.start_mm, 0.0, 100.0, "a depth of cut");
+  r.plausible("milling.depth_peak_mm", s.milling.depth.peak_mm, 0.0, 100.0, "a depth of cut");
 
   check_circle(r, s.circle);
   check_faults(r, s);

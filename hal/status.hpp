@@ -10,6 +10,7 @@ enum class HalStatus : std::uint8_t {
   timeout,      // transport did not answer in time
   not_present,  // device missing or not opened
   bad_address,  // register window out of range
+  output_failed,  // an output line (a servo-enable GPIO) did not take the value written
 };
 
 constexpr const char* to_string(HalStatus s) noexcept {
@@ -19,6 +20,7 @@ constexpr const char* to_string(HalStatus s) noexcept {
     case HalStatus::timeout: return "timeout";
     case HalStatus::not_present: return "device not present";
     case HalStatus::bad_address: return "bad register address";
+    case HalStatus::output_failed: return "output write failed";
   }
   return "unknown";
 }

@@ -9,6 +9,9 @@ if(TARGET tnv-fw)
   install(TARGETS tnv-fw tnv-board-emu RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT board)
   install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.toml DESTINATION /etc/tnv-fw COMPONENT board)
   install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.service DESTINATION /lib/systemd/system COMPONENT board)
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.sysusers DESTINATION /usr/lib/sysusers.d RENAME tnv-fw.conf
+          COMPONENT board)
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/60-tnv-fw.rules DESTINATION /lib/udev/rules.d COMPONENT board)
   install(FILES ${PROJECT_SOURCE_DIR}/docs/install-board.md ${PROJECT_SOURCE_DIR}/docs/hil-rig.md
           DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/tnv-fw COMPONENT board)
 
@@ -25,7 +28,7 @@ if(TARGET tnv-fw)
   set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
   set(CPACK_STRIP_FILES ON)
   # Cross builds (arm64): pass -DCPACK_DEBIAN_PACKAGE_ARCHITECTURE=arm64; dpkg-shlibdeps needs the arm64 libraries.
-  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${PROJECT_SOURCE_DIR}/packaging/conffiles")
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${PROJECT_SOURCE_DIR}/packaging/conffiles;${PROJECT_SOURCE_DIR}/packaging/postinst")
   set(CPACK_GENERATOR "DEB")
   include(CPack)
 endif()

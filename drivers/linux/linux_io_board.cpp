@@ -37,6 +37,8 @@ hal::HalStatus LinuxIoBoard::write_outputs() noexcept {
   const hal::HalStatus status = board_.write_outputs();
   if (lines_ != nullptr && !lines_->write_enables(enables_[0], enables_[1])) {
     gpio_write_failures_.fetch_add(1, std::memory_order_relaxed);
+    // The drive may not have seen the enable change: the tick latches a fault.
+    if (status == hal::HalStatus::ok) return hal::HalStatus::output_failed;
   }
   return status;
 }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -52,7 +53,13 @@ SysResult UnixCanSocketApi::set_nonblocking(int fd) {
 
 SysResult UnixCanSocketApi::bind_can(int fd, int) {
   if (role_ == Role::node) {
-    ::unlink(path_.c_str());
+    // Only a socket left by an earlier run is replaced; anything else at
+    // the path (a file, a link, a directory) is not ours to delete.
+    struct stat st {};
+    if (::lstat(path_.c_str(), &st) == 0) {
+      if (!S_ISSOCK(st.st_mode)) return {-1, ENOTSOCK};
+      ::unlink(path_.c_str());
+    }
     const sockaddr_un a = address_of(path_);
     return result_of(::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a));
   }
@@ -114,7 +121,8 @@ SysResult UnixCanSocketApi::write_some(int fd, const void* buffer, std::size_t s
 
 void UnixCanSocketApi::close_fd(int fd) {
   ::close(fd);
-  if (role_ == Role::node) ::unlink(path_.c_str());
+  struct stat st {};
+  if (role_ == Role::node && ::lstat(path_.c_str(), &st) == 0 && S_ISSOCK(st.st_mode)) ::unlink(path_.c_str());
 }
 
 Micros UnixCanSocketApi::monotonic_now() {

@@ -1,6 +1,7 @@
 #include "drivers/linux/unix_seqpacket.hpp"
 
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
@@ -40,7 +41,16 @@ int listen_seqpacket(const std::string& path, std::string& error) {
     error = failed(path, "socket", errno);
     return -1;
   }
-  ::unlink(path.c_str());
+  // Only a socket left by an earlier run is replaced; nothing else at the path is ours to delete.
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISSOCK(st.st_mode)) {
+      error = path + ": refused: something other than a socket is there (remove it)";
+      ::close(fd);
+      return -1;
+    }
+    ::unlink(path.c_str());
+  }
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 || ::listen(fd, 2) != 0) {
     error = failed(path, "cannot listen", errno);
     ::close(fd);

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "drivers/storage/regular_file.hpp"
+
 namespace tnv::drivers {
 
 namespace fs = std::filesystem;
@@ -61,9 +63,19 @@ hal::HalStatus FileParamStorage::write(std::span<const std::uint8_t> image) noex
     fs::create_directories(dir, ec);
     if (ec) return fail(dir + ": cannot create the directory: " + ec.message());
 
-    // 1. the new image, whole and on disk, under a name nobody loads
+    // 1. the new image, whole and on disk, under a name nobody loads;
+    // created exclusively and without following links, so nothing planted
+    // at "<path>.tmp" is written through. A regular file there is ours, left
+    // by an interrupted write: removed first. Anything else is refused.
     const std::string tmp = path_ + ".tmp";
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    struct stat stale {};
+    if (::lstat(tmp.c_str(), &stale) == 0) {
+      if (!S_ISREG(stale.st_mode))
+        return fail(tmp + ": refused: " + (S_ISLNK(stale.st_mode) ? "a symbolic link" : "not a regular file") +
+                    " where the temporary image goes; remove it");
+      if (::unlink(tmp.c_str()) != 0) return fail(describe(tmp, "cannot remove the stale temporary image", errno));
+    }
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0) return fail(describe(tmp, "cannot create", errno));
     const bool written = write_all(fd, image);
     int err = written ? 0 : errno;
@@ -114,16 +126,11 @@ hal::HalStatus FileParamStorage::read_file(const std::string& file, std::span<st
   try {
     last_error_.clear();
     size = 0;
-    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-      if (errno == ENOENT || errno == ENOTDIR) return hal::HalStatus::not_present;
-      return fail(describe(file, "cannot open", errno));
-    }
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || static_cast<std::size_t>(st.st_size) > out.size()) {
-      ::close(fd);
-      return fail(file + ": not a parameter image (not a regular file, or larger than any image)");
-    }
+    // Our own file in the state directory: a symlink there is not ours (refused).
+    const RegularFile f = open_regular_file(file, out.size(), LinkPolicy::refuse);
+    if (f.missing) return hal::HalStatus::not_present;
+    if (f.fd < 0) return fail(f.error + " (not a parameter image)");
+    const int fd = f.fd;
     std::size_t done = 0;
     for (;;) {
       if (done == out.size()) break;

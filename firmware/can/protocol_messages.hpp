@@ -41,7 +41,8 @@ inline constexpr const char* kStateValues = "0=disabled 1=dwell 2=moving 3=holdi
 inline constexpr const char* kFaultValues =
     "0=none 1=bus_error 2=stale_snapshot 3=missed_ticks 4=estop 5=servo_alarm 6=limit_switch "
     "7=watchdog_tripped 8=following_error 9=position_limit 10=speed_limit 11=non_finite_command 12=remote_estop "
-    "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall";
+    "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall 17=encoder_implausible 18=runaway "
+    "19=output_write_failed";
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
     "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "

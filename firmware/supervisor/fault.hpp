@@ -22,6 +22,9 @@ enum class FaultReason : std::uint8_t {
   dac_error,           // the board's DAC readback differs from the code written
   late_tick,           // tick period off nominal by more than the tolerance
   encoder_stall,       // no encoder count for N ticks while driven hard: dead encoder or jammed axis
+  encoder_implausible,  // a count step no command or disturbance the axis can meet explains (motion_plausibility.hpp)
+  runaway,              // the table accelerates against its command: the drive pushes the wrong way
+  output_write_failed,  // an output (DAC, enable, servo-enable line) did not take the value written
 };
 
 constexpr const char* to_string(FaultReason r) noexcept {
@@ -43,6 +46,9 @@ constexpr const char* to_string(FaultReason r) noexcept {
     case FaultReason::dac_error: return "dac_error";
     case FaultReason::late_tick: return "late_tick";
     case FaultReason::encoder_stall: return "encoder_stall";
+    case FaultReason::encoder_implausible: return "encoder_implausible";
+    case FaultReason::runaway: return "runaway";
+    case FaultReason::output_write_failed: return "output_write_failed";
   }
   return "unknown";
 }

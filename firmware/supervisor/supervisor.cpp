@@ -26,6 +26,12 @@ const char* validate(const SupervisorConfig& config) noexcept {
       return "following-error lag_s must be >= 0 and finite";
     if (!finite_positive(a.stall.command_mm_s)) return "stall command_mm_s must be > 0 and finite";
     if (a.stall.ticks < 1 || a.stall.ticks > kMaxStallTicks) return "stall ticks must be 1..1000";
+    if (!(a.plausibility.jump_disturbance_scale >= 0.5 && a.plausibility.jump_disturbance_scale <= 4.0))
+      return "plausibility jump_disturbance_scale must be 0.5..4";
+    if (!(a.plausibility.runaway_margin_mm_s >= 0.0 && a.plausibility.runaway_margin_mm_s <= 100.0))
+      return "plausibility runaway_margin_mm_s must be 0..100";
+    if (!(a.plausibility.runaway_min_command_mm_s > 0.0 && a.plausibility.runaway_min_command_mm_s <= 100.0))
+      return "plausibility runaway_min_command_mm_s must be > 0 and <= 100";
   }
   if (config.tick_period_clocks == 0) return "tick_period_clocks must be > 0";
   if (config.period_tolerance_clocks == 0 || config.period_tolerance_clocks >= config.tick_period_clocks)
@@ -54,6 +60,9 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
     if (in.inputs.limit_positive[i] || in.inputs.limit_negative[i]) return fault(FaultReason::limit_switch, in, axis);
     if (in.inputs.encoder_error[i]) return fault(FaultReason::encoder_error, in, axis);
     if (in.inputs.dac_error[i]) return fault(FaultReason::dac_error, in, axis);
+    // A count the table cannot have made: before anything computed from it.
+    if (const PlausibilityVerdict& p = in.axis[i].plausibility; p.jump)
+      return fault(FaultReason::encoder_implausible, in, axis, p.step_mm - p.predicted_mm, p.spread_mm);
   }
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const int axis = static_cast<int>(i);
@@ -65,6 +74,8 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
       return fault(FaultReason::speed_limit, in, axis, a.speed_mm_s, lim.speed_max_mm_s);
     if (!in.servo_on) continue;
     if (!std::isfinite(a.command_mm_s)) return fault(FaultReason::non_finite_command, in, axis);
+    if (a.plausibility.runaway)
+      return fault(FaultReason::runaway, in, axis, a.plausibility.against_mm, a.plausibility.against_limit_mm);
     // Before the following error: a frozen count is the root cause it would only see later.
     if (a.stalled_ticks >= lim.stall.ticks)
       return fault(FaultReason::encoder_stall, in, axis, a.stall_command_mm_s, lim.stall.command_mm_s);

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "firmware/supervisor/fault.hpp"
+#include "firmware/supervisor/motion_plausibility.hpp"
 #include "firmware/supervisor/stall_monitor.hpp"
 #include "hal/axis.hpp"
 #include "hal/discrete_io.hpp"
@@ -28,6 +29,7 @@ struct AxisLimits {
   double speed_max_mm_s = 150.0;
   FollowingErrorLimit following{};
   StallLimit stall{};
+  PlausibilityLimit plausibility{};
 };
 
 struct SupervisorConfig {
@@ -51,6 +53,7 @@ struct AxisCheckInput {
   double command_mm_s = 0.0;
   std::uint32_t stalled_ticks = 0;  // StallMonitor: ticks without a count while driven
   double stall_command_mm_s = 0.0;  // the command that acted over the last of them
+  PlausibilityVerdict plausibility{};  // MotionPlausibility: count jump, runaway
 };
 
 struct SupervisorInput {

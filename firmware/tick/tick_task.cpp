@@ -61,6 +61,7 @@ void TickTask::latch_fault(const FaultRecord& f) noexcept {
 void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept {
   ticks_missed = 0;
   advanced = bus_ok;
+  one_nominal_period_ = false;
   if (!bus_ok) return;
   const hal::TickLatch latch = board_.latched_tick();
   if (first_tick_) {
@@ -74,7 +75,9 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
   }
   const std::uint32_t sequence_step = latch.sequence - last_sequence_;
   const std::uint32_t period_clocks = elapsed_clocks(last_clock_, latch.clock_10mhz);
-  if (sequence_step == 0 || period_clocks == 0) {
+  // A step of 2^31 or more is the sequence going backwards (a replayed older
+  // snapshot), not 4 billion lost ticks: stale, and no counter is touched.
+  if (sequence_step == 0 || sequence_step >= 0x8000'0000u || period_clocks == 0) {
     advanced = false;  // the board did not tick: never reuse stale data silently
     return;
   }
@@ -83,6 +86,7 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
   const std::uint32_t expected = kNominalPeriodClocks * sequence_step;
   const std::uint32_t deviation = period_clocks > expected ? period_clocks - expected : expected - period_clocks;
   if (deviation > kLateToleranceClocks) ++counters_.late_ticks;
+  one_nominal_period_ = sequence_step == 1 && deviation <= kLateToleranceClocks;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     AxisLoop& loop = axis_[i];
     const std::int64_t delta = loop.encoder.update(board_.latched_count(hal::axis_from_index(i)));
@@ -256,6 +260,7 @@ void TickTask::tick() noexcept {
   // 1. one batched read of the latched snapshot
   const bool bus_ok = board_.read_inputs() == hal::HalStatus::ok;
   if (!bus_ok) ++counters_.bus_errors;
+  board_answering_ = bus_ok;
   std::uint32_t ticks_missed = 0;
   bool advanced = true;
   read_timebase(bus_ok, ticks_missed, advanced);
@@ -281,6 +286,12 @@ void TickTask::tick() noexcept {
     record_.axis[i].accel_mm_s2 = accel_code_to_mm_s2(board_.latched_accel_code(hal::axis_from_index(i)));
     stall_[i].update(axis_[i].encoder.counts(), record_.axis[i].command_mm_s, record_.axis[i].enabled,
                      config_.supervisor.axis[i].stall);
+    // What the DAC applied over the interval this snapshot ends (its code, not the unquantised command).
+    const AxisTickRecord& applied = record_.axis[i];
+    const double applied_mm_s = applied.enabled ? dac_code_to_speed_mm_s(applied.dac_code, config_.axis[i].dac) : 0.0;
+    plausibility_[i] = plausibility_monitor_[i].update(
+        axis_[i].encoder.counts(), applied_mm_s, advanced && one_nominal_period_, config_.axis[i].model,
+        config_.axis[i].count_mm, config_.axis[i].dac.full_scale_mm_s, config_.supervisor.axis[i].plausibility);
   }
 
   // 3. reference x_ref,k and x_ref,k+1
@@ -333,7 +344,8 @@ void TickTask::tick() noexcept {
     r.s = on ? sig.s : 0.0;
     r.d_hat_mm_s = on ? sig.d_hat_mm_s : 0.0;
     check_in.axis[i] = {r.position_mm,      r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s,
-                        u_mm_s,             stall_[i].stalled_ticks(), stall_[i].applied_command_mm_s()};
+                        u_mm_s,             stall_[i].stalled_ticks(), stall_[i].applied_command_mm_s(),
+                        plausibility_[i]};
   }
 
   // 5. supervisor: a fault makes this very tick's outputs safe
@@ -351,9 +363,11 @@ void TickTask::tick() noexcept {
     board_.set_servo_enable(hal::axis_from_index(i), outputs_live);
   }
   board_.kick();
-  if (board_.write_outputs() != hal::HalStatus::ok) {
+  if (const hal::HalStatus written = board_.write_outputs(); written != hal::HalStatus::ok) {
     ++counters_.bus_errors;
-    latch_fault({FaultReason::bus_error, -1, counters_.ticks, 0.0, 0.0});
+    const FaultReason reason =
+        written == hal::HalStatus::output_failed ? FaultReason::output_write_failed : FaultReason::bus_error;
+    latch_fault({reason, -1, counters_.ticks, 0.0, 0.0});
   }
   record_.state = state_;
 }
@@ -516,6 +530,8 @@ CommandStatus TickTask::clear_fault() noexcept {
     board_latched = board_latched || last_inputs_.encoder_error[i] || last_inputs_.dac_error[i];
   if (board_latched) (void)board_.clear_latched_faults();
   if (fault_cause_present(last_inputs_)) return CommandStatus::cause_present;
+  // The board did not answer the last tick's read: nothing says the cause is gone.
+  if (!board_answering_) return CommandStatus::cause_present;
   fault_ = {};
   state_ = MotionState::disabled;
   return CommandStatus::ok;
@@ -544,7 +560,10 @@ bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
   return a.position_min_mm == b.position_min_mm && a.position_max_mm == b.position_max_mm &&
          a.speed_max_mm_s == b.speed_max_mm_s && a.following.floor_mm == b.following.floor_mm &&
          a.following.lag_s == b.following.lag_s && a.stall.command_mm_s == b.stall.command_mm_s &&
-         a.stall.ticks == b.stall.ticks;
+         a.stall.ticks == b.stall.ticks &&
+         a.plausibility.jump_disturbance_scale == b.plausibility.jump_disturbance_scale &&
+         a.plausibility.runaway_margin_mm_s == b.plausibility.runaway_margin_mm_s &&
+         a.plausibility.runaway_min_command_mm_s == b.plausibility.runaway_min_command_mm_s;
 }
 
 }  // namespace
@@ -593,6 +612,9 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
       loop.observer.configure(a.model, a.observer);
       loop.observer.reset(record_.axis[i].position_mm, loop.speed_mm_s);
     }
+    // The residual's history was formed with the old model and scale.
+    if (!same(a.model, old.model) || a.count_mm != old.count_mm || a.dac.full_scale_mm_s != old.dac.full_scale_mm_s)
+      plausibility_monitor_[i].reset();
     if (a.count_mm != old.count_mm) {
       // Re-base: the position reading stays where it is, later counts use the new scale.
       const double counts = static_cast<double>(loop.encoder.counts());

@@ -237,6 +237,10 @@ class TickTask {
   std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
   std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
   std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
+  std::array<MotionPlausibility, hal::kAxisCount> plausibility_monitor_{};  // encoder_implausible, runaway
+  std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
+  bool one_nominal_period_ = false;
+  bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)  // this snapshot is one tick on from the last, on time
 };
 
 }  // namespace tnv::fw

@@ -140,6 +140,30 @@ TEST(NodeClient, ACommandRefusalNamesTheCodeAndTheState) {
   EXPECT_NE(e.find("refused 'circle radius 6 mm at 2 mm/s': busy (state moving)"), std::string::npos) << e;
 }
 
+TEST(NodeClient, AFaultedRefusalNamesTheFaultAndTheAxisOfItsFaultEvent) {
+  ScriptedNodeBus bus;
+  bus.on_request = [](const hal::CanFrame& req, ScriptedNodeBus& b) {
+    constexpr const can::MessageDef& ev = message(MessageId::fault_event);
+    hal::CanFrame e = can::make_frame(ev, kNode);
+    can::write_raw(e, field(ev, "reason"), static_cast<std::uint32_t>(fw::FaultReason::encoder_error));
+    can::write_raw(e, field(ev, "axis"), 1);
+    b.reply(e);
+    constexpr const can::MessageDef& m = message(MessageId::command_ack);
+    hal::CanFrame f = can::make_frame(m, kNode);
+    can::write_raw(f, field(m, "tag"), req.data[0]);
+    can::write_raw(f, field(m, "request"), can::message_of(req.id));
+    can::write_raw(f, field(m, "result"), static_cast<std::uint32_t>(can::ErrorCode::faulted));
+    can::write_raw(f, field(m, "state"), static_cast<std::uint32_t>(fw::MotionState::faulted));
+    can::write_raw(f, field(m, "fault"), static_cast<std::uint32_t>(fw::FaultReason::encoder_error));
+    b.reply(f);
+  };
+  can_host::ClientOptions no_take;
+  no_take.take_ownership_when_needed = false;
+  NodeClient client(bus, kNode, no_take);
+  const std::string e = message_of([&] { client.circle(6.0, 2.0); });
+  EXPECT_NE(e.find("faulted (state faulted, fault encoder_error, axis y)"), std::string::npos) << e;
+}
+
 // A node holding `image`, answering uploads; `drop(request, sequence)` loses frames.
 struct UploadNode {
   std::vector<std::uint8_t> image;

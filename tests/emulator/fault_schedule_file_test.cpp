@@ -71,6 +71,16 @@ start_s = 5.5
 kind = "bus_read_error"
 start_s = 6
 duration_s = 0.001
+
+[[fault]]
+kind = "encoder_jump"
+axis = "y"
+counts = -120
+start_s = 6.5
+
+[[fault]]
+kind = "snapshot_replayed"
+start_s = 7
 )";
 
 TEST(FaultScheduleFile, EveryKindAndKeyIsParsed) {
@@ -92,6 +102,9 @@ TEST(FaultScheduleFile, EveryKindAndKeyIsParsed) {
   EXPECT_EQ(f[7].delay_us, 1500.0);
   EXPECT_EQ(f[9].axis, hal::Axis::x);
   EXPECT_EQ(f[10].duration_s, 0.001);
+  EXPECT_EQ(f[11].axis, hal::Axis::y);
+  EXPECT_EQ(f[11].counts, -120);
+  EXPECT_EQ(f[12].start_s, 7.0);
 }
 
 TEST(FaultScheduleFile, MissedTickDefaultsToOneTick) {
@@ -111,7 +124,7 @@ TEST(FaultScheduleFile, ErrorsNameFileLineAndKey) {
       {"[fault]\nkind = \"estop\"\n", "bad.toml:1:2: fault: expected an array of tables ([[fault]]), got a table"},
       {"[[fault]]\nstart_s = 1\n",
        "bad.toml:1:1: fault[0].kind: required (one of: estop, servo_alarm, limit_switch, encoder_illegal, "
-       "encoder_dead, dac_stuck, missed_tick, late_tick, stale_snapshot, runaway, bus_read_error)"},
+       "encoder_dead, dac_stuck, missed_tick, late_tick, stale_snapshot, runaway, bus_read_error, encoder_jump, snapshot_replayed)"},
       {"[[fault]]\nkind = \"estop\"\nstart_s = 1\n[[fault]]\nkind = \"melt\"\nstart_s = 1\n",
        "bad.toml:5:1: fault[1].kind: unknown kind \"melt\""},
       {"[[fault]]\nkind = 4\n", "bad.toml:2:1: fault[0].kind: expected a string, got an integer"},
@@ -146,6 +159,14 @@ TEST(FaultScheduleFile, ErrorsNameFileLineAndKey) {
        "bad.toml:3:1: fault[0].ticks: must be in 1..10000 (got 0)"},
       {"[[fault]]\nkind = \"late_tick\"\ndelay_us = 0\nstart_s = 1\n",
        "bad.toml:3:1: fault[0].delay_us: must be > 0 and <= 1000000 (got 0)"},
+      {"[[fault]]\nkind = \"encoder_jump\"\naxis = \"x\"\ncounts = 0\nstart_s = 1\n",
+       "bad.toml:4:1: fault[0].counts: must be nonzero (got 0)"},
+      {"[[fault]]\nkind = \"encoder_jump\"\naxis = \"x\"\ncounts = 1000001\nstart_s = 1\n",
+       "bad.toml:4:1: fault[0].counts: must be in -1000000..1000000 (got 1000001)"},
+      {"[[fault]]\nkind = \"encoder_jump\"\naxis = \"x\"\nstart_s = 1\n",
+       "fault[0].counts: required for kind encoder_jump"},
+      {"[[fault]]\nkind = \"snapshot_replayed\"\naxis = \"x\"\nstart_s = 1\n",
+       "bad.toml:3:1: fault[0].axis: not a key of kind snapshot_replayed"},
   };
   for (const BadScheduleCase& c : cases) {
     const ScenarioResult r = parse_scenario_text(c.text, "bad.toml");

@@ -4,6 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cctype>
 
 #include <filesystem>
@@ -163,6 +166,18 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadScenarioCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
         BadScenarioCase{"unknown section", "[plant.z]\ntau_s = 1\n", "1:8: plant.z: unknown section"},
+        BadScenarioCase{"absurd tau", "[plant.x]\ntau_s = 1e-300\n",
+                "2:1: plant.x.tau_s: must be 1e-04..1: a servo axis' speed loop settles in 0.1 ms to 1 s (got 1e-300)"},
+        BadScenarioCase{"absurd dac volts", "[dac]\nfull_scale_v = 1e-30\n",
+                "2:1: dac.full_scale_v: must be 0.5..50: a servo's analogue speed reference (10 V class) (got 1e-30)"},
+        BadScenarioCase{"absurd radius", "[circle]\nradius_mm = 1e30\n",
+                "2:1: circle.radius_mm: must be 0.001..500: a circle the table's travel can hold (got 1e+30)"},
+        BadScenarioCase{"absurd gain", "[plant.y]\ngain = 1e4\n",
+                "2:1: plant.y.gain: must be 0.1..10: the drive's speed per commanded speed (got 10000)"},
+        BadScenarioCase{"absurd feed", "[circle]\nfeed_mm_s = 5000\n",
+                "2:1: circle.feed_mm_s: must be 0.001..1000: a contouring feed up to 60 m/min (got 5000)"},
+        BadScenarioCase{"absurd friction", "[plant.x]\nstiction_mm_s = 5000\ncoulomb_mm_s = 2\n",
+                "2:1: plant.x.stiction_mm_s: must be 0..1000: friction above 1000 mm/s is no moving table (a jam is 200) (got 5000)"},
         BadScenarioCase{"unknown top section", "[spindle]\nrpm = 1\n", "1:2: spindle: unknown section"},
         BadScenarioCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
         BadScenarioCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
@@ -234,6 +249,20 @@ TEST(ScenarioFile, UnreadableFileIsNamed) {
   const ScenarioResult dir = load_scenario_file(std::filesystem::temp_directory_path().string());
   EXPECT_FALSE(dir.scenario);
   EXPECT_THAT(dir.error, HasSubstr("is a directory"));
+}
+
+TEST(ScenarioFile, AFifoOrADeviceIsRefusedAtOnceAndTheSizeIsCapped) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tnv_scen_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string fifo = (dir / "scen.fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(load_scenario_file(fifo).error, HasSubstr("not a regular file")) << "must not hang";
+  EXPECT_THAT(load_scenario_file("/dev/zero").error, HasSubstr("/dev/zero: cannot read file: not a regular file"));
+  const std::string big = (dir / "big.toml").string();
+  std::ofstream(big) << "# " << std::string(kMaxScenarioBytes, 'x') << "\n";
+  EXPECT_THAT(load_scenario_file(big).error, HasSubstr("a scenario may have"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ScenarioFile, IntegersAcceptedForNumbers) {

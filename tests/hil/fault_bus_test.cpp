@@ -21,5 +21,18 @@ TEST(FaultBus, ReadErrorLatchesBusErrorAndTheWriteStillMakesOutputsSafe) {
   EXPECT_EQ(rig->task.clear_fault(), fw::CommandStatus::ok) << "a transient bus error clears once it is gone";
 }
 
+TEST(FaultBus, ClearFaultIsRefusedWhileTheBoardDoesNotAnswer) {
+  const FaultCase c{.name = "bus_read_error", .fault = {.kind = emu::FaultKind::bus_read_error, .start_s = 3.0004}};
+  std::unique_ptr<HilRig> rig;
+  const FaultObservation o = run_fault_case(test::fault_scenario(), c, fw::ControllerKind::rdvsc, &rig);
+  test::expect_safe_at_latch(o, fw::FaultReason::bus_error, -1);
+  ASSERT_TRUE(rig);
+  for (int i = 0; i < 3; ++i) {
+    rig->tick();  // reads keep failing
+    EXPECT_EQ(rig->task.clear_fault(), fw::CommandStatus::cause_present) << "tick " << i;
+    EXPECT_EQ(rig->task.state(), fw::MotionState::faulted);
+  }
+}
+
 }  // namespace
 }  // namespace tnv::hil

@@ -1,5 +1,7 @@
-// A runaway axis: the drive's gain sign flips mid-circle (positive
-// feedback). Nothing on the board knows; the following error finds it.
+// A runaway axis: the drive's gain sign flips (positive feedback). Nothing
+// on the board knows; the motion plausibility check sees the table speed up
+// against its command (motion_plausibility.hpp) long before the following
+// error would (9 ticks, 110 um on the S1 circle with the following error alone).
 #include <gtest/gtest.h>
 
 #include "tests/hil/fault_expect.hpp"
@@ -7,16 +9,31 @@
 namespace tnv::hil {
 namespace {
 
-TEST(FaultRunaway, FlippedGainOnXIsCaughtByTheFollowingError) {
+FaultObservation runaway_on(FaultMotion motion, double start_s, fw::ControllerKind controller) {
   const FaultCase c{.name = "runaway",
-                    .fault = {.kind = emu::FaultKind::runaway, .start_s = 3.0004, .axis = hal::Axis::x}};
-  const FaultObservation o = run_fault_case(test::fault_scenario(), c);
-  test::expect_safe_at_latch(o, fw::FaultReason::following_error, 0);
-  EXPECT_TRUE(o.live_before_detection);
-  EXPECT_GT(std::fabs(o.fault.value), o.fault.limit) << "mm";
-  // Measured figures (docs/safety.md), bounded so a regression shows.
-  EXPECT_LE(o.ticks_to_detect(), 20u);
-  EXPECT_LT(o.deviation_um, 300.0) << "um from the reference before the trip";
+                    .fault = {.kind = emu::FaultKind::runaway, .start_s = start_s, .axis = hal::Axis::x},
+                    .motion = motion};
+  return run_fault_case(test::fault_scenario(), c, controller);
+}
+
+TEST(FaultRunaway, FlippedGainOnTheCircleIsCaughtWithin3TicksAnd20Um) {
+  for (const fw::ControllerKind controller : {fw::ControllerKind::rdvsc, fw::ControllerKind::dvsc, fw::ControllerKind::pid}) {
+    SCOPED_TRACE(fw::to_string(controller));
+    const FaultObservation o = runaway_on(FaultMotion::circle, 3.0004, controller);
+    test::expect_safe_at_latch(o, fw::FaultReason::runaway, 0);
+    EXPECT_TRUE(o.live_before_detection);
+    EXPECT_GT(o.fault.value, o.fault.limit) << "mm gained against the command vs the limit";
+    EXPECT_LE(o.ticks_to_detect(), 3u);
+    EXPECT_LT(o.deviation_um, 20.0) << "um from the reference before the trip";
+  }
+}
+
+TEST(FaultRunaway, FlippedGainWhileJoggingIsCaught) {
+  const FaultObservation o = runaway_on(FaultMotion::jog_x, 1.0004, fw::ControllerKind::rdvsc);
+  test::expect_safe_at_latch(o, fw::FaultReason::runaway, 0);
+  // At 20 mm/s the table first has to stop before it can run the wrong way.
+  EXPECT_LE(o.ticks_to_detect(), 8u);
+  EXPECT_LT(o.deviation_um, 100.0);
 }
 
 }  // namespace

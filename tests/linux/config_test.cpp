@@ -122,9 +122,26 @@ TEST(DaemonConfig, RefusalsAreOneLineWithFileLineAndKey) {
   }
 }
 
+TEST(DaemonConfig, APeriodOtherThan1msParsesButCannotRunTheFirmware) {
+  const fwd::ConfigResult r = fwd::parse_daemon_config(std::string(kMinimal) + "[tick]\nperiod_us = 10000\n", "fw.toml");
+  ASSERT_TRUE(r.config) << "--latency-test measures any period: " << r.error;
+  EXPECT_EQ(fwd::daemon_run_error(*r.config),
+            "tick.period_us: must be 1000 to run the firmware: its models, trajectories and late-tick check are built "
+            "for a 1 ms tick (got 10000; other periods are for --latency-test only)");
+  fwd::DaemonConfig ok = *r.config;
+  ok.tick.period_us = 1000;
+  EXPECT_EQ(fwd::daemon_run_error(ok), "");
+}
+
 TEST(DaemonConfig, AMissingFileIsNamed) {
   const fwd::ConfigResult r = fwd::load_daemon_config("/nonexistent/tnv-fw.toml");
-  EXPECT_EQ(r.error, "/nonexistent/tnv-fw.toml: cannot open the config file");
+  EXPECT_EQ(r.error, "/nonexistent/tnv-fw.toml: cannot open: No such file or directory");
+}
+
+TEST(DaemonConfig, ADeviceOrADirectoryAsTheConfigIsRefusedAtOnce) {
+  // /dev/zero took 4.5 GB in 8 s before the type and size checks.
+  EXPECT_EQ(fwd::load_daemon_config("/dev/zero").error, "/dev/zero: refused: a character device, not a regular file");
+  EXPECT_EQ(fwd::load_daemon_config("/").error, "/: refused: a directory, not a regular file");
 }
 
 TEST(DaemonConfig, ThePackagedDefaultConfigIsValid) {

@@ -21,6 +21,7 @@ class FakeLines final : public drivers::BoardLines {
   drivers::InputLevels levels;
   bool read_fails = false;
   int enable_writes = 0;
+  bool write_fails = false;
   bool enable_x = true, enable_y = true;
   FakeLines() {
     levels.present[static_cast<std::size_t>(InputLine::estop)] = true;
@@ -34,7 +35,7 @@ class FakeLines final : public drivers::BoardLines {
     ++enable_writes;
     enable_x = x;
     enable_y = y;
-    return true;
+    return !write_fails;
   }
   bool has_tick() const noexcept override { return false; }
   drivers::TickEdge wait_tick(int, std::int64_t&) noexcept override { return drivers::TickEdge::error; }
@@ -87,6 +88,18 @@ TEST(LinuxIoBoard, AFailedGpioReadCountsAsEstop) {
   b.tick();
   EXPECT_TRUE(b.machine.board_outputs().safe(b.machine.dac_mid_code()));
   EXPECT_EQ(b.board.gpio_read_failures(), 1u);
+}
+
+TEST(LinuxIoBoard, AFailedServoEnableWriteLatchesAFault) {
+  Bench b(no_cut());
+  b.hold();
+  b.lines.write_fails = true;
+  b.tick();
+  EXPECT_EQ(b.task->state(), fw::MotionState::faulted);
+  EXPECT_EQ(b.task->fault().reason, fw::FaultReason::output_write_failed);
+  EXPECT_EQ(b.board.gpio_write_failures(), 1u);
+  b.tick();  // the next tick's write carries the safe outputs
+  EXPECT_TRUE(b.machine.board_outputs().safe(b.machine.dac_mid_code()));
 }
 
 TEST(LinuxIoBoard, GpioLimitsJoinTheBoardsInputsAndUnconfiguredLinesAreIgnored) {

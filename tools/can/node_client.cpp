@@ -185,7 +185,12 @@ CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t tag, s
     std::string message = "node ";
     message.append(std::to_string(node_)).append(" refused '").append(what).append("': ");
     message.append(can::to_string(a.result)).append(" (state ").append(fw::to_string(a.state));
-    if (a.fault != fw::FaultReason::none) message.append(", fault ").append(fw::to_string(a.fault));
+    if (a.fault != fw::FaultReason::none) {
+      message.append(", fault ").append(fw::to_string(a.fault));
+      // The ack carries no axis; the node's FAULT_EVENT for the same reason does.
+      if (fault_event_ && fault_event_->reason == a.fault && fault_event_->axis >= 0 && fault_event_->axis < 2)
+        message.append(", axis ").append(fault_event_->axis == 0 ? "x" : "y");
+    }
     if (a.detail != 0) message.append(", field ").append(std::to_string(a.detail));
     if (a.result == can::ErrorCode::not_owner) {
       message.append(", command ownership held by ");

@@ -4,6 +4,7 @@
 
 #include "emulator/machine.hpp"
 #include "firmware/tick/tick_task.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/hil_rig.hpp"
 
@@ -18,7 +19,7 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
   fw::TickTask& task = rig->task;
   rig->home();
   if (const fw::CommandStatus st = task.start_circle(circle_spec_for(scenario)); st != fw::CommandStatus::ok) {
-    result.error = std::string("start_circle refused: ") + fw::to_string(st);
+    result.error = "start_circle refused: " + command_status_text(st, task);
     return result;
   }
 

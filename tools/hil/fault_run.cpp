@@ -5,6 +5,7 @@
 
 #include "emulator/fault_timeline.hpp"
 #include "emulator/substep_timing.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 
 namespace tnv::hil {
@@ -26,7 +27,7 @@ std::string start_motion(HilRig& rig, FaultMotion motion) {
     case FaultMotion::jog_x:
     case FaultMotion::hold: st = rig.task.hold_position(); break;
   }
-  if (st != fw::CommandStatus::ok) return std::string("motion refused: ") + fw::to_string(st);
+  if (st != fw::CommandStatus::ok) return "motion refused: " + command_status_text(st, rig.task);
   return {};
 }
 
@@ -186,9 +187,17 @@ std::vector<FaultCase> standard_fault_cases() {
       {"stale_snapshot", {.kind = FaultKind::stale_snapshot, .start_s = t, .duration_s = 0.005}, FaultMotion::circle,
        FaultReason::stale_snapshot, FaultReason::none, 1.0, ""},
       {"runaway", {.kind = FaultKind::runaway, .start_s = t, .axis = Axis::x}, FaultMotion::circle,
-       FaultReason::following_error, FaultReason::none, 1.0, "X drive gain sign flipped"},
+       FaultReason::runaway, FaultReason::none, 1.0, "X drive gain sign flipped"},
+      {"runaway_jog", {.kind = FaultKind::runaway, .start_s = 1.0004, .axis = Axis::x}, FaultMotion::jog_x,
+       FaultReason::runaway, FaultReason::none, 1.0, "X gain sign flipped while jogging X at +20 mm/s"},
       {"bus_read_error", {.kind = FaultKind::bus_read_error, .start_s = t, .duration_s = 0.001}, FaultMotion::circle,
        FaultReason::bus_error, FaultReason::none, 1.0, "reads fail for 1 ms"},
+      {"encoder_jump_100", {.kind = FaultKind::encoder_jump, .start_s = t, .axis = Axis::x, .counts = 100},
+       FaultMotion::circle, FaultReason::encoder_implausible, FaultReason::none, 1.0, "X count +100 (41.7 um) in one tick"},
+      {"encoder_jump_120_y", {.kind = FaultKind::encoder_jump, .start_s = t, .axis = Axis::y, .counts = -120},
+       FaultMotion::circle, FaultReason::encoder_implausible, FaultReason::none, 1.0, "Y count -120, kept"},
+      {"snapshot_replayed", {.kind = FaultKind::snapshot_replayed, .start_s = t}, FaultMotion::circle,
+       FaultReason::stale_snapshot, FaultReason::none, 1.0, "sequence one below the last"},
   };
   return cases;
 }

@@ -5,6 +5,7 @@
 
 #include "emulator/machine.hpp"
 #include "firmware/tick/tick_task.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/hil_rig.hpp"
 
@@ -32,7 +33,7 @@ MoveRunResult run_move(const MoveRunRequest& request, const fw::FirmwareConfig& 
   rig->home();
   const double start_mm = task.last_record().axis[a].position_mm;
   if (const fw::CommandStatus st = task.start_move(request.move); st != fw::CommandStatus::ok) {
-    result.error = std::string("start_move refused: ") + fw::to_string(st) + " (" + fw::validate(request.move) + ")";
+    result.error = "start_move refused: " + command_status_text(st, task) + " (" + fw::validate(request.move) + ")";
     return result;
   }
   const fw::PointToPointMove planned(request.move, start_mm);

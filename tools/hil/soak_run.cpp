@@ -7,6 +7,7 @@
 
 #include "emulator/quadrature_encoder.hpp"
 #include "hal/io_board_registers.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/hil_rig.hpp"
 
@@ -106,7 +107,7 @@ class SoakBench {
   }
 
   bool refused(const char* what, fw::CommandStatus st) {
-    result_.error = std::string(what) + " refused: " + fw::to_string(st);
+    result_.error = std::string(what) + " refused: " + command_status_text(st, rig_.task);
     return false;
   }
 

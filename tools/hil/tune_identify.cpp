@@ -7,6 +7,7 @@
 
 #include "firmware/io/dac_code.hpp"
 #include "hal/io_board_registers.hpp"
+#include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_rig.hpp"
 #include "tools/hil/tune_sequence.hpp"
 
@@ -176,7 +177,7 @@ bool run_excitation(HilRig& rig, hal::Axis axis, const fw::ExcitationSpec& spec,
   command_mm_s.clear();
   accel_mm_s2.clear();
   if (const fw::CommandStatus st = rig.task.start_excitation(axis, spec); st != fw::CommandStatus::ok) {
-    error = std::string("start_excitation refused: ") + fw::to_string(st);
+    error = "start_excitation refused: " + command_status_text(st, rig.task);
     return false;
   }
   const fw::DacScale dac = rig.task.config().axis[a].dac;

@@ -2,10 +2,9 @@
 
 #include <toml++/toml.h>
 
-#include <fstream>
 #include <limits>
-#include <sstream>
 
+#include "drivers/storage/regular_file.hpp"
 #include "emulator/toml_type_name.hpp"
 
 namespace tnv::fwd {
@@ -202,11 +201,21 @@ ConfigResult parse_daemon_config(std::string_view text, const std::string& sourc
 }
 
 ConfigResult load_daemon_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {std::nullopt, path + ": cannot open the config file"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_daemon_config(text.str(), path);
+  // A config may be a symlink by the administrator's choice (e.g. to a
+  // per-machine file); it must still be a regular file of sane size.
+  std::string text, error;
+  if (!drivers::read_regular_file(path, kMaxConfigBytes, drivers::LinkPolicy::follow, text, error))
+    return {std::nullopt, error};
+  return parse_daemon_config(text, path);
+}
+
+std::string daemon_run_error(const DaemonConfig& config) {
+  if (config.tick.period_us != kFirmwarePeriodUs) {
+    return "tick.period_us: must be 1000 to run the firmware: its models, trajectories and late-tick check are built "
+           "for a 1 ms tick (got " +
+           std::to_string(config.tick.period_us) + "; other periods are for --latency-test only)";
+  }
+  return {};
 }
 
 }  // namespace tnv::fwd

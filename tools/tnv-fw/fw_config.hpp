@@ -3,6 +3,7 @@
 // key, packaging/tnv-fw.toml is the default). Read whole and validated
 // before anything is opened: a bad file gives one line naming the file,
 // the line and the key, and the daemon exits with code 2.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -30,6 +31,14 @@ struct RtConfig {
   int cpu = -1;        // CPU to pin the control thread to; -1 = any
   bool require = true; // refuse to run without SCHED_FIFO / mlockall
 };
+
+// The only tick period the firmware runs at (fw::TickTask's control period).
+// Other values parse (--latency-test measures any period) but the daemon
+// and --check-config refuse them: daemon_run_error().
+inline constexpr std::uint32_t kFirmwarePeriodUs = 1000;
+
+// A config file is a few kB; anything past 1 MiB is not one (e.g. /dev/zero).
+inline constexpr std::size_t kMaxConfigBytes = 1u << 20;
 
 struct TickConfig {
   std::uint32_t period_us = 1000;  // board tick period (the FPGA's TICK_DIVIDER) and the deadline period
@@ -61,5 +70,11 @@ struct ConfigResult {
 
 ConfigResult parse_daemon_config(std::string_view text, const std::string& source_name);
 ConfigResult load_daemon_config(const std::string& path);
+
+// Why the daemon cannot run with a parsed config ("" when it can): today
+// only a tick period other than 1000 us (the controllers, trajectories and
+// the supervisor's late-tick check are built for 1 ms; the first tick would
+// latch late_tick).
+std::string daemon_run_error(const DaemonConfig& config);
 
 }  // namespace tnv::fwd

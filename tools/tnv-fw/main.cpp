@@ -89,6 +89,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "tnv-fw: --config FILE is required (or --latency-test SECONDS)\n");
     return 2;
   }
+  if (const std::string why = fwd::daemon_run_error(config); !why.empty()) {
+    std::fprintf(stderr, "tnv-fw: %s: %s\n", config_path.c_str(), why.c_str());
+    return 2;
+  }
   if (check_only) {
     std::printf("%s: ok\n", config_path.c_str());
     return 0;

@@ -57,7 +57,7 @@ int run_faults_command(const FaultsOptions& o) {
                                                                  : fw::ControllerKind::rdvsc;
   nlohmann::json rows = nlohmann::json::array();
   std::string text =
-      "fault              motion  expected          latched           axis  ticks  time to safe ms  deviation um  "
+      "fault              motion  expected             latched              axis  ticks  time to safe ms  deviation um  "
       "verdict\n";
   int failed = 0;
   for (const hil::FaultCase& c : cases) {
@@ -67,7 +67,7 @@ int run_faults_command(const FaultsOptions& o) {
     const char* latched = obs.detected ? fw::to_string(obs.fault.reason) : "none";
     const std::string axis = obs.fault.axis < 0 ? "-" : std::string(1, obs.fault.axis == 0 ? 'x' : 'y');
     char line[256];
-    std::snprintf(line, sizeof line, "%-18s %-7s %-17s %-17s %-5s %5llu  %15s  %12.1f  %s\n", c.name.c_str(),
+    std::snprintf(line, sizeof line, "%-18s %-7s %-20s %-20s %-5s %5llu  %15s  %12.1f  %s\n", c.name.c_str(),
                   hil::to_string(c.motion), fw::to_string(c.expected), latched, axis.c_str(),
                   static_cast<unsigned long long>(obs.ticks_to_detect()), ms_text(obs.time_to_safe_s()).c_str(),
                   obs.deviation_um, ok ? "ok" : (obs.error.empty() ? "NOT MET" : obs.error.c_str()));

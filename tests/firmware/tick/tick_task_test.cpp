@@ -82,10 +82,14 @@ TEST_F(TickTaskTest, FollowingErrorTripZeroesDacAndDropsEnablesWithinTheSameTick
   ASSERT_EQ(task.start_circle(CircleSpec{}), CommandStatus::ok);
   for (int i = 0; i < 5; ++i) tick();
   ASSERT_TRUE(board.written_enable[0]);
-  // The table is dragged 0.1 mm away in one tick (beyond the 0.05 mm floor at
-  // rest, 100 mm/s: below the speed limit, so following error is the reason).
-  board.counts[0] += static_cast<std::uint32_t>(0.1 / kCountMm);
-  tick();
+  // The table is dragged 0.1 mm away over 4 ticks (beyond the 0.05 mm floor
+  // at rest, 25 mm/s: a step the axis can make, below the speed limit, so
+  // following error is the reason; 0.1 mm in one tick is
+  // encoder_implausible, TickTaskTest.AnImplausibleCountStepLatchesInItsTick).
+  for (int i = 0; i < 4 && task.state() != MotionState::faulted; ++i) {
+    board.counts[0] += static_cast<std::uint32_t>(0.025 / kCountMm);
+    tick();
+  }
   EXPECT_EQ(task.state(), MotionState::faulted);
   EXPECT_EQ(task.fault().reason, FaultReason::following_error);
   EXPECT_EQ(task.fault().axis, 0);
@@ -102,6 +106,31 @@ TEST_F(TickTaskTest, FollowingErrorTripZeroesDacAndDropsEnablesWithinTheSameTick
   tick();
   EXPECT_EQ(task.state(), MotionState::disabled);
   EXPECT_FALSE(task.fault().active());
+}
+
+TEST_F(TickTaskTest, AnImplausibleCountStepLatchesInItsTick) {
+  tick();
+  ASSERT_EQ(task.start_circle(CircleSpec{}), CommandStatus::ok);
+  for (int i = 0; i < 5; ++i) tick();
+  board.counts[0] += static_cast<std::uint32_t>(0.1 / kCountMm);  // 100 mm/s for one tick from rest
+  tick();
+  EXPECT_EQ(task.state(), MotionState::faulted);
+  EXPECT_EQ(task.fault().reason, FaultReason::encoder_implausible);
+  EXPECT_EQ(task.fault().axis, 0);
+  EXPECT_EQ(task.fault().tick, task.counters().ticks) << "latched in this tick";
+  EXPECT_GT(task.fault().value, task.fault().limit) << "mm off the prediction vs the reachable spread";
+  EXPECT_EQ(board.written_code[0], 2048);
+  EXPECT_FALSE(board.written_enable[0]);
+}
+
+TEST_F(TickTaskTest, ASequenceGoingBackwardsIsStaleAndCountsNothing) {
+  for (int i = 0; i < 3; ++i) tick();
+  const std::uint64_t missed_before = task.counters().missed_ticks;
+  board.latch.sequence -= 2;  // the next tick reads one below the last
+  tick();
+  EXPECT_EQ(task.state(), MotionState::faulted);
+  EXPECT_EQ(task.fault().reason, FaultReason::stale_snapshot);
+  EXPECT_EQ(task.counters().missed_ticks, missed_before) << "no 4,294,967,295 lost ticks";
 }
 
 TEST_F(TickTaskTest, EstopFaultCannotBeClearedWhileAsserted) {
