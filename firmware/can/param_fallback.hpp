@@ -6,6 +6,13 @@
 // length, CRC, every value, validate()), so a set is applied entirely or
 // not at all. Using the previous generation or neither is a storage fault
 // the node reports (HEARTBEAT.errors storage_fault).
+// Rollback: each save stamps its image with one more than the generation
+// it replaced (param_image.hpp). When both images are intact and the
+// current one is OLDER than the previous one (files swapped, or an old
+// copy restored over the current one), the newer one is loaded and the
+// load is reported as `rolled_back`, a storage fault. Equal generations are
+// normal: a save interrupted between keeping the old file as the previous
+// generation and renaming the new one leaves the same image in both.
 // No allocation, no exceptions; file or flash I/O through hal::ParamStorage.
 #include <cstdint>
 
@@ -20,6 +27,7 @@ enum class LoadSource : std::uint8_t {
   current,         // the current image
   previous,        // the current image is damaged or missing: the previous one
   neither,         // both damaged: `inout` unchanged
+  rolled_back,     // both intact, the current one older: the previous (newer) one
 };
 
 struct LoadReport {
@@ -29,7 +37,11 @@ struct LoadReport {
   // storage_error. Both ok when nothing is stored at all.
   ErrorCode current = ErrorCode::ok;
   ErrorCode previous = ErrorCode::ok;
-  bool fault() const noexcept { return source == LoadSource::previous || source == LoadSource::neither; }
+  std::uint32_t current_generation = 0;   // of each intact image, else 0
+  std::uint32_t previous_generation = 0;
+  bool fault() const noexcept {
+    return source == LoadSource::previous || source == LoadSource::neither || source == LoadSource::rolled_back;
+  }
   // The error to answer a load request with: ok when a set was loaded.
   ErrorCode result() const noexcept;
 };

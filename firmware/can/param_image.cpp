@@ -31,6 +31,26 @@ std::uint64_t get_le(std::span<const std::uint8_t> in, std::size_t at, std::size
 
 bool stored(const ParamDef& p) noexcept { return p.access == Access::read_write && p.set != nullptr; }
 
+// Header bytes of an image of `version`, 0 for an unknown version.
+std::size_t header_bytes(std::uint64_t version) noexcept {
+  if (version == kParamImageVersion) return kParamImageHeaderBytes;
+  if (version == kParamImageVersion1) return kParamImageVersion1HeaderBytes;
+  return 0;
+}
+
+// Magic, version, length and CRC: the header's size, or 0 when any is wrong.
+std::size_t intact_header(std::span<const std::uint8_t> image) noexcept {
+  if (image.size() < kParamImageVersion1HeaderBytes + kParamImageCrcBytes) return 0;
+  if (get_le(image, 0, 4) != kParamImageMagic) return 0;
+  const std::size_t header = header_bytes(get_le(image, 4, 2));
+  if (header == 0) return 0;
+  const std::size_t count = static_cast<std::size_t>(get_le(image, 6, 2));
+  const std::size_t body = header + count * kParamImageEntryBytes;
+  if (image.size() != body + kParamImageCrcBytes) return 0;
+  if (get_le(image, body, 4) != crc32(image.first(body))) return 0;
+  return header;
+}
+
 }  // namespace
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes) noexcept {
@@ -39,7 +59,8 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes) noexcept {
   return c ^ 0xFFFFFFFFu;
 }
 
-std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> out) noexcept {
+std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> out,
+                         std::uint32_t generation) noexcept {
   std::size_t count = 0;
   for (const ParamDef& p : param_table())
     if (stored(p)) ++count;
@@ -48,6 +69,7 @@ std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> o
   put_le(out, 0, kParamImageMagic, 4);
   put_le(out, 4, kParamImageVersion, 2);
   put_le(out, 6, count, 2);
+  put_le(out, 8, generation, 4);
   std::size_t at = kParamImageHeaderBytes;
   for (const ParamDef& p : param_table()) {
     if (!stored(p)) continue;
@@ -59,17 +81,37 @@ std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> o
   return size;
 }
 
+bool image_generation(std::span<const std::uint8_t> image, std::uint32_t& generation) noexcept {
+  const std::size_t header = intact_header(image);
+  if (header == 0) return false;
+  generation = header == kParamImageHeaderBytes ? static_cast<std::uint32_t>(get_le(image, 8, 4)) : 0u;
+  return true;
+}
+
+void stamp_generation(std::span<std::uint8_t> image, std::uint32_t generation) noexcept {
+  if (intact_header(image) != kParamImageHeaderBytes) return;
+  put_le(image, 8, generation, 4);
+  const std::size_t body = image.size() - kParamImageCrcBytes;
+  put_le(image, body, crc32(image.first(body)), 4);
+}
+
+std::uint32_t next_generation(hal::ParamStorage& storage) noexcept {
+  std::array<std::uint8_t, kParamImageMaxBytes> buffer{};
+  std::size_t size = 0;
+  std::uint32_t generation = 0;
+  if (storage.read(buffer, size) != hal::HalStatus::ok || size > buffer.size() ||
+      !image_generation(std::span<const std::uint8_t>(buffer.data(), size), generation))
+    return 1;
+  return generation == 0xFFFFFFFFu ? generation : generation + 1;  // saturates: 4e9 saves is no machine's life
+}
+
 ErrorCode decode_image(std::span<const std::uint8_t> image, NodeSettings& inout) noexcept {
-  if (image.size() < kParamImageHeaderBytes + kParamImageCrcBytes) return ErrorCode::storage_corrupt;
-  if (get_le(image, 0, 4) != kParamImageMagic || get_le(image, 4, 2) != kParamImageVersion)
-    return ErrorCode::storage_corrupt;
+  const std::size_t header = intact_header(image);
+  if (header == 0) return ErrorCode::storage_corrupt;
   const std::size_t count = static_cast<std::size_t>(get_le(image, 6, 2));
-  const std::size_t body = kParamImageHeaderBytes + count * kParamImageEntryBytes;
-  if (image.size() != body + kParamImageCrcBytes) return ErrorCode::storage_corrupt;
-  if (get_le(image, body, 4) != crc32(image.first(body))) return ErrorCode::storage_corrupt;
   NodeSettings next = inout;
   for (std::size_t e = 0; e < count; ++e) {
-    const std::size_t at = kParamImageHeaderBytes + e * kParamImageEntryBytes;
+    const std::size_t at = header + e * kParamImageEntryBytes;
     const ParamDef* p = find_param(static_cast<std::uint16_t>(get_le(image, at, 2)));
     if (p == nullptr || !stored(*p)) return ErrorCode::storage_corrupt;
     const double value = std::bit_cast<double>(get_le(image, at + 2, 8));
@@ -92,7 +134,7 @@ ErrorCode load_settings(hal::ParamStorage& storage, NodeSettings& inout) noexcep
 
 ErrorCode save_settings(hal::ParamStorage& storage, const NodeSettings& settings) noexcept {
   std::array<std::uint8_t, kParamImageMaxBytes> buffer{};
-  const std::size_t size = encode_image(settings, buffer);
+  const std::size_t size = encode_image(settings, buffer, next_generation(storage));
   if (size == 0) return ErrorCode::storage_error;
   return storage.write(std::span<const std::uint8_t>(buffer.data(), size)) == hal::HalStatus::ok
              ? ErrorCode::ok

@@ -3,9 +3,12 @@
 // the start-up load) reads, through hal::ParamStorage.
 //
 // Layout, little-endian:
-//   magic   u32  kParamImageMagic
-//   version u16  kParamImageVersion
-//   count   u16  number of entries
+//   magic      u32  kParamImageMagic
+//   version    u16  kParamImageVersion
+//   count      u16  number of entries
+//   generation u32  one more than the image this save replaced (1 for the
+//                   first): the loader tells a rolled-back or swapped pair
+//                   of generations by it (param_fallback.hpp)
 //   count x { id u16, value f64 }   every read_write parameter, table order
 //   crc     u32  CRC-32 (IEEE 802.3, reflected, init/xorout 0xFFFFFFFF)
 //                over every byte before it
@@ -16,6 +19,8 @@
 // storage_corrupt; a set that fails validate() as a whole -> invalid; in
 // both cases `inout` is untouched. Parameters missing from the image keep
 // their value in `inout` (an image from before a parameter was added).
+// A version-1 image (no generation field, an 8-byte header) still loads,
+// as generation 0.
 // No allocation, no exceptions.
 #include <cstddef>
 #include <cstdint>
@@ -28,8 +33,10 @@
 namespace tnv::fw::can {
 
 inline constexpr std::uint32_t kParamImageMagic = 0x50564E54u;  // "TNVP" as bytes 54 4E 56 50
-inline constexpr std::uint16_t kParamImageVersion = 1;
-inline constexpr std::size_t kParamImageHeaderBytes = 8;
+inline constexpr std::uint16_t kParamImageVersion = 2;
+inline constexpr std::uint16_t kParamImageVersion1 = 1;  // before the generation field: still loaded
+inline constexpr std::size_t kParamImageHeaderBytes = 12;
+inline constexpr std::size_t kParamImageVersion1HeaderBytes = 8;
 inline constexpr std::size_t kParamImageEntryBytes = 10;
 inline constexpr std::size_t kParamImageCrcBytes = 4;
 inline constexpr std::size_t kParamImageMaxEntries = 256;  // > the table's read_write parameters (tested)
@@ -41,7 +48,19 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes) noexcept;
 
 // Writes the image of `settings` into `out`; returns its length, or 0 when
 // `out` is too small (nothing useful written).
-std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> out) noexcept;
+std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> out,
+                         std::uint32_t generation = 1) noexcept;
+
+// The generation of a whole, intact image (magic, version, length and CRC
+// checked; the values are not): false for anything else.
+bool image_generation(std::span<const std::uint8_t> image, std::uint32_t& generation) noexcept;
+
+// The generation the next save into `storage` writes: one more than the
+// intact image stored there now, else 1. Reads the storage (worker side).
+std::uint32_t next_generation(hal::ParamStorage& storage) noexcept;
+
+// Writes `generation` into an encoded image and re-seals its CRC.
+void stamp_generation(std::span<std::uint8_t> image, std::uint32_t generation) noexcept;
 
 // All or nothing (see above): ok, storage_corrupt or invalid.
 ErrorCode decode_image(std::span<const std::uint8_t> image, NodeSettings& inout) noexcept;
@@ -51,7 +70,7 @@ ErrorCode decode_image(std::span<const std::uint8_t> image, NodeSettings& inout)
 // otherwise decode_image().
 ErrorCode load_settings(hal::ParamStorage& storage, NodeSettings& inout) noexcept;
 
-// save_params: encode and write; storage_error when the write fails.
+// save_params: encode with next_generation(storage) and write; storage_error when the write fails.
 ErrorCode save_settings(hal::ParamStorage& storage, const NodeSettings& settings) noexcept;
 
 }  // namespace tnv::fw::can

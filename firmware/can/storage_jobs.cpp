@@ -15,6 +15,8 @@ void SaveJob::run() noexcept {
     result_ = ErrorCode::storage_error;
     return;
   }
+  // The generation is read here, on the worker: it needs the stored image.
+  stamp_generation(std::span<std::uint8_t>(image_.data(), size_), next_generation(*storage_));
   result_ = storage_->write(std::span<const std::uint8_t>(image_.data(), size_)) == hal::HalStatus::ok
                 ? ErrorCode::ok
                 : ErrorCode::storage_error;

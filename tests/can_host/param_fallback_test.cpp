@@ -76,5 +76,36 @@ TEST(ParamFallback, ADamagedCurrentImageStartsTheNodeWithThePreviousSetAndReport
   std::filesystem::remove(storage + ".prev");
 }
 
+// Swapped generations: the current file is the older save. The node starts
+// with the newer set and reports the rollback instead of loading it silently.
+TEST(ParamFallback, SwappedGenerationsStartTheNodeWithTheNewerSetAndReportIt) {
+  std::string file = "tnv_rollback_";
+  file.append(std::to_string(::getpid())).append(".params");
+  const std::string storage = (std::filesystem::temp_directory_path() / file).string();
+  std::filesystem::remove(storage);
+  std::filesystem::remove(storage + ".prev");
+  {
+    auto bus = make_fallback_bus(storage);
+    NodeClient client(*bus, 1);
+    client.set(x_gamma_param(), 0.25);
+    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
+    client.set(x_gamma_param(), 0.5);
+    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
+  }
+  // current = generation 2 (0.5), .prev = generation 1 (0.25): swap them.
+  const std::string aside = storage + ".swap";
+  std::filesystem::rename(storage, aside);
+  std::filesystem::rename(storage + ".prev", storage);
+  std::filesystem::rename(aside, storage + ".prev");
+  auto bus = make_fallback_bus(storage);
+  EXPECT_NE(bus->startup_note().find("generation 1 is older than the previous file's 2"), std::string::npos)
+      << bus->startup_note();
+  NodeClient client(*bus, 1);
+  EXPECT_EQ(client.get(x_gamma_param()), 0.5) << "the newer saved gamma";
+  EXPECT_TRUE(bus->node().storage_fault());
+  std::filesystem::remove(storage);
+  std::filesystem::remove(storage + ".prev");
+}
+
 }  // namespace
 }  // namespace tnv

@@ -105,6 +105,18 @@ std::string param_image(const std::uint8_t* data, std::size_t size) {
         return "loaded from the previous image, but that is not what decode_image() makes of it";
       if (!report.fault()) return "a fallback not reported as a fault";
       break;
+    case can::LoadSource::rolled_back: {
+      std::uint32_t current_generation = 0;
+      std::uint32_t previous_generation = 0;
+      if (current_result != can::ErrorCode::ok || previous_result != can::ErrorCode::ok)
+        return "a rollback reported although one generation does not decode";
+      if (!can::image_generation(current, current_generation) || !can::image_generation(previous, previous_generation) ||
+          previous_generation <= current_generation)
+        return "a rollback reported although the current image is not the older one";
+      if (got != image_of(from_previous)) return "rolled back, but not to what decode_image() makes of the previous image";
+      if (!report.fault()) return "a rollback not reported as a fault";
+      break;
+    }
     case can::LoadSource::neither:
     case can::LoadSource::nothing_stored:
       if (current_result == can::ErrorCode::ok || previous_result == can::ErrorCode::ok)

@@ -28,6 +28,15 @@ void* new_aligned_block(std::size_t n, std::align_val_t a) {
   if (void* p = std::aligned_alloc(align, ((n + align - 1) / align) * align)) return p;
   throw std::bad_alloc();
 }
+void* nothrow_block(std::size_t n) noexcept {
+  if (!tnv::test::kMallocCounted) note_heap_call();
+  return std::malloc(n == 0 ? 1 : n);
+}
+void* nothrow_aligned_block(std::size_t n, std::align_val_t a) noexcept {
+  if (!tnv::test::kMallocCounted) note_heap_call();
+  const auto align = static_cast<std::size_t>(a);
+  return std::aligned_alloc(align, ((n + align - 1) / align) * align);
+}
 void delete_block(void* p) noexcept {
   if (!tnv::test::kMallocCounted && p != nullptr) note_heap_call();
   std::free(p);
@@ -49,6 +58,21 @@ void* operator new(std::size_t n) { return new_block(n); }
 void* operator new[](std::size_t n) { return new_block(n); }
 void* operator new(std::size_t n, std::align_val_t a) { return new_aligned_block(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) { return new_aligned_block(n, a); }
+// The nothrow forms too (std::stable_sort's buffer uses them): under a
+// sanitizer an unreplaced nothrow new would allocate in the sanitizer's
+// operator new and be freed here through free(), a mismatch it reports.
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return nothrow_block(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return nothrow_block(n); }
+void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return nothrow_aligned_block(n, a);
+}
+void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return nothrow_aligned_block(n, a);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { delete_block(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { delete_block(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { delete_block(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { delete_block(p); }
 void operator delete(void* p) noexcept { delete_block(p); }
 void operator delete[](void* p) noexcept { delete_block(p); }
 void operator delete(void* p, std::size_t) noexcept { delete_block(p); }

@@ -75,8 +75,12 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
     note = path;
     note.append(": stored parameters not loaded (").append(can::to_string(loaded.current));
     if (!storage.last_error().empty()) note.append(": ").append(storage.last_error());
-    note += loaded.source == can::LoadSource::previous ? "); the node starts with the previous saved set"
-                                                        : "); the node starts with defaults";
+    if (loaded.source == can::LoadSource::rolled_back)
+      note.append(": generation ").append(std::to_string(loaded.current_generation)).append(" is older than the previous file's ")
+          .append(std::to_string(loaded.previous_generation)).append("); the node starts with the newer, previous set");
+    else
+      note += loaded.source == can::LoadSource::previous ? "); the node starts with the previous saved set"
+                                                          : "); the node starts with defaults";
   }
   // The board's hardware facts (encoder, DAC, home) come from the scenario.
   settings.firmware = hil::firmware_config_for(scenario, settings.firmware);

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "firmware/can/param_fallback.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 
@@ -143,6 +144,85 @@ TEST(ParamImage, SaveAndLoadThroughTheStorageInterface) {
   EXPECT_EQ(load_settings(storage, d), ErrorCode::storage_error);
   storage.fail_write = true;
   EXPECT_EQ(save_settings(storage, tuned()), ErrorCode::storage_error);
+}
+
+std::uint32_t generation_of(const std::vector<std::uint8_t>& image) {
+  std::uint32_t g = 0;
+  EXPECT_TRUE(image_generation(image, g)) << "not an intact image";
+  return g;
+}
+
+TEST(ParamImageGeneration, EachSaveStampsOneMoreThanTheImageItReplaces) {
+  test::MemoryStorage storage;
+  ASSERT_EQ(save_settings(storage, tuned()), ErrorCode::ok);
+  EXPECT_EQ(generation_of(storage.bytes), 1u) << "the first save";
+  ASSERT_EQ(save_settings(storage, defaults()), ErrorCode::ok);
+  EXPECT_EQ(generation_of(storage.bytes), 2u);
+  storage.bytes[storage.bytes.size() / 2] ^= 1;  // damaged: the next save starts again at 1
+  ASSERT_EQ(save_settings(storage, defaults()), ErrorCode::ok);
+  EXPECT_EQ(generation_of(storage.bytes), 1u);
+}
+
+TEST(ParamImageGeneration, AVersionOneImageStillLoadsAsGenerationZero) {
+  // Version 1: the same image without the 4-byte generation, version field 1.
+  std::vector<std::uint8_t> v2 = image_of(tuned());
+  std::vector<std::uint8_t> v1(v2.begin(), v2.begin() + 8);
+  v1[4] = kParamImageVersion1;
+  v1.insert(v1.end(), v2.begin() + static_cast<std::ptrdiff_t>(kParamImageHeaderBytes), v2.end() - 4);
+  const std::uint32_t crc = crc32(v1);
+  for (int i = 0; i < 4; ++i) v1.push_back(static_cast<std::uint8_t>(crc >> (8 * i)));
+  NodeSettings s = defaults();
+  ASSERT_EQ(decode_image(v1, s), ErrorCode::ok);
+  EXPECT_TRUE(same_params(s, tuned()));
+  EXPECT_EQ(generation_of(v1), 0u);
+}
+
+struct TwoGenerations {
+  test::MemoryStorage current;
+  test::MemoryStorage previous;
+  void store(const NodeSettings& cur, std::uint32_t cur_gen, const NodeSettings& prev, std::uint32_t prev_gen) {
+    current.bytes = image_of(cur);
+    stamp_generation(current.bytes, cur_gen);
+    previous.bytes = image_of(prev);
+    stamp_generation(previous.bytes, prev_gen);
+    current.present = true;
+    previous.present = true;
+  }
+};
+
+TEST(ParamImageGeneration, ACurrentImageOlderThanThePreviousIsARollbackAndTheNewerSetLoads) {
+  TwoGenerations g;
+  g.store(defaults(), 6, tuned(), 7);  // files swapped, or an old copy put back as the current one
+  NodeSettings s = defaults();
+  const LoadReport r = load_settings_with_fallback(g.current, &g.previous, s);
+  EXPECT_EQ(r.source, LoadSource::rolled_back);
+  EXPECT_TRUE(r.fault()) << "a rollback is a storage fault";
+  EXPECT_EQ(r.result(), ErrorCode::ok);
+  EXPECT_EQ(r.current_generation, 6u);
+  EXPECT_EQ(r.previous_generation, 7u);
+  EXPECT_TRUE(same_params(s, tuned())) << "the newer generation, whole";
+}
+
+TEST(ParamImageGeneration, NewerOrEqualCurrentGenerationsLoadCleanly) {
+  for (const std::uint32_t prev_gen : {6u, 7u}) {  // 7 = 7: a save cut between keeping .prev and the rename
+    TwoGenerations g;
+    g.store(tuned(), 7, defaults(), prev_gen);
+    NodeSettings s = defaults();
+    const LoadReport r = load_settings_with_fallback(g.current, &g.previous, s);
+    EXPECT_EQ(r.source, LoadSource::current) << "previous generation " << prev_gen;
+    EXPECT_FALSE(r.fault());
+    EXPECT_TRUE(same_params(s, tuned()));
+  }
+}
+
+TEST(ParamImageGeneration, ADamagedNewerPreviousImageDoesNotOverrideAnIntactCurrentOne) {
+  TwoGenerations g;
+  g.store(tuned(), 3, defaults(), 9);
+  g.previous.bytes[g.previous.bytes.size() / 2] ^= 1;
+  NodeSettings s = defaults();
+  const LoadReport r = load_settings_with_fallback(g.current, &g.previous, s);
+  EXPECT_EQ(r.source, LoadSource::current);
+  EXPECT_TRUE(same_params(s, tuned()));
 }
 
 }  // namespace
