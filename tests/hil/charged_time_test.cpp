@@ -1,11 +1,14 @@
 // Charged time on the HIL rig: the emulated board's clock does not wait
 // for a slow firmware call. A call over the threshold shows as missed
 // ticks, a longer one as a watchdog trip; every normal call charges nothing.
+// Work is metered in basic blocks of firmware code (work_meter.hpp), so a
+// slow call here is firmware code doing a lot, not a busy host.
 #include <gtest/gtest.h>
 
 #include "emulator/scenario_file.hpp"
 #include "tests/hil/can_node_rig.hpp"
-#include "tools/hil/thread_cpu_clock.hpp"
+#include "firmware/shaper/shaper_design.hpp"
+#include "firmware/tick/work_meter.hpp"
 
 namespace tnv::test {
 namespace {
@@ -13,11 +16,29 @@ namespace {
 using fw::can::CommandCode;
 using fw::can::MessageId;
 
-// Burns `ns` of this thread's CPU time (what the rig charges), however long the OS makes it take.
-void burn_thread_cpu_ns(std::int64_t ns) {
-  const std::int64_t start = hil::thread_cpu_ns();
-  while (hil::thread_cpu_ns() - start < ns) {
+// Runs firmware code (shaper designs) until the work meter has counted
+// `board_ns` of modelled board time at the rig's default cost per block.
+void burn_board_ns(std::int64_t board_ns) {
+  const double blocks = static_cast<double>(board_ns) / hil::ChargeOptions{}.ns_per_block;
+  const std::uint64_t start = fw::work_blocks();
+  fw::ShaperSpec spec;
+  spec.type = fw::ShaperType::zvdd;
+  spec.mode = {30.0, 0.05};
+  while (static_cast<double>(fw::work_blocks() - start) < blocks) {
+    const fw::ShaperDesign d = fw::design_shaper(spec, 1e-3);
+    if (d.taps.span() == 0) break;
   }
+}
+
+TEST(ChargedTime, TheWorkMeterCountsFirmwareCodeOnly) {
+  ASSERT_TRUE(fw::work_meter_enabled()) << "the firmware was built without the block instrumentation";
+  std::uint64_t start = fw::work_blocks();
+  double host_sum = 0.0;
+  for (int i = 0; i < 1000; ++i) host_sum += static_cast<double>(i);  // test code: not metered
+  EXPECT_EQ(fw::work_blocks(), start);
+  EXPECT_GT(host_sum, 0.0);
+  burn_board_ns(1'000'000);
+  EXPECT_GE(static_cast<double>(fw::work_blocks() - start), 1e6 / hil::ChargeOptions{}.ns_per_block);
 }
 
 std::unique_ptr<CanRig> holding_charged_rig() {
@@ -49,7 +70,7 @@ TEST(ChargedTime, ASlowCallShowsAsMissedTicks) {
   auto r = holding_charged_rig();
   ASSERT_TRUE(r);
   ASSERT_EQ(r->task().counters().missed_ticks, 0u);
-  r->rig->charged_call([] { burn_thread_cpu_ns(2'500'000); });  // 2.5 ms in one call of the loop
+  r->rig->charged_call([] { burn_board_ns(2'500'000); });  // 2.5 ms in one call of the loop
   for (int k = 0; k < 5; ++k) r->step();
   EXPECT_EQ(r->rig->charged().charged_calls, 1u);
   EXPECT_GE(r->task().counters().missed_ticks, 2u);
@@ -61,7 +82,7 @@ TEST(ChargedTime, WithoutChargingTheSameCallIsInvisible) {
   auto r = holding_charged_rig();
   ASSERT_TRUE(r);
   r->rig->charging.enabled = false;
-  r->rig->charged_call([] { burn_thread_cpu_ns(2'500'000); });
+  r->rig->charged_call([] { burn_board_ns(2'500'000); });
   for (int k = 0; k < 5; ++k) r->step();
   EXPECT_EQ(r->task().counters().missed_ticks, 0u);
 }
@@ -69,18 +90,18 @@ TEST(ChargedTime, WithoutChargingTheSameCallIsInvisible) {
 TEST(ChargedTime, ACallLongerThanTheWatchdogTimeoutTripsTheBoard) {
   auto r = holding_charged_rig();
   ASSERT_TRUE(r);
-  r->rig->charged_call([] { burn_thread_cpu_ns(5'000'000); });  // the board watchdog's timeout is 3 ms
+  r->rig->charged_call([] { burn_board_ns(5'000'000); });  // the board watchdog's timeout is 3 ms
   r->step();
   EXPECT_TRUE(r->rig->machine.board_outputs().watchdog_tripped);
   EXPECT_TRUE(r->task().fault().active());
   EXPECT_GE(r->task().counters().missed_ticks, 4u);
 }
 
-// A storage whose write takes 4 ms of CPU, as a slow flash or fsync would.
+// A storage whose write runs 4 ms of firmware work, as slow flash code would.
 class SlowStorage final : public hal::ParamStorage {
  public:
   hal::HalStatus write(std::span<const std::uint8_t> image) noexcept override {
-    burn_thread_cpu_ns(4'000'000);
+    burn_board_ns(4'000'000);
     return inner.write(image);
   }
   hal::HalStatus read(std::span<std::uint8_t> out, std::size_t& size) noexcept override { return inner.read(out, size); }

@@ -5,11 +5,14 @@
 
 namespace tnv::hil {
 
-void HilRig::charge(std::int64_t call_ns) noexcept {
+void HilRig::charge_blocks(std::uint64_t blocks) noexcept {
+  const auto call_ns = static_cast<std::int64_t>(static_cast<double>(blocks) * charging.ns_per_block);
   ++charged_.calls;
   charged_.last_call_ns = call_ns;
+  charged_.last_call_blocks = blocks;
   if (call_ns > charged_.max_call_ns) charged_.max_call_ns = call_ns;
-  if (call_ns <= charging.threshold_ns) return;
+  if (blocks > charged_.max_call_blocks) charged_.max_call_blocks = blocks;
+  if (!charging.enabled || call_ns <= charging.threshold_ns) return;
   ++charged_.charged_calls;
   charged_.charged_ns += call_ns;
   pending_ns_ += call_ns;

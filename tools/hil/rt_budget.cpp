@@ -115,46 +115,62 @@ hal::CanFrame budget_shaper(double freq_hz) {
   return f;
 }
 
-// Per kind: the CPU time of every call, ns.
+// Per kind, every call: its host CPU time and its modelled board time, ns.
 class BudgetCallLog {
  public:
-  void add(const std::string& kind, std::int64_t ns, std::uint64_t refused = 0) {
+  struct Sample {
+    std::int64_t cpu_ns = 0;
+    std::int64_t board_ns = 0;
+  };
+  void add(const std::string& kind, Sample sample, std::uint64_t refused = 0) {
     auto it = index_.find(kind);
     if (it == index_.end()) {
       it = index_.emplace(kind, samples_.size()).first;
       names_.push_back(kind);
       samples_.emplace_back();
+      refused_.push_back(0);
     }
-    samples_[it->second].push_back(ns);
-    if (refused_.size() < samples_.size()) refused_.resize(samples_.size(), 0);
+    samples_[it->second].push_back(sample);
     refused_[it->second] += refused;
-    all_.push_back(ns);
-  }
-  RtBudgetRow row(const std::string& kind, std::vector<std::int64_t> ns) const {
-    RtBudgetRow r;
-    r.kind = kind;
-    r.calls = ns.size();
-    if (ns.empty()) return r;
-    std::sort(ns.begin(), ns.end());
-    const auto rank = static_cast<std::size_t>(std::ceil(0.999 * static_cast<double>(ns.size())));
-    r.max_call_us = static_cast<double>(ns.back()) * 1e-3;
-    r.p999_call_us = static_cast<double>(ns[std::max<std::size_t>(rank, 1) - 1]) * 1e-3;
-    return r;
+    all_.push_back(sample);
   }
   void fill(RtBudgetResult& out) const {
     out.overall = row("overall", all_);
     for (std::size_t i = 0; i < names_.size(); ++i) {
       out.kinds.push_back(row(names_[i], samples_[i]));
-      out.kinds.back().refused = i < refused_.size() ? refused_[i] : 0;
-      out.overall.refused += out.kinds.back().refused;
+      out.kinds.back().refused = refused_[i];
+      out.overall.refused += refused_[i];
     }
   }
 
  private:
+  // Largest and 99.9th percentile (nearest rank), us.
+  static void spread(std::vector<std::int64_t> ns, double& max_us, double& p999_us) {
+    std::sort(ns.begin(), ns.end());
+    const auto rank = static_cast<std::size_t>(std::ceil(0.999 * static_cast<double>(ns.size())));
+    max_us = static_cast<double>(ns.back()) * 1e-3;
+    p999_us = static_cast<double>(ns[std::max<std::size_t>(rank, 1) - 1]) * 1e-3;
+  }
+  static RtBudgetRow row(const std::string& kind, const std::vector<Sample>& samples) {
+    RtBudgetRow r;
+    r.kind = kind;
+    r.calls = samples.size();
+    if (samples.empty()) return r;
+    std::vector<std::int64_t> cpu;
+    std::vector<std::int64_t> board;
+    for (const Sample& s : samples) {
+      cpu.push_back(s.cpu_ns);
+      board.push_back(s.board_ns);
+    }
+    spread(std::move(cpu), r.max_call_us, r.p999_call_us);
+    spread(std::move(board), r.max_board_us, r.p999_board_us);
+    return r;
+  }
+
   std::map<std::string, std::size_t> index_;
   std::vector<std::string> names_;
-  std::vector<std::vector<std::int64_t>> samples_;
-  std::vector<std::int64_t> all_;
+  std::vector<std::vector<Sample>> samples_;
+  std::vector<Sample> all_;
   std::vector<std::uint64_t> refused_;
 };
 
@@ -167,7 +183,7 @@ class BudgetSession {
   // One loop cycle: tick, then service() with `request` (if any) waiting.
   void cycle(const hal::CanFrame* request, const char* kind) {
     rig_->tick();
-    log_.add("tick", rig_->charged().last_call_ns);
+    log_.add("tick", last_call());
     if (request != nullptr) {
       if (port_.push_request(*request)) ++result_.requests;
     }
@@ -179,7 +195,7 @@ class BudgetSession {
                         : storage_before && !node_->storage_in_flight() ? "storage_reply"
                         : uploading                                      ? "capture_upload"
                                                                          : "service_idle";
-    log_.add(filed, rig_->charged().last_call_ns, result_.refused - refused_before);
+    log_.add(filed, last_call(), result_.refused - refused_before);
     // The non-real-time side: a posted save or load runs now, outside the charged time.
     if (worker_.run_pending()) ++result_.storage_jobs;
   }
@@ -249,6 +265,9 @@ class BudgetSession {
   HilRig& rig() { return *rig_; }
 
  private:
+  BudgetCallLog::Sample last_call() const {
+    return {rig_->charged().last_call_cpu_ns, rig_->charged().last_call_ns};
+  }
   // Reads what the node sent; true while CAPTURE_DATA frames are going out.
   bool read_answers() {
     bool data = false;
@@ -306,6 +325,7 @@ RtBudgetResult run_rt_budget(const RtBudgetOptions& options) {
     failed.error = error;
     return failed;
   }
+  rig->charging.measure_cpu_time = true;
   rig->home();
   can::NodeSettings settings = can::default_node_settings();
   settings.firmware = rig->task.config();

@@ -5,9 +5,10 @@
 // commit / discard, save, load, restore_defaults, select_controller,
 // SHAPER, capture arm / status / upload / abort and an identification
 // EXCITE, with telemetry on. Each tick and each service() is timed in the
-// calling thread's CPU time (thread_cpu_clock.hpp) and filed under the
-// request it handled (see RtBudgetKind); the board counts missed and late
-// ticks as it would on a real FPGA (hil_rig.hpp, charged time).
+// calling thread's CPU time (thread_cpu_clock.hpp) and metered in board
+// time (the rig's work meter and cost model, hil_rig.hpp), and filed under
+// the request it handled; the board counts missed and late ticks as it
+// would on a real FPGA (charged time).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,8 +25,10 @@ struct RtBudgetOptions {
 struct RtBudgetRow {
   std::string kind;          // "overall", "tick", "service_idle", or a request kind
   std::uint64_t calls = 0;
-  double max_call_us = 0.0;
-  double p999_call_us = 0.0;  // 99.9th percentile (nearest rank)
+  double max_call_us = 0.0;    // host thread CPU time
+  double p999_call_us = 0.0;   // 99.9th percentile (nearest rank)
+  double max_board_us = 0.0;   // modelled board time (the rig's charge model)
+  double p999_board_us = 0.0;
   std::uint64_t refused = 0;  // answers (in the calls of this kind) that were not ok
 };
 
