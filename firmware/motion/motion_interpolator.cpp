@@ -9,6 +9,7 @@ const char* MotionInterpolator::configure(const MotionLimits& limits, const Plan
   const char* why = validate(limits);
   if (*why != '\0') return why;
   if (!std::isfinite(position_mm[0]) || !std::isfinite(position_mm[1])) return "start position must be finite";
+  limits_ = limits;
   queue_.reset(limits, position_mm);
   planner_.reset();
   follower_.reset(position_mm);
@@ -22,6 +23,33 @@ const char* MotionInterpolator::configure(const MotionLimits& limits, const Plan
   state_ = MotionState::idle;
   stats_ = {};
   return "";
+}
+
+void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_accel_cap_mm_s2) noexcept {
+  MotionLimits limits = limits_;
+  if (path_accel_cap_mm_s2 > 0.0)  // the path gets half of the axis acceleration (docs/motion.md)
+    for (AxisLimits& a : limits.axis) a.accel_mm_s2 = std::min(a.accel_mm_s2, 2.0 * path_accel_cap_mm_s2);
+  queue_.reset(limits, position_mm);
+  planner_.reset();
+  follower_.place(position_mm);
+  filter_.reset(queue_.derived().filter_taps, position_mm);
+  out_mm_.fill(position_mm);
+  profiled_ = ProfiledRun{};
+  override_ = 1.0;
+  hold_ = false;
+  stopping_ = false;
+  program_open_ = false;
+  last_phase_ = FollowerPhase::drained;
+  state_ = MotionState::idle;
+}
+
+void MotionInterpolator::stop() noexcept {
+  stopping_ = true;
+  profiled_.stop();
+}
+
+bool MotionInterpolator::front_profiled() const noexcept {
+  return !queue_.empty() && queue_.at(queue_.head_seq()).segment.profiled();
 }
 
 SegmentRefusal MotionInterpolator::push(const Segment& segment) noexcept {
@@ -46,7 +74,7 @@ bool MotionInterpolator::set_feed_override(double ratio) noexcept {
 }
 
 bool MotionInterpolator::at_rest() const noexcept {
-  return follower_.at_rest() && filter_.settled() && out_mm_[0] == out_mm_[3];
+  return !profiled_.active() && follower_.at_rest() && filter_.settled() && out_mm_[0] == out_mm_[3];
 }
 
 MotionStats MotionInterpolator::stats() const noexcept {
@@ -55,11 +83,65 @@ MotionStats MotionInterpolator::stats() const noexcept {
   return s;
 }
 
+// The profiled element at the front has the path to itself: it starts once
+// everything before it rests on its start point, and when it is done the
+// planner's path point, filter and output rest where it ended.
+MotionReference MotionInterpolator::profiled_tick() noexcept {
+  const ProfiledStep step = profiled_.step();
+  if (step.done) finish_profiled();
+  MotionReference ref;
+  ref.axis = step.axis;
+  ref.path_speed_mm_s = step.path_speed_mm_s;
+  ref.tag = queue_.empty() ? 0 : queue_.at(queue_.head_seq()).segment.tag;
+  if (stopping_ && !profiled_.active()) {
+    stopping_ = false;
+    program_open_ = false;
+  }
+  if (profiled_.active()) state_ = profiled_.stopping() ? MotionState::stopping : MotionState::running;
+  else if (!queue_.empty()) state_ = MotionState::running;
+  else state_ = program_open_ ? MotionState::starved : MotionState::idle;
+  ref.state = state_;
+  return ref;
+}
+
+void MotionInterpolator::finish_profiled() noexcept {
+  const PlanePoint rest = profiled_.rest_mm();
+  ++stats_.segments_done;
+  if (stopping_) {
+    queue_.clear(rest);  // a stop drops the rest of the queue
+    planner_.reset();
+  } else {
+    queue_.pop_front();
+  }
+  follower_.place(rest);
+  filter_.reset(queue_.derived().filter_taps, rest);
+  out_mm_.fill(rest);
+  last_phase_ = FollowerPhase::holding;  // running dry from here on is an underrun of an open program
+}
+
 MotionReference MotionInterpolator::tick() noexcept {
+  if (profiled_.active()) return profiled_tick();
+  if (front_profiled() && at_rest()) {
+    if (stopping_) {
+      queue_.clear(follower_.point_mm());  // stopped before it began
+      follower_.place(follower_.point_mm());
+      planner_.reset();
+    } else {
+      const QueuedSegment& q = queue_.at(queue_.head_seq());
+      profiled_.start(q.geometry, q.segment.feed_mm_s, q.segment.ramp_s, queue_.derived().dt_s);
+      return profiled_tick();
+    }
+  }
   stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, override_));
-  const FollowerStep step = follower_.step(queue_, override_, hold_ || stopping_);
+  // A profiled element waits at the front while the reference comes to rest on its start.
+  const bool wait = front_profiled();
+  const std::size_t queued_before = queue_.size();
+  const FollowerStep step = wait ? FollowerStep{FollowerPhase::holding, queue_.at(queue_.head_seq()).segment.tag}
+                                 : follower_.step(queue_, override_, hold_ || stopping_);
+  if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
   if (stopping_ && follower_.at_rest()) {
     queue_.clear(follower_.point_mm());
+    follower_.place(follower_.point_mm());  // its distance along the dropped front goes with it
     planner_.reset();
     stopping_ = false;
     program_open_ = false;

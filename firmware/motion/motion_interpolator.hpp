@@ -12,6 +12,7 @@
 #include "firmware/motion/jerk_filter.hpp"
 #include "firmware/motion/lookahead_planner.hpp"
 #include "firmware/motion/path_follower.hpp"
+#include "firmware/motion/profiled_run.hpp"
 #include "firmware/motion/segment_queue.hpp"
 
 namespace tnv::fw::motion {
@@ -46,6 +47,7 @@ struct MotionReference {
 
 struct MotionStats {
   std::uint64_t underruns = 0;            // queue ran dry while the program was open
+  std::uint64_t segments_done = 0;        // elements finished (left the queue), dwells included
   std::uint64_t segments_accepted = 0;
   std::uint64_t segments_refused = 0;
   std::size_t max_replan_examined = 0;    // most segments one tick's backward pass examined
@@ -57,10 +59,19 @@ class MotionInterpolator {
   // Empty string when the limits are valid (the interpolator is then reset
   // at position_mm, at rest); otherwise the reason, and nothing changes.
   const char* configure(const MotionLimits& limits, const PlanePoint& position_mm) noexcept;
+  // The configured limits, everything dropped: at rest at position_mm,
+  // override 1, no hold, program closed. Counts are kept. With
+  // path_accel_cap_mm_s2 > 0 (the jog's own acceleration limit) the path
+  // acceleration of what follows is at most that (the axis limits still hold).
+  void reset_at(const PlanePoint& position_mm, double path_accel_cap_mm_s2 = 0.0) noexcept;
 
   SegmentRefusal push(const Segment& segment) noexcept;
   std::size_t free_slots() const noexcept { return queue_.free_slots(); }
   std::size_t queued() const noexcept { return queue_.size(); }
+  // Path still queued ahead of the path point (the rest of the front element and all after it).
+  double queued_path_mm() const noexcept { return queue_.queued_length_mm() - follower_.distance_on_front_mm(); }
+  // Where the next pushed element starts.
+  const PlanePoint& queue_end_mm() const noexcept { return queue_.end_mm(); }
 
   // 0 ... 1.5; false (and no change) outside that range or not finite.
   bool set_feed_override(double ratio) noexcept;
@@ -68,8 +79,10 @@ class MotionInterpolator {
 
   void hold() noexcept { hold_ = true; }
   void resume() noexcept { hold_ = false; }
-  // Brake on the path; once at rest, drop whatever is still queued.
-  void stop() noexcept { stopping_ = true; }
+  // Brake on the path; once at rest, drop whatever is still queued. A
+  // profiled element stops by its time warp (profiled_run.hpp); hold and
+  // the feed override act on planned elements only.
+  void stop() noexcept;
   // The producer has sent its last segment: running dry now is the end, not an underrun.
   void end_program() noexcept { program_open_ = false; }
 
@@ -77,17 +90,28 @@ class MotionInterpolator {
   MotionReference tick() noexcept;
 
   MotionState state() const noexcept { return state_; }
+  // A profiled element is running (the circle or move of the producers).
+  bool profiled_running() const noexcept { return profiled_.active(); }
+  const ProfiledRun& profiled() const noexcept { return profiled_; }
+  // Where the reference rests when state() is idle: the last x_ref,k+1.
+  PlanePoint reference_mm() const noexcept { return out_mm_[2]; }
   double path_speed_mm_s() const noexcept { return follower_.speed_mm_s(); }
-  bool at_rest() const noexcept;  // planner and filter output both at rest
+  bool at_rest() const noexcept;  // planner and filter output both at rest, no profiled element running
   MotionStats stats() const noexcept;
   const DerivedLimits& derived() const noexcept { return queue_.derived(); }
-  const MotionLimits& limits() const noexcept { return queue_.limits(); }
+  const MotionLimits& limits() const noexcept { return limits_; }
 
  private:
+  MotionReference profiled_tick() noexcept;
+  bool front_profiled() const noexcept;
+  void finish_profiled() noexcept;
+
+  MotionLimits limits_{};
   SegmentQueue queue_{};
   LookaheadPlanner planner_{};
   PathFollower follower_{};
   JerkFilter filter_{};
+  ProfiledRun profiled_{};
   std::array<PlanePoint, 4> out_mm_{};  // filter output at k-1, k, k+1, k+2
   double override_ = 1.0;
   bool hold_ = false;

@@ -26,6 +26,8 @@ const char* validate(const MotionLimits& limits) noexcept {
     if (!positive_finite(a.speed_mm_s)) return "axis speed_mm_s must be > 0 and finite";
     if (!positive_finite(a.accel_mm_s2)) return "axis accel_mm_s2 must be > 0 and finite";
     if (!positive_finite(a.jerk_mm_s3)) return "axis jerk_mm_s3 must be > 0 and finite";
+    if (!std::isfinite(a.position_min_mm) || !std::isfinite(a.position_max_mm) || a.position_min_mm >= a.position_max_mm)
+      return "axis position_min_mm must be below position_max_mm, both finite";
   }
   if (!positive_finite(limits.tick_period_s) || limits.tick_period_s > 0.1) return "tick_period_s must be in (0, 0.1]";
   if (!positive_finite(limits.path_tolerance_mm)) return "path_tolerance_mm must be > 0 and finite";
@@ -33,9 +35,6 @@ const char* validate(const MotionLimits& limits) noexcept {
   if (!positive_finite(limits.min_segment_mm)) return "min_segment_mm must be > 0 and finite";
   if (!positive_finite(limits.min_arc_radius_mm)) return "min_arc_radius_mm must be > 0 and finite";
   if (!positive_finite(limits.max_dwell_s)) return "max_dwell_s must be > 0 and finite";
-  if (!std::isfinite(limits.position_min_mm) || !std::isfinite(limits.position_max_mm) ||
-      limits.position_min_mm >= limits.position_max_mm)
-    return "position_min_mm must be below position_max_mm, both finite";
   if (std::ceil(filter_taps_exact(limits)) > static_cast<double>(kMaxFilterTaps))
     return "jerk limits too low for the acceleration limits: the jerk filter would need more than 128 taps";
   return "";

@@ -12,6 +12,8 @@ struct AxisLimits {
   double speed_mm_s = 100.0;
   double accel_mm_s2 = 500.0;
   double jerk_mm_s3 = 50000.0;
+  double position_min_mm = -250.0;  // soft limits: no programmed point beyond them
+  double position_max_mm = 250.0;
 };
 
 struct MotionLimits {
@@ -22,8 +24,6 @@ struct MotionLimits {
   double min_segment_mm = 0.001;          // shorter lines and arcs are refused as zero length
   double min_arc_radius_mm = 0.01;
   double max_dwell_s = 3600.0;
-  double position_min_mm = -250.0;        // soft limits, both axes
-  double position_max_mm = 250.0;
 };
 
 // The jerk filter (a moving average over filter_taps ticks) needs capacity.

@@ -19,8 +19,32 @@ bool continues_into_next(const SegmentQueue& queue, std::uint32_t seq) noexcept 
   const std::uint32_t next = seq + 1;
   if (next == queue.tail_seq()) return false;
   const QueuedSegment& q = queue.at(seq);
-  return !q.segment.exact_stop && q.segment.kind != SegmentKind::dwell &&
-         queue.at(next).segment.kind != SegmentKind::dwell;
+  const Segment& after = queue.at(next).segment;
+  return !q.segment.exact_stop && q.segment.kind != SegmentKind::dwell && !q.segment.profiled() &&
+         after.kind != SegmentKind::dwell && !after.profiled();
+}
+
+// The braking curve to a corner asks for v dt + stop(v) <= remaining +
+// stop(exit), so a point at the exit speed could never cross a corner in
+// the tick it reaches it: every joint between two pieces of a straight
+// line cost a small dip in speed. Crossing at `free` (<= the exit speed) is
+// safe when the point, free dt - remaining into the next element, can
+// still meet that element's own exit: then `free`, else 0 (no change).
+double PathFollower::crossing_speed_mm_s(const SegmentQueue& queue, std::uint32_t head, double free_mm_s,
+                                         double remaining_mm, double feed_override) const noexcept {
+  if (!continues_into_next(queue, head)) return 0.0;
+  const DerivedLimits& d = queue.derived();
+  const QueuedSegment& next = queue.at(head + 1);
+  const double into_next_mm = free_mm_s * d.dt_s - remaining_mm;
+  if (into_next_mm >= next.geometry.length_mm) return 0.0;  // two corners in one tick: the old rule
+  double next_exit = 0.0;
+  if (continues_into_next(queue, head + 1)) {
+    const QueuedSegment& after = queue.at(head + 2);
+    next_exit = std::min(after.planned_entry_mm_s, feed_limit_mm_s(after, feed_override));
+  }
+  const double dv = d.path_accel_mm_s2 * d.dt_s;
+  return free_mm_s <= reachable_speed_mm_s(next.geometry.length_mm - into_next_mm, next_exit, dv, d.dt_s) ? free_mm_s
+                                                                                                         : 0.0;
 }
 
 void PathFollower::reset(const PlanePoint& position_mm) noexcept {
@@ -31,6 +55,12 @@ void PathFollower::reset(const PlanePoint& position_mm) noexcept {
   hold_ticks_ = 0;
   tag_ = 0;
   stats_ = {};
+}
+
+void PathFollower::place(const PlanePoint& position_mm) noexcept {
+  const FollowerStats kept = stats_;
+  reset(position_mm);
+  stats_ = kept;
 }
 
 PathFollower::Located PathFollower::locate(const SegmentQueue& queue, double ds_mm) const noexcept {
@@ -123,8 +153,12 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
     const QueuedSegment& next = queue.at(head + 1);
     exit = std::min(next.planned_entry_mm_s, feed_limit_mm_s(next, feed_override));
   }
-  const double brake = reachable_speed_mm_s(front.geometry.length_mm - distance_mm_, exit, dv, d.dt_s);
-  double v = std::min({speed_mm_s_ + dv, target, brake});
+  const double remaining_mm = front.geometry.length_mm - distance_mm_;
+  double brake = reachable_speed_mm_s(remaining_mm, exit, dv, d.dt_s);
+  const double free = std::min(speed_mm_s_ + dv, target);
+  if (brake < free && free <= exit && free * d.dt_s > remaining_mm)
+    brake = std::max(brake, crossing_speed_mm_s(queue, head, free, remaining_mm, feed_override));
+  double v = std::min({free, brake});
   const double slowest = std::max(0.0, speed_mm_s_ - dv);
   if (v < slowest) {
     // Braking harder than one tick's change allows would overrun a corner

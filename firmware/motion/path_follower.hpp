@@ -28,12 +28,15 @@ struct FollowerStep {
 class PathFollower {
  public:
   void reset(const PlanePoint& position_mm) noexcept;
+  // At rest at position_mm, counts kept (after a profiled element ran).
+  void place(const PlanePoint& position_mm) noexcept;
 
   // hold: brake to rest on the path (feed hold or controlled stop).
   FollowerStep step(SegmentQueue& queue, double feed_override, bool hold) noexcept;
 
   const PlanePoint& point_mm() const noexcept { return point_mm_; }
   double speed_mm_s() const noexcept { return speed_mm_s_; }
+  double distance_on_front_mm() const noexcept { return distance_mm_; }
   bool at_rest() const noexcept { return speed_mm_s_ == 0.0 && hold_ticks_ == 0; }
   const FollowerStats& stats() const noexcept { return stats_; }
 
@@ -46,6 +49,8 @@ class PathFollower {
   Located locate(const SegmentQueue& queue, double ds_mm) const noexcept;
   bool within_budget(const SegmentQueue& queue, const PlanePoint& next_mm) const noexcept;
   void finish_front(SegmentQueue& queue) noexcept;
+  double crossing_speed_mm_s(const SegmentQueue& queue, std::uint32_t head, double free_mm_s, double remaining_mm,
+                             double feed_override) const noexcept;
 
   PlanePoint point_mm_{};
   PlanePoint prev_point_mm_{};

@@ -21,7 +21,15 @@ struct Segment {
   double feed_mm_s = 0.0;  // path speed for this element (ignored by a dwell)
   double dwell_s = 0.0;    // dwell only
   bool exact_stop = false; // come to rest at the end before the next element
+  // > 0: a profiled element (lines and arcs): it starts and ends at rest and
+  // its path speed follows the S1 protocol's time law, raised-cosine ramps
+  // of ramp_s up to feed_mm_s and back (firmware/motion/profiled_run.hpp),
+  // instead of the look-ahead planner's S-curve. The circle and move
+  // producers use it; G-code and streamed programs do not.
+  double ramp_s = 0.0;
   std::uint32_t tag = 0;   // producer's reference (G-code line number), reported back
+
+  bool profiled() const noexcept { return ramp_s > 0.0; }
 };
 
 constexpr Segment line_to(PlanePoint end_mm, double feed_mm_s, std::uint32_t tag = 0) noexcept {
@@ -65,6 +73,7 @@ enum class SegmentRefusal : std::uint8_t {
   feed_above_limit = 8,    // feed above what the axis speed limits allow on this element
   outside_workspace = 9,   // end point outside the soft limits
   bad_dwell = 10,          // dwell time <= 0 or too long
+  bad_ramp = 11,           // ramp_s negative, on a dwell, or its two ramps longer than the element
 };
 
 constexpr const char* to_string(SegmentRefusal r) noexcept {
@@ -80,6 +89,7 @@ constexpr const char* to_string(SegmentRefusal r) noexcept {
     case SegmentRefusal::feed_above_limit: return "feed_above_limit";
     case SegmentRefusal::outside_workspace: return "outside_workspace";
     case SegmentRefusal::bad_dwell: return "bad_dwell";
+    case SegmentRefusal::bad_ramp: return "bad_ramp";
   }
   return "?";
 }

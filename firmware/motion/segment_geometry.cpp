@@ -11,14 +11,26 @@ namespace {
 bool finite(const PlanePoint& p) noexcept { return std::isfinite(p[0]) && std::isfinite(p[1]); }
 
 bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
-  return p[0] >= limits.position_min_mm && p[0] <= limits.position_max_mm && p[1] >= limits.position_min_mm &&
-         p[1] <= limits.position_max_mm;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (!(p[i] >= limits.axis[i].position_min_mm && p[i] <= limits.axis[i].position_max_mm)) return false;
+  return true;
 }
 
 // Tangent of an arc at angle theta; ccw: +90 degrees from the radius vector.
 PlanePoint arc_tangent(double theta, bool ccw) noexcept {
   const double sign = ccw ? 1.0 : -1.0;
   return {-sign * std::sin(theta), sign * std::cos(theta)};
+}
+
+// A profiled element's two raised-cosine ramps must fit its length, and its
+// time law must stay countable in ticks (the tick task counts in int64).
+SegmentRefusal check_ramp(const Segment& segment, double length_mm) noexcept {
+  if (!std::isfinite(segment.ramp_s)) return SegmentRefusal::not_finite;
+  if (segment.ramp_s < 0.0) return SegmentRefusal::bad_ramp;
+  if (segment.ramp_s == 0.0) return SegmentRefusal::none;
+  if (segment.feed_mm_s * segment.ramp_s > length_mm) return SegmentRefusal::bad_ramp;
+  if (length_mm / segment.feed_mm_s + segment.ramp_s > kMaxProfiledDurationS) return SegmentRefusal::bad_ramp;
+  return SegmentRefusal::none;
 }
 
 }  // namespace
@@ -55,7 +67,8 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   g.start_mm = start_mm;
   switch (segment.kind) {
     case SegmentKind::dwell: {
-      if (!std::isfinite(segment.dwell_s)) return SegmentRefusal::not_finite;
+      if (!std::isfinite(segment.dwell_s) || !std::isfinite(segment.ramp_s)) return SegmentRefusal::not_finite;
+      if (segment.ramp_s != 0.0) return SegmentRefusal::bad_ramp;
       if (segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s) return SegmentRefusal::bad_dwell;
       g.end_mm = start_mm;
       out = g;
@@ -110,6 +123,7 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   if (!inside(g.end_mm, limits)) return SegmentRefusal::outside_workspace;
   if (!(segment.feed_mm_s > 0.0)) return SegmentRefusal::feed_not_positive;
   if (segment.feed_mm_s > g.axis_speed_cap_mm_s(limits) * (1.0 + 1e-12)) return SegmentRefusal::feed_above_limit;
+  if (const SegmentRefusal r = check_ramp(segment, g.length_mm); r != SegmentRefusal::none) return r;
   out = g;
   return SegmentRefusal::none;
 }

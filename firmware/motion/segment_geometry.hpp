@@ -6,6 +6,10 @@
 
 namespace tnv::fw::motion {
 
+// Longest profiled element (length / feed + ramp): nothing on the bench
+// takes 10^6 s, and its ticks must fit an int64.
+inline constexpr double kMaxProfiledDurationS = 1e6;
+
 struct SegmentGeometry {
   SegmentKind kind = SegmentKind::line;
   PlanePoint start_mm{};

@@ -21,6 +21,7 @@ void SegmentQueue::reset(const MotionLimits& limits, const PlanePoint& start_mm)
   head_seq_ = 0;
   tail_seq_ = 0;
   end_mm_ = start_mm;
+  queued_length_mm_ = 0.0;
 }
 
 double SegmentQueue::speed_cap_mm_s(const SegmentGeometry& g) const noexcept {
@@ -74,25 +75,31 @@ SegmentRefusal SegmentQueue::push(const Segment& segment) noexcept {
   q.segment = segment;
   q.speed_cap_mm_s = segment.kind == SegmentKind::dwell ? 0.0 : speed_cap_mm_s(q.geometry);
   q.entry_limit_mm_s = 0.0;
-  if (!empty() && segment.kind != SegmentKind::dwell) {
+  // From rest after a dwell, an exact stop or a profiled element, and into a profiled one.
+  if (!empty() && segment.kind != SegmentKind::dwell && !segment.profiled()) {
     const QueuedSegment& before = at(tail_seq_ - 1);
-    if (before.segment.kind != SegmentKind::dwell && !before.segment.exact_stop)
+    if (before.segment.kind != SegmentKind::dwell && !before.segment.exact_stop && !before.segment.profiled())
       q.entry_limit_mm_s = corner_limit_mm_s(before, q);
   }
   q.planned_entry_mm_s = 0.0;  // safe until the look-ahead raises it
   at(tail_seq_) = q;
   ++tail_seq_;
   end_mm_ = q.geometry.end_mm;
+  queued_length_mm_ += q.geometry.length_mm;
   return SegmentRefusal::none;
 }
 
 void SegmentQueue::pop_front() noexcept {
-  if (!empty()) ++head_seq_;
+  if (empty()) return;
+  queued_length_mm_ -= at(head_seq_).geometry.length_mm;
+  ++head_seq_;
+  if (empty()) queued_length_mm_ = 0.0;  // no drift of the running sum past an empty queue
 }
 
 void SegmentQueue::clear(const PlanePoint& path_point_mm) noexcept {
   end_mm_ = path_point_mm;
   head_seq_ = tail_seq_;
+  queued_length_mm_ = 0.0;
 }
 
 }  // namespace tnv::fw::motion

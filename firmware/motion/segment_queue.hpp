@@ -42,6 +42,7 @@ class SegmentQueue {
   QueuedSegment& at(std::uint32_t seq) noexcept { return slots_[seq % kSegmentQueueCapacity]; }
   const QueuedSegment& at(std::uint32_t seq) const noexcept { return slots_[seq % kSegmentQueueCapacity]; }
   const PlanePoint& end_mm() const noexcept { return end_mm_; }  // where the next pushed segment starts
+  double queued_length_mm() const noexcept { return queued_length_mm_; }  // every queued element's length
   const DerivedLimits& derived() const noexcept { return derived_; }
   const MotionLimits& limits() const noexcept { return limits_; }
 
@@ -53,6 +54,7 @@ class SegmentQueue {
   std::uint32_t head_seq_ = 0;
   std::uint32_t tail_seq_ = 0;
   PlanePoint end_mm_{};
+  double queued_length_mm_ = 0.0;
   MotionLimits limits_{};
   DerivedLimits derived_{};
 };

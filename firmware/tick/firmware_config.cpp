@@ -19,6 +19,18 @@ FirmwareConfig default_firmware_config() noexcept {
   return config;
 }
 
+motion::MotionLimits path_limits(const FirmwareConfig& config) noexcept {
+  motion::MotionLimits m;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const PathLimits& p = config.axis[i].path;
+    m.axis[i] = {p.speed_mm_s, p.accel_mm_s2, p.jerk_mm_s3, config.supervisor.axis[i].position_min_mm,
+                 config.supervisor.axis[i].position_max_mm};
+  }
+  m.tick_period_s = 1e-3;
+  m.path_tolerance_mm = config.path_tolerance_mm;
+  return m;
+}
+
 namespace {
 
 ConfigError axis_error(std::size_t axis, const char* what_x, const char* what_y, const ParamCheck& check) noexcept {
@@ -54,6 +66,7 @@ ConfigError validate(const FirmwareConfig& config) noexcept {
       return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
   }
   if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
+  if (const char* reason = motion::validate(path_limits(config)); reason[0] != '\0') return {"path", "", reason};
   return {};
 }
 

@@ -11,11 +11,20 @@
 #include "firmware/control/sliding_mode_params.hpp"
 #include "firmware/control/speed_observer.hpp"
 #include "firmware/io/dac_code.hpp"
+#include "firmware/motion/motion_limits.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/trajectory/jog_stream.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw {
+
+// One axis' limits for the look-ahead planner (firmware/motion/); its soft
+// limits are the supervisor's position limits.
+struct PathLimits {
+  double speed_mm_s = 100.0;
+  double accel_mm_s2 = 500.0;
+  double jerk_mm_s3 = 50000.0;
+};
 
 struct AxisConfig {
   double count_mm = 10.0 / 24000.0;  // encoder: lead / counts per rev (x4)
@@ -27,6 +36,7 @@ struct AxisConfig {
   PidParams pid{};
   ControllerKind controller = ControllerKind::rdvsc;
   JogLimits jog{};                   // operator jog: speed, acceleration, dead-man timeout
+  PathLimits path{};                 // the look-ahead planner's speed, acceleration and jerk (docs/motion.md)
   FrictionFeedForward friction{};    // friction feed-forward (issue 7); off by default
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
 };
@@ -34,7 +44,12 @@ struct AxisConfig {
 struct FirmwareConfig {
   std::array<AxisConfig, hal::kAxisCount> axis{};
   SupervisorConfig supervisor{};
+  double path_tolerance_mm = 0.005;  // corner blends and arc lag of planned paths stay within this
 };
+
+// The planner's limits from a config: each axis' path limits, the
+// supervisor's position limits as soft limits, the 1 ms tick.
+motion::MotionLimits path_limits(const FirmwareConfig& config) noexcept;
 
 // The papers' defaults (S1 eq. (31), Tables 1/2) with the PID baseline
 // tuned by the stated rule (pid_tuning.hpp).

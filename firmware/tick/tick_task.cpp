@@ -12,14 +12,13 @@
 namespace tnv::fw {
 
 namespace {
-constexpr double kTickPeriodS = 1e-3;
 constexpr std::uint32_t kNominalPeriodClocks = 10'000;
 constexpr std::uint32_t kLateToleranceClocks = 500;  // 5% of a period
+}  // namespace
 
-std::int64_t ticks_for(double seconds) noexcept {
+std::int64_t TickTask::ticks_for(double seconds) noexcept {
   return static_cast<std::int64_t>(std::llround(seconds / kTickPeriodS));
 }
-}  // namespace
 
 TickTask::AxisLoop::AxisLoop(const AxisConfig& config) noexcept
     : pid(config.model, config.pid),
@@ -46,6 +45,7 @@ TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
     next_[i] = hold_[i];
     origin_mm_[i] = config_.axis[i].home_position_mm;
   }
+  (void)motion_.configure(path_limits(config_), held_point());  // validate(config) checked the limits
 }
 
 bool TickTask::servo_on() const noexcept {
@@ -129,97 +129,22 @@ bool TickTask::shapers_settled() const noexcept {
   return true;
 }
 
-PlaneSample TickTask::circle_at(double t_s) const noexcept {
-  PlaneSample p = circle_.at(t_s);
-  if (centred_)
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p.axis[i].position_mm += centre_mm_[i];
-  return p;
-}
-
-AxisSample TickTask::source_sample(std::size_t i, double t_s) const noexcept {
-  if (source_ == Source::circle) return circle_at(t_s).axis[i];
-  return i == move_axis_ ? move_.at(t_s) : hold_[i];
-}
-
-// Controlled stop of a circle or move (stop()): the trajectory evaluated at
-// a warped time tau whose rate falls from 1 to 0; the reference speed is
-// the path speed times that rate, so position and speed stay consistent.
-void TickTask::stopping_reference() noexcept {
-  record_.motion_tick = phase_tick_;
-  ++phase_tick_;
-  const auto rate = [this](std::int64_t k) noexcept {
-    return k >= stop_.n ? 0.0
-                        : 0.5 * (1.0 + std::cos(std::numbers::pi * static_cast<double>(k) / static_cast<double>(stop_.n)));
-  };
-  const double r_now = rate(stop_.k);
-  const double r_next = rate(stop_.k + 1);
-  const double tau_next_s = stop_.tau_s + 0.5 * (r_now + r_next) * kTickPeriodS;
-  std::array<AxisSample, hal::kAxisCount> next{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    AxisSample now = source_sample(i, stop_.tau_s);
-    now.speed_mm_s *= r_now;
-    next[i] = source_sample(i, tau_next_s);
-    next[i].speed_mm_s *= r_next;
-    shape_reference(i, now, next[i]);
-  }
-  stop_.tau_s = tau_next_s;
-  ++stop_.k;
-  if (stop_.k >= stop_.n && shapers_settled()) {
-    state_ = MotionState::holding;
-    stop_.active = false;
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {next[i].position_mm, 0.0};
-  }
-}
-
+// Every producer's reference comes from the motion core: x_ref,k and
+// x_ref,k+1 of both axes, through each axis' shaper.
 void TickTask::moving_reference() noexcept {
-  if (stop_.active && source_ != Source::jog) {
-    stopping_reference();
-    return;
-  }
-  const double t_s = static_cast<double>(phase_tick_) * kTickPeriodS;
   record_.motion_tick = phase_tick_;
   ++phase_tick_;
-  switch (source_) {
-    case Source::circle: {
-      const PlaneSample now = circle_at(t_s);
-      const PlaneSample next = circle_at(t_s + kTickPeriodS);
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, now.axis[i], next.axis[i]);
-      if (phase_tick_ > motion_ticks_ && shapers_settled()) {
-        state_ = MotionState::holding;
-        for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {next.axis[i].position_mm, 0.0};
-      }
-      return;
-    }
-    case Source::move: {
-      // x_{k+1} at (k + 1) T, so it is bit for bit next tick's x_k.
-      const double t_next_s = static_cast<double>(phase_tick_) * kTickPeriodS;
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-        if (i == move_axis_) {
-          shape_reference(i, move_.at(t_s), move_.at(t_next_s));
-        } else {
-          shape_reference(i, hold_[i], hold_[i]);
-        }
-      }
-      if (phase_tick_ > motion_ticks_ && shapers_settled()) {
-        state_ = MotionState::holding;
-        hold_[move_axis_] = {move_.end_mm(), 0.0};
-      }
-      return;
-    }
-    case Source::jog: {
-      bool at_rest = true;
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-        const AxisSample now = jog_[i].current();
-        shape_reference(i, now, jog_[i].advance(kTickPeriodS));
-        at_rest = at_rest && jog_[i].at_rest();
-      }
-      if (at_rest && shapers_settled()) {
-        state_ = MotionState::holding;
-        stop_.active = false;
-        for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {jog_[i].current().position_mm, 0.0};
-      }
-      return;
-    }
+  if (source_ == Source::jog) jog_.produce(motion_);
+  const motion::MotionReference r = motion_.tick();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const AxisReference& a = r.axis[i];
+    shape_reference(i, {a.position_mm, a.speed_mm_s}, {a.next_position_mm, a.next_speed_mm_s});
+  }
+  const bool done = motion_.state() == motion::MotionState::idle && (source_ != Source::jog || jog_.idle());
+  if (done && shapers_settled()) {
+    state_ = MotionState::holding;
+    stop_requested_ = false;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {r.axis[i].next_position_mm, 0.0};
   }
 }
 
@@ -370,328 +295,6 @@ void TickTask::tick() noexcept {
     latch_fault({reason, -1, counters_.ticks, 0.0, 0.0});
   }
   record_.state = state_;
-}
-
-CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept { return start_circle(spec, 0.0, 0.0); }
-
-CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm, double centre_y_mm) noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
-  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
-  if (!std::isfinite(centre_x_mm) || !std::isfinite(centre_y_mm)) return CommandStatus::invalid;
-  const std::array<double, hal::kAxisCount> centre{centre_x_mm, centre_y_mm};
-  // About the origin the reference is circle_.at() untouched, bit for bit.
-  const bool centred = centre_x_mm != 0.0 || centre_y_mm != 0.0;
-  const CircleTrajectory circle(spec);
-  PlaneSample start = circle.start();
-  if (centred)
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) start.axis[i].position_mm += centre[i];
-  // The table must already stand at the start point (within the following-error floor).
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const double error_mm = start.axis[i].position_mm - record_.axis[i].position_mm;
-    if (!(std::fabs(error_mm) < config_.supervisor.axis[i].following.floor_mm)) return CommandStatus::invalid;
-  }
-  circle_ = circle;
-  centred_ = centred;
-  centre_mm_ = centred ? centre : std::array<double, hal::kAxisCount>{};
-  stop_ = {};
-  stop_ramp_s_ = spec.ramp_s;
-  source_ = Source::circle;
-  dwell_ticks_ = ticks_for(spec.dwell_s);
-  motion_ticks_ = static_cast<std::int64_t>(std::ceil(circle.duration_s() / kTickPeriodS - 1e-9));
-  phase_tick_ = 0;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {start.axis[i].position_mm, 0.0};
-  reset_controllers();
-  state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
-  return CommandStatus::ok;
-}
-
-void TickTask::reset_controllers() noexcept {
-  for (AxisLoop& loop : axis_) {
-    loop.pid.reset();
-    loop.dvsc.reset();
-    loop.rdvsc.reset();
-  }
-}
-
-CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
-  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
-  const std::size_t a = hal::index(spec.axis);
-  const bool was_on = state_ == MotionState::holding;
-  // From a servo-off start the table's position is the start (bumpless).
-  std::array<AxisSample, hal::kAxisCount> start = hold_;
-  if (!was_on)
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) start[i] = {record_.axis[i].position_mm, 0.0};
-  const PointToPointMove move(spec, start[a].position_mm);
-  const AxisLimits& lim = config_.supervisor.axis[a];
-  if (!(move.end_mm() >= lim.position_min_mm && move.end_mm() <= lim.position_max_mm)) return CommandStatus::invalid;
-  move_ = move;
-  move_axis_ = a;
-  stop_ = {};
-  stop_ramp_s_ = spec.ramp_s;
-  source_ = Source::move;
-  dwell_ticks_ = ticks_for(spec.dwell_s);
-  motion_ticks_ = static_cast<std::int64_t>(std::ceil(move.duration_s() / kTickPeriodS - 1e-9));
-  phase_tick_ = 0;
-  hold_ = start;
-  if (!was_on) reset_controllers();
-  state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::hold_position() noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (state_ != MotionState::disabled) return state_ == MotionState::holding ? CommandStatus::ok : CommandStatus::busy;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
-  reset_controllers();
-  state_ = MotionState::holding;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::jog(hal::Axis axis, double speed_mm_s) noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  const bool jogging = state_ == MotionState::moving && source_ == Source::jog;
-  if (state_ != MotionState::holding && !jogging) return CommandStatus::busy;
-  if (jogging && stop_.active) return CommandStatus::busy;  // a controlled stop wins until the jog rests
-  const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount) return CommandStatus::invalid;
-  if (!jogging && speed_mm_s == 0.0) return CommandStatus::ok;  // standing still already
-  if (!jogging) {
-    // Validate before starting anything: nothing is half-applied.
-    JogStream probe(config_.axis[a].jog);
-    if (!probe.command(speed_mm_s)) return CommandStatus::invalid;
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-      jog_[i] = JogStream(config_.axis[i].jog);
-      jog_[i].start(hold_[i].position_mm);
-    }
-    source_ = Source::jog;
-    stop_ = {};
-    phase_tick_ = 0;
-    motion_ticks_ = 0;
-    state_ = MotionState::moving;
-  }
-  return jog_[a].command(speed_mm_s) ? CommandStatus::ok : CommandStatus::invalid;
-}
-
-CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept {
-  const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
-  AxisShaping& s = shaping_[a];
-  const ShaperDesign design = design_shaper(spec, kTickPeriodS);
-  if (!s.shaper.request_taps(design.taps)) return CommandStatus::invalid;
-  s.design = design;
-  s.configured = true;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::enable_shaper(hal::Axis axis, bool on) noexcept {
-  const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount) return CommandStatus::invalid;
-  if (on && !shaping_[a].configured) return CommandStatus::invalid;
-  shaping_[a].shaper.request_enabled(on);
-  return CommandStatus::ok;
-}
-
-double TickTask::shaper_delay_s(hal::Axis axis) const noexcept {
-  return shaping_[hal::index(axis)].shaper.delay_samples() * kTickPeriodS;
-}
-
-std::uint32_t TickTask::jog_deadman_stops() const noexcept {
-  std::uint32_t n = 0;
-  for (const JogStream& j : jog_) n += j.deadman_stops();
-  return n;
-}
-
-CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) noexcept {
-  if (state_ == MotionState::dwell || state_ == MotionState::moving || state_ == MotionState::holding)
-    return CommandStatus::busy;
-  if (kind != ControllerKind::pid && kind != ControllerKind::dvsc && kind != ControllerKind::rdvsc)
-    return CommandStatus::invalid;
-  axis_[hal::index(axis)].kind = kind;
-  config_.axis[hal::index(axis)].controller = kind;  // config() tells the live selection
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::disable() noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::ok;  // already safe
-  state_ = MotionState::disabled;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::clear_fault() noexcept {
-  if (state_ != MotionState::faulted) return CommandStatus::ok;
-  // The board's trips are sticky: reset them here, between ticks. This
-  // clear still answers cause_present; once a snapshot shows them gone,
-  // the next clear succeeds (if the cause is real, they latch again).
-  bool board_latched = last_inputs_.watchdog_tripped;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    board_latched = board_latched || last_inputs_.encoder_error[i] || last_inputs_.dac_error[i];
-  if (board_latched) (void)board_.clear_latched_faults();
-  if (fault_cause_present(last_inputs_)) return CommandStatus::cause_present;
-  // The board did not answer the last tick's read: nothing says the cause is gone.
-  if (!board_answering_) return CommandStatus::cause_present;
-  fault_ = {};
-  state_ = MotionState::disabled;
-  return CommandStatus::ok;
-}
-
-
-// --- commands for the CAN node
-
-namespace {
-
-bool same(const AxisModel& a, const AxisModel& b) noexcept {
-  return a.A == b.A && a.B == b.B && a.period_s == b.period_s;
-}
-bool same(const SlidingModeParams& a, const SlidingModeParams& b) noexcept {
-  return a.G_position_1_s == b.G_position_1_s && a.G_speed == b.G_speed && a.eta_mm_s == b.eta_mm_s &&
-         a.phi_mm_s == b.phi_mm_s && a.q == b.q && a.g == b.g && a.gamma == b.gamma && a.u_max_mm_s == b.u_max_mm_s;
-}
-bool same(const PidParams& a, const PidParams& b) noexcept {
-  return a.kp == b.kp && a.ki == b.ki && a.kd == b.kd && a.derivative_filter_tf_s == b.derivative_filter_tf_s &&
-         a.u_max_mm_s == b.u_max_mm_s && a.feedforward == b.feedforward;
-}
-bool same(const JogLimits& a, const JogLimits& b) noexcept {
-  return a.speed_max_mm_s == b.speed_max_mm_s && a.accel_mm_s2 == b.accel_mm_s2 && a.deadman_s == b.deadman_s;
-}
-bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
-  return a.position_min_mm == b.position_min_mm && a.position_max_mm == b.position_max_mm &&
-         a.speed_max_mm_s == b.speed_max_mm_s && a.following.floor_mm == b.following.floor_mm &&
-         a.following.lag_s == b.following.lag_s && a.stall.command_mm_s == b.stall.command_mm_s &&
-         a.stall.ticks == b.stall.ticks &&
-         a.plausibility.jump_disturbance_scale == b.plausibility.jump_disturbance_scale &&
-         a.plausibility.runaway_margin_mm_s == b.plausibility.runaway_margin_mm_s &&
-         a.plausibility.runaway_min_command_mm_s == b.plausibility.runaway_min_command_mm_s;
-}
-
-}  // namespace
-
-bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfig& to) noexcept {
-  if (from.supervisor.max_consecutive_missed_ticks != to.supervisor.max_consecutive_missed_ticks) return false;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const AxisConfig& a = from.axis[i];
-    const AxisConfig& b = to.axis[i];
-    if (!same(from.supervisor.axis[i], to.supervisor.axis[i])) return false;
-    if (a.count_mm != b.count_mm || a.dac.bits != b.dac.bits || a.dac.full_scale_mm_s != b.dac.full_scale_mm_s ||
-        a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog) ||
-        !same(a.friction, b.friction) || !same(a.observer, b.observer))
-      return false;
-    // PID: kp, ki, kd and the clamp are live; the filter and the feed-forward switch are not.
-    if (a.pid.derivative_filter_tf_s != b.pid.derivative_filter_tf_s || a.pid.feedforward != b.pid.feedforward)
-      return false;
-    // sliding.*: all live.
-  }
-  return true;
-}
-
-CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
-  if (!validate(config).ok()) return CommandStatus::invalid;
-  if (moving() && !live_tunable_only(config_, config)) return CommandStatus::busy;
-  // Everything checked: from here on nothing can refuse, so it applies whole.
-  FirmwareConfig next = config;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    AxisConfig& a = next.axis[i];
-    const AxisConfig& old = config_.axis[i];
-    AxisLoop& loop = axis_[i];
-    a.home_position_mm = old.home_position_mm;  // the frame moves with zero() only
-    if (!same(a.model, old.model)) {
-      loop.pid = PidController(a.model, a.pid);
-      loop.dvsc = RdvscController(ControllerKind::dvsc, a.model, a.sliding);
-      loop.rdvsc = RdvscController(ControllerKind::rdvsc, a.model, a.sliding);
-    } else {
-      // Bumpless: each controller keeps its state and re-forms it for the new gains.
-      if (!same(a.pid, old.pid)) loop.pid.set_params(a.pid);
-      if (!same(a.sliding, old.sliding)) {
-        loop.dvsc.set_params(a.sliding);
-        loop.rdvsc.set_params(a.sliding);
-      }
-    }
-    if (!same(a.model, old.model) || !same(a.observer, old.observer)) {
-      loop.observer.configure(a.model, a.observer);
-      loop.observer.reset(record_.axis[i].position_mm, loop.speed_mm_s);
-    }
-    // The residual's history was formed with the old model and scale.
-    if (!same(a.model, old.model) || a.count_mm != old.count_mm || a.dac.full_scale_mm_s != old.dac.full_scale_mm_s)
-      plausibility_monitor_[i].reset();
-    if (a.count_mm != old.count_mm) {
-      // Re-base: the position reading stays where it is, later counts use the new scale.
-      const double counts = static_cast<double>(loop.encoder.counts());
-      origin_mm_[i] = origin_mm_[i] + counts * old.count_mm - counts * a.count_mm;
-    }
-    if (a.controller != loop.kind) {
-      loop.kind = a.controller;
-      if (servo_on()) loop.active().reset();
-    }
-  }
-  config_ = next;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::stop() noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (state_ == MotionState::dwell) {
-    state_ = MotionState::holding;  // the reference never left hold_
-    return CommandStatus::ok;
-  }
-  if (state_ != MotionState::moving || stop_.active) return CommandStatus::ok;
-  if (source_ == Source::jog) {
-    for (JogStream& j : jog_) j.command(0.0);
-  } else {
-    stop_.tau_s = static_cast<double>(phase_tick_) * kTickPeriodS;
-    stop_.k = 0;
-    stop_.n = std::max<std::int64_t>(1, ticks_for(stop_ramp_s_));
-  }
-  stop_.active = true;
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (moving()) return CommandStatus::busy;
-  const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount || !std::isfinite(position_mm)) return CommandStatus::invalid;
-  const AxisLimits& lim = config_.supervisor.axis[a];
-  if (!(position_mm >= lim.position_min_mm && position_mm <= lim.position_max_mm)) return CommandStatus::invalid;
-  // Measurement and reference shift together: the following error is unchanged.
-  const double delta_mm = position_mm - record_.axis[a].position_mm;
-  origin_mm_[a] += delta_mm;
-  hold_[a].position_mm += delta_mm;
-  next_[a].position_mm += delta_mm;
-  AxisTickRecord& r = record_.axis[a];
-  r.position_mm += delta_mm;
-  r.reference_mm += delta_mm;
-  r.unshaped_reference_mm += delta_mm;
-  axis_[a].observer.shift(delta_mm);
-  shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
-  return CommandStatus::ok;
-}
-
-CommandStatus TickTask::start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept {
-  const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
-  if (state_ == MotionState::faulted) return CommandStatus::faulted;
-  if (state_ != MotionState::holding || exciting()) return CommandStatus::busy;
-  excite_start_counts_[a] = axis_[a].encoder.counts();
-  excite_[a].start(spec);
-  return CommandStatus::ok;
-}
-
-bool TickTask::exciting() const noexcept {
-  for (const ExcitationGenerator& e : excite_)
-    if (e.active()) return true;
-  return false;
-}
-
-CommandStatus TickTask::estop() noexcept {
-  latch_fault({FaultReason::remote_estop, -1, counters_.ticks, 0.0, 0.0});
-  return CommandStatus::ok;
-}
-
-double TickTask::standing_mm(hal::Axis axis) const noexcept {
-  const std::size_t a = hal::index(axis);
-  return state_ == MotionState::holding ? hold_[a].position_mm : record_.axis[a].position_mm;
 }
 
 }  // namespace tnv::fw

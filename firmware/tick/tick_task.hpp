@@ -1,10 +1,16 @@
 #pragma once
 // The 1 ms control tick (design notes "The tick"): read the latched
-// snapshot -> M-method speed over the measured period -> reference source
-// (circle, point-to-point move or operator jog) -> per-axis input shaper ->
-// axis controllers -> DAC codes -> supervisor -> write outputs -> kick the
-// watchdog. Fixed cost: no allocation, no exceptions, no locks, no system
-// calls. Commands are accepted between ticks only.
+// snapshot -> M-method speed over the measured period -> the motion core's
+// reference (firmware/motion/: segment queue, look-ahead planner,
+// interpolator) -> per-axis input shaper -> axis controllers -> DAC codes
+// -> supervisor -> write outputs -> kick the watchdog. Fixed cost: no
+// allocation, no exceptions, no locks, no system calls. Commands are
+// accepted between ticks only.
+//
+// The task sequences (disabled, dwell, moving, holding, faulted); it does
+// not plan. The circle, the point-to-point move, the operator's jog and a
+// streamed program are all producers of segments for one MotionInterpolator
+// (motion/profiled_producers.hpp, motion/jog_producer.hpp).
 //
 // Input shaping: the reference source runs one tick ahead; its sample
 // x_{k+1} goes through the axis' StreamShaper, so the controllers get the
@@ -25,10 +31,11 @@
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "firmware/motion/jog_producer.hpp"
+#include "firmware/motion/motion_interpolator.hpp"
 #include "firmware/tick/tick_record.hpp"
 #include "firmware/timing/encoder_position.hpp"
 #include "firmware/trajectory/circle_trajectory.hpp"
-#include "firmware/trajectory/jog_stream.hpp"
 #include "firmware/trajectory/point_to_point_move.hpp"
 #include "hal/io_board.hpp"
 
@@ -74,6 +81,22 @@ class TickTask {
   // at least every jog deadman_s. Accepted while holding (starts the jog)
   // or jogging; the jog ends (holding) when every axis is back at rest.
   CommandStatus jog(hal::Axis axis, double speed_mm_s) noexcept;
+  // A program (G-code, a CAN stream): segments pushed in order, run by the
+  // look-ahead planner. From holding the first push starts the program
+  // (moving); further pushes are accepted while it runs, also when the
+  // queue has run dry (an underrun is a controlled stop on the path, not a
+  // fault). invalid (with `why`) when the queue refuses the segment, which
+  // then changes nothing; busy while another motion runs or the servo is off.
+  CommandStatus push_segment(const motion::Segment& segment, motion::SegmentRefusal& why) noexcept;
+  // The producer has sent its last segment: running dry is then the end (holding).
+  CommandStatus end_program() noexcept;
+  // Feed hold (brake on the path, keep the queue) and resume; 0 .. 1.5 feed
+  // override (invalid outside). Only while a program runs (busy otherwise).
+  CommandStatus feed_hold(bool hold) noexcept;
+  CommandStatus set_feed_override(double ratio) noexcept;
+  // The motion core: queue, planner state, counts (free slots, underruns).
+  const motion::MotionInterpolator& motion() const noexcept { return motion_; }
+  bool program_running() const noexcept { return moving() && source_ == Source::program; }
   // Input shaper per axis: the design (applied when the axis' reference is
   // quiet, see StreamShaper) and, separately, on/off. Enabling an axis that
   // was never configured is invalid. Accepted in every state: a shaper
@@ -115,12 +138,13 @@ class TickTask {
   // the table must stand at centre + (radius, 0). start_circle(spec) is
   // this with the origin, bit for bit.
   CommandStatus start_circle(const CircleSpec& spec, double centre_x_mm, double centre_y_mm) noexcept;
-  // Controlled stop. Circle / move: the trajectory clock slows to a halt
-  // (its rate falls from 1 to 0 along a raised cosine over the motion's own
+  // Controlled stop. Circle / move: the profiled element's time warp (its
+  // rate falls from 1 to 0 along a raised cosine over the motion's own
   // ramp time), so the reference decelerates smoothly along the path, then
-  // holds where it stopped. Jog: both targets 0 (the jog's acceleration
-  // limit). Dwell: holding at once. At rest: ok, nothing to do. faulted
-  // when a fault is latched.
+  // holds where it stopped. Program: the planner brakes on the path and
+  // drops the queue. Jog: every target 0, a controlled stop on the path.
+  // Dwell: holding at once. At rest: ok, nothing to do. faulted when a
+  // fault is latched.
   CommandStatus stop() noexcept;
   // Assigns position_mm to where the axis stands (disabled or holding; busy
   // while moving, faulted when faulted, invalid when not finite or outside
@@ -150,7 +174,7 @@ class TickTask {
   // controlled stop included).
   bool moving() const noexcept { return state_ == MotionState::dwell || state_ == MotionState::moving; }
   bool jogging() const noexcept { return state_ == MotionState::moving && source_ == Source::jog; }
-  bool stopping() const noexcept { return moving() && stop_.active; }
+  bool stopping() const noexcept { return moving() && (stop_requested_ || motion_.state() == motion::MotionState::stopping); }
   // The last motion started (running or finished) was a circle, and its
   // centre (the origin for start_circle(spec)).
   bool circle_motion() const noexcept { return source_ == Source::circle; }
@@ -183,16 +207,9 @@ class TickTask {
     bool configured = false;
   };
 
-  enum class Source : std::uint8_t { circle, move, jog };
-
-  // Controlled stop of a circle or move: the trajectory time tau advances
-  // by rate x T per tick, rate_k = (1 + cos(pi k / n)) / 2.
-  struct StopWarp {
-    bool active = false;
-    std::int64_t k = 0;
-    std::int64_t n = 1;
-    double tau_s = 0.0;
-  };
+  enum class Source : std::uint8_t { circle, move, jog, program };
+  static constexpr double kTickPeriodS = 1e-3;
+  static std::int64_t ticks_for(double seconds) noexcept;
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
   void update_reference() noexcept;
@@ -203,17 +220,16 @@ class TickTask {
   void reset_controllers() noexcept;
   bool servo_on() const noexcept;
   void latch_fault(const FaultRecord& f) noexcept;
-  void stopping_reference() noexcept;
-  AxisSample source_sample(std::size_t i, double t_s) const noexcept;
-  PlaneSample circle_at(double t_s) const noexcept;
+  // Starts a profiled producer's segment from `start` (the circle, the move).
+  CommandStatus start_profiled(const motion::Segment& segment, const std::array<AxisSample, hal::kAxisCount>& start,
+                               double dwell_s, Source source) noexcept;
+  motion::PlanePoint held_point() const noexcept { return {hold_[0].position_mm, hold_[1].position_mm}; }
 
   hal::IoBoard& board_;
   FirmwareConfig config_;
   std::array<AxisLoop, hal::kAxisCount> axis_;
-  CircleTrajectory circle_{};
-  PointToPointMove move_{};
-  std::size_t move_axis_ = 0;
-  std::array<JogStream, hal::kAxisCount> jog_{};
+  motion::MotionInterpolator motion_{};
+  motion::JogProducer jog_{};
   Source source_ = Source::circle;
   std::int64_t dwell_ticks_ = 0;
   std::int64_t motion_ticks_ = 0;
@@ -228,8 +244,7 @@ class TickTask {
   bool first_tick_ = true;
   std::uint32_t last_sequence_ = 0;
   std::uint32_t last_clock_ = 0;
-  StopWarp stop_{};
-  double stop_ramp_s_ = 0.1;                         // the running circle's / move's own ramp
+  bool stop_requested_ = false;                      // stop() of a jog, until it rests
   bool centred_ = false;                             // circle about centre_mm_, not the origin
   std::array<double, hal::kAxisCount> centre_mm_{};  // circle centre
   std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
@@ -240,7 +255,7 @@ class TickTask {
   std::array<MotionPlausibility, hal::kAxisCount> plausibility_monitor_{};  // encoder_implausible, runaway
   std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
   bool one_nominal_period_ = false;
-  bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)  // this snapshot is one tick on from the last, on time
+  bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)
 };
 
 }  // namespace tnv::fw

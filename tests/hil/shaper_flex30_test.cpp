@@ -93,9 +93,14 @@ TEST(ShaperFlex30, JogStreamEndsWhereItWouldAndRingsLess) {
   JogRunRequest request;
   request.scenario = *emu::builtin_scenario("flex-30");
   request.commands = *commands;
-  const JogRunResult unshaped = run_jog(request, fw::default_firmware_config());
+  // A stiff jog: 1000 mm/s^2 along the path and a jerk limit high enough
+  // that the planner's jerk filter is a single tap, so the jog's speed
+  // ramps are as sharp as a pendant's without a planner and ring the mode.
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  for (fw::AxisConfig& a : config.axis) a.path = {100.0, 2000.0, 4e6};
+  const JogRunResult unshaped = run_jog(request, config);
   request.shaper[0] = fw::ShaperSpec{fw::ShaperType::zvd, {30.0, 0.02}, {0.0, 0.0}};
-  const JogRunResult shaped = run_jog(request, fw::default_firmware_config());
+  const JogRunResult shaped = run_jog(request, config);
   ASSERT_TRUE(unshaped.completed) << unshaped.error;
   ASSERT_TRUE(shaped.completed) << shaped.error;
   EXPECT_EQ(shaped.deadman_stops, 1u) << "the last row is stopped by the dead man";

@@ -151,7 +151,8 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
   result.deadman_stops = task.jog_deadman_stops();
   if (task.state() == fw::MotionState::faulted) {
     result.error =
-        std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick);
+        std::string("fault: ") + fw::to_string(task.fault().reason) + " at tick " + std::to_string(task.fault().tick) +
+        " (axis " + std::to_string(task.fault().axis) + ", " + std::to_string(task.fault().value) + ")";
     return result;
   }
   if (stop_tick < 0) {

@@ -1,0 +1,221 @@
+// TickTask's motion commands: every motion is a producer of segments for
+// the motion core (tick_task.hpp); the task checks the state and starts it.
+#include <algorithm>
+#include <cmath>
+
+#include "firmware/motion/profiled_producers.hpp"
+#include "firmware/tick/tick_task.hpp"
+
+namespace tnv::fw {
+
+CommandStatus TickTask::start_profiled(const motion::Segment& segment,
+                                       const std::array<AxisSample, hal::kAxisCount>& start, double dwell_s,
+                                       Source source) noexcept {
+  motion_.reset_at({start[0].position_mm, start[1].position_mm});
+  if (motion_.push(segment) != motion::SegmentRefusal::none) return CommandStatus::invalid;
+  motion_.end_program();
+  source_ = source;
+  stop_requested_ = false;
+  dwell_ticks_ = ticks_for(dwell_s);
+  phase_tick_ = 0;
+  hold_ = start;
+  state_ = dwell_ticks_ > 0 ? MotionState::dwell : MotionState::moving;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept { return start_circle(spec, 0.0, 0.0); }
+
+CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm, double centre_y_mm) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
+  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
+  if (!std::isfinite(centre_x_mm) || !std::isfinite(centre_y_mm)) return CommandStatus::invalid;
+  const motion::PlanePoint centre{centre_x_mm, centre_y_mm};
+  const motion::PlanePoint start_mm = motion::circle_start_mm(spec, centre);
+  // The table must already stand at the start point (within the following-error floor).
+  std::array<AxisSample, hal::kAxisCount> start{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double error_mm = start_mm[i] - record_.axis[i].position_mm;
+    if (!(std::fabs(error_mm) < config_.supervisor.axis[i].following.floor_mm)) return CommandStatus::invalid;
+    start[i] = {start_mm[i], 0.0};
+  }
+  if (const CommandStatus st = start_profiled(motion::circle_segment(spec, centre), start, spec.dwell_s, Source::circle);
+      st != CommandStatus::ok)
+    return st;
+  centred_ = centre_x_mm != 0.0 || centre_y_mm != 0.0;
+  centre_mm_ = centre;
+  motion_ticks_ = static_cast<std::int64_t>(std::ceil(CircleTrajectory(spec).duration_s() / kTickPeriodS - 1e-9));
+  reset_controllers();
+  return CommandStatus::ok;
+}
+
+void TickTask::reset_controllers() noexcept {
+  for (AxisLoop& loop : axis_) {
+    loop.pid.reset();
+    loop.dvsc.reset();
+    loop.rdvsc.reset();
+  }
+}
+
+CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
+  if (validate(spec)[0] != '\0') return CommandStatus::invalid;
+  const std::size_t a = hal::index(spec.axis);
+  const bool was_on = state_ == MotionState::holding;
+  // From a servo-off start the table's position is the start (bumpless).
+  std::array<AxisSample, hal::kAxisCount> start = hold_;
+  if (!was_on)
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) start[i] = {record_.axis[i].position_mm, 0.0};
+  const double end_mm = start[a].position_mm + spec.distance_mm;
+  const AxisLimits& lim = config_.supervisor.axis[a];
+  if (!(end_mm >= lim.position_min_mm && end_mm <= lim.position_max_mm)) return CommandStatus::invalid;
+  const motion::Segment segment = motion::move_segment(spec, {start[0].position_mm, start[1].position_mm});
+  if (const CommandStatus st = start_profiled(segment, start, spec.dwell_s, Source::move); st != CommandStatus::ok)
+    return st;
+  motion_ticks_ = static_cast<std::int64_t>(
+      std::ceil(PointToPointMove(spec, start[a].position_mm).duration_s() / kTickPeriodS - 1e-9));
+  if (!was_on) reset_controllers();
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::hold_position() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ != MotionState::disabled) return state_ == MotionState::holding ? CommandStatus::ok : CommandStatus::busy;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
+  reset_controllers();
+  state_ = MotionState::holding;
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::jog(hal::Axis axis, double speed_mm_s) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  const bool jogging = state_ == MotionState::moving && source_ == Source::jog;
+  if (state_ != MotionState::holding && !jogging) return CommandStatus::busy;
+  if (jogging && stop_requested_) return CommandStatus::busy;  // a controlled stop wins until the jog rests
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount) return CommandStatus::invalid;
+  if (!jogging && speed_mm_s == 0.0) return CommandStatus::ok;  // standing still already
+  if (!jogging) {
+    // Validate before starting anything: nothing is half-applied.
+    const JogLimits& lim = config_.axis[a].jog;
+    if (!std::isfinite(speed_mm_s) || std::fabs(speed_mm_s) > lim.speed_max_mm_s) return CommandStatus::invalid;
+    const double accel_cap = std::min(config_.axis[0].jog.accel_mm_s2, config_.axis[1].jog.accel_mm_s2);
+    motion_.reset_at(held_point(), accel_cap);
+    jog_.start({config_.axis[0].jog, config_.axis[1].jog});
+    source_ = Source::jog;
+    stop_requested_ = false;
+    phase_tick_ = 0;
+    motion_ticks_ = 0;
+    state_ = MotionState::moving;
+  }
+  return jog_.command(a, speed_mm_s) ? CommandStatus::ok : CommandStatus::invalid;
+}
+
+CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::SegmentRefusal& why) noexcept {
+  why = motion::SegmentRefusal::none;
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  const bool running = program_running();
+  if (!running && state_ != MotionState::holding) return CommandStatus::busy;
+  if (running && stop_requested_) return CommandStatus::busy;
+  if (segment.profiled()) {  // the circle and move producers' elements; a program is planned
+    why = motion::SegmentRefusal::bad_ramp;
+    return CommandStatus::invalid;
+  }
+  if (!running) motion_.reset_at(held_point());  // a refused first segment leaves the task holding
+  why = motion_.push(segment);
+  if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
+  if (!running) {
+    source_ = Source::program;
+    stop_requested_ = false;
+    phase_tick_ = 0;
+    motion_ticks_ = 0;
+    centred_ = false;
+    state_ = MotionState::moving;
+  }
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::end_program() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (!program_running()) return CommandStatus::busy;
+  motion_.end_program();
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::feed_hold(bool hold) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (!program_running()) return CommandStatus::busy;
+  if (hold) motion_.hold();
+  else motion_.resume();
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::set_feed_override(double ratio) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (!std::isfinite(ratio) || ratio < 0.0 || ratio > motion::kMaxFeedOverride) return CommandStatus::invalid;
+  if (!program_running()) return CommandStatus::busy;
+  return motion_.set_feed_override(ratio) ? CommandStatus::ok : CommandStatus::invalid;
+}
+
+std::uint32_t TickTask::jog_deadman_stops() const noexcept { return jog_.deadman_stops(); }
+
+CommandStatus TickTask::stop() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ == MotionState::dwell) {
+    state_ = MotionState::holding;  // the reference never left hold_
+    return CommandStatus::ok;
+  }
+  if (state_ != MotionState::moving || stopping()) return CommandStatus::ok;
+  if (source_ == Source::jog) {
+    jog_.release();
+    stop_requested_ = true;
+  } else {
+    motion_.stop();
+  }
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (moving()) return CommandStatus::busy;
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount || !std::isfinite(position_mm)) return CommandStatus::invalid;
+  const AxisLimits& lim = config_.supervisor.axis[a];
+  if (!(position_mm >= lim.position_min_mm && position_mm <= lim.position_max_mm)) return CommandStatus::invalid;
+  // Measurement and reference shift together: the following error is unchanged.
+  const double delta_mm = position_mm - record_.axis[a].position_mm;
+  origin_mm_[a] += delta_mm;
+  hold_[a].position_mm += delta_mm;
+  next_[a].position_mm += delta_mm;
+  AxisTickRecord& r = record_.axis[a];
+  r.position_mm += delta_mm;
+  r.reference_mm += delta_mm;
+  r.unshaped_reference_mm += delta_mm;
+  axis_[a].observer.shift(delta_mm);
+  shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
+  return CommandStatus::ok;
+}
+
+CommandStatus TickTask::start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept {
+  const std::size_t a = hal::index(axis);
+  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (state_ != MotionState::holding || exciting()) return CommandStatus::busy;
+  excite_start_counts_[a] = axis_[a].encoder.counts();
+  excite_[a].start(spec);
+  return CommandStatus::ok;
+}
+
+bool TickTask::exciting() const noexcept {
+  for (const ExcitationGenerator& e : excite_)
+    if (e.active()) return true;
+  return false;
+}
+
+double TickTask::standing_mm(hal::Axis axis) const noexcept {
+  const std::size_t a = hal::index(axis);
+  return state_ == MotionState::holding ? hold_[a].position_mm : record_.axis[a].position_mm;
+}
+
+}  // namespace tnv::fw
