@@ -286,8 +286,8 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
   set(!staged_.empty(), kHbParamsStaged);
-  set(task_.shaper(hal::Axis::x).shaping(), kHbShaperX);
-  set(task_.shaper(hal::Axis::y).shaping(), kHbShaperY);
+  set(task_.shaper_active(hal::Axis::x), kHbShaperX);
+  set(task_.shaper_active(hal::Axis::y), kHbShaperY);
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
   set(commissioning(), kHbCommissioning);

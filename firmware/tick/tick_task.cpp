@@ -150,6 +150,13 @@ void TickTask::moving_reference() noexcept {
 
 void TickTask::update_reference() noexcept {
   record_.motion_tick = -1;
+  // A new path shaper goes to every axis in the same tick, once all are quiet.
+  if (path_change_pending_) {
+    bool all_quiet = true;
+    for (const AxisShaping& s : shaping_) all_quiet = all_quiet && s.shaper.quiet();
+    const bool servo_off = state_ == MotionState::disabled || state_ == MotionState::faulted;
+    if (all_quiet || servo_off) forward_path_shaper();
+  }
   switch (state_) {
     case MotionState::dwell:
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);

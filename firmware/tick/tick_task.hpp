@@ -28,6 +28,7 @@
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/control/speed_observer.hpp"
+#include "firmware/shaper/path_taps.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
@@ -97,10 +98,13 @@ class TickTask {
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
-  // Input shaper per axis: the design (applied when the axis' reference is
-  // quiet, see StreamShaper) and, separately, on/off. Enabling an axis that
-  // was never configured is invalid. Accepted in every state: a shaper
-  // change waits for a quiet reference, so it never makes a jump.
+  // Input shaper per axis: the design and, separately, on/off. Every axis
+  // of the path runs the enabled axes' shapers in series (path_taps.hpp), so
+  // shaped axes stay in step; the new series is applied to all axes at once
+  // when every axis' reference is quiet (StreamShaper), so it never makes a
+  // jump. Enabling an axis that was never configured is invalid, and so is
+  // a combination whose series does not fit (nothing changes then).
+  // Accepted in every state.
   CommandStatus configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept;
   CommandStatus enable_shaper(hal::Axis axis, bool on) noexcept;
   CommandStatus select_controller(hal::Axis axis, ControllerKind kind) noexcept;
@@ -168,6 +172,10 @@ class TickTask {
   // what multi-axis synchronisation and host-side comparisons shift by.
   double shaper_delay_s(hal::Axis axis) const noexcept;
   const StreamShaper& shaper(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].shaper; }
+  // This axis' own shaper is on and the path shaper that includes it is active.
+  bool shaper_active(hal::Axis axis) const noexcept {
+    return shaping_[hal::index(axis)].enabled && shaping_[hal::index(axis)].shaper.shaping();
+  }
   const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].design; }
   std::uint32_t jog_deadman_stops() const noexcept;
   // Servo on and the reference in motion: dwell or moving (jog and
@@ -205,6 +213,7 @@ class TickTask {
     StreamShaper shaper{};
     ShaperDesign design{};
     bool configured = false;
+    bool enabled = false;  // this axis' own shaper is on (the path runs all of them, path_taps.hpp)
   };
 
   enum class Source : std::uint8_t { circle, move, jog, program };
@@ -217,6 +226,10 @@ class TickTask {
   void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void moving_reference() noexcept;
   bool shapers_settled() const noexcept;
+  // Shaped axes stay in step (shaper/path_taps.hpp): a new series for every
+  // axis, handed to the axes' shapers together once all of them are quiet.
+  CommandStatus plan_path_shaper(const std::array<AxisShaperChoice, hal::kAxisCount>& axes) noexcept;
+  void forward_path_shaper() noexcept;
   void reset_controllers() noexcept;
   bool servo_on() const noexcept;
   void latch_fault(const FaultRecord& f) noexcept;
@@ -249,6 +262,9 @@ class TickTask {
   std::array<double, hal::kAxisCount> centre_mm_{};  // circle centre
   std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
   std::array<AxisShaping, hal::kAxisCount> shaping_{};
+  TapSet path_taps_ = TapSet::identity();
+  bool path_shaping_ = false;
+  bool path_change_pending_ = false;
   std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
   std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
   std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)

@@ -86,9 +86,9 @@ TEST_F(TickShaperTest, ShapedMoveIsTheOfflineShapingOfTheProfile) {
   ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok);
   servo_on_holding();
   ASSERT_TRUE(task.shaper(hal::Axis::x).shaping());
-  EXPECT_FALSE(task.shaper(hal::Axis::y).shaping());
+  EXPECT_TRUE(task.shaper(hal::Axis::y).shaping()) << "every axis of the path runs x's shaper";
   EXPECT_NEAR(task.shaper_delay_s(hal::Axis::x), task.shaper_design(hal::Axis::x).delay_s(), 1e-15);
-  EXPECT_EQ(task.shaper_delay_s(hal::Axis::y), 0.0);
+  EXPECT_EQ(task.shaper_delay_s(hal::Axis::y), task.shaper_delay_s(hal::Axis::x)) << "delayed equally";
   const MoveSpec spec{hal::Axis::x, -3.0, 40.0, 0.025, 0.0};
   ASSERT_EQ(task.start_move(spec), CommandStatus::ok);
   const PointToPointMove move(spec, kHomeMm);
@@ -230,6 +230,58 @@ TEST_F(TickShaperTest, ShapedJogEndsExactlyWhereTheUnshapedJogDoes) {
   EXPECT_EQ(task.state(), MotionState::holding);
   EXPECT_EQ(task.last_record().axis[1].reference_mm, raw_end);
   EXPECT_EQ(task.jog_deadman_stops(), 0u);
+}
+
+}  // namespace
+}  // namespace tnv::fw
+
+namespace tnv::fw {
+namespace {
+
+// Shaped axes stay in step: with a shaper on x only, a diagonal line of a
+// program still runs exactly on its line (both axes are filtered alike),
+// where shaping x alone would pull the start and the end off it.
+TEST_F(TickShaperTest, ShapingOneAxisKeepsAProgrammedLineOnItsLine) {
+  ASSERT_EQ(task.configure_shaper(hal::Axis::x, {ShaperType::zvd, {30.0, 0.05}, {0.0, 0.0}}), CommandStatus::ok);
+  ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok);
+  servo_on_holding();
+  const motion::PlanePoint start{kHomeMm, 0.0};
+  const motion::PlanePoint end{kHomeMm + 8.0, 6.0};
+  motion::SegmentRefusal why = motion::SegmentRefusal::none;
+  ASSERT_EQ(task.push_segment(motion::line_to(end, 20.0), why), CommandStatus::ok) << motion::to_string(why);
+  ASSERT_EQ(task.end_program(), CommandStatus::ok);
+  double worst_mm = 0.0;
+  bool shaped_off_raw = false;
+  int ticks = 0;
+  while (task.state() != MotionState::holding && ticks < 5000) {
+    tick();
+    ++ticks;
+    const TickRecord& r = task.last_record();
+    const double x = r.axis[0].reference_mm - start[0];
+    const double y = r.axis[1].reference_mm - start[1];
+    worst_mm = std::max(worst_mm, std::fabs(x * 6.0 - y * 8.0) / 10.0);  // distance from the line through start
+    shaped_off_raw = shaped_off_raw || r.axis[0].reference_mm != r.axis[0].unshaped_reference_mm;
+  }
+  ASSERT_EQ(task.state(), MotionState::holding);
+  EXPECT_TRUE(shaped_off_raw) << "the shaper did act";
+  EXPECT_LT(worst_mm, 1e-9) << "mm off the programmed line";
+  EXPECT_NEAR(task.last_record().axis[0].reference_mm, end[0], 1e-9);
+  EXPECT_NEAR(task.last_record().axis[1].reference_mm, end[1], 1e-9);
+}
+
+TEST_F(TickShaperTest, ASeriesThatDoesNotFitIsRefusedAndChangesNothing) {
+  // Two two-mode ZVDD shapers at low frequencies: their series spans more
+  // than the stream ring holds.
+  const ShaperSpec slow_x{ShaperType::zvdd, {5.0, 0.3}, {6.0, 0.3}};
+  const ShaperSpec slow_y{ShaperType::zvdd, {5.5, 0.3}, {7.0, 0.3}};
+  ASSERT_EQ(task.configure_shaper(hal::Axis::x, slow_x), CommandStatus::ok);
+  ASSERT_EQ(task.enable_shaper(hal::Axis::x, true), CommandStatus::ok);
+  ASSERT_EQ(task.configure_shaper(hal::Axis::y, slow_y), CommandStatus::ok) << "y off: x alone fits";
+  EXPECT_EQ(task.enable_shaper(hal::Axis::y, true), CommandStatus::invalid);
+  servo_on_holding();
+  EXPECT_FALSE(task.shaper_active(hal::Axis::y));
+  EXPECT_TRUE(task.shaper_active(hal::Axis::x));
+  EXPECT_NEAR(task.shaper_delay_s(hal::Axis::y), task.shaper_design(hal::Axis::x).delay_s(), 1e-12);
 }
 
 }  // namespace
