@@ -64,7 +64,6 @@ class IoBoard {
   // disabled or the watchdog has tripped.
   double command_mm_s(hal::Axis axis) const noexcept { return command_mm_s_[hal::index(axis)]; }
   bool enabled(hal::Axis axis) const noexcept;  // enable bit and watchdog not tripped
-  bool both_enabled() const noexcept { return enabled(hal::Axis::x) && enabled(hal::Axis::y); }
 
   // Whole sub-steps until the next event (tick latch or watchdog trip), >= 1.
   // Between events the outputs cannot change unless the bus writes.

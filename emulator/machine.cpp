@@ -29,6 +29,7 @@ struct Machine::Impl {
   // Sub-steps up to the next board event (or max_substeps), with the bus
   // outputs constant over the block; true if a tick latched at its end.
   bool run_block(std::uint64_t max_substeps) noexcept;
+  void step_substeps(AxisState& x, AxisState& y, double u_x, double u_y, std::size_t n) noexcept;
   TickSamples tick_samples() const noexcept;
   std::int64_t encoder_count(std::size_t i) const noexcept;
   void apply_due_faults() noexcept;
@@ -46,7 +47,6 @@ struct Machine::Impl {
   bool any_mode;
 
   std::uint64_t substep = 0;
-  std::optional<double> servo_on_s;
   std::array<double, hal::kAxisCount> applied_command_mm_s{};  // held during the last sub-step
   CuttingVector applied_cutting{};
 
@@ -73,7 +73,7 @@ Machine::Impl::Impl(const Scenario& s)
       plants{AxisPlant(s.plant[0]), AxisPlant(s.plant[1])},
       modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
-      cutting(s.cutting, s.circle),
+      cutting(s.cutting, s.circle.feed_mm_s),
       milling(s.milling, kSubstep_s),
       any_mode(modes[0].enabled() || modes[1].enabled()),
       fault_timeline(s.faults),
@@ -224,73 +224,31 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   apply_due_faults();  // the next edge is then strictly ahead: never step across it
   const auto n = static_cast<std::size_t>(
       std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock, fault_timeline.substeps_to_next(substep)}));
-  if (!servo_on_s && board.both_enabled()) {
-    servo_on_s = substep_time_s(substep);
-    cutting.servo_on_at(*servo_on_s);
-  }
   // Inputs held over each sub-step, evaluated at its start.
   applied_command_mm_s = {board.command_mm_s(Axis::x), board.command_mm_s(Axis::y)};
-  std::array<double, kMaxBlock> cut_x_mm_s, cut_y_mm_s;
-  static constexpr std::array<double, kMaxBlock> kNoCutting{};
-  const double* disturbance_x_mm_s = kNoCutting.data();
-  const double* disturbance_y_mm_s = kNoCutting.data();
-  if (cutting.enabled()) {
-    cutting.fill(substep, n, cut_x_mm_s.data(), cut_y_mm_s.data());
-    applied_cutting = {cut_x_mm_s[n - 1], cut_y_mm_s[n - 1]};
-    disturbance_x_mm_s = cut_x_mm_s.data();
-    disturbance_y_mm_s = cut_y_mm_s.data();
-  }
   // The drive's gain sign (runaway fault: -1) acts on what the servopack is told.
   const double u_x = drive_sign[0] * applied_command_mm_s[0], u_y = drive_sign[1] * applied_command_mm_s[1];
   // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
-  if (milling.enabled()) {
-    // The milling force depends on the table speed: step sub-step by sub-step.
-    ModeState mode_x = modes[0].state();
-    ModeState mode_y = modes[1].state();
-    constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
-      plants[0].advance(x, u_x, disturbance_x_mm_s[i] + milling.disturbance_mm_s());
-      plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
-      milling.advance(v0_x, substep_time_s(substep + i));
-      if (any_mode) {
-        modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
-        modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
-      }
-    }
-    modes[0].set_state(mode_x);
-    modes[1].set_state(mode_y);
-  } else if (!any_mode) {
+  if (cutting.enabled() || milling.enabled() || any_mode) {
+    step_substeps(x, y, u_x, u_y, n);
+  } else {
     // Closed form for the block where it is provably the same as stepping
     // (AxisPlant::advance_block); sub-step by sub-step otherwise.
-    const bool x_done = plants[0].advance_block(x, u_x, disturbance_x_mm_s, n);
-    const bool y_done = plants[1].advance_block(y, u_y, disturbance_y_mm_s, n);
+    static constexpr std::array<double, kMaxBlock> kNoDisturbance{};
+    const bool x_done = plants[0].advance_block(x, u_x, kNoDisturbance.data(), n);
+    const bool y_done = plants[1].advance_block(y, u_y, kNoDisturbance.data(), n);
     if (!x_done && !y_done) {
       for (std::size_t i = 0; i < n; ++i) {  // both in one loop: their chains overlap
-        plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
-        plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
+        plants[0].advance(x, u_x, 0.0);
+        plants[1].advance(y, u_y, 0.0);
       }
     } else if (!x_done) {
-      for (std::size_t i = 0; i < n; ++i) plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
+      for (std::size_t i = 0; i < n; ++i) plants[0].advance(x, u_x, 0.0);
     } else if (!y_done) {
-      for (std::size_t i = 0; i < n; ++i) plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
+      for (std::size_t i = 0; i < n; ++i) plants[1].advance(y, u_y, 0.0);
     }
-  } else {
-    // The modes need every sub-step's table acceleration.
-    ModeState mode_x = modes[0].state();
-    ModeState mode_y = modes[1].state();
-    constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
-      plants[0].advance(x, u_x, disturbance_x_mm_s[i]);
-      plants[1].advance(y, u_y, disturbance_y_mm_s[i]);
-      modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
-      modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
-    }
-    modes[0].set_state(mode_x);
-    modes[1].set_state(mode_y);
   }
   plants[0].set_state(x);
   plants[1].set_state(y);
@@ -298,6 +256,39 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   if (!board.advance_substeps(n)) return false;
   board.latch_tick(tick_samples());
   return true;
+}
+
+// The cutting and milling forces depend on the table's speed at the start
+// of each sub-step, and the modes need every sub-step's table acceleration:
+// no closed form over the block, one sub-step at a time.
+void Machine::Impl::step_substeps(AxisState& x_state, AxisState& y_state, double u_x, double u_y,
+                                  std::size_t n) noexcept {
+  double load_per_speed[CuttingDisturbance::kMaxFill];
+  cutting.fill_load_per_speed(substep, n, load_per_speed);
+  // Locals: the chains stay in registers (nothing here can alias them).
+  AxisState x = x_state, y = y_state;
+  ModeState mode_x = modes[0].state();
+  ModeState mode_y = modes[1].state();
+  CuttingVector cut{};
+  constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
+  const bool cutting_on = cutting.enabled();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
+    if (cutting_on) cut = CuttingDisturbance::force(load_per_speed[i], v0_x, v0_y);
+    const double milling_x_mm_s = milling.enabled() ? milling.disturbance_mm_s() : 0.0;
+    plants[0].advance(x, u_x, cut.x_mm_s + milling_x_mm_s);
+    plants[1].advance(y, u_y, cut.y_mm_s);
+    if (milling.enabled()) milling.advance(v0_x, substep_time_s(substep + i));
+    if (any_mode) {
+      modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
+      modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
+    }
+  }
+  x_state = x;
+  y_state = y;
+  modes[0].set_state(mode_x);
+  modes[1].set_state(mode_y);
+  applied_cutting = cut;  // the last sub-step's: what the force sensor and truth() see
 }
 
 Machine::Machine(const Scenario& scenario) : impl_(std::make_unique<Impl>(scenario)) {}
@@ -365,13 +356,6 @@ const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
 double Machine::milling_force_n() const noexcept { return impl_->milling.force_n(); }
 
 double Machine::milling_depth_mm() const noexcept { return impl_->milling.depth_mm(time_s()); }
-
-std::optional<double> Machine::servo_on_time_s() const noexcept { return impl_->servo_on_s; }
-
-std::optional<double> Machine::motion_start_s() const noexcept {
-  if (!impl_->servo_on_s) return std::nullopt;
-  return *impl_->servo_on_s + impl_->scenario.circle.dwell_s;
-}
 
 bool Machine::fault_active(std::size_t i) const noexcept {
   return i < impl_->fault_on.size() && impl_->fault_on[i];

@@ -66,10 +66,6 @@ class Machine {
   // S3 milling force on X (N) and the depth of cut now (mm); 0 / profile when [milling] is off.
   double milling_force_n() const noexcept;
   double milling_depth_mm() const noexcept;
-  // First moment both servo enables were on (after the watchdog gate); the
-  // commanded circle, which the cutting model follows, starts dwell_s later.
-  std::optional<double> servo_on_time_s() const noexcept;
-  std::optional<double> motion_start_s() const noexcept;
 
   // --- test-bench inputs
   void set_estop(bool asserted) noexcept;

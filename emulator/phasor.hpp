@@ -16,18 +16,6 @@ struct Phasor {
   Phasor rotated(const Phasor& by) const noexcept {
     return Phasor{cos_a * by.cos_a - sin_a * by.sin_a, sin_a * by.cos_a + cos_a * by.sin_a};
   }
-  void rotate(const Phasor& by) noexcept { *this = rotated(by); }
-
-  // Taylor terms up to angle^5: for |angle| < 1e-3 the first omitted term is
-  // below 1e-18, i.e. the rotation is exact to rounding.
-  void rotate_small(double angle_rad) noexcept {
-    if (std::abs(angle_rad) >= 1e-3) {
-      rotate(at(angle_rad));
-      return;
-    }
-    const double a2 = angle_rad * angle_rad;
-    rotate(Phasor{1.0 - a2 * (0.5 - a2 / 24.0), angle_rad * (1.0 - a2 * (1.0 / 6.0 - a2 / 120.0))});
-  }
 };
 
 // Rotations by 0, a, 2a, ... (N-1)a, each from an exact sin/cos: sample i of a

@@ -1,3 +1,4 @@
+// The cutting model on its own: d_cut for a given table velocity.
 #include "emulator/cutting_disturbance.hpp"
 
 #include <gtest/gtest.h>
@@ -7,120 +8,66 @@
 #include <numbers>
 
 #include "emulator/substep_timing.hpp"
+#include "tests/emulator/cutting_reference.hpp"
 
 namespace tnv::emu {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// The reference-plant formula written out independently of the emulator.
-struct DirectCutting {
-  CuttingParams cut;
-  CircleParams circle;
-  double start_s;  // motion start = servo-on + dwell
-
-  double duration_s() const { return 2 * kPi * circle.radius_mm / circle.feed_mm_s + circle.ramp_s; }
-  // Commanded feed speed and arc at time t since the start.
-  void path(double t, double& speed, double& arc) const {
-    const double F = circle.feed_mm_s, r = circle.ramp_s, T = duration_s(), L = 2 * kPi * circle.radius_mm;
-    if (t < 0) {
-      speed = 0, arc = 0;
-    } else if (t < r) {
-      speed = F / 2 * (1 - std::cos(kPi * t / r)), arc = F / 2 * (t - r / kPi * std::sin(kPi * t / r));
-    } else if (t < T - r) {
-      speed = F, arc = F * r / 2 + F * (t - r);
-    } else if (t < T) {
-      const double te = T - t;
-      speed = F / 2 * (1 - std::cos(kPi * te / r)), arc = L - F / 2 * (te - r / kPi * std::sin(kPi * te / r));
-    } else {
-      speed = 0, arc = L;
-    }
-  }
-  CuttingVector at(double t) const {
-    double speed = 0, arc = 0;
-    path(t - start_s, speed, arc);
-    const double theta = arc / circle.radius_mm;
-    const double level = speed / circle.feed_mm_s * std::pow(900.0 / cut.spindle_rpm, cut.exponent) *
-                         (cut.mean_mm_s + cut.amplitude_mm_s *
-                                              std::sin(2 * kPi * cut.flutes * cut.spindle_rpm / 60.0 * t + cut.phase_rad));
-    const double tx = -std::sin(theta), ty = std::cos(theta);  // feed direction
-    const double nx = std::cos(theta), ny = std::sin(theta);   // outward normal
-    return {level * (-tx + nx) / std::sqrt(2.0), level * (-ty + ny) / std::sqrt(2.0)};
-  }
-};
-
-CuttingParams cutting_at(double rpm) {
-  CuttingParams p;
-  p.enabled = true;
-  p.spindle_rpm = rpm;
-  p.phase_rad = 0.3;
-  return p;
-}
+constexpr double kFeedMmS = 2.0;  // F of the built-in scenarios
 
 TEST(CuttingDisturbance, DisabledIsZero) {
-  CuttingDisturbance cutting(CuttingParams{}, CircleParams{});
-  cutting.servo_on_at(0.0);
-  const CuttingVector d = cutting.at_substep(100'000);  // 1 s: mid-circle
+  CuttingDisturbance cutting(CuttingParams{}, kFeedMmS);
+  EXPECT_FALSE(cutting.enabled());
+  const CuttingVector d = cutting.at_substep(100'000, 2.0, -1.0);
   EXPECT_EQ(d.x_mm_s, 0.0);
   EXPECT_EQ(d.y_mm_s, 0.0);
 }
 
-TEST(CuttingDisturbance, ZeroBeforeServoOnBeforeStartAndAfterEnd) {
-  const CircleParams circle{};
-  CuttingDisturbance cutting(cutting_at(900), circle);
-  EXPECT_EQ(cutting.at_substep(1'000).magnitude_mm_s(), 0.0) << "no servo-on yet";
-  cutting.servo_on_at(0.02);
-  const auto start = static_cast<std::uint64_t>((0.02 + circle.dwell_s) * 1e5);
-  for (std::uint64_t k = 2'000; k <= start; ++k) {
-    ASSERT_EQ(cutting.at_substep(k).magnitude_mm_s(), 0.0) << "cutting during the dwell at t = " << substep_time_s(k);
-  }
-  EXPECT_GT(cutting.at_substep(start + 10).magnitude_mm_s(), 0.0);
-  const DirectCutting direct{cutting_at(900), circle, 0.02 + circle.dwell_s};
-  const auto end = static_cast<std::uint64_t>(std::ceil((direct.start_s + direct.duration_s()) * 1e5));
-  for (std::uint64_t k = end; k < end + 1'000; ++k) {
-    ASSERT_EQ(cutting.at_substep(k).magnitude_mm_s(), 0.0) << "cutting after the end at t = " << substep_time_s(k);
+TEST(CuttingDisturbance, ZeroAtRest) {
+  const CuttingDisturbance cutting(test_support::cutting_at(900), kFeedMmS);
+  for (std::uint64_t k = 0; k < 200'000; k += 1'237) {
+    ASSERT_EQ(cutting.at_substep(k, 0.0, 0.0).magnitude_mm_s(), 0.0) << "table at rest, t = " << substep_time_s(k);
   }
 }
 
 class CuttingPerSpindle : public ::testing::TestWithParam<double> {};
 
-TEST_P(CuttingPerSpindle, EqualsTheDirectFormulaAtEverySubstep) {
-  const double rpm = GetParam();
-  const CircleParams circle{};
-  CuttingDisturbance cutting(cutting_at(rpm), circle);
-  const double servo_on_s = 0.01;
-  cutting.servo_on_at(servo_on_s);
-  const DirectCutting direct{cutting_at(rpm), circle, servo_on_s + circle.dwell_s};
-  const auto last = static_cast<std::uint64_t>((direct.start_s + direct.duration_s()) * 1e5) + 100;
-  double worst = 0.0;
-  double x[100], y[100];
-  for (std::uint64_t first = 0; first < last; first += 100) {
-    cutting.fill(first, 100, x, y);
+// Any velocity, every sub-step of fills of 100: the reference-plant formula
+// written with |v|, the unit travel direction and its right-hand normal.
+TEST_P(CuttingPerSpindle, EqualsTheDirectFormulaForAnyVelocity) {
+  const CuttingParams params = test_support::cutting_at(GetParam());
+  const CuttingDisturbance cutting(params, kFeedMmS);
+  double worst_mm_s = 0.0;
+  double load[CuttingDisturbance::kMaxFill];
+  for (std::uint64_t first = 0; first < 300'000; first += 100) {
+    cutting.fill_load_per_speed(first, 100, load);
     for (std::uint64_t i = 0; i < 100; ++i) {
-      const CuttingVector e = direct.at(substep_time_s(first + i));
-      worst = std::max({worst, std::abs(x[i] - e.x_mm_s), std::abs(y[i] - e.y_mm_s)});
+      const double t_s = substep_time_s(first + i);
+      // A velocity that turns through every direction and changes its speed.
+      const double vx = 3.0 * std::cos(1.3 * t_s) + 0.5, vy = 2.0 * std::sin(2.1 * t_s);
+      const CuttingVector d = CuttingDisturbance::force(load[i], vx, vy);
+      const CuttingVector e = test_support::direct_cutting(params, kFeedMmS, t_s, vx, vy);
+      worst_mm_s = std::max({worst_mm_s, std::abs(d.x_mm_s - e.x_mm_s), std::abs(d.y_mm_s - e.y_mm_s)});
     }
   }
-  EXPECT_LT(worst, 1e-11) << "largest difference from the reference-plant formula, mm/s";
+  EXPECT_LT(worst_mm_s, 1e-11) << "largest difference from the reference-plant formula, mm/s";
 }
 
 TEST_P(CuttingPerSpindle, PulsesAtToothPassingFrequencyWithKienzleScaling) {
   const double rpm = GetParam();
-  CuttingParams params = cutting_at(rpm);
-  CuttingDisturbance cutting(params, CircleParams{});
-  cutting.servo_on_at(0.0);
-  // One second of cruise, magnitude only (direction turns slowly).
+  const CuttingDisturbance cutting(test_support::cutting_at(rpm), kFeedMmS);
+  // One second at the programmed feed along +X.
   const std::uint64_t first = 200'000, n = 100'000;
-  std::complex<double> at_tooth{}, mean{};
+  std::complex<double> at_tooth{}, off_tooth{}, mean{};
   auto component = [&](double f_hz, std::uint64_t k, double value) {
     return value * std::polar(1.0, -2 * kPi * f_hz * substep_time_s(k));
   };
   const double tooth_hz = 2 * rpm / 60.0;
-  std::complex<double> off_tooth{};
-  double x[100], y[100];
+  double load[CuttingDisturbance::kMaxFill];
   for (std::uint64_t k = first; k < first + n; ++k) {
-    if ((k - first) % 100 == 0) cutting.fill(k, 100, x, y);
-    const double m = std::hypot(x[(k - first) % 100], y[(k - first) % 100]);
+    if ((k - first) % 100 == 0) cutting.fill_load_per_speed(k, 100, load);
+    const double m = CuttingDisturbance::force(load[(k - first) % 100], kFeedMmS, 0.0).magnitude_mm_s();
     at_tooth += component(tooth_hz, k, m);
     off_tooth += component(tooth_hz + 7.0, k, m);
     mean += m;
@@ -133,19 +80,49 @@ TEST_P(CuttingPerSpindle, PulsesAtToothPassingFrequencyWithKienzleScaling) {
 
 INSTANTIATE_TEST_SUITE_P(S1Spindles, CuttingPerSpindle, ::testing::Values(900.0, 1200.0, 1500.0));
 
-TEST(CuttingDisturbance, OpposesFeedRotated45DegreesOutward) {
+TEST(CuttingDisturbance, OpposesTravelRotated45DegreesToItsRightInEveryDirection) {
+  const CuttingDisturbance cutting(test_support::cutting_at(1200), kFeedMmS);
+  for (int deg = -180; deg < 180; deg += 15) {
+    const double a = deg * kPi / 180.0;
+    const double vx = 2.0 * std::cos(a), vy = 2.0 * std::sin(a);
+    const CuttingVector d = cutting.at_substep(123'457, vx, vy);
+    ASSERT_GT(d.magnitude_mm_s(), 0.0);
+    EXPECT_NEAR(test_support::angle_from_velocity_deg(d, vx, vy), -135.0, 1e-9) << "deg, travelling at " << deg << " deg";
+  }
+}
+
+TEST(CuttingDisturbance, ScalesLinearlyWithSpeed) {
+  const CuttingDisturbance cutting(test_support::cutting_at(1500), kFeedMmS);
+  for (std::uint64_t k = 0; k < 100'000; k += 7'919) {
+    const CuttingVector at_feed = cutting.at_substep(k, 1.2, -1.6);  // 2 mm/s
+    for (const double times : {0.25, 3.0, 10.0}) {
+      const CuttingVector d = cutting.at_substep(k, 1.2 * times, -1.6 * times);
+      EXPECT_NEAR(d.x_mm_s, times * at_feed.x_mm_s, 1e-14 * times) << times << " x the speed, mm/s";
+      EXPECT_NEAR(d.y_mm_s, times * at_feed.y_mm_s, 1e-14 * times) << times << " x the speed, mm/s";
+    }
+  }
+}
+
+// Fed the commanded S1 circle's velocity, the table-following model is the
+// reference plant's circle model (the model the emulator used before it
+// followed the table) to rounding.
+TEST(CuttingDisturbance, OnTheCommandedS1CircleItIsTheCircleModel) {
   const CircleParams circle{};
-  CuttingDisturbance cutting(cutting_at(1200), circle);
-  cutting.servo_on_at(0.0);
-  for (std::uint64_t k = 100'000; k < 1'900'000; k += 123'457) {
-    const CuttingVector d = cutting.at_substep(k);
-    const CirclePathPoint& p = cutting.path().circle().at(substep_time_s(k) - circle.dwell_s);
-    const double m = d.magnitude_mm_s();
-    ASSERT_GT(m, 0.0);
-    const double along_feed = (d.x_mm_s * -p.sin_angle + d.y_mm_s * p.cos_angle) / m;
-    const double outward = (d.x_mm_s * p.cos_angle + d.y_mm_s * p.sin_angle) / m;
-    EXPECT_NEAR(along_feed, -std::sqrt(0.5), 1e-12) << "cos of angle to the feed direction";
-    EXPECT_NEAR(outward, std::sqrt(0.5), 1e-12) << "cos of angle to the outward normal";
+  const double start_s = 0.01 + circle.dwell_s;
+  for (const double rpm : {900.0, 1200.0, 1500.0}) {
+    const CuttingParams params = test_support::cutting_at(rpm);
+    const CuttingDisturbance cutting(params, circle.feed_mm_s);
+    const test_support::S1Circle path{circle, start_s};
+    double worst_mm_s = 0.0;
+    const auto last = static_cast<std::uint64_t>((start_s + path.duration_s()) * 1e5) + 100;
+    for (std::uint64_t k = 0; k < last; k += 7) {
+      const double t_s = substep_time_s(k);
+      const test_support::PathSample p = path.at(t_s);
+      const CuttingVector d = cutting.at_substep(k, p.vx_mm_s, p.vy_mm_s);
+      const CuttingVector e = test_support::circle_model_cutting(params, circle, start_s, t_s);
+      worst_mm_s = std::max({worst_mm_s, std::abs(d.x_mm_s - e.x_mm_s), std::abs(d.y_mm_s - e.y_mm_s)});
+    }
+    EXPECT_LT(worst_mm_s, 1e-12) << "mm/s at " << rpm << " rpm";
   }
 }
 

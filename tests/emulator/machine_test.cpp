@@ -78,30 +78,12 @@ TEST(Machine, WatchdogTripStopsTheTable) {
   EXPECT_NE(read(m, regs::kInputs) & regs::kInputWatchdogTripped, 0u);
 }
 
-TEST(Machine, ServoOnStartsTheCommandedCircleAfterTheDwell) {
-  Machine m(*builtin_scenario("cut-900"));
-  for (int i = 0; i < 10; ++i) m.advance_to_next_tick();
-  EXPECT_FALSE(m.servo_on_time_s().has_value());
-  servo_on(m);
-  m.advance_to_next_tick();
-  ASSERT_TRUE(m.servo_on_time_s().has_value());
-  EXPECT_DOUBLE_EQ(*m.servo_on_time_s(), 0.010);
-  EXPECT_DOUBLE_EQ(*m.motion_start_s(), 0.510);
-  while (m.time_s() < 0.5099) {
-    m.advance_to_next_tick();
-    ASSERT_EQ(m.truth(Axis::x).cutting_mm_s, 0.0) << "cutting during the dwell at " << m.time_s() << " s";
-  }
-  for (int i = 0; i < 50; ++i) m.advance_to_next_tick();
-  EXPECT_NE(m.truth(Axis::x).cutting_mm_s, 0.0);
-  EXPECT_NE(m.truth(Axis::y).cutting_mm_s, 0.0);
-}
-
 TEST(Machine, ForceAdcReadsCuttingMagnitude) {
   Scenario s = *builtin_scenario("cut-900");
   s.force_sensor.volts_per_mm_s = 5.0;
   Machine m(s);
-  servo_on(m);
-  for (int i = 0; i < 1'000; ++i) m.advance_to_next_tick();  // 0.5 s into the motion: cruising
+  servo_on(m, 2048 + 48, 2048);  // cutting follows the table: it has to move
+  for (int i = 0; i < 300; ++i) m.advance_to_next_tick();
   const double magnitude = std::hypot(m.truth(Axis::x).cutting_mm_s, m.truth(Axis::y).cutting_mm_s);
   EXPECT_GT(magnitude, 0.0);
   EXPECT_EQ(read(m, regs::kAdcForce), force_adc_code(magnitude, 5.0));
@@ -165,19 +147,19 @@ TEST(Machine, TableFollowsThePlantDrivenByCommandAndCutting) {
   AxisPlant x(s.plant[0]), y(s.plant[1]);
   x.set_state(6.0, 0.0, true);
   y.set_state(0.0, 0.0, true);
-  CuttingDisturbance cutting(s.cutting, s.circle);
-  cutting.servo_on_at(0.0);
+  const CuttingDisturbance cutting(s.cutting, s.circle.feed_mm_s);
   const double lsb_mm_s = 1000.0 * 10.0 / 60.0 / 2048.0;
   std::uint64_t substep = 0;
-  for (int tick = 0; tick < 800; ++tick) {  // through the dwell and into the cut
+  for (int tick = 0; tick < 800; ++tick) {
     m.advance_to_next_tick();
     for (int i = 0; i < 100; ++i, ++substep) {
-      const CuttingVector d = cutting.at_substep(substep);
+      // The force of each sub-step from the table's velocity at its start.
+      const CuttingVector d = cutting.at_substep(substep, x.speed_mm_s(), y.speed_mm_s());
       x.step(40 * lsb_mm_s, d.x_mm_s);
       y.step(-30 * lsb_mm_s, d.y_mm_s);
     }
-    // Rounding only: the machine may take a block in one closed form where
-    // this reference adds 100 sub-step increments (1e-10 mm = 1e-7 um).
+    // Rounding only: the machine turns the tooth phase by precomputed
+    // rotations where this reference takes a sin per sub-step.
     ASSERT_NEAR(m.truth(Axis::x).position_mm, x.position_mm(), 1e-10) << "X at tick " << tick;
     ASSERT_NEAR(m.truth(Axis::y).position_mm, y.position_mm(), 1e-10) << "Y at tick " << tick;
     ASSERT_NEAR(m.truth(Axis::x).speed_mm_s, x.speed_mm_s(), 1e-12) << "X at tick " << tick;

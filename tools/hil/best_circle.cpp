@@ -45,7 +45,7 @@ std::vector<BestCircleRow> run_best_circle(const BestCircleRequest& request, con
 
 BestConfigDesign design_best_config(const emu::Scenario& table, const BestConfigChoice& choice) {
   BestConfigDesign out;
-  // Identify with the spindle off: the cutting disturbance runs from servo-on and would bias f_c.
+  // Identify with the spindle off: the cutting load opposes every excitation move and would bias f_c.
   emu::Scenario idle = table;
   idle.cutting.enabled = false;
   idle.milling.enabled = false;

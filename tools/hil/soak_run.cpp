@@ -235,7 +235,7 @@ SoakResult run_soak(const SoakRequest& request, const fw::FirmwareConfig& base_c
   SoakResult result;
   const emu::Scenario& s = request.scenario;
   if (s.cutting.enabled || s.milling.enabled) {
-    result.error = "soak: scenario " + s.name + " cuts; the cutting model follows one circle only (use no-cut)";
+    result.error = "soak: scenario " + s.name + " cuts; the emulator cuts wherever the table moves, jogs too (use no-cut)";
     return result;
   }
   if (!s.faults.empty()) {

@@ -21,8 +21,9 @@
 namespace tnv::hil {
 
 struct SoakRequest {
-  // Friction only: the emulator's cutting model follows one commanded
-  // circle, so [cutting] and [milling] are refused (and so are [[fault]]s).
+  // Friction only: the emulator cuts wherever the table moves (it has no
+  // stock to be outside of), so the 30 mm/s jogs would cut at 15 times the
+  // circle's load; [cutting] and [milling] are refused (and so are [[fault]]s).
   emu::Scenario scenario;
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
   double duration_s = 3600.0;  // simulated; the cycle under way when it is reached runs to its end
