@@ -16,5 +16,6 @@ void add_shaper_commands(CLI::App& app, Runner& run);  // shaper design | move |
 void add_best_circle_commands(CLI::App& app, Runner& run);  // best-circle, identify (issue 7)
 void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN service cost on the real-time loop)
 void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
+void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
 
 }  // namespace tnv::cli

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Runner run;
   add_circle_commands(app, run);
+  add_path_commands(app, run);
   add_best_circle_commands(app, run);
   add_fault_commands(app, run);
   add_soak_commands(app, run);

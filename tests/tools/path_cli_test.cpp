@@ -1,0 +1,86 @@
+// tnv-hil path as a user runs it: a small program with lines and arcs on
+// the emulated table, the JSON keys of docs/motion.md, the limits kept,
+// the contour error in a plausible band, and clear refusals of a bad
+// program (line and column) or a missing file.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/tools/cli_runner.hpp"
+
+namespace tnv::test {
+namespace {
+
+std::string temp_program(const std::string& name, const std::string& text) {
+  const std::filesystem::path p =
+      std::filesystem::temp_directory_path() / ("tnv_path_" + std::to_string(::getpid()) + "_" + name + ".ngc");
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// A 10 mm square with a rounded corner and a dwell, at 5 mm/s.
+constexpr const char* kSmallPiece =
+    "G17 G21 G90\nG0 X5 Y0\nG1 F300 X10 Y0\nY5\nG3 X5 Y10 I-5 J0\nG1 X0 Y10\nG4 P0.05\nY0\nX5\nM2\n";
+
+TEST(PathCli, ScoresASmallPieceWithinTheLimitsAndReportsEveryKey) {
+  const std::string file = temp_program("small", kSmallPiece);
+  const CliRun r = run_tnv_hil("path " + file + " --controller rdvsc --scenario no-cut --seeds 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"contour_error_max_um", "contour_error_mean_um", "contour_error_std_um",
+                          "path_deviation_max_um", "accel_ratio_max", "jerk_ratio_max", "feed_ratio", "cycle_time_s",
+                          "underruns", "per_seed"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["per_seed"].size(), 2u);
+  EXPECT_LE(j["accel_ratio_max"].get<double>(), 1.0 + 1e-6);
+  EXPECT_LE(j["jerk_ratio_max"].get<double>(), 1.0 + 1e-6);
+  EXPECT_GT(j["accel_ratio_max"].get<double>(), 0.1) << "the corners did use the acceleration";
+  EXPECT_LE(j["path_deviation_max_um"].get<double>(), 5.0 + 1e-6) << "the path tolerance is 5 um";
+  // A real loop on a real table: not zero (quantisation alone is ~0.1 um), not a runaway.
+  EXPECT_GT(j["contour_error_mean_um"].get<double>(), 0.05);
+  EXPECT_LT(j["contour_error_max_um"].get<double>(), 20.0);
+  EXPECT_GT(j["feed_ratio"].get<double>(), 0.3);
+  EXPECT_LE(j["feed_ratio"].get<double>(), 1.0 + 1e-9) << "never faster than programmed";
+  EXPECT_EQ(j["underruns"], 0);
+  std::filesystem::remove(file);
+}
+
+TEST(PathCli, AProgramErrorNamesLineAndColumnAndRunsNothing) {
+  const std::string file = temp_program("bad", "G21 G90\nG1 F100 X1 Z2\n");
+  const CliRun r = run_tnv_hil("path " + file);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Z"), std::string::npos) << r.err;
+  std::filesystem::remove(file);
+}
+
+TEST(PathCli, RefusesAMissingFileAndAPlotIntoAMissingDirectory) {
+  EXPECT_EQ(run_tnv_hil("path /nonexistent/piece.ngc").exit_code, 2);
+  const std::string file = temp_program("plotdir", kSmallPiece);
+  const CliRun r = run_tnv_hil("path " + file + " --plot /nonexistent/dir/p.svg");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no such directory"), std::string::npos) << r.err;
+  std::filesystem::remove(file);
+}
+
+TEST(PathCli, WritesThePlot) {
+  const std::string file = temp_program("plot", kSmallPiece);
+  const std::string svg = file + ".svg";
+  const CliRun r = run_tnv_hil("path " + file + " --plot " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(svg);
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(content.find("<svg"), std::string::npos);
+  EXPECT_NE(content.find("contour error"), std::string::npos);
+  std::filesystem::remove(file);
+  std::filesystem::remove(svg);
+}
+
+}  // namespace
+}  // namespace tnv::test

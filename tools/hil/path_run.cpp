@@ -1,0 +1,138 @@
+#include "tools/hil/path_run.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "tools/hil/command_status_text.hpp"
+#include "tools/hil/hil_rig.hpp"
+#include "tools/hil/seeded_scenario.hpp"
+
+namespace tnv::hil {
+
+namespace {
+
+gcode::PathSample sample_of(const fw::TickRecord& r) {
+  return {{r.axis[0].reference_mm, r.axis[1].reference_mm}, {r.axis[0].position_mm, r.axis[1].position_mm}};
+}
+
+}  // namespace
+
+PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& config, fw::ControllerKind controller,
+                       const std::string& gcode_text, const PathRunOptions& options) {
+  PathRunResult result;
+  std::unique_ptr<HilRig> rig = HilRig::create(scenario, config, controller, result.error);
+  if (!rig) return result;
+  fw::TickTask& task = rig->task;
+  rig->home();
+  if (const fw::CommandStatus st = task.hold_position(); st != fw::CommandStatus::ok) {
+    result.error = "servo-on refused: " + command_status_text(st, task);
+    return result;
+  }
+  rig->tick();
+  // The program starts where the table holds, with the planner's own limits.
+  gcode::GcodeOptions parse;
+  parse.start_mm = {task.standing_mm(hal::Axis::x), task.standing_mm(hal::Axis::y)};
+  parse.rapid_feed_mm_s = options.rapid_feed_mm_s;
+  parse.limits = task.motion().limits();
+  const gcode::GcodeResult parsed = gcode::parse_gcode(gcode_text, parse);
+  if (parsed.error) {
+    result.error = gcode::to_string(*parsed.error);
+    return result;
+  }
+  const gcode::GcodeProgram& program = parsed.program;
+  result.programmed_length_mm = program.programmed_length_mm();
+
+  std::vector<gcode::PathSample> samples;
+  samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
+  samples.push_back(sample_of(task.last_record()));
+  std::size_t next = 0;
+  bool ended = false;
+  // Generous: the programmed time three times over, plus ten seconds.
+  const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000;
+  for (std::int64_t k = 0; k < max_ticks; ++k) {
+    // Stream as a host would: as many segments as there are free slots.
+    while (next < program.segments.size() && task.motion().free_slots() > 0) {
+      fw::motion::SegmentRefusal why = fw::motion::SegmentRefusal::none;
+      const fw::CommandStatus st = task.push_segment(program.segments[next], why);
+      if (st != fw::CommandStatus::ok) {
+        result.error = "segment of line " + std::to_string(program.segments[next].tag) + " refused: " +
+                       command_status_text(st, task) +
+                       (why != fw::motion::SegmentRefusal::none ? std::string(" (") + fw::motion::to_string(why) + ")"
+                                                                 : std::string());
+        return result;
+      }
+      ++next;
+      ++result.segments;
+    }
+    if (next == program.segments.size() && !ended && task.program_running()) {
+      (void)task.end_program();
+      ended = true;
+    }
+    rig->tick();
+    samples.push_back(sample_of(task.last_record()));
+    if (options.keep_samples) result.path_speed_mm_s.push_back(task.motion().path_speed_mm_s());
+    if (task.state() == fw::MotionState::faulted) break;
+    if (ended && task.state() == fw::MotionState::holding) break;
+  }
+  result.counters = task.counters();
+  const fw::motion::MotionStats stats = task.motion().stats();
+  result.underruns = stats.underruns;
+  result.guard_failures = stats.follower.guard_failures;
+  result.score = gcode::score_path(program, samples, task.motion().limits(), kTickPeriodS);
+  if (task.state() == fw::MotionState::faulted) {
+    result.error = "fault: " + command_status_text(fw::CommandStatus::faulted, task);
+  } else if (!ended || task.state() != fw::MotionState::holding) {
+    result.error = "the program did not finish in three times its programmed time";
+  } else {
+    result.completed = true;
+  }
+  if (options.keep_samples) result.samples = std::move(samples);
+  return result;
+}
+
+PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::FirmwareConfig& config,
+                               fw::ControllerKind controller, const std::string& gcode_text, int seeds,
+                               const PathRunOptions& seed0_options,
+                               const std::function<void(std::size_t, std::size_t)>& progress) {
+  PathSweepResult out;
+  const auto n = static_cast<std::size_t>(std::max(1, seeds));
+  out.per_seed.resize(n);
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> done{0};
+  auto worker = [&] {
+    for (std::size_t s = next++; s < n; s = next++) {
+      PathRunOptions options = seed0_options;
+      options.keep_samples = s == 0 && seed0_options.keep_samples;
+      out.per_seed[s] = run_path(seeded(scenario, static_cast<int>(s)), config, controller, gcode_text, options);
+      const std::size_t finished = ++done;
+      if (progress) progress(finished, n);
+    }
+  };
+  const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), n));
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+
+  for (std::size_t s = 0; s < n; ++s) {
+    const PathRunResult& r = out.per_seed[s];
+    if (!r.completed && out.error.empty()) out.error = "seed " + std::to_string(s) + ": " + r.error;
+    const gcode::PathScore& p = r.score;
+    gcode::PathScore& m = out.mean;
+    const double w = 1.0 / static_cast<double>(n);
+    m.contour_error_max_um += w * p.contour_error_max_um;
+    m.contour_error_mean_um += w * p.contour_error_mean_um;
+    m.contour_error_std_um += w * p.contour_error_std_um;
+    m.feed_ratio += w * p.feed_ratio;
+    m.cycle_time_s += w * p.cycle_time_s;
+    m.path_deviation_max_um = std::max(m.path_deviation_max_um, p.path_deviation_max_um);
+    m.accel_ratio_max = std::max(m.accel_ratio_max, p.accel_ratio_max);
+    m.jerk_ratio_max = std::max(m.jerk_ratio_max, p.jerk_ratio_max);
+    m.scored_samples += p.scored_samples;
+    out.underruns += r.underruns;
+  }
+  return out;
+}
+
+}  // namespace tnv::hil

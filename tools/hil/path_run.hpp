@@ -1,0 +1,55 @@
+#pragma once
+// tnv-hil path: a G-code program run by the firmware on the emulated table.
+// The program is read for the table's home (tools/gcode), streamed into the
+// tick task's motion queue as room frees up (as a host streams over CAN),
+// and every tick's reference and measured position are scored against the
+// exact programmed geometry (tools/gcode/path_score.hpp).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "emulator/scenario.hpp"
+#include "firmware/tick/firmware_config.hpp"
+#include "firmware/tick/tick_record.hpp"
+#include "tools/gcode/path_score.hpp"
+
+namespace tnv::hil {
+
+struct PathRunOptions {
+  double rapid_feed_mm_s = 50.0;  // G0 path speed
+  bool keep_samples = false;      // every tick's reference and position (plots, CSV)
+};
+
+struct PathRunResult {
+  bool completed = false;
+  std::string error;                    // why not: a G-code error (line, column), a refusal, a fault
+  gcode::PathScore score{};
+  std::uint64_t underruns = 0;          // the queue ran dry before the program's end
+  std::uint64_t segments = 0;           // segments streamed
+  std::uint64_t guard_failures = 0;     // planner second-difference guard found no speed (never expected)
+  double programmed_length_mm = 0.0;
+  fw::TickCounters counters{};
+  std::vector<gcode::PathSample> samples;  // from the first streamed segment, when keep_samples
+  std::vector<double> path_speed_mm_s;     // the planner's path speed, with samples
+};
+
+// One run of `gcode_text` with `controller` on both axes.
+PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& config, fw::ControllerKind controller,
+                       const std::string& gcode_text, const PathRunOptions& options = {});
+
+struct PathSweepResult {
+  std::vector<PathRunResult> per_seed;  // seed 0 keeps its samples when asked
+  gcode::PathScore mean{};              // contour statistics, feed ratio and cycle time averaged over seeds;
+                                        // path deviation, accel and jerk ratios the largest of any seed
+  std::uint64_t underruns = 0;          // summed over seeds
+  std::string error;                    // the first seed's error, "" when all completed
+};
+
+// `seeds` runs (seeded scenarios, hil/seeded_scenario.hpp) on the machine's cores.
+PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::FirmwareConfig& config,
+                               fw::ControllerKind controller, const std::string& gcode_text, int seeds,
+                               const PathRunOptions& seed0_options,
+                               const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace tnv::hil

@@ -1,0 +1,164 @@
+// tnv-hil path FILE.ngc: a G-code program on the emulated table, scored
+// against its exact programmed geometry (docs/motion.md).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "emulator/text_file.hpp"
+#include "tools/hil/best_circle.hpp"
+#include "tools/hil/path_plot.hpp"
+#include "tools/hil/path_run.hpp"
+#include "tools/tnv-hil/cli_support.hpp"
+#include "tools/tnv-hil/commands.hpp"
+
+namespace tnv::cli {
+
+namespace {
+
+constexpr std::size_t kMaxProgramBytes = 16u << 20;  // a program bigger than this is not a test piece
+
+struct PathOptions {
+  std::string file;
+  std::string controller = "rdvsc";
+  std::string scenario = "no-cut";
+  int seeds = 1;
+  bool best = false;
+  double rapid_feed_mm_s = 50.0;
+  bool json = false;
+  std::string plot;
+};
+
+std::optional<fw::ControllerKind> controller_of(const std::string& name) {
+  if (name == "pid") return fw::ControllerKind::pid;
+  if (name == "dvsc") return fw::ControllerKind::dvsc;
+  if (name == "rdvsc") return fw::ControllerKind::rdvsc;
+  return std::nullopt;
+}
+
+// An output path that cannot be written is refused before a long run.
+bool output_writable(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    std::fprintf(stderr, "tnv-hil path: --plot %s: no such directory %s\n", path.c_str(), dir.string().c_str());
+    return false;
+  }
+  return true;
+}
+
+nlohmann::json score_json(const gcode::PathScore& s) {
+  return {{"contour_error_max_um", s.contour_error_max_um},   {"contour_error_mean_um", s.contour_error_mean_um},
+          {"contour_error_std_um", s.contour_error_std_um},   {"path_deviation_max_um", s.path_deviation_max_um},
+          {"accel_ratio_max", s.accel_ratio_max},             {"jerk_ratio_max", s.jerk_ratio_max},
+          {"feed_ratio", s.feed_ratio},                       {"cycle_time_s", s.cycle_time_s}};
+}
+
+int run_path_command(const PathOptions& o) {
+  const auto kind = controller_of(o.controller);
+  const auto scenario = resolve_scenario_or_report(o.scenario);
+  if (!kind || !scenario) return kExitBadInput;
+  std::string text;
+  std::string error;
+  if (!emu::read_text_file(o.file, kMaxProgramBytes, text, error)) {
+    std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
+    return kExitBadInput;
+  }
+  if (!o.plot.empty() && !output_writable(o.plot)) return kExitBadInput;
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  if (o.best) {
+    // The best configuration of tnv-hil best-circle, designed on this table.
+    const hil::BestConfigDesign d = hil::design_best_config(*scenario, {});
+    if (!d.ok) {
+      std::fprintf(stderr, "tnv-hil path: --best: %s\n", d.error.c_str());
+      return d.bad_input ? kExitBadInput : kExitFailure;
+    }
+    config = d.config;
+  }
+  hil::PathRunOptions options;
+  options.rapid_feed_mm_s = o.rapid_feed_mm_s;
+  options.keep_samples = !o.plot.empty();
+  Progress progress("path");
+  const hil::PathSweepResult r =
+      hil::run_path_seeds(*scenario, config, *kind, text, o.seeds, options,
+                          o.seeds > 1 ? std::function<void(std::size_t, std::size_t)>(std::ref(progress)) : nullptr);
+  const hil::PathRunResult& seed0 = r.per_seed.front();
+  // A G-code error is the input's fault, found before anything moved.
+  if (!seed0.completed && seed0.segments == 0 && seed0.counters.ticks < 10) {
+    std::fprintf(stderr, "tnv-hil path: %s: %s\n", o.file.c_str(), seed0.error.c_str());
+    return kExitBadInput;
+  }
+  if (o.json) {
+    nlohmann::json j = score_json(r.mean);
+    j["file"] = o.file;
+    j["controller"] = o.controller;
+    j["scenario"] = scenario->name;
+    j["seeds"] = o.seeds;
+    j["best"] = o.best;
+    j["underruns"] = r.underruns;
+    j["programmed_length_mm"] = seed0.programmed_length_mm;
+    j["segments"] = seed0.segments;
+    nlohmann::json per_seed = nlohmann::json::array();
+    for (const hil::PathRunResult& s : r.per_seed) per_seed.push_back(score_json(s.score));
+    j["per_seed"] = per_seed;
+    j["error"] = r.error;
+    std::cout << j.dump(2) << '\n';
+  } else {
+    const gcode::PathScore& m = r.mean;
+    std::printf("path %s: %llu segments, %.1f mm, %s%s on %s, %d seed%s\n", o.file.c_str(),
+                static_cast<unsigned long long>(seed0.segments), seed0.programmed_length_mm, o.controller.c_str(),
+                o.best ? " (best configuration)" : "", scenario->name.c_str(), o.seeds, o.seeds == 1 ? "" : "s");
+    std::printf("contour error (um)     max %.4f  mean %.4f  std %.4f%s\n", m.contour_error_max_um,
+                m.contour_error_mean_um, m.contour_error_std_um, o.seeds > 1 ? "   (seed average)" : "");
+    std::printf("path deviation (um)    max %.4f   (the planner's reference against the program)\n",
+                m.path_deviation_max_um);
+    std::printf("accel ratio max %.4f  jerk ratio max %.4f   (commanded / limit, worst axis)\n", m.accel_ratio_max,
+                m.jerk_ratio_max);
+    std::printf("feed ratio %.4f  cycle time %.3f s  underruns %llu\n", m.feed_ratio, m.cycle_time_s,
+                static_cast<unsigned long long>(r.underruns));
+  }
+  bool ok = r.error.empty();
+  if (!ok) std::fprintf(stderr, "tnv-hil path: %s\n", r.error.c_str());
+  if (!o.plot.empty() && seed0.completed) {
+    gcode::GcodeOptions parse;
+    parse.rapid_feed_mm_s = o.rapid_feed_mm_s;
+    parse.limits = fw::path_limits(config);
+    parse.start_mm = {config.axis[0].home_position_mm, config.axis[1].home_position_mm};
+    const gcode::GcodeResult program = gcode::parse_gcode(text, parse);
+    const std::string title =
+        "tnv-hil path " + std::filesystem::path(o.file).filename().string() + ", " + o.controller + ", " + scenario->name +
+        " (seed 0)";
+    ok = write_svg(o.plot, hil::path_figure(title, program.program, seed0)) && ok;
+  }
+  return ok ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+void add_path_commands(CLI::App& app, Runner& run) {
+  auto o = std::make_shared<PathOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "path", "run a G-code program (RS274/NGC subset) on the emulated table and score it against its geometry");
+  cmd->add_option("file", o->file, "the program (.ngc)")->required();
+  cmd->add_option("--controller", o->controller, "pid | dvsc | rdvsc")
+      ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
+      ->capture_default_str();
+  cmd->add_option("--scenario", o->scenario, "built-in name or TOML file")->capture_default_str();
+  cmd->add_option("--seeds", o->seeds, "average over N encoder offsets / cutting phases")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_flag("--best", o->best,
+                "the best configuration of tnv-hil best-circle (gains designed from this table, friction "
+                "feed-forward, speed observer)");
+  cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")
+      ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "print JSON on stdout");
+  cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (SVG)");
+  cmd->callback([&run, o] { run = [o] { return run_path_command(*o); }; });
+}
+
+}  // namespace tnv::cli
