@@ -12,4 +12,8 @@ namespace tnv::hil {
 // `run` must hold its samples (PathRunOptions::keep_samples).
 SvgWriter path_figure(const std::string& title, const gcode::GcodeProgram& program, const PathRunResult& run);
 
+// The same run as CSV, one row per tick from the program's start:
+// t_s, x_ref_mm, y_ref_mm, x_mm, y_mm, contour_um, path_speed_mm_s.
+std::string path_csv(const gcode::GcodeProgram& program, const PathRunResult& run);
+
 }  // namespace tnv::hil

@@ -88,6 +88,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     result.completed = true;
   }
   if (options.keep_samples) result.samples = std::move(samples);
+  result.program = parsed.program;
   return result;
 }
 

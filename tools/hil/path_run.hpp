@@ -30,6 +30,7 @@ struct PathRunResult {
   std::uint64_t guard_failures = 0;     // planner second-difference guard found no speed (never expected)
   double programmed_length_mm = 0.0;
   fw::TickCounters counters{};
+  gcode::GcodeProgram program;             // as read for where the table stood
   std::vector<gcode::PathSample> samples;  // from the first streamed segment, when keep_samples
   std::vector<double> path_speed_mm_s;     // the planner's path speed, with samples
 };

@@ -29,6 +29,7 @@ struct PathOptions {
   double rapid_feed_mm_s = 50.0;
   bool json = false;
   std::string plot;
+  std::string csv;
 };
 
 std::optional<fw::ControllerKind> controller_of(const std::string& name) {
@@ -44,7 +45,7 @@ bool output_writable(const std::string& path) {
   const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) {
-    std::fprintf(stderr, "tnv-hil path: --plot %s: no such directory %s\n", path.c_str(), dir.string().c_str());
+    std::fprintf(stderr, "tnv-hil path: %s: no such directory %s\n", path.c_str(), dir.string().c_str());
     return false;
   }
   return true;
@@ -68,6 +69,7 @@ int run_path_command(const PathOptions& o) {
     return kExitBadInput;
   }
   if (!o.plot.empty() && !output_writable(o.plot)) return kExitBadInput;
+  if (!o.csv.empty() && !output_writable(o.csv)) return kExitBadInput;
   fw::FirmwareConfig config = fw::default_firmware_config();
   if (o.best) {
     // The best configuration of tnv-hil best-circle, designed on this table.
@@ -80,7 +82,7 @@ int run_path_command(const PathOptions& o) {
   }
   hil::PathRunOptions options;
   options.rapid_feed_mm_s = o.rapid_feed_mm_s;
-  options.keep_samples = !o.plot.empty();
+  options.keep_samples = !o.plot.empty() || !o.csv.empty();
   Progress progress("path");
   const hil::PathSweepResult r =
       hil::run_path_seeds(*scenario, config, *kind, text, o.seeds, options,
@@ -122,16 +124,11 @@ int run_path_command(const PathOptions& o) {
   }
   bool ok = r.error.empty();
   if (!ok) std::fprintf(stderr, "tnv-hil path: %s\n", r.error.c_str());
-  if (!o.plot.empty() && seed0.completed) {
-    gcode::GcodeOptions parse;
-    parse.rapid_feed_mm_s = o.rapid_feed_mm_s;
-    parse.limits = fw::path_limits(config);
-    parse.start_mm = {config.axis[0].home_position_mm, config.axis[1].home_position_mm};
-    const gcode::GcodeResult program = gcode::parse_gcode(text, parse);
-    const std::string title =
-        "tnv-hil path " + std::filesystem::path(o.file).filename().string() + ", " + o.controller + ", " + scenario->name +
-        " (seed 0)";
-    ok = write_svg(o.plot, hil::path_figure(title, program.program, seed0)) && ok;
+  if ((!o.plot.empty() || !o.csv.empty()) && !seed0.samples.empty()) {
+    const std::string title = "tnv-hil path " + std::filesystem::path(o.file).filename().string() + ", " +
+                              o.controller + ", " + scenario->name + " (seed 0)";
+    if (!o.plot.empty()) ok = write_svg(o.plot, hil::path_figure(title, seed0.program, seed0)) && ok;
+    if (!o.csv.empty()) ok = write_text(o.csv, hil::path_csv(seed0.program, seed0)) && ok;
   }
   return ok ? kExitOk : kExitFailure;
 }
@@ -158,6 +155,7 @@ void add_path_commands(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
   cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (SVG)");
+  cmd->add_option("--csv", o->csv, "write seed 0's ticks: reference, position, contour error, path speed (CSV)");
   cmd->callback([&run, o] { run = [o] { return run_path_command(*o); }; });
 }
 
