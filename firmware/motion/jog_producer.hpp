@@ -14,7 +14,7 @@
 #include <cstdint>
 
 #include "firmware/motion/motion_interpolator.hpp"
-#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/jog_limits.hpp"
 
 namespace tnv::fw::motion {
 

@@ -13,7 +13,7 @@
 #include "firmware/io/dac_code.hpp"
 #include "firmware/motion/motion_limits.hpp"
 #include "firmware/supervisor/supervisor.hpp"
-#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/jog_limits.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw {

@@ -21,7 +21,7 @@
 #include "firmware/adaptive/arsc/feed_force_model.hpp"
 #include "firmware/adaptive/arsc/outer_gain_solve.hpp"
 #include "firmware/adaptive/arsc/pole_sets.hpp"
-#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/jog_limits.hpp"
 
 namespace tnv::hil {
 

@@ -203,6 +203,8 @@ struct JogOptions {
   std::string shaper = "zvd";
   std::optional<double> freq_hz;
   std::optional<double> zeta;
+  std::optional<double> path_accel_mm_s2;  // both axes' planner acceleration (default: the config's)
+  std::optional<double> path_jerk_mm_s3;
   bool json = false;
   std::string plot;
 };
@@ -239,12 +241,22 @@ int run_jog_command(const JogOptions& o) {
     std::fprintf(stderr, "tnv-hil: scenario %s has no structural mode: give --freq-hz\n", scenario->name.c_str());
     return kExitBadInput;
   }
+  // The jog runs through the planner: its acceleration and jerk set how hard the jog excites the mode.
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  for (fw::AxisConfig& a : config.axis) {
+    a.path.accel_mm_s2 = o.path_accel_mm_s2.value_or(a.path.accel_mm_s2);
+    a.path.jerk_mm_s3 = o.path_jerk_mm_s3.value_or(a.path.jerk_mm_s3);
+  }
+  if (const fw::ConfigError e = fw::validate(config); !e.ok()) {
+    std::fprintf(stderr, "tnv-hil: --path-accel / --path-jerk: %s: %s\n", e.section, e.reason);
+    return kExitBadInput;
+  }
   Progress progress("shaper jog");
   hil::JogRunRequest plain = request;
   plain.shaper = {};
-  const hil::JogRunResult u = hil::run_jog(plain, fw::default_firmware_config());
+  const hil::JogRunResult u = hil::run_jog(plain, config);
   progress(1, 2);
-  const hil::JogRunResult s = hil::run_jog(request, fw::default_firmware_config());
+  const hil::JogRunResult s = hil::run_jog(request, config);
   progress(2, 2);
   for (const hil::JogRunResult* r : {&u, &s})
     if (!r->completed) {
@@ -421,6 +433,11 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   jog->add_option("--freq-hz", j->freq_hz,
                   "shaper frequency on both axes (default: each axis' scenario mode; none: off)");
   jog->add_option("--zeta", j->zeta, "shaper damping (default: the scenario's mode damping)");
+  jog->add_option("--path-accel", j->path_accel_mm_s2,
+                  "the planner's acceleration on both axes, mm/s^2 (the jog gets half of it along its line)")
+      ->check(CLI::Range(1.0, 1e6));
+  jog->add_option("--path-jerk", j->path_jerk_mm_s3, "the planner's jerk limit on both axes, mm/s^3")
+      ->check(CLI::Range(1.0, 1e9));
   jog->add_flag("--json", j->json, "print JSON on stdout");
   jog->add_option("--plot", j->plot, "write the traces (SVG)");
   jog->callback([&run, j] { run = [j] { return run_jog_command(*j); }; });

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "firmware/trajectory/jog_stream.hpp"
+#include "firmware/trajectory/jog_limits.hpp"
 #include "firmware/trajectory/point_to_point_move.hpp"
 #include "tests/firmware/test_units.hpp"
 
@@ -40,48 +40,10 @@ TEST(PointToPointMove, ValidationNamesTheField) {
             std::string::npos);
 }
 
-TEST(JogStream, ReachesTheTargetAtTheAccelerationLimitAndRestsExactly) {
-  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
-  jog.start(10.0);
-  ASSERT_TRUE(jog.command(25.0));
-  int ticks_to_speed = 0;
-  while (jog.current().speed_mm_s != 25.0 && ticks_to_speed < 1000) {
-    jog.advance(kPeriodS);
-    jog.command(25.0);
-    ++ticks_to_speed;
-  }
-  EXPECT_EQ(ticks_to_speed, 25) << "25 mm/s at 1000 mm/s^2 takes 25 ms";
-  // Position is the exact integral of the piecewise-linear speed.
-  EXPECT_NEAR(jog.current().position_mm, 10.0 + 0.5 * 25.0 * 0.025, 1e-12);
-  ASSERT_TRUE(jog.command(0.0));
-  for (int k = 0; k < 40; ++k) jog.advance(kPeriodS);
-  EXPECT_TRUE(jog.at_rest());
-  const double x = jog.current().position_mm;
-  for (int k = 0; k < 1000; ++k) jog.advance(kPeriodS);
-  EXPECT_EQ(jog.current().position_mm, x) << "at rest the position does not creep";
-  EXPECT_EQ(jog.deadman_stops(), 0u);
-}
-
-TEST(JogStream, TheDeadManStopsASilentOperator) {
-  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
-  jog.start(0.0);
-  ASSERT_TRUE(jog.command(-20.0));
-  int k = 0;
-  for (; k < 1000 && jog.target_mm_s() != 0.0; ++k) jog.advance(kPeriodS);
-  EXPECT_NEAR(k * kPeriodS, 0.1, 1.5e-3) << "stops after deadman_s of silence (s)";
-  EXPECT_EQ(jog.deadman_stops(), 1u);
-  for (int i = 0; i < 30; ++i) jog.advance(kPeriodS);
-  EXPECT_TRUE(jog.at_rest());
-}
-
-TEST(JogStream, RefusesNonFiniteOrTooFastCommandsAndKeepsTheOldTarget) {
-  JogStream jog(JogLimits{50.0, 1000.0, 0.1});
-  jog.start(0.0);
-  ASSERT_TRUE(jog.command(10.0));
-  EXPECT_FALSE(jog.command(NAN));
-  EXPECT_FALSE(jog.command(-50.1));
-  EXPECT_EQ(jog.target_mm_s(), 10.0);
+TEST(JogLimits, ValidationNamesTheField) {
+  EXPECT_TRUE(validate(JogLimits{50.0, 1000.0, 0.1}).ok);
   EXPECT_FALSE(validate(JogLimits{50.0, 0.0, 0.1}).ok);
+  EXPECT_STREQ(validate(JogLimits{NAN, 1000.0, 0.1}).field, "speed_max_mm_s");
   EXPECT_STREQ(validate(JogLimits{50.0, 1000.0, -1.0}).field, "deadman_s");
 }
 
