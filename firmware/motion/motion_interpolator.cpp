@@ -10,17 +10,8 @@ const char* MotionInterpolator::configure(const MotionLimits& limits, const Plan
   if (*why != '\0') return why;
   if (!std::isfinite(position_mm[0]) || !std::isfinite(position_mm[1])) return "start position must be finite";
   limits_ = limits;
-  queue_.reset(limits, position_mm);
-  planner_.reset();
-  follower_.reset(position_mm);
-  filter_.reset(queue_.derived().filter_taps, position_mm);
-  out_mm_.fill(position_mm);
-  override_ = 1.0;
-  hold_ = false;
-  stopping_ = false;
-  program_open_ = false;
-  last_phase_ = FollowerPhase::drained;
-  state_ = MotionState::idle;
+  reset_at(position_mm);
+  follower_.reset(position_mm);  // and its counts
   stats_ = {};
   return "";
 }

@@ -7,9 +7,18 @@
 #include <cmath>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "firmware/motion/motion_interpolator.hpp"
 
 namespace tnv::fw::motion::test {
+
+// An interpolator with the default limits, at rest at `start`.
+inline MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
+  MotionInterpolator m;
+  EXPECT_STREQ(m.configure({}, start), "");
+  return m;
+}
 
 struct MotionRun {
   std::vector<PlanePoint> position_mm;  // x_ref,k of both axes, one per tick
