@@ -22,6 +22,8 @@ class BoringDirectLink final : public BoringPlannerLink {
   BoringLinkPart record(int part, const std::vector<double>& bore_error_mm) override;
   double received_reading_mm(double bore_error_mm) const override;
   std::string describe() const override;
+  // The planner itself (after start()): what it has learned, to compare.
+  const fw::BoringInfeedPlanner* planner() const noexcept { return planner_ ? &*planner_ : nullptr; }
 
  private:
   bool node_resolution_;
