@@ -274,8 +274,8 @@ inline constexpr std::array<MessageDef, 23> kMessages{{
      "Answered by BORE_INFEED."},
     {0x1B, "bore_infeed", Direction::from_node, 8, detail::kBoreInfeed,
      "Answer to every BORE_GAUGE, echoing its tag: the infeeds to cut with and, in flags, what happened to the "
-     "part. The parts counted and the estimates are the read-only parameters bore.parts, bore.c_hat_mm, "
-     "bore.alpha_hat and bore.beta_hat."},
+     "part. The parts counted, the resets and the estimates are the read-only parameters bore.parts, bore.resets, "
+     "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
 }};
 
 constexpr const MessageDef* find_message(std::uint8_t id) noexcept {

@@ -103,7 +103,7 @@ void parameters(std::string& out, const NodeSettings& d) {
          "`restart` stored now, used from the next start. Access `rw commissioning`: a safety parameter, changed only in ",
          "commissioning mode (COMMAND enter_commissioning while disabled; outside it a change is refused with ",
          "commissioning_required, docs/safety.md \"Commissioning\"). Defaults are the papers' values (S1 Tables 1/2, ",
-         "eq. 31) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
+         "eq. 31; the boring planner's S4 Table 1) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
          "| id | name | type | unit | range | default | access | apply | meaning |\n",
          "|---|---|---|---|---|---|---|---|---|\n");
   for (const ParamDef& p : param_table()) {

@@ -4,6 +4,7 @@
 // and changes nothing: the learned state, the parameters, the unsaved flag.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -145,6 +146,40 @@ TEST(CanNodeBoringRefusal, TheCasesReachTheChecksTheyAreMeantFor) {
   set_raw(f, MessageId::bore_gauge, "top", 0x8001u);
   EXPECT_EQ(raw_of(b.reply(f), MessageId::bore_infeed, "result"), static_cast<std::uint32_t>(ErrorCode::invalid))
       << "-3.2767 mm of bore error is a negative start-up deflection: refused by eq. (10), not as no reading";
+}
+
+TEST(CanNodeBoringRefusal, BoreParametersAreCheckedLikeEveryOtherAndTheLearningStays) {
+  NodeBench b(boring_settings());
+  ASSERT_EQ(raw_of(b.reply(bore_gauge(kNode, BoreOp::record, 1, 0.0485, 0.1689)), MessageId::bore_infeed, "result"), 0u);
+  const std::vector<std::uint8_t> before = settings_image(b.node->settings());
+  struct Bad {
+    const char* param;
+    std::uint32_t raw;
+    ErrorCode result;
+  };
+  const Bad bad[] = {
+      {"bore.d0_mm", f32_raw(std::numeric_limits<float>::quiet_NaN()), ErrorCode::not_finite},
+      {"bore.sigma_d_mm", f32_raw(std::numeric_limits<float>::infinity()), ErrorCode::not_finite},
+      {"bore.s0_mm_rev", f32_raw(1.5f), ErrorCode::out_of_range},
+      {"bore.force_angle_deg", f32_raw(90.0f), ErrorCode::out_of_range},
+      {"bore.gain_form", 3, ErrorCode::out_of_range},
+      {"bore.reset_after", 0, ErrorCode::out_of_range},
+      {"bore.l2_mm", f32_raw(40.5f), ErrorCode::invalid},  // 0.5 mm from L1: eq. (10) needs two overhangs
+      {"bore.parts", 7, ErrorCode::read_only},
+      {"bore.alpha_hat", f32_raw(0.5f), ErrorCode::read_only},
+  };
+  for (const Bad& c : bad) {
+    const hal::CanFrame r = b.reply(param_request(kNode, fw::can::ParamOp::set, id_of(c.param), c.raw));
+    EXPECT_EQ(raw_of(r, MessageId::param_reply, "result"), static_cast<std::uint32_t>(c.result)) << c.param;
+    EXPECT_EQ(settings_image(b.node->settings()), before) << c.param << ": something changed";
+  }
+  // The cross-field refusal names the parameter to blame in a commit.
+  b.reply(param_request(kNode, fw::can::ParamOp::stage, id_of("bore.l1_mm"), f32_raw(100.0f)));
+  b.reply(param_request(kNode, fw::can::ParamOp::stage, id_of("bore.l2_mm"), f32_raw(100.5f)));
+  const hal::CanFrame commit = b.reply(param_request(kNode, fw::can::ParamOp::commit, 0));
+  EXPECT_EQ(raw_of(commit, MessageId::param_reply, "result"), static_cast<std::uint32_t>(ErrorCode::invalid));
+  EXPECT_EQ(raw_of(commit, MessageId::param_reply, "value"), id_of("bore.l2_mm"));
+  EXPECT_EQ(settings_image(b.node->settings()), before);
 }
 
 }  // namespace
