@@ -1,6 +1,6 @@
 // CanNode: construction, the service() loop, receive routing, replies,
 // heartbeat and telemetry. Requests are handled in can_node_commands.cpp,
-// can_node_params.cpp and can_node_capture.cpp.
+// can_node_params.cpp, can_node_capture.cpp and can_node_boring.cpp.
 #include "firmware/can/can_node.hpp"
 
 #include <algorithm>
@@ -167,6 +167,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     switch (id) {
       case MessageId::param_request: reply_param(e, 0, 0); return;
       case MessageId::capture_control: reply_capture(e); return;
+      case MessageId::bore_gauge: reply_bore(e, 0); return;
       default: reply_ack(m.id, 0, e, 0); return;
     }
   };
@@ -190,6 +191,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     case MessageId::excite: handle_excite(frame); return;
     case MessageId::param_request: handle_param(frame); return;
     case MessageId::capture_control: handle_capture(frame); return;
+    case MessageId::bore_gauge: handle_bore(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }

@@ -143,6 +143,7 @@ class CanNode {
   void handle_excite(const hal::CanFrame& frame) noexcept;
   void handle_param(const hal::CanFrame& frame) noexcept;
   void handle_capture(const hal::CanFrame& frame) noexcept;
+  void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
@@ -172,6 +173,8 @@ class CanNode {
   void reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept;
   void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
   void reply_capture(ErrorCode result) noexcept;
+  // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
+  void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
   void count_result(ErrorCode result) noexcept;
   void queue(const hal::CanFrame& frame, bool droppable) noexcept;  // into the priority queue
   void send_reply(const hal::CanFrame& frame) noexcept { queue(frame, false); }

@@ -148,8 +148,9 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
 // --- restore_defaults (idle only; save and load: can_node_storage.cpp)
 
 // The papers' defaults, except what describes this machine and this node:
-// the encoder count, DAC scale and tick period (commissioning and board facts) and the bus
-// identity (node id, bit rate), so the node stays reachable and sane.
+// the encoder count, DAC scale and tick period (commissioning and board facts), the bus
+// identity (node id, bit rate), so the node stays reachable and sane, and what the boring
+// planner has learned of the process.
 // The defaults were computed once, when the first node was built: default_node_settings()
 // runs the PID tuning (milliseconds), which must not run in service().
 // Outside commissioning mode the safety parameters are kept as well.
@@ -166,6 +167,8 @@ ErrorCode CanNode::command_restore_defaults() noexcept {
   next.firmware.supervisor.period_tolerance_clocks = settings_.firmware.supervisor.period_tolerance_clocks;
   next.can.node_id = settings_.can.node_id;
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
+  // What the boring planner learned is no setting: BORE_GAUGE restart clears it.
+  next.bore_state = settings_.bore_state;
   check_commissioning();
   if (!commissioning_) keep_safety_params(settings_, next);
   return apply_settings(next, true);

@@ -26,6 +26,8 @@ inline constexpr const MessageDef& kSlidingXMsg = message(MessageId::tlm_sliding
 inline constexpr const MessageDef& kSlidingYMsg = message(MessageId::tlm_sliding_y);
 inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
+inline constexpr const MessageDef& kBoreGaugeMsg = message(MessageId::bore_gauge);
+inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infeed);
 
 inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
@@ -105,6 +107,17 @@ inline constexpr const FieldDef& kOutputDacY = field(kOutputMsg, "dac_y");
 inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
 inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
 inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");
+
+inline constexpr const FieldDef& kBoreOp = field(kBoreGaugeMsg, "op");
+inline constexpr const FieldDef& kBorePart = field(kBoreGaugeMsg, "part");
+inline constexpr const FieldDef& kBoreTop = field(kBoreGaugeMsg, "top");
+inline constexpr const FieldDef& kBoreBottom = field(kBoreGaugeMsg, "bottom");
+inline constexpr const FieldDef& kBoreReplyTag = field(kBoreInfeedMsg, "tag");
+inline constexpr const FieldDef& kBoreResult = field(kBoreInfeedMsg, "result");
+inline constexpr const FieldDef& kBoreDetail = field(kBoreInfeedMsg, "detail");
+inline constexpr const FieldDef& kBoreFlags = field(kBoreInfeedMsg, "flags");
+inline constexpr const FieldDef& kBoreInfeedTop = field(kBoreInfeedMsg, "infeed_top");
+inline constexpr const FieldDef& kBoreInfeedBottom = field(kBoreInfeedMsg, "infeed_bottom");
 
 // Field index within its message (COMMAND_ACK.detail names the offending field).
 constexpr std::uint8_t index_of(const MessageDef& m, const FieldDef& f) noexcept {

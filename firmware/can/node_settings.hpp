@@ -1,10 +1,14 @@
 #pragma once
 // Everything a node can be told over CAN and keeps in storage: the
-// firmware config plus the bus, telemetry, motion-default, capture and
-// shaper settings. param_table.hpp maps each tunable to a parameter id.
+// firmware config plus the bus, telemetry, motion-default, capture, shaper
+// and boring-planner settings. param_table.hpp maps each tunable to a
+// parameter id. One member is no parameter: the boring planner's learned
+// state (BORE_GAUGE changes it), kept here so that it is saved, loaded and
+// validated with the parameters, whole (param_image.hpp).
 #include <array>
 #include <cstdint>
 
+#include "firmware/adaptive/boring/boring_station.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/tick/firmware_config.hpp"
@@ -58,6 +62,8 @@ struct NodeSettings {
   CaptureSettings capture{};
   std::array<ShaperSettings, hal::kAxisCount> shaper{};
   ForceSensorSettings force{};
+  BoringStationSettings bore{};     // bore.* parameters
+  BoringStationState bore_state{};  // what the planner learned: not a parameter
 };
 
 // default_firmware_config() (the papers' values) and the defaults above.

@@ -31,24 +31,31 @@ std::uint64_t get_le(std::span<const std::uint8_t> in, std::size_t at, std::size
 
 bool stored(const ParamDef& p) noexcept { return p.access == Access::read_write && p.set != nullptr; }
 
-// Header bytes of an image of `version`, 0 for an unknown version.
-std::size_t header_bytes(std::uint64_t version) noexcept {
-  if (version == kParamImageVersion) return kParamImageHeaderBytes;
-  if (version == kParamImageVersion1) return kParamImageVersion1HeaderBytes;
-  return 0;
+// Where the parts of an intact image are: header and trailing-block sizes,
+// by version (header 0: not an image).
+struct Layout {
+  std::size_t header = 0;
+  std::size_t entries = 0;      // count
+  std::size_t bore_state = 0;   // bytes of the bore-state block (0 before version 3)
+  std::size_t body() const noexcept { return header + entries * kParamImageEntryBytes + bore_state; }
+};
+
+Layout layout_of(std::uint64_t version, std::size_t count) noexcept {
+  if (version == kParamImageVersion) return {kParamImageHeaderBytes, count, kBoreStateImageBytes};
+  if (version == kParamImageVersion2) return {kParamImageHeaderBytes, count, 0};
+  if (version == kParamImageVersion1) return {kParamImageVersion1HeaderBytes, count, 0};
+  return {};
 }
 
-// Magic, version, length and CRC: the header's size, or 0 when any is wrong.
-std::size_t intact_header(std::span<const std::uint8_t> image) noexcept {
-  if (image.size() < kParamImageVersion1HeaderBytes + kParamImageCrcBytes) return 0;
-  if (get_le(image, 0, 4) != kParamImageMagic) return 0;
-  const std::size_t header = header_bytes(get_le(image, 4, 2));
-  if (header == 0) return 0;
-  const std::size_t count = static_cast<std::size_t>(get_le(image, 6, 2));
-  const std::size_t body = header + count * kParamImageEntryBytes;
-  if (image.size() != body + kParamImageCrcBytes) return 0;
-  if (get_le(image, body, 4) != crc32(image.first(body))) return 0;
-  return header;
+// Magic, version, length and CRC: the image's layout, header 0 when any is wrong.
+Layout intact_layout(std::span<const std::uint8_t> image) noexcept {
+  if (image.size() < kParamImageVersion1HeaderBytes + kParamImageCrcBytes) return {};
+  if (get_le(image, 0, 4) != kParamImageMagic) return {};
+  const Layout l = layout_of(get_le(image, 4, 2), static_cast<std::size_t>(get_le(image, 6, 2)));
+  if (l.header == 0) return {};
+  if (image.size() != l.body() + kParamImageCrcBytes) return {};
+  if (get_le(image, l.body(), 4) != crc32(image.first(l.body()))) return {};
+  return l;
 }
 
 }  // namespace
@@ -64,7 +71,8 @@ std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> o
   std::size_t count = 0;
   for (const ParamDef& p : param_table())
     if (stored(p)) ++count;
-  const std::size_t size = kParamImageHeaderBytes + count * kParamImageEntryBytes + kParamImageCrcBytes;
+  const std::size_t size =
+      kParamImageHeaderBytes + count * kParamImageEntryBytes + kBoreStateImageBytes + kParamImageCrcBytes;
   if (count > kParamImageMaxEntries || out.size() < size) return 0;
   put_le(out, 0, kParamImageMagic, 4);
   put_le(out, 4, kParamImageVersion, 2);
@@ -77,19 +85,21 @@ std::size_t encode_image(const NodeSettings& settings, std::span<std::uint8_t> o
     put_le(out, at + 2, std::bit_cast<std::uint64_t>(p.get(settings)), 8);
     at += kParamImageEntryBytes;
   }
+  encode_bore_state(settings.bore_state, out.subspan(at).first<kBoreStateImageBytes>());
+  at += kBoreStateImageBytes;
   put_le(out, at, crc32(out.first(at)), 4);
   return size;
 }
 
 bool image_generation(std::span<const std::uint8_t> image, std::uint32_t& generation) noexcept {
-  const std::size_t header = intact_header(image);
-  if (header == 0) return false;
-  generation = header == kParamImageHeaderBytes ? static_cast<std::uint32_t>(get_le(image, 8, 4)) : 0u;
+  const Layout l = intact_layout(image);
+  if (l.header == 0) return false;
+  generation = l.header == kParamImageHeaderBytes ? static_cast<std::uint32_t>(get_le(image, 8, 4)) : 0u;
   return true;
 }
 
 void stamp_generation(std::span<std::uint8_t> image, std::uint32_t generation) noexcept {
-  if (intact_header(image) != kParamImageHeaderBytes) return;
+  if (intact_layout(image).header != kParamImageHeaderBytes) return;
   put_le(image, 8, generation, 4);
   const std::size_t body = image.size() - kParamImageCrcBytes;
   put_le(image, body, crc32(image.first(body)), 4);
@@ -106,17 +116,22 @@ std::uint32_t next_generation(hal::ParamStorage& storage) noexcept {
 }
 
 ErrorCode decode_image(std::span<const std::uint8_t> image, NodeSettings& inout) noexcept {
-  const std::size_t header = intact_header(image);
-  if (header == 0) return ErrorCode::storage_corrupt;
-  const std::size_t count = static_cast<std::size_t>(get_le(image, 6, 2));
+  const Layout l = intact_layout(image);
+  if (l.header == 0) return ErrorCode::storage_corrupt;
   NodeSettings next = inout;
-  for (std::size_t e = 0; e < count; ++e) {
-    const std::size_t at = header + e * kParamImageEntryBytes;
+  for (std::size_t e = 0; e < l.entries; ++e) {
+    const std::size_t at = l.header + e * kParamImageEntryBytes;
     const ParamDef* p = find_param(static_cast<std::uint16_t>(get_le(image, at, 2)));
     if (p == nullptr || !stored(*p)) return ErrorCode::storage_corrupt;
     const double value = std::bit_cast<double>(get_le(image, at + 2, 8));
     if (check_value(*p, value) != ErrorCode::ok) return ErrorCode::storage_corrupt;
     p->set(next, value);
+  }
+  // The learned state, whole and plausible, or the image is damaged.
+  if (l.bore_state != 0) {
+    const std::size_t at = l.header + l.entries * kParamImageEntryBytes;
+    if (!decode_bore_state(image.subspan(at).first<kBoreStateImageBytes>(), next.bore_state))
+      return ErrorCode::storage_corrupt;
   }
   if (!validate(next).ok) return ErrorCode::invalid;
   inout = next;

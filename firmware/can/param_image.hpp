@@ -10,22 +10,27 @@
 //                   first): the loader tells a rolled-back or swapped pair
 //                   of generations by it (param_fallback.hpp)
 //   count x { id u16, value f64 }   every read_write parameter, table order
+//   bore state      the boring planner's learned state, kBoreStateImageBytes
+//                   (bore_state_image.hpp)
 //   crc     u32  CRC-32 (IEEE 802.3, reflected, init/xorout 0xFFFFFFFF)
 //                over every byte before it
 // Values are the settings' doubles (an f32 parameter holds exactly the
 // float it arrived as, an integer parameter an integer), so a round trip is
 // exact. Decoding is all or nothing: a bad magic, version, length or CRC,
-// an unknown or read-only id, a value outside its parameter's range ->
-// storage_corrupt; a set that fails validate() as a whole -> invalid; in
-// both cases `inout` is untouched. Parameters missing from the image keep
-// their value in `inout` (an image from before a parameter was added).
-// A version-1 image (no generation field, an 8-byte header) still loads,
-// as generation 0.
+// an unknown or read-only id, a value outside its parameter's range, a
+// learned state that is not plausible -> storage_corrupt; a set that fails
+// validate() as a whole -> invalid; in all cases `inout` is untouched.
+// Parameters missing from the image keep their value in `inout` (an image
+// from before a parameter was added).
+// Older versions still load: version 2 (no bore state: `inout`'s learned
+// state is kept, at start-up the fresh one) and version 1 (no generation
+// field either, an 8-byte header; generation 0).
 // No allocation, no exceptions.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
+#include "firmware/can/bore_state_image.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "hal/param_storage.hpp"
@@ -33,7 +38,8 @@
 namespace tnv::fw::can {
 
 inline constexpr std::uint32_t kParamImageMagic = 0x50564E54u;  // "TNVP" as bytes 54 4E 56 50
-inline constexpr std::uint16_t kParamImageVersion = 2;
+inline constexpr std::uint16_t kParamImageVersion = 3;
+inline constexpr std::uint16_t kParamImageVersion2 = 2;  // before the bore state: still loaded
 inline constexpr std::uint16_t kParamImageVersion1 = 1;  // before the generation field: still loaded
 inline constexpr std::size_t kParamImageHeaderBytes = 12;
 inline constexpr std::size_t kParamImageVersion1HeaderBytes = 8;
@@ -41,7 +47,7 @@ inline constexpr std::size_t kParamImageEntryBytes = 10;
 inline constexpr std::size_t kParamImageCrcBytes = 4;
 inline constexpr std::size_t kParamImageMaxEntries = 256;  // > the table's read_write parameters (tested)
 inline constexpr std::size_t kParamImageMaxBytes =
-    kParamImageHeaderBytes + kParamImageMaxEntries * kParamImageEntryBytes + kParamImageCrcBytes;
+    kParamImageHeaderBytes + kParamImageMaxEntries * kParamImageEntryBytes + kBoreStateImageBytes + kParamImageCrcBytes;
 
 // CRC-32 (IEEE) of `bytes`.
 std::uint32_t crc32(std::span<const std::uint8_t> bytes) noexcept;

@@ -6,6 +6,7 @@
 
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/frame_codec.hpp"
+#include "firmware/can/param_rows_bore.hpp"
 #include "firmware/shaper/impulse_design.hpp"
 
 namespace tnv::fw::can {
@@ -254,11 +255,14 @@ constexpr ParamDef kParams[] = {
      TNV_REAL(force.n_per_volt), "force-sensor scale (ADC volts to N)"},
     {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, kMissedTicksMax, "", Access::read_write, Apply::idle,
      kSafety, TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
+    TNV_BORE_PARAMS,
     TNV_AXIS_PARAMS(0, 0x0100, "x."),
     TNV_AXIS_PARAMS(1, 0x0200, "y."),
 };
 
 #undef TNV_AXIS_PARAMS
+#undef TNV_BORE_PARAMS
+#undef TNV_BORE_LEARNED
 #undef TNV_REAL
 #undef TNV_INT
 #undef TNV_RO
@@ -382,6 +386,9 @@ SettingsCheck validate(const NodeSettings& s) noexcept {
       return {false, static_cast<std::uint16_t>(i == 0 ? 0x0150 : 0x0250), i == 0 ? "axis x: limits" : "axis y: limits",
               "position_min_mm must be below position_max_mm"};
   }
+  if (const ParamCheck c = validate(s.bore); !c.ok) return {false, bore_param_for(c.field), "bore", c.reason};
+  // The learned state is no parameter; a damaged one fails the set as a whole.
+  if (const ParamCheck c = validate(s.bore_state); !c.ok) return {false, 0, "bore: learned state", c.reason};
   return {};
 }
 

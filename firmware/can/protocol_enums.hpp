@@ -117,6 +117,38 @@ inline constexpr std::uint8_t kCaptureOpCount = 4;
 
 enum class CaptureState : std::uint8_t { idle = 0, armed, recording, done };
 
+// BORE_GAUGE.op
+enum class BoreOp : std::uint8_t {
+  record = 0,  // a finished part's readings: record it, answer the next part's infeeds
+  query,       // the infeeds of the part being cut now; nothing changes
+  restart,     // learning starts again: the next part is the start-up part, cut at S0
+};
+inline constexpr std::uint8_t kBoreOpCount = 3;
+
+constexpr const char* to_string(BoreOp op) noexcept {
+  switch (op) {
+    case BoreOp::record: return "record";
+    case BoreOp::query: return "query";
+    case BoreOp::restart: return "restart";
+  }
+  return "?";
+}
+
+// BORE_INFEED.flags bits
+enum BoreFlag : std::uint8_t {
+  kBoreStarted = 1u << 0,        // the planner has started: infeeds follow S4 eq. (3)
+  kBoreStartup = 1u << 1,        // the recorded part was the start-up part (eq. (10))
+  kBoreReset = 1u << 2,          // the variance perturbation reset P during the recorded part
+  kBoreTopOut = 1u << 3,         // top reading out of d0 +- 3 sigma_d
+  kBoreBottomOut = 1u << 4,      // bottom reading out of band
+  kBoreTopLimited = 1u << 5,     // eq. (3) clamped to the infeed range at the top
+  kBoreBottomLimited = 1u << 6,  // ... at the bottom
+  kBoreAlphaFloor = 1u << 7,     // alpha^ below 0.05: the schedule used 0.05
+};
+
+// BORE_GAUGE.top / bottom raw value of a gauge that has no reading (over range).
+inline constexpr std::int16_t kBoreNoReading = -32768;
+
 enum class CaptureTrigger : std::uint8_t {
   immediate = 0,  // recording starts at arm
   motion,         // at the first tick of motion (circle, move or jog); stops when the motion ends

@@ -33,6 +33,8 @@ enum class MessageId : std::uint8_t {
   tlm_output = 0x14,
   tlm_contour = 0x15,
   capture_data = 0x18,
+  bore_gauge = 0x1A,
+  bore_infeed = 0x1B,
 };
 
 namespace detail {
@@ -178,9 +180,36 @@ inline constexpr FieldDef kTlmContour[] = {
     {"motion_tick", WireType::i32, 4, 1, "tick", "", "ticks since the start of motion, -1 outside motion"},
 };
 
+inline constexpr FieldDef kBoreGauge[] = {
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"op", WireType::u8, 1, 1, "", "0=record 1=query 2=restart",
+     "record: a finished part's readings (needs command ownership); query: the current infeeds, nothing changes; "
+     "restart: learning starts again, the next part is cut at bore.s0_mm_rev (needs command ownership)"},
+    {"part", WireType::u16, 2, 1, "", "",
+     "record: the number of the part measured, bore.parts + 1 (mod 65536): a repeated or skipped part is refused "
+     "(out_of_range); query, restart: 0"},
+    {"top", WireType::i16, 4, 0.0001, "mm", "",
+     "record: diametral bore error at overhang bore.l1_mm (nominal minus measured diameter, + = undersize); "
+     "-32768 = no reading (not_finite)"},
+    {"bottom", WireType::i16, 6, 0.0001, "mm", "", "record: the same at overhang bore.l2_mm"},
+};
+inline constexpr FieldDef kBoreInfeed[] = {
+    {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
+    {"result", WireType::u8, 1, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
+    {"detail", WireType::u8, 2, 1, "", "", "refused: index of the offending BORE_GAUGE field, else 0"},
+    {"flags", WireType::u8, 3, 1, "", "",
+     "bit 0 started (infeeds follow S4 eq. (3); 0: the next part is the start-up part, cut at S0); for a recorded "
+     "part: bit 1 it was the start-up part (eq. (10)), bit 2 the variance perturbation reset P, bits 3/4 the "
+     "top/bottom reading was out of d0 +- 3 sigma_d, bits 5/6 the top/bottom infeed is clamped to 0.005..1 mm/rev, "
+     "bit 7 alpha^ < 0.05 (0.05 used)"},
+    {"infeed_top", WireType::u16, 4, 0.00002, "mm/rev", "",
+     "infeed to cut with at bore.l1_mm: after record, the next part's; else the part being cut now"},
+    {"infeed_bottom", WireType::u16, 6, 0.00002, "mm/rev", "", "the same at bore.l2_mm"},
+};
+
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 21> kMessages{{
+inline constexpr std::array<MessageDef, 23> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -235,7 +264,18 @@ inline constexpr std::array<MessageDef, 21> kMessages{{
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
      "Telemetry every tlm.contour_ms (0 = off)."},
     {0x18, "capture_data", Direction::from_node, 8, detail::kCaptureData,
-     "One segment of a capture upload. Lowest priority: never delays control traffic."},
+     "One segment of a capture upload. Below every control message in priority (only BORE_GAUGE and BORE_INFEED, "
+     "which wait between parts, rank lower): never delays control traffic."},
+    {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
+     "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "
+     "the bore.* parameters; the node's planner records the part with the infeeds it told for it (RLS on the log "
+     "model, variance perturbation) and answers the next part's infeeds. Its learned state is saved and loaded "
+     "with the parameters. Refused with not_ready while bore.enable is off, busy while a save or load runs. "
+     "Answered by BORE_INFEED."},
+    {0x1B, "bore_infeed", Direction::from_node, 8, detail::kBoreInfeed,
+     "Answer to every BORE_GAUGE, echoing its tag: the infeeds to cut with and, in flags, what happened to the "
+     "part. The parts counted, the resets and the estimates are the read-only parameters bore.parts, bore.resets, "
+     "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
 }};
 
 constexpr const MessageDef* find_message(std::uint8_t id) noexcept {

@@ -1,6 +1,9 @@
 // One S4 planner update: a finished part's two bore measurements through
 // eq. (11), the band check / variance perturbation and two RLS updates
 // (eqs. (5), (6)), then the next part's infeed at both positions (eq. (3)).
+// And the same as the node runs it on BORE_GAUGE (boring_station.hpp): the
+// settings and the learned state checked, a planner built and restored
+// from them, the part recorded, the state taken back.
 // Global operator new is counted in this program: the update must not
 // allocate (counter "allocs_per_update").
 #include <benchmark/benchmark.h>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "firmware/adaptive/boring/boring_infeed_planner.hpp"
+#include "firmware/adaptive/boring/boring_station.hpp"
 
 namespace {
 std::atomic<bool> g_counting{false};
@@ -95,5 +99,33 @@ void BM_BoringRlsUpdate(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_BoringRlsUpdate);
+
+void BM_BoringNodeRecord(benchmark::State& state) {
+  fw::BoringStationSettings settings;
+  settings.enabled = true;
+  settings.alpha0 = 0.5025;
+  fw::BoringStationState learned;
+  fw::record_bored_part(settings, learned,
+                        {fw::bore_error_from_deflection_mm(0.1650, 0.1165, 60.0),
+                         fw::bore_error_from_deflection_mm(0.2854, 0.1165, 60.0)},
+                        2e-5);
+  fw::BoringInfeedPlanner planner(fw::planner_params(settings));
+  planner.restore(learned.planner);
+  const auto parts = readings(planner);
+  std::size_t k = 0;
+  g_allocations = 0;
+  g_counting = true;
+  for (auto _ : state) {
+    const auto& p = parts[k++ & 1023];
+    fw::BoringStationState s = learned;  // every part on the same learned state: the cost of one, not a drift
+    const fw::BoringStationAnswer a = fw::record_bored_part(settings, s, {p[0].bore_error_mm, p[1].bore_error_mm}, 2e-5);
+    benchmark::DoNotOptimize(a);
+    benchmark::DoNotOptimize(s);
+  }
+  g_counting = false;
+  state.counters["allocs_per_record"] =
+      benchmark::Counter(static_cast<double>(g_allocations.load()) / static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_BoringNodeRecord);
 
 }  // namespace

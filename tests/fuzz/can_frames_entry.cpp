@@ -1,9 +1,11 @@
-// Fuzz entry: raw frames and tick steps into the firmware node. Invariants:
+// Fuzz entry: raw frames and tick steps into the firmware node (its boring
+// planner on). Invariants:
 // every frame the node sends (answers and what it sends on its own between
 // ticks) is a well-formed to-host message of this node; a frame for
 // another node (or extended) is ignored: no answer (the rest of an upload
 // under way may go out in the same service()), no parameter changed; a refused
-// request changes no parameter; the live set always passes validate().
+// request changes no parameter and not what the boring planner learned (both
+// are in the stored image compared); the live set always passes validate().
 //
 // Persistent: one node for the whole run (the 512 KiB capture buffer and
 // the rings stay where they are), rebuilt in place between inputs from a
@@ -58,8 +60,15 @@ struct FuzzNode {
   can::CanNode node;
 };
 
+// Telemetry off (test::quiet_settings) and the boring planner on, so BORE_GAUGE reaches it.
+can::NodeSettings fuzz_settings() {
+  can::NodeSettings s = test::quiet_settings();
+  s.bore.enabled = true;
+  return s;
+}
+
 FuzzNode& fresh_node() {
-  static const can::NodeSettings settings = test::quiet_settings();
+  static const can::NodeSettings settings = fuzz_settings();
   static FuzzNode* const node = new FuzzNode(settings);  // lives for the whole run
   node->reset(settings);
   // the first tick reads home (as test::NodeBench does)
@@ -90,6 +99,7 @@ can::ErrorCode result_of(const hal::CanFrame& f) {
   if (is(f, MessageId::param_reply)) return static_cast<can::ErrorCode>(raw_of(f, MessageId::param_reply, "result"));
   if (is(f, MessageId::capture_status))
     return static_cast<can::ErrorCode>(raw_of(f, MessageId::capture_status, "result"));
+  if (is(f, MessageId::bore_infeed)) return static_cast<can::ErrorCode>(raw_of(f, MessageId::bore_infeed, "result"));
   return can::ErrorCode::ok;
 }
 

@@ -11,6 +11,7 @@
 
 #include "firmware/can/param_image.hpp"
 #include "firmware/can/param_table.hpp"
+#include "tests/firmware/can/bore_frames.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 
 namespace {
@@ -142,6 +143,35 @@ void seed_can_frames(const fs::path& dir) {
   add_frame(deep, command(n, CommandCode::save_params), true);
   add_frame(deep, command(n, CommandCode::load_params));
   put(deep);
+  // Boring on the board (the fuzzed node's planner is on): a start-up part, parts
+  // learned by RLS, a save and a load between them, a restart; then the refusals.
+  using can::BoreOp;
+  deep.clear();
+  add_frame(deep, bore_gauge(n, BoreOp::query));
+  add_frame(deep, bore_gauge(n, BoreOp::record, 1, 0.0485, 0.1689));
+  add_frame(deep, bore_gauge(n, BoreOp::record, 2, 0.0102, -0.0213), true);
+  add_frame(deep, command(n, CommandCode::save_params));
+  add_frame(deep, bore_gauge(n, BoreOp::record, 3, 0.0611, 0.0933), true);
+  add_frame(deep, command(n, CommandCode::load_params), true);
+  add_frame(deep, bore_gauge(n, BoreOp::record, 3, -0.0402, 0.0033));
+  add_frame(deep, with_tag(bore_gauge(n, BoreOp::query), 0x27));
+  add_frame(deep, bore_gauge(n, BoreOp::restart));
+  put(deep);
+  CanFrame no_reading = bore_gauge(n, BoreOp::record, 1, 0.02, 0.02);
+  set_raw(no_reading, MessageId::bore_gauge, "bottom", 0x8000u);
+  CanFrame bad_op = bore_gauge(n, BoreOp::query);
+  set_raw(bad_op, MessageId::bore_gauge, "op", 7);
+  CanFrame short_gauge = bore_gauge(n, BoreOp::record, 1, 0.02, 0.02);
+  short_gauge.dlc = 7;
+  put(frames({no_reading, bore_gauge(n, BoreOp::record, 5, 0.02, 0.02), bad_op, short_gauge,
+              with_tag(bore_gauge(n, BoreOp::restart), 0x31), bore_gauge(n, BoreOp::record, 1, -3.0, 0.02),
+              param_request(n, ParamOp::set, id_of("bore.enable"), 0), bore_gauge(n, BoreOp::query)}));
+  put(frames({param_request(n, ParamOp::stage, id_of("bore.l2_mm"), wire("bore.l2_mm", 40.5)),
+              param_request(n, ParamOp::commit, 0),
+              param_request(n, ParamOp::set, id_of("bore.gain_form"), 2),
+              param_request(n, ParamOp::set, id_of("bore.reset_after"), 1),
+              bore_gauge(n, BoreOp::record, 1, 0.0485, 0.1689), bore_gauge(n, BoreOp::record, 2, 0.2, 0.3),
+              bore_gauge(n, BoreOp::record, 3, 0.2, 0.3), param_request(n, ParamOp::get, id_of("bore.c_hat_mm"))}));
 }
 
 // frame_codec: every message of the table, to and from the node, with
@@ -247,6 +277,24 @@ Bytes image(const can::NodeSettings& s) {
   return out;
 }
 
+// The same set as a version-2 image (before the boring planner's state).
+Bytes image_v2(const can::NodeSettings& s) {
+  Bytes out = image(s);
+  out.erase(out.end() - static_cast<std::ptrdiff_t>(can::kBoreStateImageBytes + can::kParamImageCrcBytes), out.end());
+  out[4] = static_cast<std::uint8_t>(can::kParamImageVersion2);
+  const std::uint32_t crc = can::crc32(out);
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(crc >> (8 * i)));
+  return out;
+}
+
+// A set whose boring planner has learned three parts.
+can::NodeSettings learned(can::NodeSettings s) {
+  s.bore.enabled = true;
+  const double readings[3][2] = {{0.0485, 0.1689}, {0.0102, -0.0213}, {0.0611, 0.0933}};
+  for (const auto& r : readings) tnv::fw::record_bored_part(s.bore, s.bore_state, {r[0], r[1]}, 2e-5);
+  return s;
+}
+
 void seed_images(const fs::path& dir) {
   const can::NodeSettings d = can::default_node_settings();
   can::NodeSettings a = d;
@@ -274,15 +322,19 @@ void seed_images(const fs::path& dir) {
     header_only.resize(can::kParamImageHeaderBytes);
     put(flags, header_only, two ? header_only : Bytes{});
     Bytes wrong_version = image(a);
-    wrong_version[4] = 2;
+    wrong_version[4] = static_cast<std::uint8_t>(can::kParamImageVersion + 1);
     put(flags, wrong_version, two ? image(a) : Bytes{});
+    put(flags, image(learned(a)), two ? image_v2(b) : Bytes{});
+    Bytes bad_state = image(learned(b));
+    bad_state[bad_state.size() - can::kParamImageCrcBytes - 88] ^= 0x08;  // P(1,2): no longer symmetric
+    put(flags, bad_state, two ? image(learned(a)) : Bytes{});
   }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
+  if (argc != 2 || argv[1][0] == '-') {  // "--help" is no directory to write into
     std::fprintf(stderr, "usage: tnv-fuzz-seed DIR\n");
     return 2;
   }

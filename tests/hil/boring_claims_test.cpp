@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "tools/hil/boring_direct_link.hpp"
 #include "tools/hil/boring_sweep.hpp"
 
 namespace tnv::hil {
@@ -66,7 +67,8 @@ TEST(BoringClaims, WithAlpha0OnePartTwoIsBadForEveryGainForm) {
     BoringRunRequest request = paper_boring_request(0.005, 1.0);
     request.process_sigma_mm = 0.0;  // exact gauge: the floor, not bad luck
     request.planner.gain_form = form;
-    const BoringRunResult run = run_boring(request, 1);
+    BoringDirectLink exact(false);  // doubles throughout: the identity below holds to round-off
+    const BoringRunResult run = run_boring(request, 1, exact);
     ASSERT_TRUE(run.error.empty()) << run.error;
     const BoringPartRecord& p1 = run.parts[0];
     const BoringPartRecord& p2 = run.parts[1];

@@ -7,6 +7,9 @@
 // guard and, in a forked child, under the seccomp guard. Messages, codes
 // and fields added to the table later are covered without touching this
 // file: a new numeric field is sent as 0 unless kFieldValues names a value.
+// The bench's boring planner is on (bore.enable), so BORE_GAUGE runs the
+// planner; a record on a planner that is already learning (the RLS path,
+// not the start-up) has its own test below.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -36,7 +39,8 @@ const std::map<std::string, double> kFieldValues = {
     {"jog.speed_x", 2.0},      {"jog.speed_y", -1.0},       {"move.speed", 5.0},
     {"move.distance", 2.0},    {"circle.radius", 6.0},      {"circle.feed", 2.0},
     {"shaper.zeta", 0.05},     {"shaper.freq", 30.0},       {"excite.duration", 0.1},
-    {"excite.level", 5.0},     {"capture_control.frames", 4}};
+    {"excite.level", 5.0},     {"capture_control.frames", 4},
+    {"bore_gauge.part", 1},    {"bore_gauge.top", 0.05},    {"bore_gauge.bottom", 0.17}};
 
 // The parameter PARAM_REQUEST addresses, by name (its id and value come from the table).
 constexpr const char* kParamName = "x.sliding.gamma";
@@ -88,7 +92,10 @@ std::vector<MessageCase> message_cases() {
 hal::CanFrame frame_for(const MessageCase& c, const can::NodeSettings& live) {
   hal::CanFrame frame = can::make_frame(*c.message, kRigNode);
   for (const can::FieldDef& f : c.message->fields) {
-    if (&f == c.selector) {
+    if (std::string_view(f.name) == "tag") {
+      // The rig's test host, which holds command ownership (host 0 would be refused before any work).
+      can::write_raw(frame, f, kTestTag);
+    } else if (&f == c.selector) {
       can::write_raw(frame, f, c.selected);
     } else if (const auto values = enum_values(f); !values.empty()) {
       can::write_raw(frame, f, values.front());
@@ -118,6 +125,9 @@ MessageBench holding_message_bench(const MessageCase& c) {
   b.rig->rig->charging.enabled = false;
   b.rig->storage.bytes.reserve(can::kParamImageMaxBytes);  // the double's save then allocates nothing
   b.rig->task().hold_position();
+  // The boring planner on: BORE_GAUGE runs it rather than answering not_ready.
+  const can::ParamDef& bore = *can::find_param("bore.enable");
+  b.rig->request(param_request(kRigNode, can::ParamOp::set, bore.id, can::to_wire(bore, 1.0)));
   for (int i = 0; i < 5; ++i) b.rig->step();
   b.rig->port.drain();
   b.frame = frame_for(c, b.rig->node->settings());
@@ -160,6 +170,43 @@ TEST_P(CanMessages, ServiceAndTicksMakeNoSystemCall) {
                                       : "the node neither answered nor latched a fault");
 }
 
+// A record on a planner that has started: eq. (11), the variance
+// perturbation and two RLS updates (eqs. (5), (6)), then eq. (3) twice.
+MessageBench learning_planner_bench() {
+  MessageCase record{&can::message(can::MessageId::bore_gauge), nullptr, 0, "bore_gauge_record_learning"};
+  MessageBench b = holding_message_bench(record);
+  if (!b.rig) return b;
+  const can::MessageDef& m = can::message(can::MessageId::bore_gauge);
+  hal::CanFrame first = b.frame;  // part 1: the start-up, outside the guards
+  can::write_raw(first, can::field(m, "op"), static_cast<std::uint32_t>(can::BoreOp::record));
+  const std::vector<hal::CanFrame> answer = b.rig->request(first);
+  if (answer.size() != 1 || can::read_raw(answer[0], can::field(can::message(can::MessageId::bore_infeed), "result")) != 0)
+    return MessageBench{};
+  can::write_raw(b.frame, can::field(m, "op"), static_cast<std::uint32_t>(can::BoreOp::record));
+  can::write_raw(b.frame, can::field(m, "part"), 2);
+  b.answered_before = b.rig->node->reply_sequence();
+  return b;
+}
+
+TEST(CanMessagesBoring, ARecordOnALearningPlannerAllocatesNothingAndMakesNoSystemCall) {
+  MessageBench b = learning_planner_bench();
+  ASSERT_TRUE(b.rig) << "the start-up part was not accepted";
+  const int parts_before = b.rig->node->settings().bore_state.planner.parts;
+  const long heap_calls = heap_calls_in([&] { exercise_message(b); });
+  EXPECT_EQ(heap_calls, 0);
+  EXPECT_EQ(b.rig->node->settings().bore_state.planner.parts, parts_before + 1) << "the part was recorded (RLS path)";
+  if (!kSeccompUsable) GTEST_SKIP() << "the sanitizer runtime makes its own system calls; proven in the plain build";
+  MessageBench c = learning_planner_bench();
+  ASSERT_TRUE(c.rig);
+  const int result = run_without_syscalls([&] {
+    exercise_message(c);
+    return c.rig->node->settings().bore_state.planner.parts == parts_before + 1 ? 0 : 3;
+  });
+  if (result == kSeccompUnavailable) GTEST_SKIP() << "seccomp is not available on this kernel";
+  EXPECT_EQ(result, 0) << (result < 0 ? "killed by signal " + std::to_string(-result) + ": a system call"
+                                      : "the part was not recorded");
+}
+
 INSTANTIATE_TEST_SUITE_P(Every, CanMessages, ::testing::ValuesIn(message_cases()),
                          [](const ::testing::TestParamInfo<MessageCase>& p) { return p.param.name; });
 
@@ -196,6 +243,8 @@ TEST(CanMessagesTable, TheBuiltFramesAreValidRequests) {
     EXPECT_NE(result, can::ErrorCode::unknown_command) << c.name;
     EXPECT_NE(result, can::ErrorCode::invalid) << c.name;
     EXPECT_NE(result, can::ErrorCode::out_of_range) << c.name;
+    EXPECT_NE(result, can::ErrorCode::no_host) << c.name << ": refused before the handler ran";
+    EXPECT_NE(result, can::ErrorCode::not_owner) << c.name << ": refused before the handler ran";
   }
 }
 

@@ -33,7 +33,8 @@ TEST(RtBudgetCli, BenchSessionLosesNoTickAndNamesEveryRequestKind) {
     kinds.insert(k["kind"].get<std::string>());
   }
   for (const char* kind : {"tick", "save_params", "load_params", "storage_reply", "restore_defaults", "param_commit",
-                           "capture_upload", "excite", "param_get", "param_set"})
+                           "capture_upload", "excite", "param_get", "param_set", "bore_query", "bore_record_startup",
+                           "bore_record"})
     EXPECT_TRUE(kinds.count(kind)) << kind;
 }
 

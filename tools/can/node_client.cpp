@@ -38,6 +38,7 @@ std::optional<std::uint8_t> reply_tag(const hal::CanFrame& frame, can::MessageId
     case can::MessageId::command_ack: return read_command_ack(frame).tag;
     case can::MessageId::param_reply: return read_param_reply(frame).tag;
     case can::MessageId::capture_status: return read_capture_status(frame).tag;
+    case can::MessageId::bore_infeed: return read_bore_infeed(frame).tag;
     default: return std::nullopt;
   }
 }

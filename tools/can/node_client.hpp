@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/can/bore_messages.hpp"
 #include "tools/can/host_bus.hpp"
 #include "tools/can/node_messages.hpp"
 #include "tools/can/request_error.hpp"
@@ -59,6 +60,13 @@ class NodeClient {
   CommandAck excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s);
   // Never acknowledged; broadcast = node 0 (every node on the bus).
   void estop(bool broadcast);
+
+  // --- boring on the board (BORE_GAUGE / BORE_INFEED, node_client_bore.cpp)
+  // record a part's readings (mm; empty = no reading), query the infeeds or
+  // restart the learning; a refusal throws RequestError(refused) naming the
+  // result and the field.
+  BoreInfeed bore(can::BoreOp op, std::uint16_t part = 0, std::optional<double> top_mm = std::nullopt,
+                  std::optional<double> bottom_mm = std::nullopt);
 
   // --- status
   // The next heartbeat (throws a timeout naming HEARTBEAT).

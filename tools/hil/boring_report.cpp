@@ -70,6 +70,7 @@ nlohmann::json boring_sweep_json(const BoringRunRequest& r, const BoringSweepRes
   nlohmann::json parts = nlohmann::json::array();
   for (const BoringPartRecord& p : s.seed1.parts) parts.push_back(part_json(p));
   nlohmann::json j = {{"settings", settings_json(r, s.seeds)},
+                      {"planner", s.planner},
                       {"bad_parts_mean", s.bad_parts_mean},
                       {"bad_parts_max", s.bad_parts_max},
                       {"resets_mean", s.resets_mean},
@@ -89,11 +90,12 @@ std::string boring_sweep_text(const BoringRunRequest& r, const BoringSweepResult
   std::snprintf(buf, sizeof buf,
                 "S4 adaptive boring: sigma_d %.6g mm (gauge %.6g mm), alpha0 %.3g, S0 %.3g mm/rev, %d parts, %d seeds\n"
                 "planner: gain form %s, reset after %d %s out of d0 %.4g +- %.4g mm, start-up in RLS %s, log %s\n"
-                "bad part: true deflection outside d0 +- %.4g mm at either position\n\n",
+                "bad part: true deflection outside d0 +- %.4g mm at either position\n",
                 p.sigma_d_mm, r.process_sigma_mm, p.alpha0, p.nominal_infeed_mm_rev, r.parts, s.seeds, fw::to_string(p.gain_form),
                 p.reset_after, fw::to_string(p.reset_count), p.target_deflection_mm, p.band_sigmas * p.sigma_d_mm,
                 p.startup_in_rls ? "yes" : "no", fw::to_string(p.log_base), p.band_sigmas * r.band_sigma_mm);
   out += buf;
+  out += "planner runs: " + s.planner + "\n\n";
   std::snprintf(buf, sizeof buf, "bad parts: mean %.3f, max %d    resets: mean %.3f    rms(d - d0) parts 2..: %.4f mm\n\n",
                 s.bad_parts_mean, s.bad_parts_max, s.resets_mean, s.deflection_rms_mean_mm);
   out += buf;

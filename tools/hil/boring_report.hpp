@@ -7,7 +7,7 @@
 
 namespace tnv::hil {
 
-// Keys: settings, bad_parts_mean, bad_parts_max, resets_mean,
+// Keys: settings, planner, bad_parts_mean, bad_parts_max, resets_mean,
 // deflection_rms_mm, segments[], bad_fraction_by_part[],
 // reset_fraction_by_part[], seed1 {bad_parts, resets, parts[]}.
 nlohmann::json boring_sweep_json(const BoringRunRequest& request, const BoringSweepResult& result);

@@ -3,7 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "firmware/adaptive/boring/boring_infeed_planner.hpp"
+#include "firmware/adaptive/boring/bore_measurement.hpp"
+#include "tools/hil/boring_direct_link.hpp"
 
 namespace tnv::hil {
 
@@ -47,41 +48,46 @@ std::string validate_boring_request(const BoringRunRequest& r) {
   return emu::validate_boring_process(process_config(r, 1));
 }
 
-BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {
+BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed, BoringPlannerLink& planner) {
   if (const std::string error = validate_boring_request(r); !error.empty()) throw std::invalid_argument(error);
   emu::BoringProcess process(process_config(r, seed));
-  fw::BoringInfeedPlanner planner(r.planner);
   const double d0 = r.planner.target_deflection_mm;
   const double band_mm = r.planner.band_sigmas * r.band_sigma_mm;
 
   BoringRunResult result;
   result.seed = seed;
+  if (const std::string error = planner.start(r.planner, r.positions_mm); !error.empty()) {
+    result.error = "planner not started: " + error;
+    return result;
+  }
   result.parts.reserve(static_cast<std::size_t>(r.parts));
   double sum_sq = 0.0;
   int n_sq = 0;
-  std::vector<fw::BoreMeasurement> gauge(r.positions_mm.size());
+  std::vector<double> gauge(r.positions_mm.size());
   for (int part = 1; part <= r.parts; ++part) {
     BoringPartRecord rec;
     rec.part = part;
     rec.true_c_mm = process.c_mm(part);
     rec.true_alpha = process.parameters(part).alpha;
     rec.true_beta = process.parameters(part).beta;
+    std::string error;
+    const std::vector<BoringLinkInfeed> infeeds = planner.infeeds(error);
+    if (infeeds.size() != r.positions_mm.size()) {
+      result.error = "part " + std::to_string(part) + ": no infeeds: " + error;
+      return result;
+    }
     for (std::size_t i = 0; i < r.positions_mm.size(); ++i) {
       const double L = r.positions_mm[i];
-      const fw::InfeedCommand cmd = planner.infeed(L);
-      if (!cmd.check.ok) {
-        result.error = "part " + std::to_string(part) + ": planner refused infeed: " + cmd.check.field + ": " +
-                       cmd.check.reason;
-        return result;
-      }
+      const double s = infeeds[i].infeed_mm_rev;
       BoringPositionRecord pos;
       pos.overhang_mm = L;
-      pos.infeed_mm_rev = cmd.infeed_mm_rev;
-      pos.infeed_limited = cmd.infeed_limited;
+      pos.infeed_mm_rev = s;
+      pos.infeed_limited = infeeds[i].infeed_limited;
       pos.optimal_infeed_mm_rev = process.optimal_infeed_mm_rev(part, L);
-      pos.true_deflection_mm = process.deflection_mm(part, cmd.infeed_mm_rev, L);
-      gauge[i] = {L, cmd.infeed_mm_rev, process.measure_bore_error_mm(part, cmd.infeed_mm_rev, L)};
-      pos.measured_deflection_mm = planner.deflection_mm(gauge[i]);
+      pos.true_deflection_mm = process.deflection_mm(part, s, L);
+      gauge[i] = process.measure_bore_error_mm(part, s, L);
+      pos.measured_deflection_mm = fw::deflection_from_bore_error_mm(planner.received_reading_mm(gauge[i]), d0,
+                                                                     r.planner.force_angle_deg);
       rec.bad = rec.bad || std::fabs(pos.true_deflection_mm - d0) > band_mm;
       if (part > 1) {
         sum_sq += (pos.true_deflection_mm - d0) * (pos.true_deflection_mm - d0);
@@ -89,24 +95,28 @@ BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {
       }
       rec.positions.push_back(pos);
     }
-    const fw::BoringPartReport report = planner.record_part(gauge);
-    if (!report.check.ok) {
-      result.error = "part " + std::to_string(part) + ": planner refused the measurements: " + report.check.field +
-                     ": " + report.check.reason;
+    const BoringLinkPart report = planner.record(part, gauge);
+    if (!report.error.empty()) {
+      result.error = "part " + std::to_string(part) + ": " + report.error;
       return result;
     }
     rec.reset = report.reset;
     rec.out_of_band = report.out_of_band;
-    rec.c_hat_mm = planner.estimated_c_mm();
-    rec.alpha_hat = planner.estimated_alpha();
-    rec.beta_hat = planner.estimated_beta();
-    rec.resets = planner.resets() - result.resets;
-    result.resets = planner.resets();
+    rec.c_hat_mm = report.c_hat_mm;
+    rec.alpha_hat = report.alpha_hat;
+    rec.beta_hat = report.beta_hat;
+    rec.resets = report.resets_total - result.resets;
+    result.resets = report.resets_total;
     result.bad_parts += rec.bad ? 1 : 0;
     result.parts.push_back(std::move(rec));
   }
   result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
   return result;
+}
+
+BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {
+  BoringDirectLink planner;
+  return run_boring(r, seed, planner);
 }
 
 }  // namespace tnv::hil

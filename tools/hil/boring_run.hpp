@@ -1,5 +1,6 @@
 #pragma once
-// S4 in the loop: the firmware's BoringInfeedPlanner plans every part, the
+// S4 in the loop: the firmware's infeed planner plans every part (on the
+// node over CAN, or called in this process: boring_planner_link.hpp), the
 // emulator's BoringProcess cuts it and its gauge measures it; parts are
 // judged on the TRUE deflection at the measuring positions (bad = outside
 // d0 +- 3 sigma at either position). Seeds only change the gauge noise.
@@ -9,6 +10,7 @@
 
 #include "emulator/boring_process.hpp"
 #include "firmware/adaptive/boring/boring_planner_params.hpp"
+#include "tools/hil/boring_planner_link.hpp"
 
 namespace tnv::hil {
 
@@ -34,7 +36,7 @@ struct BoringPositionRecord {
   double infeed_mm_rev = 0.0;          // what the planner commanded
   double optimal_infeed_mm_rev = 0.0;  // eq. (3) with the true set
   double true_deflection_mm = 0.0;
-  double measured_deflection_mm = 0.0; // from the gauge via eq. (11)
+  double measured_deflection_mm = 0.0; // from the gauge (as the planner received it) via eq. (11)
   bool infeed_limited = false;
 };
 
@@ -58,7 +60,11 @@ struct BoringRunResult {
   std::string error;          // the planner refused a part (should never happen)
 };
 
-// Throws std::invalid_argument when validate_boring_request() fails.
+// Throws std::invalid_argument when validate_boring_request() fails. The
+// link is started afresh (a planner that has learned nothing).
+BoringRunResult run_boring(const BoringRunRequest& request, std::uint64_t seed, BoringPlannerLink& planner);
+// The same with the planner in this process at the node's resolution
+// (BoringDirectLink): the node's numbers, without a node.
 BoringRunResult run_boring(const BoringRunRequest& request, std::uint64_t seed);
 
 }  // namespace tnv::hil

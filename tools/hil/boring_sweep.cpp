@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "tools/hil/boring_direct_link.hpp"
+
 namespace tnv::hil {
 
 namespace {
@@ -26,12 +28,18 @@ std::vector<BoringSegmentStats> segment_bounds(const BoringRunRequest& r) {
 
 }  // namespace
 
-BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds,
-                                   const std::function<void(std::size_t, std::size_t)>& progress) {
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const BoringProgress& progress) {
+  BoringDirectLink planner;
+  return run_boring_sweep(request, seeds, planner, progress);
+}
+
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, BoringPlannerLink& planner,
+                                   const BoringProgress& progress) {
   if (seeds < 1) throw std::invalid_argument("seeds: must be >= 1");
   if (const std::string error = validate_boring_request(request); !error.empty())
     throw std::invalid_argument(error);
   BoringSweepResult out;
+  out.planner = planner.describe();
   out.seeds = seeds;
   const auto parts = static_cast<std::size_t>(request.parts);
   out.bad_fraction_by_part.assign(parts, 0.0);
@@ -40,7 +48,7 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds,
   for (BoringSegmentStats& s : out.segments) s.bad_parts_min = request.parts;
   const double n = seeds;
   for (int seed = 1; seed <= seeds; ++seed) {
-    BoringRunResult run = run_boring(request, static_cast<std::uint64_t>(seed));
+    BoringRunResult run = run_boring(request, static_cast<std::uint64_t>(seed), planner);
     if (!run.error.empty() && out.error.empty()) out.error = "seed " + std::to_string(seed) + ": " + run.error;
     out.bad_parts_per_seed.push_back(run.bad_parts);
     out.resets_per_seed.push_back(run.resets);

@@ -27,6 +27,7 @@ struct BoringSegmentStats {
 };
 
 struct BoringSweepResult {
+  std::string planner;  // where it ran (BoringPlannerLink::describe())
   int seeds = 0;
   double bad_parts_mean = 0.0;  // parts 1..N
   int bad_parts_max = 0;
@@ -41,8 +42,13 @@ struct BoringSweepResult {
   std::string error;  // first failed seed
 };
 
-// Throws std::invalid_argument for an invalid request or seeds < 1.
-BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds,
-                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+using BoringProgress = std::function<void(std::size_t, std::size_t)>;
+
+// Throws std::invalid_argument for an invalid request or seeds < 1. Every
+// seed starts the planner afresh through `planner`.
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, BoringPlannerLink& planner,
+                                   const BoringProgress& progress = {});
+// With the planner in this process at the node's resolution (BoringDirectLink).
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const BoringProgress& progress = {});
 
 }  // namespace tnv::hil

@@ -106,6 +106,15 @@ hal::CanFrame budget_excite() {
   return f;
 }
 
+hal::CanFrame budget_bore(can::BoreOp op, std::uint32_t part = 0, double top_mm = 0.0, double bottom_mm = 0.0) {
+  hal::CanFrame f = can::make_frame(kBoreGaugeMsg, kBudgetNode);
+  can::write_raw(f, kBoreOp, static_cast<std::uint32_t>(op));
+  can::write_raw(f, kBorePart, part);
+  can::write(f, kBoreTop, top_mm);
+  can::write(f, kBoreBottom, bottom_mm);
+  return f;
+}
+
 hal::CanFrame budget_shaper(double freq_hz) {
   hal::CanFrame f = can::make_frame(kShaperMsg, kBudgetNode);
   can::write_raw(f, kShaperAxis, 0);
@@ -249,6 +258,17 @@ class BudgetSession {
     request(budget_capture(can::CaptureOp::upload, 255), "capture_upload");
     run_until_quiet(200);
     request(budget_capture(can::CaptureOp::abort), "capture_abort");
+    // Boring on the board (restore_defaults switched the planner off): four parts a round, gauged
+    // in band, then out of band three times in a row, so the variance perturbation resets P.
+    const can::ParamDef& bore = *can::find_param("bore.enable");
+    request(budget_param(can::ParamOp::set, bore.id, can::to_wire(bore, 1.0)), "param_set");
+    request(budget_bore(can::BoreOp::query), "bore_query");
+    constexpr double kReadings[4][2] = {{0.0485, 0.1689}, {0.0102, -0.0213}, {0.21, 0.32}, {0.19, 0.012}};
+    for (const auto& reading : kReadings) {
+      ++bore_parts_;
+      request(budget_bore(can::BoreOp::record, bore_parts_, reading[0], reading[1]),
+              bore_parts_ == 1 ? "bore_record_startup" : "bore_record");
+    }
   }
 
   RtBudgetResult finish() {
@@ -288,6 +308,7 @@ class BudgetSession {
     if (id == can::MessageId::command_ack) result = can::read_raw(f, kAckResult);
     else if (id == can::MessageId::param_reply) result = can::read_raw(f, kReplyResult);
     else if (id == can::MessageId::capture_status) result = can::read_raw(f, kStatusResult);
+    else if (id == can::MessageId::bore_infeed) result = can::read_raw(f, kBoreResult);
     else return;
     ++result_.replies;
     if (result != static_cast<std::uint32_t>(can::ErrorCode::ok)) ++result_.refused;
@@ -299,6 +320,7 @@ class BudgetSession {
   drivers::SteppedStorageWorker worker_;
   std::unique_ptr<can::CanNode> node_;
   std::uint8_t sequence_ = 0;
+  std::uint32_t bore_parts_ = 0;  // parts the bench has gauged (BORE_GAUGE.part of the next is one more)
   BudgetCallLog log_;
   RtBudgetResult result_;
   bool uploading_ = false;

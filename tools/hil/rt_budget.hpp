@@ -3,8 +3,9 @@
 // loop. A scripted bench session runs through the CAN node on the HIL rig
 // (charged time on) while the servo holds: parameter get / set / stage /
 // commit / discard, save, load, restore_defaults, select_controller,
-// SHAPER, capture arm / status / upload / abort and an identification
-// EXCITE, with telemetry on. Each tick and each service() is timed in the
+// SHAPER, capture arm / status / upload / abort, an identification
+// EXCITE and BORE_GAUGE (query, the start-up part, parts learned by RLS
+// with a variance-perturbation reset), with telemetry on. Each tick and each service() is timed in the
 // calling thread's CPU time (thread_cpu_clock.hpp) and metered in board
 // time (the rig's work meter and cost model, hil_rig.hpp), and filed under
 // the request it handled; the board counts missed and late ticks as it

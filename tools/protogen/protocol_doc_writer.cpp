@@ -76,7 +76,7 @@ void message_layouts(std::string& out) {
 }
 
 void codes(std::string& out) {
-  out += "## Result codes\n\nCOMMAND_ACK.result, PARAM_REPLY.result and CAPTURE_STATUS.result. A refused request changes nothing.\n\n| code | name |\n|---|---|\n";
+  out += "## Result codes\n\nCOMMAND_ACK.result, PARAM_REPLY.result, CAPTURE_STATUS.result and BORE_INFEED.result. A refused request changes nothing.\n\n| code | name |\n|---|---|\n";
   for (std::uint8_t i = 0; i < kErrorCodeCount; ++i)
     append(out, "| ", std::to_string(i), " | ", to_string(static_cast<ErrorCode>(i)), " |\n");
   out += "\n## Commands (COMMAND.code)\n\n| code | name |\n|---|---|\n";
@@ -103,7 +103,7 @@ void parameters(std::string& out, const NodeSettings& d) {
          "`restart` stored now, used from the next start. Access `rw commissioning`: a safety parameter, changed only in ",
          "commissioning mode (COMMAND enter_commissioning while disabled; outside it a change is refused with ",
          "commissioning_required, docs/safety.md \"Commissioning\"). Defaults are the papers' values (S1 Tables 1/2, ",
-         "eq. 31) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
+         "eq. 31; the boring planner's S4 Table 1) and the PID tuned by the stated rule. ", std::to_string(param_table().size()), " parameters.\n\n",
          "| id | name | type | unit | range | default | access | apply | meaning |\n",
          "|---|---|---|---|---|---|---|---|---|\n");
   for (const ParamDef& p : param_table()) {
@@ -155,6 +155,13 @@ void malformed(std::string& out) {
 | idle-only parameter or command while moving | `busy` |
 | CAPTURE_CONTROL with an unknown op | CAPTURE_STATUS `unknown_command` |
 | upload past the end of the image, or with no capture | CAPTURE_STATUS `not_ready` |
+| BORE_GAUGE with an unknown op | BORE_INFEED `unknown_command`, detail 1 |
+| BORE_GAUGE record / restart from a host without command ownership | BORE_INFEED `not_owner` |
+| BORE_GAUGE while `bore.enable` is off | BORE_INFEED `not_ready` |
+| BORE_GAUGE record / restart while a save or load runs | BORE_INFEED `busy` |
+| BORE_GAUGE record with a reading of -32768 (no reading) | BORE_INFEED `not_finite`, detail 3 (top) or 4 (bottom) |
+| BORE_GAUGE record of a part other than `bore.parts` + 1 (a repeat, a skip) | BORE_INFEED `out_of_range`, detail 2 |
+| BORE_GAUGE record of a start-up part whose deflection (eq. (11)) is <= 0 | BORE_INFEED `invalid`, detail 3 or 4 |
 | broadcast (node 0) other than ESTOP / COMMAND stop | ignored |
 
 )";

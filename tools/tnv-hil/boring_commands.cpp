@@ -1,5 +1,6 @@
 // tnv-hil boring: the S4 adaptive boring infeed simulation (Lee 1983,
-// Figs. 3 and 4) with the firmware planner against the emulated process.
+// Figs. 3 and 4): the firmware planner on the emulated node over CAN (or in
+// this process, --planner direct) against the emulated process.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/can/boring_node_sweep.hpp"
+#include "tools/hil/boring_node_resolution.hpp"
 #include "tools/hil/boring_plot.hpp"
 #include "tools/hil/boring_report.hpp"
 #include "tools/hil/boring_sweep.hpp"
@@ -38,6 +41,7 @@ struct BoringOptions {
   std::string log_base = "natural";
   double band_sigma_mm = 0.0;   // 0: same as --sigma-mm
   double gauge_sigma_mm = -1.0; // < 0: same as --sigma-mm
+  std::string planner = "node";
 };
 
 // "11,21", "11" or "none"; nullopt with a message when malformed.
@@ -85,11 +89,24 @@ int run_boring_command(const BoringOptions& o) {
     return kExitBadInput;
   }
 
+  const bool on_node = o.planner == "node";
+  if (const std::string why = hil::node_planner_refusal(request.planner, request.positions_mm); on_node && !why.empty()) {
+    std::fprintf(stderr, "tnv-hil: boring: %s (the node does not carry it: add --planner direct)\n", why.c_str());
+    return kExitBadInput;
+  }
+
   Progress progress("boring");
   const bool long_run = static_cast<long>(o.seeds) * o.parts > 200'000;
+  const hil::BoringProgress report_progress =
+      long_run ? hil::BoringProgress(std::ref(progress)) : hil::BoringProgress{};
+  std::string node_error;
   const hil::BoringSweepResult result =
-      hil::run_boring_sweep(request, o.seeds, long_run ? std::function<void(std::size_t, std::size_t)>(std::ref(progress))
-                                                       : std::function<void(std::size_t, std::size_t)>{});
+      on_node ? can_host::run_boring_sweep_on_emulated_node(request, o.seeds, report_progress, node_error)
+              : hil::run_boring_sweep(request, o.seeds, report_progress);
+  if (!node_error.empty()) {
+    std::fprintf(stderr, "tnv-hil: boring: %s\n", node_error.c_str());
+    return kExitFailure;
+  }
   if (o.json)
     std::cout << hil::boring_sweep_json(request, result).dump(2) << '\n';
   else
@@ -138,6 +155,11 @@ void add_boring_commands(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--band-sigma-mm", o->band_sigma_mm, "judge bad parts against d0 +- 3 this (default: --sigma-mm)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--planner", o->planner,
+                  "node: every part through the emulated node over CAN (BORE_GAUGE); direct: the same planner in this "
+                  "process at the node's resolution (faster; also runs --startup-in-rls and --log-base decimal)")
+      ->check(CLI::IsMember({"node", "direct"}))
+      ->capture_default_str();
   cmd->add_option("--gauge-sigma-mm", o->gauge_sigma_mm,
                   "noise of the emulated gauge, 0 = exact (default: --sigma-mm; the planner keeps --sigma-mm)")
       ->check(CLI::Range(0.0, 1.0));

@@ -18,6 +18,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_tune_commands(app, slot);
   add_output_commands(app, slot);
   add_commissioning_commands(app, slot);
+  add_bore_commands(app, slot);
 }
 
 std::optional<std::vector<std::string>> split_words(const std::string& line, std::string& error) {

@@ -27,6 +27,33 @@ void BoringInfeedPlanner::restart() noexcept {
   resets_ = 0;
 }
 
+BoringPlannerState BoringInfeedPlanner::state() const noexcept {
+  BoringPlannerState s;
+  s.started = started_;
+  s.parts = parts_;
+  s.resets = resets_;
+  s.theta = rls_.theta();
+  s.covariance = rls_.covariance();
+  s.innovation = rls_.last_innovation();
+  s.streak = perturbation_.run();
+  for (int i = 0; i < kMaxBorePositions; ++i)
+    s.position_streak[static_cast<std::size_t>(i)] = perturbation_.position_run(i);
+  return s;
+}
+
+ParamCheck BoringInfeedPlanner::restore(const BoringPlannerState& s) noexcept {
+  if (!status_.ok) return status_;
+  if (const ParamCheck check = validate(s, params_.initial_covariance); !check.ok) return check;
+  std::array<int, kMaxBorePositions> runs{};
+  for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = s.position_streak[i];
+  rls_.restore(s.theta, s.covariance, s.innovation);
+  perturbation_.restore(s.streak, runs);
+  started_ = s.started;
+  parts_ = s.parts;
+  resets_ = s.resets;
+  return param_ok();
+}
+
 InfeedCommand BoringInfeedPlanner::infeed(double overhang_mm) const noexcept {
   if (!status_.ok) {
     InfeedCommand out;

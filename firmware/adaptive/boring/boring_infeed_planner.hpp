@@ -16,6 +16,7 @@
 #include <span>
 
 #include "firmware/adaptive/boring/bore_measurement.hpp"
+#include "firmware/adaptive/boring/boring_planner_state.hpp"
 #include "firmware/adaptive/boring/infeed_schedule.hpp"
 #include "firmware/adaptive/boring/log_model_rls.hpp"
 #include "firmware/adaptive/boring/variance_perturbation.hpp"
@@ -49,6 +50,13 @@ class BoringInfeedPlanner {
   // The measurements of one finished part, in the order they are taken
   // (1..kMaxBorePositions; the start-up part needs >= 2 overhangs).
   BoringPartReport record_part(std::span<const BoreMeasurement> measurements) noexcept;
+
+  // What the planner has learned (to save it), and putting it back: the
+  // state is checked (validate(state, p0)) and taken whole, or refused with
+  // nothing changed. Parameters are not part of it: restore into a planner
+  // set up with the parameters the state was learned with.
+  BoringPlannerState state() const noexcept;
+  ParamCheck restore(const BoringPlannerState& state) noexcept;
 
   double deflection_mm(const BoreMeasurement& m) const noexcept;  // eq. (11)
   bool in_band(double deflection_mm) const noexcept;

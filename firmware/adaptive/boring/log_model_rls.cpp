@@ -10,6 +10,12 @@ void LogModelRls::reset(const BoringTheta& theta0, double p0) noexcept {
 
 void LogModelRls::reset_covariance(double p0) noexcept { p_ = p0 * BoringCovariance::Identity(); }
 
+void LogModelRls::restore(const BoringTheta& theta, const BoringCovariance& p, double innovation) noexcept {
+  theta_ = theta;
+  p_ = p;
+  innovation_ = innovation;
+}
+
 bool LogModelRls::update(const BoringRegressor& x, double y, double s5, double s6) noexcept {
   if (!(s5 > 0.0) || !(s6 > 0.0) || !std::isfinite(y) || !x.allFinite()) return false;
   const Eigen::Vector3d px = p_ * x;

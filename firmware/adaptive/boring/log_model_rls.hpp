@@ -18,6 +18,8 @@ class LogModelRls {
   // One measurement (x, y). Returns false, and changes nothing, when s5/s6
   // are not > 0 or the result would not be finite.
   bool update(const BoringRegressor& x, double y, double s5, double s6) noexcept;
+  // Puts back a saved estimate exactly (values checked by the caller).
+  void restore(const BoringTheta& theta, const BoringCovariance& p, double innovation) noexcept;
 
   const BoringTheta& theta() const noexcept { return theta_; }
   const BoringCovariance& covariance() const noexcept { return p_; }

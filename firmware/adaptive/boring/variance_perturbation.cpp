@@ -39,6 +39,16 @@ bool VariancePerturbation::on_part_end(bool any_out_of_band) noexcept {
   return true;
 }
 
+int VariancePerturbation::position_run(int position) const noexcept {
+  if (position < 0 || position >= kMaxBorePositions) return 0;
+  return position_streak_[static_cast<std::size_t>(position)];
+}
+
+void VariancePerturbation::restore(int run, const std::array<int, kMaxBorePositions>& position_runs) noexcept {
+  streak_ = run;
+  position_streak_ = position_runs;
+}
+
 int VariancePerturbation::streak() const noexcept {
   int s = streak_;
   for (int p : position_streak_) s = std::max(s, p);

@@ -21,6 +21,11 @@ class VariancePerturbation {
   // After the last update of a part: true = reset P now (part counting).
   bool on_part_end(bool any_out_of_band) noexcept;
   int streak() const noexcept;  // the longest current run
+  // The runs themselves, to save and restore the planner (boring_planner_state.hpp).
+  int run() const noexcept { return streak_; }  // measurements or parts, by the counting rule
+  int position_run(int position) const noexcept;
+  // Puts back runs taken from run() / position_run() (values checked by the caller).
+  void restore(int run, const std::array<int, kMaxBorePositions>& position_runs) noexcept;
 
  private:
   BoringResetCount count_ = BoringResetCount::measurements;

@@ -2,7 +2,9 @@
 // frame to a node at rest and checks the answer the protocol prescribes
 // (or silence where it says "ignored"), and that nothing changed: every
 // parameter of the node and of the running task, the motion state, the
-// latched fault, the staged set and the capture.
+// latched fault, the staged set, the capture and the boring planner's
+// learned state (more BORE_GAUGE cases with the planner on:
+// can_node_boring_refusal_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,6 +33,7 @@ struct Snapshot {
   std::size_t staged;
   fw::can::CaptureState capture;
   std::uint8_t owner;
+  fw::BoringStationState bore_state;
   bool operator==(const Snapshot&) const = default;
 };
 
@@ -47,6 +50,7 @@ Snapshot snapshot(const NodeBench& b) {
   s.staged = b.node->staged_count();
   s.capture = b.node->capture_state();
   s.owner = b.node->owner();
+  s.bore_state = b.node->settings().bore_state;
   return s;
 }
 
@@ -83,6 +87,7 @@ std::vector<Case> cases() {
     const auto id = static_cast<MessageId>(m.id);
     const MessageId answer = id == MessageId::param_request     ? MessageId::param_reply
                              : id == MessageId::capture_control ? MessageId::capture_status
+                             : id == MessageId::bore_gauge      ? MessageId::bore_infeed
                                                                 : MessageId::command_ack;
     // A frame that would be accepted with the right length (a set of gamma, a stop, ...).
     hal::CanFrame f = id == MessageId::param_request ? param_request(kNode, ParamOp::set, gamma, f32_raw(0.2f))
@@ -196,6 +201,19 @@ std::vector<Case> cases() {
       MessageId::param_reply, ErrorCode::not_owner);
   add(c, "take ownership from host 2", with_tag(command(kNode, CommandCode::take_ownership), 0x21),
       MessageId::command_ack, ErrorCode::not_owner);
+  // BORE_GAUGE with the planner off (the default): the op and the ownership are checked first.
+  {
+    hal::CanFrame f = frame_to(MessageId::bore_gauge, kNode);
+    set_raw(f, MessageId::bore_gauge, "op", fw::can::kBoreOpCount);
+    add(c, "bore op 3", f, MessageId::bore_infeed, ErrorCode::unknown_command, {}, 1u);
+    set_raw(f, MessageId::bore_gauge, "op", static_cast<std::uint32_t>(fw::can::BoreOp::record));
+    set_raw(f, MessageId::bore_gauge, "part", 1);
+    add(c, "bore record from host 2", with_tag(f, 0x21), MessageId::bore_infeed, ErrorCode::not_owner, {}, 0u);
+    add(c, "bore record, planner off", f, MessageId::bore_infeed, ErrorCode::not_ready, {}, 0u);
+    set_raw(f, MessageId::bore_gauge, "op", static_cast<std::uint32_t>(fw::can::BoreOp::query));
+    add(c, "bore query, planner off", with_tag(f, 0x21), MessageId::bore_infeed, ErrorCode::not_ready);
+    add(c, "bore gauge from host 0", with_tag(f, 0x00), MessageId::bore_infeed, ErrorCode::no_host);
+  }
   add(c, "upload 0 frames", capture_control(kNode, CaptureOp::upload, 0, 0), MessageId::capture_status,
                ErrorCode::out_of_range);
   add(c, "upload with no capture", capture_control(kNode, CaptureOp::upload, 4, 0), MessageId::capture_status,
@@ -257,7 +275,7 @@ TEST(CanNodeMalformed, EveryBadFrameIsAnsweredOrIgnoredAsTheProtocolSaysAndChang
       EXPECT_EQ(raw_of(r, MessageId::param_reply, "value"), *c.value);
     }
     if (c.detail) {
-      EXPECT_EQ(raw_of(r, MessageId::command_ack, "detail"), *c.detail);
+      EXPECT_EQ(raw_of(r, *c.reply, "detail"), *c.detail);
     }
     if (*c.reply == MessageId::command_ack) {
       EXPECT_EQ(raw_of(r, MessageId::command_ack, "state"), static_cast<std::uint32_t>(fw::MotionState::holding));

@@ -24,9 +24,11 @@ inline fw::can::NodeSettings quiet_settings() {
 }
 
 struct NodeBench {
-  explicit NodeBench(const fw::can::NodeSettings& s = quiet_settings(), bool storage_fault = false)
+  // `worker`: runs save/load (nullptr: inside service()).
+  explicit NodeBench(const fw::can::NodeSettings& s = quiet_settings(), bool storage_fault = false,
+                     hal::StorageWorker* worker = nullptr)
       : task(board, s.firmware),
-        node(std::make_unique<fw::can::CanNode>(task, port, storage, s, storage_fault)) {
+        node(std::make_unique<fw::can::CanNode>(task, port, storage, s, storage_fault, nullptr, worker)) {
     step();  // the first tick reads home
     port.send(command(static_cast<std::uint8_t>(s.can.node_id), fw::can::CommandCode::take_ownership));  // the test host (kTestTag) commands
     node->service();

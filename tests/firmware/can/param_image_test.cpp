@@ -49,7 +49,8 @@ TEST(ParamImage, EveryReadWriteParameterFitsAndRoundTripsExactly) {
   for (const ParamDef& p : param_table()) rw += p.access == Access::read_write ? 1 : 0;
   ASSERT_LE(rw, kParamImageMaxEntries);
   const std::vector<std::uint8_t> img = image_of(tuned());
-  ASSERT_EQ(img.size(), kParamImageHeaderBytes + rw * kParamImageEntryBytes + kParamImageCrcBytes);
+  ASSERT_EQ(img.size(),
+            kParamImageHeaderBytes + rw * kParamImageEntryBytes + kBoreStateImageBytes + kParamImageCrcBytes);
   NodeSettings back = defaults();
   ASSERT_EQ(decode_image(img, back), ErrorCode::ok);
   EXPECT_TRUE(same_params(back, tuned()));
@@ -164,11 +165,12 @@ TEST(ParamImageGeneration, EachSaveStampsOneMoreThanTheImageItReplaces) {
 }
 
 TEST(ParamImageGeneration, AVersionOneImageStillLoadsAsGenerationZero) {
-  // Version 1: the same image without the 4-byte generation, version field 1.
-  std::vector<std::uint8_t> v2 = image_of(tuned());
-  std::vector<std::uint8_t> v1(v2.begin(), v2.begin() + 8);
+  // Version 1: the same image without the 4-byte generation and the bore state, version field 1.
+  std::vector<std::uint8_t> v3 = image_of(tuned());
+  std::vector<std::uint8_t> v1(v3.begin(), v3.begin() + 8);
   v1[4] = kParamImageVersion1;
-  v1.insert(v1.end(), v2.begin() + static_cast<std::ptrdiff_t>(kParamImageHeaderBytes), v2.end() - 4);
+  v1.insert(v1.end(), v3.begin() + static_cast<std::ptrdiff_t>(kParamImageHeaderBytes),
+            v3.end() - static_cast<std::ptrdiff_t>(kBoreStateImageBytes + kParamImageCrcBytes));
   const std::uint32_t crc = crc32(v1);
   for (int i = 0; i < 4; ++i) v1.push_back(static_cast<std::uint8_t>(crc >> (8 * i)));
   NodeSettings s = defaults();

@@ -1,0 +1,104 @@
+// CanNode: BORE_GAUGE, the adaptive boring infeed planner (S4) as a node
+// function. A finished part's gauge readings come in, the next part's
+// infeeds go out in BORE_INFEED. The planner's learned state lives in the
+// node's settings (NodeSettings::bore_state), so save_params / load_params
+// and the start-up load carry it with the parameters.
+//
+// record and restart change that state: they need command ownership and
+// wait (busy) while a save or load works on the set; query is open to every
+// host. Every check comes before the planner runs: a refused request
+// changes nothing and names the offending field in BORE_INFEED.detail.
+// The per-part work (eq. (11), the RLS updates, eq. (3) twice) is bounded
+// and allocation-free: it runs here, in service(), between two ticks.
+#include <array>
+
+#include "firmware/can/can_node.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+namespace {
+
+// The flags of a recorded part (BORE_INFEED.flags; the started bit is the reply's).
+std::uint8_t part_flags(const BoringStationAnswer& a) noexcept {
+  unsigned flags = 0;
+  const auto set = [&flags](bool on, BoreFlag f) noexcept {
+    if (on) flags |= f;
+  };
+  set(a.report.startup, kBoreStartup);
+  set(a.report.reset, kBoreReset);
+  set(a.out_of_band[kBoringTop], kBoreTopOut);
+  set(a.out_of_band[kBoringBottom], kBoreBottomOut);
+  set(a.next[kBoringTop].infeed_limited, kBoreTopLimited);
+  set(a.next[kBoringBottom].infeed_limited, kBoreBottomLimited);
+  set(a.next[kBoringTop].alpha_limited || a.next[kBoringBottom].alpha_limited, kBoreAlphaFloor);
+  return static_cast<std::uint8_t>(flags);
+}
+
+// A reading as the gauge sent it, raw (sign-extended from 16 bits).
+std::int16_t reading_raw(const hal::CanFrame& frame, const FieldDef& f) noexcept {
+  return static_cast<std::int16_t>(static_cast<std::uint16_t>(read_raw(frame, f)));
+}
+
+}  // namespace
+
+void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
+  const auto op_raw = static_cast<std::uint8_t>(read_raw(frame, kBoreOp));
+  if (op_raw >= kBoreOpCount) return reply_bore(ErrorCode::unknown_command, index_of(kBoreGaugeMsg, kBoreOp));
+  const auto op = static_cast<BoreOp>(op_raw);
+  if (op != BoreOp::query) {
+    if (!owns()) return reply_bore(ErrorCode::not_owner, 0);
+    // A save or load works on the set (the learned state included) as it was at the request.
+    if (storage_pending_) return reply_bore(ErrorCode::busy, 0);
+  }
+  if (!settings_.bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
+  if (op == BoreOp::query) return reply_bore(ErrorCode::ok, 0);
+  if (op == BoreOp::restart) {
+    const BoringStationState was = settings_.bore_state;
+    restart(settings_.bore_state);
+    if (!(settings_.bore_state == was)) unsaved_ = true;
+    return reply_bore(ErrorCode::ok, 0);
+  }
+
+  // record: the readings, then the part's number, then the planner.
+  const FieldDef* const reading_fields[kBoringStationPositions] = {&kBoreTop, &kBoreBottom};
+  std::array<double, kBoringStationPositions> bore_error_mm{};
+  for (std::size_t i = 0; i < bore_error_mm.size(); ++i) {
+    if (reading_raw(frame, *reading_fields[i]) == kBoreNoReading)
+      return reply_bore(ErrorCode::not_finite, index_of(kBoreGaugeMsg, *reading_fields[i]));
+    bore_error_mm[i] = read(frame, *reading_fields[i]);
+  }
+  // The part must be the next one: a repeated frame (its reply lost) or a skipped part is refused.
+  const auto expected = static_cast<std::uint32_t>(settings_.bore_state.planner.parts + 1) & 0xFFFFu;
+  if (read_raw(frame, kBorePart) != expected) return reply_bore(ErrorCode::out_of_range, index_of(kBoreGaugeMsg, kBorePart));
+
+  const BoringStationAnswer a =
+      record_bored_part(settings_.bore, settings_.bore_state, bore_error_mm, kBoreInfeedTop.scale);
+  if (!a.check.ok) {
+    // A start-up deflection <= 0 (no logarithm for eq. (10)): the reading is named when known.
+    const std::uint8_t detail = a.position >= 0 ? index_of(kBoreGaugeMsg, *reading_fields[a.position]) : 0;
+    return reply_bore(ErrorCode::invalid, detail);
+  }
+  unsaved_ = true;  // learned, not saved yet
+  reply_bore(ErrorCode::ok, 0, part_flags(a));
+}
+
+void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
+  count_result(result);
+  hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
+  if (settings_.bore_state.planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
+  write_raw(frame, kBoreReplyTag, tag_);
+  write_raw(frame, kBoreResult, static_cast<std::uint32_t>(result));
+  write_raw(frame, kBoreDetail, detail);
+  write_raw(frame, kBoreFlags, flags);
+  const std::array<double, kBoringStationPositions> infeeds =
+      current_infeeds_mm_rev(settings_.bore, settings_.bore_state, kBoreInfeedTop.scale);
+  write(frame, kBoreInfeedTop, infeeds[kBoringTop]);
+  write(frame, kBoreInfeedBottom, infeeds[kBoringBottom]);
+  send_reply(frame);
+}
+
+}  // namespace tnv::fw::can
