@@ -97,6 +97,11 @@ class TickTask {
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
+  // Where the next pushed program segment starts: the queue's end while a
+  // program runs, else where the table is held (the first push starts there).
+  motion::PlanePoint next_segment_start_mm() const noexcept {
+    return program_running() ? motion_.queue_end_mm() : held_point();
+  }
   // Input shaper per axis: the design (applied when the axis' reference is
   // quiet, see StreamShaper) and, separately, on/off. Enabling an axis that
   // was never configured is invalid. Accepted in every state: a shaper

@@ -63,6 +63,7 @@ std::vector<double> raw_samples(WireType t) {
     case WireType::f32: return {0.0, -0.0, 1.5, -123.25, 3.4028234663852886e38, 1e-30};
     case WireType::bytes7: return {};
     case WireType::u24: return {0, 1, 1193046, 16777215};
+    case WireType::i24: return {-8388608, -1, 0, 1, 8388607};
   }
   return {};
 }

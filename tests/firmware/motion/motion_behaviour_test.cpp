@@ -12,11 +12,7 @@ namespace {
 using test::MotionRun;
 using test::run_program;
 
-MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
-  MotionInterpolator m;
-  EXPECT_STREQ(m.configure({}, start), "");
-  return m;
-}
+using test::configured;
 
 TEST(SegmentQueueRefusal, BadSegmentsAreRefusedWithAReasonAndTheQueueIsUnchanged) {
   MotionInterpolator m = configured();

@@ -3,6 +3,8 @@
 // the commanded positions x_ref,k: per-axis acceleration as the second and
 // jerk as the third backward difference over the 1 ms tick, each divided by
 // its axis limit.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -40,6 +42,14 @@ inline void score_limits(MotionRun& run, const MotionLimits& limits) {
     }
   }
   run.motion_ticks = first < p.size() ? last - first : 0;
+}
+
+// An interpolator with the default limits, at rest at `start` (shared: two
+// test files defining it in their anonymous namespaces clash in unity builds).
+inline MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
+  MotionInterpolator m;
+  EXPECT_STREQ(m.configure({}, start), "");
+  return m;
 }
 
 // Ticks until the interpolator is at rest with nothing queued (or max_ticks),
