@@ -35,6 +35,7 @@ void add_capture_commands(CLI::App& app, ActionSlot& slot);  // capture
 void add_tune_commands(CLI::App& app, ActionSlot& slot);     // identify, autotune
 void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_commissioning_commands(CLI::App& app, ActionSlot& slot);  // commissioning enter | leave
+void add_run_commands(CLI::App& app, ActionSlot& slot);      // run FILE.ngc
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
 
 // Every family above except `script` (what a script line may use).
