@@ -6,7 +6,7 @@
 // periods and score the run (tools/hil/path_score.hpp).
 //
 // Telemetry rate: 1 ms, two 8-byte frames per tick, is 22 % of 1 Mbit/s
-// (27 % with worst-case stuffing). Both identifiers (0x410, 0x450 for node
+// (27 % with worst-case stuffing). Both identifiers (0x401, 0x441 for node
 // 1) lose arbitration to every control frame (FAULT_EVENT, replies,
 // HEARTBEAT and the host's SEGMENT frames), and the node drops telemetry
 // first when its transmit queue fills. The score needs every tick: the
