@@ -1,5 +1,6 @@
 #include "firmware/can/segment_wire.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "firmware/can/frame_codec.hpp"
@@ -63,8 +64,9 @@ bool centre_from_chord(const PlanePoint& start_mm, const PlanePoint& end_mm, con
 }
 
 double wire_position_mm(double mm) noexcept {
-  // The codec's own rounding and scaling (frame_codec.cpp write() then read()).
-  return static_cast<double>(static_cast<std::int32_t>(std::round(mm / kSegmentX.scale))) * kSegmentX.scale;
+  // The codec's own rounding and scaling (frame_codec.cpp write() then read()), held to the i24 range.
+  const double raw = std::isfinite(mm) ? std::clamp(std::round(mm / kSegmentX.scale), -8388608.0, 8388607.0) : 0.0;
+  return static_cast<double>(static_cast<std::int32_t>(raw)) * kSegmentX.scale;
 }
 
 const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start_mm, std::uint8_t node,

@@ -50,7 +50,8 @@ bool chord_centre(const motion::PlanePoint& start_mm, const motion::PlanePoint& 
 bool centre_from_chord(const motion::PlanePoint& start_mm, const motion::PlanePoint& end_mm, const ChordCentre& c,
                        motion::PlanePoint& centre_mm) noexcept;
 
-// A position as the wire carries it (rounded to 0.1 um), exactly as the node decodes it.
+// A position as the wire carries it (rounded to 0.1 um), exactly as the node decodes it; held to
+// +-838 mm (what does not fit is refused by encode_segment()).
 double wire_position_mm(double mm) noexcept;
 
 struct SegmentFrames {

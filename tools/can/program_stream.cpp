@@ -16,6 +16,7 @@ using fw::can::ProgramState;
 
 constexpr Micros kPumpSlice{5'000};
 constexpr Micros kStopWait{10'000'000};  // a controlled stop on the path takes well under a second
+constexpr Micros kStatusRefresh{1'000'000};
 
 bool over(ProgramState s) { return s == ProgramState::done || s == ProgramState::aborted; }
 
@@ -198,7 +199,13 @@ class Streamer {
     const double ratio = o_.feed_override ? std::max(*o_.feed_override, 0.05) : 1.0;
     const Micros limit{static_cast<long long>((o_.expected_s * 1.5 / ratio + 10.0) * 1e6)};
     const Micros deadline = client_.bus().now() + limit;
+    Micros last_poll = client_.bus().now();
     while (!over(status_.state)) {
+      // The change to done is sent once: ask again now and then in case that frame was lost.
+      if (client_.bus().now() - last_poll >= kStatusRefresh) {
+        last_poll = client_.bus().now();
+        client_.send_raw(command_request(client_.node(), client_.next_tag(), can::CommandCode::program_status, 0, 0, 0.0));
+      }
       if (failure_) return stop(StreamResult::End::failed, *failure_);
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
       if (client_.bus().now() > deadline)
@@ -227,7 +234,8 @@ class Streamer {
     } catch (const RequestError& e) {
       r_.message.append("; the abort was refused: ").append(e.what());
     }
-    client_.pump_until([this] { return acked_ == 0 || over(status_.state); }, kStopWait);
+    // Answers of elements still on their way come first; once one was accepted, wait for the stop.
+    client_.pump_until([this] { return (acked_ == 0 && flight_.empty()) || over(status_.state); }, kStopWait);
     finish();
   }
 

@@ -2,6 +2,7 @@
 // run (the work is in tools/can/program_run.hpp; this file parses and prints).
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -157,9 +158,9 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   report.data["run_s"] = st.run_s;
   report.data["fill_elements_per_s"] = st.fill_elements_per_s;
   if (st.end == can_host::StreamResult::End::interrupted) {
-    const int line = st.final_status.element > 0 && st.final_status.element <= r.wire.elements.size()
-                         ? r.wire.elements[st.final_status.element - 1].line
-                         : 0;
+    if (st.acknowledged == 0) throw RunFailed("stopped by Ctrl-C before the program started: nothing moved");
+    const std::uint32_t element = std::max<std::uint32_t>(st.final_status.element, 1);
+    const int line = element <= r.wire.elements.size() ? r.wire.elements[element - 1].line : 0;
     throw RunFailed("stopped by Ctrl-C at line " + std::to_string(line) +
                     ": the table came to a controlled stop on the path and holds there; the rest of the program "
                     "was dropped");
@@ -205,7 +206,10 @@ constexpr const char* kRunHelp =
     "  and arcs; path_deviation_max_um: the same for the reference; accel_ratio_max, jerk_ratio_max: largest\n"
     "  finite difference of the 1 ms reference over the axis limit; feed_ratio: programmed time (length / F) over\n"
     "  the cycle time; cycle_time_s; underruns. Sampled from TLM_POSITION + TLM_FOLLOWING every 1 ms (22 % of a\n"
-    "  1 Mbit/s bus, below every control frame in priority); --no-score leaves telemetry alone.\n\n"
+    "  1 Mbit/s bus, below every control frame in priority); --no-score leaves telemetry alone. --json also has\n"
+    "  program, elements, elements_accepted, samples, telemetry_complete, run_s and fill_elements_per_s.\n\n"
+    "GLOBAL OPTIONS\n"
+    "  --iface IFACE or --emu, --node, --host-id, --timeout-ms (per answer), --json: see `tnvctl --help`.\n\n"
     "EXIT CODES\n"
     "  0 the program ran to its end; 1 refused, stopped (Ctrl-C, fault, host timeout) or timed out; 2 bad\n"
     "  command line or program (nothing was run).\n\n"
