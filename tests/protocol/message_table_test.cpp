@@ -8,7 +8,9 @@
 #include <string>
 
 #include "firmware/can/frame_codec.hpp"
+#include "firmware/can/program_tracker.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "firmware/can/segment_wire.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/shaper/shaper_type.hpp"
 #include "firmware/supervisor/fault.hpp"
@@ -165,6 +167,8 @@ TEST(MessageTable, ValueTablesMatchTheEnums) {
   expect_value_table<MotionState>(field(message(MessageId::heartbeat), "state").values, 5, "state");
   expect_value_table<ErrorCode>(field(message(MessageId::param_reply), "result").values, kErrorCodeCount, "result");
   expect_value_table<CommandCode>(field(message(MessageId::command), "code").values, kCommandCodeCount, "command");
+  expect_value_table<ProgramState>(field(message(MessageId::program_status), "state").values, 7, "program state");
+  EXPECT_EQ(tnv::protogen::value_table(field(message(MessageId::segment), "kind").values).size(), kWireKindCount);
   expect_value_table<tnv::fw::ShaperType>(field(message(MessageId::shaper), "type").values,
                                           static_cast<int>(std::size(tnv::fw::kShaperTypes)), "shaper type");
   EXPECT_EQ(std::string(to_string(static_cast<ErrorCode>(kErrorCodeCount))), "?") << "kErrorCodeCount is stale";
