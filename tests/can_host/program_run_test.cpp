@@ -26,21 +26,21 @@ namespace can = fw::can;
 using can_host::Micros;
 using can_host::StreamResult;
 
-std::string read_text(const std::string& path) {
+std::string read_program_text(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
 }
 
-struct Bench {
-  explicit Bench(const std::string& name) {
+struct StreamBench {
+  explicit StreamBench(const std::string& name) {
     o.storage_path = (std::filesystem::temp_directory_path() / ("tnv_stream_" + std::to_string(::getpid()) + name)).string();
     std::string error;
     bus = can_host::EmulatedBus::create(o, error);
     EXPECT_TRUE(bus) << error;
   }
-  ~Bench() {
+  ~StreamBench() {
     std::error_code ignored;
     std::filesystem::remove(o.storage_path, ignored);
   }
@@ -55,7 +55,7 @@ std::string slow_zigzag() {
   return text;
 }
 
-double ms(Micros t) { return static_cast<double>(t.count()) / 1000.0; }
+double stream_ms(Micros t) { return static_cast<double>(t.count()) / 1000.0; }
 
 double reference_deviation_max_um(const can_host::ProgramRunResult& r) {
   const gcode::ProgrammedPath path(r.program.geometry);
@@ -65,7 +65,7 @@ double reference_deviation_max_um(const can_host::ProgramRunResult& r) {
 }
 
 TEST(ProgramStream, FlowControlFillsTheQueueAndNeverOverflowsIt) {
-  Bench b("flow");
+  StreamBench b("flow");
   ASSERT_TRUE(b.bus);
   can_host::NodeClient client(*b.bus, 1);
   const can_host::ProgramRunResult r = can_host::run_gcode(client, slow_zigzag(), {});
@@ -86,7 +86,7 @@ TEST(ProgramStream, FlowControlFillsTheQueueAndNeverOverflowsIt) {
 }
 
 TEST(ProgramStream, APausedHostCausesOneUnderrunAndTheProgramStillEndsOnThePath) {
-  Bench b("underrun");
+  StreamBench b("underrun");
   ASSERT_TRUE(b.bus);
   can_host::NodeClient client(*b.bus, 1);
   can_host::ProgramRunOptions o;
@@ -94,7 +94,7 @@ TEST(ProgramStream, APausedHostCausesOneUnderrunAndTheProgramStillEndsOnThePath)
     if (k == 300) client.pump(Micros{400'000});  // 0.4 s without a frame: the queue runs dry
   };
   const can_host::ProgramRunResult r =
-      can_host::run_gcode(client, read_text(gcode::test::test_piece_path("circle_chords_0p1mm.ngc")), o);
+      can_host::run_gcode(client, read_program_text(gcode::test::test_piece_path("circle_chords_0p1mm.ngc")), o);
   ASSERT_EQ(r.stream.end, StreamResult::End::done) << r.stream.message;
   EXPECT_EQ(r.stream.underruns, 1u);
   ASSERT_TRUE(r.stream.final_heartbeat);
@@ -110,7 +110,7 @@ TEST(ProgramStream, APausedHostCausesOneUnderrunAndTheProgramStillEndsOnThePath)
 }
 
 TEST(ProgramStream, AnInterruptStopsOnThePathAndDropsTheRest) {
-  Bench b("interrupt");
+  StreamBench b("interrupt");
   ASSERT_TRUE(b.bus);
   can_host::NodeClient client(*b.bus, 1);
   can_host::ProgramRunOptions o;
@@ -129,7 +129,7 @@ TEST(ProgramStream, AnInterruptStopsOnThePathAndDropsTheRest) {
 }
 
 TEST(ProgramStream, ASecondHostCannotStreamWhileAnotherOwnsTheNode) {
-  Bench b("hosts");
+  StreamBench b("hosts");
   ASSERT_TRUE(b.bus);
   can_host::ClientOptions one;
   one.host_id = 1;
@@ -154,7 +154,7 @@ TEST(ProgramStream, ASecondHostCannotStreamWhileAnotherOwnsTheNode) {
 }
 
 TEST(ProgramStream, HeartbeatRepliesAndFaultEventsKeepFlowingWhileAProgramStreams) {
-  Bench b("priority");
+  StreamBench b("priority");
   ASSERT_TRUE(b.bus);
   can_host::NodeClient client(*b.bus, 1);
   client.set(*can::find_param("tlm.position_ms"), 1);
@@ -162,7 +162,7 @@ TEST(ProgramStream, HeartbeatRepliesAndFaultEventsKeepFlowingWhileAProgramStream
   client.command(can::CommandCode::enable);
   gcode::GcodeOptions g;
   g.start_mm = b.bus->rig().task.next_segment_start_mm();
-  const gcode::GcodeResult parsed = gcode::parse_gcode(read_text(gcode::test::test_piece_path("circle_chords_0p1mm.ngc")), g);
+  const gcode::GcodeResult parsed = gcode::parse_gcode(read_program_text(gcode::test::test_piece_path("circle_chords_0p1mm.ngc")), g);
   std::string error;
   const std::optional<can_host::WireProgram> wire = can_host::wire_program(parsed.program, g.start_mm, 1, error);
   ASSERT_TRUE(wire) << error;
@@ -193,7 +193,7 @@ TEST(ProgramStream, HeartbeatRepliesAndFaultEventsKeepFlowingWhileAProgramStream
   for (std::size_t k = 1; k < heartbeats.size(); ++k) gap_max = std::max(gap_max, heartbeats[k] - heartbeats[k - 1]);
   std::printf("[stream] while streaming with 1 ms telemetry: heartbeat gap max %.1f ms over %zu heartbeats, a "
               "parameter get answered in %.2f ms, FAULT_EVENT %.2f ms after the ESTOP\n",
-              ms(gap_max), heartbeats.size(), ms(reply_wait), ms(fault_event_at - estop_at));
+              stream_ms(gap_max), heartbeats.size(), stream_ms(reply_wait), stream_ms(fault_event_at - estop_at));
   ASSERT_GE(heartbeats.size(), 20u);
   EXPECT_LE(gap_max, Micros{105'000}) << "tlm.heartbeat_ms is 100";
   EXPECT_LE(reply_wait, Micros{5'000});
