@@ -92,6 +92,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
     capture_.abort();
   }
   check_fault();
+  if (program_.update(task_)) send_program_status();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
     deadman_stops_seen_ = stops;
     jog_deadman_ = true;
@@ -102,7 +103,9 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   const std::uint32_t timeout = settings_.can.host_timeout_ms;
   if (timeout > 0 && silent_ticks_ >= timeout) {
     owner_ = kAnonymousHost;
+    pending_.active = false;
     if (task_.moving() && !task_.stopping()) {
+      program_stopping();
       task_.stop();
       host_timeout_ = true;
     }
@@ -192,6 +195,8 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     case MessageId::param_request: handle_param(frame); return;
     case MessageId::capture_control: handle_capture(frame); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
+    case MessageId::segment: handle_segment(frame); return;
+    case MessageId::segment_tail: handle_segment_tail(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }
@@ -306,7 +311,8 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbState, static_cast<std::uint32_t>(task_.state()));
     write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
     write_raw(f, kHbErrors, heartbeat_errors());
-    write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFFFu)));
+    write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
+    write_raw(f, kHbFreeSlots, free_slots());
     write_raw(f, kHbOwner, owner_);
     write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
     tx_dropped_since_heartbeat_ = false;
@@ -314,6 +320,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     late_ticks_at_heartbeat_ = c.late_ticks;
     can_errors_at_heartbeat_ = can_.error_frames();
     queue(f, false);  // never dropped for telemetry's sake
+    if (active(program_.state())) send_program_status();
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
     // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.

@@ -29,6 +29,12 @@
 // first when it is full, a capture upload only goes out when nothing else
 // waits.
 //
+// Programs: the command owner streams elements (SEGMENT, SEGMENT_TAIL) into
+// the tick task's motion queue; each complete or refused element is
+// answered with the queue's free slots (flow control, also in every
+// HEARTBEAT); PROGRAM_STATUS reports progress and underruns
+// (can_node_program.cpp, docs/motion.md "Streaming").
+//
 // Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
 // words, 512 KiB): give it static storage or build it on the heap.
 #include <array>
@@ -39,7 +45,9 @@
 #include "firmware/can/capture_recorder.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/program_tracker.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "firmware/can/segment_wire.hpp"
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/host_staged_sets.hpp"
@@ -118,6 +126,8 @@ class CanNode {
   bool params_unsaved() const noexcept;
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
+  const ProgramTracker& program() const noexcept { return program_; }
+  bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
 
  private:
   struct Upload {
@@ -144,6 +154,15 @@ class CanNode {
   void handle_param(const hal::CanFrame& frame) noexcept;
   void handle_capture(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
+  void handle_segment(const hal::CanFrame& frame) noexcept;
+  void handle_segment_tail(const hal::CanFrame& frame) noexcept;
+  // programs (can_node_program.cpp)
+  void push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
+  void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
+  ErrorCode command_program(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+  void program_stopping() noexcept;  // a stop of the running program was asked for
+  void send_program_status() noexcept;
+  std::uint8_t free_slots() const noexcept;
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
@@ -202,6 +221,13 @@ class CanNode {
   TelemetryScheduler telemetry_{};
   TxPriorityQueue tx_{};
   Upload upload_{};
+  struct PendingSegment {
+    bool active = false;
+    std::uint8_t tag = 0;
+    SegmentHead head{};
+  };
+  PendingSegment pending_{};            // the owner's SEGMENT waiting for its SEGMENT_TAIL
+  ProgramTracker program_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
   int tx_budget_ = 0;                   // frames this service() may still send

@@ -43,6 +43,7 @@ ErrorCode CanNode::command_ownership(CommandCode code) noexcept {
   }
   if (owner_ != host) return ErrorCode::not_owner;
   owner_ = kAnonymousHost;
+  pending_.active = false;  // a half-received element of the host that let go
   return ErrorCode::ok;
 }
 
@@ -60,7 +61,9 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
   }
   const auto code = static_cast<CommandCode>(code_raw);
   const bool broadcast_stop = code == CommandCode::stop && broadcast_;
-  if (code != CommandCode::take_ownership && code != CommandCode::release_ownership && !broadcast_stop && !owns()) {
+  const bool open_to_all = code == CommandCode::take_ownership || code == CommandCode::release_ownership ||
+                           code == CommandCode::program_status || broadcast_stop;
+  if (!open_to_all && !owns()) {
     reply_ack(kCommandMsg.id, code_raw, ErrorCode::not_owner, 0);
     return;
   }
@@ -72,7 +75,10 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       e = to_error(task_.hold_position());
       break;
     case CommandCode::disable: e = to_error(task_.disable()); break;
-    case CommandCode::stop: e = to_error(task_.stop()); break;
+    case CommandCode::stop:
+      if (task_.program_running()) program_stopping();
+      e = to_error(task_.stop());
+      break;
     case CommandCode::clear_faults: e = to_error(task_.clear_fault()); break;
     case CommandCode::zero: e = command_zero(frame, detail); break;
     case CommandCode::select_controller: e = command_select_controller(frame, detail); break;
@@ -87,6 +93,12 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::release_ownership: e = command_ownership(code); break;
     case CommandCode::enter_commissioning: e = command_enter_commissioning(); break;
     case CommandCode::leave_commissioning: commissioning_ = false; break;
+    case CommandCode::feed_hold:
+    case CommandCode::feed_resume:
+    case CommandCode::feed_override:
+    case CommandCode::end_program:
+    case CommandCode::abort_program:
+    case CommandCode::program_status: e = command_program(code, frame, detail); break;
   }
   reply_ack(kCommandMsg.id, code_raw, e, detail);
 }

@@ -40,6 +40,8 @@ double read(const hal::CanFrame& frame, const FieldDef& f) noexcept {
     case WireType::raw32: return static_cast<double>(raw) * f.scale;
     case WireType::i8: return static_cast<double>(static_cast<std::int8_t>(raw)) * f.scale;
     case WireType::i16: return static_cast<double>(static_cast<std::int16_t>(raw)) * f.scale;
+    case WireType::i24:  // sign-extend bit 23
+      return static_cast<double>(static_cast<std::int32_t>(raw << 8) >> 8) * f.scale;
     case WireType::i32: return static_cast<double>(static_cast<std::int32_t>(raw)) * f.scale;
     case WireType::f32: return static_cast<double>(bits_float(raw));
     case WireType::bytes7: return 0.0;
@@ -70,6 +72,7 @@ bool write(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept {
     case WireType::raw32: hi = 4294967295.0; break;
     case WireType::i8: lo = -128.0; hi = 127.0; break;
     case WireType::i16: lo = -32768.0; hi = 32767.0; break;
+    case WireType::i24: lo = -8388608.0; hi = 8388607.0; break;
     case WireType::i32: lo = -2147483648.0; hi = 2147483647.0; break;
     default: return false;
   }

@@ -28,6 +28,9 @@ inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
 inline constexpr const MessageDef& kBoreGaugeMsg = message(MessageId::bore_gauge);
 inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infeed);
+inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
+inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
+inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
 
 inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
@@ -93,6 +96,7 @@ inline constexpr const FieldDef& kHbState = field(kHeartbeatMsg, "state");
 inline constexpr const FieldDef& kHbFault = field(kHeartbeatMsg, "fault");
 inline constexpr const FieldDef& kHbErrors = field(kHeartbeatMsg, "errors");
 inline constexpr const FieldDef& kHbOverruns = field(kHeartbeatMsg, "overruns");
+inline constexpr const FieldDef& kHbFreeSlots = field(kHeartbeatMsg, "free_slots");
 inline constexpr const FieldDef& kHbOwner = field(kHeartbeatMsg, "owner");
 inline constexpr const FieldDef& kHbTick = field(kHeartbeatMsg, "tick_low");
 
@@ -118,6 +122,20 @@ inline constexpr const FieldDef& kBoreDetail = field(kBoreInfeedMsg, "detail");
 inline constexpr const FieldDef& kBoreFlags = field(kBoreInfeedMsg, "flags");
 inline constexpr const FieldDef& kBoreInfeedTop = field(kBoreInfeedMsg, "infeed_top");
 inline constexpr const FieldDef& kBoreInfeedBottom = field(kBoreInfeedMsg, "infeed_bottom");
+inline constexpr const FieldDef& kSegmentTag = field(kSegmentMsg, "tag");
+inline constexpr const FieldDef& kSegmentKind = field(kSegmentMsg, "kind");
+inline constexpr const FieldDef& kSegmentX = field(kSegmentMsg, "x");
+inline constexpr const FieldDef& kSegmentY = field(kSegmentMsg, "y");
+inline constexpr const FieldDef& kTailTag = field(kSegmentTailMsg, "tag");
+inline constexpr const FieldDef& kTailFeed = field(kSegmentTailMsg, "feed");
+inline constexpr const FieldDef& kTailCentreNormal = field(kSegmentTailMsg, "centre_normal");
+inline constexpr const FieldDef& kTailCentreAlong = field(kSegmentTailMsg, "centre_along");
+
+inline constexpr const FieldDef& kProgramState = field(kProgramStatusMsg, "state");
+inline constexpr const FieldDef& kProgramFreeSlots = field(kProgramStatusMsg, "free_slots");
+inline constexpr const FieldDef& kProgramUnderruns = field(kProgramStatusMsg, "underruns");
+inline constexpr const FieldDef& kProgramSegment = field(kProgramStatusMsg, "segment");
+inline constexpr const FieldDef& kProgramOverride = field(kProgramStatusMsg, "feed_override");
 
 // Field index within its message (COMMAND_ACK.detail names the offending field).
 constexpr std::uint8_t index_of(const MessageDef& m, const FieldDef& f) noexcept {

@@ -80,6 +80,19 @@ constexpr double kCountMaxMm = 0.01;
 constexpr double kDacFullScaleMinMmS = 10.0;
 constexpr double kDacFullScaleMaxMmS = 2000.0;
 
+// Planner limits for programs: below 0.1 mm/s and 1 mm/s^2 a program
+// crawls; 10^5 mm/s^2 (10 g) and 10^8 mm/s^3 are beyond any ball-screw
+// table. validate() adds the jerk filter's bound (jerk >= accel / 64 ms).
+constexpr double kPathSpeedMinMmS = 0.1;
+constexpr double kPathAccelMinMmS2 = 1.0;
+constexpr double kPathAccelMaxMmS2 = 1e5;
+constexpr double kPathJerkMinMmS3 = 10.0;
+constexpr double kPathJerkMaxMmS3 = 1e8;
+// Path tolerance: 0.1 um is below an encoder count; 1 mm rounds a corner
+// further than any finishing pass would accept.
+constexpr double kPathToleranceMinMm = 1e-4;
+constexpr double kPathToleranceMaxMm = 1.0;
+
 bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
 
 // One axis' parameters: ax is the axis index, base its id block, p its name prefix.
@@ -203,10 +216,19 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
       {base + 0x95, p "observer.friction_mm_s", ParamType::f32, "mm/s", 0, 1e3, "",                                      \
        Access::read_write, Apply::idle, kOpen,                                                                           \
        TNV_REAL(firmware.axis[ax].observer.friction_mm_s), "Coulomb friction f_c / K the observer's model takes out"},   \
+      {base + 0x96, p "observer.friction_deadband_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,     \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].observer.friction_deadband_mm_s),                                  \
+       "|estimated speed| below which the observer assumes no friction"},                                                \
+      {base + 0xA0, p "path.speed_mm_s", ParamType::f32, "mm/s", kPathSpeedMinMmS, kSpeedLimitMaxMmS, "",                \
+       Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].path.speed_mm_s),                              \
+       "programs: the planner's speed limit of this axis (docs/motion.md)"},                                             \
+      {base + 0xA1, p "path.accel_mm_s2", ParamType::f32, "mm/s^2", kPathAccelMinMmS2, kPathAccelMaxMmS2, "",            \
+       Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].path.accel_mm_s2),                             \
+       "programs: the planner's acceleration limit of this axis (both axes plan with the smaller)"},                     \
   {                                                                                                                      \
-    base + 0x96, p "observer.friction_deadband_mm_s", ParamType::f32, "mm/s", 1e-6, 1e3, "", Access::read_write,         \
-        Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].observer.friction_deadband_mm_s),                                 \
-        "|estimated speed| below which the observer assumes no friction"                                                 \
+    base + 0xA2, p "path.jerk_mm_s3", ParamType::f32, "mm/s^3", kPathJerkMinMmS3, kPathJerkMaxMmS3, "",                  \
+        Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].path.jerk_mm_s3),                             \
+        "programs: the planner's jerk limit of this axis (at least accel / 64 ms: the jerk filter's 128 taps)"           \
   }
 
 constexpr ParamDef kParams[] = {
@@ -245,6 +267,9 @@ constexpr ParamDef kParams[] = {
      TNV_REAL(motion.move_ramp_s), "speed ramp of a point-to-point move"},
     {0x0033, "motion.move_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.move_dwell_s), "servo-on hold before a move starts"},
+    {0x0034, "path.tolerance_mm", ParamType::f32, "mm", kPathToleranceMinMm, kPathToleranceMaxMm, "",
+     Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.path_tolerance_mm),
+     "programs: corner blends and arc lag stay within this of the programmed path (docs/motion.md)"},
     {0x0040, "capture.channels", ParamType::u32, "", 1, kAllCaptureChannels, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(capture.channels), "channel bit mask (capture_channels); busy while a capture is armed"},
     {0x0041, "capture.trigger", ParamType::enumeration, "", 0, 2, "0=immediate 1=motion 2=fault", Access::read_write,
@@ -356,6 +381,16 @@ std::uint16_t blame(const ConfigError& e) noexcept {
                       : std::strstr(e.section, "observer") != nullptr   ? "observer."
                                                                         : "";
   const char* field = e.field;
+  if (std::strcmp(e.section, "path") == 0) {
+    // motion::validate() names no axis: blame the parameter its reason is about (x's, for an axis limit).
+    const char* path = std::strstr(e.reason, "path_tolerance") != nullptr ? "path.tolerance_mm"
+                       : std::strstr(e.reason, "jerk") != nullptr         ? "x.path.jerk_mm_s3"
+                       : std::strstr(e.reason, "accel") != nullptr        ? "x.path.accel_mm_s2"
+                       : std::strstr(e.reason, "speed") != nullptr        ? "x.path.speed_mm_s"
+                                                                          : "";
+    const ParamDef* p = find_param(path);
+    return p != nullptr ? p->id : 0;
+  }
   if (std::strcmp(field, "G") == 0) field = "G_position_1_s";
   if (std::strcmp(field, "model") == 0) {
     group = "model.";

@@ -6,7 +6,9 @@
 namespace tnv::fw::can {
 
 // 2: request tags (byte 0 of every answered request, echoed by its reply), hosts and ownership.
-inline constexpr std::uint32_t kProtocolVersion = 2;
+// 3: program streaming (SEGMENT, SEGMENT_TAIL, PROGRAM_STATUS, COMMAND 14..19); HEARTBEAT
+//    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
+inline constexpr std::uint32_t kProtocolVersion = 3;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result).
 enum class ErrorCode : std::uint8_t {
@@ -29,6 +31,12 @@ enum class ErrorCode : std::uint8_t {
   not_permitted,           // this node's local configuration forbids it (tnv-fw: [safety] allow_commissioning)
   no_host,          // the request's tag names host 0: only ESTOP and the broadcast stop may be anonymous
   not_owner,        // needs command ownership, which another host (or no host) holds
+  // Segment refusals (motion/segment.hpp SegmentRefusal) the codes above cannot say; the queue is unchanged.
+  queue_full,         // no free slot in the motion queue: wait for the free slots the acks and heartbeat report
+  zero_length,        // a line or arc shorter than 1 um
+  bad_arc,            // arc radius below the minimum, or start and end radius differ beyond the tolerance
+  feed_above_limit,   // feed above what the axis speed limits allow on this element
+  outside_workspace,  // the end point lies outside the soft travel limits
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
@@ -52,10 +60,15 @@ constexpr const char* to_string(ErrorCode e) noexcept {
     case ErrorCode::not_permitted: return "not_permitted";
     case ErrorCode::no_host: return "no_host";
     case ErrorCode::not_owner: return "not_owner";
+    case ErrorCode::queue_full: return "queue_full";
+    case ErrorCode::zero_length: return "zero_length";
+    case ErrorCode::bad_arc: return "bad_arc";
+    case ErrorCode::feed_above_limit: return "feed_above_limit";
+    case ErrorCode::outside_workspace: return "outside_workspace";
   }
   return "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 19;
+inline constexpr std::uint8_t kErrorCodeCount = 24;
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {
@@ -73,8 +86,15 @@ enum class CommandCode : std::uint8_t {
   release_ownership,  // the owner gives command ownership up
   enter_commissioning,  // safety parameters become writable; only while disabled (docs/safety.md)
   leave_commissioning,  // back to normal; also left on enable, motion or a fault
+  // Program control (a program is the segments streamed by SEGMENT / SEGMENT_TAIL).
+  feed_hold,       // brake on the path and wait there; the queue is kept
+  feed_resume,     // continue after a feed hold
+  feed_override,   // COMMAND.arg = path speed in percent of the programmed feeds, 0..150
+  end_program,     // the last segment has been sent: running the queue dry is then the end, not an underrun
+  abort_program,   // controlled stop on the path; the queue and a half-received segment are dropped
+  program_status,  // answer, and send a PROGRAM_STATUS now
 };
-inline constexpr std::uint8_t kCommandCodeCount = 14;
+inline constexpr std::uint8_t kCommandCodeCount = 20;
 
 constexpr const char* to_string(CommandCode c) noexcept {
   switch (c) {
@@ -92,6 +112,12 @@ constexpr const char* to_string(CommandCode c) noexcept {
     case CommandCode::release_ownership: return "release_ownership";
     case CommandCode::enter_commissioning: return "enter_commissioning";
     case CommandCode::leave_commissioning: return "leave_commissioning";
+    case CommandCode::feed_hold: return "feed_hold";
+    case CommandCode::feed_resume: return "feed_resume";
+    case CommandCode::feed_override: return "feed_override";
+    case CommandCode::end_program: return "end_program";
+    case CommandCode::abort_program: return "abort_program";
+    case CommandCode::program_status: return "program_status";
   }
   return "?";
 }

@@ -26,12 +26,15 @@ enum class MessageId : std::uint8_t {
   capture_status = 0x0B,
   heartbeat = 0x0C,
   excite = 0x0D,
+  segment = 0x0E,
+  segment_tail = 0x0F,
   tlm_position = 0x10,
   tlm_following = 0x11,
   tlm_sliding_x = 0x12,
   tlm_sliding_y = 0x13,
   tlm_output = 0x14,
   tlm_contour = 0x15,
+  program_status = 0x17,
   capture_data = 0x18,
   bore_gauge = 0x1A,
   bore_infeed = 0x1B,
@@ -48,7 +51,8 @@ inline constexpr const char* kFaultValues =
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
     "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "
-    "15=commissioning_required 16=not_permitted 17=no_host 18=not_owner";
+    "15=commissioning_required 16=not_permitted 17=no_host 18=not_owner 19=queue_full 20=zero_length 21=bad_arc "
+    "22=feed_above_limit 23=outside_workspace";
 inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
 inline constexpr const char* kTagDoc =
     "request tag: host id (high nibble, 1..15; 0 is refused) and the host's own sequence (low nibble); the reply "
@@ -65,20 +69,24 @@ inline constexpr FieldDef kCommand[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"code", WireType::u8, 1, 1, "",
      "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
-     "8=load_params 9=restore_defaults 10=take_ownership 11=release_ownership 12=enter_commissioning 13=leave_commissioning",
+     "8=load_params 9=restore_defaults 10=take_ownership 11=release_ownership 12=enter_commissioning 13=leave_commissioning "
+     "14=feed_hold 15=feed_resume 16=feed_override 17=end_program 18=abort_program 19=program_status",
      "what to do"},
     {"axis", WireType::u8, 2, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
-    {"arg", WireType::u8, 3, 1, "", "", "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on"},
+    {"arg", WireType::u8, 3, 1, "", "",
+     "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on; feed_override: percent, 0..150"},
     {"value", WireType::f32, 4, 1, "mm", "", "zero: the position to assign"},
 };
 inline constexpr FieldDef kCommandAck[] = {
     {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
     {"request", WireType::u8, 1, 1, "", "", "message id of the request acknowledged"},
-    {"code", WireType::u8, 2, 1, "", "", "the request's command code (COMMAND), else 0"},
+    {"code", WireType::u8, 2, 1, "", "",
+     "the request's command code (COMMAND); SEGMENT, SEGMENT_TAIL: free motion-queue slots after the request; else 0"},
     {"result", WireType::u8, 3, 1, "", kErrorValues, "0 ok, else why it was refused (nothing changed)"},
     {"state", WireType::u8, 4, 1, "", kStateValues, "motion state after the request"},
     {"fault", WireType::u8, 5, 1, "", kFaultValues, "latched fault after the request"},
-    {"detail", WireType::u8, 6, 1, "", "", "request-specific: index of the offending field, or 0"},
+    {"detail", WireType::u8, 6, 1, "", "",
+     "request-specific: index of the offending field (in the message named by request), or 0"},
     {"owner", WireType::u8, 7, 1, "", "", "host id holding command ownership after the request, 0 none"},
 };
 inline constexpr FieldDef kJog[] = {
@@ -154,9 +162,37 @@ inline constexpr FieldDef kHeartbeat[] = {
     {"state", WireType::u8, 0, 1, "", kStateValues, "motion state"},
     {"fault", WireType::u8, 1, 1, "", kFaultValues, "latched fault reason"},
     {"errors", WireType::u16, 2, 1, "", "", "sub-system bits (protocol_enums.hpp HeartbeatBit)"},
-    {"overruns", WireType::u16, 4, 1, "tick", "", "missed + late ticks since start (saturates)"},
+    {"overruns", WireType::u8, 4, 1, "tick", "", "missed + late ticks since start (saturates at 255)"},
+    {"free_slots", WireType::u8, 5, 1, "", "", "free slots in the motion queue (flow control for SEGMENT)"},
     {"owner", WireType::u8, 6, 1, "", "", "host id holding command ownership, 0 none"},
     {"tick_low", WireType::u8, 7, 1, "tick", "", "low 8 bits of the tick count"},
+};
+inline constexpr FieldDef kSegment[] = {
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"kind", WireType::u8, 1, 1, "",
+     "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop",
+     "element; the _exact_stop kinds end at rest before the next element starts"},
+    {"x", WireType::i24, 2, 1e-4, "mm", "",
+     "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit)"},
+    {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for a dwell"},
+};
+inline constexpr FieldDef kSegmentTail[] = {
+    {"tag", WireType::u8, 0, 1, "", "", "the tag of the SEGMENT frame this completes (a reply echoes it)"},
+    {"feed", WireType::u16, 1, 0.01, "mm/s", "", "path speed of the element"},
+    {"centre_normal", WireType::i24, 3, 1e-4, "mm", "",
+     "arc: the centre's offset from the chord's midpoint along the chord's left normal (start -> end); 0 for a line"},
+    {"centre_along", WireType::i16, 6, 1e-4, "mm", "",
+     "arc: the centre's offset from the chord's midpoint along the chord (start -> end); 0 for a line"},
+};
+inline constexpr FieldDef kProgramStatus[] = {
+    {"state", WireType::u8, 0, 1, "", "0=none 1=running 2=holding 3=stopping 4=starved 5=done 6=aborted",
+     "program state: holding = feed hold; starved = underrun, at rest on the path until segments arrive; aborted = "
+     "stopped (abort, stop, fault, host timeout) before its end"},
+    {"free_slots", WireType::u8, 1, 1, "", "", "free slots in the motion queue"},
+    {"underruns", WireType::u16, 2, 1, "", "", "times this program's queue ran dry before its end (saturates)"},
+    {"segment", WireType::u24, 4, 1, "", "",
+     "number of the program's element being run, from 1 in the order accepted; 0 before the first"},
+    {"feed_override", WireType::u8, 7, 1, "%", "", "feed override in percent of the programmed feeds"},
 };
 inline constexpr FieldDef kTlmPosition[] = {
     {"x", WireType::i32, 0, 1e-6, "mm", "", "encoder position, x"},
@@ -209,20 +245,20 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 23> kMessages{{
+inline constexpr std::array<MessageDef, 26> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
     {0x01, "fault_event", Direction::from_node, 8, detail::kFaultEvent,
      "Sent once when a fault latches."},
     {0x02, "command", Direction::to_node, 8, detail::kCommand,
-     "Commands without a motion profile. Answered by COMMAND_ACK. Every code but take_ownership and "
-     "release_ownership needs command ownership (not_owner otherwise); take_ownership succeeds when nobody or the "
+     "Commands without a motion profile. Answered by COMMAND_ACK. Every code but take_ownership, "
+     "release_ownership and program_status needs command ownership (not_owner otherwise); take_ownership succeeds when nobody or the "
      "requesting host holds it, and ownership is lost when can.host_timeout_ms passes without a frame from its "
      "host. stop is also accepted on node 0 from any host, tag 0 included (the broadcast stop)."},
     {0x03, "command_ack", Direction::from_node, 8, detail::kCommandAck,
-     "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER and EXCITE: accepted (ok) or why not; echoes the request's "
-     "tag."},
+     "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER, EXCITE, SEGMENT and SEGMENT_TAIL: accepted (ok) or why not; "
+     "echoes the request's tag."},
     {0x04, "jog", Direction::to_node, 8, detail::kJog,
      "Operator jog stream (both axes). Starts a jog from holding; each frame must follow the last within "
      "jog.deadman_s of the jogging axes or they stop. Answered by COMMAND_ACK."},
@@ -251,6 +287,15 @@ inline constexpr std::array<MessageDef, 23> kMessages{{
      "the generator instead of its controller, the other axis holds; settle 0.2 s after, ramp rate 2 mm/s^2, a "
      "ramp ends after 12 encoder counts. Only while holding (busy otherwise). A capture armed with trigger "
      "motion records the excitation from its first tick to its last. Answered by COMMAND_ACK."},
+    {0x0E, "segment", Direction::to_node, 8, detail::kSegment,
+     "One element of a program (docs/motion.md \"Streaming\"): a dwell in this frame alone, a line or arc "
+     "completed by a SEGMENT_TAIL with the same tag. From holding the first element starts the program; elements "
+     "queue behind it while it runs (an underrun waits at rest on the path). Needs command ownership. Answered by "
+     "COMMAND_ACK (code = free queue slots) once the element is complete or refused; a refusal leaves the queue "
+     "unchanged."},
+    {0x0F, "segment_tail", Direction::to_node, 8, detail::kSegmentTail,
+     "Second frame of a line or arc: feed and arc centre. Must follow its SEGMENT from the same host; a SEGMENT "
+     "without its tail is refused (not_ready) when the next SEGMENT comes. Answered by COMMAND_ACK."},
     {0x10, "tlm_position", Direction::from_node, 8, detail::kTlmPosition,
      "Telemetry every tlm.position_ms (0 = off)."},
     {0x11, "tlm_following", Direction::from_node, 8, detail::kTlmFollowing,
@@ -263,6 +308,9 @@ inline constexpr std::array<MessageDef, 23> kMessages{{
      "Telemetry every tlm.output_ms (0 = off)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
      "Telemetry every tlm.contour_ms (0 = off)."},
+    {0x17, "program_status", Direction::from_node, 8, detail::kProgramStatus,
+     "Program progress and flow control: with every HEARTBEAT while a program runs, once when its state changes, "
+     "and on COMMAND program_status."},
     {0x18, "capture_data", Direction::from_node, 8, detail::kCaptureData,
      "One segment of a capture upload. Below every control message in priority (only BORE_GAUGE and BORE_INFEED, "
      "which wait between parts, rank lower): never delays control traffic."},

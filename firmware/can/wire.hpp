@@ -11,7 +11,7 @@
 
 namespace tnv::fw::can {
 
-enum class WireType : std::uint8_t { u8, i8, u16, i16, u32, i32, f32, raw32, bytes7, u24 };
+enum class WireType : std::uint8_t { u8, i8, u16, i16, u32, i32, f32, raw32, bytes7, u24, i24 };
 
 constexpr std::size_t wire_size(WireType t) noexcept {
   switch (t) {
@@ -19,7 +19,8 @@ constexpr std::size_t wire_size(WireType t) noexcept {
     case WireType::i8: return 1;
     case WireType::u16:
     case WireType::i16: return 2;
-    case WireType::u24: return 3;
+    case WireType::u24:
+    case WireType::i24: return 3;
     case WireType::u32:
     case WireType::i32:
     case WireType::f32:
@@ -30,7 +31,7 @@ constexpr std::size_t wire_size(WireType t) noexcept {
 }
 
 constexpr bool is_signed(WireType t) noexcept {
-  return t == WireType::i8 || t == WireType::i16 || t == WireType::i32 || t == WireType::f32;
+  return t == WireType::i8 || t == WireType::i16 || t == WireType::i24 || t == WireType::i32 || t == WireType::f32;
 }
 
 constexpr const char* to_string(WireType t) noexcept {
@@ -45,6 +46,7 @@ constexpr const char* to_string(WireType t) noexcept {
     case WireType::raw32: return "raw32";
     case WireType::bytes7: return "bytes7";
     case WireType::u24: return "u24";
+    case WireType::i24: return "i24";
   }
   return "?";
 }

@@ -98,6 +98,11 @@ class TickTask {
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
+  // Where the next pushed program segment starts: the queue's end while a
+  // program runs, else where the table is held (the first push starts there).
+  motion::PlanePoint next_segment_start_mm() const noexcept {
+    return program_running() ? motion_.queue_end_mm() : held_point();
+  }
   // Input shaper per axis: the design and, separately, on/off. Every axis
   // of the path runs the enabled axes' shapers in series (path_taps.hpp), so
   // shaped axes stay in step; the new series is applied to all axes at once

@@ -12,6 +12,7 @@
 #include "firmware/can/param_image.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tests/firmware/can/bore_frames.hpp"
+#include "firmware/can/segment_wire.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 
 namespace {
@@ -107,6 +108,40 @@ void seed_can_frames(const fs::path& dir) {
   put(frames({frame_to(MessageId::heartbeat, n), frame_to(MessageId::param_reply, n), frame_to(MessageId::capture_data, n)}));
   CanFrame unknown{can::make_can_id(0x1F, n), false, 8, {}};
   put(frames({unknown}));
+  // Programs: elements (a dwell alone, lines and arcs as SEGMENT + SEGMENT_TAIL), program
+  // commands, a tail without its head, a head without its tail, another host's element.
+  const auto element = [&](const tnv::fw::motion::Segment& s, std::uint8_t tag, Bytes& out, bool ticks) {
+    can::SegmentFrames f;
+    can::encode_segment(s, {0.0, 0.0}, n, tag, f);
+    add_frame(out, f.head, ticks);
+    if (f.has_tail) add_frame(out, f.tail);
+  };
+  Bytes program;
+  add_frame(program, command(n, CommandCode::enable));
+  element(tnv::fw::motion::line_to({2.0, 0.0}, 5.0), 0x11, program, true);
+  element(tnv::fw::motion::dwell_for(0.02), 0x12, program, false);
+  element(tnv::fw::motion::arc_to(false, {2.0, 2.0}, {2.0, 1.0}, 5.0), 0x13, program, false);
+  add_frame(program, command(n, CommandCode::end_program));
+  add_frame(program, command(n, CommandCode::program_status), true, 4);
+  put(program);
+  program.clear();
+  add_frame(program, command(n, CommandCode::enable));
+  element(tnv::fw::motion::line_to({5.0, 1.0}, 10.0), 0x11, program, true);
+  add_frame(program, command(n, CommandCode::feed_override, 0, 50));
+  add_frame(program, command(n, CommandCode::feed_hold), true, 3);
+  add_frame(program, command(n, CommandCode::feed_resume), true, 3);
+  add_frame(program, command(n, CommandCode::abort_program), true, 2);
+  put(program);
+  program.clear();
+  can::SegmentFrames half;
+  can::encode_segment(tnv::fw::motion::line_to({1.0, 1.0}, 2.0), {0.0, 0.0}, n, 0x14, half);
+  add_frame(program, command(n, CommandCode::enable));
+  add_frame(program, half.tail);                                 // no head
+  add_frame(program, half.head);                                 // a head, then another: not_ready
+  element(tnv::fw::motion::line_to({0.0, 1.0}, 2.0), 0x15, program, false);
+  element(tnv::fw::motion::line_to({3.0, 0.0}, 2.0), 0x21, program, false);  // host 2: not_owner
+  element(tnv::fw::motion::line_to({300.0, 0.0}, 2.0), 0x16, program, false);  // outside the workspace
+  put(program);
   // Deep states, with tick steps between the frames: a capture recorded and
   // uploaded while foreign frames arrive mid-upload, a commit of a staged
   // set, a circle past its dwell, an excitation run out.

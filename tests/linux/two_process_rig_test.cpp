@@ -2,60 +2,20 @@
 // board on a Unix socket and tnv-fw (no tick line: clock_nanosleep
 // deadlines) talking CAN over the Unix-socket link; the test is the host.
 #include <gtest/gtest.h>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 #include <thread>
-#include <vector>
 
-#include "tests/linux/rig_support.hpp"
-
-extern char** environ;
+#include "tests/linux/two_process_support.hpp"
 
 namespace tnv {
 namespace {
 
-pid_t spawn(const std::vector<std::string>& args, const std::string& out_file) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0) << args[0];
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
-}
-
-int wait_exit(pid_t pid) {
-  int status = 0;
-  if (::waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_config(const std::string& path, const fwd::DaemonConfig& c) {
-  std::ofstream out(path);
-  out << "[board]\ntransport = \"socket\"\npath = \"" << c.board.path << "\"\nreply_timeout_ms = 2000\n"
-      << "[can]\ninterface = \"" << c.can.interface_name << "\"\nnode_id = 1\n"
-      << "[rt]\npriority = 0\nrequire = false\n"
-      << "[tick]\nperiod_us = 1000\n"
-      << "[params]\nfile = \"" << c.params.file << "\"\n";
-}
+using test::read_file;
+using test::spawn;
+using test::wait_exit;
+using test::write_config;
 
 TEST(TwoProcessRig, ParameterRoundTripOverCanThenSigtermLeavesTheOutputsSafe) {
   test::ScratchDir dir;

@@ -8,7 +8,9 @@
 #include <string>
 
 #include "firmware/can/frame_codec.hpp"
+#include "firmware/can/program_tracker.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "firmware/can/segment_wire.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/shaper/shaper_type.hpp"
 #include "firmware/supervisor/fault.hpp"
@@ -63,6 +65,7 @@ std::vector<double> raw_samples(WireType t) {
     case WireType::f32: return {0.0, -0.0, 1.5, -123.25, 3.4028234663852886e38, 1e-30};
     case WireType::bytes7: return {};
     case WireType::u24: return {0, 1, 1193046, 16777215};
+    case WireType::i24: return {-8388608, -1, 0, 1, 8388607};
   }
   return {};
 }
@@ -164,6 +167,8 @@ TEST(MessageTable, ValueTablesMatchTheEnums) {
   expect_value_table<MotionState>(field(message(MessageId::heartbeat), "state").values, 5, "state");
   expect_value_table<ErrorCode>(field(message(MessageId::param_reply), "result").values, kErrorCodeCount, "result");
   expect_value_table<CommandCode>(field(message(MessageId::command), "code").values, kCommandCodeCount, "command");
+  expect_value_table<ProgramState>(field(message(MessageId::program_status), "state").values, 7, "program state");
+  EXPECT_EQ(tnv::protogen::value_table(field(message(MessageId::segment), "kind").values).size(), kWireKindCount);
   expect_value_table<tnv::fw::ShaperType>(field(message(MessageId::shaper), "type").values,
                                           static_cast<int>(std::size(tnv::fw::kShaperTypes)), "shaper type");
   EXPECT_EQ(std::string(to_string(static_cast<ErrorCode>(kErrorCodeCount))), "?") << "kErrorCodeCount is stale";

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_image.hpp"
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/segment_wire.hpp"
 #include "tests/hil/can_node_rig.hpp"
 #include "tests/tick_alloc/alloc_guard.hpp"
 #include "tests/tick_alloc/seccomp_guard.hpp"
@@ -39,7 +41,8 @@ const std::map<std::string, double> kFieldValues = {
     {"jog.speed_x", 2.0},      {"jog.speed_y", -1.0},       {"move.speed", 5.0},
     {"move.distance", 2.0},    {"circle.radius", 6.0},      {"circle.feed", 2.0},
     {"shaper.zeta", 0.05},     {"shaper.freq", 30.0},       {"excite.duration", 0.1},
-    {"excite.level", 5.0},     {"capture_control.frames", 4},
+    {"excite.level", 5.0},     {"capture_control.frames", 4}, {"segment.x", 2.0},
+    {"segment.y", 1.0},        {"segment_tail.feed", 5.0},
     {"bore_gauge.part", 1},    {"bore_gauge.top", 0.05},    {"bore_gauge.bottom", 0.17}};
 
 // The parameter PARAM_REQUEST addresses, by name (its id and value come from the table).
@@ -111,9 +114,21 @@ hal::CanFrame frame_for(const MessageCase& c, const can::NodeSettings& live) {
   return frame;
 }
 
+// A SEGMENT of a line or an arc is answered once its SEGMENT_TAIL (same tag) completes it: the case
+// sends both frames.
+std::optional<hal::CanFrame> companion_for(const MessageCase& c, const hal::CanFrame& head) {
+  if (c.message->id != static_cast<std::uint8_t>(can::MessageId::segment)) return std::nullopt;
+  if (!can::wire_kind_has_tail(static_cast<can::WireKind>(c.selected))) return std::nullopt;
+  const MessageCase tail{&can::message(can::MessageId::segment_tail), nullptr, 0, "segment_tail"};
+  hal::CanFrame f = frame_for(tail, can::NodeSettings{});
+  f.data[0] = head.data[0];
+  return f;
+}
+
 struct MessageBench {
   std::unique_ptr<CanRig> rig;
   hal::CanFrame frame{};
+  std::optional<hal::CanFrame> companion;  // sent right after `frame`
   std::uint16_t answered_before = 0;
 };
 
@@ -131,6 +146,7 @@ MessageBench holding_message_bench(const MessageCase& c) {
   for (int i = 0; i < 5; ++i) b.rig->step();
   b.rig->port.drain();
   b.frame = frame_for(c, b.rig->node->settings());
+  b.companion = companion_for(c, b.frame);
   b.answered_before = b.rig->node->reply_sequence();
   return b;
 }
@@ -138,6 +154,7 @@ MessageBench holding_message_bench(const MessageCase& c) {
 // The frame, its service() and the ticks after it: what runs under the guards.
 void exercise_message(MessageBench& b) noexcept {
   b.rig->port.to_node.push(b.frame);
+  if (b.companion) b.rig->port.to_node.push(*b.companion);
   b.rig->node->service();
   for (int i = 0; i < kTicksAfter; ++i) b.rig->step();
 }
@@ -232,6 +249,10 @@ TEST(CanMessagesTable, TheBuiltFramesAreValidRequests) {
     if (c.message->id == static_cast<std::uint8_t>(can::MessageId::estop)) continue;
     MessageBench b = holding_message_bench(c);
     ASSERT_TRUE(b.rig);
+    if (b.companion) {
+      b.rig->port.send(b.frame);
+      b.frame = *b.companion;
+    }
     const std::vector<hal::CanFrame> out = b.rig->request_and_wait(b.frame);  // save/load answer later
     ASSERT_FALSE(out.empty()) << c.name << ": no answer";
     const can::MessageDef* reply = can::classify(out.front());

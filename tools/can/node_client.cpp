@@ -55,6 +55,7 @@ std::optional<can::MessageId> NodeClient::ours(const hal::CanFrame& frame) const
 void NodeClient::dispatch(const hal::CanFrame& frame, can::MessageId id) {
   if (id == MessageId::heartbeat) heartbeat_ = read_heartbeat(frame);
   if (id == MessageId::fault_event) fault_event_ = read_fault_event(frame);
+  if (id == MessageId::program_status) program_status_ = read_program_status(frame);
   if (listener_) listener_(frame, id);
 }
 
@@ -205,7 +206,7 @@ CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t tag, s
 
 CommandAck NodeClient::command(can::CommandCode code, std::uint8_t axis, std::uint8_t arg, double value) {
   const bool ownership = code == can::CommandCode::take_ownership || code == can::CommandCode::release_ownership;
-  if (!ownership) need_ownership();
+  if (!ownership && code != can::CommandCode::program_status) need_ownership();  // a read, open to every host
   const std::uint8_t tag = next_tag();
   const CommandAck a = checked(command_request(node_, tag, code, axis, arg, value), tag,
                                static_cast<std::uint8_t>(code), can::to_string(code));
@@ -286,6 +287,20 @@ Heartbeat NodeClient::wait_at_rest(Micros timeout) {
 
 void NodeClient::pump(Micros duration) {
   wait_for([](const hal::CanFrame&, MessageId) { return false; }, bus_.now() + duration);
+}
+
+bool NodeClient::pump_until(const std::function<bool()>& done, Micros timeout) {
+  if (done()) return true;
+  return wait_for([&](const hal::CanFrame&, MessageId) { return done(); }, bus_.now() + timeout).has_value();
+}
+
+ProgramStatus NodeClient::program_status() {
+  program_status_.reset();
+  command(can::CommandCode::program_status);
+  // PROGRAM_STATUS leaves the node in the same service as the ack, after it (higher identifier).
+  if (!pump_until([this] { return program_status_.has_value(); }, options_.timeout))
+    throw RequestError(RequestError::Kind::timeout, timeout_text("program status", MessageId::program_status, options_.timeout));
+  return *program_status_;
 }
 
 // --- capture

@@ -75,6 +75,14 @@ class NodeClient {
   Heartbeat wait_at_rest(Micros timeout);
   // Receives and dispatches frames for `duration`.
   void pump(Micros duration);
+  // Receives and dispatches frames until `done()` holds after one (true) or
+  // `timeout` passes (false). For pipelined requests (program streaming).
+  bool pump_until(const std::function<bool()>& done, Micros timeout);
+  // Sends a frame as it is: the caller reads its answer from the listener.
+  void send_raw(const hal::CanFrame& frame) { bus_.send(frame); }
+  // Refreshes the node's PROGRAM_STATUS (COMMAND program_status, open to every host).
+  ProgramStatus program_status();
+  const std::optional<ProgramStatus>& last_program_status() const noexcept { return program_status_; }
   const std::optional<Heartbeat>& last_heartbeat() const noexcept { return heartbeat_; }
   const std::optional<FaultEvent>& last_fault_event() const noexcept { return fault_event_; }
   void set_listener(FrameListener listener) { listener_ = std::move(listener); }
@@ -120,6 +128,7 @@ class NodeClient {
   ClientOptions options_;
   std::optional<Heartbeat> heartbeat_;
   std::optional<FaultEvent> fault_event_;
+  std::optional<ProgramStatus> program_status_;
   FrameListener listener_;
   std::uint64_t upload_rerequests_ = 0;
   std::uint64_t replies_discarded_ = 0;

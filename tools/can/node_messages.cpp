@@ -29,6 +29,7 @@ using can::fields::kCaptureDataMsg;
 using can::fields::kHeartbeatMsg;
 using can::fields::kFaultEventMsg;
 using can::fields::kEstopMsg;
+using can::fields::kProgramStatusMsg;
 
 template <typename T>
 T raw_as(const hal::CanFrame& frame, const can::FieldDef& f) {
@@ -139,12 +140,23 @@ hal::CanFrame capture_request(std::uint8_t node, std::uint8_t tag, can::CaptureO
 
 hal::CanFrame estop_request(std::uint8_t node) { return can::make_frame(kEstopMsg, node); }
 
+ProgramStatus read_program_status(const hal::CanFrame& frame) {
+  ProgramStatus p;
+  p.state = raw_as<can::ProgramState>(frame, field(kProgramStatusMsg, "state"));
+  p.free_slots = raw_as<std::uint8_t>(frame, field(kProgramStatusMsg, "free_slots"));
+  p.underruns = raw_as<std::uint16_t>(frame, field(kProgramStatusMsg, "underruns"));
+  p.element = raw_as<std::uint32_t>(frame, field(kProgramStatusMsg, "segment"));
+  p.feed_override_percent = raw_as<std::uint8_t>(frame, field(kProgramStatusMsg, "feed_override"));
+  return p;
+}
+
 Heartbeat read_heartbeat(const hal::CanFrame& frame) {
   Heartbeat h;
   h.state = raw_as<fw::MotionState>(frame, field(kHeartbeatMsg, "state"));
   h.fault = raw_as<fw::FaultReason>(frame, field(kHeartbeatMsg, "fault"));
   h.errors = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "errors"));
   h.overruns = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "overruns"));
+  h.free_slots = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "free_slots"));
   h.owner = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "owner"));
   h.tick_low = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "tick_low"));
   return h;

@@ -7,6 +7,7 @@
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/program_tracker.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
 
@@ -18,9 +19,18 @@ struct Heartbeat {
   fw::MotionState state = fw::MotionState::disabled;
   fw::FaultReason fault = fw::FaultReason::none;
   std::uint16_t errors = 0;  // can::HeartbeatBit
-  std::uint16_t overruns = 0;
+  std::uint16_t overruns = 0;  // saturates at 255 (protocol 3)
+  std::uint8_t free_slots = 0;  // motion queue (flow control for SEGMENT)
   std::uint8_t owner = 0;  // host id holding command ownership, 0 none
   std::uint8_t tick_low = 0;
+};
+
+struct ProgramStatus {
+  fw::can::ProgramState state = fw::can::ProgramState::none;
+  std::uint8_t free_slots = 0;
+  std::uint16_t underruns = 0;  // of this program
+  std::uint32_t element = 0;    // 1-based number of the element being run (acceptance order)
+  std::uint8_t feed_override_percent = 100;
 };
 
 struct CommandAck {
@@ -91,6 +101,7 @@ ParamReply read_param_reply(const hal::CanFrame& frame);
 CaptureStatus read_capture_status(const hal::CanFrame& frame);
 CaptureData read_capture_data(const hal::CanFrame& frame);
 FaultEvent read_fault_event(const hal::CanFrame& frame);
+ProgramStatus read_program_status(const hal::CanFrame& frame);
 
 // Message name in upper case as the DBC spells it ("PARAM_REPLY").
 std::string message_label(can::MessageId id);

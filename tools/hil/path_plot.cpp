@@ -77,7 +77,7 @@ SvgWriter path_figure(const std::string& title, const gcode::GcodeProgram& progr
   const double height = kTitlePx + kMapPx + 2.0 * (kPanelPx + kGapPx) + 60.0;
   SvgWriter svg(kWidthPx, height);
   svg.text(kWidthPx / 2, 28, title, 17, "middle", "#111");
-  const gcode::PathScore& s = run.score;
+  const PathScore& s = run.score;
   svg.text(kWidthPx / 2, 48,
            format_value("contour error max %.3f \u00b5m", s.contour_error_max_um) +
                format_value(", mean %.3f \u00b5m", s.contour_error_mean_um) +
@@ -85,7 +85,7 @@ SvgWriter path_figure(const std::string& title, const gcode::GcodeProgram& progr
            13, "middle", "#333");
 
   // XY panel: the program to scale, and the samples in the worst tenth of the contour error.
-  const std::vector<gcode::PathSample>& samples = run.samples;
+  const std::vector<PathSample>& samples = run.samples;
   double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
   std::vector<std::vector<std::pair<double, double>>> elements;
   for (const fw::motion::SegmentGeometry& g : program.geometry) {
@@ -114,7 +114,7 @@ SvgWriter path_figure(const std::string& title, const gcode::GcodeProgram& progr
   }
   const gcode::ProgrammedPath path(program.geometry);
   std::vector<double> contour_um;
-  const std::size_t first = std::min(s.first_moving, samples.size());
+  const std::size_t first = std::min(s.window_begin, samples.size());
   for (std::size_t k = first; k < samples.size(); ++k) contour_um.push_back(path.distance_mm(samples[k].position_mm) * 1e3);
   const double worst = s.contour_error_max_um;
   for (std::size_t k = 0; k < contour_um.size(); ++k)
@@ -145,7 +145,7 @@ std::string path_csv(const gcode::GcodeProgram& program, const PathRunResult& ru
   std::string out = "t_s,x_ref_mm,y_ref_mm,x_mm,y_mm,contour_um,path_speed_mm_s\n";
   char line[256];
   for (std::size_t k = 0; k < run.samples.size(); ++k) {
-    const gcode::PathSample& s = run.samples[k];
+    const PathSample& s = run.samples[k];
     const double speed = k > 0 && k - 1 < run.path_speed_mm_s.size() ? run.path_speed_mm_s[k - 1] : 0.0;
     std::snprintf(line, sizeof line, "%.3f,%.9f,%.9f,%.9f,%.9f,%.5f,%.6f\n", static_cast<double>(k) * 1e-3,
                   s.reference_mm[0], s.reference_mm[1], s.position_mm[0], s.position_mm[1],

@@ -12,8 +12,11 @@ namespace tnv::hil {
 
 namespace {
 
-gcode::PathSample sample_of(const fw::TickRecord& r) {
-  return {{r.axis[0].reference_mm, r.axis[1].reference_mm}, {r.axis[0].position_mm, r.axis[1].position_mm}};
+PathSample sample_of(const fw::TickRecord& r) {
+  PathSample s;
+  s.position_mm = {r.axis[0].position_mm, r.axis[1].position_mm};
+  s.reference_mm = {r.axis[0].reference_mm, r.axis[1].reference_mm};
+  return s;
 }
 
 }  // namespace
@@ -43,7 +46,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   const gcode::GcodeProgram& program = parsed.program;
   result.programmed_length_mm = program.programmed_length_mm();
 
-  std::vector<gcode::PathSample> samples;
+  std::vector<PathSample> samples;
   samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
   samples.push_back(sample_of(task.last_record()));
   std::size_t next = 0;
@@ -79,7 +82,9 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   const fw::motion::MotionStats stats = task.motion().stats();
   result.underruns = stats.underruns;
   result.guard_failures = stats.follower.guard_failures;
-  result.score = gcode::score_path(program, samples, task.motion().limits(), kTickPeriodS);
+  PathScoreOptions score_options;
+  score_options.tick_period_s = kTickPeriodS;
+  result.score = score_path(program, samples, task.motion().limits(), score_options);
   if (task.state() == fw::MotionState::faulted) {
     result.error = "fault: " + command_status_text(fw::CommandStatus::faulted, task);
   } else if (!ended || task.state() != fw::MotionState::holding) {
@@ -119,8 +124,8 @@ PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::Firmware
   for (std::size_t s = 0; s < n; ++s) {
     const PathRunResult& r = out.per_seed[s];
     if (!r.completed && out.error.empty()) out.error = "seed " + std::to_string(s) + ": " + r.error;
-    const gcode::PathScore& p = r.score;
-    gcode::PathScore& m = out.mean;
+    const PathScore& p = r.score;
+    PathScore& m = out.mean;
     const double w = 1.0 / static_cast<double>(n);
     m.contour_error_max_um += w * p.contour_error_max_um;
     m.contour_error_mean_um += w * p.contour_error_mean_um;
@@ -130,7 +135,7 @@ PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::Firmware
     m.path_deviation_max_um = std::max(m.path_deviation_max_um, p.path_deviation_max_um);
     m.accel_ratio_max = std::max(m.accel_ratio_max, p.accel_ratio_max);
     m.jerk_ratio_max = std::max(m.jerk_ratio_max, p.jerk_ratio_max);
-    m.scored_samples += p.scored_samples;
+    m.window_samples += p.window_samples;
     out.underruns += r.underruns;
   }
   return out;

@@ -3,7 +3,7 @@
 // The program is read for the table's home (tools/gcode), streamed into the
 // tick task's motion queue as room frees up (as a host streams over CAN),
 // and every tick's reference and measured position are scored against the
-// exact programmed geometry (tools/gcode/path_score.hpp).
+// exact programmed geometry (tools/hil/path_score.hpp).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -12,7 +12,7 @@
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
-#include "tools/gcode/path_score.hpp"
+#include "tools/hil/path_score.hpp"
 
 namespace tnv::hil {
 
@@ -24,14 +24,14 @@ struct PathRunOptions {
 struct PathRunResult {
   bool completed = false;
   std::string error;                    // why not: a G-code error (line, column), a refusal, a fault
-  gcode::PathScore score{};
+  PathScore score{};
   std::uint64_t underruns = 0;          // the queue ran dry before the program's end
   std::uint64_t segments = 0;           // segments streamed
   std::uint64_t guard_failures = 0;     // planner second-difference guard found no speed (never expected)
   double programmed_length_mm = 0.0;
   fw::TickCounters counters{};
   gcode::GcodeProgram program;             // as read for where the table stood
-  std::vector<gcode::PathSample> samples;  // from the first streamed segment, when keep_samples
+  std::vector<PathSample> samples;  // from the first streamed segment, when keep_samples
   std::vector<double> path_speed_mm_s;     // the planner's path speed, with samples
 };
 
@@ -41,7 +41,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
 
 struct PathSweepResult {
   std::vector<PathRunResult> per_seed;  // seed 0 keeps its samples when asked
-  gcode::PathScore mean{};              // contour statistics, feed ratio and cycle time averaged over seeds;
+  PathScore mean{};              // contour statistics, feed ratio and cycle time averaged over seeds;
                                         // path deviation, accel and jerk ratios the largest of any seed
   std::uint64_t underruns = 0;          // summed over seeds
   std::string error;                    // the first seed's error, "" when all completed

@@ -31,6 +31,7 @@ void raw_range(const FieldDef& f, double& lo, double& hi) {
     case WireType::u16: lo = 0; hi = 65535; break;
     case WireType::u24: lo = 0; hi = 16777215.0; break;
     case WireType::i16: lo = -32768; hi = 32767; break;
+    case WireType::i24: lo = -8388608.0; hi = 8388607.0; break;
     case WireType::u32:
     case WireType::raw32: lo = 0; hi = 4294967295.0; break;
     case WireType::i32: lo = -2147483648.0; hi = 2147483647.0; break;

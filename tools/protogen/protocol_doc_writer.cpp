@@ -1,5 +1,7 @@
 #include "tools/protogen/protocol_doc_writer.hpp"
 
+#include <cmath>
+
 #include "firmware/can/can_id.hpp"
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
@@ -86,6 +88,10 @@ void codes(std::string& out) {
   out += "enter_commissioning needs the servo disabled (else busy) and no fault latched (else faulted), and on tnv-fw "
          "the config's [safety] allow_commissioning (else not_permitted); the mode ends at leave_commissioning, enable, "
          "any accepted motion or a fault (docs/safety.md \"Commissioning\"). 10 and 11 are reserved (unknown_command).\n";
+  out += "feed_hold, feed_resume, feed_override (arg: percent of the programmed feeds, 0..150) and end_program act on "
+         "the running program (busy when none runs); abort_program stops it on the path and drops the rest (ok when "
+         "nothing runs, busy when another motion does); program_status answers and sends a PROGRAM_STATUS, to any "
+         "host.\n";
   out += "\n## Heartbeat error bits (HEARTBEAT.errors)\n\n| bit | name | meaning |\n|---|---|---|\n";
   for (const HeartbeatBitDoc& b : kHeartbeatBits) {
     int bit = 0;
@@ -163,6 +169,10 @@ void malformed(std::string& out) {
 | BORE_GAUGE record of a part other than `bore.parts` + 1 (a repeat, a skip) | BORE_INFEED `out_of_range`, detail 2 |
 | BORE_GAUGE record of a start-up part whose deflection (eq. (11)) is <= 0 | BORE_INFEED `invalid`, detail 3 or 4 |
 | broadcast (node 0) other than ESTOP / COMMAND stop | ignored |
+| SEGMENT with an unknown kind | COMMAND_ACK `out_of_range`, detail = `kind` |
+| SEGMENT_TAIL without its SEGMENT (none pending, or another tag) | COMMAND_ACK `not_ready`; a pending SEGMENT of another tag is answered `not_ready` too |
+| a SEGMENT while the previous one still waits for its tail | the waiting one is answered `not_ready`, the new one waits |
+| SEGMENT / SEGMENT_TAIL from a host without command ownership | COMMAND_ACK `not_owner`; the owner's waiting SEGMENT is kept |
 
 )";
 }
@@ -179,7 +189,12 @@ void bus_load(std::string& out, const NodeSettings& d) {
          " kbit/s. Streaming two 8-byte frames per 1 ms tick instead would take ",
          percent(2000.0 * frame_bits_nominal(8) / (1000.0 * d.can.bitrate_kbit)), " to ",
          percent(2000.0 * frame_bits_worst(8) / (1000.0 * d.can.bitrate_kbit)),
-         ": that is why full-rate traces are captured on the node and uploaded afterwards.\n");
+         ": full-rate traces of long runs are captured on the node and uploaded afterwards, and `tnvctl run` takes this ",
+         "load only while a program runs, to score it (telemetry loses arbitration to every control frame).\n\n",
+         "A streamed program costs three 8-byte frames per line or arc (SEGMENT, SEGMENT_TAIL and the COMMAND_ACK; a ",
+         "dwell two): ", std::to_string(3 * frame_bits_nominal(8)), " bit times, so the bus carries at most ",
+         number(std::floor(1000.0 * d.can.bitrate_kbit / (3.0 * frame_bits_nominal(8)))),
+         " elements/s with nothing else on it (docs/motion.md \"Streaming\" has the measured rates).\n");
 }
 
 }  // namespace

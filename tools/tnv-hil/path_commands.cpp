@@ -11,6 +11,7 @@
 #include "tools/hil/best_circle.hpp"
 #include "tools/hil/path_plot.hpp"
 #include "tools/hil/path_run.hpp"
+#include "tools/hil/report.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -51,13 +52,6 @@ bool output_writable(const std::string& path) {
   return true;
 }
 
-nlohmann::json score_json(const gcode::PathScore& s) {
-  return {{"contour_error_max_um", s.contour_error_max_um},   {"contour_error_mean_um", s.contour_error_mean_um},
-          {"contour_error_std_um", s.contour_error_std_um},   {"path_deviation_max_um", s.path_deviation_max_um},
-          {"accel_ratio_max", s.accel_ratio_max},             {"jerk_ratio_max", s.jerk_ratio_max},
-          {"feed_ratio", s.feed_ratio},                       {"cycle_time_s", s.cycle_time_s}};
-}
-
 int run_path_command(const PathOptions& o) {
   const auto kind = controller_of(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
@@ -94,7 +88,7 @@ int run_path_command(const PathOptions& o) {
     return kExitBadInput;
   }
   if (o.json) {
-    nlohmann::json j = score_json(r.mean);
+    nlohmann::json j = hil::path_score_json(r.mean);
     j["file"] = o.file;
     j["controller"] = o.controller;
     j["scenario"] = scenario->name;
@@ -104,12 +98,12 @@ int run_path_command(const PathOptions& o) {
     j["programmed_length_mm"] = seed0.programmed_length_mm;
     j["segments"] = seed0.segments;
     nlohmann::json per_seed = nlohmann::json::array();
-    for (const hil::PathRunResult& s : r.per_seed) per_seed.push_back(score_json(s.score));
+    for (const hil::PathRunResult& s : r.per_seed) per_seed.push_back(hil::path_score_json(s.score));
     j["per_seed"] = per_seed;
     j["error"] = r.error;
     std::cout << j.dump(2) << '\n';
   } else {
-    const gcode::PathScore& m = r.mean;
+    const hil::PathScore& m = r.mean;
     std::printf("path %s: %llu segments, %.1f mm, %s%s on %s, %d seed%s\n", o.file.c_str(),
                 static_cast<unsigned long long>(seed0.segments), seed0.programmed_length_mm, o.controller.c_str(),
                 o.best ? " (best configuration)" : "", scenario->name.c_str(), o.seeds, o.seeds == 1 ? "" : "s");

@@ -19,6 +19,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_output_commands(app, slot);
   add_commissioning_commands(app, slot);
   add_bore_commands(app, slot);
+  add_run_commands(app, slot);
 }
 
 std::optional<std::vector<std::string>> split_words(const std::string& line, std::string& error) {
@@ -132,6 +133,7 @@ nlohmann::json heartbeat_json(const can_host::Heartbeat& hb) {
           {"fault", fw::to_string(hb.fault)},
           {"flags", bits},
           {"overruns", hb.overruns},
+          {"free_slots", hb.free_slots},
           {"owner", hb.owner}};
 }
 

@@ -36,6 +36,7 @@ void add_tune_commands(CLI::App& app, ActionSlot& slot);     // identify, autotu
 void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_commissioning_commands(CLI::App& app, ActionSlot& slot);  // commissioning enter | leave
 void add_bore_commands(CLI::App& app, ActionSlot& slot);     // bore gauge | status | restart
+void add_run_commands(CLI::App& app, ActionSlot& slot);      // run FILE.ngc
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
 
 // Every family above except `script` (what a script line may use).

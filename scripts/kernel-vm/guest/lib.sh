@@ -383,7 +383,7 @@ case_bus_flood() {
   [[ $f =~ ^$(fault_id)#(04|0C) ]] || { fail "FAULT_EVENT under flood was '$f', expected estop"; return 1; }
   [[ -n $after ]] || { fail "no heartbeat after the flood"; return 1; }
   local o0 o1
-  o0=$(frame_field "$before" 4 2); o1=$(frame_field "$after" 4 2)
+  o0=$(frame_field "$before" 4 1); o1=$(frame_field "$after" 4 1)  # HEARTBEAT.overruns: u8 at byte 4 (protocol 3)
   metric "bus_flood heartbeat_overruns_before=$o0 after=$o1"
   echo "  heartbeat before $before after $after"
   ((o1 == o0)) || { fail "heartbeat overruns went from $o0 to $o1 during the flood (missed/late ticks)"; return 1; }

@@ -1,0 +1,157 @@
+// CanNode: programs streamed by the command owner. A SEGMENT is a dwell by
+// itself or waits for its SEGMENT_TAIL (same tag, same host); the complete
+// element goes to the tick task's motion queue. Every element is answered by
+// one COMMAND_ACK whose code is the queue's free slots after it (flow
+// control); a refusal names the field at fault and leaves the queue as it
+// was. PROGRAM_STATUS carries state, progress and underruns.
+#include <algorithm>
+
+#include "firmware/can/can_node.hpp"
+#include "firmware/can/command_result.hpp"
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+
+namespace {
+
+constexpr std::uint32_t kMaxOverridePercent = 150;
+
+struct Refusal {
+  ErrorCode code = ErrorCode::ok;
+  const MessageDef* message = nullptr;  // the message holding the field at fault
+  const FieldDef* field = nullptr;
+};
+
+// The queue's reason as a code a host can show, and the field it concerns.
+Refusal refusal(motion::SegmentRefusal why) noexcept {
+  using motion::SegmentRefusal;
+  switch (why) {
+    case SegmentRefusal::queue_full: return {ErrorCode::queue_full, &kSegmentTailMsg, nullptr};
+    case SegmentRefusal::not_finite: return {ErrorCode::not_finite, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::bad_kind: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentKind};
+    case SegmentRefusal::zero_length: return {ErrorCode::zero_length, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::arc_radius_mismatch:
+    case SegmentRefusal::arc_radius_too_small: return {ErrorCode::bad_arc, &kSegmentTailMsg, &kTailCentreNormal};
+    case SegmentRefusal::feed_not_positive: return {ErrorCode::out_of_range, &kSegmentTailMsg, &kTailFeed};
+    case SegmentRefusal::feed_above_limit: return {ErrorCode::feed_above_limit, &kSegmentTailMsg, &kTailFeed};
+    case SegmentRefusal::outside_workspace: return {ErrorCode::outside_workspace, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::bad_dwell: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::bad_ramp:
+    case SegmentRefusal::none: break;
+  }
+  return {ErrorCode::invalid, &kSegmentMsg, nullptr};
+}
+
+}  // namespace
+
+std::uint8_t CanNode::free_slots() const noexcept {
+  return static_cast<std::uint8_t>(std::min<std::size_t>(task_.motion().free_slots(), 255));
+}
+
+void CanNode::refuse_pending() noexcept {
+  if (!pending_.active) return;
+  pending_.active = false;
+  const std::uint8_t tag = tag_;
+  tag_ = pending_.tag;
+  reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_ready, 0);
+  tag_ = tag;
+}
+
+void CanNode::handle_segment(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_owner, 0);
+  refuse_pending();  // the owner moved on without sending the last one's tail
+  SegmentHead head;
+  if (!decode_head(frame, head))
+    return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::out_of_range, index_of(kSegmentMsg, kSegmentKind));
+  if (!wire_kind_has_tail(head.kind)) return push_element(head, nullptr, kSegmentMsg.id);
+  pending_ = {true, tag_, head};  // answered when the tail comes
+}
+
+void CanNode::handle_segment_tail(const hal::CanFrame& frame) noexcept {
+  if (!owns()) return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_owner, 0);
+  if (!pending_.active || pending_.tag != tag_) {
+    refuse_pending();  // its tail was lost, or this one belongs to a lost head: both are answered
+    return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentTailMsg, kTailTag));
+  }
+  pending_.active = false;
+  push_element(pending_.head, &frame, kSegmentTailMsg.id);
+}
+
+void CanNode::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
+  const bool starting = !task_.program_running();
+  motion::Segment segment;
+  if (!decode_segment(head, tail, task_.next_segment_start_mm(), segment))
+    return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::bad_arc,
+                     index_of(kSegmentTailMsg, kTailCentreNormal));
+  segment.tag = starting ? 1 : program_.next_element();
+  motion::SegmentRefusal why = motion::SegmentRefusal::none;
+  const CommandStatus st = task_.push_segment(segment, why);
+  if (st == CommandStatus::ok) {
+    if (starting) program_.started(task_);
+    program_.accepted();
+    motion_accepted();
+    reply_ack(request, free_slots(), ErrorCode::ok, 0);
+    if (program_.update(task_) || starting) send_program_status();
+    return;
+  }
+  if (st != CommandStatus::invalid) return reply_ack(request, free_slots(), to_error(st), 0);
+  // The answer names the frame holding the field at fault (SEGMENT: kind, end point, dwell;
+  // SEGMENT_TAIL: feed, centre), or the frame just handled when no field is (queue_full).
+  const Refusal r = refusal(why);
+  const bool in_tail = r.message == &kSegmentTailMsg && tail != nullptr;
+  const bool in_head = r.message == &kSegmentMsg;
+  if (r.field == nullptr || (!in_tail && !in_head)) return reply_ack(request, free_slots(), r.code, 0);
+  const MessageDef& m = in_tail ? kSegmentTailMsg : kSegmentMsg;
+  reply_ack(m.id, free_slots(), r.code, index_of(m, *r.field));
+}
+
+void CanNode::program_stopping() noexcept {
+  program_.aborting();
+  pending_.active = false;
+}
+
+ErrorCode CanNode::command_program(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+  switch (code) {
+    case CommandCode::feed_hold: return to_error(task_.feed_hold(true));
+    case CommandCode::feed_resume: return to_error(task_.feed_hold(false));
+    case CommandCode::feed_override: {
+      const std::uint32_t percent = read_raw(frame, kCommandArg);
+      if (percent > kMaxOverridePercent) {
+        detail = index_of(kCommandMsg, kCommandArg);
+        return ErrorCode::out_of_range;
+      }
+      return to_error(task_.set_feed_override(static_cast<double>(percent) / 100.0));
+    }
+    case CommandCode::end_program: {
+      const ErrorCode e = to_error(task_.end_program());
+      if (e == ErrorCode::ok) program_.ended();
+      return e;
+    }
+    case CommandCode::abort_program:
+      if (!task_.program_running()) {
+        pending_.active = false;
+        return task_.moving() ? ErrorCode::busy : ErrorCode::ok;  // another motion is not ours to abort
+      }
+      program_stopping();
+      return to_error(task_.stop());
+    case CommandCode::program_status: send_program_status(); return ErrorCode::ok;
+    default: break;
+  }
+  return ErrorCode::unknown_command;
+}
+
+void CanNode::send_program_status() noexcept {
+  hal::CanFrame f = make_frame(kProgramStatusMsg, node_id_);
+  write_raw(f, kProgramState, static_cast<std::uint32_t>(program_.state()));
+  write_raw(f, kProgramFreeSlots, free_slots());
+  write_raw(f, kProgramUnderruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(program_.underruns(task_), 0xFFFFu)));
+  write_raw(f, kProgramSegment, std::min<std::uint32_t>(program_.element(task_), 0xFFFFFFu));
+  write_raw(f, kProgramOverride,
+            static_cast<std::uint32_t>(std::clamp(task_.motion().feed_override() * 100.0 + 0.5, 0.0, 255.0)));
+  queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
+}
+
+}  // namespace tnv::fw::can

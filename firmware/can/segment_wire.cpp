@@ -1,0 +1,132 @@
+#include "firmware/can/segment_wire.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::fw::can {
+
+using namespace fields;
+using motion::PlanePoint;
+using motion::SegmentKind;
+
+namespace {
+
+struct Chord {
+  PlanePoint mid{};
+  PlanePoint unit{};  // start -> end
+  PlanePoint left{};  // unit rotated by +90 degrees
+};
+
+// Host and node call this with the same doubles, so they get the same frame.
+bool chord_of(const PlanePoint& start_mm, const PlanePoint& end_mm, Chord& c) noexcept {
+  const double dx = end_mm[0] - start_mm[0];
+  const double dy = end_mm[1] - start_mm[1];
+  const double length = std::hypot(dx, dy);
+  if (!(length >= kMinChordMm)) return false;
+  c.mid = {0.5 * (start_mm[0] + end_mm[0]), 0.5 * (start_mm[1] + end_mm[1])};
+  c.unit = {dx / length, dy / length};
+  c.left = {-c.unit[1], c.unit[0]};
+  return true;
+}
+
+WireKind wire_kind(const motion::Segment& s) noexcept {
+  switch (s.kind) {
+    case SegmentKind::dwell: return WireKind::dwell;
+    case SegmentKind::arc_cw: return s.exact_stop ? WireKind::arc_cw_exact_stop : WireKind::arc_cw;
+    case SegmentKind::arc_ccw: return s.exact_stop ? WireKind::arc_ccw_exact_stop : WireKind::arc_ccw;
+    case SegmentKind::line: break;
+  }
+  return s.exact_stop ? WireKind::line_exact_stop : WireKind::line;
+}
+
+}  // namespace
+
+bool chord_centre(const PlanePoint& start_mm, const PlanePoint& end_mm, const PlanePoint& centre_mm,
+                  ChordCentre& out) noexcept {
+  Chord c;
+  if (!chord_of(start_mm, end_mm, c)) return false;
+  const double vx = centre_mm[0] - c.mid[0];
+  const double vy = centre_mm[1] - c.mid[1];
+  out.normal_mm = vx * c.left[0] + vy * c.left[1];
+  out.along_mm = vx * c.unit[0] + vy * c.unit[1];
+  return true;
+}
+
+bool centre_from_chord(const PlanePoint& start_mm, const PlanePoint& end_mm, const ChordCentre& cc,
+                       PlanePoint& centre_mm) noexcept {
+  Chord c;
+  if (!chord_of(start_mm, end_mm, c)) return false;
+  for (std::size_t i = 0; i < 2; ++i) centre_mm[i] = c.mid[i] + cc.along_mm * c.unit[i] + cc.normal_mm * c.left[i];
+  return true;
+}
+
+double wire_position_mm(double mm) noexcept {
+  // The codec's own rounding and scaling (frame_codec.cpp write() then read()), held to the i24 range.
+  const double raw = std::isfinite(mm) ? std::clamp(std::round(mm / kSegmentX.scale), -8388608.0, 8388607.0) : 0.0;
+  return static_cast<double>(static_cast<std::int32_t>(raw)) * kSegmentX.scale;
+}
+
+const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start_mm, std::uint8_t node,
+                               std::uint8_t tag, SegmentFrames& out) noexcept {
+  out = {};
+  out.head = make_frame(kSegmentMsg, node);
+  write_raw(out.head, kSegmentTag, tag);
+  const WireKind kind = wire_kind(s);
+  write_raw(out.head, kSegmentKind, static_cast<std::uint32_t>(kind));
+  if (kind == WireKind::dwell) {
+    // A dwell that rounds to no time at all would be refused by the queue as bad_dwell.
+    if (!write(out.head, kSegmentX, s.dwell_s) || read_raw(out.head, kSegmentX) == 0 || read(out.head, kSegmentX) < 0.0)
+      return &kSegmentX;
+    out.end_mm = start_mm;
+    return nullptr;
+  }
+  if (!write(out.head, kSegmentX, s.end_mm[0])) return &kSegmentX;
+  if (!write(out.head, kSegmentY, s.end_mm[1])) return &kSegmentY;
+  out.end_mm = {read(out.head, kSegmentX), read(out.head, kSegmentY)};
+  out.tail = make_frame(kSegmentTailMsg, node);
+  out.has_tail = true;
+  write_raw(out.tail, kTailTag, tag);
+  if (!write(out.tail, kTailFeed, s.feed_mm_s) || read_raw(out.tail, kTailFeed) == 0) return &kTailFeed;
+  if (s.kind == SegmentKind::line) return nullptr;
+  ChordCentre cc;
+  if (!chord_centre(start_mm, out.end_mm, s.centre_mm, cc)) return &kTailCentreNormal;
+  if (!write(out.tail, kTailCentreNormal, cc.normal_mm)) return &kTailCentreNormal;
+  if (!write(out.tail, kTailCentreAlong, cc.along_mm)) return &kTailCentreAlong;
+  return nullptr;
+}
+
+bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
+  const std::uint32_t kind = read_raw(head, kSegmentKind);
+  if (kind >= kWireKindCount) return false;
+  out.kind = static_cast<WireKind>(kind);
+  out.end_mm = {read(head, kSegmentX), read(head, kSegmentY)};
+  out.dwell_s = read(head, kSegmentX);
+  return true;
+}
+
+bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
+                    motion::Segment& out) noexcept {
+  if (head.kind == WireKind::dwell || tail == nullptr) {
+    out = motion::dwell_for(head.dwell_s);
+    return head.kind == WireKind::dwell;
+  }
+  const double feed_mm_s = read(*tail, kTailFeed);
+  const bool exact_stop = head.kind == WireKind::line_exact_stop || head.kind == WireKind::arc_cw_exact_stop ||
+                          head.kind == WireKind::arc_ccw_exact_stop;
+  if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop) {
+    out = motion::line_to(head.end_mm, feed_mm_s);
+  } else {
+    const ChordCentre cc{read(*tail, kTailCentreNormal), read(*tail, kTailCentreAlong)};
+    PlanePoint centre_mm{};
+    if (!centre_from_chord(start_mm, head.end_mm, cc, centre_mm)) return false;
+    const bool clockwise = head.kind == WireKind::arc_cw || head.kind == WireKind::arc_cw_exact_stop;
+    out = motion::arc_to(clockwise, head.end_mm, centre_mm, feed_mm_s);
+  }
+  out.exact_stop = exact_stop;
+  return true;
+}
+
+}  // namespace tnv::fw::can

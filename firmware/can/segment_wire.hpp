@@ -1,0 +1,88 @@
+#pragma once
+// A program element (motion/segment.hpp) on the wire: SEGMENT carries the
+// kind and the end point (a dwell's time), SEGMENT_TAIL the feed and an
+// arc's centre (protocol_messages.hpp). Shared by the node (decode) and
+// the host (encode), so both quantise the same way.
+//
+// Positions are i24 at 0.1 um (+-838 mm). An arc's centre travels in chord
+// coordinates: its offset from the midpoint of start -> end along the
+// chord's left normal (i24) and along the chord (i16, +-3.2767 mm). Both
+// sides compute the chord from the same doubles (the node's queue end is
+// the previous element's decoded end point), so the node rebuilds the
+// centre to 0.1 um. A full circle has no chord, and a centre far off the
+// chord's bisector does not fit: the host sends such arcs in two halves.
+// Why not x and y of the centre: two frames hold 14 payload bytes after
+// the tags, and end (6) + centre (6) + feed (2) + kind (1) is 15.
+#include <cstdint>
+
+#include "firmware/can/protocol_messages.hpp"
+#include "firmware/motion/segment.hpp"
+#include "hal/can_port.hpp"
+
+namespace tnv::fw::can {
+
+// SEGMENT.kind
+enum class WireKind : std::uint8_t {
+  line = 0,
+  arc_cw,
+  arc_ccw,
+  dwell,
+  line_exact_stop,
+  arc_cw_exact_stop,
+  arc_ccw_exact_stop,
+};
+inline constexpr std::uint8_t kWireKindCount = 7;
+
+constexpr bool wire_kind_has_tail(WireKind k) noexcept { return k != WireKind::dwell; }
+
+// The offset of an arc's centre from the chord's midpoint, in the chord's frame.
+struct ChordCentre {
+  double normal_mm = 0.0;  // along the left normal of start -> end
+  double along_mm = 0.0;   // along start -> end
+};
+
+// Chord shorter than this has no direction to measure the centre against.
+inline constexpr double kMinChordMm = 1e-6;
+
+// false (out untouched) when start and end are closer than kMinChordMm.
+bool chord_centre(const motion::PlanePoint& start_mm, const motion::PlanePoint& end_mm,
+                  const motion::PlanePoint& centre_mm, ChordCentre& out) noexcept;
+bool centre_from_chord(const motion::PlanePoint& start_mm, const motion::PlanePoint& end_mm, const ChordCentre& c,
+                       motion::PlanePoint& centre_mm) noexcept;
+
+// A position as the wire carries it (rounded to 0.1 um), exactly as the node decodes it; held to
+// +-838 mm (what does not fit is refused by encode_segment()).
+double wire_position_mm(double mm) noexcept;
+
+struct SegmentFrames {
+  hal::CanFrame head{};  // SEGMENT
+  hal::CanFrame tail{};  // SEGMENT_TAIL (lines and arcs)
+  bool has_tail = false;
+  motion::PlanePoint end_mm{};  // the end point as sent (the next element's start on the node)
+};
+
+// Host side. `start_mm` is where the node will start the element (the
+// previous element's end_mm as sent, or where the table stands). nullptr
+// on success; otherwise the field that cannot carry the element's value
+// (out is then unspecified): an end point beyond the i24 range, a feed
+// outside 0.01..655.35 mm/s, a dwell beyond 838 s, an arc without a chord
+// or with its centre too far off the bisector.
+const FieldDef* encode_segment(const motion::Segment& segment, const motion::PlanePoint& start_mm, std::uint8_t node,
+                               std::uint8_t tag, SegmentFrames& out) noexcept;
+
+// Node side: the SEGMENT frame. false when its kind is not one of WireKind
+// (refuse out_of_range naming `kind`).
+struct SegmentHead {
+  WireKind kind = WireKind::line;
+  motion::PlanePoint end_mm{};  // lines and arcs
+  double dwell_s = 0.0;         // dwells
+};
+bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept;
+
+// The element a head (and, for lines and arcs, its tail) describes, starting
+// at start_mm. false only for an arc whose chord is shorter than kMinChordMm
+// (refuse bad_arc naming `centre_normal`); the queue checks everything else.
+bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const motion::PlanePoint& start_mm,
+                    motion::Segment& out) noexcept;
+
+}  // namespace tnv::fw::can

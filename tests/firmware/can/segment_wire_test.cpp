@@ -1,0 +1,111 @@
+// SEGMENT / SEGMENT_TAIL: what the host encodes is what the node decodes,
+// to the wire's 0.1 um, and what does not fit is refused naming the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "firmware/can/frame_codec.hpp"
+#include "firmware/can/node_fields.hpp"
+#include "firmware/can/segment_wire.hpp"
+
+namespace tnv::fw::can {
+namespace {
+
+using motion::PlanePoint;
+using motion::Segment;
+using motion::SegmentKind;
+
+constexpr double kWireMm = 1e-4;  // the positions' scale
+
+Segment round_trip(const Segment& s, const PlanePoint& start) {
+  SegmentFrames frames;
+  EXPECT_EQ(encode_segment(s, start, 1, 0x13, frames), nullptr);
+  EXPECT_EQ(frames.head.data[0], 0x13);
+  SegmentHead head;
+  EXPECT_TRUE(decode_head(frames.head, head));
+  Segment out;
+  EXPECT_TRUE(decode_segment(head, frames.has_tail ? &frames.tail : nullptr, start, out));
+  EXPECT_EQ(frames.has_tail, s.kind != SegmentKind::dwell);
+  return out;
+}
+
+double distance(const PlanePoint& a, const PlanePoint& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
+
+TEST(SegmentWire, LineKeepsEndFeedAndExactStopToTheWiresResolution) {
+  Segment s = motion::line_to({12.345678, -200.0000049}, 33.333);
+  s.exact_stop = true;
+  const Segment out = round_trip(s, {0.0, 0.0});
+  EXPECT_EQ(out.kind, SegmentKind::line);
+  EXPECT_TRUE(out.exact_stop);
+  EXPECT_LE(std::fabs(out.end_mm[0] - 12.345678), kWireMm / 2 + 1e-12);
+  EXPECT_LE(std::fabs(out.end_mm[1] + 200.0000049), kWireMm / 2 + 1e-12);
+  EXPECT_NEAR(out.feed_mm_s, 33.33, 1e-9) << "feed in 0.01 mm/s steps";
+  EXPECT_EQ(out.end_mm[0], wire_position_mm(12.345678)) << "the host's quantisation is the node's, bit for bit";
+}
+
+TEST(SegmentWire, ArcsOfEverySweepKeepTheirCentre) {
+  const PlanePoint c{3.0, -4.0};
+  const double r = 20.0;
+  // quarter, just under and over a half, 350 degrees; both directions
+  for (const double sweep_deg : {90.0, 179.0, 181.0, 350.0}) {
+    for (const bool cw : {false, true}) {
+      const double a0 = 0.3;
+      const double a1 = a0 + (cw ? -1.0 : 1.0) * sweep_deg * std::numbers::pi / 180.0;
+      const PlanePoint start{wire_position_mm(c[0] + r * std::cos(a0)), wire_position_mm(c[1] + r * std::sin(a0))};
+      const PlanePoint end{c[0] + r * std::cos(a1), c[1] + r * std::sin(a1)};
+      const Segment out = round_trip(motion::arc_to(cw, end, c, 12.5), start);
+      EXPECT_EQ(out.kind, cw ? SegmentKind::arc_cw : SegmentKind::arc_ccw);
+      EXPECT_LE(distance(out.centre_mm, c), 1.5 * kWireMm) << sweep_deg << " deg, cw " << cw;
+      EXPECT_LE(distance(out.end_mm, end), 0.71 * kWireMm);
+    }
+  }
+}
+
+TEST(SegmentWire, DwellIsOneFrameWithItsTimeInTenthsOfAMillisecond) {
+  const Segment out = round_trip(motion::dwell_for(2.50004), {1.0, 2.0});
+  EXPECT_EQ(out.kind, SegmentKind::dwell);
+  EXPECT_NEAR(out.dwell_s, 2.5, 1e-12);
+}
+
+TEST(SegmentWire, WhatDoesNotFitIsRefusedNamingTheField) {
+  using namespace fields;
+  SegmentFrames f;
+  const PlanePoint o{0.0, 0.0};
+  EXPECT_EQ(encode_segment(motion::line_to({900.0, 0.0}, 10.0), o, 1, 0x11, f), &kSegmentX) << "beyond +-838 mm";
+  EXPECT_EQ(encode_segment(motion::line_to({1.0, -900.0}, 10.0), o, 1, 0x11, f), &kSegmentY);
+  EXPECT_EQ(encode_segment(motion::line_to({1.0, 1.0}, 700.0), o, 1, 0x11, f), &kTailFeed) << "feed beyond 655.35";
+  EXPECT_EQ(encode_segment(motion::line_to({1.0, 1.0}, 0.001), o, 1, 0x11, f), &kTailFeed) << "feed rounds to 0";
+  EXPECT_EQ(encode_segment(motion::dwell_for(0.00001), o, 1, 0x11, f), &kSegmentX) << "dwell rounds to 0";
+  EXPECT_EQ(encode_segment(motion::dwell_for(900.0), o, 1, 0x11, f), &kSegmentX) << "dwell beyond 838 s";
+  EXPECT_EQ(encode_segment(motion::arc_to(false, o, {5.0, 0.0}, 10.0), o, 1, 0x11, f), &kTailCentreNormal)
+      << "a full circle has no chord";
+  // A centre 10 mm along the chord from its midpoint (a radius mismatch no queue accepts).
+  EXPECT_EQ(encode_segment(motion::arc_to(false, {2.0, 0.0}, {11.0, 5.0}, 10.0), o, 1, 0x11, f), &kTailCentreAlong);
+}
+
+TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
+  SegmentFrames f;
+  ASSERT_EQ(encode_segment(motion::line_to({1.0, 0.0}, 1.0), {0.0, 0.0}, 1, 0x11, f), nullptr);
+  write_raw(f.head, fields::kSegmentKind, kWireKindCount);
+  SegmentHead head;
+  EXPECT_FALSE(decode_head(f.head, head));
+  write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
+  EXPECT_TRUE(decode_head(f.head, head));
+  EXPECT_EQ(head.kind, WireKind::arc_ccw_exact_stop);
+}
+
+TEST(SegmentWire, ChordCoordinatesInvertExactly) {
+  const PlanePoint s{1.25, -3.5};
+  const PlanePoint e{-7.0, 2.0};
+  const PlanePoint c{0.5, 9.0};
+  ChordCentre cc;
+  ASSERT_TRUE(chord_centre(s, e, c, cc));
+  PlanePoint back{};
+  ASSERT_TRUE(centre_from_chord(s, e, cc, back));
+  EXPECT_NEAR(distance(back, c), 0.0, 1e-12);
+  EXPECT_FALSE(chord_centre(s, s, c, cc)) << "no chord, no frame to measure the centre in";
+}
+
+}  // namespace
+}  // namespace tnv::fw::can

@@ -1,0 +1,159 @@
+#include "tools/can/program_run.hpp"
+
+#include <cmath>
+
+#include "firmware/can/param_table.hpp"
+#include "tools/can/path_telemetry.hpp"
+
+namespace tnv::can_host {
+
+namespace {
+
+const can::ParamDef& param(const char* name) { return *can::find_param(name); }
+
+// Where the first element starts: the reference the node holds, from the telemetry.
+fw::motion::PlanePoint standing_reference(NodeClient& client, PathTelemetry& telemetry) {
+  const std::size_t seen = telemetry.samples().size();
+  if (!client.pump_until([&] { return telemetry.samples().size() >= seen + 2; }, Micros{500'000}))
+    throw RequestError(RequestError::Kind::timeout, "no TLM_POSITION / TLM_FOLLOWING pair from node " +
+                                                        std::to_string(client.node()) + " within 500 ms");
+  return *telemetry.last_reference();
+}
+
+struct Prepared {
+  gcode::GcodeProgram program;
+  WireProgram wire;
+};
+
+Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm, const fw::motion::MotionLimits& limits,
+                 const ProgramRunOptions& o, std::uint8_t node) {
+  gcode::GcodeOptions g;
+  g.start_mm = start_mm;
+  g.rapid_feed_mm_s = o.rapid_feed_mm_s;
+  g.limits = limits;
+  gcode::GcodeResult parsed = gcode::parse_gcode(text, g);
+  if (parsed.error) throw ProgramInputError(gcode::to_string(*parsed.error));
+  if (parsed.program.segments.empty()) throw ProgramInputError("the program has no motion and no dwell");
+  std::string error;
+  std::optional<WireProgram> wire = wire_program(parsed.program, start_mm, node, error);
+  if (!wire) throw ProgramInputError(error);
+  return {std::move(parsed.program), std::move(*wire)};
+}
+
+}  // namespace
+
+fw::motion::MotionLimits node_motion_limits(NodeClient& client) {
+  fw::motion::MotionLimits m;
+  const char* axis[] = {"x.", "y."};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string p = axis[i];
+    m.axis[i].speed_mm_s = client.get(param((p + "path.speed_mm_s").c_str()));
+    m.axis[i].accel_mm_s2 = client.get(param((p + "path.accel_mm_s2").c_str()));
+    m.axis[i].jerk_mm_s3 = client.get(param((p + "path.jerk_mm_s3").c_str()));
+    m.axis[i].position_min_mm = client.get(param((p + "limits.position_min_mm").c_str()));
+    m.axis[i].position_max_mm = client.get(param((p + "limits.position_max_mm").c_str()));
+  }
+  m.path_tolerance_mm = client.get(param("path.tolerance_mm"));
+  return m;
+}
+
+ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& o) {
+  ProgramRunResult r;
+  r.limits = node_motion_limits(client);
+  const Heartbeat hb = client.wait_heartbeat(Micros{1'000'000});
+  const std::string node = "node " + std::to_string(client.node());
+  if (hb.state == fw::MotionState::faulted)
+    throw RequestError(RequestError::Kind::refused, node + " is faulted (" + fw::to_string(hb.fault) +
+                                                        "): `tnvctl clear-faults` first");
+  if (hb.state == fw::MotionState::dwell || hb.state == fw::MotionState::moving)
+    throw RequestError(RequestError::Kind::refused, node + " is moving (state " + fw::to_string(hb.state) + ")");
+
+  PathTelemetry telemetry;
+  const auto listen = [&] { client.set_listener([&](const hal::CanFrame& f, can::MessageId id) { telemetry.take(f, id); }); };
+  const can::ParamDef& position = param("tlm.position_ms");
+  const can::ParamDef& following = param("tlm.following_ms");
+  const double old_position_ms = client.get(position);
+  const double old_following_ms = client.get(following);
+  // Sampled every tick for the score; without a score, telemetry stays as it is unless it is off
+  // (the start point comes from it).
+  const double run_position_ms = o.telemetry_ms > 0 ? o.telemetry_ms : (old_position_ms > 0 ? old_position_ms : 10);
+  const double run_following_ms = o.telemetry_ms > 0 ? o.telemetry_ms : (old_following_ms > 0 ? old_following_ms : 10);
+  bool changed = false;
+  const auto restore = [&] {
+    if (!changed) return;
+    changed = false;
+    client.set(position, old_position_ms);
+    client.set(following, old_following_ms);
+  };
+  double position_now_ms = old_position_ms;
+  double following_now_ms = old_following_ms;
+  const auto set_periods = [&](double position_ms, double following_ms) {
+    if (position_ms == position_now_ms && following_ms == following_now_ms) return;
+    changed = true;
+    position_now_ms = client.set(position, position_ms);
+    following_now_ms = client.set(following, following_ms);
+  };
+  try {
+    listen();
+    // Where the table stands, from the telemetry as it is (on by default): a program that cannot
+    // run from there is refused before anything on the node changes.
+    std::optional<fw::motion::PlanePoint> start;
+    if (old_position_ms > 0 && old_following_ms > 0) {
+      try {
+        start = standing_reference(client, telemetry);
+      } catch (const RequestError&) {
+      }
+    }
+    if (!start) {
+      set_periods(run_position_ms, run_following_ms);
+      start = standing_reference(client, telemetry);
+    }
+    r.start_mm = *start;
+    Prepared p = prepare(gcode_text, r.start_mm, r.limits, o, client.node());
+    set_periods(run_position_ms, run_following_ms);
+    if (hb.state == fw::MotionState::disabled) {
+      client.command(can::CommandCode::enable);
+      // Servo on holds where the table stood; parse again if that is not where the program was planned from.
+      const fw::motion::PlanePoint held = standing_reference(client, telemetry);
+      if (std::hypot(held[0] - r.start_mm[0], held[1] - r.start_mm[1]) > 1e-6) {
+        r.start_mm = held;
+        p = prepare(gcode_text, r.start_mm, r.limits, o, client.node());
+      }
+    }
+    r.program = std::move(p.program);
+    r.wire = std::move(p.wire);
+
+    telemetry = PathTelemetry{};
+    StreamOptions so;
+    so.window = o.window;
+    so.feed_override = o.feed_override;
+    so.expected_s = r.program.programmed_time_s();
+    so.interrupted = o.interrupted;
+    so.progress = o.progress;
+    so.before_send = o.before_send;
+    so.on_frame = [&](const hal::CanFrame& f, can::MessageId id) { telemetry.take(f, id); };
+    r.stream = stream_program(client, r.wire, so);
+    listen();
+    client.pump(Micros{20'000});  // the reference at rest after the end closes the motion window
+    client.set_listener({});
+    try {
+      restore();
+    } catch (const std::exception& e) {
+      r.stream.message.append(r.stream.message.empty() ? "" : "; ").append("telemetry periods not restored: ").append(e.what());
+    }
+  } catch (...) {
+    client.set_listener({});
+    try {
+      restore();
+    } catch (...) {
+    }
+    throw;
+  }
+  r.samples = telemetry.samples();
+  r.telemetry_complete = !telemetry.dropped() && telemetry.unpaired() <= 1;
+  if (o.telemetry_ms == 1 && r.stream.end == StreamResult::End::done)
+    r.score = hil::score_path(r.program, r.samples, r.limits);
+  return r;
+}
+
+}  // namespace tnv::can_host

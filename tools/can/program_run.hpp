@@ -1,0 +1,67 @@
+#pragma once
+// `tnvctl run`'s work, for any transport: read the node's planner limits and
+// where the table stands, parse the program from there with those limits,
+// turn telemetry on at 1 ms (TLM_POSITION and TLM_FOLLOWING), enable the
+// servo, stream the program (program_stream.hpp), restore the telemetry
+// periods and score the run (tools/hil/path_score.hpp).
+//
+// Telemetry rate: 1 ms, two 8-byte frames per tick, is 22 % of 1 Mbit/s
+// (27 % with worst-case stuffing). Both identifiers (0x401, 0x441 for node
+// 1) lose arbitration to every control frame (FAULT_EVENT, replies,
+// HEARTBEAT and the host's SEGMENT frames), and the node drops telemetry
+// first when its transmit queue fills. The score needs every tick: the
+// jerk and acceleration ratios are finite differences of the 1 ms
+// reference. `telemetry_ms = 0` leaves telemetry as it is and scores
+// nothing (for a bus with other traffic to protect).
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "tools/can/node_client.hpp"
+#include "tools/can/program_stream.hpp"
+#include "tools/hil/path_score.hpp"
+
+namespace tnv::can_host {
+
+// The program cannot run from where the table stands with the node's limits:
+// the message names the G-code line and column. Nothing on the node was
+// changed (the telemetry periods are back as they were).
+class ProgramInputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ProgramRunOptions {
+  double rapid_feed_mm_s = 50.0;        // G0
+  std::optional<double> feed_override;  // 0..1.5
+  int telemetry_ms = 1;                 // 1: sample every tick and score; 0: no score
+  std::size_t window = 12;
+  std::function<bool()> interrupted;
+  std::function<void(const StreamProgress&)> progress;
+  std::function<void(std::size_t)> before_send;  // tests: called before element k is sent
+};
+
+struct ProgramRunResult {
+  gcode::GcodeProgram program;  // parsed from start_mm with the node's limits
+  WireProgram wire;
+  fw::motion::MotionLimits limits;
+  fw::motion::PlanePoint start_mm{};
+  StreamResult stream;
+  std::vector<hil::PathSample> samples;
+  // Every tick sampled: no frame dropped by the node, at most the last tick's position still
+  // waiting for its following error.
+  bool telemetry_complete = false;
+  std::optional<hil::PathScore> score;  // when sampled (telemetry_ms 1) and the program ran to its end
+};
+
+// The planner's limits the node runs with (x/y.path.*, path.tolerance_mm, the soft travel limits).
+fw::motion::MotionLimits node_motion_limits(NodeClient& client);
+
+// Throws ProgramInputError (parse or wire error), RequestError / BusError
+// (the node), RunFailed-like std::runtime_error for a node that is not ready
+// (faulted, moving). A stream that was refused, interrupted or faulted is in
+// result.stream (end != done), not thrown.
+ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options);
+
+}  // namespace tnv::can_host

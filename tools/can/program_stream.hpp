@@ -1,0 +1,72 @@
+#pragma once
+// Streams a program (program_wire.hpp) to a node with flow control, then
+// ends it and waits for its end (docs/motion.md "Streaming").
+//
+// Flow control: the host never has more elements on their way than the
+// node's motion queue can take. Its lower bound of the free slots is the
+// larger of (a) the free slots in the last element's COMMAND_ACK minus the
+// elements sent since, and (b) the queue's capacity minus the elements
+// accepted and not yet run (PROGRAM_STATUS.segment is the one running)
+// minus those in flight. Both only ever under-estimate: (a) ignores what
+// ran since the ack, and an old PROGRAM_STATUS only names an earlier
+// element in (b). When neither leaves room and nothing is in flight, the
+// host asks for a PROGRAM_STATUS every poll period. At most `window`
+// elements are unanswered at once (a tag's 4-bit sequence must not repeat
+// among them), so a burst occupies the bus for at most window x 2 frames.
+//
+// Frames from one host reach the node in the order sent (SocketCAN keeps a
+// socket's order; so does the emulated bus): a SEGMENT_TAIL always follows
+// its SEGMENT, and end_program follows the last element.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "tools/can/node_client.hpp"
+#include "tools/can/program_wire.hpp"
+
+namespace tnv::can_host {
+
+struct StreamProgress {
+  std::size_t sent = 0;          // elements sent
+  std::size_t acknowledged = 0;  // elements the node accepted
+  std::size_t total = 0;
+  std::uint32_t running = 0;     // element the node runs (1-based)
+  int line = 0;                  // its G-code line
+  double fraction = 0.0;         // of the program's length run
+  std::uint64_t underruns = 0;
+  fw::can::ProgramState state = fw::can::ProgramState::none;
+};
+
+struct StreamOptions {
+  std::size_t window = 12;           // unanswered elements at most (<= 15)
+  std::optional<double> feed_override;  // 0..1.5, sent once the program runs
+  double expected_s = 0.0;           // programmed time: the wait for the end is 1.5 x this + 10 s
+  Micros poll_period{20'000};        // PROGRAM_STATUS request while the queue is full
+  std::function<bool()> interrupted;                  // Ctrl-C: abort on the path
+  std::function<void(const StreamProgress&)> progress;  // on every PROGRAM_STATUS
+  FrameListener on_frame;                             // every frame from the node (telemetry)
+  std::function<void(std::size_t)> before_send;       // called before element k is sent (tests pause here)
+};
+
+struct StreamResult {
+  enum class End { done, interrupted, failed };
+  End end = End::failed;
+  std::string message;  // why it failed or was interrupted
+  std::uint64_t underruns = 0;
+  std::size_t sent = 0;
+  std::size_t acknowledged = 0;
+  std::size_t max_in_flight = 0;
+  int min_free_slots = 255;     // lowest free slots an answer reported
+  std::size_t queue_capacity = 0;
+  double fill_elements_per_s = 0.0;  // elements accepted per second while the queue still had room
+  double run_s = 0.0;           // first element sent -> end of the program (bus time)
+  ProgramStatus final_status{};
+  std::optional<Heartbeat> final_heartbeat;
+};
+
+// Throws RequestError / BusError for what stops the conversation itself (no
+// node); refusals and lost answers end the run as `failed` after an abort
+// on the path.
+StreamResult stream_program(NodeClient& client, const WireProgram& program, const StreamOptions& options);
+
+}  // namespace tnv::can_host

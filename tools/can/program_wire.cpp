@@ -1,0 +1,115 @@
+#include "tools/can/program_wire.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "firmware/can/node_fields.hpp"
+
+namespace tnv::can_host {
+
+namespace {
+
+using fw::motion::PlanePoint;
+using fw::motion::Segment;
+using fw::motion::SegmentGeometry;
+using fw::motion::SegmentKind;
+
+// Longest dwell one SEGMENT carries (i24 at 0.1 ms is 838.8 s).
+constexpr double kMaxWireDwellS = 800.0;
+// Halving an arc more than this often means a value no split can fix.
+constexpr int kMaxArcSplits = 4;
+
+struct Builder {
+  std::uint8_t node = 1;
+  WireProgram out{};
+  PlanePoint at_mm{};  // where the node's queue ends
+  std::string error;
+
+  bool add(const Segment& s, int line, double length_mm) {
+    WireElement e;
+    if (const fw::can::FieldDef* f = fw::can::encode_segment(s, at_mm, node, 0, e.frames); f != nullptr) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "line %d: %s does not fit the wire (%s.%s)", line, describe(s).c_str(),
+                    f == &fw::can::fields::kTailFeed || f == &fw::can::fields::kTailCentreNormal ||
+                            f == &fw::can::fields::kTailCentreAlong
+                        ? "SEGMENT_TAIL"
+                        : "SEGMENT",
+                    f->name);
+      error = buf;
+      return false;
+    }
+    e.segment = s;
+    if (s.kind != SegmentKind::dwell) e.segment.end_mm = e.frames.end_mm;
+    e.line = line;
+    e.length_mm = length_mm;
+    at_mm = e.frames.end_mm;
+    out.length_mm += length_mm;
+    out.elements.push_back(e);
+    return true;
+  }
+
+  static std::string describe(const Segment& s) {
+    char buf[96];
+    if (s.kind == SegmentKind::dwell) std::snprintf(buf, sizeof buf, "a dwell of %g s", s.dwell_s);
+    else std::snprintf(buf, sizeof buf, "a move to (%g, %g) mm at %g mm/s", s.end_mm[0], s.end_mm[1], s.feed_mm_s);
+    return buf;
+  }
+
+  // The arc of `g` from angle fraction t0 to t1 (0..1 of its sweep), radius moving linearly as the firmware runs it.
+  static PlanePoint arc_point(const SegmentGeometry& g, double t) {
+    const double angle = g.start_angle_rad + g.sweep_rad * t;
+    const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * t;
+    return {g.centre_mm[0] + r * std::cos(angle), g.centre_mm[1] + r * std::sin(angle)};
+  }
+
+  bool add_arc(const Segment& s, const SegmentGeometry& g, double t0, double t1, int line, int depth) {
+    Segment part = s;
+    part.end_mm = t1 >= 1.0 ? s.end_mm : arc_point(g, t1);
+    part.exact_stop = t1 >= 1.0 && s.exact_stop;
+    const double length_mm = g.length_mm * (t1 - t0);
+    WireElement probe;
+    const fw::can::FieldDef* f = fw::can::encode_segment(part, at_mm, node, 0, probe.frames);
+    const bool centre = f == &fw::can::fields::kTailCentreNormal || f == &fw::can::fields::kTailCentreAlong;
+    if (!centre || depth >= kMaxArcSplits) return add(part, line, length_mm);
+    const double mid = 0.5 * (t0 + t1);
+    return add_arc(s, g, t0, mid, line, depth + 1) && add_arc(s, g, mid, t1, line, depth + 1);
+  }
+};
+
+}  // namespace
+
+std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, const PlanePoint& start_mm,
+                                        std::uint8_t node, std::string& error) {
+  Builder b;
+  b.node = node;
+  b.at_mm = start_mm;
+  for (std::size_t k = 0; k < program.segments.size(); ++k) {
+    const Segment& s = program.segments[k];
+    const SegmentGeometry& g = program.geometry[k];
+    const int line = static_cast<int>(s.tag);
+    bool ok = true;
+    if (s.kind == SegmentKind::dwell) {
+      for (double left_s = s.dwell_s; ok && left_s > 0.0; left_s -= kMaxWireDwellS)
+        ok = b.add(fw::motion::dwell_for(std::min(left_s, kMaxWireDwellS), s.tag), line, 0.0);
+    } else if (s.kind == SegmentKind::line) {
+      ok = b.add(s, line, g.length_mm);
+    } else {
+      ok = b.add_arc(s, g, 0.0, 1.0, line, 0);
+    }
+    if (!ok) {
+      error = b.error;
+      return std::nullopt;
+    }
+  }
+  return b.out;
+}
+
+double length_fraction(const WireProgram& program, std::size_t elements_done) {
+  if (program.length_mm <= 0.0) return program.elements.empty() ? 1.0 : double(elements_done) / double(program.elements.size());
+  double done_mm = 0.0;
+  for (std::size_t k = 0; k < elements_done && k < program.elements.size(); ++k) done_mm += program.elements[k].length_mm;
+  return done_mm / program.length_mm;
+}
+
+}  // namespace tnv::can_host
