@@ -26,6 +26,7 @@ inline constexpr const MessageDef& kSlidingXMsg = message(MessageId::tlm_sliding
 inline constexpr const MessageDef& kSlidingYMsg = message(MessageId::tlm_sliding_y);
 inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
+inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
 
 inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
@@ -105,6 +106,10 @@ inline constexpr const FieldDef& kOutputDacY = field(kOutputMsg, "dac_y");
 inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
 inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
 inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");
+inline constexpr const FieldDef& kArscForce = field(kArscMsg, "force");
+inline constexpr const FieldDef& kArscForceRef = field(kArscMsg, "force_ref");
+inline constexpr const FieldDef& kArscOverride = field(kArscMsg, "feed_override");
+inline constexpr const FieldDef& kArscGain = field(kArscMsg, "cutting_gain");
 
 // Field index within its message (COMMAND_ACK.detail names the offending field).
 constexpr std::uint8_t index_of(const MessageDef& m, const FieldDef& f) noexcept {

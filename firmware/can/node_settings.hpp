@@ -25,6 +25,7 @@ struct TelemetryPeriods {
   std::uint32_t sliding_ms = 0;
   std::uint32_t output_ms = 0;
   std::uint32_t contour_ms = 0;
+  std::uint32_t arsc_ms = 0;
 };
 
 // What MOVE and CIRCLE frames do not carry (CircleSpec / MoveSpec defaults).
@@ -46,10 +47,6 @@ struct ShaperSettings {
   bool enabled = false;
 };
 
-struct ForceSensorSettings {
-  double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
-};
-
 struct NodeSettings {
   FirmwareConfig firmware{};
   CanSettings can{};
@@ -57,7 +54,6 @@ struct NodeSettings {
   MotionDefaults motion{};
   CaptureSettings capture{};
   std::array<ShaperSettings, hal::kAxisCount> shaper{};
-  ForceSensorSettings force{};
 };
 
 // default_firmware_config() (the papers' values) and the defaults above.

@@ -10,13 +10,8 @@ namespace tnv::fw::motion {
 namespace {
 
 using test::MotionRun;
+using test::configured;
 using test::run_program;
-
-MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
-  MotionInterpolator m;
-  EXPECT_STREQ(m.configure({}, start), "");
-  return m;
-}
 
 TEST(SegmentQueueRefusal, BadSegmentsAreRefusedWithAReasonAndTheQueueIsUnchanged) {
   MotionInterpolator m = configured();

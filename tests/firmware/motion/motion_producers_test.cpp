@@ -15,13 +15,8 @@ namespace tnv::fw::motion {
 namespace {
 
 using test::MotionRun;
+using test::configured;
 using test::run_program;
-
-MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
-  MotionInterpolator m;
-  EXPECT_STREQ(m.configure({}, start), "");
-  return m;
-}
 
 TEST(MotionProfiled, TheCircleFollowsTheS1TimeLawTickForTick) {
   const CircleSpec spec{6.0, 2.0, 0.1, 0.0};

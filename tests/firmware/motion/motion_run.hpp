@@ -3,6 +3,8 @@
 // the commanded positions x_ref,k: per-axis acceleration as the second and
 // jerk as the third backward difference over the 1 ms tick, each divided by
 // its axis limit.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -10,6 +12,13 @@
 #include "firmware/motion/motion_interpolator.hpp"
 
 namespace tnv::fw::motion::test {
+
+// An interpolator with the default limits, at rest at start.
+inline MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
+  MotionInterpolator m;
+  EXPECT_STREQ(m.configure({}, start), "");
+  return m;
+}
 
 struct MotionRun {
   std::vector<PlanePoint> position_mm;  // x_ref,k of both axes, one per tick
