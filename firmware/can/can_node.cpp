@@ -355,6 +355,14 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write(f, kOutputForce, force_n(r, settings_));
     emit(f);
   }
+  if ((due & cyclic_bit(Cyclic::arsc)) != 0) {
+    hal::CanFrame f = make_frame(kArscMsg, node_id_);
+    write_saturated(f, kArscForce, force_n(r, settings_));
+    write_saturated(f, kArscForceRef, r.arsc_force_ref_n);
+    write_saturated(f, kArscOverride, r.feed_override);
+    write_saturated(f, kArscGain, r.arsc_cutting_gain_n_per_mm_s);
+    emit(f);
+  }
   if ((due & cyclic_bit(Cyclic::contour)) != 0) {
     hal::CanFrame f = make_frame(kContourMsg, node_id_);
     write(f, kContour, contour_um(task_, r));

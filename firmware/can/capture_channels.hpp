@@ -19,7 +19,7 @@ struct ChannelDef {
   const char* doc;
 };
 
-inline constexpr std::array<ChannelDef, 22> kCaptureChannels{{
+inline constexpr std::array<ChannelDef, 25> kCaptureChannels{{
     {0, "pos_x", WireType::i32, 1e-6, "mm", "encoder position, x"},
     {1, "pos_y", WireType::i32, 1e-6, "mm", "encoder position, y"},
     {2, "ref_x", WireType::i32, 1e-6, "mm", "reference the loop follows (after the shaper), x"},
@@ -42,6 +42,9 @@ inline constexpr std::array<ChannelDef, 22> kCaptureChannels{{
     {19, "unshaped_y", WireType::i32, 1e-6, "mm", "reference before the input shaper, y"},
     {20, "accel_x", WireType::f32, 1, "mm/s2", "tool-side accelerometer, x (ADC_ACCEL_X)"},
     {21, "accel_y", WireType::f32, 1, "mm/s2", "tool-side accelerometer, y (ADC_ACCEL_Y)"},
+    {22, "feed_override", WireType::f32, 1, "", "feed override of the motion core (the force loop's when arsc.enable)"},
+    {23, "arsc_force_ref", WireType::f32, 1, "N", "the force loop's reference now (soft start included), 0 when off"},
+    {24, "arsc_gain", WireType::f32, 1, "N*s/mm", "the force loop's cutting-gain estimate, 0 when off"},
 }};
 
 // The default set: enough to score a circle and plot the tracking.

@@ -53,6 +53,9 @@ std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSign
     case 19: return i32_word(y.unshaped_reference_mm, c->scale);
     case 20: return f32_word(x.accel_mm_s2);
     case 21: return f32_word(y.accel_mm_s2);
+    case 22: return f32_word(r.feed_override);
+    case 23: return f32_word(r.arsc_force_ref_n);
+    case 24: return f32_word(r.arsc_cutting_gain_n_per_mm_s);
     default: return 0;
   }
 }

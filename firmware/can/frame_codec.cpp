@@ -1,5 +1,6 @@
 #include "firmware/can/frame_codec.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -53,7 +54,31 @@ namespace {
 
 bool fits(double raw, double lo, double hi) noexcept { return std::isfinite(raw) && raw >= lo && raw <= hi; }
 
+// The raw range of an integer field; false for f32 and bytes7.
+bool raw_range(WireType t, double& lo, double& hi) noexcept {
+  lo = 0.0;
+  switch (t) {
+    case WireType::u8: hi = 255.0; return true;
+    case WireType::u16: hi = 65535.0; return true;
+    case WireType::u24: hi = 16777215.0; return true;
+    case WireType::u32:
+    case WireType::raw32: hi = 4294967295.0; return true;
+    case WireType::i8: lo = -128.0; hi = 127.0; return true;
+    case WireType::i16: lo = -32768.0; hi = 32767.0; return true;
+    case WireType::i24: lo = -8388608.0; hi = 8388607.0; return true;
+    case WireType::i32: lo = -2147483648.0; hi = 2147483647.0; return true;
+    default: return false;
+  }
+}
+
 }  // namespace
+
+bool write_saturated(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept {
+  double lo = 0.0, hi = 0.0;
+  if (f.type == WireType::f32 || !raw_range(f.type, lo, hi)) return write(frame, f, physical);
+  const double raw = std::isnan(physical) ? 0.0 : std::clamp(std::round(physical / f.scale), lo, hi);
+  return write(frame, f, raw * f.scale);
+}
 
 bool write(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept {
   if (f.type == WireType::f32) {
@@ -64,18 +89,7 @@ bool write(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept {
   const double raw = std::round(physical / f.scale);
   double lo = 0.0;
   double hi = 0.0;
-  switch (f.type) {
-    case WireType::u8: hi = 255.0; break;
-    case WireType::u16: hi = 65535.0; break;
-    case WireType::u24: hi = 16777215.0; break;
-    case WireType::u32:
-    case WireType::raw32: hi = 4294967295.0; break;
-    case WireType::i8: lo = -128.0; hi = 127.0; break;
-    case WireType::i16: lo = -32768.0; hi = 32767.0; break;
-    case WireType::i24: lo = -8388608.0; hi = 8388607.0; break;
-    case WireType::i32: lo = -2147483648.0; hi = 2147483647.0; break;
-    default: return false;
-  }
+  if (!raw_range(f.type, lo, hi)) return false;
   if (!fits(raw, lo, hi)) return false;
   const std::uint32_t bits = raw < 0.0 ? static_cast<std::uint32_t>(static_cast<std::int32_t>(raw))
                                        : static_cast<std::uint32_t>(raw);

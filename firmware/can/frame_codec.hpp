@@ -27,6 +27,11 @@ double read(const hal::CanFrame& frame, const FieldDef& f) noexcept;
 // f32 fields take any value, NaN and infinities included (the receiver
 // checks), narrowed to float.
 bool write(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept;
+// As write(), but a value beyond the type's range is written as the nearest
+// end of it (infinities too) and NaN as 0: telemetry sends a saturated
+// reading rather than none, a host request arrives at the nearest end for
+// the node to range-check. false only for bytes7.
+bool write_saturated(hal::CanFrame& frame, const FieldDef& f, double physical) noexcept;
 
 void read_bytes(const hal::CanFrame& frame, const FieldDef& f, std::span<std::uint8_t> out) noexcept;
 void write_bytes(hal::CanFrame& frame, const FieldDef& f, std::span<const std::uint8_t> in) noexcept;

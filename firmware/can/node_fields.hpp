@@ -31,6 +31,7 @@ inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infe
 inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
 inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
+inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
 
 inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");
@@ -111,6 +112,10 @@ inline constexpr const FieldDef& kOutputDacY = field(kOutputMsg, "dac_y");
 inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
 inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
 inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");
+inline constexpr const FieldDef& kArscForce = field(kArscMsg, "force");
+inline constexpr const FieldDef& kArscForceRef = field(kArscMsg, "force_ref");
+inline constexpr const FieldDef& kArscOverride = field(kArscMsg, "feed_override");
+inline constexpr const FieldDef& kArscGain = field(kArscMsg, "cutting_gain");
 
 inline constexpr const FieldDef& kBoreOp = field(kBoreGaugeMsg, "op");
 inline constexpr const FieldDef& kBorePart = field(kBoreGaugeMsg, "part");

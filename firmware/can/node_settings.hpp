@@ -29,6 +29,7 @@ struct TelemetryPeriods {
   std::uint32_t sliding_ms = 0;
   std::uint32_t output_ms = 0;
   std::uint32_t contour_ms = 0;
+  std::uint32_t arsc_ms = 0;
 };
 
 // What MOVE and CIRCLE frames do not carry (CircleSpec / MoveSpec defaults).
@@ -50,10 +51,6 @@ struct ShaperSettings {
   bool enabled = false;
 };
 
-struct ForceSensorSettings {
-  double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
-};
-
 struct NodeSettings {
   FirmwareConfig firmware{};
   CanSettings can{};
@@ -61,7 +58,6 @@ struct NodeSettings {
   MotionDefaults motion{};
   CaptureSettings capture{};
   std::array<ShaperSettings, hal::kAxisCount> shaper{};
-  ForceSensorSettings force{};
   BoringStationSettings bore{};     // bore.* parameters
   BoringStationState bore_state{};  // what the planner learned: not a parameter
 };

@@ -7,6 +7,7 @@
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_rows_bore.hpp"
+#include "firmware/motion/motion_interpolator.hpp"
 #include "firmware/shaper/impulse_design.hpp"
 
 namespace tnv::fw::can {
@@ -92,6 +93,10 @@ constexpr double kPathJerkMaxMmS3 = 1e8;
 // further than any finishing pass would accept.
 constexpr double kPathToleranceMinMm = 1e-4;
 constexpr double kPathToleranceMaxMm = 1.0;
+// Force loop: a reference beyond 10 kN is no milling force on a table of
+// this class; poles beyond 10^4 rad/s are faster than the 1 ms tick can place.
+constexpr double kArscForceMaxN = 1e4;
+constexpr double kArscPoleMaxRadS = 1e4;
 
 bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
 
@@ -277,9 +282,44 @@ constexpr ParamDef kParams[] = {
     {0x0042, "capture.decimation", ParamType::u32, "tick", 1, 255, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(capture.decimation), "ticks per recorded sample"},
     {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live, kOpen,
-     TNV_REAL(force.n_per_volt), "force-sensor scale (ADC volts to N)"},
+     TNV_REAL(firmware.force_sensor.n_per_volt), "force-sensor scale (ADC volts to N)"},
     {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, kMissedTicksMax, "", Access::read_write, Apply::idle,
      kSafety, TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
+    // The S3 force loop as the programs' feed-override source (arsc_source_params.hpp). Not safety
+    // parameters: the loop only sets a feed override, and the planner keeps every axis limit under any.
+    {0x0060, "arsc.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,
+     TNV_INT(firmware.arsc.enabled), "force loop sets the feed override of every program"},
+    {0x0061, "arsc.force_ref_n", ParamType::f32, "N", 0, kArscForceMaxN, "", Access::read_write, Apply::live, kOpen,
+     TNV_REAL(firmware.arsc.force_ref_n), "reference force f* (S3: 150 N); live"},
+    {0x0062, "arsc.period_ticks", ParamType::u32, "tick", 1, arsc::kMaxArscPeriodTicks, "", Access::read_write,
+     Apply::idle, kOpen, TNV_INT(firmware.arsc.period_ticks), "the loop's period in ticks (S3: 150)"},
+    {0x0063, "arsc.pole_re_rad_s", ParamType::f32, "rad/s", -kArscPoleMaxRadS, -1e-3, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.arsc.pole_re_rad_s), "force-loop pole pair, real part (< 0)"},
+    {0x0064, "arsc.pole_im_rad_s", ParamType::f32, "rad/s", 0, kArscPoleMaxRadS, "", Access::read_write, Apply::idle,
+     kOpen, TNV_REAL(firmware.arsc.pole_im_rad_s), "force-loop pole pair, imaginary part; 0 = a double real pole"},
+    {0x0065, "arsc.force_time_constant_s", ParamType::f32, "s", 1e-3, 10, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.force_time_constant_s), "model: the cut's force lag T_f (S3 eq. 28)"},
+    {0x0066, "arsc.cutting_gain_n_per_mm_s", ParamType::f32, "N*s/mm", 1e-3, 1e4, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.arsc.cutting_gain_n_per_mm_s),
+     "model: force per path feed at the start of a cut (G = K delta)"},
+    {0x0067, "arsc.drive_time_constant_s", ParamType::f32, "s", 1e-4, 1, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.drive_time_constant_s), "model: lag from a feed command to the table's feed"},
+    {0x0068, "arsc.memory_s", ParamType::f32, "s", 1e-3, 100, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.memory_s), "cutting-gain estimator memory (forgetting exp(-T / memory))"},
+    {0x0069, "arsc.gain_min_ratio", ParamType::f32, "", 1e-3, 1, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.gain_min_ratio), "estimate kept >= this x the start gain"},
+    {0x006A, "arsc.gain_max_ratio", ParamType::f32, "", 1, 1e3, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.gain_max_ratio), "estimate kept <= this x the start gain"},
+    {0x006B, "arsc.adapt", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,
+     TNV_INT(firmware.arsc.adapt), "estimate the cutting gain on line (off: fixed gains)"},
+    {0x006C, "arsc.override_min", ParamType::f32, "", 0, motion::kMaxFeedOverride, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.arsc.override_min), "lowest feed override the loop sets"},
+    {0x006D, "arsc.override_max", ParamType::f32, "", 0, motion::kMaxFeedOverride, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.arsc.override_max), "highest feed override the loop sets (> override_min)"},
+    {0x006E, "arsc.soft_start_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.arsc.soft_start_s), "f* ramps from 0 over this long when a cut starts"},
+    {0x006F, "tlm.arsc_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
+     TNV_INT(telemetry.arsc_ms), "TLM_ARSC period; 0 = off"},
     TNV_BORE_PARAMS,
     TNV_AXIS_PARAMS(0, 0x0100, "x."),
     TNV_AXIS_PARAMS(1, 0x0200, "y."),
@@ -379,6 +419,7 @@ std::uint16_t blame(const ConfigError& e) noexcept {
                       : std::strstr(e.section, "jog") != nullptr        ? "jog."
                       : std::strstr(e.section, "friction") != nullptr   ? "friction."
                       : std::strstr(e.section, "observer") != nullptr   ? "observer."
+                      : std::strcmp(e.section, "arsc") == 0             ? "arsc."
                                                                         : "";
   const char* field = e.field;
   if (std::strcmp(e.section, "path") == 0) {
@@ -392,6 +433,7 @@ std::uint16_t blame(const ConfigError& e) noexcept {
     return p != nullptr ? p->id : 0;
   }
   if (std::strcmp(field, "G") == 0) field = "G_position_1_s";
+  if (std::strcmp(field, "enabled") == 0) field = "enable";
   if (std::strcmp(field, "model") == 0) {
     group = "model.";
     field = "b2";

@@ -34,6 +34,7 @@ enum class MessageId : std::uint8_t {
   tlm_sliding_y = 0x13,
   tlm_output = 0x14,
   tlm_contour = 0x15,
+  tlm_arsc = 0x16,
   program_status = 0x17,
   capture_data = 0x18,
   bore_gauge = 0x1A,
@@ -216,6 +217,15 @@ inline constexpr FieldDef kTlmContour[] = {
     {"motion_tick", WireType::i32, 4, 1, "tick", "", "ticks since the start of motion, -1 outside motion"},
 };
 
+inline constexpr FieldDef kTlmArsc[] = {
+    {"force", WireType::i16, 0, 0.1, "N", "", "force sensor this tick (force.n_per_volt x ADC volts), saturated"},
+    {"force_ref", WireType::u16, 2, 0.1, "N", "",
+     "the force loop's reference now (arsc.force_ref_n after the soft start); 0 when it does not run"},
+    {"feed_override", WireType::u16, 4, 0.0001, "", "",
+     "feed override of the motion core this tick (the force loop's, or the host's when the loop is off)"},
+    {"cutting_gain", WireType::u16, 6, 0.001, "N*s/mm", "",
+     "the loop's cutting-gain estimate (force per mm/s of path feed), saturated; 0 when it does not run"},
+};
 inline constexpr FieldDef kBoreGauge[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"op", WireType::u8, 1, 1, "", "0=record 1=query 2=restart",
@@ -245,7 +255,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 26> kMessages{{
+inline constexpr std::array<MessageDef, 27> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -308,6 +318,8 @@ inline constexpr std::array<MessageDef, 26> kMessages{{
      "Telemetry every tlm.output_ms (0 = off)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
      "Telemetry every tlm.contour_ms (0 = off)."},
+    {0x16, "tlm_arsc", Direction::from_node, 8, detail::kTlmArsc,
+     "Telemetry every tlm.arsc_ms (0 = off): the S3 force loop (arsc.*), the programs' feed-override source."},
     {0x17, "program_status", Direction::from_node, 8, detail::kProgramStatus,
      "Program progress and flow control: with every HEARTBEAT while a program runs, once when its state changes, "
      "and on COMMAND program_status."},

@@ -2,12 +2,9 @@
 
 #include <cmath>
 
-#include "hal/io_board_registers.hpp"
+#include "firmware/io/force_code.hpp"
 
 namespace tnv::fw::can {
-namespace {
-constexpr double kAdcFullScaleV = 10.0;  // docs/register-map.md: ADC_FORCE 0-10 V
-}
 
 double contour_um(const TickTask& task, const TickRecord& r) noexcept {
   if (r.motion_tick < 0 || !task.circle_motion()) return 0.0;
@@ -22,8 +19,7 @@ double contour_um(const TickTask& task, const TickRecord& r) noexcept {
 }
 
 double force_n(const TickRecord& r, const NodeSettings& settings) noexcept {
-  constexpr double kMaxCode = static_cast<double>((1u << hal::regs::kAdcBits) - 1u);
-  return settings.force.n_per_volt * static_cast<double>(r.force_code) * kAdcFullScaleV / kMaxCode;
+  return force_code_to_n(r.force_code, settings.firmware.force_sensor.n_per_volt);
 }
 
 TickSignals tick_signals(const TickTask& task, const NodeSettings& settings) noexcept {

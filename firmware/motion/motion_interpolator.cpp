@@ -26,7 +26,7 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   filter_.reset(queue_.derived().filter_taps, position_mm);
   out_mm_.fill(position_mm);
   profiled_ = ProfiledRun{};
-  override_ = 1.0;
+  override_ = effective_override_ = 1.0;
   hold_ = false;
   stopping_ = false;
   program_open_ = false;
@@ -57,11 +57,33 @@ SegmentRefusal MotionInterpolator::push(const Segment& segment) noexcept {
 
 bool MotionInterpolator::set_feed_override(double ratio) noexcept {
   if (!std::isfinite(ratio) || ratio < 0.0 || ratio > kMaxFeedOverride) return false;
-  if (ratio != override_) {
-    override_ = ratio;
-    planner_.override_changed(queue_);
-  }
+  override_ = ratio;  // in force from the next tick (update_effective_override)
   return true;
+}
+
+// Down: at once. A feed target below the path point's speed is met by
+// braking at the allowed rate; an exit the lower override drops below the
+// braking curve is met just after its joint (the follower then obeys only
+// the hard limits, path_follower.cpp). Up: at once, but never above the
+// override of a look-ahead walk in progress, whose lowered entries the
+// point must still obey. Every walk plans with max(in force, requested),
+// never below the override in force, so no walk lowers an entry below a
+// feed the follower may be running at.
+void MotionInterpolator::update_effective_override() noexcept {
+  if (override_ == effective_override_) return;
+  if (override_ < effective_override_) {
+    effective_override_ = override_;
+  } else {
+    const double cap = planner_.walk_in_progress() ? planner_.walk_override() : override_;
+    effective_override_ = std::min(override_, std::max(effective_override_, cap));
+  }
+  planner_.override_changed(queue_);
+}
+
+double MotionInterpolator::running_feed_mm_s() const noexcept {
+  if (hold_ || stopping_ || queue_.empty() || profiled_.active()) return 0.0;
+  const Segment& front = queue_.at(queue_.head_seq()).segment;
+  return front.kind == SegmentKind::dwell || front.profiled() ? 0.0 : front.feed_mm_s;
 }
 
 bool MotionInterpolator::at_rest() const noexcept {
@@ -123,12 +145,14 @@ MotionReference MotionInterpolator::tick() noexcept {
       return profiled_tick();
     }
   }
-  stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, override_));
+  update_effective_override();
+  const double walk_override = std::max(effective_override_, override_);
+  stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, walk_override));
   // A profiled element waits at the front while the reference comes to rest on its start.
   const bool wait = front_profiled();
   const std::size_t queued_before = queue_.size();
   const FollowerStep step = wait ? FollowerStep{FollowerPhase::holding, queue_.at(queue_.head_seq()).segment.tag}
-                                 : follower_.step(queue_, override_, hold_ || stopping_);
+                                 : follower_.step(queue_, effective_override_, hold_ || stopping_);
   if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
   if (stopping_ && follower_.at_rest()) {
     queue_.clear(follower_.point_mm());

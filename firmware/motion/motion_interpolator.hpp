@@ -74,8 +74,20 @@ class MotionInterpolator {
   const PlanePoint& queue_end_mm() const noexcept { return queue_.end_mm(); }
 
   // 0 ... 1.5; false (and no change) outside that range or not finite.
+  // The override in force (effective_feed_override()) follows it at the
+  // next tick: a lower one at once, a higher one at once unless a look-ahead
+  // walk planned with a lower override is in progress (it then applies when
+  // that walk is done, a few ticks): the follower never runs at a higher
+  // override than the entries it obeys were planned with. A walk in
+  // progress is never restarted by an override change (lookahead_planner.hpp).
   bool set_feed_override(double ratio) noexcept;
   double feed_override() const noexcept { return override_; }
+  // The override the planner and the follower use this tick.
+  double effective_feed_override() const noexcept { return effective_override_; }
+  // The programmed feed of the planned line or arc at the front, which the
+  // override scales; 0 while the path does not run on one (empty queue, a
+  // dwell or a profiled element in front, feed hold, a controlled stop).
+  double running_feed_mm_s() const noexcept;
 
   void hold() noexcept { hold_ = true; }
   void resume() noexcept { hold_ = false; }
@@ -103,6 +115,7 @@ class MotionInterpolator {
 
  private:
   MotionReference profiled_tick() noexcept;
+  void update_effective_override() noexcept;
   bool front_profiled() const noexcept;
   void finish_profiled() noexcept;
 
@@ -113,7 +126,8 @@ class MotionInterpolator {
   JerkFilter filter_{};
   ProfiledRun profiled_{};
   std::array<PlanePoint, 4> out_mm_{};  // filter output at k-1, k, k+1, k+2
-  double override_ = 1.0;
+  double override_ = 1.0;            // requested
+  double effective_override_ = 1.0;  // in force (update_effective_override)
   bool hold_ = false;
   bool stopping_ = false;
   bool program_open_ = false;

@@ -149,9 +149,11 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
   const double dv = d.path_accel_mm_s2 * d.dt_s;
   const double target = hold ? 0.0 : feed_limit_mm_s(front, feed_override);
   double exit = 0.0;
+  double exit_hard = 0.0;  // without the programmed feeds: corner limits, speed caps, the queue end
   if (continues_into_next(queue, head)) {
     const QueuedSegment& next = queue.at(head + 1);
     exit = std::min(next.planned_entry_mm_s, feed_limit_mm_s(next, feed_override));
+    exit_hard = next.planned_hard_mm_s;
   }
   const double remaining_mm = front.geometry.length_mm - distance_mm_;
   double brake = reachable_speed_mm_s(remaining_mm, exit, dv, d.dt_s);
@@ -161,12 +163,16 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
   double v = std::min({free, brake});
   const double slowest = std::max(0.0, speed_mm_s_ - dv);
   if (v < slowest) {
-    // Braking harder than one tick's change allows would overrun a corner
-    // limit or the queue end; the budget was sized so this never happens.
-    if (brake < slowest) {
+    // Braking harder than one tick's change allows. For a programmed feed
+    // ahead (a target, lowered by a falling override while the point was
+    // already braking for it) the point slows at the allowed rate and meets
+    // it just after the joint. Only a corner limit, a speed cap or the queue
+    // end would be overrun; the budget was sized so that never happens.
+    const double brake_hard = brake < slowest ? reachable_speed_mm_s(remaining_mm, exit_hard, dv, d.dt_s) : brake;
+    if (brake_hard < slowest) {
       // Rounding on the exact braking curve leaves femtometres; count real shortfalls only.
-      if (brake < slowest - 1e-6 * dv) ++stats_.brake_shortfalls;
-      v = brake;
+      if (brake_hard < slowest - 1e-6 * dv) ++stats_.brake_shortfalls;
+      v = brake_hard;
     } else {
       v = slowest;  // a lower feed, override or a hold: slow down at the allowed rate
     }

@@ -82,6 +82,7 @@ SegmentRefusal SegmentQueue::push(const Segment& segment) noexcept {
       q.entry_limit_mm_s = corner_limit_mm_s(before, q);
   }
   q.planned_entry_mm_s = 0.0;  // safe until the look-ahead raises it
+  q.planned_hard_mm_s = 0.0;
   at(tail_seq_) = q;
   ++tail_seq_;
   end_mm_ = q.geometry.end_mm;

@@ -20,6 +20,11 @@ struct QueuedSegment {
   double speed_cap_mm_s = 0.0;     // axis speed, centripetal, arc lag and tick-length caps (no feed)
   double entry_limit_mm_s = 0.0;   // corner limit at the start (0 after a stop, a dwell or from rest)
   double planned_entry_mm_s = 0.0; // look-ahead result: can still stop at the end of the queue
+  // The same without the programmed feeds (corner limits, speed caps, the
+  // queue end): what the path point must obey. A feed is a target: when the
+  // override falls while the point brakes for a lower feed ahead, the point
+  // slows at the path acceleration and meets that feed a little after the joint.
+  double planned_hard_mm_s = 0.0;
 };
 
 class SegmentQueue {

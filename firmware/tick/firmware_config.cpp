@@ -66,6 +66,8 @@ ConfigError validate(const FirmwareConfig& config) noexcept {
       return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
   }
   if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
+  if (!std::isfinite(config.force_sensor.n_per_volt)) return {"force sensor", "n_per_volt", "must be finite"};
+  if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason};
   if (const char* reason = motion::validate(path_limits(config)); reason[0] != '\0') return {"path", "", reason};
   return {};
 }

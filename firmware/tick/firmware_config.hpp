@@ -3,6 +3,7 @@
 // reaches the tick: a bad set is rejected entire, never half-applied.
 #include <array>
 
+#include "firmware/adaptive/arsc/arsc_source_params.hpp"
 #include "firmware/compensation/friction_feedforward.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/control/axis_model.hpp"
@@ -41,10 +42,18 @@ struct AxisConfig {
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
 };
 
+// The force sensor on the I/O board's ADC (force_code.hpp): its scale is a
+// fact of the sensor, like the DAC scale.
+struct ForceSensorConfig {
+  double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
+};
+
 struct FirmwareConfig {
   std::array<AxisConfig, hal::kAxisCount> axis{};
   SupervisorConfig supervisor{};
   double path_tolerance_mm = 0.005;  // corner blends and arc lag of planned paths stay within this
+  ForceSensorConfig force_sensor{};
+  arsc::ArscSourceParams arsc{};     // the force loop as a feed-override source of programs (S3)
 };
 
 // The planner's limits from a config: each axis' path limits, the

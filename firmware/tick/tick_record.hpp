@@ -49,6 +49,9 @@ struct TickRecord {
   std::int64_t motion_tick = -1;      // ticks since the start of motion, -1 outside motion
   std::uint16_t force_code = 0;
   std::array<AxisTickRecord, hal::kAxisCount> axis{};
+  double feed_override = 1.0;                  // the motion core's feed override this tick
+  double arsc_force_ref_n = 0.0;               // the force loop's f* now (soft start included), 0 when off
+  double arsc_cutting_gain_n_per_mm_s = 0.0;   // its cutting-gain estimate, 0 when off
 };
 
 struct TickCounters {

@@ -46,6 +46,7 @@ TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
     origin_mm_[i] = config_.axis[i].home_position_mm;
   }
   (void)motion_.configure(path_limits(config_), held_point());  // validate(config) checked the limits
+  (void)arsc_.configure(config_.arsc);                            // and the force loop's parameters
 }
 
 bool TickTask::servo_on() const noexcept {
@@ -226,7 +227,9 @@ void TickTask::tick() noexcept {
         config_.axis[i].count_mm, config_.axis[i].dac.full_scale_mm_s, config_.supervisor.axis[i].plausibility);
   }
 
-  // 3. reference x_ref,k and x_ref,k+1
+  // 3. feed override of a running program (the force loop, when on), then
+  // the reference x_ref,k and x_ref,k+1
+  run_feed_source();
   update_reference();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     if (!excite_[i].active()) continue;

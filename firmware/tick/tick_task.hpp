@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 
+#include "firmware/adaptive/arsc/arsc_feed_source.hpp"
 #include "firmware/compensation/excitation.hpp"
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
@@ -93,8 +94,14 @@ class TickTask {
   CommandStatus end_program() noexcept;
   // Feed hold (brake on the path, keep the queue) and resume; 0 .. 1.5 feed
   // override (invalid outside). Only while a program runs (busy otherwise).
+  // With the force loop on (config arsc.enabled) the override given here
+  // scales the loop's range (arsc_feed_source.hpp); each program starts at 1.
   CommandStatus feed_hold(bool hold) noexcept;
   CommandStatus set_feed_override(double ratio) noexcept;
+  double operator_feed_override() const noexcept { return operator_override_; }
+  // The S3 force loop as the programs' feed-override source (config arsc):
+  // it runs inside the tick, between the snapshot and the motion core.
+  const arsc::ArscFeedSource& feed_source() const noexcept { return arsc_; }
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
@@ -136,9 +143,11 @@ class TickTask {
   // a new encoder count is re-based so the position reading does not jump;
   // a new model rebuilds that axis' controllers (reset); a new controller
   // kind is selected (reset first when the servo is on). home_position_mm
-  // is not applied: zero() moves the frame. While moving (dwell or moving,
-  // jog and controlled stop included) only the live-tunable part may
-  // differ: sliding.*, pid.kp / ki / kd / u_max_mm_s; anything else -> busy.
+  // is not applied: zero() moves the frame. New force-loop parameters build
+  // a new loop (at rest); its f* alone is taken on line. While moving (dwell
+  // or moving, jog and controlled stop included) only the live-tunable part
+  // may differ: sliding.*, pid.kp / ki / kd / u_max_mm_s, the force sensor's
+  // scale and arsc.force_ref_n; anything else -> busy.
   CommandStatus apply_config(const FirmwareConfig& config) noexcept;
   // True when `to` differs from `from` only in what apply_config() takes
   // while moving.
@@ -227,6 +236,7 @@ class TickTask {
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
   void update_reference() noexcept;
+  void run_feed_source() noexcept;  // tick_task_feed_source.cpp
   void set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void moving_reference() noexcept;
@@ -248,6 +258,8 @@ class TickTask {
   std::array<AxisLoop, hal::kAxisCount> axis_;
   motion::MotionInterpolator motion_{};
   motion::JogProducer jog_{};
+  arsc::ArscFeedSource arsc_{};
+  double operator_override_ = 1.0;  // set_feed_override(): the program's override, or the force loop's cap
   Source source_ = Source::circle;
   std::int64_t dwell_ticks_ = 0;
   std::int64_t motion_ticks_ = 0;

@@ -35,11 +35,23 @@ bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
          a.plausibility.runaway_min_command_mm_s == b.plausibility.runaway_min_command_mm_s;
 }
 
+// Everything of the force loop but f* (which it takes on line).
+bool same_but_force_ref(const arsc::ArscSourceParams& a, const arsc::ArscSourceParams& b) noexcept {
+  return a.enabled == b.enabled && a.period_ticks == b.period_ticks && a.pole_re_rad_s == b.pole_re_rad_s &&
+         a.pole_im_rad_s == b.pole_im_rad_s && a.force_time_constant_s == b.force_time_constant_s &&
+         a.cutting_gain_n_per_mm_s == b.cutting_gain_n_per_mm_s && a.drive_time_constant_s == b.drive_time_constant_s &&
+         a.memory_s == b.memory_s && a.gain_min_ratio == b.gain_min_ratio && a.gain_max_ratio == b.gain_max_ratio &&
+         a.adapt == b.adapt && a.override_min == b.override_min && a.override_max == b.override_max &&
+         a.soft_start_s == b.soft_start_s;
+}
+
 }  // namespace
 
 bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfig& to) noexcept {
   if (from.supervisor.max_consecutive_missed_ticks != to.supervisor.max_consecutive_missed_ticks) return false;
   if (from.path_tolerance_mm != to.path_tolerance_mm) return false;
+  // The force loop: f* and the sensor scale are live, the rest waits for rest (a new loop).
+  if (!same_but_force_ref(from.arsc, to.arsc)) return false;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const AxisConfig& a = from.axis[i];
     const AxisConfig& b = to.axis[i];
@@ -101,6 +113,9 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
     path_changed = path_changed || !same(next.axis[i].path, config_.axis[i].path) ||
                    next.supervisor.axis[i].position_min_mm != config_.supervisor.axis[i].position_min_mm ||
                    next.supervisor.axis[i].position_max_mm != config_.supervisor.axis[i].position_max_mm;
+  // The force loop: a new loop at rest (validated with the config), f* on line.
+  if (!same_but_force_ref(next.arsc, config_.arsc)) (void)arsc_.configure(next.arsc);
+  else if (next.arsc.force_ref_n != config_.arsc.force_ref_n) (void)arsc_.set_force_ref_n(next.arsc.force_ref_n);
   config_ = next;
   if (path_changed) (void)motion_.configure(path_limits(config_), held_point());  // validated with the config
   return CommandStatus::ok;

@@ -127,6 +127,7 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
   if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
   if (!running) {
     source_ = Source::program;
+    operator_override_ = 1.0;  // reset_at() put the motion core's override at 1
     stop_requested_ = false;
     phase_tick_ = 0;
     motion_ticks_ = 0;
@@ -155,6 +156,9 @@ CommandStatus TickTask::set_feed_override(double ratio) noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (!std::isfinite(ratio) || ratio < 0.0 || ratio > motion::kMaxFeedOverride) return CommandStatus::invalid;
   if (!program_running()) return CommandStatus::busy;
+  operator_override_ = ratio;
+  // The force loop combines it with its own at the next tick (it scales the loop's range).
+  if (arsc_.running()) return CommandStatus::ok;
   return motion_.set_feed_override(ratio) ? CommandStatus::ok : CommandStatus::invalid;
 }
 

@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "firmware/adaptive/arsc/faithful_arsc.hpp"
+#include "firmware/adaptive/arsc/arsc_source_params.hpp"
 #include "firmware/adaptive/arsc/outer_arsc.hpp"
 #include "firmware/adaptive/arsc/robust_arsc.hpp"
 #include "tools/hil/arsc_run.hpp"
@@ -89,14 +90,7 @@ void BM_OuterStepAtTheTick(benchmark::State& state) {
     state.SkipWithError("the tick study did not run");
     return;
   }
-  OuterArscConfig c;
-  c.period_s = 1e-3;
-  c.model = {run.test_stage.force_time_constant_s, run.test_stage.drive_time_constant_s, 1e-3,
-             run.test_stage.cutting_gain_n_per_mm_s * c.feed_scale_mm_s / c.force_scale_n};
-  c.poles = tnv::hil::outer_poles(study.poles, study.pole_speedup);
-  c.limits.max_gain = 1e4;
-  c.gain_min = 0.2 * c.model.cutting_gain;
-  c.gain_max = 20.0 * c.model.cutting_gain;
+  const OuterArscConfig c = outer_config(run.arsc);  // what the board ran with (arsc.*)
   if (!validate(c).ok) {
     state.SkipWithError("bad outer-loop config");
     return;

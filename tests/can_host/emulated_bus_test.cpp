@@ -139,15 +139,18 @@ TEST(EmulatedBus, SavedParametersAreLoadedAtTheNextStartAndADamagedFileIsReporte
 TEST(EmulatedBus, TheTelemetryStreamDecodesAtTheConfiguredRates) {
   auto bus = make_bus(temp_path("telemetry.params"));
   NodeClient client(*bus, 1);
-  for (const char* p : {"tlm.sliding_ms", "tlm.output_ms", "tlm.contour_ms"}) client.set(param(p), 10);
+  for (const char* p : {"tlm.sliding_ms", "tlm.output_ms", "tlm.contour_ms", "tlm.arsc_ms"}) client.set(param(p), 10);
   can_host::TelemetryView view;
   client.set_listener([&view](const hal::CanFrame& f, can::MessageId id) { view.take(f, id); });
   client.pump(Micros{1'000'000});
-  // 100 ms heartbeat; position, following, sliding x + y, output, contour every 10 ms.
+  // 100 ms heartbeat; position, following, sliding x + y, output, contour, arsc every 10 ms.
   const double frames = static_cast<double>(view.frames);
-  EXPECT_NEAR(frames, 10 + 6 * 100, 8) << "frames in 1 s";
+  EXPECT_NEAR(frames, 10 + 7 * 100, 8) << "frames in 1 s";
   EXPECT_NEAR(static_cast<double>(view.bits) / frames, 111.0, 1e-9) << "every frame carries 8 bytes";
-  ASSERT_TRUE(view.heartbeat && view.position_mm && view.following_mm && view.s_mm_s && view.output && view.contour);
+  ASSERT_TRUE(view.heartbeat && view.position_mm && view.following_mm && view.s_mm_s && view.output && view.contour &&
+              view.arsc);
+  EXPECT_EQ(view.arsc->feed_override, 1.0) << "no program: the motion core's override at rest";
+  EXPECT_EQ(view.arsc->force_ref_n, 0.0) << "the force loop is off";
   EXPECT_EQ(view.heartbeat->state, fw::MotionState::disabled);
   // The emulated table powers up at the circle's start (R, 0) = (6, 0) mm, read to the encoder count.
   EXPECT_NEAR((*view.position_mm)[0], 6.0, 0.5e-3) << "x, mm";

@@ -32,7 +32,7 @@ struct CanRig {
     r->rig->home();
     fw::can::NodeSettings s = fw::can::default_node_settings();
     s.firmware = r->rig->task.config();
-    s.telemetry = {0, 0, 0, 0, 0, 0};
+    s.telemetry = {0, 0, 0, 0, 0, 0, 0};
     r->node = std::make_unique<fw::can::CanNode>(r->rig->task, r->port, r->storage, s, false, nullptr, &r->worker);
     r->port.send(command(kRigNode, fw::can::CommandCode::take_ownership));  // the test host (kTestTag) commands
     r->node->service();

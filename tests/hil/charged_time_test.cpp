@@ -117,7 +117,7 @@ struct SlowStorageBench {
     rig->home();
     fw::can::NodeSettings s = fw::can::default_node_settings();
     s.firmware = rig->task.config();
-    s.telemetry = {0, 0, 0, 0, 0, 0};
+    s.telemetry = {0, 0, 0, 0, 0, 0, 0};
     node = std::make_unique<fw::can::CanNode>(rig->task, port, storage, s, false, nullptr,
                                               with_worker ? &worker : nullptr);
     port.send(command(kRigNode, CommandCode::take_ownership));

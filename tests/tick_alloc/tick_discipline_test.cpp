@@ -198,7 +198,7 @@ struct CanBench {
   explicit CanBench(std::unique_ptr<test::HilRig> r) : rig(std::move(r)) {
     fw::can::NodeSettings s = fw::can::default_node_settings();
     s.firmware = rig->task.config();
-    s.telemetry = {10, 1, 1, 1, 1, 1};
+    s.telemetry = {10, 1, 1, 1, 1, 1, 1};
     s.capture.trigger = fw::can::CaptureTrigger::immediate;
     node = std::make_unique<fw::can::CanNode>(rig->task, port, storage, s);
   }
@@ -215,6 +215,9 @@ struct CanBench {
     if (k == 202) port.send(test::param_request(1, ParamOp::commit, 0));
     if (k == 300) port.send(test::capture_control(1, fw::can::CaptureOp::upload, 255, 0));
     if (k == 301) port.send(test::param_request(1, ParamOp::get, gamma));
+    // The force loop's reference is live: a new f* reaches the task between two ticks.
+    if (k == 302) port.send(test::param_request(1, ParamOp::set, fw::can::find_param("arsc.force_ref_n")->id,
+                                                 test::f32_raw(120.0f)));
   }
   std::unique_ptr<test::HilRig> rig;
   test::FakeCanPort port;
@@ -244,7 +247,8 @@ TEST(TickDiscipline, TheCanServiceAllocatesNothingForAParamSetACommitAndACapture
   EXPECT_EQ(allocations, 0) << "heap allocations inside service()";
   EXPECT_EQ(b.rig->task.sliding_params(hal::Axis::x).gamma, static_cast<double>(0.3f)) << "the set was applied";
   EXPECT_EQ(b.rig->task.pid_params(hal::Axis::x).kp, 500.0) << "the commit was applied";
-  EXPECT_EQ(replies, 4u);
+  EXPECT_EQ(b.rig->task.config().arsc.force_ref_n, static_cast<double>(120.0f)) << "the live f* was applied";
+  EXPECT_EQ(replies, 5u);
   EXPECT_EQ(data_frames, 255u) << "the whole upload block went out";
   EXPECT_EQ(b.rig->task.state(), fw::MotionState::moving);
 }

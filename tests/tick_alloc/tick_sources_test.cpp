@@ -25,6 +25,8 @@ struct SourceCase {
   std::string name;
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
   bool friction_and_observer = false;      // friction feed-forward and the speed observer on, both axes
+  bool force_loop = false;                 // [milling] on and the force loop (arsc.enable) setting the override
+  std::uint32_t period_ticks = 1;          // its arsc.period_ticks
   std::vector<emu::FaultSpec> faults{};    // injected by the emulated board
   // The command(s) that start the case, right after the rig is at rest.
   std::function<fw::CommandStatus(test::HilRig&)> start;
@@ -40,6 +42,8 @@ std::ostream& operator<<(std::ostream& os, const SourceCase& c) { return os << c
 
 fw::FirmwareConfig source_config(const SourceCase& c) {
   fw::FirmwareConfig config = fw::default_firmware_config();
+  config.arsc.enabled = c.force_loop;
+  config.arsc.period_ticks = c.period_ticks;
   for (auto& axis : config.axis) {
     axis.controller = c.controller;
     if (!c.friction_and_observer) continue;
@@ -55,6 +59,7 @@ fw::FirmwareConfig source_config(const SourceCase& c) {
 std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
   emu::Scenario s = *emu::builtin_scenario("no-cut");
   s.faults = c.faults;
+  if (c.force_loop) s.milling = {.enabled = true, .depth = {0.2, 1.0, 1.0, 1.0}};
   auto rig = std::make_unique<test::HilRig>(s, source_config(c));
   for (int i = 0; i < 3; ++i) rig->tick();
   return rig;
@@ -69,6 +74,10 @@ bool run_source_case(const SourceCase& c, test::HilRig& rig) noexcept {
     rig.task.tick();
   }
   if (c.fault != fw::FaultReason::none) return rig.task.fault().reason == c.fault;
+  // The force loop must have cut: sampled at its rate and set the override.
+  if (c.force_loop && (rig.task.feed_source().status().state != fw::arsc::ArscSourceState::cutting ||
+                       rig.task.feed_source().status().samples < static_cast<std::uint32_t>(c.ticks) / c.period_ticks))
+    return false;
   return !rig.task.fault().active() && rig.task.state() == c.end_state;
 }
 
@@ -135,6 +144,27 @@ std::vector<SourceCase> source_cases() {
     };
     c.ticks = 1000;
     c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  for (const std::uint32_t period : {1u, 10u}) {
+    SourceCase c;  // a program of 1 mm pieces cut under the force loop (the S3 feed-override source)
+    c.name = "program_force_loop_every_" + std::to_string(period) + "_ticks";
+    c.force_loop = true;
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      fw::motion::SegmentRefusal why{};
+      return held != fw::CommandStatus::ok ? held : rig.task.push_segment(fw::motion::line_to({1.0, 0.0}, 60.0), why);
+    };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      fw::motion::SegmentRefusal why{};
+      while (rig.task.motion().free_slots() > 0) {
+        const fw::motion::PlanePoint end = rig.task.motion().queue_end_mm();
+        if (rig.task.push_segment(fw::motion::line_to({end[0] + 1.0, end[1]}, 60.0), why) != fw::CommandStatus::ok) break;
+      }
+      if (k == 700) rig.task.set_feed_override(0.8);  // the operator scales the loop's range
+    };
+    c.period_ticks = period;
+    c.ticks = 1500;
     out.push_back(c);
   }
   for (const fw::ExcitationKind kind : {fw::ExcitationKind::step, fw::ExcitationKind::ramp}) {

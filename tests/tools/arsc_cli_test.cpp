@@ -52,8 +52,23 @@ TEST(ArscCli, TickAtOnePeriodReportsErrorPeriodAndSaturation) {
   EXPECT_GE(j["force_error_rms_pct"].get<double>(), 0.0);
   EXPECT_FALSE(j["diverged"].get<bool>());
   for (const char* key : {"dac_saturated_ticks", "dac_saturated_fraction", "dac_saturated_longest_s",
-                          "first_dac_saturation_s", "command_clamped_samples", "test_stage", "initial_gains"})
+                          "first_dac_saturation_s", "command_clamped_samples", "command_clamped_after_settle",
+                          "test_stage", "initial_gains", "arsc_params", "program", "accel_ratio_max",
+                          "jerk_ratio_max", "override_min_seen", "override_max_seen", "refused_segments"})
     EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["path"], "line");
+  EXPECT_EQ(j["arsc_params"]["period_ticks"].get<int>(), 1);
+  EXPECT_TRUE(j["arsc_params"]["enable"].get<bool>());
+  EXPECT_LE(j["jerk_ratio_max"].get<double>(), 1.0 + 1e-6);
+}
+
+TEST(ArscCli, TickOnTheArcPathTurnsAndHoldsTheForce) {
+  const CliRun r = run_tnv_hil("arsc tick --period-ms 1 --speedup 4 --path arc --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["path"], "arc");
+  EXPECT_LT(j["force_error_max_pct"].get<double>(), 1.0);
+  EXPECT_LT(j["travel_x_mm"].get<double>(), j["travel_mm"].get<double>() - 20.0) << "part of the path is not along X";
 }
 
 TEST(ArscCli, TickWithoutAPeriodComparesTheRates) {
@@ -83,6 +98,7 @@ TEST(ArscCli, BadArgumentsAreExitCode2) {
   EXPECT_EQ(run_tnv_hil("arsc tick --poles case9").exit_code, 2);
   EXPECT_EQ(run_tnv_hil("arsc tick --period-ms 1 --speedup -2").exit_code, 2);
   EXPECT_EQ(run_tnv_hil("arsc tick --speedup 4").exit_code, 2);  // only with --period-ms
+  EXPECT_EQ(run_tnv_hil("arsc tick --path circle").exit_code, 2);
 }
 
 }  // namespace

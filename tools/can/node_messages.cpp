@@ -38,25 +38,6 @@ T raw_as(const hal::CanFrame& frame, const can::FieldDef& f) {
 
 }  // namespace
 
-namespace {
-
-// An integer field written saturated: a value beyond its range arrives as
-// the nearest end (which the node range-checks), NaN as 0.
-void write_saturated(hal::CanFrame& f, const can::FieldDef& field, double physical) {
-  if (can::write(f, field, physical)) return;
-  double lo = 0.0;
-  double hi = 0.0;
-  switch (field.type) {
-    case can::WireType::i16: lo = -32768.0; hi = 32767.0; break;
-    case can::WireType::u16: hi = 65535.0; break;
-    default: return;
-  }
-  const double raw = std::isnan(physical) ? 0.0 : std::clamp(physical / field.scale, lo, hi);
-  can::write(f, field, raw * field.scale);
-}
-
-}  // namespace
-
 hal::CanFrame param_request(std::uint8_t node, std::uint8_t tag, can::ParamOp op, std::uint16_t param,
                             std::uint32_t value_raw) {
   hal::CanFrame f = can::make_frame(kParamRequestMsg, node);
@@ -93,15 +74,15 @@ hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_
   hal::CanFrame f = can::make_frame(kCircleMsg, node);
   can::write_raw(f, field(kCircleMsg, "tag"), tag);
   can::write(f, field(kCircleMsg, "radius"), radius_mm);
-  write_saturated(f, field(kCircleMsg, "feed"), feed_mm_s);
+  can::write_saturated(f, field(kCircleMsg, "feed"), feed_mm_s);
   return f;
 }
 
 hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, double speed_x_mm_s, double speed_y_mm_s) {
   hal::CanFrame f = can::make_frame(kJogMsg, node);
   can::write_raw(f, field(kJogMsg, "tag"), tag);
-  write_saturated(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
-  write_saturated(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
+  can::write_saturated(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
+  can::write_saturated(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
   return f;
 }
 
@@ -111,8 +92,8 @@ hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t tag, std::uint8_t a
   can::write_raw(f, field(kShaperMsg, "tag"), tag);
   can::write_raw(f, field(kShaperMsg, "axis"), axis);
   can::write_raw(f, field(kShaperMsg, "type"), type);
-  write_saturated(f, field(kShaperMsg, "zeta"), zeta);
-  write_saturated(f, field(kShaperMsg, "freq"), freq_hz);
+  can::write_saturated(f, field(kShaperMsg, "zeta"), zeta);
+  can::write_saturated(f, field(kShaperMsg, "freq"), freq_hz);
   return f;
 }
 
@@ -124,7 +105,7 @@ hal::CanFrame excite_request(std::uint8_t node, std::uint8_t tag, std::uint8_t a
   can::write_raw(f, field(kExciteMsg, "kind"), kind);
   // Out of the u16 range (or NaN): 0 s, which the node refuses as out of range.
   if (!can::write(f, field(kExciteMsg, "duration"), duration_s)) can::write_raw(f, field(kExciteMsg, "duration"), 0);
-  write_saturated(f, field(kExciteMsg, "level"), level_mm_s);
+  can::write_saturated(f, field(kExciteMsg, "level"), level_mm_s);
   return f;
 }
 

@@ -16,6 +16,7 @@ using can::fields::kSlidingXMsg;
 using can::fields::kSlidingYMsg;
 using can::fields::kOutputMsg;
 using can::fields::kContourMsg;
+using can::fields::kArscMsg;
 
 void set_axis(std::optional<std::array<double, 2>>& slot, std::size_t axis, double v) {
   if (!slot) slot = std::array<double, 2>{0.0, 0.0};
@@ -49,6 +50,11 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
       break;
     case MessageId::tlm_contour:
       contour = ContourTelemetry{can::read(f, field(kContourMsg, "contour")), can::read(f, field(kContourMsg, "motion_tick"))};
+      break;
+    case MessageId::tlm_arsc:
+      arsc = ArscTelemetry{can::read(f, field(kArscMsg, "force")), can::read(f, field(kArscMsg, "force_ref")),
+                           can::read(f, field(kArscMsg, "feed_override")),
+                           can::read(f, field(kArscMsg, "cutting_gain"))};
       break;
     default: break;
   }

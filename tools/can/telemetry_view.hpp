@@ -20,6 +20,14 @@ struct ContourTelemetry {
   double motion_tick = -1.0;
 };
 
+// TLM_ARSC: the force loop setting the feed override (arsc.*).
+struct ArscTelemetry {
+  double force_n = 0.0;
+  double force_ref_n = 0.0;
+  double feed_override = 0.0;
+  double cutting_gain_n_per_mm_s = 0.0;
+};
+
 struct TelemetryView {
   std::optional<Heartbeat> heartbeat;
   std::optional<std::array<double, 2>> position_mm;   // x, y
@@ -28,6 +36,7 @@ struct TelemetryView {
   std::optional<std::array<double, 2>> d_hat_mm_s;    // disturbance estimate, x, y
   std::optional<OutputTelemetry> output;
   std::optional<ContourTelemetry> contour;
+  std::optional<ArscTelemetry> arsc;
   std::uint64_t frames = 0;  // every frame taken
   std::uint64_t bits = 0;    // their nominal bits on the wire (no stuff bits)
 

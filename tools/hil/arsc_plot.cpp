@@ -185,7 +185,7 @@ SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs) {
   }
   Panel force{"force (N)", 0.0, 2.0 * ref_n, {}, 0.9 * ref_n, 1.1 * ref_n};
   Panel error{"force error (% of f*), scored part", -10.0, 10.0, {}, -1.0, 1.0};
-  Panel feed{"table feed (mm/s)", 0.0, 80.0, {}, 0.0, 0.0};
+  Panel feed{"table feed along the path (mm/s)", 0.0, 100.0, {}, 0.0, 0.0};
   Panel gain{"cutting gain G (N per mm/s)", 0.0, 18.0, {}, 0.0, 0.0};
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const TickStudyResult& r = runs[i];
@@ -221,7 +221,7 @@ SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs) {
   Series ref{"f* and +-10%", {0.0, t_end}, {ref_n, ref_n}, "#2ca02c", true};
   force.series.push_back(ref);
   if (!runs.empty()) {
-    Series truth{"K x depth (emulator)", {}, {}, "#222222", false};
+    Series truth{"K x depth x X share of the path (emulator)", {}, {}, "#222222", false};
     for (const TickStudyPoint& p : runs.front().trace) {
       truth.t_s.push_back(p.t_s);
       truth.value.push_back(p.true_cutting_gain_n_per_mm_s);
@@ -229,7 +229,7 @@ SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs) {
     gain.series.push_back(truth);
   }
   return panel_figure(
-      "Robust ARSC as an outer loop over the X axis controller (emulated TNV-40), 150 N, depth 0.2-1.0-0.2 mm",
+      "Robust ARSC as the firmware's feed-override source (emulated TNV-40), 150 N, depth 0.2-1.0-0.2 mm",
       {force, error, feed, gain}, t_end, "time (s)");
 }
 

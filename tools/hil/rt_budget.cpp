@@ -353,7 +353,7 @@ RtBudgetResult run_rt_budget(const RtBudgetOptions& options) {
   settings.firmware = rig->task.config();
   settings.can.node_id = kBudgetNode;
   // Every telemetry message on, at 10 ms (heartbeat 100 ms): the session's background traffic.
-  settings.telemetry = {100, 10, 10, 10, 10, 10};
+  settings.telemetry = {100, 10, 10, 10, 10, 10, 10};
   BudgetSession session(std::move(rig), settings);
   session.request(budget_command(can::CommandCode::take_ownership), "take_ownership");
   session.request(budget_command(can::CommandCode::enable), "enable");

@@ -255,6 +255,7 @@ int run_compare(const CompareOptions& o) {
 struct TickOptions {
   int period_ms = 0;  // 0: the comparison of rates
   std::string poles = "case1";
+  std::string path = "line";
   double speedup = 1.0;
   bool fixed_gain = false;
   bool json = false;
@@ -264,10 +265,11 @@ struct TickOptions {
 // The comparison behind "what the faster loop buys": no force loop, the
 // paper's rate, faster rates at the same poles, and the fast loop with
 // poles it alone can use.
-std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set) {
+std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set, hil::StudyPath path) {
   std::vector<hil::TickStudyConfig> out;
   hil::TickStudyConfig c;
   c.poles = set;
+  c.path = path;
   c.label = "constant feed";
   c.outer_loop = false;
   out.push_back(c);
@@ -317,20 +319,42 @@ json tick_json(const hil::TickStudyResult& r) {
             {"first_dac_saturation_s", r.first_dac_saturation_s < 0.0 ? json(nullptr) : json(r.first_dac_saturation_s)},
             {"adc_full_scale_ticks", r.adc_full_scale_ticks},
             {"command_clamped_samples", r.clamped_samples},
+            {"command_clamped_after_settle", r.clamped_after_settle},
+            {"last_clamp_s", r.last_clamp_s < 0.0 ? json(nullptr) : json(r.last_clamp_s)},
             {"samples", r.samples},
             {"ticks", r.ticks},
             {"refused_gain_updates", r.refused_updates},
-            {"refused_jogs", r.refused_jogs},
-            {"deadman_stops", r.deadman_stops},
+            {"refused_segments", r.refused_segments},
+            {"program_end_s", r.program_end_s < 0.0 ? json(nullptr) : json(r.program_end_s)},
+            {"path", hil::to_string(r.config.path)},
+            {"accel_ratio_max", r.accel_ratio_max},
+            {"jerk_ratio_max", r.jerk_ratio_max},
+            {"override_min_seen", r.override_min_seen},
+            {"override_max_seen", r.override_max_seen},
             {"travel_mm", r.travel_mm},
+            {"travel_x_mm", r.travel_x_mm},
             {"max_feed_mm_s", r.max_feed_mm_s},
             {"force_poles_rad_s", poles_s},
             {"target_poles_z", target_z},
             {"initial_gains", {{"k", g.k}, {"gamma31", g.gamma31}, {"gamma32", g.gamma32}, {"gamma33", g.gamma33}}},
             {"max_abs_gain", r.max_abs_gain},
-            {"jog", {{"speed_max_mm_s", r.config.jog.speed_max_mm_s},
-                     {"accel_mm_s2", r.config.jog.accel_mm_s2},
-                     {"deadman_s", std::max(r.config.jog.deadman_s, 2.0 * r.period_s)}}},
+            {"program", {{"feed_mm_s", r.config.outer_loop ? r.config.program_feed_mm_s : r.config.constant_feed_mm_s},
+                         {"segment_mm", r.config.segment_mm},
+                         {"start_mm", r.config.start_mm},
+                         {"end_x_mm", r.config.end_x_mm},
+                         {"path_speed_mm_s", r.config.path_limits.speed_mm_s},
+                         {"path_accel_mm_s2", r.config.path_limits.accel_mm_s2},
+                         {"path_jerk_mm_s3", r.config.path_limits.jerk_mm_s3}}},
+            {"arsc_params", {{"enable", r.arsc.enabled},
+                             {"force_ref_n", r.arsc.force_ref_n},
+                             {"period_ticks", r.arsc.period_ticks},
+                             {"pole_re_rad_s", r.arsc.pole_re_rad_s},
+                             {"pole_im_rad_s", r.arsc.pole_im_rad_s},
+                             {"force_time_constant_s", r.arsc.force_time_constant_s},
+                             {"cutting_gain_n_per_mm_s", r.arsc.cutting_gain_n_per_mm_s},
+                             {"drive_time_constant_s", r.arsc.drive_time_constant_s},
+                             {"memory_s", r.arsc.memory_s},
+                             {"adapt", r.arsc.adapt}}},
             {"test_stage", {{"force_time_constant_s", ts.force_time_constant_s},
                             {"cutting_gain_n_per_mm_s", ts.cutting_gain_n_per_mm_s},
                             {"drive_time_constant_s", ts.drive_time_constant_s},
@@ -347,12 +371,13 @@ json tick_json(const hil::TickStudyResult& r) {
 
 void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
   const hil::TickStudyConfig& c0 = runs.front().config;
-  std::printf("Robust ARSC as an outer loop over the X axis controller (emulated TNV-40), f* = %.0f N, %s,\n"
+  std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), %s path, f* = %.0f N, %s,\n"
               "depth %.1f -> %.1f -> %.1f mm over %.0f + %.0f s; force error after %.0f s, every tick, %% of f*\n",
-              c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm, c0.milling.depth.peak_mm,
-              c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s, c0.settle_s);
+              hil::to_string(c0.path), c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm,
+              c0.milling.depth.peak_mm, c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s,
+              c0.settle_s);
   const hil::TickTestStage& ts = runs.front().test_stage;
-  std::printf("test stage: T_f %.4f s, G %.4f N per mm/s at %.1f mm, axis lag %.2f ms (gain %.3f)\n",
+  std::printf("test stage: T_f %.4f s, G %.4f N per mm/s at %.1f mm, feed lag %.2f ms (gain %.3f)\n",
               ts.force_time_constant_s, ts.cutting_gain_n_per_mm_s, c0.milling.depth.start_mm,
               ts.drive_time_constant_s * 1e3, ts.drive_gain);
   std::printf("  %-26s %9s %9s %9s  %-9s %10s %8s %10s\n", "loop", "period", "max %", "rms %", "diverged",
@@ -374,15 +399,18 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
                 static_cast<unsigned long long>(r.dac_saturated_ticks), r.clamped_samples,
                 r.config.outer_loop ? r.max_abs_gain : 0.0);
     if (!r.fault.empty()) std::printf("  %-26s firmware fault: %s\n", "", r.fault.c_str());
+    if (r.program_end_s >= 0.0) std::printf("  %-26s the program ran out at %.2f s\n", "", r.program_end_s);
   }
 }
 
 int run_tick(const TickOptions& o) {
   const PoleSet set = *parse_pole_set(o.poles);
+  const hil::StudyPath path = *hil::parse_study_path(o.path);
   std::vector<hil::TickStudyConfig> configs;
   if (o.period_ms > 0) {
     hil::TickStudyConfig c;
     c.poles = set;
+    c.path = path;
     c.ticks_per_sample = static_cast<std::uint32_t>(o.period_ms);
     c.pole_speedup = o.speedup;
     c.adapt = !o.fixed_gain;
@@ -397,7 +425,7 @@ int run_tick(const TickOptions& o) {
     c.label = label;
     configs.push_back(c);
   } else {
-    configs = tick_comparison(set);
+    configs = tick_comparison(set, path);
   }
   std::vector<hil::TickStudyResult> runs;
   for (const auto& c : configs) runs.push_back(hil::run_tick_study(c));  // about 50 ms each
@@ -453,12 +481,14 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
 
   auto tick = std::make_shared<TickOptions>();
   CLI::App* tc = arsc->add_subcommand(
-      "tick", "robust ARSC as an outer loop over the X axis controller on the emulated TNV-40, 150 N; "
-              "without --period-ms: constant feed, 0.15 s, 10 ms and 1 ms side by side");
+      "tick", "robust ARSC as the firmware's feed-override source on the emulated TNV-40, 150 N, a program of "
+              "planner segments; without --period-ms: constant feed, 0.15 s, 10 ms and 1 ms side by side");
   CLI::Option* period = tc->add_option("--period-ms", tick->period_ms, "one run with this outer-loop period (whole 1 ms ticks)")
                             ->check(CLI::Range(1, 500));
   tc->add_option("--poles", tick->poles, "case1 | case2 | case3 | case4 (S3 Fig. 7, force-loop pair)")
       ->check(pole_check);
+  tc->add_option("--path", tick->path, "line (along X) | arc (a line, a 45 deg tangent arc, a 45 deg line)")
+      ->check(CLI::IsMember({"line", "arc"}));
   tc->add_option("--speedup", tick->speedup, "force-loop poles this many times faster than the paper's (with --period-ms)")
       ->check(CLI::Range(0.1, 20.0))
       ->needs(period);

@@ -35,11 +35,16 @@ nlohmann::json sample_json(const can_host::TelemetryView& l, double t_s, double 
   if (l.output)
     j["output"] = {{"dac_x", l.output->dac_code[0]}, {"dac_y", l.output->dac_code[1]}, {"force_n", l.output->force_n}};
   if (l.contour) j["contour"] = {{"um", l.contour->contour_um}, {"motion_tick", l.contour->motion_tick}};
+  if (l.arsc)
+    j["arsc"] = {{"force_n", l.arsc->force_n},
+                 {"force_ref_n", l.arsc->force_ref_n},
+                 {"feed_override", l.arsc->feed_override},
+                 {"cutting_gain_n_per_mm_s", l.arsc->cutting_gain_n_per_mm_s}};
   return j;
 }
 
 std::string sample_text(const can_host::TelemetryView& l, double t_s) {
-  char buf[320];
+  char buf[400];
   int n = std::snprintf(buf, sizeof buf, "t %7.2f s  %-8s %-10s", t_s,
                         l.heartbeat ? fw::to_string(l.heartbeat->state) : "?",
                         l.heartbeat ? fw::to_string(l.heartbeat->fault) : "?");
@@ -54,6 +59,9 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
   if (l.output)
     n += std::snprintf(buf + n, room(), "  dac %5.0f %5.0f  force %7.2f N", l.output->dac_code[0],
                        l.output->dac_code[1], l.output->force_n);
+  if (l.arsc)
+    n += std::snprintf(buf + n, room(), "  force %7.2f / %7.2f N  override %5.3f  G %6.3f N*s/mm", l.arsc->force_n,
+                       l.arsc->force_ref_n, l.arsc->feed_override, l.arsc->cutting_gain_n_per_mm_s);
   return buf;
 }
 

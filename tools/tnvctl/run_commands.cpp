@@ -107,7 +107,7 @@ void report_score(const hil::PathScore& s, std::uint64_t underruns, Report& repo
                 s.accel_ratio_max, s.jerk_ratio_max, s.feed_ratio, s.cycle_time_s,
                 static_cast<unsigned long long>(underruns));
   report.line(buf);
-  for (const auto& [key, value] : hil::path_score_json(s).items()) report.data[key] = value;
+  report.data.update(hil::path_score_json(s));
 }
 
 int run_program_file(const RunOptions& o, Session& session, Report& report) {

@@ -66,7 +66,28 @@ void OuterArsc::reset() noexcept {
   estimator_.reset();
   signals_ = OuterArscSignals{};
   f1_ = u1_ = 0.0;
+  history_ = false;
+  range_lo_ = config_.feed_min_mm_s / config_.feed_scale_mm_s;
+  range_hi_ = config_.feed_max_mm_s / config_.feed_scale_mm_s;
   design();  // the test stage's model gives gains before the first sample
+}
+
+void OuterArsc::restart() noexcept {
+  OuterArscSignals& s = signals_;
+  s.eta = 0.0;
+  s.command_mm_s = 0.0;
+  s.clamped = false;
+  s.estimator_updated = false;
+  f1_ = u1_ = 0.0;
+  history_ = false;  // the next sample does not update the estimator from the old force history
+}
+
+bool OuterArsc::set_feed_range_mm_s(double lo_mm_s, double hi_mm_s) noexcept {
+  if (!(std::isfinite(lo_mm_s) && std::isfinite(hi_mm_s) && lo_mm_s <= hi_mm_s)) return false;
+  if (lo_mm_s < config_.feed_min_mm_s || hi_mm_s > config_.feed_max_mm_s) return false;
+  range_lo_ = lo_mm_s / config_.feed_scale_mm_s;
+  range_hi_ = hi_mm_s / config_.feed_scale_mm_s;
+  return true;
 }
 
 bool OuterArsc::set_force_ref_n(double force_ref_n) noexcept {
@@ -111,7 +132,7 @@ double OuterArsc::step(double force_n, double feed_mm_s, double mean_feed_mm_s) 
   const double f_ref = config_.force_ref_n / config_.force_scale_n;
 
   // Estimation: S3 eq. (28) over the period that just ended, g only.
-  s.estimator_updated = config_.adapt && s.samples > 0 && estimator_.update(f, f1_, v_mean);
+  s.estimator_updated = config_.adapt && history_ && estimator_.update(f, f1_, v_mean);
 
   // Next input: S3 eq. (11) with the command in flight, clamped to the feed range.
   double u = 0.0;
@@ -119,9 +140,7 @@ double OuterArsc::step(double force_n, double feed_mm_s, double mean_feed_mm_s) 
   if (s.have_gains) {
     const OuterGains& g = s.gains;
     const double u_law = g.k * s.eta + g.gamma31 * f + g.gamma32 * v + g.gamma33 * u1_;
-    const double lo = config_.feed_min_mm_s / config_.feed_scale_mm_s;
-    const double hi = config_.feed_max_mm_s / config_.feed_scale_mm_s;
-    u = std::isfinite(u_law) ? std::clamp(u_law, lo, hi) : u1_;
+    u = std::isfinite(u_law) ? std::clamp(u_law, range_lo_, range_hi_) : std::clamp(u1_, range_lo_, range_hi_);
     const double d_eta = config_.period_s * (f - f_ref);  // S3 eq. (7), in seconds
     const double excess = u_law - u;
     s.clamped = excess != 0.0;  // also true for a non-finite law (held at u(t-1))
@@ -135,6 +154,7 @@ double OuterArsc::step(double force_n, double feed_mm_s, double mean_feed_mm_s) 
 
   f1_ = f;
   u1_ = u;
+  history_ = true;
   s.command_mm_s = u * config_.feed_scale_mm_s;
   ++s.samples;
   return s.command_mm_s;

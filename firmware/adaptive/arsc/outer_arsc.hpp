@@ -39,8 +39,8 @@ struct OuterArscConfig {
   double force_scale_n = 150.0;     // normalisation (the paper's f* = 1)
   double feed_scale_mm_s = 10.0;
   double force_ref_n = 150.0;       // f*; set_force_ref_n changes it on line
-  double feed_min_mm_s = 0.0;       // command range (no negative chip: the cut stops at 0)
-  double feed_max_mm_s = 100.0;     // the jog stream's speed limit
+  double feed_min_mm_s = 0.0;       // command range (no negative chip: the cut stops at 0);
+  double feed_max_mm_s = 100.0;     // set_feed_range_mm_s() narrows it on line
   // Estimator (normalised cutting gain g): memory -> lambda = exp(-T / memory_s).
   double memory_s = 0.15;
   double gain_min = 0.02;
@@ -79,6 +79,14 @@ class OuterArsc {
   double step(double force_n, double feed_mm_s, double mean_feed_mm_s) noexcept;
   // f* on line (e.g. a soft start). Finite, >= 0; false otherwise.
   bool set_force_ref_n(double force_ref_n) noexcept;
+  // The command range of the next steps (e.g. the feed override's range
+  // times the programmed feed), within the configured one; lo <= hi, finite;
+  // false (and no change) otherwise. lo == hi pins the command (anti-windup on).
+  bool set_feed_range_mm_s(double lo_mm_s, double hi_mm_s) noexcept;
+  // A new cut with what was learnt: the compensator, the command in flight
+  // and the force history restart from zero, the cutting-gain estimate and
+  // the gains designed from it stay (a resumed program after a feed hold).
+  void restart() noexcept;
 
   // Current estimate of the cutting gain G = K delta in N per mm/s.
   double cutting_gain_n_per_mm_s() const noexcept;
@@ -96,6 +104,9 @@ class OuterArsc {
   OuterArscSignals signals_{};
   double f1_ = 0.0;                // f(t-1), normalised
   double u1_ = 0.0;                // u(t-1), normalised, as applied (clamped)
+  bool history_ = false;           // f1_ is a real sample (not the first since a reset / restart)
+  double range_lo_ = 0.0;          // command range now, normalised
+  double range_hi_ = 0.0;
 };
 
 }  // namespace tnv::fw::arsc

@@ -16,17 +16,18 @@ using fw::can::MessageId;
 
 TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount) {
   fw::can::TelemetryScheduler s;
-  fw::can::TelemetryPeriods p{100, 10, 0, 3, 0, 1};
+  fw::can::TelemetryPeriods p{100, 10, 0, 3, 0, 1, 4};
   std::map<int, int> sent;
   for (int k = 0; k < 1000; ++k) {
     const std::uint32_t due = s.advance(p, 1);
-    for (int bit = 0; bit < 6; ++bit) sent[bit] += (due >> bit) & 1u;
+    for (int bit = 0; bit < 7; ++bit) sent[bit] += (due >> bit) & 1u;
   }
   EXPECT_EQ(sent[0], 10);
   EXPECT_EQ(sent[1], 100);
   EXPECT_EQ(sent[2], 0) << "0 = off";
   EXPECT_EQ(sent[3], 333);
   EXPECT_EQ(sent[5], 1000);
+  EXPECT_EQ(sent[6], 250) << "TLM_ARSC";
   p.heartbeat_ms = 50;
   int hb = 0;
   for (int k = 0; k < 49; ++k) hb += s.advance(p, 1) & 1u;
@@ -36,7 +37,7 @@ TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount
 
 TEST(CanNodeTelemetry, FrameCountsOverTwoSecondsMatchThePeriods) {
   fw::can::NodeSettings s = quiet_settings();
-  s.telemetry = {100, 10, 20, 50, 7, 0};
+  s.telemetry = {100, 10, 20, 50, 7, 0, 0};
   NodeBench b(s);
   b.port.drain();
   constexpr int kTicks = 2000;
@@ -158,7 +159,7 @@ TEST(CanNodeTelemetry, FaultEventIsSentOnceAndAgainOnlyAfterAClearAndANewFault) 
 // then the heartbeats, telemetry last.
 TEST(CanNodeTelemetry, RepliesAndHeartbeatsLeaveBeforeTelemetryAndAFullQueueDropsTelemetryFirst) {
   fw::can::NodeSettings s = quiet_settings();
-  s.telemetry = {1, 1, 1, 0, 0, 0};
+  s.telemetry = {1, 1, 1, 0, 0, 0, 0};
   NodeBench b(s);
   b.port.tx_capacity = 1;
   b.step(40);  // 40 heartbeats and 80 telemetry frames offered; 48 places in the queue

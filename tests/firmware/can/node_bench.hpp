@@ -19,7 +19,7 @@ inline fw::can::NodeSettings quiet_settings() {
   static const fw::can::NodeSettings defaults = fw::can::default_node_settings();  // runs the PID tuning rule: once
   fw::can::NodeSettings s = defaults;
   s.firmware.axis[0].home_position_mm = 6.0;
-  s.telemetry = {0, 0, 0, 0, 0, 0};
+  s.telemetry = {0, 0, 0, 0, 0, 0, 0};
   return s;
 }
 

@@ -3,6 +3,8 @@
 // the commanded positions x_ref,k: per-axis acceleration as the second and
 // jerk as the third backward difference over the 1 ms tick, each divided by
 // its axis limit.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -1,0 +1,57 @@
+#pragma once
+// The programs `tnv-hil arsc tick` cuts: planner segments pushed through
+// fw::TickTask::push_segment as a host (G-code, a CAN stream) would. The
+// emulated milling force acts on the X feed only (emulator/milling_force.hpp,
+// K delta max(v_x, 0)), so a path whose direction has an X share c sees a
+// cutting gain of K delta c per mm/s of path feed: the arc changes that
+// gain under the force loop, which knows nothing about the path.
+//   line: along +X, in 10 mm segments;
+//   arc:  the same line, a tangent counter-clockwise arc of 20 mm radius
+//         turning 45 deg, then a straight line at 45 deg (c = 0.707).
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "firmware/motion/segment.hpp"
+#include "firmware/tick/tick_task.hpp"
+
+namespace tnv::hil {
+
+enum class StudyPath : std::uint8_t { line = 0, arc = 1 };
+
+constexpr const char* to_string(StudyPath p) noexcept { return p == StudyPath::arc ? "arc" : "line"; }
+std::optional<StudyPath> parse_study_path(std::string_view name) noexcept;
+
+struct StudyProgram {
+  std::vector<fw::motion::Segment> segments;
+  fw::motion::PlanePoint start_mm{};
+  double length_mm = 0.0;
+};
+
+// Starts at start_mm; the last point is at X = end_x_mm. The arc starts
+// arc_at_x_mm along X (line path: ignored).
+StudyProgram study_program(StudyPath path, const fw::motion::PlanePoint& start_mm, double end_x_mm,
+                           double arc_at_x_mm, double feed_mm_s, double segment_mm);
+
+// Keeps the task's queue fed from `program` (call before every tick) and
+// closes the program once everything is pushed.
+class ProgramFeeder {
+ public:
+  explicit ProgramFeeder(const StudyProgram& program) : program_(program) {}
+  // Pushes while the queue has room; false if a segment was refused (why set).
+  bool feed(fw::TickTask& task) noexcept;
+  bool all_pushed() const noexcept { return next_ == program_.segments.size(); }
+  std::uint32_t refused() const noexcept { return refused_; }
+  fw::motion::SegmentRefusal last_refusal() const noexcept { return why_; }
+
+ private:
+  const StudyProgram& program_;
+  std::size_t next_ = 0;
+  bool closed_ = false;
+  std::uint32_t refused_ = 0;
+  fw::motion::SegmentRefusal why_ = fw::motion::SegmentRefusal::none;
+};
+
+}  // namespace tnv::hil
