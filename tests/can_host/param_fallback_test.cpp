@@ -39,20 +39,25 @@ void damage(const std::string& path, std::streamoff at) {
   f.put(static_cast<char>(c ^ 0x10));
 }
 
-TEST(ParamFallback, ADamagedCurrentImageStartsTheNodeWithThePreviousSetAndReportsIt) {
-  std::string file = "tnv_fallback_";
+// A fresh storage file in the temp directory with two saves on it: gamma
+// 0.25 (generation 1, then in .prev) and 0.5 (generation 2, current).
+std::string two_saves(const char* prefix) {
+  std::string file = prefix;
   file.append(std::to_string(::getpid())).append(".params");
   const std::string storage = (std::filesystem::temp_directory_path() / file).string();
   std::filesystem::remove(storage);
   std::filesystem::remove(storage + ".prev");
-  {
-    auto bus = make_fallback_bus(storage);
-    NodeClient client(*bus, 1);
-    client.set(x_gamma_param(), 0.25);
-    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
-    client.set(x_gamma_param(), 0.5);
-    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
-  }
+  auto bus = make_fallback_bus(storage);
+  NodeClient client(*bus, 1);
+  client.set(x_gamma_param(), 0.25);
+  EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
+  client.set(x_gamma_param(), 0.5);
+  EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
+  return storage;
+}
+
+TEST(ParamFallback, ADamagedCurrentImageStartsTheNodeWithThePreviousSetAndReportsIt) {
+  const std::string storage = two_saves("tnv_fallback_");
   damage(storage, 30);
   auto bus = make_fallback_bus(storage);
   EXPECT_NE(bus->startup_note().find("previous saved set"), std::string::npos) << bus->startup_note();
@@ -79,19 +84,7 @@ TEST(ParamFallback, ADamagedCurrentImageStartsTheNodeWithThePreviousSetAndReport
 // Swapped generations: the current file is the older save. The node starts
 // with the newer set and reports the rollback instead of loading it silently.
 TEST(ParamFallback, SwappedGenerationsStartTheNodeWithTheNewerSetAndReportIt) {
-  std::string file = "tnv_rollback_";
-  file.append(std::to_string(::getpid())).append(".params");
-  const std::string storage = (std::filesystem::temp_directory_path() / file).string();
-  std::filesystem::remove(storage);
-  std::filesystem::remove(storage + ".prev");
-  {
-    auto bus = make_fallback_bus(storage);
-    NodeClient client(*bus, 1);
-    client.set(x_gamma_param(), 0.25);
-    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
-    client.set(x_gamma_param(), 0.5);
-    EXPECT_EQ(client.command(can::CommandCode::save_params).result, can::ErrorCode::ok);
-  }
+  const std::string storage = two_saves("tnv_rollback_");
   // current = generation 2 (0.5), .prev = generation 1 (0.25): swap them.
   const std::string aside = storage + ".swap";
   std::filesystem::rename(storage, aside);

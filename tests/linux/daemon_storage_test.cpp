@@ -7,14 +7,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <thread>
 
-#include "drivers/linux/register_server.hpp"
-#include "drivers/linux/unix_seqpacket.hpp"
-#include "emulator/machine.hpp"
-#include "emulator/scenario_file.hpp"
+#include "tests/linux/board_server.hpp"
 #include "tests/linux/rig_support.hpp"
-#include "tools/tnv-board-emu/ticking_bus.hpp"
 #include "tools/tnv-fw/daemon.hpp"
 
 namespace tnv {
@@ -23,17 +18,9 @@ namespace {
 TEST(DaemonStorage, SaveAndLoadWhileHoldingAreAnsweredByTheWorker) {
   test::ScratchDir dir;
   const fwd::DaemonConfig config = test::rig_config(dir);
-  emu::Machine machine(*emu::resolve_scenario("no-cut").scenario);
-  board_emu::TickingBus ticking(machine);
+  test::BoardServer board(config.board.path);
+  ASSERT_TRUE(board.listening()) << board.error();
   std::string error;
-  const int listen_fd = drivers::listen_seqpacket(config.board.path, error);
-  ASSERT_GE(listen_fd, 0) << error;
-  std::thread server([&] {
-    const int fd = drivers::accept_seqpacket(listen_fd);
-    drivers::ServeStats stats;
-    drivers::serve_register_connection(fd, ticking, -1, stats);
-    ::close(fd);
-  });
   std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, {}, error);
   ASSERT_TRUE(daemon) << error;
   ASSERT_EQ(daemon->start(), "");
@@ -62,9 +49,6 @@ TEST(DaemonStorage, SaveAndLoadWhileHoldingAreAnsweredByTheWorker) {
   std::printf("daemon: %llu cycles, %llu overruns, %llu skipped ticks (50 restore_defaults, 11 saves, 1 load)\n",
               static_cast<unsigned long long>(c.cycles), static_cast<unsigned long long>(c.overruns),
               static_cast<unsigned long long>(c.skipped_ticks));
-  daemon.reset();
-  server.join();
-  ::close(listen_fd);
 }
 
 }  // namespace

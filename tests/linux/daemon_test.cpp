@@ -6,14 +6,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <thread>
 
-#include "drivers/linux/register_server.hpp"
-#include "drivers/linux/unix_seqpacket.hpp"
-#include "emulator/machine.hpp"
-#include "emulator/scenario_file.hpp"
+#include "tests/linux/board_server.hpp"
 #include "tests/linux/rig_support.hpp"
-#include "tools/tnv-board-emu/ticking_bus.hpp"
 #include "tools/tnv-fw/daemon.hpp"
 
 namespace tnv {
@@ -23,18 +18,9 @@ TEST(Daemon, ServesParametersAndHeartbeatsThenStopsWithOutputsSafe) {
   test::ScratchDir dir;
   const fwd::DaemonConfig config = test::rig_config(dir);
 
-  emu::Machine machine(*emu::resolve_scenario("no-cut").scenario);
-  board_emu::TickingBus ticking(machine);
+  test::BoardServer board(config.board.path);
+  ASSERT_TRUE(board.listening()) << board.error();
   std::string error;
-  const int listen_fd = drivers::listen_seqpacket(config.board.path, error);
-  ASSERT_GE(listen_fd, 0) << error;
-  drivers::ServeEnd end = drivers::ServeEnd::link_error;
-  std::thread server([&] {
-    const int fd = drivers::accept_seqpacket(listen_fd);
-    drivers::ServeStats stats;
-    end = drivers::serve_register_connection(fd, ticking, -1, stats);
-    ::close(fd);
-  });
 
   std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, {}, error);
   ASSERT_TRUE(daemon) << error;
@@ -62,11 +48,10 @@ TEST(Daemon, ServesParametersAndHeartbeatsThenStopsWithOutputsSafe) {
   const std::string summary = daemon->summary();
   EXPECT_NE(summary.find("wake-up latency: min"), std::string::npos) << summary;
   daemon.reset();  // closes the register link: the server sees the peer leave
-  server.join();
-  ::close(listen_fd);
-  EXPECT_EQ(end, drivers::ServeEnd::peer_closed);
+  EXPECT_EQ(board.join(), drivers::ServeEnd::peer_closed);
+  emu::Machine& machine = board.machine();
   EXPECT_TRUE(machine.board_outputs().safe(machine.dac_mid_code()));
-  EXPECT_GT(ticking.ticks_served(), 2000u) << "dwell + circle at 1 tick per ms";
+  EXPECT_GT(board.ticking().ticks_served(), 2000u) << "dwell + circle at 1 tick per ms";
   EXPECT_NEAR(machine.truth(hal::Axis::x).position_mm, 6.0, 0.05) << "back at the circle's start";
   EXPECT_NEAR(machine.truth(hal::Axis::y).position_mm, 0.0, 0.05);
 }
@@ -80,17 +65,9 @@ TEST(Daemon, CommissioningNeedsTheLocalPermission) {
     test::ScratchDir dir;
     fwd::DaemonConfig config = test::rig_config(dir);
     config.safety.allow_commissioning = allowed;
-    emu::Machine machine(*emu::resolve_scenario("no-cut").scenario);
-    board_emu::TickingBus ticking(machine);
+    test::BoardServer board(config.board.path);
+    ASSERT_TRUE(board.listening()) << board.error();
     std::string error;
-    const int listen_fd = drivers::listen_seqpacket(config.board.path, error);
-    ASSERT_GE(listen_fd, 0) << error;
-    std::thread server([&] {
-      const int fd = drivers::accept_seqpacket(listen_fd);
-      drivers::ServeStats stats;
-      drivers::serve_register_connection(fd, ticking, -1, stats);
-      ::close(fd);
-    });
     std::unique_ptr<fwd::Daemon> daemon = fwd::Daemon::open(config, {}, error);
     ASSERT_TRUE(daemon) << error;
     ASSERT_EQ(daemon->start(), "");
@@ -115,9 +92,6 @@ TEST(Daemon, CommissioningNeedsTheLocalPermission) {
       EXPECT_NEAR(host.client.get(floor), allowed ? 0.08 : 0.05, 1e-6);
     }
     EXPECT_TRUE(daemon->stop().safe);
-    daemon.reset();
-    server.join();
-    ::close(listen_fd);
   }
 }
 
