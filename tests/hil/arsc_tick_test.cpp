@@ -63,9 +63,12 @@ TEST(ArscTick, FastOuterLoopHoldsTheForceAndConstantFeedDoesNot) {
 }
 
 // "Any path": a line, a tangent arc turning 45 deg, a line at 45 deg. The
-// emulated force acts on the X feed only, so the cutting gain per mm/s of
-// path feed falls to 0.71 of the line's through the arc; the loop, which
-// knows nothing of the path, re-estimates it and raises the feed override.
+// emulated milling force follows the table's actual speed, but along X only
+// (K delta max(v_x, 0), emulator/milling_force.hpp), so through the arc the
+// cutting gain per mm/s of path feed falls to cos 45 deg = 0.71 of the
+// line's. The loop, which knows nothing of the path, re-estimates it and
+// raises the feed override by 1/cos 45 deg: back at 0.2 mm on the 45 deg
+// line it runs at 1.20, where the line path needs 0.85.
 TEST(ArscTick, TheForceLoopHoldsOnAPathThatTurns) {
   const TickStudyResult arc = run_tick_study(loop_at(1, 4.0, StudyPath::arc));
   expect_healthy(arc, "1 ms, 4x poles, arc");

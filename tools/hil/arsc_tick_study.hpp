@@ -58,10 +58,10 @@ struct TickStudyConfig {
   // travel), where it ends along X, and where the arc path turns.
   fw::motion::PlanePoint start_mm{-240.0, -240.0};
   double end_x_mm = 245.0;
-  double arc_at_x_mm = -165.0;          // about 3.5 s into the cut at 150 N: inside the scored part
+  double arc_at_x_mm = -165.0;          // reached 4.0 to 5.1 s into the cut at 150 N: inside the scored part
   // The planner's per-axis limits. Acceleration 2000 mm/s^2 as the jog of the earlier study (the
-  // firmware's contouring default of 500 mm/s^2 leaves the path 250 mm/s^2, which the 1 ms loop with
-  // 4x poles saturates: 9.9 % peak error; the drive could accelerate at about 31,000 mm/s^2), jerk
+  // drive could accelerate at about 31,000 mm/s^2; on the emulated node the firmware's default
+  // 500 mm/s^2 gave the same 0.22 % peak, docs/reproduction-s3.md), jerk
   // 200,000 mm/s^3 so that the jerk filter keeps its default 20 ticks (taps = 2 a / (j dt)).
   fw::PathLimits path_limits{.speed_mm_s = 100.0, .accel_mm_s2 = 2000.0, .jerk_mm_s3 = 200000.0};
   emu::MillingParams milling{.enabled = true, .depth = {0.2, 1.0, 5.0, 5.0}};

@@ -1,11 +1,11 @@
 #pragma once
 // The process an outer force loop sees on the machine (issue 8 item 5):
-// it sets the feed of the axis controller (a jog stream), the axis makes
+// it sets the feed (the program's feed override, planned), the axis makes
 // the table follow, the cut turns feed into force. In continuous time,
 //   T_f df/dt  = -f + G v            S3 eq. (28) in time, G = K delta (cutting gain)
 //   tau_v dv/dt = -v + u(t - theta)  the axis under its own controller, S3 eq. (27)'s role
 // with the command u taking effect theta after the sample (one tick: the
-// command reaches the jog stream at the next tick). The feed does not see
+// command reaches the motion core at the next tick). The feed does not see
 // the force: the axis controller rejects the cutting load, so (27)'s -f
 // term is the axis controller's job, not the force loop's.
 //
@@ -24,7 +24,7 @@ namespace tnv::fw::arsc {
 
 struct FeedForceModel {
   double force_time_constant_s = 0.2;    // T_f
-  double drive_time_constant_s = 0.002;  // tau_v: axis + jog stream as one lag
+  double drive_time_constant_s = 0.002;  // tau_v: planner + axis as one lag
   double command_delay_s = 0.001;        // theta: sample to first effect of a new command
   double cutting_gain = 0.2;             // g = G v_scale / f_scale (normalised), > 0
 };

@@ -124,7 +124,7 @@ double OuterArsc::step(double force_n, double feed_mm_s, double mean_feed_mm_s) 
   OuterArscSignals& s = signals_;
   if (!(std::isfinite(force_n) && std::isfinite(feed_mm_s) && std::isfinite(mean_feed_mm_s))) {
     s.estimator_updated = false;
-    return s.command_mm_s;  // hold: the jog stream's dead man stops the axis if this persists
+    return s.command_mm_s;  // hold the last command: a bad reading moves nothing
   }
   const double f = force_n / config_.force_scale_n;
   const double v = feed_mm_s / config_.feed_scale_mm_s;

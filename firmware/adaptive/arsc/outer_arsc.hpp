@@ -1,9 +1,10 @@
 #pragma once
 // The robust ARSC as an outer loop over the axis controller, designed for
 // the rate it runs at (issue 8 item 5): every period it reads the force
-// and the feed and returns the feed the axis should run at (a jog-stream
-// target for the firmware's R-DVSC+DDC position/speed loop), instead of
-// writing the DAC. What it keeps of the robust variant: the servo
+// and the feed and returns the feed the axis should run at (on the board
+// the feed-override source, arsc_feed_source.hpp, turns it into the
+// program's feed override for the planner and the R-DVSC+DDC loops),
+// instead of writing the DAC. What it keeps of the robust variant: the servo
 // compensator (S3 eq. 7), the control law (11), only the cutting gain
 // adapted on line (S3 eq. 28, CuttingGainRls: scalar, forgetting,
 // projection, dead zone), the gains re-solved from the new estimate every
