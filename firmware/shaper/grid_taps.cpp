@@ -40,28 +40,42 @@ struct GridProblem {
   std::array<Real, kMaxConditions> d{};
 };
 
-// Minimum-norm correction of a0 on the active samples (two passes: the
-// second is iterative refinement). False if C C^T is singular.
+// C C^T over the active columns (the Gram matrix of the conditions on them).
+SmallMatrix<Real, kMaxConditions> gram_of(const GridProblem& p, const std::array<bool, kMaxUnknowns>& active) noexcept {
+  SmallMatrix<Real, kMaxConditions> gram{};
+  for (std::size_t r = 0; r < p.conditions; ++r)
+    for (std::size_t q = 0; q <= r; ++q) {
+      Real sum = 0.0;
+      for (std::size_t c = 0; c < p.n; ++c)
+        if (active[c]) sum += p.C[r][c] * p.C[q][c];
+      gram[r][q] = gram[q][r] = sum;
+    }
+  return gram;
+}
+
+// Minimum-norm correction of a0 on the active samples, given their C C^T
+// (two passes: the second is iterative refinement, which also absorbs the
+// rounding of a Gram matrix downdated column by column). False if C C^T is
+// singular.
 bool solve_active(const GridProblem& p, const std::array<bool, kMaxUnknowns>& active,
-                  std::array<Real, kMaxUnknowns>& a) noexcept {
-  for (std::size_t c = 0; c < p.n; ++c) a[c] = active[c] ? p.a0[c] : 0.0;
+                  const SmallMatrix<Real, kMaxConditions>& gram, std::array<Real, kMaxUnknowns>& a) noexcept {
+  std::array<std::size_t, kMaxUnknowns> cols{};
+  std::size_t n_active = 0;
+  for (std::size_t c = 0; c < p.n; ++c) {
+    a[c] = active[c] ? p.a0[c] : 0.0;
+    if (active[c]) cols[n_active++] = c;
+  }
   for (int pass = 0; pass < 2; ++pass) {
     std::array<Real, kMaxConditions> y{};
     for (std::size_t r = 0; r < p.conditions; ++r) {
       Real acc = p.d[r];
-      for (std::size_t c = 0; c < p.n; ++c)
-        if (active[c]) acc -= p.C[r][c] * a[c];
+      for (std::size_t i = 0; i < n_active; ++i) acc -= p.C[r][cols[i]] * a[cols[i]];
       y[r] = acc;
     }
-    SmallMatrix<Real, kMaxConditions> CCt{};
-    for (std::size_t r = 0; r < p.conditions; ++r)
-      for (std::size_t q = 0; q < p.conditions; ++q)
-        for (std::size_t c = 0; c < p.n; ++c)
-          if (active[c]) CCt[r][q] += p.C[r][c] * p.C[q][c];
+    SmallMatrix<Real, kMaxConditions> CCt = gram;  // solve_in_place overwrites its matrix
     if (!solve_in_place(CCt, y, p.conditions)) return false;
-    for (std::size_t c = 0; c < p.n; ++c)
-      if (active[c])
-        for (std::size_t r = 0; r < p.conditions; ++r) a[c] += p.C[r][c] * y[r];
+    for (std::size_t i = 0; i < n_active; ++i)
+      for (std::size_t r = 0; r < p.conditions; ++r) a[cols[i]] += p.C[r][cols[i]] * y[r];
   }
   return true;
 }
@@ -70,13 +84,17 @@ enum class Sign { any, non_negative };
 
 // Solves, and for Sign::non_negative drops the most negative tap and
 // re-solves until none is left negative. False when that runs out of
-// samples (or the system is singular).
+// samples (or the system is singular). A dropped sample's column leaves
+// C C^T by one rank-one downdate instead of a new sum over every column:
+// this keeps a SHAPER command's design well inside the real-time budget
+// (docs/safety.md).
 bool solve(const GridProblem& p, Sign sign, std::array<Real, kMaxUnknowns>& a) noexcept {
   std::array<bool, kMaxUnknowns> active{};
   std::size_t n_active = p.n;
   for (std::size_t c = 0; c < p.n; ++c) active[c] = true;
+  SmallMatrix<Real, kMaxConditions> gram = gram_of(p, active);
   while (n_active >= p.conditions) {
-    if (!solve_active(p, active, a)) return false;
+    if (!solve_active(p, active, gram, a)) return false;
     if (sign == Sign::any) return true;
     std::size_t worst = p.n;
     Real worst_a = -1e-15;  // rounding-level negatives are zeros
@@ -85,6 +103,8 @@ bool solve(const GridProblem& p, Sign sign, std::array<Real, kMaxUnknowns>& a) n
     if (worst == p.n) return true;
     active[worst] = false;
     --n_active;
+    for (std::size_t r = 0; r < p.conditions; ++r)
+      for (std::size_t q = 0; q <= r; ++q) gram[r][q] = gram[q][r] = gram[r][q] - p.C[r][worst] * p.C[q][worst];
   }
   return false;
 }

@@ -16,7 +16,7 @@ namespace tnv::fw {
 std::uint64_t work_blocks() noexcept;
 
 // False when the firmware was built without the instrumentation (the
-// libFuzzer build, which owns the coverage callbacks).
+// libFuzzer build, which owns the coverage callbacks; TNV_WORK_METER=OFF).
 bool work_meter_enabled() noexcept;
 
 }  // namespace tnv::fw
