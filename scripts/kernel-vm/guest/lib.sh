@@ -359,6 +359,9 @@ case_bus_flood() {
     # shellcheck disable=SC2086
     nice -n 19 cangen vcan0 -g 0 $g > /dev/null 2>&1 & FLOOD_PIDS+=($!)
   done
+  # The e-stop goes out only once the flood is on the bus: a guest the host
+  # starves for a moment (TCG on a busy machine) starts its flooders late.
+  wait_for 10 frames_since "$frames_before" 1000 || { stop_flood; fail "the flooders put under 1000 frames on vcan0 in 10 s"; return 1; }
   nap 0.5
   candump -L -n 1 -T 5000 "vcan0,$(fault_id):7FF" > "$RUN/fault.log" &
   local dump=$!
@@ -390,6 +393,7 @@ case_bus_flood() {
   ctl clear-faults && ctl enable || { fail "could not clear the e-stop after the flood"; return 1; }
 }
 can_frames() { awk '/received frames/{print $1; exit}' /proc/net/can/stats; }
+frames_since() { (( $(can_frames) - $1 >= $2 )); }
 stop_flood() {
   local p
   for p in "${FLOOD_PIDS[@]}"; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done
