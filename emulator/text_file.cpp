@@ -31,7 +31,7 @@ bool read_text_file(const std::string& path, std::size_t max_bytes, std::string&
   }
   if (st.st_size < 0 || static_cast<std::size_t>(st.st_size) > max_bytes) {
     error = path + ": cannot read file: " + std::to_string(st.st_size) + " bytes, more than the " +
-            std::to_string(max_bytes) + " a scenario may have";
+            std::to_string(max_bytes) + " allowed";
     ::close(fd);
     return false;
   }

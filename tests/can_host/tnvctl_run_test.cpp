@@ -5,6 +5,7 @@
 // path and exits 1; the help reads like a manual page.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -120,6 +121,12 @@ TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
   r = test::tnvctl(state, "--iface tnv_none0 run " + (state / "missing.ngc").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("cannot read"), std::string::npos) << r.err;
+  // A FIFO is refused at once, not read until a writer comes.
+  const std::string fifo = (state / "fifo.ngc").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  r = test::tnvctl(state, "--iface tnv_none0 run " + fifo);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
   std::filesystem::remove_all(state);
 }
 

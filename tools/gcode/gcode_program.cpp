@@ -1,10 +1,11 @@
 #include "tools/gcode/gcode_program.hpp"
 
+#include "emulator/text_file.hpp"
+
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 namespace tnv::gcode {
@@ -284,16 +285,19 @@ GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options) {
   return result;
 }
 
+bool read_program_file(const std::string& path, std::string& text, std::string& error) {
+  return emu::read_text_file(path, kMaxProgramBytes, text, error);
+}
+
 GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  std::string error;
+  if (!read_program_file(path, text, error)) {
     GcodeResult r;
-    r.error = GcodeError{0, 0, "cannot read " + path};
+    r.error = GcodeError{0, 0, error};
     return r;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_gcode(text.str(), options);
+  return parse_gcode(text, options);
 }
 
 std::string to_string(const GcodeError& error) {

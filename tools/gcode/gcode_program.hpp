@@ -46,6 +46,11 @@ struct GcodeResult {
 };
 
 GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options = {});
+// A program file: a regular file of at most kMaxProgramBytes (a FIFO,
+// device or directory is refused, never waited on). False with `error`
+// set ("<path>: <why>").
+inline constexpr std::size_t kMaxProgramBytes = 16u << 20;
+bool read_program_file(const std::string& path, std::string& text, std::string& error);
 GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options = {});
 
 std::string to_string(const GcodeError& error);

@@ -7,7 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "emulator/text_file.hpp"
+#include "tools/gcode/gcode_program.hpp"
 #include "tools/hil/best_circle.hpp"
 #include "tools/hil/path_plot.hpp"
 #include "tools/hil/path_run.hpp"
@@ -19,7 +19,6 @@ namespace tnv::cli {
 
 namespace {
 
-constexpr std::size_t kMaxProgramBytes = 16u << 20;  // a program bigger than this is not a test piece
 
 struct PathOptions {
   std::string file;
@@ -58,7 +57,7 @@ int run_path_command(const PathOptions& o) {
   if (!kind || !scenario) return kExitBadInput;
   std::string text;
   std::string error;
-  if (!emu::read_text_file(o.file, kMaxProgramBytes, text, error)) {
+  if (!gcode::read_program_file(o.file, text, error)) {
     std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
     return kExitBadInput;
   }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "emulator/text_file.hpp"
 #include "firmware/shaper/grid_taps.hpp"
 #include "firmware/shaper/residual_vibration.hpp"
 #include "tools/hil/shaper_design_report.hpp"
@@ -20,6 +21,8 @@
 namespace tnv::cli {
 
 namespace {
+
+constexpr std::size_t kMaxCommandsBytes = 16u << 20;  // a jog command file of hours, far beyond a test
 
 constexpr const char* kTypes = "zv | zvd | zvdd | ei | mzv";
 
@@ -212,15 +215,13 @@ struct JogOptions {
 int run_jog_command(const JogOptions& o) {
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!scenario) return kExitBadInput;
-  std::ifstream in(o.commands);
-  if (!in) {
-    std::fprintf(stderr, "tnv-hil: %s: cannot read\n", o.commands.c_str());
+  std::string text;
+  std::string error;
+  if (!emu::read_text_file(o.commands, kMaxCommandsBytes, text, error)) {
+    std::fprintf(stderr, "tnv-hil: %s\n", error.c_str());
     return kExitBadInput;
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string error;
-  const auto commands = hil::parse_jog_csv(text.str(), error);
+  const auto commands = hil::parse_jog_csv(text, error);
   if (!commands) {
     std::fprintf(stderr, "tnv-hil: %s: %s\n", o.commands.c_str(), error.c_str());
     return kExitBadInput;

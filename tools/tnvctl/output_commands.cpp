@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "emulator/text_file.hpp"
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_plot.hpp"
 #include "tools/can/capture_score.hpp"
@@ -16,6 +17,8 @@
 namespace tnv::tnvctl {
 
 namespace {
+
+constexpr std::size_t kMaxCaptureCsvBytes = 256u << 20;  // far beyond a full capture buffer as CSV
 
 int run_dump_dbc(Session& session, Report& report) {
   const std::string dbc = protogen::write_dbc(static_cast<std::uint8_t>(session.options().node));
@@ -39,15 +42,10 @@ int run_plot(const PlotOptions& o, Session&, Report& report) {
   check_plot(o);
   std::vector<can_host::CaptureTable> tables;
   for (const std::string& path : o.csv) {
-    std::ifstream in(path);
-    if (!in) {
-      std::string message = path;
-      throw BadInput(message.append(": cannot read"));
-    }
-    std::stringstream text;
-    text << in.rdbuf();
+    std::string text;
     std::string error;
-    std::optional<can_host::CaptureTable> t = can_host::read_capture_csv(text.str(), error);
+    if (!emu::read_text_file(path, kMaxCaptureCsvBytes, text, error)) throw BadInput(error);
+    std::optional<can_host::CaptureTable> t = can_host::read_capture_csv(text, error);
     if (!t) {
       std::string message = path;
       throw BadInput(message.append(": ").append(error));

@@ -33,11 +33,10 @@ struct RunOptions {
 };
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BadInput("cannot read " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::string text;
+  std::string error;
+  if (!gcode::read_program_file(path, text, error)) throw BadInput(error);
+  return text;
 }
 
 // Before anything is sent: the options, and the program's syntax. The limits

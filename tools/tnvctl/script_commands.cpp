@@ -6,11 +6,14 @@
 #include <memory>
 #include <sstream>
 
+#include "emulator/text_file.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
 
 namespace {
+
+constexpr std::size_t kMaxScriptBytes = 1u << 20;  // a bench script, not a data file
 
 struct ScriptLine {
   int number = 0;
@@ -24,13 +27,10 @@ std::string read_script(const std::string& path) {
     text << std::cin.rdbuf();
     return text.str();
   }
-  std::ifstream in(path);
-  if (!in) {
-    std::string message = path;
-    throw BadInput(message.append(": cannot read"));
-  }
-  text << in.rdbuf();
-  return text.str();
+  std::string file;
+  std::string error;
+  if (!emu::read_text_file(path, kMaxScriptBytes, file, error)) throw BadInput(error);
+  return file;
 }
 
 int run_script(const std::string& path, Session& session, Report& report) {

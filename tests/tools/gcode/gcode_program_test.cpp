@@ -2,8 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+#include <string>
 
 #include "tests/tools/gcode/test_piece_path.hpp"
 
@@ -117,6 +122,24 @@ TEST(GcodeProgram, TheRepositoryTestPiecesParse) {
     EXPECT_TRUE(r.program.ended) << name;
     EXPECT_GT(r.program.segments.size(), 3u) << name;
   }
+}
+
+// A FIFO is refused at once (never waited on), and so is a directory.
+TEST(GcodeProgram, AProgramFileMustBeARegularFile) {
+  const std::string dir = (std::filesystem::temp_directory_path() / ("tnv_gcode_" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(dir);
+  const std::string fifo = dir + "/program.ngc";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string text;
+  std::string error;
+  EXPECT_FALSE(read_program_file(fifo, text, error));
+  EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+  EXPECT_FALSE(read_program_file(dir, text, error));
+  EXPECT_NE(error.find("is a directory"), std::string::npos) << error;
+  const GcodeResult r = parse_gcode_file(fifo);
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_TRUE(r.program.segments.empty());
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
