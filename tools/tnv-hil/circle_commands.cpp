@@ -19,13 +19,6 @@ namespace tnv::cli {
 
 namespace {
 
-std::optional<fw::ControllerKind> parse_controller(const std::string& name) {
-  if (name == "pid") return fw::ControllerKind::pid;
-  if (name == "dvsc") return fw::ControllerKind::dvsc;
-  if (name == "rdvsc") return fw::ControllerKind::rdvsc;
-  return std::nullopt;
-}
-
 std::string trace_csv(const std::vector<hil::TraceSample>& trace) {
   std::string out = "t_s,x_ref_mm,y_ref_mm,x_mm,y_mm,contour_um,u_x_mm_s,u_y_mm_s,s_x,s_y,d_hat_x_mm_s,d_hat_y_mm_s\n";
   char buf[320];
@@ -49,7 +42,7 @@ struct CircleOptions {
 };
 
 int run_circle_command(const CircleOptions& o) {
-  const auto kind = parse_controller(o.controller);
+  const auto kind = controller_or_report(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!kind || !scenario) return kExitBadInput;
   fw::FirmwareConfig config = fw::default_firmware_config();

@@ -38,6 +38,13 @@ std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_
   return std::nullopt;
 }
 
+std::optional<fw::ControllerKind> controller_or_report(const std::string& name) {
+  for (const fw::ControllerKind kind : {fw::ControllerKind::pid, fw::ControllerKind::dvsc, fw::ControllerKind::rdvsc})
+    if (name == fw::to_string(kind)) return kind;
+  std::fprintf(stderr, "tnv-hil: controller '%s': not pid, dvsc or rdvsc\n", name.c_str());
+  return std::nullopt;
+}
+
 std::optional<std::vector<emu::Scenario>> resolve_table3_scenarios_or_report() {
   std::vector<emu::Scenario> scenarios;
   for (const char* name : {"no-cut", "cut-900", "cut-1200", "cut-1500"}) {

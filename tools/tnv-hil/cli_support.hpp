@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "emulator/scenario.hpp"
+#include "firmware/control/axis_controller.hpp"
 #include "tools/hil/circle_plot.hpp"
 
 namespace tnv::cli {
@@ -35,6 +36,10 @@ class Progress {
 // A built-in scenario name or a TOML file; prints a one-line error and
 // returns nullopt when neither works.
 std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file);
+
+// "pid", "dvsc" or "rdvsc" (fw::to_string's names); prints a one-line error
+// and returns nullopt for anything else.
+std::optional<fw::ControllerKind> controller_or_report(const std::string& name);
 
 // The four scenarios of S1 Table 3 (no-cut, cut-900, cut-1200, cut-1500);
 // nullopt, after the error is printed, when one cannot be built.

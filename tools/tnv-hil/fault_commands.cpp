@@ -52,9 +52,9 @@ int run_faults_command(const FaultsOptions& o) {
     }
   }
   const std::uint32_t mid_code = std::uint32_t{1} << (scenario->dac.bits - 1);
-  const fw::ControllerKind controller = o.controller == "pid"    ? fw::ControllerKind::pid
-                                        : o.controller == "dvsc" ? fw::ControllerKind::dvsc
-                                                                 : fw::ControllerKind::rdvsc;
+  const std::optional<fw::ControllerKind> kind = controller_or_report(o.controller);
+  if (!kind) return kExitBadInput;
+  const fw::ControllerKind controller = *kind;
   nlohmann::json rows = nlohmann::json::array();
   std::string text =
       "fault              motion  expected             latched              axis  ticks  time to safe ms  deviation um  "

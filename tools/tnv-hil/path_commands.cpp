@@ -32,13 +32,6 @@ struct PathOptions {
   std::string csv;
 };
 
-std::optional<fw::ControllerKind> controller_of(const std::string& name) {
-  if (name == "pid") return fw::ControllerKind::pid;
-  if (name == "dvsc") return fw::ControllerKind::dvsc;
-  if (name == "rdvsc") return fw::ControllerKind::rdvsc;
-  return std::nullopt;
-}
-
 // An output path that cannot be written is refused before a long run.
 bool output_writable(const std::string& path) {
   const std::filesystem::path p(path);
@@ -52,7 +45,7 @@ bool output_writable(const std::string& path) {
 }
 
 int run_path_command(const PathOptions& o) {
-  const auto kind = controller_of(o.controller);
+  const auto kind = controller_or_report(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!kind || !scenario) return kExitBadInput;
   std::string text;

@@ -53,9 +53,9 @@ int run_soak_command(const SoakOptions& o) {
   if (!scenario) return kExitBadInput;
   hil::SoakRequest request;
   request.scenario = *scenario;
-  request.controller = o.controller == "pid" ? fw::ControllerKind::pid
-                       : o.controller == "dvsc" ? fw::ControllerKind::dvsc
-                                                : fw::ControllerKind::rdvsc;
+  const std::optional<fw::ControllerKind> controller = controller_or_report(o.controller);
+  if (!controller) return kExitBadInput;
+  request.controller = *controller;
   request.duration_s = o.hours * 3600.0;
   // Progress in simulated seconds, every 10%.
   int next_tenth = 1;
