@@ -56,18 +56,4 @@ StudyProgram study_program(StudyPath path, const fw::motion::PlanePoint& start_m
   return p;
 }
 
-bool ProgramFeeder::feed(fw::TickTask& task) noexcept {
-  while (next_ < program_.segments.size() && task.motion().free_slots() > 0) {
-    fw::motion::SegmentRefusal why = fw::motion::SegmentRefusal::none;
-    if (task.push_segment(program_.segments[next_], why) != fw::CommandStatus::ok) {
-      ++refused_;
-      why_ = why;
-      return false;
-    }
-    ++next_;
-  }
-  if (all_pushed() && !closed_) closed_ = task.end_program() == fw::CommandStatus::ok;
-  return true;
-}
-
 }  // namespace tnv::hil

@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "firmware/motion/segment.hpp"
-#include "firmware/tick/tick_task.hpp"
 
 namespace tnv::hil {
 
@@ -34,24 +33,5 @@ struct StudyProgram {
 // arc_at_x_mm along X (line path: ignored).
 StudyProgram study_program(StudyPath path, const fw::motion::PlanePoint& start_mm, double end_x_mm,
                            double arc_at_x_mm, double feed_mm_s, double segment_mm);
-
-// Keeps the task's queue fed from `program` (call before every tick) and
-// closes the program once everything is pushed.
-class ProgramFeeder {
- public:
-  explicit ProgramFeeder(const StudyProgram& program) : program_(program) {}
-  // Pushes while the queue has room; false if a segment was refused (why set).
-  bool feed(fw::TickTask& task) noexcept;
-  bool all_pushed() const noexcept { return next_ == program_.segments.size(); }
-  std::uint32_t refused() const noexcept { return refused_; }
-  fw::motion::SegmentRefusal last_refusal() const noexcept { return why_; }
-
- private:
-  const StudyProgram& program_;
-  std::size_t next_ = 0;
-  bool closed_ = false;
-  std::uint32_t refused_ = 0;
-  fw::motion::SegmentRefusal why_ = fw::motion::SegmentRefusal::none;
-};
 
 }  // namespace tnv::hil

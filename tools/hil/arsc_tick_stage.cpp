@@ -10,6 +10,7 @@
 #include "tools/hil/arsc_test_stage.hpp"
 #include "tools/hil/arsc_tick_study.hpp"
 #include "tools/hil/hil_rig.hpp"
+#include "tools/hil/program_feeder.hpp"
 
 namespace tnv::hil {
 
@@ -25,7 +26,7 @@ TickTestStage run_tick_test_stage(const TickStudyConfig& c, std::string& error) 
   if (!rig) return fit;
   const StudyProgram program = study_program(StudyPath::line, c.start_mm, c.end_x_mm, c.arc_at_x_mm,
                                              c.program_feed_mm_s, c.segment_mm);
-  ProgramFeeder feeder(program);
+  ProgramFeeder feeder(program.segments);
   // Two-level feed mean +- step, switching with probability 1/2 every 0.3 s: slower
   // than the axis, comparable to the force's time constant.
   const auto ticks = static_cast<std::size_t>(c.test_stage_s / kTickPeriodS);

@@ -6,6 +6,7 @@
 #include "firmware/adaptive/arsc/outer_arsc.hpp"
 #include "firmware/io/force_code.hpp"
 #include "tools/hil/hil_rig.hpp"
+#include "tools/hil/program_feeder.hpp"
 
 namespace tnv::hil {
 
@@ -154,7 +155,7 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
   fw::TickTask& task = rig->task;
   const double feed_mm_s = c.outer_loop ? c.program_feed_mm_s : c.constant_feed_mm_s;
   const StudyProgram program = study_program(c.path, c.start_mm, c.end_x_mm, c.arc_at_x_mm, feed_mm_s, c.segment_mm);
-  ProgramFeeder feeder(program);
+  ProgramFeeder feeder(program.segments);
   const std::uint16_t dac_max = task.config().axis[0].dac.max_code();
   constexpr auto kMaxForceCode = static_cast<std::uint16_t>((1u << hal::regs::kAdcBits) - 1u);
   const double full_scale_n = fw::force_code_to_n(kMaxForceCode, firmware.force_sensor.n_per_volt);

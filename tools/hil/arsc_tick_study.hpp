@@ -27,6 +27,7 @@
 #include "firmware/adaptive/arsc/outer_gain_solve.hpp"
 #include "firmware/adaptive/arsc/pole_sets.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "firmware/tick/tick_record.hpp"
 #include "tools/hil/arsc_tick_path.hpp"
 
 namespace tnv::hil {

@@ -6,6 +6,7 @@
 
 #include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_rig.hpp"
+#include "tools/hil/program_feeder.hpp"
 #include "tools/hil/seeded_scenario.hpp"
 
 namespace tnv::hil {
@@ -49,34 +50,25 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   std::vector<PathSample> samples;
   samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
   samples.push_back(sample_of(task.last_record()));
-  std::size_t next = 0;
-  bool ended = false;
+  ProgramFeeder feeder(program.segments);
   // Generous: the programmed time three times over, plus ten seconds.
   const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000;
   for (std::int64_t k = 0; k < max_ticks; ++k) {
     // Stream as a host would: as many segments as there are free slots.
-    while (next < program.segments.size() && task.motion().free_slots() > 0) {
-      fw::motion::SegmentRefusal why = fw::motion::SegmentRefusal::none;
-      const fw::CommandStatus st = task.push_segment(program.segments[next], why);
-      if (st != fw::CommandStatus::ok) {
-        result.error = "segment of line " + std::to_string(program.segments[next].tag) + " refused: " +
-                       command_status_text(st, task) +
-                       (why != fw::motion::SegmentRefusal::none ? std::string(" (") + fw::motion::to_string(why) + ")"
-                                                                 : std::string());
-        return result;
-      }
-      ++next;
-      ++result.segments;
+    if (!feeder.feed(task)) {
+      const fw::motion::SegmentRefusal why = feeder.last_refusal();
+      result.error = "segment of line " + std::to_string(program.segments[feeder.next_index()].tag) + " refused: " +
+                     command_status_text(feeder.last_status(), task) +
+                     (why != fw::motion::SegmentRefusal::none ? std::string(" (") + fw::motion::to_string(why) + ")"
+                                                               : std::string());
+      return result;
     }
-    if (next == program.segments.size() && !ended && task.program_running()) {
-      (void)task.end_program();
-      ended = true;
-    }
+    result.segments = feeder.next_index();
     rig->tick();
     samples.push_back(sample_of(task.last_record()));
     if (options.keep_samples) result.path_speed_mm_s.push_back(task.motion().path_speed_mm_s());
     if (task.state() == fw::MotionState::faulted) break;
-    if (ended && task.state() == fw::MotionState::holding) break;
+    if (feeder.closed() && task.state() == fw::MotionState::holding) break;
   }
   result.counters = task.counters();
   const fw::motion::MotionStats stats = task.motion().stats();
@@ -87,7 +79,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   result.score = score_path(program, samples, task.motion().limits(), score_options);
   if (task.state() == fw::MotionState::faulted) {
     result.error = "fault: " + command_status_text(fw::CommandStatus::faulted, task);
-  } else if (!ended || task.state() != fw::MotionState::holding) {
+  } else if (!feeder.closed() || task.state() != fw::MotionState::holding) {
     result.error = "the program did not finish in three times its programmed time";
   } else {
     result.completed = true;
