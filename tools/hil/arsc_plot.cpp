@@ -221,7 +221,7 @@ SvgWriter arsc_tick_figure(const std::vector<TickStudyResult>& runs) {
   Series ref{"f* and +-10%", {0.0, t_end}, {ref_n, ref_n}, "#2ca02c", true};
   force.series.push_back(ref);
   if (!runs.empty()) {
-    Series truth{"K x depth x X share of the path (emulator)", {}, {}, "#222222", false};
+    Series truth{"true gain, constant-feed run", {}, {}, "#222222", false};
     for (const TickStudyPoint& p : runs.front().trace) {
       truth.t_s.push_back(p.t_s);
       truth.value.push_back(p.true_cutting_gain_n_per_mm_s);
