@@ -27,6 +27,8 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       defaults_(cached_default_node_settings()),
       node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
       storage_fault_(storage_fault) {
+  // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
+  (void)cached_default_shaper_designs();
   // The task at rest takes the whole firmware part (controller per axis
   // included); if it refuses, the settings say what the task really runs.
   if (task_.apply_config(settings_.firmware) != CommandStatus::ok) settings_.firmware = task_.config();
@@ -75,7 +77,7 @@ void CanNode::service() noexcept {
   }
   flush();
   check_commissioning();
-  collect_storage();
+  collect_worker();
   receive();
   check_fault();
   check_commissioning();
@@ -185,6 +187,13 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     return refuse(ErrorCode::no_host);
   }
   if (host != kAnonymousHost && host == owner_) silent_ticks_ = 0;  // a valid frame from the owner
+  dispatch(frame, id);
+}
+
+void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
+  request_ = frame;
+  request_id_ = id;
+  design_deferred_ = false;
   switch (id) {
     case MessageId::command: handle_command(frame); return;
     case MessageId::jog: handle_jog(frame); return;

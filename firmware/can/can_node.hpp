@@ -49,6 +49,7 @@
 #include "firmware/can/protocol_messages.hpp"
 #include "firmware/can/segment_wire.hpp"
 #include "firmware/can/staged_params.hpp"
+#include "firmware/can/shaper_design_cache.hpp"
 #include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
@@ -125,6 +126,7 @@ class CanNode {
   bool storage_fault() const noexcept;
   bool params_unsaved() const noexcept;
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
+  bool design_in_flight() const noexcept { return design_pending_; }  // a request waits for shaper designs
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
   const ProgramTracker& program() const noexcept { return program_; }
   bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
@@ -145,6 +147,7 @@ class CanNode {
   void send_upload() noexcept;
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
+  void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
   void handle_command(const hal::CanFrame& frame) noexcept;
   void handle_jog(const hal::CanFrame& frame) noexcept;
   void handle_move(const hal::CanFrame& frame) noexcept;
@@ -169,8 +172,13 @@ class CanNode {
   ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   // save / load: ok when posted (answered later by finish_storage()), else the refusal to answer now
   ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
-  void collect_storage() noexcept;  // service() step: answers a job the worker has finished
+  void collect_worker() noexcept;  // service() step: finishes a job the worker has finished
   void finish_storage() noexcept;
+  // A parameter change needing shaper designs the node does not have: the
+  // designs are made on the worker and the request is handled again, as if
+  // it arrived then, when they are done (can_node_design.cpp).
+  ErrorCode defer_for_designs(const std::array<bool, hal::kAxisCount>& needed, const NodeSettings& next) noexcept;
+  void finish_design() noexcept;
   ErrorCode finish_save() noexcept;
   ErrorCode finish_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
@@ -184,8 +192,11 @@ class CanNode {
   ErrorCode command_ownership(CommandCode code) noexcept;  // take / release
   bool owns() const noexcept;  // the current request's host holds command ownership
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
-  // parameters: validate the whole next set, refuse busy, apply whole
-  ErrorCode apply_settings(const NodeSettings& next, bool idle_touched) noexcept;
+  // parameters: validate the whole next set, refuse busy, apply whole.
+  // `may_defer`: with a worker, a shaper design the cache lacks defers the
+  // request (ok returned, design_deferred_ set: the caller must not answer).
+  ErrorCode apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer = true) noexcept;
+  bool worker_busy() const noexcept { return storage_pending_ || design_pending_; }
   bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
@@ -215,6 +226,16 @@ class CanNode {
   hal::CanFrame storage_request_{};
   SaveJob save_job_{};
   LoadJob load_job_{};
+  // The request being handled (kept so a deferred one can be handled again),
+  // and the one waiting for its shaper designs.
+  hal::CanFrame request_{};
+  MessageId request_id_ = MessageId::command;
+  hal::CanFrame design_request_{};
+  MessageId design_request_id_ = MessageId::command;
+  bool design_pending_ = false;   // design_job_ posted, its request not yet handled again
+  bool design_deferred_ = false;  // the request being handled was deferred: no answer now
+  ShaperDesignJob design_job_{};
+  ShaperDesignCache designs_{};
   std::uint8_t node_id_;
   NodeCounters counters_{};
   HostStagedSets staged_{};

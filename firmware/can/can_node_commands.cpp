@@ -100,6 +100,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::abort_program:
     case CommandCode::program_status: e = command_program(code, frame, detail); break;
   }
+  if (design_deferred_) return;  // handled again, and answered, when the shaper designs are made
   reply_ack(kCommandMsg.id, code_raw, e, detail);
 }
 
@@ -247,7 +248,9 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
     if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return reply_ack(kShaperMsg.id, 0, e, detail);
     p->set(next, values[k]);
   }
-  reply_ack(kShaperMsg.id, 0, apply_settings(next, false), 0);
+  const ErrorCode e = apply_settings(next, false);
+  if (design_deferred_) return;  // handled again, and answered, when the design is made
+  reply_ack(kShaperMsg.id, 0, e, 0);
 }
 
 }  // namespace tnv::fw::can

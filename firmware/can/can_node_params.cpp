@@ -17,11 +17,6 @@ using namespace fields;
 
 namespace {
 
-bool same_spec(const ShaperSpec& a, const ShaperSpec& b) noexcept {
-  return a.type == b.type && a.mode.freq_hz == b.mode.freq_hz && a.mode.zeta == b.mode.zeta &&
-         a.second_mode.freq_hz == b.second_mode.freq_hz && a.second_mode.zeta == b.second_mode.zeta;
-}
-
 bool same_params(const NodeSettings& a, const NodeSettings& b) noexcept {
   for (const ParamDef& p : param_table())
     if (p.access == Access::read_write && p.get(a) != p.get(b)) return false;
@@ -40,10 +35,12 @@ bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
 
 // The one way a parameter change reaches the task: the whole next set is
 // validated, refused busy where it must wait for rest, then applied between
-// two ticks (this runs in service()), all of it or none of it.
-ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched) noexcept {
-  // A save or load in flight works on the set as it was: no change until it is answered.
-  if (storage_pending_) return ErrorCode::busy;
+// two ticks (this runs in service()), all of it or none of it. A shaper
+// design the node lacks is made on the worker first (defer_for_designs), so
+// no request designs one here.
+ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer) noexcept {
+  // A save, load or design in flight works on the set as it was: no change until it is answered.
+  if (worker_busy()) return ErrorCode::busy;
   if (const SettingsCheck c = validate(next); !c.ok) {
     blamed_param_ = c.param;
     return ErrorCode::invalid;
@@ -57,16 +54,30 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched) n
     }
   if (idle_touched && moving()) return ErrorCode::busy;
   if (capture_change_refused(next)) return ErrorCode::busy;
+  // Shapers to configure, and whether their designs are at hand.
+  std::array<bool, hal::kAxisCount> redesign{};
+  std::array<bool, hal::kAxisCount> missing{};
+  bool any_missing = false;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const ShaperSettings& now = next.shaper[i];
+    redesign[i] = !same_spec(settings_.shaper[i].spec, now.spec) || (now.enabled && !shaper_configured_[i]);
+    missing[i] = redesign[i] && designs_.find(now.spec) == nullptr;
+    any_missing = any_missing || missing[i];
+  }
+  if (any_missing && may_defer && storage_worker_ != nullptr) return defer_for_designs(missing, next);
   // Gains, limits, controller selection: the task checks again and applies whole.
   if (const CommandStatus st = task_.apply_config(next.firmware); st != CommandStatus::ok) return to_error(st);
   // Shapers: validated with the set above, so the designs fit; they apply at the next quiet reference.
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const hal::Axis axis = hal::axis_from_index(i);
-    const ShaperSettings& was = settings_.shaper[i];
     const ShaperSettings& now = next.shaper[i];
-    if (!same_spec(was.spec, now.spec) || (now.enabled && !shaper_configured_[i]))
-      shaper_configured_[i] = task_.configure_shaper(axis, now.spec) == CommandStatus::ok;
-    if (was.enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
+    if (redesign[i]) {
+      const ShaperDesign* ready = designs_.find(now.spec);
+      // Without a worker (or a design the load job could not make) the design runs here, as it must.
+      shaper_configured_[i] = (ready != nullptr ? task_.configure_shaper(axis, now.spec, *ready)
+                                                : task_.configure_shaper(axis, now.spec)) == CommandStatus::ok;
+    }
+    if (settings_.shaper[i].enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
   }
   if (!same_params(settings_, next)) unsaved_ = true;
   settings_ = next;
@@ -103,6 +114,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     }
     blamed_param_ = 0;
     const ErrorCode e = apply_settings(next, idle);
+    if (design_deferred_) return;  // handled again, and answered, when the designs are made
     if (e == ErrorCode::ok) staged_.clear(host);  // refused: the pending set stays for a fix or a discard
     const bool blamed = e == ErrorCode::invalid || e == ErrorCode::commissioning_required;
     reply_param(e, n, blamed ? blamed_param_ : 0u);
@@ -142,6 +154,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   NodeSettings next = settings_;
   p->set(next, value);
   const ErrorCode e = apply_settings(next, p->apply == Apply::idle);
+  if (design_deferred_) return;  // handled again, and answered, when the designs are made
   reply_param(e, id, to_wire(*p, p->get(settings_)));
 }
 

@@ -13,7 +13,7 @@ namespace tnv::fw::can {
 using namespace fields;
 
 ErrorCode CanNode::begin_storage(const hal::CanFrame& request, CommandCode code) noexcept {
-  if (moving() || storage_pending_) return ErrorCode::busy;
+  if (moving() || worker_busy()) return ErrorCode::busy;
   hal::StorageJob* job = nullptr;
   if (code == CommandCode::save_params) {
     save_job_.prepare(storage_, settings_);
@@ -34,8 +34,13 @@ ErrorCode CanNode::begin_storage(const hal::CanFrame& request, CommandCode code)
   return ErrorCode::ok;
 }
 
-void CanNode::collect_storage() noexcept {
-  if (storage_pending_ && storage_worker_ != nullptr && storage_worker_->done()) finish_storage();
+void CanNode::collect_worker() noexcept {
+  // One job at a time (worker_busy() refuses a second): the one done is the one pending.
+  if (!worker_busy() || storage_worker_ == nullptr || !storage_worker_->done()) return;
+  if (storage_pending_)
+    finish_storage();
+  else
+    finish_design();
 }
 
 void CanNode::finish_storage() noexcept {
@@ -63,8 +68,12 @@ ErrorCode CanNode::finish_load() noexcept {
     storage_fault_ = true;
     return loaded.result();
   }
+  // The job designed the loaded shapers: applying them costs a copy.
+  const ShaperDesignJob& made = load_job_.designs();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (made.designed(i)) designs_.insert(made.spec(i), made.design(i));
   // The machine may have started moving since the request: then busy, nothing applied.
-  const ErrorCode e = apply_settings(load_job_.settings(), true);
+  const ErrorCode e = apply_settings(load_job_.settings(), true, false);
   if (e == ErrorCode::ok) {
     unsaved_ = loaded.fault();  // the previous set is not what was last saved
     storage_fault_ = loaded.fault();

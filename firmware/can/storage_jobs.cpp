@@ -2,6 +2,8 @@
 
 #include <span>
 
+#include "firmware/tick/tick_task.hpp"
+
 namespace tnv::fw::can {
 
 void SaveJob::prepare(hal::ParamStorage& storage, const NodeSettings& settings) noexcept {
@@ -27,6 +29,7 @@ void LoadJob::prepare(hal::ParamStorage& current, hal::ParamStorage* previous, c
   previous_ = previous;
   settings_ = base;
   report_ = {};
+  designs_.prepare({}, {});
 }
 
 void LoadJob::run() noexcept {
@@ -36,6 +39,28 @@ void LoadJob::run() noexcept {
     return;
   }
   report_ = load_settings_with_fallback(*current_, previous_, settings_);
+  std::array<ShaperSpec, hal::kAxisCount> specs{};
+  std::array<bool, hal::kAxisCount> needed{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    specs[i] = settings_.shaper[i].spec;
+    needed[i] = validate(specs[i]).ok;  // an invalid set is refused whole when applied
+  }
+  designs_.prepare(specs, needed);
+  designs_.run();
+}
+
+void ShaperDesignJob::prepare(const std::array<ShaperSpec, hal::kAxisCount>& specs,
+                              const std::array<bool, hal::kAxisCount>& needed) noexcept {
+  specs_ = specs;
+  needed_ = needed;
+  designed_ = {};
+}
+
+void ShaperDesignJob::run() noexcept {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    designed_[i] = needed_[i] && validate(specs_[i]).ok;
+    if (designed_[i]) designs_[i] = design_shaper(specs_[i], TickTask::kTickPeriodS);
+  }
 }
 
 }  // namespace tnv::fw::can

@@ -19,6 +19,11 @@ ParamCheck validate(const ShaperSpec& spec) noexcept {
   return param_ok();
 }
 
+bool same_spec(const ShaperSpec& a, const ShaperSpec& b) noexcept {
+  return a.type == b.type && a.mode.freq_hz == b.mode.freq_hz && a.mode.zeta == b.mode.zeta &&
+         a.second_mode.freq_hz == b.second_mode.freq_hz && a.second_mode.zeta == b.second_mode.zeta;
+}
+
 ShaperDesign design_shaper(const ShaperSpec& spec, double period_s) noexcept {
   ShaperDesign d;
   d.period_s = period_s;

@@ -21,6 +21,9 @@ struct ShaperSpec {
 // fields "type", "mode.freq_hz", "mode.zeta", "second_mode.freq_hz", "second_mode.zeta".
 ParamCheck validate(const ShaperSpec& spec) noexcept;
 
+// Same type and modes: the same design (design_shaper is a pure function of the spec).
+bool same_spec(const ShaperSpec& a, const ShaperSpec& b) noexcept;
+
 struct ShaperDesign {
   ImpulseTrain impulses{};  // continuous (convolved for two modes)
   TapSet taps{};            // as implemented: exact_grid_taps (convolved for two modes)

@@ -118,6 +118,10 @@ class TickTask {
   // a combination whose series does not fit (nothing changes then).
   // Accepted in every state.
   CommandStatus configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept;
+  // The same with the design made beforehand (design_shaper(spec,
+  // kTickPeriodS), e.g. off the real-time thread): no design work here.
+  CommandStatus configure_shaper(hal::Axis axis, const ShaperSpec& spec, const ShaperDesign& design) noexcept;
+  static constexpr double kTickPeriodS = 1e-3;  // the control tick, and the grid shaper designs are made on
   CommandStatus enable_shaper(hal::Axis axis, bool on) noexcept;
   CommandStatus select_controller(hal::Axis axis, ControllerKind kind) noexcept;
   // Plant identification (issue 7): the axis' speed command comes from an
@@ -231,7 +235,6 @@ class TickTask {
   };
 
   enum class Source : std::uint8_t { circle, move, jog, program };
-  static constexpr double kTickPeriodS = 1e-3;
   static std::int64_t ticks_for(double seconds) noexcept;
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;

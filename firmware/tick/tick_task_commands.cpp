@@ -22,9 +22,13 @@ void TickTask::forward_path_shaper() noexcept {
 }
 
 CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept {
+  if (hal::index(axis) >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
+  return configure_shaper(axis, spec, design_shaper(spec, kTickPeriodS));
+}
+
+CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec, const ShaperDesign& design) noexcept {
   const std::size_t a = hal::index(axis);
-  if (a >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
-  const ShaperDesign design = design_shaper(spec, kTickPeriodS);
+  if (a >= hal::kAxisCount || !validate(spec).ok || design.period_s != kTickPeriodS) return CommandStatus::invalid;
   std::array<AxisShaperChoice, hal::kAxisCount> axes{};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     axes[i] = {i == a ? &design.taps : (shaping_[i].configured ? &shaping_[i].design.taps : nullptr),

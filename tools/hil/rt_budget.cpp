@@ -115,10 +115,10 @@ hal::CanFrame budget_bore(can::BoreOp op, std::uint32_t part = 0, double top_mm 
   return f;
 }
 
-hal::CanFrame budget_shaper(double freq_hz) {
+hal::CanFrame budget_shaper(fw::ShaperType type, double freq_hz) {
   hal::CanFrame f = can::make_frame(kShaperMsg, kBudgetNode);
   can::write_raw(f, kShaperAxis, 0);
-  can::write_raw(f, kShaperType, static_cast<std::uint32_t>(fw::ShaperType::zv));
+  can::write_raw(f, kShaperType, static_cast<std::uint32_t>(type));
   can::write(f, kShaperZeta, 0.05);
   can::write(f, kShaperFreq, freq_hz);
   return f;
@@ -197,16 +197,18 @@ class BudgetSession {
       if (port_.push_request(*request)) ++result_.requests;
     }
     const bool storage_before = node_->storage_in_flight();
+    const bool design_before = node_->design_in_flight();
     rig_->charged_call([this]() noexcept { node_->service(); });
     const std::uint64_t refused_before = result_.refused;
     const bool uploading = read_answers();
     std::string filed = request != nullptr ? kind
                         : storage_before && !node_->storage_in_flight() ? "storage_reply"
+                        : design_before && !node_->design_in_flight()   ? "shaper_reply"
                         : uploading                                      ? "capture_upload"
                                                                          : "service_idle";
     log_.add(filed, last_call(), result_.refused - refused_before);
-    // The non-real-time side: a posted save or load runs now, outside the charged time.
-    if (worker_.run_pending()) ++result_.storage_jobs;
+    // The non-real-time side: a posted save, load or shaper design runs now, outside the charged time.
+    if (worker_.run_pending()) ++result_.worker_jobs;
   }
   // Every request goes out as host 1 with its own sequence in the tag (byte 0).
   void request(const hal::CanFrame& frame, const char* kind, int idle_cycles = 3) {
@@ -221,7 +223,8 @@ class BudgetSession {
       cycle(nullptr, "");
   }
   void run_until_quiet(int max_cycles) {
-    for (int k = 0; k < max_cycles && (uploading_ || node_->storage_in_flight()); ++k) cycle(nullptr, "");
+    for (int k = 0; k < max_cycles && (uploading_ || node_->storage_in_flight() || node_->design_in_flight()); ++k)
+      cycle(nullptr, "");
   }
   std::uint32_t wire_value(const char* name) const {
     const can::ParamDef* p = can::find_param(name);
@@ -249,7 +252,12 @@ class BudgetSession {
     run_until_quiet(20);
     request(budget_command(can::CommandCode::restore_defaults), "restore_defaults");
     request(budget_command(can::CommandCode::select_controller, 255, 2), "select_controller");
-    request(budget_shaper(30.0), "shaper");
+    // A spec the node has not designed before, every round (the heaviest types included):
+    // the design runs on the worker and the request is answered when it is done.
+    const fw::ShaperType type = fw::kShaperTypes[rounds_ % std::size(fw::kShaperTypes)];
+    request(budget_shaper(type, 20.0 + 0.37 * static_cast<double>(rounds_ % 100)), "shaper");
+    run_until_quiet(20);
+    ++rounds_;
     // Identification: a capture armed for the motion records the excitation, then goes up.
     request(budget_capture(can::CaptureOp::arm), "capture_arm");
     request(budget_excite(), "excite");
@@ -320,6 +328,7 @@ class BudgetSession {
   drivers::SteppedStorageWorker worker_;
   std::unique_ptr<can::CanNode> node_;
   std::uint8_t sequence_ = 0;
+  std::uint32_t rounds_ = 0;
   std::uint32_t bore_parts_ = 0;  // parts the bench has gauged (BORE_GAUGE.part of the next is one more)
   BudgetCallLog log_;
   RtBudgetResult result_;

@@ -44,7 +44,7 @@ struct RtBudgetResult {
   std::uint64_t replies = 0;          // answers received (ACK, PARAM_REPLY, CAPTURE_STATUS)
   std::uint64_t refused = 0;          // answers that were not ok
   std::uint64_t upload_frames = 0;    // CAPTURE_DATA frames received
-  std::uint64_t storage_jobs = 0;     // saves and loads run by the storage worker
+  std::uint64_t worker_jobs = 0;      // saves, loads and shaper designs run by the worker
   ChargedTime charged{};              // the rig's charged-time account
   bool held = false;                  // holding, no fault, at the end
 };

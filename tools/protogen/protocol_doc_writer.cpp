@@ -85,6 +85,11 @@ void codes(std::string& out) {
   for (std::uint8_t i = 0; i < kCommandCodeCount; ++i)
     append(out, "| ", std::to_string(i), " | ", to_string(static_cast<CommandCode>(i)), " |\n");
   out += "\nzero, select_controller, load_params and restore_defaults need the machine at rest (else busy); save_params too.\n";
+  out += "save_params and load_params are answered when the node's worker has done the I/O (milliseconds later); so is "
+         "a parameter change (PARAM_REQUEST set or commit, SHAPER, shaper_enable) that needs an input-shaper design the "
+         "node does not hold yet: the design is made off the real-time loop and the request is then handled as if it "
+         "arrived at that moment (every check again, one answer with its tag). Meanwhile other parameter changes and "
+         "storage commands answer busy (docs/safety.md \"Real-time budget\").\n";
   out += "enter_commissioning needs the servo disabled (else busy) and no fault latched (else faulted), and on tnv-fw "
          "the config's [safety] allow_commissioning (else not_permitted); the mode ends at leave_commissioning, enable, "
          "any accepted motion or a fault (docs/safety.md \"Commissioning\"). 10 and 11 are reserved (unknown_command).\n";

@@ -54,7 +54,7 @@ int run_rt_budget_command(const RtBudgetCliOptions& o) {
                           {"replies", r.replies},
                           {"refused", r.refused},
                           {"upload_frames", r.upload_frames},
-                          {"storage_jobs", r.storage_jobs},
+                          {"worker_jobs", r.worker_jobs},
                           {"charged_calls", r.charged.charged_calls},
                           {"charged_us", static_cast<double>(r.charged.charged_ns) * 1e-3},
                           {"held", r.held},
@@ -62,11 +62,11 @@ int run_rt_budget_command(const RtBudgetCliOptions& o) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("rt-budget: %s, %d rounds, %llu ticks, %llu requests (%llu answers, %llu refused), %llu upload frames, "
-                "%llu storage jobs off the loop\n",
+                "%llu worker jobs off the loop (saves, loads, shaper designs)\n",
                 o.run.scenario.c_str(), o.run.rounds, static_cast<unsigned long long>(r.ticks),
                 static_cast<unsigned long long>(r.requests), static_cast<unsigned long long>(r.replies),
                 static_cast<unsigned long long>(r.refused), static_cast<unsigned long long>(r.upload_frames),
-                static_cast<unsigned long long>(r.storage_jobs));
+                static_cast<unsigned long long>(r.worker_jobs));
     std::printf("per call: host CPU time (thread clock) and modelled board time (work meter), us\n"
                 "%-18s %8s %12s %13s %13s %14s %8s\n",
                 "kind", "calls", "max_call_us", "p999_call_us", "max_board_us", "p999_board_us", "refused");
