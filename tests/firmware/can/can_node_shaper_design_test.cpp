@@ -5,6 +5,7 @@
 // restore_defaults and load cost a copy (docs/safety.md "Real-time budget").
 #include <gtest/gtest.h>
 
+#include "drivers/storage/stepped_storage_worker.hpp"
 #include "firmware/tick/work_meter.hpp"
 #include "tests/firmware/can/node_bench.hpp"
 
@@ -16,32 +17,8 @@ using fw::can::ErrorCode;
 using fw::can::MessageId;
 using fw::can::ParamOp;
 
-// Runs a posted job only when the test says so.
-class StepWorker final : public hal::StorageWorker {
- public:
-  bool post(hal::StorageJob& job) noexcept override {
-    if (job_ != nullptr || finished_) return false;
-    job_ = &job;
-    ++posted;
-    return true;
-  }
-  bool done() noexcept override {
-    if (!finished_) return false;
-    finished_ = false;
-    return true;
-  }
-  void run() {
-    ASSERT_NE(job_, nullptr);
-    job_->run();
-    job_ = nullptr;
-    finished_ = true;
-  }
-  int posted = 0;
-
- private:
-  hal::StorageJob* job_ = nullptr;
-  bool finished_ = false;
-};
+// Runs a posted job only when the test says so (run_pending()).
+using StepWorker = drivers::SteppedStorageWorker;
 
 hal::CanFrame shaper(std::uint8_t axis, fw::ShaperType type, double freq_hz, double zeta = 0.05) {
   hal::CanFrame f = frame_to(MessageId::shaper, kNode);
@@ -72,7 +49,7 @@ TEST(CanNodeShaperDesign, ANewSpecIsDesignedOnTheWorkerAndAnsweredOnceWhenDone) 
   f.data[0] = 0x13;  // host 1, sequence 3: the late answer must echo it
   EXPECT_TRUE(b.request(f).empty()) << "no answer before the design is made";
   EXPECT_TRUE(b.node->design_in_flight());
-  EXPECT_EQ(worker.posted, 1);
+  EXPECT_FALSE(worker.idle()) << "a design job posted";
   EXPECT_TRUE(fw::same_spec(b.node->settings().shaper[0].spec, before)) << "nothing applied yet";
 
   // Meanwhile every other change waits: the design is for the set as it was.
@@ -82,7 +59,7 @@ TEST(CanNodeShaperDesign, ANewSpecIsDesignedOnTheWorkerAndAnsweredOnceWhenDone) 
   EXPECT_EQ(ack(b.reply(command(kNode, CommandCode::save_params))), ErrorCode::busy);
   EXPECT_EQ(ack(b.reply(command(kNode, CommandCode::restore_defaults))), ErrorCode::busy);
 
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   const std::vector<hal::CanFrame> out = b.request(hal::CanFrame{0x7FF, false, 0, {}});  // a foreign frame: just a service()
   ASSERT_EQ(out.size(), 1u);
   EXPECT_TRUE(is(out[0], MessageId::command_ack));
@@ -95,7 +72,7 @@ TEST(CanNodeShaperDesign, ANewSpecIsDesignedOnTheWorkerAndAnsweredOnceWhenDone) 
 
   // The same spec again is at hand: answered at once, no job.
   EXPECT_EQ(ack(b.reply(shaper(0, fw::ShaperType::zvdd, 41.25))), ErrorCode::ok);
-  EXPECT_EQ(worker.posted, 1);
+  EXPECT_EQ(worker.jobs_run(), 1u) << "no second job";
 }
 
 TEST(CanNodeShaperDesign, TheRequestIsCheckedAgainOnTheStateWhenItsDesignIsDone) {
@@ -105,7 +82,7 @@ TEST(CanNodeShaperDesign, TheRequestIsCheckedAgainOnTheStateWhenItsDesignIsDone)
   EXPECT_TRUE(b.request(shaper(1, fw::ShaperType::ei, 27.5)).empty());
   // The host gives up command ownership before the design is done.
   EXPECT_EQ(ack(b.reply(command(kNode, CommandCode::release_ownership))), ErrorCode::ok);
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   const std::vector<hal::CanFrame> out = b.request(hal::CanFrame{0x7FF, false, 0, {}});
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(ack(out[0]), ErrorCode::not_owner);
@@ -121,7 +98,7 @@ TEST(CanNodeShaperDesign, ACommitWithANewSpecIsAnsweredWithItsCountAfterTheDesig
   EXPECT_EQ(static_cast<ErrorCode>(raw_of(staged, MessageId::param_reply, "result")), ErrorCode::ok);
   EXPECT_TRUE(b.request(param_request(kNode, ParamOp::commit, 0)).empty());
   EXPECT_EQ(b.node->staged_count(), 1u) << "the staged set stays until the commit is answered";
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   const std::vector<hal::CanFrame> out = b.request(hal::CanFrame{0x7FF, false, 0, {}});
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(static_cast<ErrorCode>(raw_of(out[0], MessageId::param_reply, "result")), ErrorCode::ok);
@@ -136,13 +113,13 @@ TEST(CanNodeShaperDesign, RestoreDefaultsAndALoadNeedNoDesignInService) {
   NodeBench b(quiet_settings(), false, &worker);
   // A spec of its own, saved.
   EXPECT_TRUE(b.request(shaper(0, fw::ShaperType::mzv, 52.0)).empty());
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   EXPECT_EQ(b.port.drain().size(), 0u);
   b.node->service();
   ASSERT_EQ(ack(b.port.drain().at(0)), ErrorCode::ok);
   b.port.send(command(kNode, CommandCode::save_params));
   b.node->service();
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   b.node->service();
   ASSERT_EQ(ack(b.port.drain().at(0)), ErrorCode::ok);
 
@@ -156,12 +133,12 @@ TEST(CanNodeShaperDesign, RestoreDefaultsAndALoadNeedNoDesignInService) {
   // The load's job designed the saved spec on the worker: applying it is a copy.
   b.port.send(command(kNode, CommandCode::load_params));
   b.node->service();
-  worker.run();
+  ASSERT_TRUE(worker.run_pending());
   const std::uint64_t applied = service_blocks(b);
   ASSERT_EQ(ack(b.port.drain().at(0)), ErrorCode::ok);
   EXPECT_EQ(b.node->settings().shaper[0].spec.type, fw::ShaperType::mzv);
   EXPECT_FALSE(b.node->design_in_flight());
-  EXPECT_EQ(worker.posted, 3) << "design, save, load: no second design job";
+  EXPECT_EQ(worker.jobs_run(), 3u) << "design, save, load: no second design job";
   EXPECT_LT(applied, kBudgetBlocks) << "the load's answer designed a shaper in service()";
 }
 
