@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "tools/cli/cli_frame.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/protogen/protocol_doc_writer.hpp"
 
@@ -30,7 +31,12 @@ int main(int argc, char** argv) {
   app.add_option("--dbc", dbc_path, "write the DBC here ('-' = stdout)");
   app.add_option("--doc", doc_path, "write the Markdown protocol document here ('-' = stdout)");
   app.add_option("--node", node, "node id the DBC's identifiers are for")->check(CLI::Range(1, 63));
-  CLI11_PARSE(app, argc, argv);
+  tnv::cli::add_version_flag(app, "tnv-protogen");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return tnv::cli::report_parse_error(app, e, "tnv-protogen", 2);
+  }
   if (dbc_path.empty() && doc_path.empty()) {
     std::cerr << "tnv-protogen: nothing to do: give --dbc and/or --doc\n";
     return 2;

@@ -16,6 +16,7 @@
 #include "drivers/linux/unix_seqpacket.hpp"
 #include "emulator/machine.hpp"
 #include "emulator/scenario_file.hpp"
+#include "tools/cli/cli_frame.hpp"
 #include "tools/tnv-board-emu/ticking_bus.hpp"
 
 namespace {
@@ -39,11 +40,11 @@ int main(int argc, char** argv) {
   app.add_option("--socket", socket_path, "Unix socket to serve (SOCK_SEQPACKET)")->required();
   app.add_option("--scenario", scenario_name, "built-in scenario name or TOML file")->capture_default_str();
   app.add_flag("--once", once, "exit when the firmware disconnects");
+  tnv::cli::add_version_flag(app, "tnv-board-emu");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return e.get_exit_code() == 0 ? code : 2;
+    return tnv::cli::report_parse_error(app, e, "tnv-board-emu", 2);
   }
 
   emu::ScenarioResult found = emu::resolve_scenario(scenario_name);

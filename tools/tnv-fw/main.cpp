@@ -12,6 +12,7 @@
 #include <string>
 
 #include "drivers/linux/stop_signals.hpp"
+#include "tools/cli/cli_frame.hpp"
 #include "tools/tnv-fw/daemon.hpp"
 #include "tools/tnv-fw/fw_config.hpp"
 #include "tools/tnv-fw/latency_test.hpp"
@@ -64,11 +65,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 86400.0));
   app.add_flag("--check-config", check_only, "validate the config file and exit");
   app.add_option("--ticks", max_ticks, "stop after this many ticks (tests)");
+  tnv::cli::add_version_flag(app, "tnv-fw");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return e.get_exit_code() == 0 ? code : 2;
+    return tnv::cli::report_parse_error(app, e, "tnv-fw", 2);
   }
 
   fwd::DaemonConfig config;

@@ -2,12 +2,14 @@
 // I/O board and table. The command families live in *_commands.cpp.
 #include <CLI/CLI.hpp>
 
+#include "tools/cli/cli_frame.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
 int main(int argc, char** argv) {
   using namespace tnv::cli;
   CLI::App app{"tnv-hil: run the TNV-40 firmware against the emulated I/O board and table"};
   app.require_subcommand(1);
+  tnv::cli::add_version_flag(app, "tnv-hil");
   Runner run;
   add_circle_commands(app, run);
   add_path_commands(app, run);
@@ -22,13 +24,8 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitBadInput;
+    return tnv::cli::report_parse_error(app, e, "tnv-hil", kExitBadInput);
   }
   return run ? run() : kExitBadInput;
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "tools/can/param_text.hpp"
+#include "tools/cli/cli_frame.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -70,8 +71,7 @@ std::optional<Action> parse_command_line(const std::vector<std::string>& args, s
   try {
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {
-    error = e.what();
-    if (error.empty()) error = "bad command";
+    error = cli::describe_parse_error(app, e);
     return std::nullopt;
   }
   if (!slot) {
@@ -101,8 +101,12 @@ int run_action(const Action& action, Session& session) {
     report.data["ok"] = code == kExitOk;
     report.data["exit_code"] = code;
     if (!error.empty()) report.data["error"] = error;
-    std::cout << (session.compact_json ? report.data.dump() : report.data.dump(2)) << '\n';
-    std::cout.flush();
+    if (report.summary_on_stderr()) {
+      std::cerr << report.data.dump() << '\n';
+    } else {
+      std::cout << (session.compact_json ? report.data.dump() : report.data.dump(2)) << '\n';
+      std::cout.flush();
+    }
   }
   return code;
 }

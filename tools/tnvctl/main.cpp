@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "tools/cli/cli_frame.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 int main(int argc, char** argv) {
@@ -16,11 +17,13 @@ int main(int argc, char** argv) {
       "device or bus error, a motion that ended in a fault, an output not written; 2 bad command line or input "
       "(nothing was sent).\n"
       "--json prints one JSON object per command on stdout (one per line in `script`), with \"ok\", "
-      "\"exit_code\" and \"error\".\n"
+      "\"exit_code\" and \"error\"; `monitor --json` streams one object per sample (JSON Lines) on stdout and "
+      "its summary object on stderr.\n"
       "With --emu the node lives inside this process: use `tnvctl --emu script FILE` for several steps on one "
       "node; its parameters persist only through `params save` (--emu-storage).");
   app.require_subcommand(1);
-  app.fallthrough();  // global options may also follow the subcommand
+  app.fallthrough();
+  tnv::cli::add_version_flag(app, "tnvctl");  // global options may also follow the subcommand
 
   GlobalOptions g;
   CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface, e.g. can0");
@@ -54,13 +57,8 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitBadInput;
+    return tnv::cli::report_parse_error(app, e, "tnvctl", kExitBadInput);
   }
   if (!slot) return kExitBadInput;
   if (slot->needs_device && g.iface.empty() && !g.emu) {

@@ -72,6 +72,7 @@ void check_monitor(const MonitorOptions& o) {
 
 int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
   check_monitor(o);
+  report.summary_to_stderr();  // stdout: JSON Lines, one sample each
   can_host::NodeClient& client = session.client();
   const double bitrate_bit_s = client.get(*can::find_param("can.bitrate_kbit")) * 1000.0;
   can_host::EmulatedBus* emu = session.emulated();

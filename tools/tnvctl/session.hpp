@@ -48,10 +48,15 @@ class Report {
   explicit Report(bool json) : json_(json) {}
   void line(const std::string& text) const;
   bool json_mode() const noexcept { return json_; }
+  // A command that streams JSON Lines on stdout (monitor) keeps stdout pure:
+  // its summary object goes to stderr, on one line.
+  void summary_to_stderr() noexcept { summary_on_stderr_ = true; }
+  bool summary_on_stderr() const noexcept { return summary_on_stderr_; }
   nlohmann::json data = nlohmann::json::object();
 
  private:
   bool json_;
+  bool summary_on_stderr_ = false;
 };
 
 class Session {

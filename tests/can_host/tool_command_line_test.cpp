@@ -1,0 +1,72 @@
+// The command line every tool shares (tools/cli/cli_frame.hpp): --version,
+// an unknown command named with the commands there are, errors prefixed
+// with the tool's name; and monitor --json as pure JSON Lines on stdout.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tests/can_host/tnvctl_runner.hpp"
+
+namespace tnv {
+namespace {
+
+using test::ToolRun;
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(ToolCommandLine, VersionPrintsTheToolAndTheProjectVersion) {
+  const auto state = test::state_dir("version");
+  const ToolRun ctl = test::tnvctl(state, "--version");
+  EXPECT_EQ(ctl.exit_code, 0) << ctl.err;
+  EXPECT_TRUE(has(ctl.out, "tnvctl 0.")) << ctl.out;
+  const ToolRun hil = test::tnv_hil("--version");
+  EXPECT_EQ(hil.exit_code, 0) << hil.err;
+  EXPECT_TRUE(has(hil.out, "tnv-hil 0.")) << hil.out;
+  std::filesystem::remove_all(state);
+}
+
+TEST(ToolCommandLine, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  const auto state = test::state_dir("unknown");
+  const ToolRun ctl = test::tnvctl(state, "--emu statsu");
+  EXPECT_EQ(ctl.exit_code, 2);
+  EXPECT_TRUE(has(ctl.err, "tnvctl: unknown command 'statsu'")) << ctl.err;
+  EXPECT_TRUE(has(ctl.err, "status")) << "the commands are listed: " << ctl.err;
+  EXPECT_FALSE(has(ctl.err, "A subcommand is required")) << ctl.err;
+  const ToolRun none = test::tnvctl(state, "--emu");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_TRUE(has(none.err, "tnvctl: which command?")) << none.err;
+  const ToolRun hil = test::tnv_hil("circel");
+  EXPECT_EQ(hil.exit_code, 2);
+  EXPECT_TRUE(has(hil.err, "tnv-hil: unknown command 'circel'")) << hil.err;
+  const ToolRun option = test::tnv_hil("circle --no-such-option");
+  EXPECT_EQ(option.exit_code, 2);
+  EXPECT_TRUE(has(option.err, "tnv-hil: ")) << "the tool names itself: " << option.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(ToolCommandLine, MonitorJsonIsJsonLinesOnStdoutWithTheSummaryOnStderr) {
+  const auto state = test::state_dir("monitor_json");
+  const ToolRun r = test::tnvctl(state, "--emu --json monitor --duration 0.3 --rate-hz 20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream out(r.out);
+  int samples = 0;
+  for (std::string line; std::getline(out, line);) {
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << "not one JSON object per line: " << line;
+    EXPECT_TRUE(j.contains("t_s")) << line;
+    EXPECT_FALSE(j.contains("exit_code")) << "the summary is on stdout: " << line;
+    ++samples;
+  }
+  EXPECT_GE(samples, 4);
+  const std::string last = r.err.substr(r.err.rfind('{'));
+  const nlohmann::json summary = nlohmann::json::parse(last);
+  EXPECT_EQ(summary["ok"], true);
+  EXPECT_EQ(summary["command"], "monitor");
+  EXPECT_EQ(summary["lines"].get<int>(), samples);
+  std::filesystem::remove_all(state);
+}
+
+}  // namespace
+}  // namespace tnv
