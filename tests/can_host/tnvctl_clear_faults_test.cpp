@@ -35,7 +35,7 @@ TEST(TnvctlClearFaults, ABoardTripClearsInOneCommand) {
   const auto state = test::state_dir("clear_board_trip");
   // The X decoder latches an illegal transition 0.3 s in (FAULTS bit 0, sticky on the board).
   const std::string args = scripted(state, "[[fault]]\nkind = \"encoder_illegal\"\nstart_s = 0.3\naxis = \"x\"\n",
-                                    "enable\nmonitor --duration 0.5\nclear-faults\nstatus\n");
+                                    "enable\nmonitor --duration-s 0.5\nclear-faults\nstatus\n");
   const test::ToolRun r = test::tnvctl(state, args);
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const std::vector<nlohmann::json> out = command_results(r.out);
@@ -53,7 +53,7 @@ TEST(TnvctlClearFaults, ABoardTripClearsInOneCommand) {
 TEST(TnvctlClearFaults, ACauseStillAssertedIsRefusedAndNothingClears) {
   const auto state = test::state_dir("clear_estop_held");
   const std::string args = scripted(state, "[[fault]]\nkind = \"estop\"\nstart_s = 0.3\n",
-                                    "enable\nmonitor --duration 0.5\nclear-faults\n");
+                                    "enable\nmonitor --duration-s 0.5\nclear-faults\n");
   const test::ToolRun r = test::tnvctl(state, args);
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_NE((r.out + r.err).find("cause_present"), std::string::npos) << r.out << r.err;

@@ -138,8 +138,8 @@ TEST(TnvctlCli, JsonErrorsCarryTheExitCodeAndTheMessage) {
 TEST(TnvctlCli, MotionsRunAndReportTheirEndState) {
   const auto state = test::state_dir("motion");
   const auto script = test::write_file(state / "motion.tnvctl",
-                                       "enable\nmove --axis x --distance 1 --speed 5\n"
-                                       "jog --axis y --speed -2 --duration 0.2\nestop\nclear-faults\n");
+                                       "enable\nmove --axis x --distance-mm 1 --speed-mm-s 5\n"
+                                       "jog --axis y --speed-mm-s -2 --duration-s 0.2\nestop\nclear-faults\n");
   std::string args = "--emu --json script ";
   const ToolRun r = test::tnvctl(state, args.append(script.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;

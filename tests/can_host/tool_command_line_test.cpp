@@ -48,7 +48,7 @@ TEST(ToolCommandLine, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
 
 TEST(ToolCommandLine, MonitorJsonIsJsonLinesOnStdoutWithTheSummaryOnStderr) {
   const auto state = test::state_dir("monitor_json");
-  const ToolRun r = test::tnvctl(state, "--emu --json monitor --duration 0.3 --rate-hz 20");
+  const ToolRun r = test::tnvctl(state, "--emu --json monitor --duration-s 0.3 --rate-hz 20");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream out(r.out);
   int samples = 0;

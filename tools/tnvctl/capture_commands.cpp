@@ -64,11 +64,11 @@ std::optional<Action> motion_action(const CaptureOptions& o) {
     char buf[40];
     if (o.radius_mm) {
       std::snprintf(buf, sizeof buf, "%.17g", *o.radius_mm);
-      words.insert(words.end(), {"--radius", buf});
+      words.insert(words.end(), {"--radius-mm", buf});
     }
     if (o.feed_mm_s) {
       std::snprintf(buf, sizeof buf, "%.17g", *o.feed_mm_s);
-      words.insert(words.end(), {"--feed", buf});
+      words.insert(words.end(), {"--feed-mm-s", buf});
     }
   } else if (!o.run.empty()) {
     std::string error;
@@ -83,7 +83,7 @@ std::optional<Action> motion_action(const CaptureOptions& o) {
   }
   static const char* kMotions[] = {"circle", "move", "jog", "stop"};
   if (words.empty() || std::find(std::begin(kMotions), std::end(kMotions), words.front()) == std::end(kMotions))
-    throw BadInput("--run takes a motion command: circle, move or jog (e.g. --run \"move --axis x --distance 5 --speed 10\")");
+    throw BadInput("--run takes a motion command: circle, move or jog (e.g. --run \"move --axis x --distance-mm 5 --speed-mm-s 10\")");
   std::string error;
   std::optional<Action> action = parse_command_line(words, error);
   if (!action) {
@@ -194,7 +194,7 @@ std::optional<Action> check_capture(const CaptureOptions& o) {
   if ((o.arm_only || o.upload_only) && (o.circle || !o.run.empty()))
     throw BadInput("--circle / --run run between arming and uploading: not with --arm or --upload");
   if (o.circle && !o.run.empty()) throw BadInput("--circle and --run exclude each other");
-  if ((o.radius_mm || o.feed_mm_s) && !o.circle) throw BadInput("--radius / --feed go with --circle");
+  if ((o.radius_mm || o.feed_mm_s) && !o.circle) throw BadInput("--radius-mm / --feed-mm-s go with --circle");
   if (o.arm_only && (!o.csv.empty() || !o.plot.empty())) throw BadInput("--csv / --plot need an upload, not --arm");
   std::string error;
   if (!o.channels.empty() && !can_host::parse_channel_list(o.channels, error)) throw BadInput(error);
@@ -287,9 +287,9 @@ void add_capture_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_flag("--arm", o->arm_only, "only configure and arm (upload later with --upload)");
   cmd->add_flag("--upload", o->upload_only, "only upload the last recording");
   cmd->add_flag("--circle", o->circle, "run the circle after arming");
-  cmd->add_option("--radius", o->radius_mm, "with --circle: mm");
-  cmd->add_option("--feed", o->feed_mm_s, "with --circle: mm/s");
-  cmd->add_option("--run", o->run, "a motion command to run after arming, e.g. \"move --axis x --distance 5 --speed 10\"");
+  cmd->add_option("--radius-mm", o->radius_mm, "with --circle: mm");
+  cmd->add_option("--feed-mm-s", o->feed_mm_s, "with --circle: mm/s");
+  cmd->add_option("--run", o->run, "a motion command to run after arming, e.g. \"move --axis x --distance-mm 5 --speed-mm-s 10\"");
   cmd->add_option("--wait-s", o->wait_s, "longest wait for the recording to finish")->capture_default_str();
   cmd->add_option("--tail-s", o->tail_s,
                   "keep recording this long after the motion, then stop (with --trigger immediate: the settling)");

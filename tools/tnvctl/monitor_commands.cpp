@@ -67,7 +67,7 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
 
 void check_monitor(const MonitorOptions& o) {
   if (!(o.rate_hz > 0.0 && o.rate_hz <= 1000.0)) throw BadInput("--rate-hz must be in (0, 1000]");
-  if (!(o.duration_s >= 0.0 && o.duration_s <= 1e6)) throw BadInput("--duration must be in [0, 1e6] s");
+  if (!(o.duration_s >= 0.0 && o.duration_s <= 1e6)) throw BadInput("--duration-s must be in [0, 1e6]");
 }
 
 int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
@@ -129,7 +129,7 @@ void add_monitor_commands(CLI::App& app, ActionSlot& slot) {
   auto o = std::make_shared<MonitorOptions>();
   CLI::App* cmd = app.add_subcommand(
       "monitor", "live status from the heartbeat and telemetry (emulated: paced to the wall clock); Ctrl-C ends");
-  cmd->add_option("--duration", o->duration_s, "seconds; 0 = until Ctrl-C")->capture_default_str();
+  cmd->add_option("--duration-s", o->duration_s, "seconds; 0 = until Ctrl-C")->capture_default_str();
   cmd->add_option("--rate-hz", o->rate_hz, "status lines per second")->capture_default_str();
   cmd->callback([&slot, o] {
     slot = Action{"monitor", true, [o](Session& s, Report& r) { return run_monitor(*o, s, r); },

@@ -49,8 +49,8 @@ struct CircleOptions {
 };
 
 void check_circle(const CircleOptions& o) {
-  if (o.radius_mm) require_positive("--radius", *o.radius_mm);
-  if (o.feed_mm_s) require_positive("--feed", *o.feed_mm_s);
+  if (o.radius_mm) require_positive("--radius-mm", *o.radius_mm);
+  if (o.feed_mm_s) require_positive("--feed-mm-s", *o.feed_mm_s);
 }
 
 int run_circle(const CircleOptions& o, Session& session, Report& report) {
@@ -87,8 +87,8 @@ struct MoveOptions {
 
 void check_move(const MoveOptions& o) {
   parse_axis(o.axis);
-  if (!std::isfinite(o.distance_mm) || o.distance_mm == 0.0) throw BadInput("--distance must be finite and not 0");
-  require_positive("--speed (mm/s; the MOVE frame carries 0.01 mm/s steps)", o.speed_mm_s, 655.35);
+  if (!std::isfinite(o.distance_mm) || o.distance_mm == 0.0) throw BadInput("--distance-mm must be finite and not 0");
+  require_positive("--speed-mm-s (the MOVE frame carries 0.01 mm/s steps)", o.speed_mm_s, 655.35);
 }
 
 int run_move(const MoveOptions& o, Session& session, Report& report) {
@@ -116,8 +116,8 @@ struct JogOptions {
 
 void check_jog(const JogOptions& o) {
   parse_axis(o.axis);
-  if (!std::isfinite(o.speed_mm_s)) throw BadInput("--speed must be finite");
-  require_positive("--duration (s)", o.duration_s, 3600);
+  if (!std::isfinite(o.speed_mm_s)) throw BadInput("--speed-mm-s must be finite");
+  require_positive("--duration-s", o.duration_s, 3600);
 }
 
 int run_jog(const JogOptions& o, Session& session, Report& report) {
@@ -251,8 +251,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto circle = std::make_shared<CircleOptions>();
   CLI::App* circle_cmd =
       app.add_subcommand("circle", "run the S1 circle from where the table stands; waits until it is done");
-  circle_cmd->add_option("--radius", circle->radius_mm, "mm (default: the emulated scenario's, else 6)");
-  circle_cmd->add_option("--feed", circle->feed_mm_s, "mm/s (default: the emulated scenario's, else 2)");
+  circle_cmd->add_option("--radius-mm", circle->radius_mm, "mm (default: the emulated scenario's, else 6)");
+  circle_cmd->add_option("--feed-mm-s", circle->feed_mm_s, "mm/s (default: the emulated scenario's, else 2)");
   circle_cmd->add_flag("--no-wait", circle->no_wait, "return once the node accepted it");
   circle_cmd->callback([&slot, circle] {
     slot = Action{"circle", true, [circle](Session& s, Report& r) { return run_circle(*circle, s, r); },
@@ -262,8 +262,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto move = std::make_shared<MoveOptions>();
   CLI::App* move_cmd = app.add_subcommand("move", "point-to-point move of one axis; waits until it is done");
   move_cmd->add_option("--axis", move->axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
-  move_cmd->add_option("--distance", move->distance_mm, "signed distance, mm")->required();
-  move_cmd->add_option("--speed", move->speed_mm_s, "cruise speed, mm/s")->required();
+  move_cmd->add_option("--distance-mm", move->distance_mm, "signed distance, mm")->required();
+  move_cmd->add_option("--speed-mm-s", move->speed_mm_s, "cruise speed, mm/s")->required();
   move_cmd->add_flag("--no-wait", move->no_wait, "return once the node accepted it");
   move_cmd->callback([&slot, move] {
     slot = Action{"move", true, [move](Session& s, Report& r) { return run_move(*move, s, r); },
@@ -273,8 +273,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto jog = std::make_shared<JogOptions>();
   CLI::App* jog_cmd = app.add_subcommand("jog", "stream JOG frames (a held pendant key), then stop");
   jog_cmd->add_option("--axis", jog->axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
-  jog_cmd->add_option("--speed", jog->speed_mm_s, "signed target speed, mm/s")->required();
-  jog_cmd->add_option("--duration", jog->duration_s, "seconds to keep streaming")->capture_default_str();
+  jog_cmd->add_option("--speed-mm-s", jog->speed_mm_s, "signed target speed, mm/s")->required();
+  jog_cmd->add_option("--duration-s", jog->duration_s, "seconds to keep streaming")->capture_default_str();
   jog_cmd->add_option("--period-ms", jog->period_ms, "JOG frame period (default: half of jog.deadman_s, <= 50 ms)")
       ->check(CLI::Range(1, 10000));
   jog_cmd->callback([&slot, jog] {
@@ -328,7 +328,7 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto ctl_kind = std::make_shared<std::string>();
   CLI::App* ctl_cmd = app.add_subcommand("controller", "select the axis loop (at rest)");
   ctl_cmd->add_option("--axis", *ctl_axis, "x, y or all")->check(CLI::IsMember({"x", "y", "all"}))->capture_default_str();
-  ctl_cmd->add_option("--kind", *ctl_kind, "pid | dvsc | rdvsc")->required()->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}));
+  ctl_cmd->add_option("--controller", *ctl_kind, "pid | dvsc | rdvsc")->required()->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}));
   ctl_cmd->callback([&slot, ctl_axis, ctl_kind] {
     slot = Action{"controller", true,
                   [ctl_axis, ctl_kind](Session& s, Report& r) { return run_controller(*ctl_axis, *ctl_kind, s, r); }};

@@ -33,7 +33,7 @@ double checked(const std::string& axis, const char* suffix, double value) {
 // Checks the request; returns the shaper type's number.
 double check_shaper(const ShaperOptions& o) {
   parse_axis(o.axis);
-  if (!o.freq_hz && !o.enable && !o.disable) throw BadInput("nothing to do: give --freq (a design) and/or --enable/--disable");
+  if (!o.freq_hz && !o.enable && !o.disable) throw BadInput("nothing to do: give --freq-hz (a design) and/or --enable/--disable");
   const can::ParamDef& type_param = param_named(o.axis + ".shaper.type");
   std::string error;
   const std::optional<double> type = can_host::parse_param_value(type_param, o.type, error);
@@ -75,7 +75,7 @@ void add_shaper_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("--type", o->type, "zv | zvd | zvdd | ei | mzv")
       ->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}))
       ->capture_default_str();
-  cmd->add_option("--freq", o->freq_hz, "mode frequency to cancel, Hz");
+  cmd->add_option("--freq-hz", o->freq_hz, "mode frequency to cancel, Hz");
   cmd->add_option("--zeta", o->zeta, "mode damping ratio")->capture_default_str();
   auto* on = cmd->add_flag("--enable", o->enable, "switch the shaper on");
   auto* off = cmd->add_flag("--disable", o->disable, "switch the shaper off");

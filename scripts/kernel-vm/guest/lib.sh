@@ -288,7 +288,7 @@ case_circle() {
   local started=$EPOCHREALTIME hb state fault
   # --no-wait, then the heartbeat: tnvctl's own wait budgets real time at
   # 1 kHz ticks, and the VM's gpio-sim tick runs at TICK_HZ.
-  ctl circle --radius 0.2 --feed 5 --no-wait || { fail "tnvctl circle refused"; return 1; }
+  ctl circle --radius-mm 0.2 --feed-mm-s 5 --no-wait || { fail "tnvctl circle refused"; return 1; }
   hb=$(last_heartbeat); state=$(frame_field "$hb" 0 1)
   ((state == 1 || state == 2)) || { fail "heartbeat after the circle started: $hb (state $state, expected dwell 1 or moving 2)"; return 1; }
   local end=$((SECONDS + 90))
@@ -350,7 +350,7 @@ case_bus_flood() {
   # PARAM_REQUEST gets: each is answered with bad_length).
   # The circle first: during the flood tnvctl could not tell its replies from
   # the answers to the flood's own requests to our node (same PARAM_REPLY id).
-  ctl circle --radius 0.5 --feed 2 --no-wait || { fail "circle refused"; return 1; }
+  ctl circle --radius-mm 0.5 --feed-mm-s 2 --no-wait || { fail "circle refused"; return 1; }
   local frames_before flood_start=$EPOCHREALTIME
   frames_before=$(can_frames)
   # (nice 19: the flooder stands for other machines on the bus, not for load on this board.)
