@@ -113,6 +113,9 @@ TEST(TnvctlCli, SavedParametersSurviveTheProcessAndLoadRestoresThem) {
   EXPECT_TRUE(std::filesystem::exists(state / "tnvctl" / "emu-node.params")) << "default path under XDG_STATE_HOME";
   r = test::tnvctl(state, "--emu --json params get x.sliding.eta_mm_s y.pid.kp");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // A saved set changes every later --emu result: the tool says it loaded one, and how many differ.
+  EXPECT_TRUE(has(r.err, "loaded the parameters saved in")) << r.err;
+  EXPECT_TRUE(has(r.err, "(2 differ from a fresh node's")) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["params"][0]["value"], 1.5) << "the saved value, not the unsaved 2";
   EXPECT_EQ(j["params"][1]["value"], 400.0);
@@ -121,6 +124,12 @@ TEST(TnvctlCli, SavedParametersSurviveTheProcessAndLoadRestoresThem) {
   r = test::tnvctl(state, script_args(reload));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.out, "x.sliding.eta_mm_s = 1.5 mm/s")) << r.out;
+  // The defaults saved: a fresh node's set, nothing to say.
+  const auto reset = test::write_file(state / "reset.tnvctl", "params defaults\nparams save\n");
+  ASSERT_EQ(test::tnvctl(state, script_args(reset)).exit_code, 0);
+  r = test::tnvctl(state, "--emu status");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(has(r.err, "loaded the parameters saved in")) << r.err;
   std::filesystem::remove_all(state);
 }
 

@@ -4,6 +4,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/can/param_fallback.hpp"
+#include "firmware/can/param_table.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/seeded_scenario.hpp"
 
@@ -69,8 +70,20 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   // Start-up load, before the tick task is built, as on a real node: the
   // current image, else the previous generation, else the defaults.
   drivers::FileParamStorage storage(path);
+  const can::NodeSettings fresh = settings;
   const can::LoadReport loaded = can::load_settings_with_fallback(storage, &storage.previous(), settings);
   std::string note;
+  if (loaded.source == can::LoadSource::current) {
+    // A saved set changes every later --emu result: say so when it differs from a fresh node.
+    std::size_t differing = 0;
+    for (const can::ParamDef& p : can::param_table())
+      if (p.access == can::Access::read_write && p.get(settings) != p.get(fresh)) ++differing;
+    if (differing > 0)
+      note = "note: the emulated node loaded the parameters saved in " + path + " (" + std::to_string(differing) +
+             (differing == 1 ? " differs" : " differ") +
+             " from a fresh node's; `tnvctl --emu params defaults` then `params save` resets them, or "
+             "--emu-storage FILE uses another file)";
+  }
   if (loaded.fault()) {
     note = path;
     note.append(": stored parameters not loaded (").append(can::to_string(loaded.current));

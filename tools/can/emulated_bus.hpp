@@ -63,7 +63,8 @@ class EmulatedBus final : public HostBus {
   std::uint8_t node_id() const noexcept;
   const emu::Scenario& scenario() const noexcept { return scenario_; }
   const std::string& storage_path() const noexcept { return storage_.path(); }
-  // What happened to the stored parameters at start ("" when they loaded or none were stored).
+  // What happened to the stored parameters at start: a saved set that differs from a fresh
+  // node's was loaded, or none could be loaded ("" when nothing was stored or it is a fresh set).
   const std::string& startup_note() const noexcept { return startup_note_; }
   fw::can::CanNode& node() noexcept { return *node_; }
   const fw::can::CanNode& node() const noexcept { return *node_; }
