@@ -72,18 +72,12 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   drivers::FileParamStorage storage(path);
   const can::NodeSettings fresh = settings;
   const can::LoadReport loaded = can::load_settings_with_fallback(storage, &storage.previous(), settings);
-  std::string note;
-  if (loaded.source == can::LoadSource::current) {
-    // A saved set changes every later --emu result: say so when it differs from a fresh node.
-    std::size_t differing = 0;
+  // A saved set changes every later --emu result: count what differs from a fresh node.
+  std::size_t differing = 0;
+  if (loaded.source != can::LoadSource::nothing_stored)
     for (const can::ParamDef& p : can::param_table())
       if (p.access == can::Access::read_write && p.get(settings) != p.get(fresh)) ++differing;
-    if (differing > 0)
-      note = "note: the emulated node loaded the parameters saved in " + path + " (" + std::to_string(differing) +
-             (differing == 1 ? " differs" : " differ") +
-             " from a fresh node's; `tnvctl --emu params defaults` then `params save` resets them, or "
-             "--emu-storage FILE uses another file)";
-  }
+  std::string note;
   if (loaded.fault()) {
     note = path;
     note.append(": stored parameters not loaded (").append(can::to_string(loaded.current));
@@ -106,6 +100,7 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   std::unique_ptr<EmulatedBus> bus(new EmulatedBus(scenario, path, settings.can.bitrate_kbit * 1000u));
   bus->seed_ = options.seed;
   bus->startup_note_ = note;
+  bus->saved_params_differing_ = differing;
   bus->port_ = std::make_unique<NodePort>(*bus);
   bus->rig_ = hil::HilRig::create(scenario, settings.firmware, settings.firmware.axis[0].controller, error);
   if (!bus->rig_) return nullptr;

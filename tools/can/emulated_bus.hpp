@@ -63,9 +63,10 @@ class EmulatedBus final : public HostBus {
   std::uint8_t node_id() const noexcept;
   const emu::Scenario& scenario() const noexcept { return scenario_; }
   const std::string& storage_path() const noexcept { return storage_.path(); }
-  // What happened to the stored parameters at start: a saved set that differs from a fresh
-  // node's was loaded, or none could be loaded ("" when nothing was stored or it is a fresh set).
+  // What happened to the stored parameters at start ("" when they loaded or none were stored).
   const std::string& startup_note() const noexcept { return startup_note_; }
+  // Parameters of the set loaded at start that differ from a fresh node's (0: none loaded, or a fresh set).
+  std::size_t saved_params_differing() const noexcept { return saved_params_differing_; }
   fw::can::CanNode& node() noexcept { return *node_; }
   const fw::can::CanNode& node() const noexcept { return *node_; }
   hil::HilRig& rig() noexcept { return *rig_; }
@@ -85,6 +86,7 @@ class EmulatedBus final : public HostBus {
   std::unique_ptr<fw::can::CanNode> node_;
   std::function<bool(const hal::CanFrame&)> node_tx_filter_;
   std::string startup_note_;
+  std::size_t saved_params_differing_ = 0;
   BusCounters host_counters_{};
   bool realtime_ = false;
   Micros realtime_sim_origin_{0};

@@ -26,6 +26,12 @@ void Session::open() {
     std::unique_ptr<can_host::EmulatedBus> bus = can_host::EmulatedBus::create(emu, error);
     if (!bus) throw BadInput(error);
     if (!bus->startup_note().empty()) std::fprintf(stderr, "tnvctl: %s\n", bus->startup_note().c_str());
+    // A saved set changes every later --emu result: say so.
+    if (const std::size_t n = bus->saved_params_differing(); n > 0 && bus->startup_note().empty())
+      std::fprintf(stderr,
+                   "tnvctl: note: the emulated node loaded the parameters saved in %s (%zu %s from a fresh node's; "
+                   "`params defaults` then `params save` resets them, --emu-storage FILE uses another file)\n",
+                   bus->storage_path().c_str(), n, n == 1 ? "differs" : "differ");
     if (bus->node_id() != node) {
       std::string message = "the emulated node has id ";
       message.append(std::to_string(bus->node_id())).append(" (can.node_id stored in ").append(bus->storage_path());
