@@ -1,7 +1,11 @@
 // The command line every tool shares (tools/cli/cli_frame.hpp): --version,
 // an unknown command named with the commands there are, errors prefixed
-// with the tool's name; and monitor --json as pure JSON Lines on stdout.
+// with the tool's name, output paths checked before a run; and monitor
+// --json as pure JSON Lines on stdout.
 #include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -43,6 +47,23 @@ TEST(ToolCommandLine, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   const ToolRun option = test::tnv_hil("circle --no-such-option");
   EXPECT_EQ(option.exit_code, 2);
   EXPECT_TRUE(has(option.err, "tnv-hil: ")) << "the tool names itself: " << option.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(ToolCommandLine, AnOutputThatCannotBeWrittenIsRefusedBeforeTheRun) {
+  const auto state = test::state_dir("outputs");
+  const std::string fifo = (state / "fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& args : {"circle --csv " + fifo, "circle --plot " + (state / "no" / "x.svg").string(),
+                                  "circle --plot " + state.string(), "table3 --plot-dir " + fifo + "/d"}) {
+    const ToolRun r = test::tnv_hil(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.out, "") << args << ": nothing may run";
+    EXPECT_TRUE(has(r.err, "tnv-hil: --")) << "the option is named: " << r.err;
+  }
+  const ToolRun ctl = test::tnvctl(state, "--emu capture --circle --csv " + fifo);
+  EXPECT_EQ(ctl.exit_code, 2) << ctl.err;
+  EXPECT_TRUE(has(ctl.err, "not a regular file")) << ctl.err;
   std::filesystem::remove_all(state);
 }
 

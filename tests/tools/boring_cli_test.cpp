@@ -100,7 +100,7 @@ TEST(BoringCli, BadInputExitsWith2AndRunsNothing) {
   EXPECT_NE(s0.err.find("nominal_infeed_mm_rev"), std::string::npos) << s0.err;
 }
 
-TEST(BoringCli, WritesThePlotOrFailsWithExit1) {
+TEST(BoringCli, WritesThePlotAndRefusesAnUnwritableOneBeforeTheRun) {
   const auto dir = std::filesystem::temp_directory_path() / ("tnv_hil_boring_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const CliRun r = run_boring("--seeds 5 --plot " + (dir / "b.svg").string());
@@ -109,7 +109,10 @@ TEST(BoringCli, WritesThePlotOrFailsWithExit1) {
   std::string head(5, '\0');
   svg.read(head.data(), 5);
   EXPECT_EQ(head, "<svg ");
-  EXPECT_EQ(run_boring("--plot /nonexistent/dir/b.svg").exit_code, 1);
+  const CliRun refused = run_boring("--plot /nonexistent/dir/b.svg");
+  EXPECT_EQ(refused.exit_code, 2) << "a bad command line: nothing was run";
+  EXPECT_NE(refused.err.find("does not exist"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.out, "") << "nothing was run";
   std::filesystem::remove_all(dir);
 }
 

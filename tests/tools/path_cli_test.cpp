@@ -65,7 +65,7 @@ TEST(PathCli, RefusesAMissingFileAndAPlotIntoAMissingDirectory) {
   const std::string file = temp_program("plotdir", kSmallPiece);
   const CliRun r = run_tnv_hil("path " + file + " --plot /nonexistent/dir/p.svg");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("no such directory"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("directory /nonexistent/dir does not exist"), std::string::npos) << r.err;
   std::filesystem::remove(file);
 }
 

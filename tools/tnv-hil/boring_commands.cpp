@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/cli/output_path.hpp"
 #include "tools/can/boring_node_sweep.hpp"
 #include "tools/hil/boring_node_resolution.hpp"
 #include "tools/hil/boring_plot.hpp"
@@ -139,7 +140,7 @@ void add_boring_commands(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--seeds", o->seeds, "runs with gauge-noise seeds 1..N")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
-  cmd->add_option("--plot", o->plot, "write the figure (SVG)");
+  cmd->add_option("--plot", o->plot, "write the figure (SVG)")->check(tnv::cli::OutputFile());
   cmd->add_option("--gain-form", o->gain_form, "Sigma in eqs. (5)/(6): normalised (1, 1) | kalman (Sigma, Sigma) | printed (Sigma, 1)")
       ->check(CLI::IsMember({"normalised", "kalman", "printed"}))
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "tools/cli/output_path.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/hil/best_circle.hpp"
 #include "tools/hil/path_plot.hpp"
@@ -32,18 +33,6 @@ struct PathOptions {
   std::string csv;
 };
 
-// An output path that cannot be written is refused before a long run.
-bool output_writable(const std::string& path) {
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    std::fprintf(stderr, "tnv-hil path: %s: no such directory %s\n", path.c_str(), dir.string().c_str());
-    return false;
-  }
-  return true;
-}
-
 int run_path_command(const PathOptions& o) {
   const auto kind = controller_or_report(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
@@ -54,8 +43,6 @@ int run_path_command(const PathOptions& o) {
     std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
     return kExitBadInput;
   }
-  if (!o.plot.empty() && !output_writable(o.plot)) return kExitBadInput;
-  if (!o.csv.empty() && !output_writable(o.csv)) return kExitBadInput;
   fw::FirmwareConfig config = fw::default_firmware_config();
   if (o.best) {
     // The best configuration of tnv-hil best-circle, designed on this table.
@@ -140,8 +127,8 @@ void add_path_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
-  cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (SVG)");
-  cmd->add_option("--csv", o->csv, "write seed 0's ticks: reference, position, contour error, path speed (CSV)");
+  cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (SVG)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--csv", o->csv, "write seed 0's ticks: reference, position, contour error, path speed (CSV)")->check(tnv::cli::OutputFile());
   cmd->callback([&run, o] { run = [o] { return run_path_command(*o); }; });
 }
 

@@ -11,6 +11,7 @@
 #include "emulator/text_file.hpp"
 #include "firmware/shaper/grid_taps.hpp"
 #include "firmware/shaper/residual_vibration.hpp"
+#include "tools/cli/output_path.hpp"
 #include "tools/hil/shaper_design_report.hpp"
 #include "tools/hil/shaper_jog_run.hpp"
 #include "tools/hil/shaper_move_compare.hpp"
@@ -399,7 +400,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   design->add_option("--freq2-hz", d->freq2_hz, "second mode (two-mode shaper by convolution), 5..200 Hz");
   design->add_option("--zeta", d->zeta, "damping ratio of the mode(s), 0..0.3")->capture_default_str();
   design->add_flag("--json", d->json, "print JSON on stdout");
-  design->add_option("--plot", d->plot, "write the sensitivity curves (SVG)");
+  design->add_option("--plot", d->plot, "write the sensitivity curves (SVG)")->check(tnv::cli::OutputFile());
   design->callback([&run, d] { run = [d] { return run_shaper_design(*d); }; });
 
   auto m = std::make_shared<MoveOptions>();
@@ -418,7 +419,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   move->add_flag("--json", m->json, "print JSON on stdout");
-  move->add_option("--plot", m->plot, "write the seed-0 traces (SVG)");
+  move->add_option("--plot", m->plot, "write the seed-0 traces (SVG)")->check(tnv::cli::OutputFile());
   move->callback([&run, m] { run = [m] { return run_move_command(*m); }; });
 
   auto j = std::make_shared<JogOptions>();
@@ -440,7 +441,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   jog->add_option("--path-jerk", j->path_jerk_mm_s3, "the planner's jerk limit on both axes, mm/s^3")
       ->check(CLI::Range(1.0, 1e9));
   jog->add_flag("--json", j->json, "print JSON on stdout");
-  jog->add_option("--plot", j->plot, "write the traces (SVG)");
+  jog->add_option("--plot", j->plot, "write the traces (SVG)")->check(tnv::cli::OutputFile());
   jog->callback([&run, j] { run = [j] { return run_jog_command(*j); }; });
 
   auto g = std::make_shared<GridOptions>();
@@ -448,7 +449,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
       "grid", "residual left at the design frequency by rounding, splitting and the exact taps, 5-200 Hz");
   grid->add_option("--zeta", g->zeta, "damping ratio, 0..0.3")->capture_default_str();
   grid->add_flag("--json", g->json, "print JSON on stdout");
-  grid->add_option("--plot", g->plot, "write the residual-vs-frequency figure (SVG)");
+  grid->add_option("--plot", g->plot, "write the residual-vs-frequency figure (SVG)")->check(tnv::cli::OutputFile());
   grid->callback([&run, g] { run = [g] { return run_grid_command(*g); }; });
 }
 

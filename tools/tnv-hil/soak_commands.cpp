@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/tick/firmware_config.hpp"
+#include "tools/cli/output_path.hpp"
 #include "tools/hil/hil_rig.hpp"
 #include "tools/hil/soak_plot.hpp"
 #include "tools/hil/soak_run.hpp"
@@ -146,7 +147,7 @@ void add_soak_commands(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "print JSON on stdout (with every cycle)");
-  cmd->add_option("--plot", opts->plot, "write the per-cycle figure (SVG)");
+  cmd->add_option("--plot", opts->plot, "write the per-cycle figure (SVG)")->check(tnv::cli::OutputFile());
   cmd->callback([&run, opts] { run = [opts] { return run_soak_command(*opts); }; });
 }
 

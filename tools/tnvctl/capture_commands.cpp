@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/cli/output_path.hpp"
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_plot.hpp"
 #include "tools/can/capture_score.hpp"
@@ -293,8 +294,8 @@ void add_capture_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("--wait-s", o->wait_s, "longest wait for the recording to finish")->capture_default_str();
   cmd->add_option("--tail-s", o->tail_s,
                   "keep recording this long after the motion, then stop (with --trigger immediate: the settling)");
-  cmd->add_option("--csv", o->csv, "write the samples (CSV)");
-  cmd->add_option("--plot", o->plot, "write the plot (SVG)");
+  cmd->add_option("--csv", o->csv, "write the samples (CSV)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--plot", o->plot, "write the plot (SVG)")->check(tnv::cli::OutputFile());
   cmd->add_option("--title", o->title, "plot title");
   cmd->add_option("--label", o->label, "plot row label");
   cmd->callback([&slot, o] {

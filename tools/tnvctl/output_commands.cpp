@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "emulator/text_file.hpp"
+#include "tools/cli/output_path.hpp"
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_plot.hpp"
 #include "tools/can/capture_score.hpp"
@@ -92,7 +93,7 @@ void add_output_commands(CLI::App& app, ActionSlot& slot) {
   CLI::App* cmd = app.add_subcommand("plot", "plot captures saved with `capture --csv`, one row each (no device needed)");
   cmd->add_option("--csv", o->csv, "a capture CSV (repeat to compare)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--label", o->labels, "row label per --csv (default: the file name)");
-  cmd->add_option("--out", o->out, "the SVG to write")->required();
+  cmd->add_option("--out", o->out, "the SVG to write")->required()->check(tnv::cli::OutputFile());
   cmd->add_option("--title", o->title, "figure title")->capture_default_str();
   cmd->callback([&slot, o] {
     slot = Action{"plot", false, [o](Session& s, Report& r) { return run_plot(*o, s, r); }, [o] { check_plot(*o); }};

@@ -1,0 +1,22 @@
+#pragma once
+// Output paths checked when the command line is parsed, before a run that
+// may take minutes: a plot or CSV the tool cannot write is a bad command
+// line (exit 2, nothing run), not a failure found at the end.
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace tnv::cli {
+
+// "" when `path` can be written as a file: its directory exists and is
+// writable, and the path is absent or a regular file (not a directory, a
+// FIFO, a device); else what is wrong, naming the path.
+std::string output_file_problem(const std::string& path);
+// "" when `path` is or can be made a writable directory (the nearest
+// existing ancestor is a writable directory).
+std::string output_dir_problem(const std::string& path);
+
+// The same as CLI11 validators (->check(OutputFile())).
+CLI::Validator OutputFile();
+CLI::Validator OutputDir();
+
+}  // namespace tnv::cli
