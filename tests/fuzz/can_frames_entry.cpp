@@ -28,8 +28,8 @@ namespace {
 
 // Ticks one input may run in all: enough to record a capture, get a
 // circle past a short dwell and stop it; few enough that the run spends its
-// time on many inputs rather than on long ones (the ticks are most of an
-// input's cost: 64 gives about 6,000 inputs per CPU second, 256 about 4,000).
+// time on many inputs rather than on long ones (the ticks are the largest
+// part of an input's cost, about a third for 32-record inputs at 64 ticks).
 // What only ends after hundreds of ticks (a default dwell, an excitation's
 // settle, the jog dead-man) is left to the unit and HIL tests.
 constexpr int kMaxTicksPerInput = 64;
