@@ -7,20 +7,18 @@
 // request changes no parameter and not what the boring planner learned (both
 // are in the stored image compared); the live set always passes validate().
 //
-// Persistent: one node for the whole run (the 512 KiB capture buffer and
-// the rings stay where they are), rebuilt in place between inputs from a
-// settings object computed once, so an input costs its frames and ticks,
-// not a PID tuning.
+// Persistent: one node for the whole run, put back between inputs to a
+// byte snapshot of its state after start-up (can_frames_node.hpp), so an
+// input costs its frames and ticks, not a PID tuning or a task design.
 #include <algorithm>
-#include <array>
-#include <cstring>
-#include <memory>
 
 #include "firmware/can/can_id.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "tests/firmware/can/node_bench.hpp"
+#include "tests/fuzz/can_frames_node.hpp"
 #include "tests/fuzz/fuzz_entries.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
+#include "tests/fuzz/settings_watch.hpp"
 
 namespace tnv::fuzz {
 
@@ -30,35 +28,11 @@ namespace {
 
 // Ticks one input may run in all: enough to record a capture, get a
 // circle past a short dwell and stop it; few enough that the run spends its
-// time on many inputs rather than on long ones (the ticks are most of an
-// input's cost: 64 gives about 6,000 inputs per CPU second, 256 about 4,000).
+// time on many inputs rather than on long ones (the ticks are the largest
+// part of an input's cost, about a third for 32-record inputs at 64 ticks).
 // What only ends after hundreds of ticks (a default dwell, an excitation's
 // settle, the jog dead-man) is left to the unit and HIL tests.
 constexpr int kMaxTicksPerInput = 64;
-
-// The node, its task and the doubles, built once. A reset rebuilds the
-// task and the node in place (no heap allocation, no PID tuning: the
-// settings are computed once) and empties the doubles.
-struct FuzzNode {
-  explicit FuzzNode(const can::NodeSettings& s) : task(board, s.firmware), node(task, port, storage, s) {}
-  void reset(const can::NodeSettings& s) {
-    std::destroy_at(&node);
-    std::destroy_at(&task);
-    board = test::FakeIoBoard{};
-    port.to_node.clear();
-    port.from_node.clear();
-    port.error_frame_count = 0;
-    storage.bytes.clear();
-    storage.present = false;
-    std::construct_at(&task, board, s.firmware);
-    std::construct_at(&node, task, port, storage, s);
-  }
-  test::FakeIoBoard board;
-  test::FakeCanPort port;
-  test::MemoryStorage storage;
-  fw::TickTask task;
-  can::CanNode node;
-};
 
 // Telemetry off (test::quiet_settings) and the boring planner on, so BORE_GAUGE reaches it.
 can::NodeSettings fuzz_settings() {
@@ -67,27 +41,10 @@ can::NodeSettings fuzz_settings() {
   return s;
 }
 
-FuzzNode& fresh_node() {
-  static const can::NodeSettings settings = fuzz_settings();
-  static FuzzNode* const node = new FuzzNode(settings);  // lives for the whole run
-  node->reset(settings);
-  // the first tick reads home (as test::NodeBench does)
-  node->board.next_tick();
-  node->task.tick();
-  node->node.service();
-  // the test host (kTestTag) holds command ownership, as on test::NodeBench
-  node->port.to_node.push(test::command(test::kNode, can::CommandCode::take_ownership));
-  node->node.service();
-  node->port.from_node.clear();
+CanFramesNode& fresh_node() {
+  static CanFramesNode* const node = new CanFramesNode(fuzz_settings());  // lives for the whole run
+  node->reset();
   return *node;
-}
-
-// The live set's bytes, padding included (a copy would not keep the padding).
-using SettingsBytes = std::array<unsigned char, sizeof(can::NodeSettings)>;
-SettingsBytes bytes_of(const can::NodeSettings& s) {
-  SettingsBytes out;
-  std::memcpy(out.data(), static_cast<const void*>(&s), sizeof s);
-  return out;
 }
 
 // The result a reply carries, ok for frames without one.
@@ -128,7 +85,14 @@ int ticks_of(std::uint8_t flags) {
 }  // namespace
 
 std::string can_frames(const std::uint8_t* data, std::size_t size) {
-  FuzzNode& b = fresh_node();
+  CanFramesNode& b = fresh_node();
+  static const SettingsWatch at_start = [&b] {
+    SettingsWatch w;
+    w.look(b.node.settings());
+    return w;
+  }();
+  static SettingsWatch settings;  // its buffers live for the whole run
+  settings = at_start;
   int ticks_left = kMaxTicksPerInput;
   for (std::size_t r = 0; r + kFrameRecordBytes <= size; r += kFrameRecordBytes) {
     const std::uint8_t* rec = data + r;
@@ -147,16 +111,13 @@ std::string can_frames(const std::uint8_t* data, std::size_t size) {
       if (const char* why = check_sent(b.port, refused); *why != '\0') return broken(why, at);
     }
 
-    const can::NodeSettings before = b.node.settings();
-    const SettingsBytes before_bytes = bytes_of(b.node.settings());
+    settings.look(b.node.settings());  // what the ticks changed is not the frame's doing
     const can::NodeCounters was = b.node.counters();
     const std::uint16_t answered = b.node.reply_sequence();
     b.port.send(frame);
     b.node.service();
     if (const char* why = check_sent(b.port, refused); *why != '\0') return broken(why, at);
-    // Same bytes: certainly the same set. Else the stored images decide
-    // (padding or a NaN's bits may differ where the parameters do not).
-    const bool changed = bytes_of(b.node.settings()) != before_bytes && image_of(before) != image_of(b.node.settings());
+    const bool changed = settings.look(b.node.settings());
 
     const std::uint8_t node = can::node_of(frame.id);
     if (frame.extended || (node != test::kNode && node != can::kBroadcastNode)) {
