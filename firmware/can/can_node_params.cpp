@@ -41,7 +41,8 @@ bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
 ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer) noexcept {
   // A save, load or design in flight works on the set as it was: no change until it is answered.
   if (worker_busy()) return ErrorCode::busy;
-  if (const SettingsCheck c = validate(next); !c.ok) {
+  // The live set passed validate(): only what the change touches is checked again.
+  if (const SettingsCheck c = validate(next, settings_); !c.ok) {
     blamed_param_ = c.param;
     return ErrorCode::invalid;
   }

@@ -7,6 +7,7 @@
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_rows_bore.hpp"
+#include "firmware/control/same_bytes.hpp"
 #include "firmware/motion/motion_interpolator.hpp"
 #include "firmware/shaper/impulse_design.hpp"
 
@@ -448,25 +449,40 @@ std::uint16_t blame(const ConfigError& e) noexcept {
 
 }  // namespace
 
-SettingsCheck validate(const NodeSettings& s) noexcept {
+namespace {
+
+SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) noexcept {
+  if (base != nullptr && same_bytes(s, *base)) return {};
   for (const ParamDef& p : kParams) {
     if (p.access == Access::read_only) continue;
     if (check_value(p, p.get(s)) != ErrorCode::ok) return {false, p.id, p.name, "outside the parameter's range"};
   }
-  if (const ConfigError e = validate(s.firmware); !e.ok()) return {false, blame(e), e.section, e.reason};
+  const ConfigError e = base != nullptr ? validate(s.firmware, base->firmware) : validate(s.firmware);
+  if (!e.ok()) return {false, blame(e), e.section, e.reason};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    if (const ParamCheck c = validate(s.shaper[i].spec); !c.ok)
-      return {false, static_cast<std::uint16_t>(i == 0 ? 0x0141 : 0x0241), i == 0 ? "axis x: shaper" : "axis y: shaper",
-              c.reason};
+    if (base == nullptr || !same_bytes(s.shaper[i].spec, base->shaper[i].spec))
+      if (const ParamCheck c = validate(s.shaper[i].spec); !c.ok)
+        return {false, static_cast<std::uint16_t>(i == 0 ? 0x0141 : 0x0241), i == 0 ? "axis x: shaper" : "axis y: shaper",
+                c.reason};
     const AxisLimits& lim = s.firmware.supervisor.axis[i];
     if (!(lim.position_min_mm < lim.position_max_mm))
       return {false, static_cast<std::uint16_t>(i == 0 ? 0x0150 : 0x0250), i == 0 ? "axis x: limits" : "axis y: limits",
               "position_min_mm must be below position_max_mm"};
   }
-  if (const ParamCheck c = validate(s.bore); !c.ok) return {false, bore_param_for(c.field), "bore", c.reason};
+  if (base == nullptr || !same_bytes(s.bore, base->bore))
+    if (const ParamCheck c = validate(s.bore); !c.ok) return {false, bore_param_for(c.field), "bore", c.reason};
   // The learned state is no parameter; a damaged one fails the set as a whole.
-  if (const ParamCheck c = validate(s.bore_state); !c.ok) return {false, 0, "bore: learned state", c.reason};
+  if (base == nullptr || !same_bytes(s.bore_state, base->bore_state))
+    if (const ParamCheck c = validate(s.bore_state); !c.ok) return {false, 0, "bore: learned state", c.reason};
   return {};
+}
+
+}  // namespace
+
+SettingsCheck validate(const NodeSettings& s) noexcept { return validate_parts(s, nullptr); }
+
+SettingsCheck validate(const NodeSettings& s, const NodeSettings& valid_base) noexcept {
+  return validate_parts(s, &valid_base);
 }
 
 }  // namespace tnv::fw::can

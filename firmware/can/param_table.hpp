@@ -100,6 +100,10 @@ struct SettingsCheck {
   const char* reason = "";
 };
 SettingsCheck validate(const NodeSettings& settings) noexcept;
+// The same, skipping the parts byte for byte those of `valid_base`, a set
+// that passed validate() (a change checks what it changes; the parameter
+// ranges are always checked).
+SettingsCheck validate(const NodeSettings& settings, const NodeSettings& valid_base) noexcept;
 
 // Maximum capture image, in 32-bit words (the firmware's fixed buffer).
 inline constexpr std::uint32_t kCaptureCapacityWords = 131072;

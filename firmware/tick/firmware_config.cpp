@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "firmware/control/pid_tuning.hpp"
+#include "firmware/control/same_bytes.hpp"
 
 namespace tnv::fw {
 
@@ -37,11 +38,10 @@ ConfigError axis_error(std::size_t axis, const char* what_x, const char* what_y,
   return {axis == 0 ? what_x : what_y, check.field, check.reason};
 }
 
-}  // namespace
-
-ConfigError validate(const FirmwareConfig& config) noexcept {
+ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* base) noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const AxisConfig& a = config.axis[i];
+    if (base != nullptr && same_bytes(a, base->axis[i])) continue;
     const char* section = i == 0 ? "axis x" : "axis y";
     if (!std::isfinite(a.count_mm) || a.count_mm <= 0.0) return {section, "count_mm", "must be > 0 and finite"};
     if (a.dac.bits < 8 || a.dac.bits > 16) return {section, "dac.bits", "must be 8..16"};
@@ -65,11 +65,22 @@ ConfigError validate(const FirmwareConfig& config) noexcept {
     if (const ParamCheck c = validate(a.observer, a.model); !c.ok)
       return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
   }
-  if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
+  if (base == nullptr || !same_bytes(config.supervisor, base->supervisor))
+    if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
   if (!std::isfinite(config.force_sensor.n_per_volt)) return {"force sensor", "n_per_volt", "must be finite"};
-  if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason};
+  // The force loop's check solves its pole placement (a 4x4 system): only when it changed.
+  if (base == nullptr || !same_bytes(config.arsc, base->arsc))
+    if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason};
   if (const char* reason = motion::validate(path_limits(config)); reason[0] != '\0') return {"path", "", reason};
   return {};
+}
+
+}  // namespace
+
+ConfigError validate(const FirmwareConfig& config) noexcept { return validate_parts(config, nullptr); }
+
+ConfigError validate(const FirmwareConfig& config, const FirmwareConfig& valid_base) noexcept {
+  return validate_parts(config, &valid_base);
 }
 
 }  // namespace tnv::fw

@@ -74,5 +74,9 @@ struct ConfigError {
 };
 
 ConfigError validate(const FirmwareConfig& config) noexcept;
+// The same, skipping the parts (an axis, the supervisor, the force loop)
+// that are byte for byte those of `valid_base`, a config that passed
+// validate(): a parameter change checks what it changes.
+ConfigError validate(const FirmwareConfig& config, const FirmwareConfig& valid_base) noexcept;
 
 }  // namespace tnv::fw

@@ -258,6 +258,7 @@ class TickTask {
 
   hal::IoBoard& board_;
   FirmwareConfig config_;
+  bool config_validated_ = false;  // config_ passed validate() (apply_config): a change re-checks only what differs
   std::array<AxisLoop, hal::kAxisCount> axis_;
   motion::MotionInterpolator motion_{};
   motion::JogProducer jog_{};

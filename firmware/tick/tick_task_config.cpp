@@ -69,7 +69,8 @@ bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfi
 }
 
 CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
-  if (!validate(config).ok()) return CommandStatus::invalid;
+  // After the first accepted config, only what differs from the running one is checked again.
+  if (!(config_validated_ ? validate(config, config_) : validate(config)).ok()) return CommandStatus::invalid;
   if (moving() && !live_tunable_only(config_, config)) return CommandStatus::busy;
   // Everything checked: from here on nothing can refuse, so it applies whole.
   FirmwareConfig next = config;
@@ -117,6 +118,7 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
   if (!same_but_force_ref(next.arsc, config_.arsc)) (void)arsc_.configure(next.arsc);
   else if (next.arsc.force_ref_n != config_.arsc.force_ref_n) (void)arsc_.set_force_ref_n(next.arsc.force_ref_n);
   config_ = next;
+  config_validated_ = true;
   if (path_changed) (void)motion_.configure(path_limits(config_), held_point());  // validated with the config
   return CommandStatus::ok;
 }
