@@ -36,6 +36,29 @@ PlausibilityVerdict MotionPlausibility::update(std::int64_t counts, double appli
   const double high_mm = std::fmax(0.0, v.predicted_mm + v.spread_mm);
   v.jump = !(step_mm >= low_mm && step_mm <= high_mm);
 
+  // Runaway at speed (docs/safety.md "Motion plausibility"): the w held
+  // over both intervals that gives dp_k; B1 + C = A12 B2 + (1 - A22) B1 is
+  // the step per mm/s of steady input, > 0 for any real axis.
+  const double u1 = applied_mm_s, u2 = u_prev_mm_s;  // u_{k-1}, u_{k-2}
+  const double push_gain_mm = b1 + c;
+  const double push_sign = u1 > 0.0 ? 1.0 : -1.0;
+  // Only while the table still moves the commanded way: once it runs
+  // against the command (turned, or a slower drive braking a fast move) w
+  // carries the lag term (tau - tau') a and the step check above applies.
+  if (push_gain_mm > 0.0 && push_sign * u1 >= limit.runaway_push_min_command_mm_s &&
+      push_sign * u2 >= limit.runaway_push_min_command_mm_s && push_sign * step_mm > 0.0) {
+    const double w_mm_s = (step_mm - a22 * steps_mm_[1]) / push_gain_mm;
+    const double u_small = std::fmin(std::fabs(u1), std::fabs(u2));
+    const double u_large = std::fmax(std::fabs(u1), std::fabs(u2));
+    const double quantisation_mm_s = quantisation_mm / push_gain_mm;
+    v.push_against_mm_s = -push_sign * w_mm_s;
+    v.push_limit_mm_s = limit.runaway_push_fraction * u_small + quantisation_mm_s;
+    // A flipped drive pushes with its own gain; beyond twice the command the
+    // table was stopped, not pushed.
+    const double push_max_mm_s = kRunawayPushGainMax * u_large + quantisation_mm_s;
+    v.runaway_push = v.push_against_mm_s > v.push_limit_mm_s && v.push_against_mm_s < push_max_mm_s;
+  }
+
   if (steps_known < 1 + kRunawayWindowTicks) return v;
   // One direction over the whole window, and a real command, not hunting.
   const double sign = applied_mm_s_[0] > 0.0 ? 1.0 : -1.0;

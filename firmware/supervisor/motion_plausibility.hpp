@@ -23,6 +23,19 @@
 //   0 is never against); a plant slower or faster than the model changes
 //   how fast the table follows, not which way. Only a drive that pushes the
 //   wrong way (or a disturbance larger than the command) does it.
+// - runaway at speed (1 tick), while the table still moves the commanded
+//   way: the input that explains this tick's step,
+//   w = (dp_k - A22 dp_{k-1}) / (B1 + C) (the relation with w held over both
+//   intervals), points against a command of at least
+//   runaway_push_min_command_mm_s (both commands of the relation and dp_k
+//   one way) by more than runaway_push_fraction of it plus the
+//   quantisation. A moving table's step shrinks as it brakes, long before
+//   it turns; this sees the brake. A drive of any gain and time constant
+//   near the model's pushes the table with its command (w ~ K u + (tau -
+//   tau') a), friction and cutting are a fraction of it; a flipped drive
+//   gives w ~ -K u. A stop dead (jam, frozen count) gives
+//   w ~ -A22/(1 - A22) v, about -5 v, beyond any drive's push: not a
+//   runaway (stall monitor).
 #include <array>
 #include <cstdint>
 
@@ -38,6 +51,12 @@ struct PlausibilityLimit {
   double runaway_margin_mm_s = 0.25;
   // Commands below this (hunting at standstill) are not a direction.
   double runaway_min_command_mm_s = 2.0;
+  // Commands below this are not checked by the 1-tick push check (lag and
+  // friction terms are not small against them).
+  double runaway_push_min_command_mm_s = 10.0;
+  // w against the command beyond this fraction of |u| (and the quantisation)
+  // is a runaway; a healthy drive gives w ~ +K u.
+  double runaway_push_fraction = 0.25;
 };
 
 struct PlausibilityVerdict {
@@ -49,12 +68,16 @@ struct PlausibilityVerdict {
   double spread_mm = 0.0;     // half-width of the reachable interval
   double against_mm = 0.0;    // -s (dp_k - dp_{k-N}): step gained against the command (> 0 = against)
   double against_limit_mm = 0.0;
+  bool runaway_push = false;       // the step's input w points against the command (1-tick check)
+  double push_against_mm_s = 0.0;  // -s w: input against the command (> 0 = against)
+  double push_limit_mm_s = 0.0;
 };
 
 class MotionPlausibility {
  public:
   static constexpr std::int64_t kQuantisationCounts = 3;  // the residual's floor errors reach +-1.83 counts
   static constexpr std::size_t kRunawayWindowTicks = 2;
+  static constexpr double kRunawayPushGainMax = 2.0;  // a flipped drive's |w| / |u| at most
 
   // One tick. `counts`: this snapshot's count; `applied_mm_s`: the command
   // the DAC applied over the interval this snapshot ends (0 if the outputs

@@ -32,6 +32,10 @@ const char* validate(const SupervisorConfig& config) noexcept {
       return "plausibility runaway_margin_mm_s must be 0..100";
     if (!(a.plausibility.runaway_min_command_mm_s > 0.0 && a.plausibility.runaway_min_command_mm_s <= 100.0))
       return "plausibility runaway_min_command_mm_s must be > 0 and <= 100";
+    if (!(a.plausibility.runaway_push_min_command_mm_s >= 1.0 && a.plausibility.runaway_push_min_command_mm_s <= 100.0))
+      return "plausibility runaway_push_min_command_mm_s must be 1..100";
+    if (!(a.plausibility.runaway_push_fraction >= 0.1 && a.plausibility.runaway_push_fraction <= 1.0))
+      return "plausibility runaway_push_fraction must be 0.1..1";
   }
   if (config.tick_period_clocks == 0) return "tick_period_clocks must be > 0";
   if (config.period_tolerance_clocks == 0 || config.period_tolerance_clocks >= config.tick_period_clocks)
@@ -76,6 +80,8 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
     if (!std::isfinite(a.command_mm_s)) return fault(FaultReason::non_finite_command, in, axis);
     if (a.plausibility.runaway)
       return fault(FaultReason::runaway, in, axis, a.plausibility.against_mm, a.plausibility.against_limit_mm);
+    if (a.plausibility.runaway_push)  // value in mm/s (the input against the command), not mm
+      return fault(FaultReason::runaway, in, axis, a.plausibility.push_against_mm_s, a.plausibility.push_limit_mm_s);
     // Before the following error: a frozen count is the root cause it would only see later.
     if (a.stalled_ticks >= lim.stall.ticks)
       return fault(FaultReason::encoder_stall, in, axis, a.stall_command_mm_s, lim.stall.command_mm_s);

@@ -32,7 +32,9 @@ bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
          a.stall.ticks == b.stall.ticks &&
          a.plausibility.jump_disturbance_scale == b.plausibility.jump_disturbance_scale &&
          a.plausibility.runaway_margin_mm_s == b.plausibility.runaway_margin_mm_s &&
-         a.plausibility.runaway_min_command_mm_s == b.plausibility.runaway_min_command_mm_s;
+         a.plausibility.runaway_min_command_mm_s == b.plausibility.runaway_min_command_mm_s &&
+         a.plausibility.runaway_push_min_command_mm_s == b.plausibility.runaway_push_min_command_mm_s &&
+         a.plausibility.runaway_push_fraction == b.plausibility.runaway_push_fraction;
 }
 
 // Everything of the force loop but f* (which it takes on line).
