@@ -1,8 +1,8 @@
 // tnv-hil rt-budget as a script runs it: the JSON keys the docs quote, no
 // lost tick while the bench session runs, and no call over 50 us of
-// modelled board time (the work meter's block count: the same on every
-// machine; the host CPU microseconds depend on the machine and are not
-// checked here).
+// modelled board time (the work meter's block count, whatever the
+// machine's load; the host CPU microseconds depend on the machine and are
+// not checked here).
 #include <gtest/gtest.h>
 
 #include <set>
