@@ -15,16 +15,6 @@ namespace tnv::fw::can {
 
 using namespace fields;
 
-namespace {
-
-bool same_params(const NodeSettings& a, const NodeSettings& b) noexcept {
-  for (const ParamDef& p : param_table())
-    if (p.access == Access::read_write && p.get(a) != p.get(b)) return false;
-  return true;
-}
-
-}  // namespace
-
 bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
   const CaptureState st = capture_.state();
   if (st != CaptureState::armed && st != CaptureState::recording) return false;
@@ -55,14 +45,16 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
     }
   if (idle_touched && moving()) return ErrorCode::busy;
   if (capture_change_refused(next)) return ErrorCode::busy;
-  // Shapers to configure, and whether their designs are at hand.
+  // Shapers to configure, and their designs where the node has them.
   std::array<bool, hal::kAxisCount> redesign{};
+  std::array<const ShaperDesign*, hal::kAxisCount> ready{};
   std::array<bool, hal::kAxisCount> missing{};
   bool any_missing = false;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const ShaperSettings& now = next.shaper[i];
     redesign[i] = !same_spec(settings_.shaper[i].spec, now.spec) || (now.enabled && !shaper_configured_[i]);
-    missing[i] = redesign[i] && designs_.find(now.spec) == nullptr;
+    if (redesign[i]) ready[i] = designs_.find(now.spec);
+    missing[i] = redesign[i] && ready[i] == nullptr;
     any_missing = any_missing || missing[i];
   }
   if (any_missing && may_defer && storage_worker_ != nullptr) return defer_for_designs(missing, next);
@@ -72,15 +64,13 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const hal::Axis axis = hal::axis_from_index(i);
     const ShaperSettings& now = next.shaper[i];
-    if (redesign[i]) {
-      const ShaperDesign* ready = designs_.find(now.spec);
-      // Without a worker (or a design the load job could not make) the design runs here, as it must.
-      shaper_configured_[i] = (ready != nullptr ? task_.configure_shaper(axis, now.spec, *ready)
-                                                : task_.configure_shaper(axis, now.spec)) == CommandStatus::ok;
-    }
+    // Without a worker (or a design the load job could not make) the design runs here, as it must.
+    if (redesign[i])
+      shaper_configured_[i] = (ready[i] != nullptr ? task_.configure_shaper(axis, now.spec, *ready[i])
+                                                   : task_.configure_shaper(axis, now.spec)) == CommandStatus::ok;
     if (settings_.shaper[i].enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
   }
-  if (!same_params(settings_, next)) unsaved_ = true;
+  if (differing_params(settings_, next, 1) != 0) unsaved_ = true;
   settings_ = next;
   return ErrorCode::ok;
 }

@@ -355,6 +355,13 @@ void keep_safety_params(const NodeSettings& from, NodeSettings& to) noexcept {
     if (safety_param(p)) p.set(to, p.get(from));
 }
 
+std::size_t differing_params(const NodeSettings& a, const NodeSettings& b, std::size_t stop_at) noexcept {
+  std::size_t n = 0;
+  for (const ParamDef& p : kParams)
+    if (p.access == Access::read_write && p.get(a) != p.get(b) && ++n >= stop_at) break;
+  return n;
+}
+
 std::span<const ParamDef> param_table() noexcept { return kParams; }
 
 const ParamDef* find_param(std::uint16_t id) noexcept {
@@ -446,10 +453,6 @@ std::uint16_t blame(const ConfigError& e) noexcept {
   const ParamDef* p = find_param(name);
   return p != nullptr ? p->id : 0;
 }
-
-}  // namespace
-
-namespace {
 
 SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) noexcept {
   if (base != nullptr && same_bytes(s, *base)) return {};

@@ -80,6 +80,10 @@ constexpr bool safety_param(const ParamDef& p) noexcept { return p.guard == Guar
 std::uint16_t first_safety_change(const NodeSettings& live, const NodeSettings& next) noexcept;
 // Copies every safety parameter of `from` into `to`.
 void keep_safety_params(const NodeSettings& from, NodeSettings& to) noexcept;
+// Read-write parameters whose values differ between `a` and `b`, counted up
+// to `stop_at` (1: whether they differ at all, ending at the first).
+std::size_t differing_params(const NodeSettings& a, const NodeSettings& b,
+                             std::size_t stop_at = static_cast<std::size_t>(-1)) noexcept;
 
 // Range / type check of one value for one parameter: ok, not_finite,
 // out_of_range (also for a non-integer value of an integer type) or

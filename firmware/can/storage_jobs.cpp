@@ -39,13 +39,12 @@ void LoadJob::run() noexcept {
     return;
   }
   report_ = load_settings_with_fallback(*current_, previous_, settings_);
+  // Every axis' spec; run() designs the valid ones (an invalid set is refused whole when applied).
   std::array<ShaperSpec, hal::kAxisCount> specs{};
-  std::array<bool, hal::kAxisCount> needed{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    specs[i] = settings_.shaper[i].spec;
-    needed[i] = validate(specs[i]).ok;  // an invalid set is refused whole when applied
-  }
-  designs_.prepare(specs, needed);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) specs[i] = settings_.shaper[i].spec;
+  std::array<bool, hal::kAxisCount> all{};
+  all.fill(true);
+  designs_.prepare(specs, all);
   designs_.run();
 }
 

@@ -38,7 +38,7 @@ class SaveJob final : public hal::StorageJob {
 // design costs more board time than a request may take.
 class ShaperDesignJob final : public hal::StorageJob {
  public:
-  // `needed[i]`: design specs[i] (a valid spec).
+  // `needed[i]`: design specs[i]; run() skips a spec that fails validate().
   void prepare(const std::array<ShaperSpec, hal::kAxisCount>& specs, const std::array<bool, hal::kAxisCount>& needed) noexcept;
   void run() noexcept override;
   bool designed(std::size_t axis) const noexcept { return designed_[axis]; }

@@ -73,10 +73,8 @@ std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& opti
   const can::NodeSettings fresh = settings;
   const can::LoadReport loaded = can::load_settings_with_fallback(storage, &storage.previous(), settings);
   // A saved set changes every later --emu result: count what differs from a fresh node.
-  std::size_t differing = 0;
-  if (loaded.source != can::LoadSource::nothing_stored)
-    for (const can::ParamDef& p : can::param_table())
-      if (p.access == can::Access::read_write && p.get(settings) != p.get(fresh)) ++differing;
+  const std::size_t differing =
+      loaded.source != can::LoadSource::nothing_stored ? can::differing_params(settings, fresh) : 0;
   std::string note;
   if (loaded.fault()) {
     note = path;

@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
       "With --emu the node lives inside this process: use `tnvctl --emu script FILE` for several steps on one "
       "node; its parameters persist only through `params save` (--emu-storage).");
   app.require_subcommand(1);
-  app.fallthrough();
-  tnv::cli::add_version_flag(app, "tnvctl");  // global options may also follow the subcommand
+  app.fallthrough();  // global options may also follow the subcommand
+  tnv::cli::add_version_flag(app, "tnvctl");
 
   GlobalOptions g;
   CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface, e.g. can0");
