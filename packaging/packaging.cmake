@@ -5,13 +5,17 @@
 if(TARGET tnv-fw)
   # cpack / install use what is built: build tnv-fw and tnv-board-emu first, not the whole tree.
   set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY ON)
-  include(GNUInstallDirs)
+  # Every destination is relative, so `cmake --install --prefix P` writes
+  # only under P. The package preset sets TNV_INSTALL_SYSCONFDIR=/etc: a
+  # Debian package's configuration lives in /etc, not /usr/etc.
+  set(TNV_INSTALL_SYSCONFDIR ${CMAKE_INSTALL_SYSCONFDIR} CACHE STRING
+      "Where tnv-fw.toml goes (relative to the prefix, or absolute: /etc for the package)")
   install(TARGETS tnv-fw tnv-board-emu RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT board)
-  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.toml DESTINATION /etc/tnv-fw COMPONENT board)
-  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.service DESTINATION /lib/systemd/system COMPONENT board)
-  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.sysusers DESTINATION /usr/lib/sysusers.d RENAME tnv-fw.conf
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.toml DESTINATION ${TNV_INSTALL_SYSCONFDIR}/tnv-fw COMPONENT board)
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.service DESTINATION lib/systemd/system COMPONENT board)
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/tnv-fw.sysusers DESTINATION lib/sysusers.d RENAME tnv-fw.conf
           COMPONENT board)
-  install(FILES ${PROJECT_SOURCE_DIR}/packaging/60-tnv-fw.rules DESTINATION /lib/udev/rules.d COMPONENT board)
+  install(FILES ${PROJECT_SOURCE_DIR}/packaging/60-tnv-fw.rules DESTINATION lib/udev/rules.d COMPONENT board)
   install(FILES ${PROJECT_SOURCE_DIR}/docs/install-board.md ${PROJECT_SOURCE_DIR}/docs/hil-rig.md
           DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/tnv-fw COMPONENT board)
 

@@ -65,9 +65,7 @@ write_shim nlohmann_json 3.11.2 nlohmann_json::nlohmann_json "$shim/include"
 #    No arm64 libgpiod: pkg-config looks only at the (absent) arm64 dir.
 echo "[arm64] configure"
 PKG_CONFIG_LIBDIR=/usr/lib/aarch64-linux-gnu/pkgconfig PKG_CONFIG_PATH="" \
-cmake -S "$repo" -B "$out/tnv" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON \
-  -DCMAKE_TOOLCHAIN_FILE="$repo/scripts/arm64/toolchain.cmake" "${launcher[@]}" \
-  -DTNV_BUILD_BENCHMARKS=OFF -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST \
+cmake --preset arm64 -B "$out/tnv" "${launcher[@]}" \
   -DGTest_DIR="$deps/lib/cmake/GTest" -DEigen3_DIR="$shim/Eigen3" -Dtomlplusplus_DIR="$shim/tomlplusplus" \
   -DCLI11_DIR="$shim/CLI11" -Dnlohmann_json_DIR="$shim/nlohmann_json" >/dev/null
 suites=(test_firmware test_emulator test_drivers)

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Builds and runs every test stage, stops at the first failure and prints
 # how long each stage took:
-#   release  unity build (tests and benchmarks compiled), every test but the
-#            kernel ones
-#   asan     the same suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   release  unity build, default generator (tests and benchmarks compiled),
+#            every test but the kernel ones, the installed CMake package
+#   asan     the suite under AddressSanitizer + UndefinedBehaviorSanitizer,
+#            without the tests that run tnv-hil or tnvctl as a process
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
 #   fuzz     every libFuzzer target for 60 s                   (scripts/fuzz.sh)
 #   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
