@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "firmware/can/capture_channels.hpp"
+#include "firmware/can/firmware_identity.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_rows_bore.hpp"
 #include "firmware/control/same_bytes.hpp"
@@ -244,6 +245,10 @@ constexpr ParamDef kParams[] = {
      TNV_RO(param_count()), "number of parameters"},
     {0x0002, "sys.capture_capacity_words", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
      TNV_RO(kCaptureCapacityWords), "capture buffer, 32-bit words"},
+    {0x0003, "sys.firmware_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
+     TNV_RO(firmware_version()), "firmware version: major * 10000 + minor * 100 + patch"},
+    {0x0004, "sys.build_id", ParamType::u32, "", 0, 4294967295.0, "", Access::read_only, Apply::live, kOpen,
+     TNV_RO(firmware_build_id()), "first 32 bits of the git commit the firmware was built from; 0 = unknown"},
     {0x0010, "can.node_id", ParamType::u32, "", 1, 63, "", Access::read_write, Apply::restart, kOpen,
      TNV_INT(can.node_id), "this node's id (identifier bits 5..0)"},
     {0x0011, "can.bitrate_kbit", ParamType::u32, "kbit/s", 125, 1000, "", Access::read_write, Apply::restart, kOpen,

@@ -52,5 +52,30 @@ TEST(ParamText, FindsByNameOrIdAndSuggestsCloseNames) {
   EXPECT_EQ(can_host::closest_param_name("completely.different"), "");
 }
 
+TEST(ParamText, GlobsAndGroupPrefixesExpandInTableOrder) {
+  using can_host::params_matching;
+  // One exact name or id: that parameter alone.
+  ASSERT_EQ(params_matching("x.sliding.gamma").size(), 1u);
+  EXPECT_EQ(params_matching("0x0116")[0], &param_def("x.sliding.gamma"));
+  // A glob: both axes' gamma, X's first (table order).
+  const auto gammas = params_matching("?.sliding.gamma");
+  ASSERT_EQ(gammas.size(), 2u);
+  EXPECT_STREQ(gammas[0]->name, "x.sliding.gamma");
+  EXPECT_STREQ(gammas[1]->name, "y.sliding.gamma");
+  // A group prefix, with or without its dot; each member starts with it and the table has no other.
+  const auto group = params_matching("x.sliding");
+  EXPECT_EQ(group, params_matching("x.sliding."));
+  std::size_t in_table = 0;
+  for (const can::ParamDef& p : can::param_table())
+    if (std::string_view(p.name).starts_with("x.sliding.")) ++in_table;
+  EXPECT_GE(group.size(), 2u);
+  EXPECT_EQ(group.size(), in_table);
+  for (std::size_t i = 1; i < group.size(); ++i) EXPECT_LT(group[i - 1]->id, group[i]->id);
+  // A prefix is a whole dotted group, never part of a word; nothing matched is empty.
+  EXPECT_TRUE(params_matching("x.slid").empty());
+  EXPECT_TRUE(params_matching("z.*").empty());
+  EXPECT_TRUE(params_matching("").empty());
+}
+
 }  // namespace
 }  // namespace tnv

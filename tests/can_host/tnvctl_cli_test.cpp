@@ -13,7 +13,7 @@ namespace {
 
 using test::ToolRun;
 
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::has;
 
 std::string script_args(const std::filesystem::path& script) {
   std::string args = "--emu script ";
@@ -103,6 +103,63 @@ TEST(TnvctlCli, AScriptIsParsedWholeBeforeItsFirstLineRuns) {
   std::filesystem::remove_all(state);
 }
 
+TEST(TnvctlCli, ParamsGetTakesGlobsAndGroupsAndRefusesAPatternThatMatchesNothing) {
+  const auto state = test::state_dir("globs");
+  ToolRun r = test::tnvctl(state, "--emu --json params get '?.sliding.gamma' x.sliding.gamma");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["params"].size(), 2u) << "x.sliding.gamma named twice is read once";
+  EXPECT_EQ(j["params"][0]["name"], "x.sliding.gamma");
+  EXPECT_EQ(j["params"][1]["name"], "y.sliding.gamma");
+  r = test::tnvctl(state, "--emu params get 'x.nothing*'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "no parameter matches 'x.nothing*'")) << r.err;
+}
+
+TEST(TnvctlCli, ExportThenImportRestoresTheSetAndAnEditedOrForeignFileIsRefused) {
+  const auto state = test::state_dir("export");
+  const auto file = state / "node1.toml";
+  // One emulated node: export, change two parameters, import, read back.
+  const auto script = test::write_file(state / "roundtrip.tnvctl",
+                                       "params export " + file.string() +
+                                           "\nparams set x.sliding.gamma=0.4375 y.controller=pid\n"
+                                           "params import " + file.string() + "\nparams get x.sliding.gamma y.controller\n");
+  ToolRun r = test::tnvctl(state, script_args(script));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const ToolRun defaults = test::tnvctl(state, "--emu params get x.sliding.gamma y.controller");
+  ASSERT_EQ(defaults.exit_code, 0) << defaults.err;
+  EXPECT_TRUE(has(r.out, defaults.out)) << "the import put back the exported values:\n" << r.out << "\n" << defaults.out;
+  EXPECT_TRUE(has(r.out, "(was 0.4375)")) << r.out;
+  const std::string text = test::read_file(file);
+  EXPECT_TRUE(has(text, "[node]\nid = 1\n")) << text;
+  EXPECT_TRUE(has(text, "params_hash = \"fnv1a64:")) << text;
+
+  // Importing onto a node that holds the set changes nothing.
+  r = test::tnvctl(state, "--emu params import " + file.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "nothing to change")) << r.out;
+
+  // An edited file needs --edited; a file from another node needs --any-node. Both: exit 2, nothing sent.
+  std::string edited = text;
+  const auto at = edited.find("\nx.sliding.gamma = ");
+  ASSERT_NE(at, std::string::npos);
+  edited.replace(at, edited.find('\n', at + 1) - at, "\nx.sliding.gamma = 0.5");
+  const auto edited_file = test::write_file(state / "edited.toml", edited);
+  r = test::tnvctl(state, "--emu params import " + edited_file.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "changed after the export")) << r.err;
+  r = test::tnvctl(state, "--emu --json params import --edited " + edited_file.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["params"][0]["value"], 0.5) << r.out;
+  r = test::tnvctl(state, "--emu --node 2 params import " + file.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(has(r.err, "exported from node 1, not node 2")) << r.err;
+  // A directory, a missing file: refused before a node is opened.
+  EXPECT_EQ(test::tnvctl(state, "--emu params import " + state.string()).exit_code, 2);
+  EXPECT_EQ(test::tnvctl(state, "--emu params import " + (state / "absent.toml").string()).exit_code, 2);
+  std::filesystem::remove_all(state);
+}
+
 TEST(TnvctlCli, SavedParametersSurviveTheProcessAndLoadRestoresThem) {
   const auto state = test::state_dir("storage");
   const auto script = test::write_file(state / "save.tnvctl",
@@ -130,6 +187,11 @@ TEST(TnvctlCli, SavedParametersSurviveTheProcessAndLoadRestoresThem) {
   r = test::tnvctl(state, "--emu status");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(has(r.err, "loaded the parameters saved in")) << r.err;
+  // The node names its firmware: the version tnvctl --version prints (one project), and a build.
+  const ToolRun version = test::tnvctl(state, "--version");
+  ASSERT_EQ(version.out.rfind("tnvctl ", 0), 0u) << version.out;
+  const std::string tool_version = version.out.substr(7, version.out.find('\n') - 7);
+  EXPECT_TRUE(has(r.out, "(firmware " + tool_version + ", build ")) << r.out << " / " << version.out;
   std::filesystem::remove_all(state);
 }
 

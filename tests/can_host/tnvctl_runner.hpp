@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -43,6 +44,13 @@ inline ToolRun tnv_hil(const std::string& args) {
 inline std::filesystem::path write_file(const std::filesystem::path& path, const std::string& content) {
   std::ofstream(path) << content;
   return path;
+}
+
+inline bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace tnv::test

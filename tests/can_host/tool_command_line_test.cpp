@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -18,7 +19,7 @@ namespace {
 
 using test::ToolRun;
 
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::has;
 
 TEST(ToolCommandLine, VersionPrintsTheToolAndTheProjectVersion) {
   const auto state = test::state_dir("version");
@@ -86,6 +87,31 @@ TEST(ToolCommandLine, MonitorJsonIsJsonLinesOnStdoutWithTheSummaryOnStderr) {
   EXPECT_EQ(summary["ok"], true);
   EXPECT_EQ(summary["command"], "monitor");
   EXPECT_EQ(summary["lines"].get<int>(), samples);
+  std::filesystem::remove_all(state);
+}
+
+TEST(ToolCommandLine, MonitorCsvHasOneHeaderAndFullRowsOnStdoutAndRefusesJsonToo) {
+  const auto state = test::state_dir("monitor_csv");
+  const ToolRun r = test::tnvctl(state, "--emu monitor --csv --duration-s 0.3 --rate-hz 20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream out(r.out);
+  std::string header;
+  ASSERT_TRUE(std::getline(out, header));
+  EXPECT_EQ(header.rfind("t_s,frames,bus_load,state,fault,pos_x_mm,pos_y_mm,", 0), 0u) << header;
+  const auto columns = std::count(header.begin(), header.end(), ',');
+  int rows = 0;
+  std::string last;
+  for (std::string line; std::getline(out, line); ++rows) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
+    last = line;
+  }
+  EXPECT_GE(rows, 4);
+  EXPECT_NE(last.find(",disabled,none,"), std::string::npos) << "state and fault by name, once a heartbeat came: "
+                                                              << last;
+  EXPECT_TRUE(has(r.err, "frames from node 1")) << "the summary goes to stderr: " << r.err;
+  const ToolRun both = test::tnvctl(state, "--emu --json monitor --csv --duration-s 0.1");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_TRUE(has(both.err, "--csv and --json")) << both.err;
   std::filesystem::remove_all(state);
 }
 

@@ -2,10 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
 #include "firmware/can/can_id.hpp"
+#include "firmware/can/param_table.hpp"
+#include "firmware/can/protocol_enums.hpp"
 #include "firmware/can/protocol_messages.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/protogen/protocol_doc_writer.hpp"
@@ -59,7 +62,9 @@ TEST(GeneratedDocs, ProtocolDocIsUpToDate) {
                                        << kHowToFix;
 }
 
-// Every message appears in the DBC with its identifier, DLC and one SG_ per field.
+// Every message appears in the DBC with its identifier, DLC and one SG_ per
+// field, plus one multiplexed signal per parameter in PARAM_REQUEST and
+// PARAM_REPLY and one 1-bit signal per heartbeat bit.
 TEST(GeneratedDocs, DbcHasEveryMessageAndSignal) {
   for (std::uint8_t node : {std::uint8_t{1}, std::uint8_t{42}}) {
     const std::string dbc = tnv::protogen::write_dbc(node);
@@ -78,7 +83,27 @@ TEST(GeneratedDocs, DbcHasEveryMessageAndSignal) {
       const std::string block = dbc.substr(at, end - at);
       std::size_t signals = 0;
       for (std::size_t p = block.find(" SG_ "); p != std::string::npos; p = block.find(" SG_ ", p + 1)) ++signals;
-      EXPECT_EQ(signals, m.fields.size()) << m.name;
+      const std::string_view message(m.name);
+      const bool param_message = message == "param_request" || message == "param_reply";
+      std::size_t expected = m.fields.size();
+      if (param_message) expected += tnv::fw::can::param_table().size();
+      if (message == "heartbeat") expected += std::size(tnv::fw::can::kHeartbeatBits);
+      EXPECT_EQ(signals, expected) << m.name;
+      if (param_message) {
+        EXPECT_NE(block.find(" SG_ param M : 16|16@1+"), std::string::npos) << "param multiplexes: " << m.name;
+        const auto& gamma = *tnv::fw::can::find_param("x.sliding.gamma");
+        EXPECT_NE(block.find(" SG_ x_sliding_gamma m" + std::to_string(gamma.id) + " : 32|32@1- (1,0) [0|1] \"\""),
+                  std::string::npos)
+            << block.substr(0, 400);
+        const std::string id = std::to_string(tnv::fw::can::make_can_id(m.id, node));
+        EXPECT_NE(dbc.find("SIG_VALTYPE_ " + id + " x_sliding_gamma : 1;"), std::string::npos) << "a float";
+        EXPECT_NE(dbc.find("VAL_ " + id + " x_controller 0 \"pid\" 1 \"dvsc\" 2 \"rdvsc\" ;"), std::string::npos);
+      }
+      if (message == "heartbeat") {
+        EXPECT_NE(block.find(" SG_ params_unsaved : 17|1@1+ (1,0) [0|1]"), std::string::npos) << block;
+        const std::string id = std::to_string(tnv::fw::can::make_can_id(m.id, node));
+        EXPECT_NE(dbc.find("BA_ \"GenMsgCycleTime\" BO_ " + id + " 100;"), std::string::npos) << "tlm.heartbeat_ms";
+      }
     }
   }
 }

@@ -1,5 +1,7 @@
 #include "tools/can/param_text.hpp"
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -148,6 +150,19 @@ const can::ParamDef* find_param_by_text(const std::string& name_or_id) {
   const std::optional<double> id = parse_number(name_or_id);
   if (id && *id >= 0 && *id <= 65535 && *id == std::floor(*id)) return can::find_param(static_cast<std::uint16_t>(*id));
   return nullptr;
+}
+
+std::vector<const can::ParamDef*> params_matching(const std::string& pattern) {
+  if (const can::ParamDef* p = find_param_by_text(pattern)) return {p};
+  std::vector<const can::ParamDef*> found;
+  if (pattern.empty()) return found;
+  const bool glob = pattern.find_first_of("*?[") != std::string::npos;
+  const std::string prefix = pattern.back() == '.' ? pattern : pattern + ".";
+  for (const can::ParamDef& p : can::param_table()) {
+    const bool match = glob ? ::fnmatch(pattern.c_str(), p.name, 0) == 0 : std::string_view(p.name).starts_with(prefix);
+    if (match) found.push_back(&p);
+  }
+  return found;
 }
 
 std::string closest_param_name(const std::string& name) {

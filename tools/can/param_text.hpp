@@ -4,6 +4,7 @@
 // against the table (type, range, allowed set) before anything is sent.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "firmware/can/param_table.hpp"
 
@@ -27,6 +28,12 @@ std::optional<double> parse_param_value(const can::ParamDef& p, const std::strin
 
 // A parameter by name or by id ("x.sliding.gamma", "0x0116", "278").
 const can::ParamDef* find_param_by_text(const std::string& name_or_id);
+
+// The parameters a `params get` argument names, in table order: one by
+// name or id, a shell-style glob ("x.*.gamma", "?.limits.*"), or a group
+// by its dotted prefix ("x.sliding" or "x.sliding."). Empty when nothing
+// matches.
+std::vector<const can::ParamDef*> params_matching(const std::string& pattern);
 
 // A parameter name close to `name` for "did you mean" messages ("" if none).
 std::string closest_param_name(const std::string& name);

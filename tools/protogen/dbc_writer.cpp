@@ -1,6 +1,9 @@
 #include "tools/protogen/dbc_writer.hpp"
 
+#include <regex>
+
 #include "firmware/can/can_id.hpp"
+#include "firmware/can/param_table.hpp"
 #include "firmware/can/protocol_messages.hpp"
 #include "tools/protogen/text_format.hpp"
 
@@ -66,6 +69,54 @@ std::string signal_line(const FieldDef& f, const char* receiver) {
   return line;
 }
 
+bool is_param_message(const MessageDef& m) {
+  return std::string_view(m.name) == "param_request" || std::string_view(m.name) == "param_reply";
+}
+
+// "x.sliding.gamma" -> "x_sliding_gamma": DBC names are C identifiers.
+std::string param_signal_name(const fw::can::ParamDef& p) {
+  std::string name = p.name;
+  for (char& c : name)
+    if (c == '.') c = '_';
+  return name;
+}
+
+// PARAM_REQUEST / PARAM_REPLY: `param` multiplexes `value`, one signal per
+// parameter with its type, unit and range, so a DBC tool decodes
+// x.sliding.gamma = 0.25 as 0.25 (the raw `value` stays for commit/discard,
+// whose `param` is a count).
+std::string param_signal_lines(const char* receiver) {
+  std::string out;
+  for (const fw::can::ParamDef& p : fw::can::param_table()) {
+    const bool is_signed = p.type == fw::can::ParamType::f32 || p.type == fw::can::ParamType::i32;
+    append(out, " SG_ ", param_signal_name(p), " m", std::to_string(p.id), " : 32|32@1", is_signed ? "-" : "+",
+           " (1,0) [", number(p.min), "|", number(p.max), "] ", quoted(p.unit), " ", receiver, "\n");
+  }
+  return out;
+}
+
+// The heartbeat's `errors` word, one 1-bit signal per bit beside it.
+std::string heartbeat_bit_lines(const FieldDef& errors) {
+  std::string out;
+  for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits) {
+    int bit = 0;
+    while ((b.mask >> bit) != 1u) ++bit;
+    append(out, " SG_ ", b.name, " : ", std::to_string(errors.byte_offset * 8 + static_cast<unsigned>(bit)),
+           "|1@1+ (1,0) [0|1] \"\" HOST\n");
+  }
+  return out;
+}
+
+// A cyclic message says "every tlm.<name>_ms" in its doc: that
+// parameter's default is its cycle time.
+int default_cycle_ms(const MessageDef& m) {
+  static const std::regex period_param(R"(every (tlm\.[a-z_]+_ms))");
+  std::cmatch match;
+  if (!std::regex_search(m.doc, match, period_param)) return 0;
+  const fw::can::ParamDef* p = fw::can::find_param(match[1].str().c_str());
+  return p == nullptr ? 0 : static_cast<int>(p->get(fw::can::default_node_settings()));
+}
+
 }  // namespace
 
 std::string write_dbc(std::uint8_t node) {
@@ -80,7 +131,14 @@ std::string write_dbc(std::uint8_t node) {
     const bool to_node = m.direction == Direction::to_node;
     append(out, "BO_ ", std::to_string(id), " ", upper(m.name), ": ", std::to_string(m.dlc), " ",
            to_node ? "HOST" : "TNV_NODE", "\n");
-    for (const FieldDef& f : m.fields) out += signal_line(f, to_node ? "TNV_NODE" : "HOST");
+    const char* receiver = to_node ? "TNV_NODE" : "HOST";
+    for (const FieldDef& f : m.fields) {
+      std::string line = signal_line(f, receiver);
+      if (is_param_message(m) && std::string_view(f.name) == "param") line.replace(line.find(" : "), 3, " M : ");
+      out += line;
+      if (std::string_view(m.name) == "heartbeat" && std::string_view(f.name) == "errors") out += heartbeat_bit_lines(f);
+    }
+    if (is_param_message(m)) out += param_signal_lines(receiver);
     out += '\n';
   }
   append(out, "CM_ \"TNV-40 controller CAN protocol ", version,
@@ -90,7 +148,20 @@ std::string write_dbc(std::uint8_t node) {
     const std::string id = std::to_string(fw::can::make_can_id(m.id, node));
     append(out, "CM_ BO_ ", id, " ", quoted(m.doc), ";\n");
     for (const FieldDef& f : m.fields) append(out, "CM_ SG_ ", id, " ", f.name, " ", quoted(f.doc), ";\n");
+    if (is_param_message(m))
+      for (const fw::can::ParamDef& p : fw::can::param_table())
+        append(out, "CM_ SG_ ", id, " ", param_signal_name(p), " ", quoted(std::string(p.name) + ": " + p.doc), ";\n");
+    if (std::string_view(m.name) == "heartbeat")
+      for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
+        append(out, "CM_ SG_ ", id, " ", b.name, " ", quoted(b.doc), ";\n");
   }
+  // Cycle times: the defaults of the tlm.*_ms parameters (0 = sent on request or event).
+  out += "BA_DEF_ BO_ \"GenMsgCycleTime\" INT 0 60000;\n";
+  out += "BA_DEF_DEF_ \"GenMsgCycleTime\" 0;\n";
+  for (const MessageDef& m : fw::can::kMessages)
+    if (const int ms = default_cycle_ms(m); ms > 0)
+      append(out, "BA_ \"GenMsgCycleTime\" BO_ ", std::to_string(fw::can::make_can_id(m.id, node)), " ",
+             std::to_string(ms), ";\n");
   for (const MessageDef& m : fw::can::kMessages) {
     const std::string id = std::to_string(fw::can::make_can_id(m.id, node));
     for (const FieldDef& f : m.fields) {
@@ -99,11 +170,21 @@ std::string write_dbc(std::uint8_t node) {
       for (const auto& [value, name] : value_table(f.values)) append(out, " ", std::to_string(value), " ", quoted(name));
       out += " ;\n";
     }
+    if (is_param_message(m))
+      for (const fw::can::ParamDef& p : fw::can::param_table()) {
+        if (p.values[0] == '\0') continue;
+        append(out, "VAL_ ", id, " ", param_signal_name(p));
+        for (const auto& [value, name] : value_table(p.values)) append(out, " ", std::to_string(value), " ", quoted(name));
+        out += " ;\n";
+      }
   }
   for (const MessageDef& m : fw::can::kMessages) {
     const std::string id = std::to_string(fw::can::make_can_id(m.id, node));
     for (const FieldDef& f : m.fields)
       if (f.type == WireType::f32) append(out, "SIG_VALTYPE_ ", id, " ", f.name, " : 1;\n");
+    if (is_param_message(m))
+      for (const fw::can::ParamDef& p : fw::can::param_table())
+        if (p.type == fw::can::ParamType::f32) append(out, "SIG_VALTYPE_ ", id, " ", param_signal_name(p), " : 1;\n");
   }
   return out;
 }

@@ -212,7 +212,14 @@ std::string write_protocol_doc() {
          "param_table.cpp, capture_channels.hpp, protocol_enums.hpp). Do not edit: change the table and run ",
          "`cmake --build build/release --target update-protocol-docs`. A test fails when this file or ",
          "`docs/tnv.dbc` differs from what the table generates. The same table drives the firmware and the host ",
-         "codec.\n\n");
+         "codec.\n\n",
+         "In `docs/tnv.dbc`, PARAM_REQUEST and PARAM_REPLY multiplex their value on `param`: one signal per ",
+         "parameter (`x_sliding_gamma`, its id as the multiplexer value) with its type (float or integer), unit, ",
+         "range and value names, so a DBC tool decodes x.sliding.gamma = 0.25 as 0.25; the raw `value` stays for ",
+         "commit and discard, whose `param` is a count. HEARTBEAT has each `errors` bit as a 1-bit signal beside the ",
+         "word, and the cyclic messages carry `GenMsgCycleTime` (the defaults of their `tlm.*_ms` parameters). ",
+         "A test decodes a session `tnvctl --trace` recorded with Debian's python3-canmatrix ",
+         "(`tests/protocol/dbc_decode_check.py`).\n\n");
   framing(out, d);
   message_summary(out);
   message_layouts(out);

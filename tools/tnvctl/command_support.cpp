@@ -21,6 +21,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_commissioning_commands(app, slot);
   add_bore_commands(app, slot);
   add_run_commands(app, slot);
+  add_trace_commands(app, slot);
 }
 
 std::optional<std::vector<std::string>> split_words(const std::string& line, std::string& error) {

@@ -27,6 +27,7 @@ struct Action {
 using ActionSlot = std::optional<Action>;
 
 void add_params_commands(CLI::App& app, ActionSlot& slot);   // params list | get | set | save | load | defaults
+                                                             // | export | import
 void add_motion_commands(CLI::App& app, ActionSlot& slot);   // circle, move, jog, stop, estop, enable, disable,
                                                              // clear-faults, zero, controller, status
 void add_shaper_commands(CLI::App& app, ActionSlot& slot);   // shaper
@@ -37,6 +38,7 @@ void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_commissioning_commands(CLI::App& app, ActionSlot& slot);  // commissioning enter | leave
 void add_bore_commands(CLI::App& app, ActionSlot& slot);     // bore gauge | status | restart
 void add_run_commands(CLI::App& app, ActionSlot& slot);      // run FILE.ngc
+void add_trace_commands(CLI::App& app, ActionSlot& slot);    // decode, replay
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
 
 // Every family above except `script` (what a script line may use).
@@ -54,6 +56,12 @@ std::optional<std::vector<std::string>> split_words(const std::string& line, std
 // Runs an action: exceptions become a message on stderr (and a JSON error
 // object with --json) and the exit code.
 int run_action(const Action& action, Session& session);
+
+// `params set`: NAME=VALUE assignments staged and committed as one set (all
+// or nothing), each change reported; throws BadInput / RequestError / RunFailed.
+int set_params(const std::vector<std::string>& assignments, Session& session, Report& report);
+// params export | import, under the `params` subcommand.
+void add_param_file_commands(CLI::App& params, ActionSlot& slot);
 
 // Shared helpers for the families.
 std::uint8_t parse_axis(const std::string& name);  // "x" -> 0, "y" -> 1

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "tools/cli/cli_frame.hpp"
+#include "tools/cli/output_path.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 int main(int argc, char** argv) {
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   tnv::cli::add_version_flag(app, "tnvctl");
 
   GlobalOptions g;
-  CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface, e.g. can0");
+  CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface (e.g. can0), or unix:PATH for tnv-fw's Unix-socket CAN link");
   CLI::Option* emu = app.add_flag("--emu", g.emu, "the in-process emulated controller (real firmware, emulated table)");
   iface->excludes(emu);
   app.add_option("--node", g.node, "node id")->check(CLI::Range(1, 63))->capture_default_str();
@@ -50,6 +51,10 @@ int main(int argc, char** argv) {
                  "emulated node's parameter file (default $XDG_STATE_HOME/tnvctl/emu-node.params or "
                  "~/.local/state/tnvctl/emu-node.params)")
       ->needs(emu);
+
+  app.add_option("--trace", g.trace,
+                 "record every CAN frame sent and received to FILE in candump -l format (tnvctl decode reads it)")
+      ->check(tnv::cli::OutputFile());
 
   ActionSlot slot;
   add_device_commands(app, slot);

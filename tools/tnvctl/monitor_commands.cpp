@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/can/telemetry_csv.hpp"
 #include "tools/can/telemetry_view.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -23,6 +24,7 @@ extern "C" void on_interrupt(int) { g_interrupted = true; }
 struct MonitorOptions {
   double duration_s = 0.0;  // 0: until Ctrl-C
   double rate_hz = 10.0;
+  bool csv = false;  // CSV rows on stdout (header first), summary on stderr
 };
 
 nlohmann::json sample_json(const can_host::TelemetryView& l, double t_s, double load) {
@@ -65,14 +67,16 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
   return buf;
 }
 
-void check_monitor(const MonitorOptions& o) {
+void check_monitor(const MonitorOptions& o, bool json) {
+  if (o.csv && json) throw BadInput("--csv and --json both format stdout: give one");
   if (!(o.rate_hz > 0.0 && o.rate_hz <= 1000.0)) throw BadInput("--rate-hz must be in (0, 1000]");
   if (!(o.duration_s >= 0.0 && o.duration_s <= 1e6)) throw BadInput("--duration-s must be in [0, 1e6]");
 }
 
 int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
-  check_monitor(o);
-  report.summary_to_stderr();  // stdout: JSON Lines, one sample each
+  check_monitor(o, report.json_mode());
+  // stdout carries the samples alone (JSON Lines or CSV rows): the summary goes to stderr.
+  if (report.json_mode() || o.csv) report.summary_to_stderr();
   can_host::NodeClient& client = session.client();
   const double bitrate_bit_s = client.get(*can::find_param("can.bitrate_kbit")) * 1000.0;
   can_host::EmulatedBus* emu = session.emulated();
@@ -85,6 +89,7 @@ int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
   const Micros period{static_cast<long long>(1e6 / o.rate_hz)};
   const Micros end = o.duration_s > 0.0 ? start + Micros{static_cast<long long>(o.duration_s * 1e6)} : Micros::max();
   std::uint64_t lines = 0;
+  if (o.csv) std::cout << can_host::telemetry_csv_header() << '\n';
   try {
     for (Micros next = start + period; !g_interrupted && client.bus().now() < end; next += period) {
       const Micros wait = std::min(next, end) - client.bus().now();
@@ -92,6 +97,7 @@ int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
       const double t_s = static_cast<double>((client.bus().now() - start).count()) * 1e-6;
       const double load = t_s > 0.0 ? static_cast<double>(latest.bits) / (t_s * bitrate_bit_s) : 0.0;
       if (report.json_mode()) std::cout << sample_json(latest, t_s, load).dump() << '\n';
+      else if (o.csv) std::cout << can_host::telemetry_csv_row(latest, t_s, load) << '\n';
       else std::cout << sample_text(latest, t_s) << '\n';
       std::cout.flush();
       ++lines;
@@ -131,9 +137,10 @@ void add_monitor_commands(CLI::App& app, ActionSlot& slot) {
       "monitor", "live status from the heartbeat and telemetry (emulated: paced to the wall clock); Ctrl-C ends");
   cmd->add_option("--duration-s", o->duration_s, "seconds; 0 = until Ctrl-C")->capture_default_str();
   cmd->add_option("--rate-hz", o->rate_hz, "status lines per second")->capture_default_str();
+  cmd->add_flag("--csv", o->csv, "CSV on stdout: a header, then one row per sample (summary on stderr)");
   cmd->callback([&slot, o] {
     slot = Action{"monitor", true, [o](Session& s, Report& r) { return run_monitor(*o, s, r); },
-                  [o] { check_monitor(*o); }};
+                  [o] { check_monitor(*o, false); }};
   });
 }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/can/node_identity.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -234,14 +235,20 @@ int run_status(Session& session, Report& report) {
   can_host::NodeClient& client = session.client();
   const can_host::Heartbeat hb = client.wait_heartbeat(std::max(client.options().timeout, Micros{1'000'000}));
   const can_host::CaptureStatus cap = client.capture(can::CaptureOp::status);
+  const can_host::NodeIdentity id = can_host::read_identity(client);
   const char* states[] = {"idle", "armed", "recording", "done"};
   std::string text = "node ";
-  text.append(std::to_string(client.node())).append(" on ").append(client.bus().describe()).append(": ");
+  text.append(std::to_string(client.node())).append(" (firmware ").append(can_host::firmware_version_text(id.firmware_version));
+  text.append(", build ").append(can_host::build_id_text(id.build_id)).append(") on ");
+  text.append(client.bus().describe()).append(": ");
   text.append(heartbeat_text(hb)).append("; capture ").append(states[static_cast<int>(cap.state) & 3]);
   text.append(" (").append(std::to_string(cap.samples)).append(" samples)");
   report.line(text);
   report.data["status"] = heartbeat_json(hb);
   report.data["capture"] = {{"state", states[static_cast<int>(cap.state) & 3]}, {"samples", cap.samples}};
+  report.data["firmware"] = {{"version", can_host::firmware_version_text(id.firmware_version)},
+                             {"build_id", can_host::build_id_text(id.build_id)},
+                             {"protocol_version", id.protocol_version}};
   return kExitOk;
 }
 

@@ -97,9 +97,28 @@ int run_list(const ListOptions& o, Session& session, Report& report) {
   return kExitOk;
 }
 
-int run_get(const std::vector<std::string>& names, Session& session, Report& report) {
+// Every parameter the arguments name (globs and dotted prefixes expand),
+// each once, in the order given; all checked before anything is sent.
+std::vector<const can::ParamDef*> params_named(const std::vector<std::string>& names) {
   std::vector<const can::ParamDef*> params;
-  for (const std::string& n : names) params.push_back(&param_named(n));  // all checked before anything is sent
+  std::set<std::uint16_t> seen;
+  for (const std::string& n : names) {
+    std::vector<const can::ParamDef*> matched = can_host::params_matching(n);
+    if (matched.empty()) {
+      if (n.find_first_of("*?[") != std::string::npos) {
+        std::string message = "no parameter matches '";
+        throw BadInput(message.append(n).append("'; `tnvctl params list` shows them all"));
+      }
+      param_named(n);  // throws, with "did you mean"
+    }
+    for (const can::ParamDef* p : matched)
+      if (seen.insert(p->id).second) params.push_back(p);
+  }
+  return params;
+}
+
+int run_get(const std::vector<std::string>& names, Session& session, Report& report) {
+  const std::vector<const can::ParamDef*> params = params_named(names);
   can_host::NodeClient& client = session.client();
   nlohmann::json list = nlohmann::json::array();
   for (const can::ParamDef* p : params) {
@@ -172,7 +191,9 @@ std::string explain_invalid(can_host::NodeClient& client, const std::vector<Chan
   return out;
 }
 
-int run_set(const std::vector<std::string>& assignments, Session& session, Report& report) {
+}  // namespace
+
+int set_params(const std::vector<std::string>& assignments, Session& session, Report& report) {
   const std::vector<Change> changes = parse_assignments(assignments);
   can_host::NodeClient& client = session.client();
   std::vector<double> before;
@@ -252,6 +273,8 @@ int run_set(const std::vector<std::string>& assignments, Session& session, Repor
   return kExitOk;
 }
 
+namespace {
+
 int run_storage_command(can::CommandCode code, Session& session, Report& report) {
   can_host::NodeClient& client = session.client();
   try {
@@ -291,12 +314,12 @@ void add_params_commands(CLI::App& app, ActionSlot& slot) {
 
   auto names = std::make_shared<std::vector<std::string>>();
   CLI::App* get_cmd = params->add_subcommand("get", "read parameters by name or id");
-  get_cmd->add_option("names", *names, "NAME or id (0x0116) ...")->required();
+  get_cmd->add_option("names", *names,
+                      "NAME, id (0x0116), glob ('x.*.gamma', quoted) or group prefix (x.sliding) ...")
+      ->required();
   get_cmd->callback([&slot, names] {
     slot = Action{"params get", true, [names](Session& s, Report& r) { return run_get(*names, s, r); },
-                  [names] {
-                    for (const std::string& n : *names) param_named(n);
-                  }};
+                  [names] { params_named(*names); }};
   });
 
   auto assignments = std::make_shared<std::vector<std::string>>();
@@ -304,7 +327,7 @@ void add_params_commands(CLI::App& app, ActionSlot& slot) {
       "set", "change parameters: NAME=VALUE ...; staged and committed as one set (all or nothing)");
   set_cmd->add_option("assignments", *assignments, "NAME=VALUE ... (enums by name: x.controller=pid)")->required();
   set_cmd->callback([&slot, assignments] {
-    slot = Action{"params set", true, [assignments](Session& s, Report& r) { return run_set(*assignments, s, r); },
+    slot = Action{"params set", true, [assignments](Session& s, Report& r) { return set_params(*assignments, s, r); },
                   [assignments] { parse_assignments(*assignments); }};
   });
 
@@ -321,6 +344,7 @@ void add_params_commands(CLI::App& app, ActionSlot& slot) {
                     return run_storage_command(can::CommandCode::restore_defaults, s, r);
                   }};
   });
+  add_param_file_commands(*params, slot);
 }
 
 }  // namespace tnv::tnvctl

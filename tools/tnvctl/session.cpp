@@ -3,15 +3,18 @@
 #include <cstdio>
 #include <iostream>
 
+#include "drivers/linux/unix_can_socket_api.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tools/can/socketcan_bus.hpp"
+#include "tools/can/tracing_bus.hpp"
 
 namespace tnv::tnvctl {
 
 void Report::line(const std::string& text) const {
   if (json_) return;
-  std::cout << text << '\n';
-  std::cout.flush();
+  std::ostream& out = summary_on_stderr_ ? std::cerr : std::cout;  // stdout kept for the CSV rows
+  out << text << '\n';
+  out.flush();
 }
 
 void Session::open() {
@@ -44,12 +47,23 @@ void Session::open() {
     can_host::SocketCanOptions socket;
     socket.interface_name = options_.iface;
     socket.node = node;
-    bus_ = std::make_unique<can_host::SocketCanBus>(can_host::linux_socket_api(), socket);
+    // unix:PATH: the datagram link tnv-fw binds with `[can] interface =
+    // "unix:PATH"` (docs/hil-rig.md), for rigs without vcan.
+    if (const std::string path = drivers::unix_can_path(options_.iface); !path.empty()) {
+      unix_link_ = std::make_unique<drivers::UnixCanSocketApi>(path, drivers::UnixCanSocketApi::Role::host);
+      bus_ = std::make_unique<can_host::SocketCanBus>(*unix_link_, socket);
+    } else {
+      bus_ = std::make_unique<can_host::SocketCanBus>(can_host::linux_socket_api(), socket);
+    }
+  }
+  if (!options_.trace.empty()) {
+    const std::string iface = options_.emu ? "emu" : drivers::unix_can_path(options_.iface).empty() ? options_.iface : "unix";
+    traced_ = std::make_unique<can_host::TracingBus>(*bus_, options_.trace, iface);
   }
   can_host::ClientOptions client;
   client.timeout = can_host::Micros{static_cast<long long>(options_.timeout_ms) * 1000};
   client.host_id = static_cast<std::uint8_t>(options_.host_id);
-  client_ = std::make_unique<can_host::NodeClient>(*bus_, node, client);
+  client_ = std::make_unique<can_host::NodeClient>(traced_ ? *traced_ : *bus_, node, client);
   // The first exchange: is there a node, and does it speak our protocol?
   const fw::can::ParamDef* version = fw::can::find_param("sys.protocol_version");
   const double theirs = client_->get(*version);

@@ -10,6 +10,7 @@
 
 #include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
+#include "tools/can/socket_api.hpp"
 
 namespace tnv::tnvctl {
 
@@ -30,7 +31,7 @@ class RunFailed : public std::runtime_error {
 };
 
 struct GlobalOptions {
-  std::string iface;  // SocketCAN interface
+  std::string iface;  // SocketCAN interface, or unix:PATH (tnv-fw's Unix-socket CAN link)
   bool emu = false;   // the in-process emulated controller
   int node = 1;
   int host_id = 1;  // request tags, staged set and command ownership are this host's
@@ -39,6 +40,7 @@ struct GlobalOptions {
   std::string emu_scenario = "no-cut";
   int emu_seed = 0;
   std::string emu_storage;  // "" = default path
+  std::string trace;        // "" = none; else every frame sent and received, candump -l format
 };
 
 // What a command reports: lines of text (printed at once, unless --json)
@@ -48,8 +50,9 @@ class Report {
   explicit Report(bool json) : json_(json) {}
   void line(const std::string& text) const;
   bool json_mode() const noexcept { return json_; }
-  // A command that streams JSON Lines on stdout (monitor) keeps stdout pure:
-  // its summary object goes to stderr, on one line.
+  // A command that streams JSON Lines or CSV on stdout (monitor) keeps
+  // stdout pure: its summary (text lines, or the JSON object on one line)
+  // goes to stderr.
   void summary_to_stderr() noexcept { summary_on_stderr_ = true; }
   bool summary_on_stderr() const noexcept { return summary_on_stderr_; }
   nlohmann::json data = nlohmann::json::object();
@@ -81,7 +84,9 @@ class Session {
  private:
   void open();
   GlobalOptions options_;
+  std::unique_ptr<can_host::SocketApi> unix_link_;  // --iface unix:PATH; outlives bus_, which uses it
   std::unique_ptr<can_host::HostBus> bus_;
+  std::unique_ptr<can_host::HostBus> traced_;  // --trace: records what passes through bus_
   can_host::EmulatedBus* emulated_ = nullptr;
   std::unique_ptr<can_host::NodeClient> client_;
 };

@@ -109,7 +109,7 @@ std::vector<Case> cases() {
                MessageId::capture_status, ErrorCode::unknown_command);
   // Bad parameter ids.
   for (const ParamOp op : {ParamOp::get, ParamOp::set, ParamOp::stage})
-    for (const std::uint16_t bad : {std::uint16_t{0x0003}, std::uint16_t{0x01FF}, std::uint16_t{0xFFFF}})
+    for (const std::uint16_t bad : {std::uint16_t{0x000F}, std::uint16_t{0x01FF}, std::uint16_t{0xFFFF}})
       add(c, "param id " + std::to_string(bad) + " op " + std::to_string(static_cast<int>(op)),
                    param_request(kNode, op, bad, f32_raw(1.0f)), MessageId::param_reply, ErrorCode::unknown_id, 0u);
   // Values that are not numbers, out of range, or read-only.

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
 
 #include "tests/firmware/can/node_bench.hpp"
 
@@ -26,6 +30,39 @@ TEST(CanNodeParams, GetReadsBackEveryParameterOfTheTable) {
   }
   const hal::CanFrame v = b.reply(param_request(kNode, ParamOp::get, id_of("sys.protocol_version")));
   EXPECT_EQ(value_of_reply(v), fw::can::kProtocolVersion);
+}
+
+// The commit of the source tree, as `git rev-parse --short=8 HEAD` prints
+// it; nullopt where git cannot tell (no git, not a checkout).
+std::optional<std::uint32_t> source_commit() {
+  const std::string command = std::string("git -C '") + TNV_SOURCE_DIR + "' rev-parse --short=8 HEAD 2>/dev/null";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return std::nullopt;
+  char text[64] = {};
+  const bool read = std::fgets(text, sizeof text, pipe) != nullptr;
+  ::pclose(pipe);
+  char* end = nullptr;
+  const unsigned long value = read ? std::strtoul(text, &end, 16) : 0;
+  if (!read || end != text + 8) return std::nullopt;
+  return static_cast<std::uint32_t>(value);
+}
+
+TEST(CanNodeParams, ReportsItsFirmwareVersionAndTheCommitItWasBuiltFrom) {
+  NodeBench b;
+  const hal::CanFrame version = b.reply(param_request(kNode, ParamOp::get, id_of("sys.firmware_version")));
+  EXPECT_EQ(result_of(version), ErrorCode::ok);
+  EXPECT_EQ(value_of_reply(version), std::uint32_t{TNV_EXPECTED_FIRMWARE_VERSION}) << "the project's version";
+  const hal::CanFrame build = b.reply(param_request(kNode, ParamOp::get, id_of("sys.build_id")));
+  EXPECT_EQ(result_of(build), ErrorCode::ok);
+  // The build read the commit of the tree it compiled; this test reads the
+  // same tree's now (equal unless a commit happened since the build).
+  if (const std::optional<std::uint32_t> commit = source_commit()) {
+    EXPECT_EQ(value_of_reply(build), *commit);
+  }
+  // Read-only: a set is refused and changes nothing.
+  const hal::CanFrame set = b.reply(param_request(kNode, ParamOp::set, id_of("sys.build_id"), 7));
+  EXPECT_EQ(result_of(set), ErrorCode::read_only);
+  EXPECT_EQ(value_of_reply(b.reply(param_request(kNode, ParamOp::get, id_of("sys.build_id")))), value_of_reply(build));
 }
 
 TEST(CanNodeParams, SetStoresExactlyTheFloatThatArrivedAndTheControllerGetsIt) {

@@ -1,0 +1,57 @@
+#include "tools/can/telemetry_csv.hpp"
+
+#include <cstdio>
+#include <optional>
+
+#include "firmware/supervisor/fault.hpp"
+#include "firmware/tick/tick_record.hpp"
+
+namespace tnv::can_host {
+
+namespace {
+
+void cell(std::string& row, std::optional<double> value) {
+  row += ',';
+  if (!value) return;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", *value);
+  row += buf;
+}
+
+template <typename T, typename F>
+std::optional<double> field(const std::optional<T>& part, F&& get) {
+  return part ? std::optional<double>{get(*part)} : std::nullopt;
+}
+
+}  // namespace
+
+std::string telemetry_csv_header() {
+  return "t_s,frames,bus_load,state,fault,pos_x_mm,pos_y_mm,following_x_um,following_y_um,s_x_mm_s,s_y_mm_s,"
+         "d_hat_x_mm_s,d_hat_y_mm_s,dac_x,dac_y,force_n,contour_um,arsc_force_n,arsc_force_ref_n,feed_override,"
+         "cutting_gain_n_per_mm_s";
+}
+
+std::string telemetry_csv_row(const TelemetryView& v, double t_s, double bus_load) {
+  char head[96];
+  std::snprintf(head, sizeof head, "%.6f,%llu,%.6f,", t_s, static_cast<unsigned long long>(v.frames), bus_load);
+  std::string row = head;
+  if (v.heartbeat) row.append(fw::to_string(v.heartbeat->state)).append(",").append(fw::to_string(v.heartbeat->fault));
+  else row += ',';
+  using Pair = std::array<double, 2>;
+  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.position_mm, [axis](const Pair& p) { return p[axis]; }));
+  for (int axis = 0; axis < 2; ++axis)
+    cell(row, field(v.following_mm, [axis](const Pair& p) { return p[axis] * 1e3; }));
+  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.s_mm_s, [axis](const Pair& p) { return p[axis]; }));
+  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.d_hat_mm_s, [axis](const Pair& p) { return p[axis]; }));
+  for (int axis = 0; axis < 2; ++axis)
+    cell(row, field(v.output, [axis](const OutputTelemetry& o) { return o.dac_code[axis]; }));
+  cell(row, field(v.output, [](const OutputTelemetry& o) { return o.force_n; }));
+  cell(row, field(v.contour, [](const ContourTelemetry& c) { return c.contour_um; }));
+  cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.force_n; }));
+  cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.force_ref_n; }));
+  cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.feed_override; }));
+  cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.cutting_gain_n_per_mm_s; }));
+  return row;
+}
+
+}  // namespace tnv::can_host
