@@ -37,7 +37,7 @@ Scenario bench(Scenario s) {
   s.noise.seed = 1;
   s.noise.force_adc_v_rms = 0.004;   // 12-bit 0-10 V channel (2.44 mV LSB): about 1.6 LSB rms
   s.noise.accel_g_rms = 0.0006;      // ADXL355 class: 22.5 ug/sqrt(Hz) over a 500 Hz band
-  s.noise.accel_bias_g = 0.025;      // ADXL355 class zero-g offset, +-25 mg
+  s.noise.accel_bias_g = 0.025;      // a MEMS part's zero-g offset: tens of mg
   s.noise.dac_offset_v = 0.005;      // 12-bit +-10 V DAC: about 1 LSB (4.88 mV)
   s.noise.dac_gain_error = 0.002;    // 0.2 %
   for (AxisPlantParams& p : s.plant) {
