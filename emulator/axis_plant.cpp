@@ -12,6 +12,8 @@ AxisPlant::AxisPlant(const AxisPlantParams& params) noexcept
       friction_(params.coulomb_mm_s, params.stiction_mm_s, params.stribeck_mm_s),
       // coulomb = stiction = 0 turns friction off: no Karnopp, never stuck.
       friction_enabled_(params.stiction_mm_s > 0.0),
+      accel_limit_mm_s2_(params.accel_limit_mm_s2),
+      accel_limited_(params.accel_limit_mm_s2 > 0.0),
       substep_(decay_for(kSubstep_s)) {
   for (std::size_t k = 0; k < kMaxBlock; ++k) decay_powers_[k] = std::exp(-static_cast<double>(k) * kSubstep_s / tau_s_);
 }
@@ -33,7 +35,8 @@ AxisPlant::Decay AxisPlant::decay_for(double duration_s) const noexcept {
   return Decay{.decay = decay,
                .rise = 1.0 - decay,
                .tau_rise_s = -tau_s_ * std::expm1(-x),  // expm1: accurate for dt << tau
-               .drive_gain_s = tau_s_ * excess};
+               .drive_gain_s = tau_s_ * excess,
+               .dt_s = duration_s};
 }
 
 void AxisPlant::step_for(double command_mm_s, double disturbance_mm_s, double duration_s) noexcept {
@@ -75,6 +78,9 @@ bool AxisPlant::advance_block(AxisState& s, double command_mm_s, const double* d
     sum_w_mm_s += w_mm_s;
     q_mm_s += *(power - j) * (v0_mm_s - w_mm_s);
   }
+  // Under an acceleration limit, the closed form holds while |w_j - v| <= A tau
+  // throughout; v stays within [min, max] of {v0, w_j}, so that span bounds it.
+  if (accel_limited_ && highest_w_mm_s - lowest_w_mm_s > accel_limit_mm_s2_ * tau_s_) return false;
   if (friction_enabled_) {
     // v stays between min and max of {v0, w_j}: all beyond the cutoff on v0's side?
     const double nearest_zero_mm_s = v0_mm_s > 0.0 ? lowest_w_mm_s : highest_w_mm_s;
@@ -85,6 +91,68 @@ bool AxisPlant::advance_block(AxisState& s, double command_mm_s, const double* d
   s.position_mm += kSubstep_s * sum_w_mm_s + substep_.tau_rise_s * q_mm_s;
   s.speed_mm_s = v0_mm_s - substep_.rise * q_mm_s;
   return true;
+}
+
+// The Karnopp switching of advance_with, with the clamped law between switches.
+void AxisPlant::advance_limited(AxisState& s, double drive_mm_s, const Decay& d) const noexcept {
+  if (!friction_enabled_) {
+    advance_clamped(s, drive_mm_s, d);
+    return;
+  }
+  const double v0_mm_s = s.speed_mm_s;
+  if (v0_mm_s == 0.0) {
+    if (std::abs(drive_mm_s) <= friction_.stiction_mm_s()) {
+      s.stuck = true;
+      return;
+    }
+    s.stuck = false;
+    advance_clamped(s, drive_mm_s - std::copysign(friction_.stiction_mm_s(), drive_mm_s), d);
+    return;
+  }
+  const double w_mm_s = drive_mm_s - std::copysign(friction_.magnitude_mm_s(v0_mm_s), v0_mm_s);
+  AxisState next = s;
+  advance_clamped(next, w_mm_s, d);
+  if (next.speed_mm_s == 0.0 || (next.speed_mm_s > 0.0) != (v0_mm_s > 0.0)) {
+    s.position_mm += clamped_travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+    s.speed_mm_s = 0.0;
+    s.stuck = true;
+    return;
+  }
+  s = next;
+}
+
+// dv/dt = clamp((w - v) / tau, -A, A) from v0: a ramp at A sign(w - v0) for
+// t1 = (|w - v0| - A tau) / A (while the demand exceeds the limit), then
+// v -> w exponentially from w -+ A tau, where the two laws meet.
+void AxisPlant::advance_clamped(AxisState& s, double w_mm_s, const Decay& d) const noexcept {
+  const double gap_mm_s = w_mm_s - s.speed_mm_s;
+  const double limit_gap_mm_s = accel_limit_mm_s2_ * tau_s_;
+  if (std::abs(gap_mm_s) <= limit_gap_mm_s) {
+    advance_linear(s, w_mm_s, d);
+    return;
+  }
+  const double accel_mm_s2 = std::copysign(accel_limit_mm_s2_, gap_mm_s);
+  const double ramp_s = (std::abs(gap_mm_s) - limit_gap_mm_s) / accel_limit_mm_s2_;
+  if (ramp_s >= d.dt_s) {
+    s.position_mm += (s.speed_mm_s + 0.5 * accel_mm_s2 * d.dt_s) * d.dt_s;
+    s.speed_mm_s += accel_mm_s2 * d.dt_s;
+    return;
+  }
+  s.position_mm += (s.speed_mm_s + 0.5 * accel_mm_s2 * ramp_s) * ramp_s;
+  s.speed_mm_s = w_mm_s - std::copysign(limit_gap_mm_s, gap_mm_s);
+  advance_linear(s, w_mm_s, decay_for(d.dt_s - ramp_s));
+}
+
+double AxisPlant::clamped_travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) const noexcept {
+  const double gap_mm_s = w_mm_s - v0_mm_s;
+  const double limit_gap_mm_s = accel_limit_mm_s2_ * tau_s_;
+  if (std::abs(gap_mm_s) <= limit_gap_mm_s) return travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+  const double ramp_s = (std::abs(gap_mm_s) - limit_gap_mm_s) / accel_limit_mm_s2_;
+  const double to_zero_s = std::abs(v0_mm_s) / accel_limit_mm_s2_;
+  if (to_zero_s <= ramp_s) return 0.5 * v0_mm_s * to_zero_s;  // zero on the ramp
+  const double accel_mm_s2 = std::copysign(accel_limit_mm_s2_, gap_mm_s);
+  const double ramp_mm = (v0_mm_s + 0.5 * accel_mm_s2 * ramp_s) * ramp_s;
+  return ramp_mm + travel_to_zero_crossing_mm(w_mm_s - std::copysign(limit_gap_mm_s, gap_mm_s), w_mm_s);
 }
 
 void AxisPlant::set_state(double position_mm, double speed_mm_s, bool stuck) noexcept {

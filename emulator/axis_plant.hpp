@@ -3,6 +3,12 @@
 //   dp/dt = v,   tau dv/dt = K u + d_cut - f_fric(v) - v,
 // stepped over sub-steps with u, d_cut and the friction force held at their
 // start-of-sub-step values, so the linear part is integrated exactly.
+// With accel_limit_mm_s2 = A > 0 (the servopack's current limit) the law is
+//   dv/dt = clamp((K u + d_cut - f - v) / tau, -A, A),
+// also integrated exactly: a ramp at +-A until |w - v| = A tau, then the
+// exponential approach (accel_limit below).
+// p is the motor side (what the encoder counts); the table is
+// ScrewTransmission's (screw_transmission.hpp), the same when it is off.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -51,6 +57,8 @@ class AxisPlant {
   double tau_s() const noexcept { return tau_s_; }
   double gain() const noexcept { return gain_; }
   const StribeckFriction& friction() const noexcept { return friction_; }
+  // |dv/dt| limit in mm/s^2; 0 = none.
+  double accel_limit_mm_s2() const noexcept { return accel_limited_ ? accel_limit_mm_s2_ : 0.0; }
 
   // Test / identification bench. stuck only holds for speed 0 with friction on;
   // a resting axis (v == 0) gets the Karnopp test at its next step either way.
@@ -67,6 +75,7 @@ class AxisPlant {
     double rise;          // 1 - decay, exact in floating point (so v -> w exactly)
     double tau_rise_s;    // tau (1 - e^{-dt/tau})
     double drive_gain_s;  // dt - tau (1 - e^{-dt/tau})
+    double dt_s;
   };
   Decay decay_for(double duration_s) const noexcept;
 
@@ -79,10 +88,18 @@ class AxisPlant {
   // opposite signs). Out of line and by value, so a caller's state can stay in registers.
   double travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) const noexcept;
 
+  // The same sub-step law under the acceleration limit (out of line: off the hot path).
+  void advance_limited(AxisState& s, double drive_mm_s, const Decay& d) const noexcept;
+  // v -> w with |dv/dt| <= A over d.dt_s, no friction switching.
+  void advance_clamped(AxisState& s, double w_mm_s, const Decay& d) const noexcept;
+  double clamped_travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) const noexcept;
+
   double tau_s_;
   double gain_;
   StribeckFriction friction_;
   bool friction_enabled_;
+  double accel_limit_mm_s2_;
+  bool accel_limited_;
   Decay substep_;
   std::array<double, kMaxBlock> decay_powers_;  // e^{-k h/tau}, k = 0..kMaxBlock-1
   AxisState state_{};
@@ -91,6 +108,10 @@ class AxisPlant {
 inline void AxisPlant::advance_with(AxisState& s, double command_mm_s, double disturbance_mm_s,
                                     const Decay& d) const noexcept {
   const double drive_mm_s = gain_ * command_mm_s + disturbance_mm_s;
+  if (accel_limited_) {
+    advance_limited(s, drive_mm_s, d);
+    return;
+  }
   if (!friction_enabled_) {
     advance_linear(s, drive_mm_s, d);
     return;

@@ -17,24 +17,25 @@ constexpr std::uint32_t enable_bit(hal::Axis axis) {
 }
 }  // namespace
 
-IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm) noexcept
-    : dac_(dac, lead_mm), clock_start_(board.clock_start) {
+IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise) noexcept
+    : dac_(dac, lead_mm, noise.dac_offset_v, noise.dac_gain_error), clock_start_(board.clock_start) {
   dac_codes_.fill(dac_.mid_code());
+  drive_dac_codes_ = dac_codes_;
   snapshot_[kSeq] = 0xFFFF'FFFFu;  // the first tick reads 0
   snapshot_[kClk] = clock();
   refresh_commands();
 }
 
 bool IoBoard::enabled(hal::Axis axis) const noexcept {
-  return !watchdog_tripped_ && (outputs_ & enable_bit(axis)) != 0;
+  return !watchdog_tripped_ && (drive_outputs_ & enable_bit(axis)) != 0;
 }
 
 bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noexcept {
   switch (word) {
     case regs::kId: value = regs::kIdValue; return true;
     case regs::kVersion: value = regs::kVersionValue; return true;
-    case regs::kClockLive:
-    case regs::kClockAtRead: value = clock(); return true;
+    case regs::kClockLive: value = clock(); return true;
+    case regs::kClockAtRead: value = clock() + read_delay_clocks_; return true;
     case regs::kTickSequence:
     case regs::kTickClock:
     case regs::kEncoderX:
@@ -61,15 +62,30 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
     case regs::kDacY:
       if (value > dac_.max_code()) return false;
       dac_codes_[word - regs::kDacX] = value;
+      if (outputs_deferred_) {
+        outputs_written_ = true;
+        return true;
+      }
+      drive_dac_codes_[word - regs::kDacX] = value;
       refresh_commands();
       return true;
     case regs::kOutputs:
       if ((value & ~kEnableBits) != 0) return false;
       outputs_ = value;
+      if (outputs_deferred_) {
+        outputs_written_ = true;
+        return true;
+      }
+      drive_outputs_ = value;
       refresh_commands();
       return true;
     case regs::kWatchdogKick:
       last_kick_word_ = value;
+      if (outputs_deferred_) {
+        outputs_written_ = true;
+        kick_written_ = kick_written_ || value == regs::kWatchdogKickKey;
+        return true;
+      }
       if (value == regs::kWatchdogKickKey && !watchdog_tripped_) {
         watchdog_armed_ = true;
         last_kick_clocks_ = elapsed_clocks_;
@@ -100,7 +116,9 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
 void IoBoard::latch_tick(const TickSamples& samples) noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const std::uint32_t output = dac_output_code(hal::axis_from_index(i));
-    const std::uint32_t apart = output > dac_codes_[i] ? output - dac_codes_[i] : dac_codes_[i] - output;
+    // Against the code the DAC was given (the register's, or the last landed one when outputs are deferred).
+    const std::uint32_t given = drive_dac_codes_[i];
+    const std::uint32_t apart = output > given ? output - given : given - output;
     if (apart > regs::kDacReadbackToleranceCodes) faults_ |= i == 0 ? regs::kFaultDacX : regs::kFaultDacY;
   }
   if (!snapshot_frozen_) {
@@ -152,6 +170,30 @@ void IoBoard::trip_watchdog() noexcept {
   last_trip_clocks_ = elapsed_clocks_;
   dac_codes_.fill(dac_.mid_code());
   outputs_ &= ~kEnableBits;
+  drive_dac_codes_ = dac_codes_;
+  drive_outputs_ &= ~kEnableBits;
+  refresh_commands();
+}
+
+std::optional<OutputWords> IoBoard::take_written_outputs() noexcept {
+  if (!outputs_written_) return std::nullopt;
+  const OutputWords words{dac_codes_, outputs_, kick_written_};
+  outputs_written_ = false;
+  kick_written_ = false;
+  return words;
+}
+
+void IoBoard::land_outputs(const OutputWords& words) noexcept {
+  // The write reaches the board now: the registers take it too (a trip in
+  // between had reset them; a later write still in flight lands after this).
+  dac_codes_ = words.dac_codes;
+  outputs_ = words.outputs;
+  drive_dac_codes_ = words.dac_codes;
+  drive_outputs_ = words.outputs;
+  if (words.kick && !watchdog_tripped_) {
+    watchdog_armed_ = true;
+    last_kick_clocks_ = elapsed_clocks_;
+  }
   refresh_commands();
 }
 
@@ -163,7 +205,7 @@ void IoBoard::stick_dac(hal::Axis axis, std::optional<std::uint32_t> code) noexc
 
 std::uint32_t IoBoard::dac_output_code(hal::Axis axis) const noexcept {
   const std::size_t i = hal::index(axis);
-  return stuck_dac_codes_[i] ? *stuck_dac_codes_[i] : dac_codes_[i];
+  return stuck_dac_codes_[i] ? *stuck_dac_codes_[i] : drive_dac_codes_[i];
 }
 
 void IoBoard::refresh_commands() noexcept {

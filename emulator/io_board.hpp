@@ -29,6 +29,12 @@
 //   tick latch a readback comparator checks output against register and
 //   latches kFaultDac* when they are more than kDacReadbackToleranceCodes
 //   apart (the emulated readback is exact).
+// - Deferred outputs ([io] on, output_transport.hpp): writes to the output
+//   window (DAC_X/Y, OUTPUTS, WATCHDOG_KICK) set the registers at once (a
+//   read issued after a write sees it: the transport keeps order) but reach
+//   the DACs, the enables and the watchdog only when the machine lands
+//   them (land_outputs). Configuration and CONTROL writes act at once.
+//   CLOCK_AT_READ then reads the counter plus the tick's read delay.
 // Fault injection (emulator/fault_schedule.hpp) acts through stick_dac,
 // freeze_snapshot, replay_next_tick, delay_next_tick, raise_faults and set_input.
 #include <array>
@@ -43,6 +49,13 @@
 
 namespace tnv::emu {
 
+// The output window as one transfer (DAC codes, enable bits, kick).
+struct OutputWords {
+  std::array<std::uint32_t, hal::kAxisCount> dac_codes{};
+  std::uint32_t outputs = 0;
+  bool kick = false;  // the watchdog key was written
+};
+
 // What the machine hands the board at a tick latch.
 struct TickSamples {
   std::array<std::uint32_t, hal::kAxisCount> encoder_registers{};  // already wrapped to kEncoderBits
@@ -53,7 +66,7 @@ struct TickSamples {
 
 class IoBoard {
  public:
-  IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm) noexcept;
+  IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise = {}) noexcept;
 
   // --- bus side; false = unmapped address, or a refused write
   bool read_register(std::uint16_t word, std::uint32_t& value) const noexcept;
@@ -109,6 +122,15 @@ class IoBoard {
   // Sticky fault sources (an encoder's illegal A/B transition).
   void raise_faults(std::uint32_t fault_bits) noexcept { faults_ |= fault_bits; }
 
+  // --- [io] transport (output_transport.hpp)
+  void defer_outputs(bool deferred) noexcept { outputs_deferred_ = deferred; }
+  // The output window as written since the last take, if anything was written.
+  std::optional<OutputWords> take_written_outputs() noexcept;
+  // A transfer lands: what the DACs, enables and watchdog act on from now.
+  void land_outputs(const OutputWords& words) noexcept;
+  // Added to CLOCK_AT_READ: the counter when the read completes.
+  void set_read_delay_clocks(std::uint32_t clocks) noexcept { read_delay_clocks_ = clocks; }
+
   // --- injected faults
   // The DAC output sticks at `code` (<= max code) whatever is written; nullopt releases it.
   void stick_dac(hal::Axis axis, std::optional<std::uint32_t> code) noexcept;
@@ -143,7 +165,14 @@ class IoBoard {
   std::uint64_t next_tick_clocks_ = hal::regs::kDefaultTickDivider;
   std::array<std::uint32_t, hal::regs::kSnapshotWords> snapshot_{};
 
-  std::array<std::uint32_t, hal::kAxisCount> dac_codes_{};
+  std::array<std::uint32_t, hal::kAxisCount> dac_codes_{};  // registers as written (read back)
+  // What the DACs and enables act on: the registers, or with deferred outputs the last landed transfer.
+  std::array<std::uint32_t, hal::kAxisCount> drive_dac_codes_{};
+  std::uint32_t drive_outputs_ = 0;
+  bool outputs_deferred_ = false;
+  bool outputs_written_ = false;  // output window written since take_written_outputs
+  bool kick_written_ = false;
+  std::uint32_t read_delay_clocks_ = 0;
   std::array<std::optional<std::uint32_t>, hal::kAxisCount> stuck_dac_codes_{};
   bool snapshot_frozen_ = false;
   bool replay_next_ = false;

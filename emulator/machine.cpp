@@ -13,8 +13,11 @@
 #include "emulator/force_adc.hpp"
 #include "emulator/io_board.hpp"
 #include "emulator/milling_force.hpp"
+#include "emulator/noise_stream.hpp"
+#include "emulator/output_transport.hpp"
 #include "emulator/quadrature_encoder.hpp"
 #include "emulator/scenario_validation.hpp"
+#include "emulator/screw_transmission.hpp"
 #include "emulator/structural_mode.hpp"
 #include "emulator/substep_timing.hpp"
 #include "emulator/tool_accelerometer.hpp"
@@ -23,6 +26,16 @@ namespace tnv::emu {
 
 using hal::Axis;
 
+namespace {
+constexpr double kStandardGravityMmS2 = 9806.65;
+
+// [noise] drawn for one tick latch, added before the ADCs quantise.
+struct SampleNoise {
+  double force_v = 0.0;
+  std::array<double, hal::kAxisCount> accel_mm_s2{};
+};
+}  // namespace
+
 struct Machine::Impl {
   explicit Impl(const Scenario& s);
 
@@ -30,7 +43,16 @@ struct Machine::Impl {
   // outputs constant over the block; true if a tick latched at its end.
   bool run_block(std::uint64_t max_substeps) noexcept;
   void step_substeps(AxisState& x, AxisState& y, double u_x, double u_y, std::size_t n) noexcept;
-  TickSamples tick_samples() const noexcept;
+  TickSamples tick_samples(const SampleNoise* noise = nullptr) const noexcept;
+  SampleNoise draw_sample_noise() noexcept;
+  void apply_encoder_glitches() noexcept;
+  void move_outputs() noexcept;
+  void land_due_outputs() noexcept;
+  void latch_tick() noexcept;
+  double table_mm(std::size_t i) const noexcept {
+    const double motor_mm = plants[i].position_mm();
+    return screws[i].enabled() ? screws[i].table_mm(motor_mm) : motor_mm;
+  }
   std::int64_t encoder_count(std::size_t i) const noexcept;
   void apply_due_faults() noexcept;
   void apply_fault_edge(const FaultEdge& edge) noexcept;
@@ -44,7 +66,17 @@ struct Machine::Impl {
   std::array<QuadratureEncoder, hal::kAxisCount> encoders;
   CuttingDisturbance cutting;
   MillingForce milling;  // S3 end-milling force on X ([milling], off by default)
+  std::array<ScrewTransmission, hal::kAxisCount> screws;  // motor side -> table ([plant] backlash, lead error)
   bool any_mode;
+  bool any_backlash;
+
+  // [noise] and [io] (seeded; untouched while off).
+  bool sample_noise;
+  NoiseStream force_noise;
+  std::array<NoiseStream, hal::kAxisCount> accel_noise;
+  std::array<NoiseStream, hal::kAxisCount> glitch_noise;
+  std::array<double, hal::kAxisCount> next_glitch_s{};
+  OutputTransport transport;
 
   std::uint64_t substep = 0;
   std::array<double, hal::kAxisCount> applied_command_mm_s{};  // held during the last sub-step
@@ -69,20 +101,35 @@ QuadratureEncoder make_encoder(const EncoderParams& e, Axis axis) {
 
 Machine::Impl::Impl(const Scenario& s)
     : scenario(s),
-      board(s.board, s.dac, s.encoder.lead_mm),
+      board(s.board, s.dac, s.encoder.lead_mm, s.noise),
       plants{AxisPlant(s.plant[0]), AxisPlant(s.plant[1])},
       modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
       cutting(s.cutting, s.circle.feed_mm_s),
       milling(s.milling, kSubstep_s),
+      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm), ScrewTransmission(s.plant[1], 0.0)},
       any_mode(modes[0].enabled() || modes[1].enabled()),
+      any_backlash(screws[0].has_backlash() || screws[1].has_backlash()),
+      sample_noise(s.noise.any_sample_noise()),
+      force_noise(make_noise_stream(s.noise.seed, NoiseStreamId::force_adc)),
+      accel_noise{make_noise_stream(s.noise.seed, NoiseStreamId::accel_x),
+                  make_noise_stream(s.noise.seed, NoiseStreamId::accel_y)},
+      glitch_noise{make_noise_stream(s.noise.seed, NoiseStreamId::glitch_x),
+                   make_noise_stream(s.noise.seed, NoiseStreamId::glitch_y)},
+      transport(s.io, s.noise.seed),
       fault_timeline(s.faults),
       fault_on(s.faults.size(), false) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
   // At rest, held by stiction, at the circle's start point (R, 0).
   plants[0].set_state(s.circle.radius_mm, 0.0, true);
-  plants[1].set_state(0.0, 0.0, true);
+  plants[1].set_state(0.0, 0.0, true);  // (the screws' lash starts centred there)
   board.preset_snapshot(tick_samples());
+  board.defer_outputs(transport.enabled());
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double rate_per_s = s.noise.encoder_glitch_per_s;
+    next_glitch_s[i] =
+        rate_per_s > 0.0 ? glitch_noise[i].exponential() / rate_per_s : std::numeric_limits<double>::infinity();
+  }
 }
 
 std::int64_t Machine::Impl::encoder_count(std::size_t i) const noexcept {
@@ -90,7 +137,7 @@ std::int64_t Machine::Impl::encoder_count(std::size_t i) const noexcept {
   return encoders[i].count(plants[i].position_mm()) + encoder_slip_counts[i];
 }
 
-TickSamples Machine::Impl::tick_samples() const noexcept {
+TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept {
   TickSamples samples;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) samples.encoder_registers[i] = QuadratureEncoder::wrap(encoder_count(i));
   // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
@@ -100,6 +147,11 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
   samples.adc_force_code = force_adc_code(magnitude_mm_s, scenario.force_sensor.volts_per_mm_s);
   // With [milling] on, the sensor reads the milling force instead (same ADC scaling law, volts per N).
   if (milling.enabled()) samples.adc_force_code = force_adc_code(milling.force_n(), scenario.force_sensor.volts_per_n);
+  if (noise != nullptr) {
+    const double volts = milling.enabled() ? milling.force_n() * scenario.force_sensor.volts_per_n
+                                           : magnitude_mm_s * scenario.force_sensor.volts_per_mm_s;
+    samples.adc_force_code = force_adc_code_for_volts(volts + noise->force_v);
+  }
   // Tool-side accelerometers: table acceleration with the inputs of the
   // sub-step that ends at the tick, plus the mode's deflection acceleration.
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -107,9 +159,60 @@ TickSamples Machine::Impl::tick_samples() const noexcept {
                                     (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
     const double table_mm_s2 =
         table_acceleration_mm_s2(plants[i], drive_sign[i] * applied_command_mm_s[i], disturbance_mm_s);
-    samples.adc_accel_codes[i] = accel_adc_code(table_mm_s2 + modes[i].deflection_accel_mm_s2(table_mm_s2));
+    const double tool_mm_s2 = table_mm_s2 + modes[i].deflection_accel_mm_s2(table_mm_s2);
+    samples.adc_accel_codes[i] = accel_adc_code(noise != nullptr ? tool_mm_s2 + noise->accel_mm_s2[i] : tool_mm_s2);
   }
   return samples;
+}
+
+SampleNoise Machine::Impl::draw_sample_noise() noexcept {
+  const NoiseParams& n = scenario.noise;
+  SampleNoise out;
+  if (n.force_adc_v_rms > 0.0) out.force_v = n.force_adc_v_rms * force_noise.normal();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const double random_g = n.accel_g_rms > 0.0 ? n.accel_g_rms * accel_noise[i].normal() : 0.0;
+    out.accel_mm_s2[i] = (n.accel_bias_g + random_g) * kStandardGravityMmS2;
+  }
+  return out;
+}
+
+// Poisson miscounts: each one the decoder counts and keeps (docs/scenarios.md
+// "Noise"), so applying those due by a latch at that latch is exact.
+void Machine::Impl::apply_encoder_glitches() noexcept {
+  const NoiseParams& n = scenario.noise;
+  const double now_s = substep_time_s(substep);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    while (next_glitch_s[i] <= now_s) {
+      encoder_slip_counts[i] += glitch_noise[i].uniform() < 0.5 ? -n.encoder_glitch_counts : n.encoder_glitch_counts;
+      next_glitch_s[i] += glitch_noise[i].exponential() / n.encoder_glitch_per_s;
+    }
+  }
+}
+
+// [io]: the firmware's output writes since the last block go out as one
+// transfer; transfers due by now land.
+void Machine::Impl::move_outputs() noexcept {
+  const std::uint64_t now_clocks = board.elapsed_clocks();
+  if (const std::optional<OutputWords> words = board.take_written_outputs()) {
+    if (transport.full()) board.land_outputs(transport.take_oldest());
+    transport.send(*words, now_clocks);
+  }
+  land_due_outputs();
+}
+
+void Machine::Impl::land_due_outputs() noexcept {
+  while (transport.due(board.elapsed_clocks())) board.land_outputs(transport.take_oldest());
+}
+
+void Machine::Impl::latch_tick() noexcept {
+  if (!sample_noise) {
+    board.latch_tick(tick_samples());
+  } else {
+    apply_encoder_glitches();
+    const SampleNoise noise = draw_sample_noise();
+    board.latch_tick(tick_samples(&noise));
+  }
+  if (transport.enabled()) board.set_read_delay_clocks(transport.on_latch(board.elapsed_clocks()));
 }
 
 bool Machine::Impl::any_active(FaultKind kind, std::optional<Axis> axis) const noexcept {
@@ -222,8 +325,10 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   constexpr std::uint64_t kMaxBlock = CuttingDisturbance::kMaxFill;
   static_assert(kMaxBlock <= AxisPlant::kMaxBlock);
   apply_due_faults();  // the next edge is then strictly ahead: never step across it
-  const auto n = static_cast<std::size_t>(
-      std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock, fault_timeline.substeps_to_next(substep)}));
+  if (transport.enabled()) move_outputs();  // likewise the next landing
+  const auto n = static_cast<std::size_t>(std::min({board.substeps_to_next_event(), max_substeps, kMaxBlock,
+                                                    fault_timeline.substeps_to_next(substep),
+                                                    transport.substeps_to_next_landing(board.elapsed_clocks())}));
   // Inputs held over each sub-step, evaluated at its start.
   applied_command_mm_s = {board.command_mm_s(Axis::x), board.command_mm_s(Axis::y)};
   // The drive's gain sign (runaway fault: -1) acts on what the servopack is told.
@@ -231,7 +336,7 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
-  if (cutting.enabled() || milling.enabled() || any_mode) {
+  if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
     step_substeps(x, y, u_x, u_y, n);
   } else {
     // Closed form for the block where it is provably the same as stepping
@@ -253,14 +358,17 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   plants[0].set_state(x);
   plants[1].set_state(y);
   substep += n;
-  if (!board.advance_substeps(n)) return false;
-  board.latch_tick(tick_samples());
+  const bool tick_due = board.advance_substeps(n);
+  if (transport.enabled()) land_due_outputs();  // landing at a latch: before it samples
+  if (!tick_due) return false;
+  latch_tick();
   return true;
 }
 
 // The cutting and milling forces depend on the table's speed at the start
-// of each sub-step, and the modes need every sub-step's table acceleration:
-// no closed form over the block, one sub-step at a time.
+// of each sub-step, the modes need every sub-step's table acceleration and
+// the backlash every sub-step's position: no closed form over the block,
+// one sub-step at a time.
 void Machine::Impl::step_substeps(AxisState& x_state, AxisState& y_state, double u_x, double u_y,
                                   std::size_t n) noexcept {
   double load_per_speed[CuttingDisturbance::kMaxFill];
@@ -282,6 +390,10 @@ void Machine::Impl::step_substeps(AxisState& x_state, AxisState& y_state, double
     if (any_mode) {
       modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
       modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
+    }
+    if (any_backlash) {
+      screws[0].follow(x.position_mm);
+      screws[1].follow(y.position_mm);
     }
   }
   x_state = x;
@@ -317,6 +429,8 @@ void Machine::advance_clocks(std::uint64_t clocks) noexcept {
   while (impl_->substep < end) impl_->run_block(end - impl_->substep);
 }
 
+void Machine::set_firmware_work_ns(double work_ns) noexcept { impl_->transport.set_work_ns(work_ns); }
+
 std::uint64_t Machine::elapsed_clocks() const noexcept { return impl_->board.elapsed_clocks(); }
 
 double Machine::time_s() const noexcept { return substep_time_s(impl_->substep); }
@@ -324,9 +438,11 @@ double Machine::time_s() const noexcept { return substep_time_s(impl_->substep);
 AxisTruth Machine::truth(Axis axis) const noexcept {
   const std::size_t i = hal::index(axis);
   const AxisPlant& plant = impl_->plants[i];
-  return AxisTruth{.position_mm = plant.position_mm(),
+  const double table_mm = impl_->table_mm(i);
+  return AxisTruth{.position_mm = table_mm,
                    .speed_mm_s = plant.speed_mm_s(),
-                   .tool_position_mm = plant.position_mm() + impl_->modes[i].deflection_mm(),
+                   .tool_position_mm = table_mm + impl_->modes[i].deflection_mm(),
+                   .motor_position_mm = plant.position_mm(),
                    .command_mm_s = impl_->applied_command_mm_s[i],
                    .cutting_mm_s = impl_->applied_cutting.component(axis),
                    .stuck = plant.stuck(),

@@ -18,9 +18,10 @@ namespace tnv::emu {
 
 // What really happened on one axis (judge side, not visible to firmware).
 struct AxisTruth {
-  double position_mm = 0.0;       // table position p
-  double speed_mm_s = 0.0;        // table speed v
-  double tool_position_mm = 0.0;  // p + structural-mode deflection
+  double position_mm = 0.0;       // table position: the motor side through the ball screw (backlash, lead error)
+  double speed_mm_s = 0.0;        // speed v of the motor side (the table's too, but while the lash is taken up)
+  double tool_position_mm = 0.0;  // table + structural-mode deflection
+  double motor_position_mm = 0.0; // plant state p: the motor side in mm of screw travel, what the encoder counts
   double command_mm_s = 0.0;      // u actually applied (after DAC, enable, watchdog)
   double cutting_mm_s = 0.0;      // d_cut component on this axis
   bool stuck = false;             // Karnopp stick state
@@ -57,6 +58,11 @@ class Machine {
   void advance_clocks(std::uint64_t clocks) noexcept;  // rounded up to whole sub-steps
   std::uint64_t elapsed_clocks() const noexcept;
   double time_s() const noexcept;
+  // [io]: the firmware's work this tick, between its snapshot read and its
+  // output write, in board time (the HIL rig's metered charge); moves the
+  // landing of the output write issued since the last latch. Without [io]
+  // outputs land at once and this does nothing.
+  void set_firmware_work_ns(double work_ns) noexcept;
 
   // --- judge side
   AxisTruth truth(hal::Axis axis) const noexcept;

@@ -20,6 +20,12 @@ struct AxisPlantParams {
   double stribeck_mm_s = 0.1;    // v_s
   double mode_hz = 0.0;          // optional structural mode, 0 = none
   double mode_zeta = 0.0;
+  // Ball screw between motor (encoder) and table (screw_transmission.hpp); all off by default.
+  double backlash_um = 0.0;          // lost motion on a reversal
+  double lead_error_um_per_m = 0.0;  // cumulative lead error, table minus motor side per metre
+  double pitch_error_um = 0.0;       // periodic lead error, amplitude
+  double pitch_period_mm = 10.0;     // its period along the screw (one turn of the 10 mm lead)
+  double accel_limit_mm_s2 = 0.0;    // the servopack's current limit as |dv/dt|; 0 = none
 };
 
 struct CuttingParams {
@@ -75,6 +81,29 @@ struct BoardParams {
   std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
 };
 
+// Sensor and actuator imperfections, seeded (noise_stream.hpp); all off by default.
+struct NoiseParams {
+  std::uint32_t seed = 0;
+  double force_adc_v_rms = 0.0;       // Gaussian, at the force ADC's input
+  double accel_g_rms = 0.0;           // Gaussian, per accelerometer axis
+  double accel_bias_g = 0.0;          // constant, both accelerometer axes
+  double dac_offset_v = 0.0;          // added to both speed DACs' output volts
+  double dac_gain_error = 0.0;        // relative: the DACs output (1 + gain_error) times the ideal volts
+  double encoder_glitch_per_s = 0.0;  // Poisson rate of miscounts, per encoder
+  int encoder_glitch_counts = 1;      // counts each miscount adds (sign random), kept by the decoder
+  bool any_sample_noise() const noexcept {  // anything added at the tick latch
+    return force_adc_v_rms != 0.0 || accel_g_rms != 0.0 || accel_bias_g != 0.0 || encoder_glitch_per_s != 0.0;
+  }
+};
+
+// The register transport between the firmware's CPU and the board (output_transport.hpp); off by default.
+struct IoParams {
+  double read_latency_us = 0.0;   // tick latch -> the snapshot read completes
+  double write_latency_us = 0.0;  // the firmware's output write issued -> it lands on the board
+  double jitter_us = 0.0;         // uniform 0..jitter_us added to each read and each write (seeded)
+  bool enabled() const noexcept { return read_latency_us != 0.0 || write_latency_us != 0.0 || jitter_us != 0.0; }
+};
+
 struct CircleParams {
   double radius_mm = 6.0;
   double feed_mm_s = 2.0;  // F, also the programmed feed of the cutting model
@@ -91,6 +120,8 @@ struct Scenario {
   ForceSensorParams force_sensor{};
   MillingParams milling{};
   BoardParams board{};
+  NoiseParams noise{};
+  IoParams io{};
   CircleParams circle{};
   std::vector<FaultSpec> faults{};  // [[fault]]: injected on schedule (fault_schedule.hpp)
 };

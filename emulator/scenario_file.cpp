@@ -73,6 +73,21 @@ class ScenarioReader {
       } else if (name == "board") {
         const Field fields[] = {{"clock_start", &s.board.clock_start}};
         if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "noise") {
+        const Field fields[] = {{"seed", &s.noise.seed},
+                                {"force_adc_v_rms", &s.noise.force_adc_v_rms},
+                                {"accel_g_rms", &s.noise.accel_g_rms},
+                                {"accel_bias_g", &s.noise.accel_bias_g},
+                                {"dac_offset_v", &s.noise.dac_offset_v},
+                                {"dac_gain_error", &s.noise.dac_gain_error},
+                                {"encoder_glitch_per_s", &s.noise.encoder_glitch_per_s},
+                                {"encoder_glitch_counts", &s.noise.encoder_glitch_counts}};
+        if (!read_section(key, name, node, fields)) return false;
+      } else if (name == "io") {
+        const Field fields[] = {{"read_latency_us", &s.io.read_latency_us},
+                                {"write_latency_us", &s.io.write_latency_us},
+                                {"jitter_us", &s.io.jitter_us}};
+        if (!read_section(key, name, node, fields)) return false;
       } else if (name == "fault") {
         if (!read_faults(key, node, s)) return false;
       } else if (name == "circle") {
@@ -115,7 +130,12 @@ class ScenarioReader {
                               {"stiction_mm_s", &p->stiction_mm_s},
                               {"stribeck_mm_s", &p->stribeck_mm_s},
                               {"mode_hz", &p->mode_hz},
-                              {"mode_zeta", &p->mode_zeta}};
+                              {"mode_zeta", &p->mode_zeta},
+                              {"backlash_um", &p->backlash_um},
+                              {"lead_error_um_per_m", &p->lead_error_um_per_m},
+                              {"pitch_error_um", &p->pitch_error_um},
+                              {"pitch_period_mm", &p->pitch_period_mm},
+                              {"accel_limit_mm_s2", &p->accel_limit_mm_s2}};
       if (!read_section(axis_key, path, axis_node, fields)) return false;
     }
     return true;

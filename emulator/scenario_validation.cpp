@@ -87,6 +87,51 @@ void check_plant(Rules& r, const AxisPlantParams& p, const std::string& section)
   r.plausible(section + ".coulomb_mm_s", p.coulomb_mm_s, 0.0, 1000.0, "friction above 1000 mm/s is no moving table (a jam is 200)");
   r.plausible(section + ".stiction_mm_s", p.stiction_mm_s, 0.0, 1000.0, "friction above 1000 mm/s is no moving table (a jam is 200)");
   r.plausible(section + ".stribeck_mm_s", p.stribeck_mm_s, 0.0, 1000.0, "the Stribeck speed of a table's guideways");
+  r.plausible(section + ".backlash_um", p.backlash_um, 0.0, 500.0,
+              "a ball screw's lost motion: 0-5 um new, 10-50 um worn; past 0.5 mm the nut is broken");
+  r.plausible(section + ".lead_error_um_per_m", p.lead_error_um_per_m, -1000.0, 1000.0,
+              "a ball screw's cumulative lead error (ISO 3408-3 class C10 allows 700 um/m)");
+  r.plausible(section + ".pitch_error_um", p.pitch_error_um, 0.0, 100.0,
+              "a ball screw's periodic lead error amplitude (C5 varies 8 um within a turn)");
+  r.plausible(section + ".pitch_period_mm", p.pitch_period_mm, 0.1, 1000.0, "a screw lead or a multiple of it");
+  if (!r.found && !(p.accel_limit_mm_s2 == 0.0 || (p.accel_limit_mm_s2 >= 100.0 && p.accel_limit_mm_s2 <= 1e6))) {
+    // (NaN fails both tests)
+    r.fail_text(section + ".accel_limit_mm_s2",
+                "must be 0 (none) or 100..1e+06: a servo axis' current-limited acceleration, 0.01 to 100 g (got " +
+                    format_number(p.accel_limit_mm_s2) + ")");
+  }
+}
+
+void check_noise(Rules& r, const NoiseParams& n) {
+  r.plausible("noise.force_adc_v_rms", n.force_adc_v_rms, 0.0, 1.0,
+              "noise at the force ADC's input (its 0-10 V range has a 2.4 mV LSB)");
+  r.plausible("noise.accel_g_rms", n.accel_g_rms, 0.0, 1.0, "a MEMS accelerometer's noise over the tick bandwidth (mg class)");
+  r.plausible("noise.accel_bias_g", n.accel_bias_g, -1.0, 1.0, "an accelerometer's zero-g offset (tens of mg)");
+  r.plausible("noise.dac_offset_v", n.dac_offset_v, -1.0, 1.0, "a speed DAC's offset (mV class; 1 V is a tenth of full scale)");
+  r.plausible("noise.dac_gain_error", n.dac_gain_error, -0.1, 0.1, "a DAC's relative gain error (0.1-1 % class)");
+  r.plausible("noise.encoder_glitch_per_s", n.encoder_glitch_per_s, 0.0, 1000.0,
+              "miscounts per second (a thousand a second is a broken cable)");
+  r.int_range("noise.encoder_glitch_counts", n.encoder_glitch_counts, 1, 1000);
+}
+
+// Read, work and write must fit in the tick: the transfers may take at most this much of its 1 ms.
+constexpr double kMaxTransferUs = 900.0;
+
+void check_io(Rules& r, const IoParams& io) {
+  r.plausible("io.read_latency_us", io.read_latency_us, 0.0, 500.0,
+              "a register transport's read after the latch (SPI or Ethernet: tens to hundreds of us)");
+  r.plausible("io.write_latency_us", io.write_latency_us, 0.0, 500.0,
+              "a register transport's write (SPI or Ethernet: tens to hundreds of us)");
+  r.plausible("io.jitter_us", io.jitter_us, 0.0, 200.0, "a Linux board's transfer jitter (tens of us)");
+  if (r.found) return;
+  const double total_us = io.read_latency_us + io.write_latency_us + 2.0 * io.jitter_us;
+  if (total_us > kMaxTransferUs) {
+    const std::string key = r.is_given("io.jitter_us")        ? "io.jitter_us"
+                            : r.is_given("io.write_latency_us") ? "io.write_latency_us"
+                                                                : "io.read_latency_us";
+    r.fail_text(key, "the transfers must leave the firmware room in the 1 ms tick: read_latency_us + "
+                     "write_latency_us + 2 jitter_us = " + format_number(total_us) + " us > 900 us");
+  }
 }
 
 void check_circle(Rules& r, const CircleParams& c) {
@@ -188,6 +233,8 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.plausible("milling.depth_start_mm", s.milling.depth.start_mm, 0.0, 100.0, "a depth of cut");
   r.plausible("milling.depth_peak_mm", s.milling.depth.peak_mm, 0.0, 100.0, "a depth of cut");
 
+  check_noise(r, s.noise);
+  check_io(r, s.io);
   check_circle(r, s.circle);
   check_faults(r, s);
   return r.found;

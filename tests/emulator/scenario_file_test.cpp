@@ -273,7 +273,8 @@ TEST(ScenarioFile, IntegersAcceptedForNumbers) {
 
 TEST(BuiltinScenarios, AllExistAreValidAndDiffer) {
   const std::vector<std::string> names = builtin_scenario_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"no-cut", "cut-900", "cut-1200", "cut-1500", "flex-30", "flex-100"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"no-cut", "cut-900", "cut-1200", "cut-1500", "flex-30", "flex-100",
+                                             "bench-no-cut", "bench-cut-1200"}));
   for (const std::string& name : names) {
     const auto s = builtin_scenario(name);
     ASSERT_TRUE(s) << name;

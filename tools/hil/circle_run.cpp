@@ -26,7 +26,7 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
   const double period_s = 1e-3;
   const std::int64_t max_ticks = task.motion_ticks() + static_cast<std::int64_t>(scenario.circle.dwell_s / period_s) + 100;
   if (options.keep_trace) result.trace.reserve(static_cast<std::size_t>(task.motion_ticks() + 1));
-  ContourAccumulator contour;
+  ContourAccumulator contour, true_table, true_tool;
   for (std::int64_t k = 0; k < max_ticks; ++k) {
     rig->tick();
     const fw::TickRecord& rec = task.last_record();
@@ -36,6 +36,9 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
       const auto& ay = rec.axis[1];
       const double e_mm = contour_error_mm(ax.reference_mm, ay.reference_mm, ax.position_mm, ay.position_mm);
       contour.add(e_mm);
+      const emu::AxisTruth tx = machine.truth(hal::Axis::x), ty = machine.truth(hal::Axis::y);
+      true_table.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.position_mm, ty.position_mm));
+      true_tool.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.tool_position_mm, ty.tool_position_mm));
       if (options.keep_trace) {
         TraceSample t;
         t.t_s = static_cast<double>(rec.motion_tick) * period_s;
@@ -46,7 +49,9 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
           t.command_mm_s[i] = a.command_mm_s;
           t.s[i] = a.s;
           t.d_hat_mm_s[i] = a.d_hat_mm_s;
-          t.tool_mm[i] = machine.truth(hal::axis_from_index(i)).tool_position_mm;
+          const emu::AxisTruth truth = i == 0 ? tx : ty;
+          t.tool_mm[i] = truth.tool_position_mm;
+          t.table_mm[i] = truth.position_mm;
         }
         t.contour_um = e_mm * 1000.0;
         result.trace.push_back(t);
@@ -55,6 +60,8 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
     if (task.state() == fw::MotionState::holding) break;
   }
   result.stats = contour.stats();
+  result.true_table_stats = true_table.stats();
+  result.true_tool_stats = true_tool.stats();
   result.fault = task.fault();
   result.counters = task.counters();
   if (task.state() == fw::MotionState::faulted) {

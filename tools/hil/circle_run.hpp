@@ -20,6 +20,7 @@ struct TraceSample {
   std::array<double, 2> s{};
   std::array<double, 2> d_hat_mm_s{};
   std::array<double, 2> tool_mm{};      // emulator truth (tool point)
+  std::array<double, 2> table_mm{};     // emulator truth (table: the motor side through the ball screw)
   double contour_um = 0.0;
 };
 
@@ -30,7 +31,12 @@ struct CircleRunOptions {
 struct CircleRunResult {
   bool completed = false;
   std::string error;  // why the run did not complete; empty when it did
-  ContourStats stats{};
+  ContourStats stats{};             // S1 eq. (33) from the encoder-measured positions, as the paper scored
+  // The same error from the emulator's truth on the same ticks: the table,
+  // and the tool point (table + structural mode). With backlash or lead
+  // error ([plant] keys) the encoder, on the motor, does not see these.
+  ContourStats true_table_stats{};
+  ContourStats true_tool_stats{};
   fw::FaultRecord fault{};
   fw::TickCounters counters{};
   std::vector<TraceSample> trace;

@@ -72,6 +72,8 @@ class HilRig {
     settle_charge();
     machine.advance_to_next_tick();
     charged_call([this]() noexcept { task.tick(); });
+    // [io]: the tick's output write lands after this work (emu::Machine; nothing without [io]).
+    machine.set_firmware_work_ns(static_cast<double>(charged_.last_call_ns));
   }
   // Runs one firmware call of the real-time loop and charges its work
   // (see the top of this file).

@@ -48,6 +48,13 @@ nlohmann::json results_json(const std::vector<SweepCell>& cells, int seeds) {
                           {"mean_um", c.averaged.mean_um},
                           {"std_um", c.averaged.std_um},
                           {"seeds", seeds}};
+    // The truth beside the encoder-measured score (tool point = table + structural mode).
+    row["true_table"] = {{"max_um", c.true_table_averaged.max_um},
+                         {"mean_um", c.true_table_averaged.mean_um},
+                         {"std_um", c.true_table_averaged.std_um}};
+    row["true_tool"] = {{"max_um", c.true_tool_averaged.max_um},
+                        {"mean_um", c.true_tool_averaged.mean_um},
+                        {"std_um", c.true_tool_averaged.std_um}};
     if (!c.error.empty()) row["error"] = c.error;
     if (const auto paper = paper_row(c.scenario)) {
       const ContourStats& p = paper->of(c.controller);
@@ -161,6 +168,10 @@ std::string circle_text(const SweepCell& cell, int seeds) {
                          fw::to_string(cell.controller), seeds);
   out += line("contour error: max %.4f um   mean %.4f um   std %.4f um\n", cell.averaged.max_um,
               cell.averaged.mean_um, cell.averaged.std_um);
+  out += line("  true, table: max %.4f um   mean %.4f um   std %.4f um\n", cell.true_table_averaged.max_um,
+              cell.true_table_averaged.mean_um, cell.true_table_averaged.std_um);
+  out += line("  true, tool:  max %.4f um   mean %.4f um   std %.4f um\n", cell.true_tool_averaged.max_um,
+              cell.true_tool_averaged.mean_um, cell.true_tool_averaged.std_um);
   if (const auto paper = paper_row(cell.scenario)) {
     const ContourStats& p = paper->of(cell.controller);
     out += line("paper (S1 Table 3): max %.4f um   mean %.4f um   std %.4f um\n", p.max_um, p.mean_um, p.std_um);

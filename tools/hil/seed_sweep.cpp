@@ -19,6 +19,8 @@ std::vector<SweepCell> run_sweep(const SweepRequest& request, const fw::Firmware
       cell.scenario = request.scenarios[s].name;
       cell.controller = request.controllers[c];
       cell.per_seed.resize(n_seeds);
+      cell.true_table_per_seed.resize(n_seeds);
+      cell.true_tool_per_seed.resize(n_seeds);
     }
   }
   const std::size_t total = cells.size() * n_seeds;
@@ -36,6 +38,8 @@ std::vector<SweepCell> run_sweep(const SweepRequest& request, const fw::Firmware
       options.keep_trace = request.keep_seed0_trace && seed == 0;
       CircleRunResult r = run_circle(seeded(base, static_cast<int>(seed)), config, cell.controller, options);
       cell.per_seed[seed] = r.stats;
+      cell.true_table_per_seed[seed] = r.true_table_stats;
+      cell.true_tool_per_seed[seed] = r.true_tool_stats;
       if (!r.completed) {
         std::lock_guard lock(error_mutex);
         if (cell.error.empty()) cell.error = "seed " + std::to_string(seed) + ": " + r.error;
@@ -53,7 +57,11 @@ std::vector<SweepCell> run_sweep(const SweepRequest& request, const fw::Firmware
   worker();
   for (auto& t : pool) t.join();
 
-  for (SweepCell& cell : cells) cell.averaged = average(cell.per_seed);
+  for (SweepCell& cell : cells) {
+    cell.averaged = average(cell.per_seed);
+    cell.true_table_averaged = average(cell.true_table_per_seed);
+    cell.true_tool_averaged = average(cell.true_tool_per_seed);
+  }
   return cells;
 }
 

@@ -14,8 +14,13 @@ namespace tnv::hil {
 struct SweepCell {
   std::string scenario;
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
-  ContourStats averaged{};             // seed average
+  ContourStats averaged{};             // seed average (encoder-measured, as S1 scored)
   std::vector<ContourStats> per_seed;  // in seed order
+  // Truth beside it (circle_run.hpp): the table and the tool point.
+  ContourStats true_table_averaged{};
+  ContourStats true_tool_averaged{};
+  std::vector<ContourStats> true_table_per_seed;
+  std::vector<ContourStats> true_tool_per_seed;
   CircleRunResult seed0;               // with trace when traces were asked for
   std::string error;                   // first failed seed, if any
 };

@@ -1,6 +1,7 @@
 #include "tools/hil/seeded_scenario.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace tnv::hil {
@@ -23,6 +24,8 @@ emu::Scenario seeded(const emu::Scenario& base, int seed) noexcept {
   s.encoder.offset_counts_x = base.encoder.offset_counts_x + frac(k * kA1);
   s.encoder.offset_counts_y = base.encoder.offset_counts_y + frac(k * kA2);
   s.cutting.phase_rad = base.cutting.phase_rad + 2.0 * std::numbers::pi * frac(k * kA3);
+  // A new noise and jitter realisation per seed (inert while [noise] and [io] are off).
+  s.noise.seed = base.noise.seed + static_cast<std::uint32_t>(seed);
   return s;
 }
 

@@ -1,0 +1,68 @@
+#pragma once
+// Seeded random numbers for the emulator's noise and transport jitter
+// ([noise], [io]; docs/scenarios.md). std::mt19937_64, whose output the C++
+// standard fixes, with the uniform, Gaussian and exponential transforms
+// written out here rather than taken from <random>'s distributions (each
+// standard library picks its own algorithm for those): one seed, one
+// sequence, on every standard library. One stream per noise source, each
+// seeded from the scenario seed and its own stream number, so switching
+// one source on does not reshuffle another.
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <random>
+
+namespace tnv::emu {
+
+// splitmix64's finaliser over (seed, stream): well-spread engine seeds.
+constexpr std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) noexcept {
+  std::uint64_t z = seed + (stream + 1) * 0x9E37'79B9'7F4A'7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58'476D'1CE4'E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D0'49BB'1331'11EBull;
+  return z ^ (z >> 31);
+}
+
+class NoiseStream {
+ public:
+  NoiseStream(std::uint64_t seed, std::uint64_t stream) : engine_(mix_seed(seed, stream)) {}
+
+  // Uniform in [0, 1): the top 53 bits of one draw.
+  double uniform() noexcept { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+
+  // Standard normal by Box-Muller; the pair's second value is kept for the next call.
+  double normal() noexcept {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    const double radius = std::sqrt(-2.0 * std::log(1.0 - uniform()));  // 1 - u in (0, 1]: log finite
+    const double angle = 2.0 * std::numbers::pi * uniform();
+    spare_ = radius * std::sin(angle);
+    has_spare_ = true;
+    return radius * std::cos(angle);
+  }
+
+  // Exponential with mean 1: the gap between Poisson events at rate 1.
+  double exponential() noexcept { return -std::log(1.0 - uniform()); }
+
+ private:
+  std::mt19937_64 engine_;
+  double spare_ = 0.0;
+  bool has_spare_ = false;
+};
+
+// Stream numbers (fixed: changing one changes every seeded run).
+enum class NoiseStreamId : std::uint64_t {
+  force_adc = 1,
+  accel_x = 2,
+  accel_y = 3,
+  glitch_x = 4,
+  glitch_y = 5,
+  io_jitter = 6,
+};
+
+inline NoiseStream make_noise_stream(std::uint64_t seed, NoiseStreamId id) {
+  return NoiseStream(seed, static_cast<std::uint64_t>(id));
+}
+
+}  // namespace tnv::emu
