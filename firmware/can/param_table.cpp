@@ -27,6 +27,10 @@ namespace {
       },                                                                                               \
       nullptr
 #define TNV_RO(expr) [](const NodeSettings&) noexcept -> double { return static_cast<double>(expr); }, nullptr, nullptr
+// A double member shown in another unit: the parameter is member * scale (um for a member in mm: 1000).
+#define TNV_SCALED(path, scale)                                                   \
+  [](const NodeSettings& s) noexcept -> double { return s.path * (scale); },      \
+      [](NodeSettings& s, double v) noexcept { s.path = v / (scale); }, nullptr
 
 std::size_t param_count() noexcept;
 
@@ -236,7 +240,16 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
     base + 0xA2, p "path.jerk_mm_s3", ParamType::f32, "mm/s^3", kPathJerkMinMmS3, kPathJerkMaxMmS3, "",                  \
         Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].path.jerk_mm_s3),                             \
         "programs: the planner's jerk limit of this axis (at least accel / 64 ms: the jerk filter's 128 taps)"           \
-  }
+  },                                                                                                                    \
+      {base + 0xC0, p "screw.backlash_um", ParamType::f32, "um", 0, 200, "", Access::read_write, Apply::idle, kOpen,      \
+       TNV_SCALED(firmware.axis[ax].screw.backlash_mm, 1000.0),                                                          \
+       "backlash compensation: lost motion at a reversal, added half each way (docs/robustness.md); 0 = off"},          \
+      {base + 0xC1, p "screw.backlash_rate_mm_s", ParamType::f32, "mm/s", 0.01, 100, "", Access::read_write,             \
+       Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].screw.backlash_rate_mm_s),                                         \
+       "how fast the backlash offset changes at a reversal"},                                                            \
+      {base + 0xC2, p "screw.lead_um_per_m", ParamType::f32, "um/m", -1000, 1000, "", Access::read_write, Apply::idle,   \
+       kOpen, TNV_REAL(firmware.axis[ax].screw.lead_um_per_m),                                                           \
+       "lead-error compensation: table travel error per metre of motor travel from the origin; 0 = off"}
 
 constexpr ParamDef kParams[] = {
     {0x0000, "sys.protocol_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
@@ -337,6 +350,7 @@ constexpr ParamDef kParams[] = {
 #undef TNV_REAL
 #undef TNV_INT
 #undef TNV_RO
+#undef TNV_SCALED
 
 constexpr bool sorted_unique() {
   for (std::size_t i = 1; i < std::size(kParams); ++i)

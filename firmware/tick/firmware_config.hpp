@@ -5,6 +5,7 @@
 
 #include "firmware/adaptive/arsc/arsc_source_params.hpp"
 #include "firmware/compensation/friction_feedforward.hpp"
+#include "firmware/compensation/screw_compensation.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/control/axis_model.hpp"
 #include "firmware/control/param_check.hpp"
@@ -40,6 +41,7 @@ struct AxisConfig {
   PathLimits path{};                 // the look-ahead planner's speed, acceleration and jerk (docs/motion.md)
   FrictionFeedForward friction{};    // friction feed-forward (issue 7); off by default
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
+  ScrewCompensation screw{};         // backlash and lead-error compensation (issue 16); off by default
 };
 
 // The force sensor on the I/O board's ADC (force_code.hpp): its scale is a

@@ -176,8 +176,10 @@ void TickTask::update_reference() noexcept {
     case MotionState::faulted:
       // Servo off: the reference follows the table so the next servo-on is
       // bumpless, and the shapers rest there (a pending change applies now).
+      // The screw compensation's last offset is taken off the measured
+      // (motor-side) position: compensated, the reference is where the axis is.
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-        hold_[i] = {record_.axis[i].position_mm, 0.0};
+        hold_[i] = {record_.axis[i].position_mm - screw_[i].next_offset_mm(), 0.0};
         shaping_[i].shaper.reset(hold_[i]);
         record_.axis[i].unshaped_reference_mm = hold_[i].position_mm;
         set_reference(i, hold_[i], hold_[i]);
@@ -269,8 +271,12 @@ void TickTask::tick() noexcept {
         x.speed_mm_s = axis_[i].observer.speed_mm_s();
         if (obs.use_position) x.position_mm = axis_[i].observer.position_mm();
       }
-      const AxisReference ref{r.reference_mm, r.reference_speed_mm_s, next_[i].position_mm,
-                              next_[i].speed_mm_s};
+      // The program is for the table, the encoder reads the motor: the
+      // controllers follow the motor-side reference (screw_compensation.hpp).
+      const ScrewCompensator::Offsets screw =
+          screw_[i].advance(config_.axis[i].screw, r.reference_mm, next_[i].position_mm, kTickPeriodS);
+      const AxisReference ref{r.reference_mm + screw.now_mm, r.reference_speed_mm_s,
+                              next_[i].position_mm + screw.next_mm, next_[i].speed_mm_s};
       u_mm_s = ctl.update(x, ref);
       u_mm_s += friction_feedforward_mm_s(config_.axis[i].friction, r.reference_speed_mm_s, next_[i].speed_mm_s);
     }

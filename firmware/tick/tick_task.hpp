@@ -289,6 +289,7 @@ class TickTask {
   std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
   std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
   std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
+  std::array<ScrewCompensator, hal::kAxisCount> screw_{};  // table-side reference -> motor-side
   std::array<MotionPlausibility, hal::kAxisCount> plausibility_monitor_{};  // encoder_implausible, runaway
   std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
   bool one_nominal_period_ = false;

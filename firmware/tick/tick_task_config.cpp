@@ -60,7 +60,8 @@ bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfi
     if (!same(from.supervisor.axis[i], to.supervisor.axis[i])) return false;
     if (a.count_mm != b.count_mm || a.dac.bits != b.dac.bits || a.dac.full_scale_mm_s != b.dac.full_scale_mm_s ||
         a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog) ||
-        !same(a.friction, b.friction) || !same(a.observer, b.observer) || !same(a.path, b.path))
+        !same(a.friction, b.friction) || !same(a.observer, b.observer) || !same(a.path, b.path) ||
+        !same(a.screw, b.screw))
       return false;
     // PID: kp, ki, kd and the clamp are live; the filter and the feed-forward switch are not.
     if (a.pid.derivative_filter_tf_s != b.pid.derivative_filter_tf_s || a.pid.feedforward != b.pid.feedforward)

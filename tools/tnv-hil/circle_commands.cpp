@@ -40,13 +40,16 @@ struct CircleOptions {
   std::string plot;
   std::string csv;
   std::optional<double> gamma;  // both axes' sliding.gamma; unset: the papers'
+  std::vector<std::string> sets;  // NAME=VALUE firmware parameters
 };
 
 int run_circle_command(const CircleOptions& o) {
   const auto kind = controller_or_report(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!kind || !scenario) return kExitBadInput;
-  fw::FirmwareConfig config = fw::default_firmware_config();
+  const std::optional<fw::FirmwareConfig> configured = firmware_config_or_report(o.sets);
+  if (!configured) return kExitBadInput;
+  fw::FirmwareConfig config = *configured;
   for (auto& axis : config.axis) axis.sliding.gamma = o.gamma.value_or(axis.sliding.gamma);
   if (const fw::ConfigError e = fw::validate(config); !e.ok()) {
     std::fprintf(stderr, "tnv-hil: --gamma: %s: %s: %s\n", e.section, e.field, e.reason);
@@ -162,6 +165,8 @@ void add_circle_commands(CLI::App& app, Runner& run) {
   circle_cmd->add_option("--plot", circle->plot, "write the polar + contour-error plot (SVG)")->check(tnv::cli::OutputFile());
   circle_cmd->add_option("--csv", circle->csv, "write the seed-0 trace (CSV)")->check(tnv::cli::OutputFile());
   circle_cmd->add_option("--gamma", circle->gamma, "R-DVSC gamma of both axes (default: the papers', S1 Table 2)");
+  circle_cmd->add_option("--set", circle->sets,
+                         "NAME=VALUE: a firmware parameter as on the node, e.g. x.screw.backlash_um=10 (repeatable)");
   circle_cmd->callback([&run, circle] { run = [circle] { return run_circle_command(*circle); }; });
 
   auto table3 = std::make_shared<Table3Options>();

@@ -7,6 +7,9 @@
 #include <fstream>
 
 #include "emulator/scenario_file.hpp"
+#include "firmware/can/node_settings.hpp"
+#include "firmware/can/param_table.hpp"
+#include "tools/can/param_text.hpp"
 
 namespace tnv::cli {
 
@@ -79,6 +82,31 @@ bool write_svg(const std::string& path, const hil::SvgWriter& svg) {
 bool write_plot(const std::string& path, const std::string& title, double radius_mm,
                 const std::vector<hil::PlotRow>& rows) {
   return write_svg(path, hil::circle_figure(title, radius_mm, rows));
+}
+
+std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& assignments) {
+  fw::can::NodeSettings settings = fw::can::default_node_settings();
+  for (const std::string& a : assignments) {
+    const auto eq = a.find('=');
+    const fw::can::ParamDef* p = eq == std::string::npos ? nullptr : can_host::find_param_by_text(a.substr(0, eq));
+    if (p == nullptr || p->access != fw::can::Access::read_write) {
+      std::fprintf(stderr, "tnv-hil: --set %s: expected NAME=VALUE with a writable parameter (tnvctl params list)\n",
+                   a.c_str());
+      return std::nullopt;
+    }
+    std::string error;
+    const std::optional<double> v = can_host::parse_param_value(*p, a.substr(eq + 1), error);
+    if (!v) {
+      std::fprintf(stderr, "tnv-hil: --set: %s\n", error.c_str());
+      return std::nullopt;
+    }
+    p->set(settings, *v);
+  }
+  if (const fw::can::SettingsCheck check = fw::can::validate(settings); !check.ok) {
+    std::fprintf(stderr, "tnv-hil: --set: %s: %s\n", check.section, check.reason);
+    return std::nullopt;
+  }
+  return settings.firmware;
 }
 
 }  // namespace tnv::cli

@@ -10,6 +10,7 @@
 
 #include "emulator/scenario.hpp"
 #include "firmware/control/axis_controller.hpp"
+#include "firmware/tick/firmware_config.hpp"
 #include "tools/hil/circle_plot.hpp"
 
 namespace tnv::cli {
@@ -40,6 +41,11 @@ std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_
 // "pid", "dvsc" or "rdvsc" (fw::to_string's names); prints a one-line error
 // and returns nullopt for anything else.
 std::optional<fw::ControllerKind> controller_or_report(const std::string& name);
+
+// The papers' firmware configuration with NAME=VALUE parameter assignments
+// (the node's parameter names and ranges: x.screw.backlash_um=10), the
+// whole set validated; nullopt after a one-line message on stderr.
+std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& assignments);
 
 // The four scenarios of S1 Table 3 (no-cut, cut-900, cut-1200, cut-1500);
 // nullopt, after the error is printed, when one cannot be built.
