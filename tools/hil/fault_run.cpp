@@ -102,6 +102,12 @@ FaultObservation run_fault_case(const emu::Scenario& scenario, const FaultCase& 
       obs.latching_tick = task.counters().ticks;
       obs.detected_s = machine.time_s();
       obs.after_latch = machine.board_outputs();
+      // Over a transport ([io] write latency) the safe outputs land after the
+      // firmware's write: follow the board until they do, at most one tick.
+      for (std::uint64_t k = 0; !obs.after_latch.safe(mid_code) && k < emu::kSubstepsPerSecond / 1000; ++k) {
+        machine.advance_clocks(emu::kSubstepClocks);
+        obs.after_latch = machine.board_outputs();
+      }
       if (!obs.outputs_safe_s && obs.after_latch.safe(mid_code)) obs.outputs_safe_s = machine.time_s();
       machine.advance_clocks(emu::kSubstepClocks);
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
