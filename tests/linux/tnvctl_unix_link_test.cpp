@@ -4,11 +4,6 @@
 // no daemon behind it.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <filesystem>
-#include <nlohmann/json.hpp>
-#include <thread>
-
 #include "tests/linux/two_process_support.hpp"
 
 namespace tnv {
@@ -34,16 +29,10 @@ TnvctlRun tnvctl(const test::ScratchDir& dir, const std::string& iface, std::vec
 TEST(TnvctlUnixLink, SetsAndReadsAParameterOfTheDaemonThenARefusalChangesNothing) {
   test::ScratchDir dir;
   const fwd::DaemonConfig config = test::rig_config(dir);
-  const std::string config_file = dir.file("tnv-fw.toml");
-  test::write_config(config_file, config);
-  const pid_t emu = spawn({TNV_BOARD_EMU_EXE, "--socket", config.board.path, "--scenario", "no-cut", "--once"},
-                          dir.file("emu.log"));
-  const pid_t fw = spawn({TNV_FW_EXE, "--config", config_file}, dir.file("fw.log"));
-  const std::string can_socket = config.can.interface_name.substr(5);
-  for (int i = 0; i < 500 && !std::filesystem::exists(can_socket); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_TRUE(std::filesystem::exists(can_socket)) << read_file(dir.file("fw.log"));
+  const test::RigProcesses rig = test::start_rig(dir, config);
+  ASSERT_FALSE(rig.can_socket.empty());
+  const pid_t emu = rig.emu;
+  const pid_t fw = rig.fw;
   const std::string iface = config.can.interface_name;
 
   const TnvctlRun set = tnvctl(dir, iface, {"params", "set", "x.sliding.gamma=0.375"});

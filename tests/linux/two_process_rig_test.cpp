@@ -15,25 +15,15 @@ namespace {
 using test::read_file;
 using test::spawn;
 using test::wait_exit;
-using test::write_config;
 
 TEST(TwoProcessRig, ParameterRoundTripOverCanThenSigtermLeavesTheOutputsSafe) {
   test::ScratchDir dir;
-  const fwd::DaemonConfig config = test::rig_config(dir);
-  const std::string config_file = dir.file("tnv-fw.toml");
-  write_config(config_file, config);
-
-  const pid_t emu = spawn({TNV_BOARD_EMU_EXE, "--socket", config.board.path, "--scenario", "no-cut", "--once"},
-                          dir.file("emu.log"));
-  const pid_t fw = spawn({TNV_FW_EXE, "--config", config_file}, dir.file("fw.log"));
-  // The firmware binds its CAN socket once the board has answered.
-  const std::string can_socket = config.can.interface_name.substr(5);
-  for (int i = 0; i < 500 && !std::filesystem::exists(can_socket); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_TRUE(std::filesystem::exists(can_socket)) << read_file(dir.file("fw.log"));
+  const test::RigProcesses rig = test::start_rig(dir, test::rig_config(dir));
+  const pid_t emu = rig.emu;
+  const pid_t fw = rig.fw;
+  ASSERT_FALSE(rig.can_socket.empty());
   {
-    test::HostLink host(can_socket);
+    test::HostLink host(rig.can_socket);
     EXPECT_EQ(host.client.wait_heartbeat(can_host::Micros{3'000'000}).fault, fw::FaultReason::none);
     EXPECT_DOUBLE_EQ(host.client.set(test::gamma_x(), 0.25), 0.25);
     EXPECT_DOUBLE_EQ(host.client.get(test::gamma_x()), 0.25);

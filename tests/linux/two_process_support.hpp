@@ -8,8 +8,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -53,6 +56,31 @@ inline void write_config(const std::string& path, const fwd::DaemonConfig& c) {
       << "[rt]\npriority = 0\nrequire = false\n"
       << "[tick]\nperiod_us = 1000\n"
       << "[params]\nfile = \"" << c.params.file << "\"\n";
+}
+
+// tnv-board-emu (--once) and tnv-fw on the rig config of `dir`, waited for
+// until the daemon has bound its CAN socket; its path, or "" (with the
+// daemon's log in a failure) when it never came.
+struct RigProcesses {
+  pid_t emu = -1;
+  pid_t fw = -1;
+  std::string can_socket;
+};
+inline RigProcesses start_rig(const ScratchDir& dir, const fwd::DaemonConfig& config) {
+  const std::string config_file = dir.file("tnv-fw.toml");
+  write_config(config_file, config);
+  RigProcesses rig;
+  rig.emu = spawn({TNV_BOARD_EMU_EXE, "--socket", config.board.path, "--scenario", "no-cut", "--once"},
+                  dir.file("emu.log"));
+  rig.fw = spawn({TNV_FW_EXE, "--config", config_file}, dir.file("fw.log"));
+  // The firmware binds its CAN socket once the board has answered.
+  const std::string can_socket = config.can.interface_name.substr(5);
+  for (int i = 0; i < 500 && !std::filesystem::exists(can_socket); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(std::filesystem::exists(can_socket)) << read_file(dir.file("fw.log"));
+  if (std::filesystem::exists(can_socket)) rig.can_socket = can_socket;
+  return rig;
 }
 
 }  // namespace tnv::test

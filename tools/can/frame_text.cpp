@@ -6,6 +6,7 @@
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tools/can/param_text.hpp"
+#include "tools/protogen/text_format.hpp"
 
 namespace tnv::can_host {
 
@@ -25,17 +26,8 @@ std::string hex_bytes(const hal::CanFrame& frame) {
 
 // The name of `raw` in a "0=a 1=b" table, or "" when it has none.
 std::string value_name(const char* values, long raw) {
-  std::string_view table(values);
-  std::size_t at = 0;
-  while (at < table.size()) {
-    while (at < table.size() && table[at] == ' ') ++at;
-    const std::size_t eq = table.find('=', at);
-    if (eq == std::string_view::npos) break;
-    std::size_t end = table.find(' ', eq);
-    if (end == std::string_view::npos) end = table.size();
-    if (std::string(table.substr(at, eq - at)) == std::to_string(raw)) return std::string(table.substr(eq + 1, end - eq - 1));
-    at = end;
-  }
+  for (const auto& [value, name] : protogen::value_table(values))
+    if (value == raw) return name;
   return "";
 }
 
