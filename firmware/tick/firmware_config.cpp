@@ -64,6 +64,7 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
       return axis_error(i, "axis x: friction feed-forward", "axis y: friction feed-forward", c);
     if (const ParamCheck c = validate(a.observer, a.model); !c.ok)
       return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
+    if (const ParamCheck c = validate(a.homing); !c.ok) return axis_error(i, "axis x: homing", "axis y: homing", c);
   }
   if (base == nullptr || !same_bytes(config.supervisor, base->supervisor))
     if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
