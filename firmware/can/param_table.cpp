@@ -251,7 +251,7 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
         "programs: the planner's jerk limit of this axis (at least accel / 64 ms: the jerk filter's 128 taps)"           \
   },                                                                                                                     \
     {base + 0xB0, p "homing.search_positive", ParamType::boolean, "", 0, 1, kHomeSides, Access::read_write,               \
-     Apply::idle, kSafety, TNV_INT(firmware.axis[ax].homing.search_positive),                                            \
+     Apply::idle, kOpen, TNV_INT(firmware.axis[ax].homing.search_positive),                                            \
      "which end of the travel the home switch is at: the search runs toward it"},                                        \
     {base + 0xB1, p "homing.search_mm_s", ParamType::f32, "mm/s", kHomeSearchMinMmS, kHomeSearchMaxMmS, "",               \
      Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.search_mm_s),                             \
@@ -260,14 +260,14 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
      Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.latch_mm_s),                              \
      "homing: speed off the switch and on to the index (<= search speed)"},                                              \
     {base + 0xB3, p "homing.position_mm", ParamType::f32, "mm", -kTravelLimitMm, kTravelLimitMm, "", Access::read_write,  \
-     Apply::idle, kSafety, TNV_REAL(firmware.axis[ax].homing.position_mm),                                               \
+     Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.position_mm),                                               \
      "position given to the index mark found after the switch: home (the soft limits are relative to it)"},             \
     {base + 0xB4, p "homing.search_max_mm", ParamType::f32, "mm", kHomeTravelMinMm, kTravelLimitMm, "",                  \
-     Access::read_write, Apply::idle, kSafety, TNV_REAL(firmware.axis[ax].homing.search_max_mm),                         \
+     Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.search_max_mm),                         \
      "homing: longest search without the switch before it fails (the axis' travel)"},                                    \
   {                                                                                                                      \
     base + 0xB5, p "homing.latch_max_mm", ParamType::f32, "mm", kHomeTravelMinMm, kHomeLatchTravelMaxMm, "",              \
-        Access::read_write, Apply::idle, kSafety, TNV_REAL(firmware.axis[ax].homing.latch_max_mm),                       \
+        Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.latch_max_mm),                       \
         "homing: longest back-off, and longest run from the switch's release to an index edge (over one screw turn)"     \
   }
 
@@ -322,7 +322,8 @@ constexpr ParamDef kParams[] = {
      kSafety, TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
     // The S3 force loop as the programs' feed-override source (arsc_source_params.hpp). Not safety
     // parameters: the loop only sets a feed override, and the planner keeps every axis limit under any.
-    {0x0058, "homing.required", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kSafety,
+    // Homing: ordinary parameters; the commissioning set (docs/safety.md) is unchanged (docs/notes.md "Homing").
+    {0x0058, "homing.required", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,
      TNV_INT(firmware.homing_required),
      "circle, move and programs refused until the axes they move are homed; off by default, on at commissioning"},
     {0x0060, "arsc.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,

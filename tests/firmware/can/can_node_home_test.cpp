@@ -1,7 +1,7 @@
 // COMMAND home on the scriptable board: the cycle driven by the switch and
 // index inputs to homed (heartbeat bits), and its refusals: bad axis, busy
 // while moving, faulted, and motion refused before homing when
-// homing.required is on.
+// homing.required is on (off by default).
 #include <gtest/gtest.h>
 
 #include "tests/firmware/can/node_bench.hpp"
@@ -128,11 +128,12 @@ TEST(CanNodeHome, MotionRefusedBeforeHomingWhenRequired) {
   EXPECT_EQ(b.task.start_move({hal::Axis::y, 1.0, 5.0, 0.02, 0.0}), fw::CommandStatus::ok) << "y is homed";
 }
 
-TEST(CanNodeHome, HomingRequiredIsASafetyParameterAndOffByDefault) {
+TEST(CanNodeHome, HomingRequiredIsOffByDefaultAndSetAtRest) {
   NodeBench b;
   EXPECT_EQ(b.param("homing.required"), 0.0);
-  const fw::can::ParamDef& p = NodeBench::find("homing.required");
-  EXPECT_EQ(p.guard, fw::can::Guard::commissioning);
+  const hal::CanFrame set = b.reply(param_request(kNode, fw::can::ParamOp::set, id_of("homing.required"), 1));
+  EXPECT_EQ(static_cast<ErrorCode>(raw_of(set, MessageId::param_reply, "result")), ErrorCode::ok);
+  EXPECT_TRUE(b.task.config().homing_required) << "applied to the tick task";
   EXPECT_EQ(NodeBench::find("x.homing.search_mm_s").get(b.node->settings()), 10.0);
   EXPECT_EQ(NodeBench::find("y.homing.latch_mm_s").get(b.node->settings()), 1.0);
 }
