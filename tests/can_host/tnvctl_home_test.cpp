@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <vector>
 
 #include "tests/can_host/tnvctl_runner.hpp"
 
@@ -24,14 +22,11 @@ index_x_deg = 108.0
 index_y_deg = 0.0
 )";
 
-nlohmann::json last_result(const std::string& out) {
-  std::istringstream lines(out);
-  nlohmann::json last;
-  for (std::string line; std::getline(lines, line);) {
-    nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
-    if (!j.is_discarded() && j.contains("command")) last = std::move(j);
-  }
-  return last;
+// --json prints one JSON document for a single command.
+nlohmann::json result_of(const std::string& out) {
+  nlohmann::json j = nlohmann::json::parse(out, nullptr, false);
+  EXPECT_FALSE(j.is_discarded()) << out;
+  return j.is_discarded() ? nlohmann::json::object() : j;
 }
 
 TEST(TnvctlHome, HomesBothAxesOnTheEmulatedTable) {
@@ -39,7 +34,7 @@ TEST(TnvctlHome, HomesBothAxesOnTheEmulatedTable) {
   const auto scenario = test::write_file(state / "home.toml", kSwitches);
   const test::ToolRun r = test::tnvctl(state, "--emu --json --emu-scenario " + scenario.string() + " home");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  const nlohmann::json j = last_result(r.out);
+  const nlohmann::json j = result_of(r.out);
   ASSERT_EQ(j["command"], "home") << r.out;
   EXPECT_EQ(j["homed"]["x"], true) << j.dump();
   EXPECT_EQ(j["homed"]["y"], true) << j.dump();
@@ -52,7 +47,7 @@ TEST(TnvctlHome, OneAxisAloneAndABadAxisRefused) {
   const auto scenario = test::write_file(state / "home.toml", kSwitches);
   const test::ToolRun y = test::tnvctl(state, "--emu --json --emu-scenario " + scenario.string() + " home --axis y");
   ASSERT_EQ(y.exit_code, 0) << y.err << y.out;
-  const nlohmann::json j = last_result(y.out);
+  const nlohmann::json j = result_of(y.out);
   EXPECT_EQ(j["homed"]["x"], false) << j.dump();
   EXPECT_EQ(j["homed"]["y"], true) << j.dump();
   const test::ToolRun bad = test::tnvctl(state, "--emu home --axis z");
