@@ -44,6 +44,8 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
     case regs::kAdcForce:
     case regs::kAdcAccelX:
     case regs::kAdcAccelY:
+    case regs::kIndexX:
+    case regs::kIndexY:
     case regs::kFaults: value = snapshot_[word - regs::kSnapshotFirst]; return true;
     case regs::kDacX: value = dac_codes_[0]; return true;
     case regs::kDacY: value = dac_codes_[1]; return true;
@@ -149,11 +151,13 @@ void IoBoard::fill_snapshot(const TickSamples& samples) noexcept {
   snapshot_[kClk] = clock();
   snapshot_[regs::kEncoderX - regs::kSnapshotFirst] = samples.encoder_registers[0];
   snapshot_[regs::kEncoderY - regs::kSnapshotFirst] = samples.encoder_registers[1];
-  snapshot_[regs::kInputs - regs::kSnapshotFirst] = live_inputs();
+  snapshot_[regs::kInputs - regs::kSnapshotFirst] = live_inputs() | samples.position_inputs;
   snapshot_[regs::kAdcForce - regs::kSnapshotFirst] = samples.adc_force_code;
   snapshot_[regs::kFaults - regs::kSnapshotFirst] = faults_;
   snapshot_[regs::kAdcAccelX - regs::kSnapshotFirst] = samples.adc_accel_codes[0];
   snapshot_[regs::kAdcAccelY - regs::kSnapshotFirst] = samples.adc_accel_codes[1];
+  snapshot_[regs::kIndexX - regs::kSnapshotFirst] = samples.index_registers[0];
+  snapshot_[regs::kIndexY - regs::kSnapshotFirst] = samples.index_registers[1];
 }
 
 void IoBoard::set_input(std::uint32_t bit, bool asserted) noexcept {

@@ -54,6 +54,9 @@ struct Machine::Impl {
     return screws[i].enabled() ? screws[i].table_mm(motor_mm) : motor_mm;
   }
   std::int64_t encoder_count(std::size_t i) const noexcept;
+  // The encoder's index mark: latches the count when the motor side crosses it.
+  void watch_index(std::size_t i, double from_mm, double to_mm) noexcept;
+  std::uint32_t position_inputs() const noexcept;
   void apply_due_faults() noexcept;
   void apply_fault_edge(const FaultEdge& edge) noexcept;
   bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
@@ -88,6 +91,10 @@ struct Machine::Impl {
   std::array<std::int64_t, hal::kAxisCount> encoder_slip_counts{};  // counts the decoder lost
   std::array<std::optional<std::int64_t>, hal::kAxisCount> dead_encoder_count{};  // frozen count while dead
   std::array<double, hal::kAxisCount> drive_sign{1.0, 1.0};  // -1: runaway (gain sign flipped)
+
+  // Index marks ([board] index_*_deg): motor-side positions index_mm + k lead.
+  std::array<double, hal::kAxisCount> index_mm{};
+  std::array<std::uint32_t, hal::kAxisCount> index_register{};  // INDEX_X/Y as latched at the last edge
   bool read_errors = false;
   std::uint64_t ticks_to_sleep = 0;  // missed ticks still to come
 };
@@ -107,7 +114,8 @@ Machine::Impl::Impl(const Scenario& s)
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
       cutting(s.cutting, s.circle.feed_mm_s),
       milling(s.milling, kSubstep_s),
-      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm), ScrewTransmission(s.plant[1], 0.0)},
+      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm + s.board.power_up_offset_x_mm),
+             ScrewTransmission(s.plant[1], s.board.power_up_offset_y_mm)},
       any_mode(modes[0].enabled() || modes[1].enabled()),
       any_backlash(screws[0].has_backlash() || screws[1].has_backlash()),
       sample_noise(s.noise.any_sample_noise()),
@@ -120,9 +128,11 @@ Machine::Impl::Impl(const Scenario& s)
       fault_timeline(s.faults),
       fault_on(s.faults.size(), false) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
-  // At rest, held by stiction, at the circle's start point (R, 0).
-  plants[0].set_state(s.circle.radius_mm, 0.0, true);
-  plants[1].set_state(0.0, 0.0, true);  // (the screws' lash starts centred there)
+  // At rest, held by stiction, at the circle's start point (R, 0) (moved by [board] power_up_offset_*_mm).
+  plants[0].set_state(s.circle.radius_mm + s.board.power_up_offset_x_mm, 0.0, true);
+  plants[1].set_state(s.board.power_up_offset_y_mm, 0.0, true);  // (the screws' lash starts centred there)
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    index_mm[i] = s.encoder.lead_mm * s.board.index_deg(hal::axis_from_index(i)) / 360.0;
   board.preset_snapshot(tick_samples());
   board.defer_outputs(transport.enabled());
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -137,9 +147,50 @@ std::int64_t Machine::Impl::encoder_count(std::size_t i) const noexcept {
   return encoders[i].count(plants[i].position_mm()) + encoder_slip_counts[i];
 }
 
+// Marks at index_mm + k lead. Crossing one between two positions latches the
+// count the decoder holds at the mark (the encoder reading there, with the
+// counts it lost or gained so far), whatever the direction. A block that
+// reverses across a mark and back within itself is not seen (blocks are at
+// most one tick, and homing crosses marks at constant speed).
+void Machine::Impl::watch_index(std::size_t i, double from_mm, double to_mm) noexcept {
+  const double lead_mm = scenario.encoder.lead_mm;
+  const double k_from = std::floor((from_mm - index_mm[i]) / lead_mm);
+  const double k_to = std::floor((to_mm - index_mm[i]) / lead_mm);
+  if (k_from == k_to) return;
+  const double mark_mm = index_mm[i] + lead_mm * std::max(k_from, k_to);
+  const std::int64_t count =
+      dead_encoder_count[i] ? *dead_encoder_count[i] : encoders[i].count(mark_mm) + encoder_slip_counts[i];
+  const std::uint32_t edges = ((index_register[i] >> hal::regs::kIndexEdgesShift) + 1u) & hal::regs::kIndexEdgesMask;
+  index_register[i] = QuadratureEncoder::wrap(count) | (edges << hal::regs::kIndexEdgesShift);
+}
+
+// The switches the table actuates, at the table's position now.
+std::uint32_t Machine::Impl::position_inputs() const noexcept {
+  using namespace hal::regs;
+  const BoardParams& b = scenario.board;
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const Axis axis = hal::axis_from_index(i);
+    const double table = table_mm(i);
+    if (b.home_switch(axis)) {
+      const double beyond_mm = (table - b.home_mm(axis)) * b.home_side(axis);
+      if (beyond_mm >= 0.0) bits |= axis == Axis::x ? kInputHomeX : kInputHomeY;
+    }
+    if (b.limit_switches) {
+      const double min_mm = axis == Axis::x ? b.limit_x_min_mm : b.limit_y_min_mm;
+      const double max_mm = axis == Axis::x ? b.limit_x_max_mm : b.limit_y_max_mm;
+      if (table <= min_mm) bits |= axis == Axis::x ? kInputLimitXNeg : kInputLimitYNeg;
+      if (table >= max_mm) bits |= axis == Axis::x ? kInputLimitXPos : kInputLimitYPos;
+    }
+  }
+  return bits;
+}
+
 TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept {
   TickSamples samples;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) samples.encoder_registers[i] = QuadratureEncoder::wrap(encoder_count(i));
+  samples.index_registers = index_register;
+  samples.position_inputs = position_inputs();
   // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
   // (sqrt rather than hypot: no overflow risk at these magnitudes, and cheaper)
   const double magnitude_mm_s = std::sqrt(applied_cutting.x_mm_s * applied_cutting.x_mm_s +
@@ -336,6 +387,7 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   // Local state: independent chains, no memory round trips.
   AxisState x = plants[0].state();
   AxisState y = plants[1].state();
+  const double x_from_mm = x.position_mm, y_from_mm = y.position_mm;
   if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
     step_substeps(x, y, u_x, u_y, n);
   } else {
@@ -357,6 +409,8 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   }
   plants[0].set_state(x);
   plants[1].set_state(y);
+  watch_index(0, x_from_mm, x.position_mm);
+  watch_index(1, y_from_mm, y.position_mm);
   substep += n;
   const bool tick_due = board.advance_substeps(n);
   if (transport.enabled()) land_due_outputs();  // landing at a latch: before it samples
@@ -466,6 +520,8 @@ BoardOutputs Machine::board_outputs() const noexcept {
 }
 
 std::uint32_t Machine::dac_mid_code() const noexcept { return impl_->board.dac().mid_code(); }
+
+double Machine::index_mark_mm(Axis axis) const noexcept { return impl_->index_mm[hal::index(axis)]; }
 
 const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
 

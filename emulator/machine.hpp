@@ -68,6 +68,9 @@ class Machine {
   AxisTruth truth(hal::Axis axis) const noexcept;
   BoardOutputs board_outputs() const noexcept;
   std::uint32_t dac_mid_code() const noexcept;
+  // Motor-side position of an encoder index mark (marks repeat every lead):
+  // the reference a homing cycle's home is taken from.
+  double index_mark_mm(hal::Axis axis) const noexcept;
   const Scenario& scenario() const noexcept;
   // S3 milling force on X (N) and the depth of cut now (mm); 0 / profile when [milling] is off.
   double milling_force_n() const noexcept;

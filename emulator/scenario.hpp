@@ -79,6 +79,38 @@ struct MillingParams {
 
 struct BoardParams {
   std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
+  // Home switches (INPUTS bits 8/9), actuated by the table: asserted at and
+  // beyond home_*_mm on the home_*_side (-1: at and below, +1: at and above).
+  // Absent by default (the input reads 0): a homing cycle then finds no switch.
+  bool home_switch_x = false;
+  bool home_switch_y = false;
+  double home_x_mm = -20.0;
+  double home_y_mm = -20.0;
+  int home_x_side = -1;
+  int home_y_side = -1;
+  // Encoder index mark: once per motor revolution at this motor angle; angle
+  // 0 is motor-side position 0 (the plant state p modulo the lead). The board
+  // latches the count there (INDEX_X/Y). Always present, like on the encoder.
+  double index_x_deg = 0.0;
+  double index_y_deg = 0.0;
+  // Hardware limit switches at these table positions (INPUTS bits 3..6, ORed
+  // with the bench and the fault schedule); off by default.
+  bool limit_switches = false;
+  double limit_x_min_mm = -200.0;
+  double limit_x_max_mm = 200.0;
+  double limit_y_min_mm = -200.0;
+  double limit_y_max_mm = 200.0;
+  // Power-up position: the table starts this far from the circle's start
+  // point (circle.radius_mm, 0) (motor side and table together).
+  double power_up_offset_x_mm = 0.0;
+  double power_up_offset_y_mm = 0.0;
+  bool home_switch(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_switch_x : home_switch_y; }
+  double home_mm(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_x_mm : home_y_mm; }
+  int home_side(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_x_side : home_y_side; }
+  double index_deg(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? index_x_deg : index_y_deg; }
+  double power_up_offset_mm(hal::Axis axis) const noexcept {
+    return axis == hal::Axis::x ? power_up_offset_x_mm : power_up_offset_y_mm;
+  }
 };
 
 // Sensor and actuator imperfections, seeded (noise_stream.hpp); all off by default.

@@ -71,7 +71,23 @@ class ScenarioReader {
                                 {"fall_s", &s.milling.depth.fall_s}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "board") {
-        const Field fields[] = {{"clock_start", &s.board.clock_start}};
+        BoardParams& b = s.board;
+        const Field fields[] = {{"clock_start", &b.clock_start},
+                                {"home_switch_x", &b.home_switch_x},
+                                {"home_switch_y", &b.home_switch_y},
+                                {"home_x_mm", &b.home_x_mm},
+                                {"home_y_mm", &b.home_y_mm},
+                                {"home_x_side", &b.home_x_side},
+                                {"home_y_side", &b.home_y_side},
+                                {"index_x_deg", &b.index_x_deg},
+                                {"index_y_deg", &b.index_y_deg},
+                                {"limit_switches", &b.limit_switches},
+                                {"limit_x_min_mm", &b.limit_x_min_mm},
+                                {"limit_x_max_mm", &b.limit_x_max_mm},
+                                {"limit_y_min_mm", &b.limit_y_min_mm},
+                                {"limit_y_max_mm", &b.limit_y_max_mm},
+                                {"power_up_offset_x_mm", &b.power_up_offset_x_mm},
+                                {"power_up_offset_y_mm", &b.power_up_offset_y_mm}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "noise") {
         const Field fields[] = {{"seed", &s.noise.seed},

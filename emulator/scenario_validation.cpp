@@ -134,6 +134,32 @@ void check_io(Rules& r, const IoParams& io) {
   }
 }
 
+// A table of the TNV-40 class travels well under 1 m: switches beyond +-500 mm are typing errors.
+constexpr double kSwitchRangeMm = 500.0;
+
+void check_board(Rules& r, const BoardParams& b) {
+  r.plausible("board.home_x_mm", b.home_x_mm, -kSwitchRangeMm, kSwitchRangeMm, "a home switch on the table's travel");
+  r.plausible("board.home_y_mm", b.home_y_mm, -kSwitchRangeMm, kSwitchRangeMm, "a home switch on the table's travel");
+  if (b.home_x_side != -1 && b.home_x_side != 1)
+    r.fail_text("board.home_x_side", "must be -1 (asserted at and below home_x_mm) or 1 (at and above) (got " +
+                                         std::to_string(b.home_x_side) + ")");
+  if (b.home_y_side != -1 && b.home_y_side != 1)
+    r.fail_text("board.home_y_side", "must be -1 (asserted at and below home_y_mm) or 1 (at and above) (got " +
+                                         std::to_string(b.home_y_side) + ")");
+  r.plausible("board.index_x_deg", b.index_x_deg, 0.0, 360.0, "a motor angle in degrees");
+  r.plausible("board.index_y_deg", b.index_y_deg, 0.0, 360.0, "a motor angle in degrees");
+  r.plausible("board.limit_x_min_mm", b.limit_x_min_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
+  r.plausible("board.limit_x_max_mm", b.limit_x_max_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
+  r.plausible("board.limit_y_min_mm", b.limit_y_min_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
+  r.plausible("board.limit_y_max_mm", b.limit_y_max_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
+  r.ordered("board.limit_x_min_mm", b.limit_x_min_mm, "board.limit_x_max_mm", b.limit_x_max_mm);
+  r.ordered("board.limit_y_min_mm", b.limit_y_min_mm, "board.limit_y_max_mm", b.limit_y_max_mm);
+  r.plausible("board.power_up_offset_x_mm", b.power_up_offset_x_mm, -kSwitchRangeMm, kSwitchRangeMm,
+              "where the table stands at power-up, on its travel");
+  r.plausible("board.power_up_offset_y_mm", b.power_up_offset_y_mm, -kSwitchRangeMm, kSwitchRangeMm,
+              "where the table stands at power-up, on its travel");
+}
+
 void check_circle(Rules& r, const CircleParams& c) {
   r.positive("circle.radius_mm", c.radius_mm);
   r.positive("circle.feed_mm_s", c.feed_mm_s);
@@ -211,6 +237,8 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.plausible("encoder.counts_per_rev", s.encoder.counts_per_rev, 4.0, 1e8, "a rotary encoder's counts per turn (x4)");
   r.finite("encoder.offset_counts_x", s.encoder.offset_counts_x);
   r.finite("encoder.offset_counts_y", s.encoder.offset_counts_y);
+
+  check_board(r, s.board);
 
   r.int_range("dac.bits", s.dac.bits, 8, 16);
   r.positive("dac.full_scale_v", s.dac.full_scale_v);

@@ -14,6 +14,7 @@ struct DiscreteInputs {
   std::array<bool, kAxisCount> limit_positive{};
   std::array<bool, kAxisCount> limit_negative{};
   bool watchdog_tripped = false;  // board watchdog has forced outputs safe
+  std::array<bool, kAxisCount> home_switch{};     // the axis' home switch is actuated
   // Sticky board faults (stay set until the board's fault latch is cleared):
   std::array<bool, kAxisCount> encoder_error{};  // the decoder saw an illegal A/B transition
   std::array<bool, kAxisCount> dac_error{};      // the DAC output readback differs from the code written

@@ -12,7 +12,7 @@ inline constexpr std::uint16_t kVersion = 0x001;     // major << 16 | minor
 inline constexpr std::uint16_t kClockLive = 0x002;   // free-running 10 MHz counter, now
 
 inline constexpr std::uint32_t kIdValue = 0x544E5634;  // "TNV4"
-inline constexpr std::uint32_t kVersionValue = 0x00010002;  // 1.2: tool-side accelerometers (1.1: DAC readback fault bits)
+inline constexpr std::uint32_t kVersionValue = 0x00010003;  // 1.3: home switches, index latches (1.2: tool-side accelerometers, 1.1: DAC readback fault bits)
 
 // --- snapshot window (read-only, latched at each tick, read in one block)
 inline constexpr std::uint16_t kSnapshotFirst = 0x010;
@@ -26,7 +26,9 @@ inline constexpr std::uint16_t kFaults = 0x016;        // kFault* bits, sticky
 inline constexpr std::uint16_t kClockAtRead = 0x017;   // 10 MHz counter when this word is read
 inline constexpr std::uint16_t kAdcAccelX = 0x018;     // tool-side accelerometer code, x (kAdcBits, offset binary)
 inline constexpr std::uint16_t kAdcAccelY = 0x019;     // same for y
-inline constexpr std::uint16_t kSnapshotWords = 10;
+inline constexpr std::uint16_t kIndexX = 0x01A;        // count latched at the last index edge | edges << 16 (kIndex* fields)
+inline constexpr std::uint16_t kIndexY = 0x01B;        // same for y
+inline constexpr std::uint16_t kSnapshotWords = 12;
 
 // --- output window (read/write, written in one block each tick)
 inline constexpr std::uint16_t kOutputFirst = 0x020;
@@ -52,6 +54,14 @@ inline constexpr std::uint32_t kInputLimitXNeg = 1u << 4;
 inline constexpr std::uint32_t kInputLimitYPos = 1u << 5;
 inline constexpr std::uint32_t kInputLimitYNeg = 1u << 6;
 inline constexpr std::uint32_t kInputWatchdogTripped = 1u << 7;
+inline constexpr std::uint32_t kInputHomeX = 1u << 8;  // home switch X
+inline constexpr std::uint32_t kInputHomeY = 1u << 9;
+
+// kIndexX/Y fields: bits 0..15 the encoder count latched at the most recent
+// index edge (kEncoderBits wide, as ENCODER_X/Y); bits 16..23 the number of
+// index edges since reset, modulo 256 (a change says a new edge latched).
+inline constexpr unsigned kIndexEdgesShift = 16;
+inline constexpr std::uint32_t kIndexEdgesMask = 0xFFu;
 
 // kFaults bits (sticky until kControlClearFaults)
 inline constexpr std::uint32_t kFaultEncoderX = 1u << 0;  // illegal A/B transition

@@ -55,6 +55,12 @@ std::uint32_t FpgaIoBoard::latched_count(hal::Axis axis) const noexcept {
   return snapshot_[slot(reg)] & ((1u << regs::kEncoderBits) - 1u);
 }
 
+hal::IndexLatch FpgaIoBoard::index_latch(hal::Axis axis) const noexcept {
+  const std::uint32_t word = snapshot_[slot(axis == hal::Axis::x ? regs::kIndexX : regs::kIndexY)];
+  return {word & ((1u << regs::kEncoderBits) - 1u),
+          static_cast<std::uint8_t>((word >> regs::kIndexEdgesShift) & regs::kIndexEdgesMask)};
+}
+
 void FpgaIoBoard::set_code(hal::Axis axis, std::uint16_t code) noexcept {
   dac_codes_[hal::index(axis)] = static_cast<std::uint16_t>(code & dac_mask);
 }
@@ -67,6 +73,7 @@ hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
   in.limit_positive = {(bits & regs::kInputLimitXPos) != 0, (bits & regs::kInputLimitYPos) != 0};
   in.limit_negative = {(bits & regs::kInputLimitXNeg) != 0, (bits & regs::kInputLimitYNeg) != 0};
   in.watchdog_tripped = (bits & regs::kInputWatchdogTripped) != 0;
+  in.home_switch = {(bits & regs::kInputHomeX) != 0, (bits & regs::kInputHomeY) != 0};
   const std::uint32_t faults = snapshot_[slot(regs::kFaults)];
   in.encoder_error = {(faults & regs::kFaultEncoderX) != 0, (faults & regs::kFaultEncoderY) != 0};
   in.dac_error = {(faults & regs::kFaultDacX) != 0, (faults & regs::kFaultDacY) != 0};

@@ -40,6 +40,7 @@ class FpgaIoBoard final : public hal::IoBoard {
   // hal::EncoderCounters
   std::uint32_t latched_count(hal::Axis axis) const noexcept override;
   unsigned counter_bits() const noexcept override { return hal::regs::kEncoderBits; }
+  hal::IndexLatch index_latch(hal::Axis axis) const noexcept override;
   // hal::SpeedDacs
   void set_code(hal::Axis axis, std::uint16_t code) noexcept override;
   unsigned dac_bits() const noexcept override { return hal::regs::kDacBits; }

@@ -26,6 +26,7 @@ class LinuxIoBoard final : public hal::IoBoard {
   hal::TickLatch latched_tick() const noexcept override { return board_.latched_tick(); }
   std::uint32_t latched_count(hal::Axis axis) const noexcept override { return board_.latched_count(axis); }
   unsigned counter_bits() const noexcept override { return board_.counter_bits(); }
+  hal::IndexLatch index_latch(hal::Axis axis) const noexcept override { return board_.index_latch(axis); }
   void set_code(hal::Axis axis, std::uint16_t code) noexcept override { board_.set_code(axis, code); }
   unsigned dac_bits() const noexcept override { return board_.dac_bits(); }
   hal::DiscreteInputs inputs() const noexcept override;

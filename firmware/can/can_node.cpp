@@ -307,6 +307,8 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
   set(commissioning(), kHbCommissioning);
+  set(task_.homed(hal::Axis::x), kHbHomedX);
+  set(task_.homed(hal::Axis::y), kHbHomedY);
   return bits;
 }
 

@@ -168,6 +168,7 @@ class CanNode {
   std::uint8_t free_slots() const noexcept;
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+  ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   // save / load: ok when posted (answered later by finish_storage()), else the refusal to answer now

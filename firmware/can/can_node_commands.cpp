@@ -81,6 +81,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       break;
     case CommandCode::clear_faults: e = to_error(task_.clear_fault()); break;
     case CommandCode::zero: e = command_zero(frame, detail); break;
+    case CommandCode::home: e = command_home(frame, detail); break;
     case CommandCode::select_controller: e = command_select_controller(frame, detail); break;
     case CommandCode::shaper_enable: e = command_shaper_enable(frame, detail); break;
     case CommandCode::save_params:
@@ -116,6 +117,19 @@ ErrorCode CanNode::command_zero(const hal::CanFrame& frame, std::uint8_t& detail
   const CommandStatus st = task_.zero(hal::axis_from_index(axis), value_mm);
   if (st == CommandStatus::invalid) return ErrorCode::out_of_range;  // outside the soft limits
   if (st == CommandStatus::ok) detail = 0;
+  return to_error(st);
+}
+
+// COMMAND home: axis 0 (x), 1 (y) or 255 (x, then y).
+ErrorCode CanNode::command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+  const std::uint32_t axis = read_raw(frame, kCommandAxis);
+  if (axis > 1 && axis != kAllAxes) {
+    detail = index_of(kCommandMsg, kCommandAxis);
+    return ErrorCode::bad_axis;
+  }
+  commissioning_ = false;  // asked for motion, even if refused (as enable)
+  const CommandStatus st = task_.home(axis == 0 || axis == kAllAxes, axis == 1 || axis == kAllAxes);
+  if (st == CommandStatus::ok) motion_accepted();
   return to_error(st);
 }
 

@@ -12,6 +12,7 @@ constexpr ErrorCode to_error(CommandStatus s) noexcept {
     case CommandStatus::faulted: return ErrorCode::faulted;
     case CommandStatus::invalid: return ErrorCode::invalid;
     case CommandStatus::cause_present: return ErrorCode::cause_present;
+    case CommandStatus::not_homed: return ErrorCode::not_homed;
   }
   return ErrorCode::invalid;
 }

@@ -104,6 +104,20 @@ constexpr double kPathToleranceMaxMm = 1.0;
 constexpr double kArscForceMaxN = 1e4;
 constexpr double kArscPoleMaxRadS = 1e4;
 
+// Homing: a search below 0.1 mm/s crawls over the travel; above 100 mm/s
+// the axis overruns the switch by more than its braking distance allows.
+// The latch speed sets how far the switch's release jitters (one tick at
+// 10 mm/s is 10 um); below 0.01 mm/s a screw turn takes over 15 min.
+constexpr double kHomeSearchMinMmS = 0.1;
+constexpr double kHomeSearchMaxMmS = 100.0;
+constexpr double kHomeLatchMinMmS = 0.01;
+constexpr double kHomeLatchMaxMmS = 10.0;
+// Travel bounds: at least 0.1 mm; back-off and index search at most 100 mm
+// (five turns of a 20 mm lead: an index is at most one turn away).
+constexpr double kHomeTravelMinMm = 0.1;
+constexpr double kHomeLatchTravelMaxMm = 100.0;
+constexpr const char* kHomeSides = "0=negative 1=positive";
+
 bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
 
 // One axis' parameters: ax is the axis index, base its id block, p its name prefix.
@@ -240,7 +254,27 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
     base + 0xA2, p "path.jerk_mm_s3", ParamType::f32, "mm/s^3", kPathJerkMinMmS3, kPathJerkMaxMmS3, "",                  \
         Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].path.jerk_mm_s3),                             \
         "programs: the planner's jerk limit of this axis (at least accel / 64 ms: the jerk filter's 128 taps)"           \
-  },                                                                                                                    \
+  },                                                                                                                     \
+    {base + 0xB0, p "homing.search_positive", ParamType::boolean, "", 0, 1, kHomeSides, Access::read_write,               \
+     Apply::idle, kOpen, TNV_INT(firmware.axis[ax].homing.search_positive),                                            \
+     "which end of the travel the home switch is at: the search runs toward it"},                                        \
+    {base + 0xB1, p "homing.search_mm_s", ParamType::f32, "mm/s", kHomeSearchMinMmS, kHomeSearchMaxMmS, "",               \
+     Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.search_mm_s),                             \
+     "homing: speed toward the switch"},                                                                                 \
+    {base + 0xB2, p "homing.latch_mm_s", ParamType::f32, "mm/s", kHomeLatchMinMmS, kHomeLatchMaxMmS, "",                  \
+     Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.latch_mm_s),                              \
+     "homing: speed off the switch and on to the index (<= search speed)"},                                              \
+    {base + 0xB3, p "homing.position_mm", ParamType::f32, "mm", -kTravelLimitMm, kTravelLimitMm, "", Access::read_write,  \
+     Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.position_mm),                                               \
+     "position given to the index mark found after the switch: home (the soft limits are relative to it)"},             \
+    {base + 0xB4, p "homing.search_max_mm", ParamType::f32, "mm", kHomeTravelMinMm, kTravelLimitMm, "",                  \
+     Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.search_max_mm),                         \
+     "homing: longest search without the switch before it fails (the axis' travel)"},                                    \
+  {                                                                                                                      \
+    base + 0xB5, p "homing.latch_max_mm", ParamType::f32, "mm", kHomeTravelMinMm, kHomeLatchTravelMaxMm, "",              \
+        Access::read_write, Apply::idle, kOpen, TNV_REAL(firmware.axis[ax].homing.latch_max_mm),                       \
+        "homing: longest back-off, and longest run from the switch's release to an index edge (over one screw turn)"     \
+  },                                                                                                                     \
       {base + 0xC0, p "screw.backlash_um", ParamType::f32, "um", 0, 200, "", Access::read_write, Apply::idle, kOpen,      \
        TNV_SCALED(firmware.axis[ax].screw.backlash_mm, 1000.0),                                                          \
        "backlash compensation: lost motion at a reversal, added half each way (docs/robustness.md); 0 = off"},          \
@@ -306,6 +340,10 @@ constexpr ParamDef kParams[] = {
      kSafety, TNV_INT(firmware.supervisor.max_consecutive_missed_ticks), "consecutive lost ticks before a fault"},
     // The S3 force loop as the programs' feed-override source (arsc_source_params.hpp). Not safety
     // parameters: the loop only sets a feed override, and the planner keeps every axis limit under any.
+    // Homing: ordinary parameters; the commissioning set (docs/safety.md) is unchanged (docs/notes.md "Homing").
+    {0x0058, "homing.required", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,
+     TNV_INT(firmware.homing_required),
+     "circle, move and programs refused until the axes they move are homed; off by default, on at commissioning"},
     {0x0060, "arsc.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::idle, kOpen,
      TNV_INT(firmware.arsc.enabled), "force loop sets the feed override of every program"},
     {0x0061, "arsc.force_ref_n", ParamType::f32, "N", 0, kArscForceMaxN, "", Access::read_write, Apply::live, kOpen,

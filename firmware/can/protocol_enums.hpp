@@ -37,6 +37,7 @@ enum class ErrorCode : std::uint8_t {
   bad_arc,            // arc radius below the minimum, or start and end radius differ beyond the tolerance
   feed_above_limit,   // feed above what the axis speed limits allow on this element
   outside_workspace,  // the end point lies outside the soft travel limits
+  not_homed,          // homing.required is on and an axis the motion moves is not homed (COMMAND home)
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
@@ -65,10 +66,11 @@ constexpr const char* to_string(ErrorCode e) noexcept {
     case ErrorCode::bad_arc: return "bad_arc";
     case ErrorCode::feed_above_limit: return "feed_above_limit";
     case ErrorCode::outside_workspace: return "outside_workspace";
+    case ErrorCode::not_homed: return "not_homed";
   }
   return "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 24;
+inline constexpr std::uint8_t kErrorCodeCount = 25;
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {
@@ -93,8 +95,9 @@ enum class CommandCode : std::uint8_t {
   end_program,     // the last segment has been sent: running the queue dry is then the end, not an underrun
   abort_program,   // controlled stop on the path; the queue and a half-received segment are dropped
   program_status,  // answer, and send a PROGRAM_STATUS now
+  home,            // homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing")
 };
-inline constexpr std::uint8_t kCommandCodeCount = 20;
+inline constexpr std::uint8_t kCommandCodeCount = 21;
 
 constexpr const char* to_string(CommandCode c) noexcept {
   switch (c) {
@@ -118,6 +121,7 @@ constexpr const char* to_string(CommandCode c) noexcept {
     case CommandCode::end_program: return "end_program";
     case CommandCode::abort_program: return "abort_program";
     case CommandCode::program_status: return "program_status";
+    case CommandCode::home: return "home";
   }
   return "?";
 }
@@ -197,6 +201,8 @@ enum HeartbeatBit : std::uint16_t {
   kHbHostTimeout = 1u << 11,
   kHbCanErrors = 1u << 12,
   kHbCommissioning = 1u << 13,
+  kHbHomedX = 1u << 14,
+  kHbHomedY = 1u << 15,
 };
 
 struct HeartbeatBitDoc {
@@ -219,6 +225,8 @@ inline constexpr HeartbeatBitDoc kHeartbeatBits[] = {
     {kHbHostTimeout, "host_timeout", "motion was stopped because the host went silent"},
     {kHbCanErrors, "can_errors", "the CAN controller reported error frames (bus error, error-passive, bus-off)"},
     {kHbCommissioning, "commissioning", "commissioning mode: safety parameters are writable (docs/safety.md)"},
+    {kHbHomedX, "homed_x", "x is homed: its frame is the home switch's index (docs/safety.md \"Homing\")"},
+    {kHbHomedY, "homed_y", "y is homed"},
 };
 
 }  // namespace tnv::fw::can

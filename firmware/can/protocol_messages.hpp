@@ -48,12 +48,12 @@ inline constexpr const char* kFaultValues =
     "0=none 1=bus_error 2=stale_snapshot 3=missed_ticks 4=estop 5=servo_alarm 6=limit_switch "
     "7=watchdog_tripped 8=following_error 9=position_limit 10=speed_limit 11=non_finite_command 12=remote_estop "
     "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall 17=encoder_implausible 18=runaway "
-    "19=output_write_failed";
+    "19=output_write_failed 20=homing_failed";
 inline constexpr const char* kErrorValues =
     "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
     "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "
     "15=commissioning_required 16=not_permitted 17=no_host 18=not_owner 19=queue_full 20=zero_length 21=bad_arc "
-    "22=feed_above_limit 23=outside_workspace";
+    "22=feed_above_limit 23=outside_workspace 24=not_homed";
 inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
 inline constexpr const char* kTagDoc =
     "request tag: host id (high nibble, 1..15; 0 is refused) and the host's own sequence (low nibble); the reply "
@@ -71,9 +71,9 @@ inline constexpr FieldDef kCommand[] = {
     {"code", WireType::u8, 1, 1, "",
      "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
      "8=load_params 9=restore_defaults 10=take_ownership 11=release_ownership 12=enter_commissioning 13=leave_commissioning "
-     "14=feed_hold 15=feed_resume 16=feed_override 17=end_program 18=abort_program 19=program_status",
+     "14=feed_hold 15=feed_resume 16=feed_override 17=end_program 18=abort_program 19=program_status 20=home",
      "what to do"},
-    {"axis", WireType::u8, 2, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable"},
+    {"axis", WireType::u8, 2, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable, home"},
     {"arg", WireType::u8, 3, 1, "", "",
      "select_controller: 0 pid, 1 dvsc, 2 rdvsc; shaper_enable: 0 off, 1 on; feed_override: percent, 0..150"},
     {"value", WireType::f32, 4, 1, "mm", "", "zero: the position to assign"},

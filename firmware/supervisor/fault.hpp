@@ -25,6 +25,7 @@ enum class FaultReason : std::uint8_t {
   encoder_implausible,  // a count step no command or disturbance the axis can meet explains (motion_plausibility.hpp)
   runaway,              // the table accelerates against its command: the drive pushes the wrong way
   output_write_failed,  // an output (DAC, enable, servo-enable line) did not take the value written
+  homing_failed,        // a homing cycle ran out of travel: no switch, switch stuck on, or no index (value: travel, limit: bound)
 };
 
 constexpr const char* to_string(FaultReason r) noexcept {
@@ -49,6 +50,7 @@ constexpr const char* to_string(FaultReason r) noexcept {
     case FaultReason::encoder_implausible: return "encoder_implausible";
     case FaultReason::runaway: return "runaway";
     case FaultReason::output_write_failed: return "output_write_failed";
+    case FaultReason::homing_failed: return "homing_failed";
   }
   return "unknown";
 }

@@ -72,8 +72,8 @@ FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noe
     const int axis = static_cast<int>(i);
     const AxisLimits& lim = config.axis[i];
     const AxisCheckInput& a = in.axis[i];
-    if (a.position_mm < lim.position_min_mm) return fault(FaultReason::position_limit, in, axis, a.position_mm, lim.position_min_mm);
-    if (a.position_mm > lim.position_max_mm) return fault(FaultReason::position_limit, in, axis, a.position_mm, lim.position_max_mm);
+    if (a.soft_limits && a.position_mm < lim.position_min_mm) return fault(FaultReason::position_limit, in, axis, a.position_mm, lim.position_min_mm);
+    if (a.soft_limits && a.position_mm > lim.position_max_mm) return fault(FaultReason::position_limit, in, axis, a.position_mm, lim.position_max_mm);
     if (std::fabs(a.speed_mm_s) > lim.speed_max_mm_s)
       return fault(FaultReason::speed_limit, in, axis, a.speed_mm_s, lim.speed_max_mm_s);
     if (!in.servo_on) continue;

@@ -54,6 +54,9 @@ struct AxisCheckInput {
   std::uint32_t stalled_ticks = 0;  // StallMonitor: ticks without a count while driven
   double stall_command_mm_s = 0.0;  // the command that acted over the last of them
   PlausibilityVerdict plausibility{};  // MotionPlausibility: count jump, runaway
+  // Off while the axis homes: its frame is not home yet, the homing cycle's
+  // own travel bounds stand in for the soft limits.
+  bool soft_limits = true;
 };
 
 struct SupervisorInput {

@@ -64,6 +64,7 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
       return axis_error(i, "axis x: friction feed-forward", "axis y: friction feed-forward", c);
     if (const ParamCheck c = validate(a.observer, a.model); !c.ok)
       return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
+    if (const ParamCheck c = validate(a.homing); !c.ok) return axis_error(i, "axis x: homing", "axis y: homing", c);
     if (const ParamCheck c = validate(a.screw); !c.ok)
       return axis_error(i, "axis x: screw compensation", "axis y: screw compensation", c);
   }

@@ -12,6 +12,7 @@
 #include "firmware/control/pid_params.hpp"
 #include "firmware/control/sliding_mode_params.hpp"
 #include "firmware/control/speed_observer.hpp"
+#include "firmware/homing/homing_cycle.hpp"
 #include "firmware/io/dac_code.hpp"
 #include "firmware/motion/motion_limits.hpp"
 #include "firmware/supervisor/supervisor.hpp"
@@ -41,6 +42,7 @@ struct AxisConfig {
   PathLimits path{};                 // the look-ahead planner's speed, acceleration and jerk (docs/motion.md)
   FrictionFeedForward friction{};    // friction feed-forward (issue 7); off by default
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
+  HomingParams homing{};             // the homing cycle: switch side, speeds, home position, travel bounds
   ScrewCompensation screw{};         // backlash and lead-error compensation (issue 16); off by default
 };
 
@@ -56,6 +58,10 @@ struct FirmwareConfig {
   double path_tolerance_mm = 0.005;  // corner blends and arc lag of planned paths stay within this
   ForceSensorConfig force_sensor{};
   arsc::ArscSourceParams arsc{};     // the force loop as a feed-override source of programs (S3)
+  // Circle, move and programs are refused until every axis they move is
+  // homed. Off by default (the papers' runs start where the table stands at
+  // power-up); a machine sets it on at commissioning (docs/safety.md).
+  bool homing_required = false;
 };
 
 // The planner's limits from a config: each axis' path limits, the

@@ -55,6 +55,12 @@ bool TickTask::servo_on() const noexcept {
 
 void TickTask::latch_fault(const FaultRecord& f) noexcept {
   if (state_ == MotionState::faulted) return;  // the first reason wins
+  // A count that cannot be trusted loses home with it.
+  if (f.reason == FaultReason::encoder_error || f.reason == FaultReason::encoder_implausible ||
+      f.reason == FaultReason::encoder_stall) {
+    if (f.axis >= 0 && static_cast<std::size_t>(f.axis) < hal::kAxisCount) homed_[static_cast<std::size_t>(f.axis)] = false;
+    else homed_ = {};
+  }
   fault_ = f;
   state_ = MotionState::faulted;
 }
@@ -133,6 +139,10 @@ bool TickTask::shapers_settled() const noexcept {
 // Every producer's reference comes from the motion core: x_ref,k and
 // x_ref,k+1 of both axes, through each axis' shaper.
 void TickTask::moving_reference() noexcept {
+  if (source_ == Source::homing) {
+    homing_reference();
+    return;
+  }
   record_.motion_tick = phase_tick_;
   ++phase_tick_;
   if (source_ == Source::jog) jog_.produce(motion_);
@@ -170,10 +180,12 @@ void TickTask::update_reference() noexcept {
       moving_reference();
       return;
     case MotionState::holding:
+      if (homing_.running()) end_homing();  // a stop from dwell never reaches here mid-cycle; defensive
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);
       return;
     case MotionState::disabled:
     case MotionState::faulted:
+      if (homing_.running()) end_homing();  // disabled or faulted mid-cycle: not homed
       // Servo off: the reference follows the table so the next servo-on is
       // bumpless, and the shapers rest there (a pending change applies now).
       // The screw compensation's last offset is taken off the measured
@@ -287,6 +299,7 @@ void TickTask::tick() noexcept {
     check_in.axis[i] = {r.position_mm,      r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s,
                         u_mm_s,             stall_[i].stalled_ticks(), stall_[i].applied_command_mm_s(),
                         plausibility_[i]};
+    check_in.axis[i].soft_limits = !(homing_.running() && homing_axis_ == i);
   }
 
   // 5. supervisor: a fault makes this very tick's outputs safe

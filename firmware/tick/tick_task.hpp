@@ -29,6 +29,7 @@
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/control/speed_observer.hpp"
+#include "firmware/homing/homing_cycle.hpp"
 #include "firmware/shaper/path_taps.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
@@ -49,6 +50,7 @@ enum class CommandStatus : std::uint8_t {
   faulted,  // a fault is latched: clear it first
   invalid,  // a parameter is out of range or non-finite
   cause_present,  // clear_fault refused: the fault's cause is still asserted
+  not_homed,      // config homing_required and an axis the motion moves is not homed
 };
 
 constexpr const char* to_string(CommandStatus s) noexcept {
@@ -58,6 +60,7 @@ constexpr const char* to_string(CommandStatus s) noexcept {
     case CommandStatus::faulted: return "faulted";
     case CommandStatus::invalid: return "invalid";
     case CommandStatus::cause_present: return "cause_present";
+    case CommandStatus::not_homed: return "not_homed";
   }
   return "?";
 }
@@ -171,10 +174,23 @@ class TickTask {
   // Assigns position_mm to where the axis stands (disabled or holding; busy
   // while moving, faulted when faulted, invalid when not finite or outside
   // the soft limits). Reference and measurement move together: bumpless.
+  // The axis is no longer homed (its frame is not the index's).
   CommandStatus zero(hal::Axis axis, double position_mm) noexcept;
   // Software e-stop: latches FaultReason::remote_estop (outputs safe from
   // the next tick on). Always ok; the first latched reason wins.
   CommandStatus estop() noexcept;
+  // Homing cycle (homing/homing_cycle.hpp) of X, Y or both (X first, then
+  // Y), from holding or disabled (servo on where the table stands). The
+  // other axis holds. At the index edge the axis' frame moves so the
+  // latched count reads config axis.homing.position_mm; the axis then
+  // brakes to rest and is homed. Soft limits are off for the homing axis
+  // while it homes. A cycle that runs out of travel brakes to rest and
+  // latches FaultReason::homing_failed; stop() ends it (not homed). busy
+  // while moving, faulted when faulted, invalid when no axis is named.
+  CommandStatus home(bool x, bool y) noexcept;
+  bool homed(hal::Axis axis) const noexcept { return homed_[hal::index(axis)]; }
+  HomingResult homing_result(hal::Axis axis) const noexcept { return home_result_[hal::index(axis)]; }
+  bool homing() const noexcept { return moving() && source_ == Source::homing; }
 
   // --- status
   const TickRecord& last_record() const noexcept { return record_; }
@@ -234,7 +250,7 @@ class TickTask {
     bool enabled = false;  // this axis' own shaper is on (the path runs all of them, path_taps.hpp)
   };
 
-  enum class Source : std::uint8_t { circle, move, jog, program };
+  enum class Source : std::uint8_t { circle, move, jog, program, homing };
   static std::int64_t ticks_for(double seconds) noexcept;
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
@@ -243,6 +259,15 @@ class TickTask {
   void set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void moving_reference() noexcept;
+  void homing_reference() noexcept;            // tick_task_homing.cpp
+  void start_homing_axis(std::size_t a) noexcept;
+  void end_homing() noexcept;                  // a cycle that did not finish: not homed
+  // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
+  void shift_frame(std::size_t a, double delta_mm) noexcept;
+  // config homing_required and one of the axes is not homed.
+  bool homing_missing(bool x, bool y) const noexcept {
+    return config_.homing_required && ((x && !homed_[0]) || (y && !homed_[1]));
+  }
   bool shapers_settled() const noexcept;
   // Shaped axes stay in step (shaper/path_taps.hpp): a new series for every
   // axis, handed to the axes' shapers together once all of them are quiet.
@@ -294,6 +319,11 @@ class TickTask {
   std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
   bool one_nominal_period_ = false;
   bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)
+  HomingCycle homing_{};
+  std::size_t homing_axis_ = 0;
+  std::array<bool, hal::kAxisCount> homing_queued_{};  // axes still to home in this command
+  std::array<bool, hal::kAxisCount> homed_{};
+  std::array<HomingResult, hal::kAxisCount> home_result_{};
 };
 
 }  // namespace tnv::fw

@@ -25,6 +25,10 @@ bool same(const PathLimits& a, const PathLimits& b) noexcept {
 bool same(const JogLimits& a, const JogLimits& b) noexcept {
   return a.speed_max_mm_s == b.speed_max_mm_s && a.accel_mm_s2 == b.accel_mm_s2 && a.deadman_s == b.deadman_s;
 }
+bool same(const HomingParams& a, const HomingParams& b) noexcept {
+  return a.search_positive == b.search_positive && a.search_mm_s == b.search_mm_s && a.latch_mm_s == b.latch_mm_s &&
+         a.position_mm == b.position_mm && a.search_max_mm == b.search_max_mm && a.latch_max_mm == b.latch_max_mm;
+}
 bool same(const AxisLimits& a, const AxisLimits& b) noexcept {
   return a.position_min_mm == b.position_min_mm && a.position_max_mm == b.position_max_mm &&
          a.speed_max_mm_s == b.speed_max_mm_s && a.following.floor_mm == b.following.floor_mm &&
@@ -52,6 +56,7 @@ bool same_but_force_ref(const arsc::ArscSourceParams& a, const arsc::ArscSourceP
 bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfig& to) noexcept {
   if (from.supervisor.max_consecutive_missed_ticks != to.supervisor.max_consecutive_missed_ticks) return false;
   if (from.path_tolerance_mm != to.path_tolerance_mm) return false;
+  if (from.homing_required != to.homing_required) return false;
   // The force loop: f* and the sensor scale are live, the rest waits for rest (a new loop).
   if (!same_but_force_ref(from.arsc, to.arsc)) return false;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -61,7 +66,7 @@ bool TickTask::live_tunable_only(const FirmwareConfig& from, const FirmwareConfi
     if (a.count_mm != b.count_mm || a.dac.bits != b.dac.bits || a.dac.full_scale_mm_s != b.dac.full_scale_mm_s ||
         a.controller != b.controller || !same(a.model, b.model) || !same(a.jog, b.jog) ||
         !same(a.friction, b.friction) || !same(a.observer, b.observer) || !same(a.path, b.path) ||
-        !same(a.screw, b.screw))
+        !same(a.homing, b.homing) || !same(a.screw, b.screw))
       return false;
     // PID: kp, ki, kd and the clamp are live; the filter and the feed-forward switch are not.
     if (a.pid.derivative_filter_tf_s != b.pid.derivative_filter_tf_s || a.pid.feedforward != b.pid.feedforward)

@@ -30,6 +30,7 @@ CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm,
   if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
   if (validate(spec)[0] != '\0') return CommandStatus::invalid;
   if (!std::isfinite(centre_x_mm) || !std::isfinite(centre_y_mm)) return CommandStatus::invalid;
+  if (homing_missing(true, true)) return CommandStatus::not_homed;
   const motion::PlanePoint centre{centre_x_mm, centre_y_mm};
   const motion::PlanePoint start_mm = motion::circle_start_mm(spec, centre);
   // The table must already stand at the start point (within the following-error floor).
@@ -62,6 +63,7 @@ CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
   if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
   if (validate(spec)[0] != '\0') return CommandStatus::invalid;
   const std::size_t a = hal::index(spec.axis);
+  if (homing_missing(a == 0, a == 1)) return CommandStatus::not_homed;
   const bool was_on = state_ == MotionState::holding;
   // From a servo-off start the table's position is the start (bumpless).
   std::array<AxisSample, hal::kAxisCount> start = hold_;
@@ -118,6 +120,7 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
   const bool running = program_running();
   if (!running && state_ != MotionState::holding) return CommandStatus::busy;
   if (running && stop_requested_) return CommandStatus::busy;
+  if (!running && homing_missing(true, true)) return CommandStatus::not_homed;
   if (segment.profiled()) {  // the circle and move producers' elements; a program is planned
     why = motion::SegmentRefusal::bad_ramp;
     return CommandStatus::invalid;
@@ -174,6 +177,9 @@ CommandStatus TickTask::stop() noexcept {
   if (source_ == Source::jog) {
     jog_.release();
     stop_requested_ = true;
+  } else if (source_ == Source::homing) {
+    homing_.abort();  // brakes to rest, then holds, not homed
+    stop_requested_ = true;
   } else {
     motion_.stop();
   }
@@ -188,16 +194,9 @@ CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
   const AxisLimits& lim = config_.supervisor.axis[a];
   if (!(position_mm >= lim.position_min_mm && position_mm <= lim.position_max_mm)) return CommandStatus::invalid;
   // Measurement and reference shift together: the following error is unchanged.
-  const double delta_mm = position_mm - record_.axis[a].position_mm;
-  origin_mm_[a] += delta_mm;
-  hold_[a].position_mm += delta_mm;
-  next_[a].position_mm += delta_mm;
-  AxisTickRecord& r = record_.axis[a];
-  r.position_mm += delta_mm;
-  r.reference_mm += delta_mm;
-  r.unshaped_reference_mm += delta_mm;
-  axis_[a].observer.shift(delta_mm);
-  shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
+  shift_frame(a, position_mm - record_.axis[a].position_mm);
+  shaping_[a].shaper.reset(hold_[a]);
+  homed_[a] = false;  // the frame is the operator's now, not the index's  // at rest: its history is the old frame's rest point
   return CommandStatus::ok;
 }
 

@@ -223,7 +223,7 @@ TEST(IoBoard, FaultsAreStickyUntilCleared) {
 TEST(IoBoard, UnmappedAndReadOnlyAccessIsRefused) {
   IoBoard board = make_board();
   std::uint32_t value = 0;
-  for (int address : {0x003, 0x00F, 0x01A, 0x01F, 0x024, 0x02F, 0x033, 0x100, 0xFFFF}) {
+  for (int address : {0x003, 0x00F, 0x01C, 0x01F, 0x024, 0x02F, 0x033, 0x100, 0xFFFF}) {
     const auto word = static_cast<std::uint16_t>(address);
     EXPECT_FALSE(board.read_register(word, value)) << "read of unmapped 0x" << std::hex << word;
     EXPECT_FALSE(board.write_register(word, 1)) << "write to unmapped 0x" << std::hex << word;

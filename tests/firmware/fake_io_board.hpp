@@ -14,6 +14,7 @@ class FakeIoBoard final : public hal::IoBoard {
   hal::TickLatch latch{};
   std::array<std::uint32_t, 2> counts{};
   hal::DiscreteInputs in{};
+  std::array<hal::IndexLatch, 2> index{};  // the count at the last index edge, and the edge counter
   std::uint16_t force_code = 0;
   hal::HalStatus read_status = hal::HalStatus::ok;
   hal::HalStatus write_status = hal::HalStatus::ok;
@@ -51,6 +52,7 @@ class FakeIoBoard final : public hal::IoBoard {
     return counts[hal::index(a)] & ((bits >= 32) ? 0xFFFFFFFFu : ((1u << bits) - 1u));
   }
   unsigned counter_bits() const noexcept override { return bits; }
+  hal::IndexLatch index_latch(hal::Axis a) const noexcept override { return index[hal::index(a)]; }
   void set_code(hal::Axis a, std::uint16_t code) noexcept override { staged_code[hal::index(a)] = code; }
   unsigned dac_bits() const noexcept override { return 12; }
   hal::DiscreteInputs inputs() const noexcept override { return in; }

@@ -28,6 +28,8 @@ struct SourceCase {
   bool force_loop = false;                 // [milling] on and the force loop (arsc.enable) setting the override
   std::uint32_t period_ticks = 1;          // its arsc.period_ticks
   std::vector<emu::FaultSpec> faults{};    // injected by the emulated board
+  bool home_switches = false;              // the board's home switches and index marks near the start (homing cases)
+  double home_search_max_mm = 0.0;         // homing search bound of x; 0 = the default
   // The command(s) that start the case, right after the rig is at rest.
   std::function<fw::CommandStatus(test::HilRig&)> start;
   // Called before tick k (1..ticks): jog repeats, a stop, an e-stop.
@@ -44,6 +46,7 @@ fw::FirmwareConfig source_config(const SourceCase& c) {
   fw::FirmwareConfig config = fw::default_firmware_config();
   config.arsc.enabled = c.force_loop;
   config.arsc.period_ticks = c.period_ticks;
+  if (c.home_search_max_mm > 0.0) config.axis[0].homing.search_max_mm = c.home_search_max_mm;
   for (auto& axis : config.axis) {
     axis.controller = c.controller;
     if (!c.friction_and_observer) continue;
@@ -59,6 +62,14 @@ fw::FirmwareConfig source_config(const SourceCase& c) {
 std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
   emu::Scenario s = *emu::builtin_scenario("no-cut");
   s.faults = c.faults;
+  if (c.home_switches) {
+    // x stands at 6 mm, y at 0: switches 2 mm below, marks 0.5 mm past their release.
+    s.board.home_switch_x = s.board.home_switch_y = true;
+    s.board.home_x_mm = 4.0;
+    s.board.home_y_mm = -2.0;
+    s.board.index_x_deg = 162.0;  // marks at 4.5 + 10 k mm
+    s.board.index_y_deg = 306.0;  // marks at -1.5 + 10 k mm
+  }
   if (c.force_loop) s.milling = {.enabled = true, .depth = {0.2, 1.0, 1.0, 1.0}};
   auto rig = std::make_unique<test::HilRig>(s, source_config(c));
   for (int i = 0; i < 3; ++i) rig->tick();
@@ -132,6 +143,24 @@ std::vector<SourceCase> source_cases() {
       if (k == 800) rig.task.stop();
     };
     c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // homing cycle of both axes: switch, back-off, index, frame moved at the index
+    c.name = "home_all";
+    c.home_switches = true;
+    c.start = [](test::HilRig& rig) { return rig.task.home(true, true); };
+    c.ticks = 4000;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // homing without a switch: the search runs out of travel and faults
+    c.name = "home_missing_switch";
+    c.home_search_max_mm = 3.0;
+    c.start = [](test::HilRig& rig) { return rig.task.home(true, false); };
+    c.ticks = 1000;
+    c.fault = fw::FaultReason::homing_failed;
     out.push_back(c);
   }
   {

@@ -14,9 +14,10 @@ fw::FirmwareConfig firmware_config_for(const emu::Scenario& scenario, const fw::
     axis.dac.bits = static_cast<unsigned>(scenario.dac.bits);
     axis.dac.full_scale_mm_s = speed_at_full_scale_mm_s;
   }
-  // The emulated table powers up at rest at the circle's start point (R, 0).
-  cfg.axis[0].home_position_mm = homed_position_mm(scenario, hal::Axis::x, scenario.circle.radius_mm);
-  cfg.axis[1].home_position_mm = homed_position_mm(scenario, hal::Axis::y, 0.0);
+  // The emulated table powers up at rest at the circle's start point (R, 0), moved by [board] power_up_offset_*.
+  cfg.axis[0].home_position_mm =
+      homed_position_mm(scenario, hal::Axis::x, scenario.circle.radius_mm + scenario.board.power_up_offset_x_mm);
+  cfg.axis[1].home_position_mm = homed_position_mm(scenario, hal::Axis::y, scenario.board.power_up_offset_y_mm);
   return cfg;
 }
 

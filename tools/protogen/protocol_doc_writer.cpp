@@ -120,8 +120,10 @@ void parameters(std::string& out, const NodeSettings& d) {
   for (const ParamDef& p : param_table()) {
     std::string range = p.access == Access::read_only ? std::string("-") : number(p.min) + " .. " + number(p.max);
     if (p.values[0] != '\0') range = p.values;
+    // The build id is the commit being built: the document states what it is, not one build's value.
+    const bool per_build = std::string_view(p.name) == "sys.build_id";
     append(out, "| ", hex(p.id, 4), " | `", p.name, "` | ", to_string(p.type), " | ", p.unit, " | ", cell(range), " | ",
-           number(p.get(d)), " | ", safety_param(p) ? "rw commissioning" : to_string(p.access), " | ", to_string(p.apply), " | ", cell(p.doc), " |\n");
+           per_build ? std::string("this build's") : number(p.get(d)), " | ", safety_param(p) ? "rw commissioning" : to_string(p.access), " | ", to_string(p.apply), " | ", cell(p.doc), " |\n");
   }
   out += '\n';
 }

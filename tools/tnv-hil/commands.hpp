@@ -17,5 +17,6 @@ void add_best_circle_commands(CLI::App& app, Runner& run);  // best-circle, iden
 void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN service cost on the real-time loop)
 void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
+void add_homing_commands(CLI::App& app, Runner& run);       // homing (home switch and index, docs/safety.md)
 
 }  // namespace tnv::cli

@@ -1,5 +1,5 @@
 // tnvctl circle | move | jog | stop | estop | enable | disable |
-// clear-faults | zero | controller | status
+// clear-faults | zero | home | controller | status
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -221,6 +221,29 @@ int run_zero(const std::string& axis_name, double position_mm, Session& session,
   return kExitOk;
 }
 
+// COMMAND home, then wait for rest: the cycle's own bounds (search and
+// latch travels at their speeds) give the longest it can take.
+int run_home(const std::string& axis_name, Session& session, Report& report) {
+  const bool all = axis_name == "all";
+  const std::uint8_t axis = all ? 255 : parse_axis(axis_name);
+  can_host::NodeClient& client = session.client();
+  double bound_s = 0.0;
+  for (const char* a : {"x", "y"}) {
+    if (!all && axis_name != a) continue;
+    const std::string p = std::string(a) + ".homing.";
+    bound_s += param(client, (p + "search_max_mm").c_str()) / param(client, (p + "search_mm_s").c_str()) +
+               2.0 * param(client, (p + "latch_max_mm").c_str()) / param(client, (p + "latch_mm_s").c_str()) + 1.0;
+  }
+  client.command(can::CommandCode::home, axis);
+  const can_host::Heartbeat hb = finish(client, "home " + axis_name, bound_s, report);
+  const bool x_homed = (hb.errors & can::kHbHomedX) != 0;
+  const bool y_homed = (hb.errors & can::kHbHomedY) != 0;
+  report.data["homed"] = {{"x", x_homed}, {"y", y_homed}};
+  if ((all || axis == 0) && !x_homed) throw RunFailed("x is not homed (the cycle was stopped?)");
+  if ((all || axis == 1) && !y_homed) throw RunFailed("y is not homed (the cycle was stopped?)");
+  return kExitOk;
+}
+
 int run_controller(const std::string& axis_name, const std::string& kind, Session& session, Report& report) {
   const std::uint8_t axis = axis_name == "all" ? 255 : parse_axis(axis_name);
   const std::uint8_t arg = kind == "pid" ? 0 : kind == "dvsc" ? 1 : 2;
@@ -333,6 +356,16 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
 
   auto ctl_axis = std::make_shared<std::string>("all");
   auto ctl_kind = std::make_shared<std::string>();
+  auto home_axis = std::make_shared<std::string>("all");
+  CLI::App* home_cmd = app.add_subcommand(
+      "home", "homing cycle: search the home switch, back off, latch the next index; waits until homed");
+  home_cmd->add_option("--axis", *home_axis, "x, y or all (x then y)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"x", "y", "all"}));
+  home_cmd->callback([&slot, home_axis] {
+    slot = Action{"home", true, [home_axis](Session& s, Report& r) { return run_home(*home_axis, s, r); }};
+  });
+
   CLI::App* ctl_cmd = app.add_subcommand("controller", "select the axis loop (at rest)");
   ctl_cmd->add_option("--axis", *ctl_axis, "x, y or all")->check(CLI::IsMember({"x", "y", "all"}))->capture_default_str();
   ctl_cmd->add_option("--controller", *ctl_kind, "pid | dvsc | rdvsc")->required()->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}));

@@ -1,0 +1,109 @@
+// TickTask's homing: the HOME command and the per-tick step of the cycle
+// (homing/homing_cycle.hpp). Bounded work per tick: one cycle step, and at
+// the index edge one frame shift.
+#include <cstdint>
+
+#include "firmware/tick/tick_task.hpp"
+
+namespace tnv::fw {
+
+CommandStatus TickTask::home(bool x, bool y) noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (moving()) return CommandStatus::busy;
+  if (!x && !y) return CommandStatus::invalid;
+  const bool was_on = state_ == MotionState::holding;
+  if (!was_on) {
+    // Servo on where the table stands (bumpless), as hold_position().
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
+    reset_controllers();
+  }
+  homing_queued_ = {x, y};
+  source_ = Source::homing;
+  stop_requested_ = false;
+  phase_tick_ = 0;
+  motion_ticks_ = 0;
+  centred_ = false;
+  state_ = MotionState::moving;
+  start_homing_axis(x ? 0 : 1);
+  return CommandStatus::ok;
+}
+
+void TickTask::start_homing_axis(std::size_t a) noexcept {
+  homing_axis_ = a;
+  homed_[a] = false;
+  home_result_[a] = HomingResult::running;
+  homing_.start(config_.axis[a].homing, config_.axis[a].jog.accel_mm_s2, hold_[a].position_mm, kTickPeriodS);
+}
+
+void TickTask::end_homing() noexcept {
+  if (homing_.running()) home_result_[homing_axis_] = HomingResult::aborted;
+  homing_ = HomingCycle{};
+  homing_queued_ = {};
+}
+
+void TickTask::shift_frame(std::size_t a, double delta_mm) noexcept {
+  origin_mm_[a] += delta_mm;
+  hold_[a].position_mm += delta_mm;
+  next_[a].position_mm += delta_mm;
+  AxisTickRecord& r = record_.axis[a];
+  r.position_mm += delta_mm;
+  r.reference_mm += delta_mm;
+  r.unshaped_reference_mm += delta_mm;
+  axis_[a].observer.shift(delta_mm);
+}
+
+// The homing axis follows the cycle, the other holds; both unshaped (the
+// shapers rest at the hold points and are reset there at the end).
+void TickTask::homing_reference() noexcept {
+  record_.motion_tick = phase_tick_;
+  ++phase_tick_;
+  const std::size_t a = homing_axis_;
+  const hal::Axis axis = hal::axis_from_index(a);
+  const hal::IndexLatch index = board_.index_latch(axis);
+  HomingStep step = homing_.step(last_inputs_.home_switch[a], index.edges);
+  if (step.index_found) {
+    // The latched count, extended like the tick's own count: its signed
+    // distance (counter-width arithmetic) back from this snapshot's count.
+    const unsigned bits = board_.counter_bits();
+    const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1u;
+    const std::uint64_t back = (static_cast<std::uint64_t>(board_.latched_count(axis)) - index.count) & mask;
+    const std::int64_t back_counts =
+        back > mask / 2 ? static_cast<std::int64_t>(back) - static_cast<std::int64_t>(mask) - 1 : static_cast<std::int64_t>(back);
+    const std::int64_t latched_counts = axis_[a].encoder.counts() - back_counts;
+    const double origin_mm = config_.axis[a].homing.position_mm - static_cast<double>(latched_counts) * config_.axis[a].count_mm;
+    const double delta_mm = origin_mm - origin_mm_[a];
+    shift_frame(a, delta_mm);
+    homing_.shift(delta_mm);
+    step.now.position_mm += delta_mm;
+    step.next.position_mm += delta_mm;
+  }
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const AxisSample now = i == a ? AxisSample{step.now.position_mm, step.now.speed_mm_s} : hold_[i];
+    const AxisSample next = i == a ? AxisSample{step.next.position_mm, step.next.speed_mm_s} : hold_[i];
+    record_.axis[i].unshaped_reference_mm = now.position_mm;
+    set_reference(i, now, next);
+  }
+  if (homing_.running()) return;
+  hold_[a] = {step.next.position_mm, 0.0};
+  home_result_[a] = homing_.result();
+  if (homing_.phase() == HomingPhase::done) {
+    homed_[a] = true;
+    homing_queued_[a] = false;
+    if (a == 0 && homing_queued_[1]) {
+      start_homing_axis(1);
+      return;
+    }
+  }
+  const HomingCycle ended = homing_;
+  homing_queued_ = {};
+  homing_ = HomingCycle{};
+  state_ = MotionState::holding;
+  stop_requested_ = false;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) shaping_[i].shaper.reset(hold_[i]);
+  if (ended.phase() == HomingPhase::failed && ended.result() != HomingResult::aborted) {
+    latch_fault({FaultReason::homing_failed, static_cast<std::int8_t>(a), counters_.ticks, ended.failed_travel_mm(),
+                 ended.failed_limit_mm()});
+  }
+}
+
+}  // namespace tnv::fw

@@ -1,0 +1,145 @@
+#include "tools/hil/homing_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "tools/hil/hil_rig.hpp"
+
+namespace tnv::hil {
+
+namespace {
+
+// Portable uniform [0, 1) from a 64-bit generator (no library distribution).
+double unit_interval(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+constexpr double kSettleS = 0.2;        // at rest after homing before the judge looks
+constexpr double kTimeoutS = 120.0;     // far beyond the cycle's own bounds
+constexpr double kPowerUpRangeMm = 20.0;
+
+// Motor-side position of the mark the cycle must latch: the first past the
+// switch's release point in the back-off direction (away from the switch).
+double expected_mark_mm(const emu::Scenario& s, const emu::Machine& m, hal::Axis axis) {
+  const double lead_mm = s.encoder.lead_mm;
+  const double phase_mm = m.index_mark_mm(axis);
+  const double release_mm = s.board.home_mm(axis);
+  const double k = (release_mm - phase_mm) / lead_mm;
+  return phase_mm + lead_mm * (s.board.home_side(axis) < 0 ? std::floor(k) + 1.0 : std::ceil(k) - 1.0);
+}
+
+}  // namespace
+
+emu::Scenario homing_scenario() {
+  emu::Scenario s;
+  s.name = "homing";
+  s.board.home_switch_x = true;
+  s.board.home_switch_y = true;
+  s.board.home_x_mm = -25.0;
+  s.board.home_y_mm = -25.0;
+  // Marks 4.5 mm (x) and 6 mm (y) past the releases: far from them, whatever the phase of the count.
+  s.board.index_x_deg = 342.0;  // x marks at ... -20.5, -10.5 mm
+  s.board.index_y_deg = 36.0;   // y marks at ... -19, -9 mm
+  return s;
+}
+
+fw::FirmwareConfig homing_firmware_config() {
+  fw::FirmwareConfig c = fw::default_firmware_config();
+  for (fw::AxisConfig& a : c.axis) {
+    a.homing.search_positive = false;
+    a.homing.search_mm_s = 10.0;
+    a.homing.latch_mm_s = 2.0;
+    a.homing.position_mm = -20.0;
+    a.homing.search_max_mm = 100.0;
+    a.homing.latch_max_mm = 15.0;
+  }
+  c.homing_required = true;
+  return c;
+}
+
+HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::FirmwareConfig& config,
+                                 std::uint32_t seed) {
+  HomingSeedResult out;
+  out.seed = seed;
+  std::mt19937_64 g(seed);
+  emu::Scenario s = base_scenario;
+  s.board.power_up_offset_x_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
+  s.board.power_up_offset_y_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
+  s.encoder.offset_counts_x = unit_interval(g) * 65536.0;
+  s.encoder.offset_counts_y = unit_interval(g) * 65536.0;
+  out.power_up_offset_x_mm = s.board.power_up_offset_x_mm;
+  out.power_up_offset_y_mm = s.board.power_up_offset_y_mm;
+  out.offset_counts_x = s.encoder.offset_counts_x;
+  out.offset_counts_y = s.encoder.offset_counts_y;
+
+  std::string error;
+  const std::unique_ptr<HilRig> rig = HilRig::create(s, config, config.axis[0].controller, error);
+  if (!rig) {
+    out.failure = error;
+    return out;
+  }
+  rig->home();  // the firmware's first reading
+  if (const fw::CommandStatus st = rig->task.home(true, true); st != fw::CommandStatus::ok) {
+    out.failure = std::string("home refused: ") + fw::to_string(st);
+    return out;
+  }
+  const double start_s = rig->machine.time_s();
+  while (rig->task.homing() && rig->machine.time_s() - start_s < kTimeoutS) rig->tick();
+  out.time_s = rig->machine.time_s() - start_s;
+  if (rig->task.fault().active()) {
+    out.failure = std::string("fault ") + fw::to_string(rig->task.fault().reason) + " (axis " +
+                  std::to_string(rig->task.fault().axis) + ")";
+    return out;
+  }
+  for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+    if (!rig->task.homed(axis)) {
+      out.failure = std::string(axis == hal::Axis::x ? "x" : "y") + " not homed: " +
+                    fw::to_string(rig->task.homing_result(axis));
+      return out;
+    }
+  }
+  const int settle_ticks = static_cast<int>(kSettleS / kTickPeriodS);
+  for (int k = 0; k < settle_ticks; ++k) rig->tick();
+  for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+    const std::size_t i = hal::index(axis);
+    const double firmware_mm = rig->task.last_record().axis[i].position_mm - config.axis[i].homing.position_mm;
+    const double motor_mm = rig->machine.truth(axis).motor_position_mm;
+    const double truth_mm = motor_mm - expected_mark_mm(s, rig->machine, axis);
+    const double reading_error_um = (firmware_mm - truth_mm) * 1000.0;
+    // The present reading's own rounding (count = round(p / q + offset)) is
+    // not the frame's: taken out, what is left is where the frame puts the mark.
+    const double q_mm = s.encoder.count_mm();
+    const double exact_counts = motor_mm / q_mm + s.encoder.offset_counts(axis);
+    const double rounding_um = (static_cast<double>(std::llround(exact_counts)) - exact_counts) * q_mm * 1000.0;
+    (i == 0 ? out.reading_error_x_um : out.reading_error_y_um) = reading_error_um;
+    (i == 0 ? out.home_error_x_um : out.home_error_y_um) = reading_error_um - rounding_um;
+  }
+  out.homed = true;
+  return out;
+}
+
+HomingSummary run_homing(const emu::Scenario& scenario, const fw::FirmwareConfig& config, std::uint32_t seeds) {
+  HomingSummary sum;
+  bool any = false;
+  double min_x = 0.0, max_x = 0.0, min_y = 0.0, max_y = 0.0;
+  for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
+    const HomingSeedResult r = run_homing_seed(scenario, config, seed);
+    sum.seeds.push_back(r);
+    if (!r.homed) {
+      sum.all_homed = false;
+      continue;
+    }
+    min_x = any ? std::min(min_x, r.home_error_x_um) : r.home_error_x_um;
+    max_x = any ? std::max(max_x, r.home_error_x_um) : r.home_error_x_um;
+    min_y = any ? std::min(min_y, r.home_error_y_um) : r.home_error_y_um;
+    max_y = any ? std::max(max_y, r.home_error_y_um) : r.home_error_y_um;
+    any = true;
+    sum.home_error_um_max = std::max({sum.home_error_um_max, std::fabs(r.home_error_x_um), std::fabs(r.home_error_y_um)});
+    sum.reading_error_um_max =
+        std::max({sum.reading_error_um_max, std::fabs(r.reading_error_x_um), std::fabs(r.reading_error_y_um)});
+    sum.time_s_max = std::max(sum.time_s_max, r.time_s);
+  }
+  sum.home_error_spread_um = std::max(max_x - min_x, max_y - min_y);
+  return sum;
+}
+
+}  // namespace tnv::hil

@@ -1,0 +1,61 @@
+#pragma once
+// tnv-hil homing: the firmware's homing cycle (COMMAND home, both axes) on
+// the emulated table from seeded power-up positions and encoder phases,
+// judged against the machine's truth.
+//
+// Reading error, per axis, at rest after homing: where the firmware says
+// the axis stands, minus the configured home (homing.position_mm), against
+// where the motor side really stands from the index mark the cycle should
+// have latched (the first mark past the switch's release, in the back-off
+// direction). Home error: the same less the present reading's own rounding
+// to a count, i.e. the error of the frame itself (where it puts the mark);
+// what is left is the latch's rounding, at most half a count. Motor side:
+// the encoder and its index are on the motor, so home is a motor
+// reference; with backlash or lead error the table differs from it by the
+// screw (docs/safety.md "Homing").
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "emulator/scenario.hpp"
+#include "firmware/tick/firmware_config.hpp"
+
+namespace tnv::hil {
+
+struct HomingSeedResult {
+  std::uint32_t seed = 0;
+  double power_up_offset_x_mm = 0.0;  // [board] power_up_offset_*_mm of this seed
+  double power_up_offset_y_mm = 0.0;
+  double offset_counts_x = 0.0;       // [encoder] offset_counts_* (power-up count and phase)
+  double offset_counts_y = 0.0;
+  bool homed = false;
+  std::string failure;                // why not, when not homed
+  double home_error_x_um = 0.0;       // the frame's error at the mark, motor side
+  double home_error_y_um = 0.0;
+  double reading_error_x_um = 0.0;    // the reading at rest after homing, motor side
+  double reading_error_y_um = 0.0;
+  double time_s = 0.0;                // command to both axes homed
+};
+
+struct HomingSummary {
+  std::vector<HomingSeedResult> seeds;
+  double home_error_um_max = 0.0;     // largest |home error| over seeds and axes
+  double home_error_spread_um = 0.0;  // largest (max - min) over seeds, per axis: repeatability
+  double reading_error_um_max = 0.0;  // largest |reading error|
+  double time_s_max = 0.0;
+  bool all_homed = true;
+};
+
+// The emulated table homing runs on: home switches at the negative end of
+// both axes and index marks away from the switches' release points.
+emu::Scenario homing_scenario();
+// The firmware config for it: homing parameters set for that table.
+fw::FirmwareConfig homing_firmware_config();
+
+// One homing from the seed's power-up (position within +-20 mm of the
+// scenario's, count offset anywhere in the 16-bit counter with a random
+// fraction of a count as encoder phase).
+HomingSeedResult run_homing_seed(const emu::Scenario& scenario, const fw::FirmwareConfig& config, std::uint32_t seed);
+HomingSummary run_homing(const emu::Scenario& scenario, const fw::FirmwareConfig& config, std::uint32_t seeds);
+
+}  // namespace tnv::hil

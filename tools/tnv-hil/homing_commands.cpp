@@ -1,0 +1,89 @@
+// tnv-hil homing: the firmware's homing cycle on the emulated table over
+// seeded power-up positions and encoder phases; the home error against the
+// machine's truth (motor side, tools/hil/homing_run.hpp).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "tools/hil/homing_run.hpp"
+#include "tools/tnv-hil/cli_support.hpp"
+#include "tools/tnv-hil/commands.hpp"
+
+namespace tnv::cli {
+
+namespace {
+
+// The goal: home within 0.5 um (one count is 0.417 um).
+constexpr double kHomeErrorGoalUm = 0.5;
+
+struct HomingCliOptions {
+  std::uint32_t seeds = 10;
+  bool json = false;
+};
+
+int run_homing_command(const HomingCliOptions& o) {
+  const emu::Scenario scenario = hil::homing_scenario();
+  const fw::FirmwareConfig config = hil::homing_firmware_config();
+  const hil::HomingSummary sum = hil::run_homing(scenario, config, o.seeds);
+  const bool met = sum.all_homed && sum.home_error_um_max <= kHomeErrorGoalUm;
+  if (o.json) {
+    nlohmann::json seeds = nlohmann::json::array();
+    for (const hil::HomingSeedResult& r : sum.seeds) {
+      seeds.push_back({{"seed", r.seed},
+                       {"power_up_offset_x_mm", r.power_up_offset_x_mm},
+                       {"power_up_offset_y_mm", r.power_up_offset_y_mm},
+                       {"offset_counts_x", r.offset_counts_x},
+                       {"offset_counts_y", r.offset_counts_y},
+                       {"homed", r.homed},
+                       {"failure", r.failure},
+                       {"home_error_x_um", r.home_error_x_um},
+                       {"home_error_y_um", r.home_error_y_um},
+                       {"reading_error_x_um", r.reading_error_x_um},
+                       {"reading_error_y_um", r.reading_error_y_um},
+                       {"time_s", r.time_s}});
+    }
+    const nlohmann::json out = {{"seeds", o.seeds},
+                                {"reference", "motor side: firmware position - homing.position_mm vs true motor "
+                                              "position - the index mark past the switch; home error without the "
+                                              "present reading's rounding to a count, reading error with it"},
+                                {"home_error_um_max", sum.home_error_um_max},
+                                {"home_error_spread_um", sum.home_error_spread_um},
+                                {"reading_error_um_max", sum.reading_error_um_max},
+                                {"goal_um", kHomeErrorGoalUm},
+                                {"time_s_max", sum.time_s_max},
+                                {"all_homed", sum.all_homed},
+                                {"runs", seeds}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::printf("homing: %u seeds (power-up within +-20 mm, any count offset and phase), both axes, x then y\n",
+                o.seeds);
+    std::printf("%5s %9s %9s %10s %10s %7s %10s %10s %7s\n", "seed", "x0_mm", "y0_mm", "cnt_x", "cnt_y", "homed",
+                "err_x_um", "err_y_um", "time_s");
+    for (const hil::HomingSeedResult& r : sum.seeds) {
+      std::printf("%5u %9.3f %9.3f %10.3f %10.3f %7s %10.4f %10.4f %7.2f%s%s\n", r.seed, r.power_up_offset_x_mm,
+                  r.power_up_offset_y_mm, r.offset_counts_x, r.offset_counts_y, r.homed ? "yes" : "NO",
+                  r.home_error_x_um, r.home_error_y_um, r.time_s, r.failure.empty() ? "" : "  ", r.failure.c_str());
+    }
+    std::printf("home_error_um_max %.4f (goal %.1f, motor side), spread %.4f um, reading_error_um_max %.4f, "
+                "time_s_max %.2f\n",
+                sum.home_error_um_max, kHomeErrorGoalUm, sum.home_error_spread_um, sum.reading_error_um_max,
+                sum.time_s_max);
+  }
+  if (!sum.all_homed) std::fprintf(stderr, "tnv-hil homing: a homing failed\n");
+  else if (!met) std::fprintf(stderr, "tnv-hil homing: home error above %.1f um\n", kHomeErrorGoalUm);
+  return met ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+void add_homing_commands(CLI::App& app, Runner& run) {
+  auto o = std::make_shared<HomingCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "homing", "homing cycle of both axes over seeded power-up positions and encoder phases; home error (motor side)");
+  cmd->add_option("--seeds", o->seeds, "power-ups to home from")->capture_default_str()->check(CLI::Range(1, 10000));
+  cmd->add_flag("--json", o->json, "JSON on stdout");
+  cmd->callback([o, &run]() { run = [o]() { return run_homing_command(*o); }; });
+}
+
+}  // namespace tnv::cli
