@@ -42,6 +42,18 @@ emu::Scenario homing_scenario() {
   return s;
 }
 
+emu::Scenario with_homing_board(emu::Scenario table) {
+  if (table.board.home_switch_x || table.board.home_switch_y) return table;
+  const emu::Scenario board = homing_scenario();
+  table.board.home_switch_x = board.board.home_switch_x;
+  table.board.home_switch_y = board.board.home_switch_y;
+  table.board.home_x_mm = board.board.home_x_mm;
+  table.board.home_y_mm = board.board.home_y_mm;
+  table.board.index_x_deg = board.board.index_x_deg;
+  table.board.index_y_deg = board.board.index_y_deg;
+  return table;
+}
+
 fw::FirmwareConfig homing_firmware_config() {
   fw::FirmwareConfig c = fw::default_firmware_config();
   for (fw::AxisConfig& a : c.axis) {

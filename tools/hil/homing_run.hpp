@@ -49,6 +49,10 @@ struct HomingSummary {
 // The emulated table homing runs on: home switches at the negative end of
 // both axes and index marks away from the switches' release points.
 emu::Scenario homing_scenario();
+// `table` with homing_scenario()'s switches and index marks where it has
+// none of its own (a built-in such as bench-no-cut), so its plant, noise
+// and transport are homed on the same board.
+emu::Scenario with_homing_board(emu::Scenario table);
 // The firmware config for it: homing parameters set for that table.
 fw::FirmwareConfig homing_firmware_config();
 

@@ -20,10 +20,16 @@ constexpr double kHomeErrorGoalUm = 0.5;
 struct HomingCliOptions {
   std::uint32_t seeds = 10;
   bool json = false;
+  std::string scenario;  // "" = the reference table
 };
 
 int run_homing_command(const HomingCliOptions& o) {
-  const emu::Scenario scenario = hil::homing_scenario();
+  emu::Scenario scenario = hil::homing_scenario();
+  if (!o.scenario.empty()) {
+    const std::optional<emu::Scenario> table = resolve_scenario_or_report(o.scenario);
+    if (!table) return kExitBadInput;
+    scenario = hil::with_homing_board(*table);
+  }
   const fw::FirmwareConfig config = hil::homing_firmware_config();
   const hil::HomingSummary sum = hil::run_homing(scenario, config, o.seeds);
   const bool met = sum.all_homed && sum.home_error_um_max <= kHomeErrorGoalUm;
@@ -44,6 +50,7 @@ int run_homing_command(const HomingCliOptions& o) {
                        {"time_s", r.time_s}});
     }
     const nlohmann::json out = {{"seeds", o.seeds},
+                                {"scenario", scenario.name},
                                 {"reference", "motor side: firmware position - homing.position_mm vs true motor "
                                               "position - the index mark past the switch; home error without the "
                                               "present reading's rounding to a count, reading error with it"},
@@ -56,8 +63,8 @@ int run_homing_command(const HomingCliOptions& o) {
                                 {"runs", seeds}};
     std::cout << out.dump(2) << "\n";
   } else {
-    std::printf("homing: %u seeds (power-up within +-20 mm, any count offset and phase), both axes, x then y\n",
-                o.seeds);
+    std::printf("homing on %s: %u seeds (power-up within +-20 mm, any count offset and phase), both axes, x then y\n",
+                scenario.name.c_str(), o.seeds);
     std::printf("%5s %9s %9s %10s %10s %7s %10s %10s %7s\n", "seed", "x0_mm", "y0_mm", "cnt_x", "cnt_y", "homed",
                 "err_x_um", "err_y_um", "time_s");
     for (const hil::HomingSeedResult& r : sum.seeds) {
@@ -83,6 +90,9 @@ void add_homing_commands(CLI::App& app, Runner& run) {
       "homing", "homing cycle of both axes over seeded power-up positions and encoder phases; home error (motor side)");
   cmd->add_option("--seeds", o->seeds, "power-ups to home from")->capture_default_str()->check(CLI::Range(1, 10000));
   cmd->add_flag("--json", o->json, "JSON on stdout");
+  cmd->add_option("--scenario", o->scenario,
+                  "the table (built-in name or TOML file); without home switches of its own it gets the reference "
+                  "board's (default: the reference table)");
   cmd->callback([o, &run]() { run = [o]() { return run_homing_command(*o); }; });
 }
 
