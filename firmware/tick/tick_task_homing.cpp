@@ -62,14 +62,8 @@ void TickTask::homing_reference() noexcept {
   const hal::IndexLatch index = board_.index_latch(axis);
   HomingStep step = homing_.step(last_inputs_.home_switch[a], index.edges);
   if (step.index_found) {
-    // The latched count, extended like the tick's own count: its signed
-    // distance (counter-width arithmetic) back from this snapshot's count.
-    const unsigned bits = board_.counter_bits();
-    const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1u;
-    const std::uint64_t back = (static_cast<std::uint64_t>(board_.latched_count(axis)) - index.count) & mask;
-    const std::int64_t back_counts =
-        back > mask / 2 ? static_cast<std::int64_t>(back) - static_cast<std::int64_t>(mask) - 1 : static_cast<std::int64_t>(back);
-    const std::int64_t latched_counts = axis_[a].encoder.counts() - back_counts;
+    // The index's latched count, extended like the tick's own count.
+    const std::int64_t latched_counts = axis_[a].encoder.counts_at(index.count);
     const double origin_mm = config_.axis[a].homing.position_mm - static_cast<double>(latched_counts) * config_.axis[a].count_mm;
     const double delta_mm = origin_mm - origin_mm_[a];
     shift_frame(a, delta_mm);

@@ -195,8 +195,8 @@ CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
   if (!(position_mm >= lim.position_min_mm && position_mm <= lim.position_max_mm)) return CommandStatus::invalid;
   // Measurement and reference shift together: the following error is unchanged.
   shift_frame(a, position_mm - record_.axis[a].position_mm);
-  shaping_[a].shaper.reset(hold_[a]);
-  homed_[a] = false;  // the frame is the operator's now, not the index's  // at rest: its history is the old frame's rest point
+  shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
+  homed_[a] = false;                   // the frame is the operator's now, not the index's
   return CommandStatus::ok;
 }
 

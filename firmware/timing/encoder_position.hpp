@@ -21,17 +21,25 @@ class EncoderPosition {
 
   // Returns the count change since the previous reading (sign-extended).
   std::int64_t update(std::uint32_t raw) noexcept {
-    const std::uint32_t diff = (raw - last_raw_) & mask_;
+    const std::int64_t delta = since_last(raw);
     last_raw_ = raw & mask_;
-    const std::int64_t delta = (diff & sign_bit_) ? static_cast<std::int64_t>(diff) - static_cast<std::int64_t>(mask_) - 1
-                                                  : static_cast<std::int64_t>(diff);
     extended_counts_ += delta;
     return delta;
   }
 
   std::int64_t counts() const noexcept { return extended_counts_; }
 
+  // The extended count of another reading of the same counter within half
+  // its range of the last one (a count the board latched at an index edge).
+  std::int64_t counts_at(std::uint32_t raw) const noexcept { return extended_counts_ + since_last(raw); }
+
  private:
+  std::int64_t since_last(std::uint32_t raw) const noexcept {
+    const std::uint32_t diff = (raw - last_raw_) & mask_;
+    return (diff & sign_bit_) ? static_cast<std::int64_t>(diff) - static_cast<std::int64_t>(mask_) - 1
+                              : static_cast<std::int64_t>(diff);
+  }
+
   std::uint32_t mask_;
   std::uint32_t sign_bit_;
   std::uint32_t last_raw_ = 0;
