@@ -21,14 +21,6 @@ struct Field {
   FieldTarget target;
 };
 
-std::string one_line(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  return out;
-}
-
 // Walks the parsed document into a Scenario, remembering where each key was.
 class ScenarioReader {
  public:

@@ -58,4 +58,12 @@ bool read_text_file(const std::string& path, std::size_t max_bytes, std::string&
   return true;
 }
 
+std::string one_line(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return out;
+}
+
 }  // namespace tnv::emu

@@ -7,10 +7,15 @@
 // (emulator/ does not include drivers/).
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace tnv::emu {
 
 // The whole file; false with `error` set ("<path>: <why>").
 bool read_text_file(const std::string& path, std::size_t max_bytes, std::string& text, std::string& error);
+
+// `text` with its line breaks as spaces: a key or value quoted from a file
+// into a one-line error message.
+std::string one_line(std::string_view text);
 
 }  // namespace tnv::emu

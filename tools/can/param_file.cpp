@@ -5,6 +5,7 @@
 #include <set>
 #include <toml++/toml.h>
 
+#include "emulator/text_file.hpp"
 #include "tools/can/param_text.hpp"
 
 namespace tnv::can_host {
@@ -13,13 +14,6 @@ namespace {
 
 std::string line_of(const toml::node& n) {
   return "line " + std::to_string(n.source().begin.line) + ": ";
-}
-
-// A newline in a quoted key or value must not split the one-line error.
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
 }
 
 // The value as the text parse_param_value() reads; nullopt for arrays, tables, dates.
@@ -137,7 +131,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   try {
     root = toml::parse(text);
   } catch (const toml::parse_error& e) {
-    error = "line " + std::to_string(e.source().begin.line) + ": not TOML: " + one_line(std::string(e.description()));
+    error = "line " + std::to_string(e.source().begin.line) + ": not TOML: " + emu::one_line(e.description());
     return std::nullopt;
   }
   const toml::table* node = root["node"].as_table();
@@ -148,7 +142,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   }
   for (const auto& [key, value] : root) {
     if (key.str() != "node" && key.str() != "params") {
-      error = line_of(value) + one_line(std::string(key.str())) + ": unknown table (a file has [node] and [params])";
+      error = line_of(value) + emu::one_line(key.str()) + ": unknown table (a file has [node] and [params])";
       return std::nullopt;
     }
   }
@@ -177,7 +171,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   file.params_hash = *hash;
   std::set<std::uint16_t> seen;
   if (!read_params(*params, "", file, seen, error)) {
-    error = one_line(error);
+    error = emu::one_line(error);
     return std::nullopt;
   }
   if (file.params.empty()) {

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 namespace tnv::cli {
@@ -59,6 +61,24 @@ CLI::Validator OutputFile() {
 
 CLI::Validator OutputDir() {
   return CLI::Validator(output_dir_problem, "DIR", "writable output directory");
+}
+
+bool write_file_replacing(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc | std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) {
+      ::unlink(temporary.c_str());
+      return false;
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    ::unlink(temporary.c_str());
+    return false;
+  }
+  return true;
 }
 
 }  // namespace tnv::cli

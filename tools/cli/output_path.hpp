@@ -15,6 +15,11 @@ std::string output_file_problem(const std::string& path);
 // existing ancestor is a writable directory).
 std::string output_dir_problem(const std::string& path);
 
+// Writes `text` as the whole of `path`: into a file beside it, renamed over
+// it, so a failed write leaves an existing file as it was. false when the
+// file could not be written or renamed.
+bool write_file_replacing(const std::string& path, const std::string& text);
+
 // The same as CLI11 validators (->check(OutputFile())).
 CLI::Validator OutputFile();
 CLI::Validator OutputDir();

@@ -10,6 +10,7 @@
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tools/can/param_text.hpp"
+#include "tools/cli/output_path.hpp"
 
 namespace tnv::cli {
 
@@ -59,10 +60,7 @@ std::optional<std::vector<emu::Scenario>> resolve_table3_scenarios_or_report() {
 }
 
 bool write_text(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::trunc);
-  out << content;
-  out.close();
-  if (!out) {
+  if (!write_file_replacing(path, content)) {
     std::fprintf(stderr, "tnv-hil: %s: cannot write\n", path.c_str());
     return false;
   }

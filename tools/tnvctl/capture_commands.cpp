@@ -124,17 +124,10 @@ void configure(const CaptureOptions& o, can_host::NodeClient& client, Report& re
   report.data["decimation"] = decimation;
 }
 
-bool write_file(const std::string& path, const std::string& content) {
-  std::ofstream out(path, std::ios::trunc);
-  out << content;
-  out.close();
-  return static_cast<bool>(out);
-}
-
 void write_outputs(const CaptureOptions& o, const can_host::CaptureTable& table,
                    const std::optional<hil::ContourStats>& stats, Session& session, Report& report) {
   if (!o.csv.empty()) {
-    if (!write_file(o.csv, can_host::capture_csv(table))) {
+    if (!cli::write_file_replacing(o.csv, can_host::capture_csv(table))) {
       std::string message = o.csv;
       throw RunFailed(message.append(": cannot write"));
     }

@@ -130,6 +130,12 @@ const fw::can::ParamDef& param_named(const std::string& name) {
   throw BadInput(message);
 }
 
+nlohmann::json firmware_json(const can_host::NodeIdentity& id) {
+  return {{"version", can_host::firmware_version_text(id.firmware_version)},
+          {"build_id", can_host::build_id_text(id.build_id)},
+          {"protocol_version", id.protocol_version}};
+}
+
 nlohmann::json heartbeat_json(const can_host::Heartbeat& hb) {
   nlohmann::json bits = nlohmann::json::array();
   for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)

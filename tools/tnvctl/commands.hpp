@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/can/node_identity.hpp"
 #include "tools/tnvctl/session.hpp"
 
 namespace tnv::tnvctl {
@@ -69,6 +70,8 @@ const fw::can::ParamDef& param_named(const std::string& name);  // from the tabl
 // Throws RunFailed when the node ended in a fault: names the reason.
 void require_no_fault(const can_host::Heartbeat& hb, can_host::NodeClient& client, const std::string& what);
 nlohmann::json heartbeat_json(const can_host::Heartbeat& hb);
+// {"version": "0.1.0", "build_id": "1a2b3c4d", "protocol_version": 3}
+nlohmann::json firmware_json(const can_host::NodeIdentity& id);
 std::string heartbeat_text(const can_host::Heartbeat& hb);
 
 }  // namespace tnv::tnvctl

@@ -269,9 +269,7 @@ int run_status(Session& session, Report& report) {
   report.line(text);
   report.data["status"] = heartbeat_json(hb);
   report.data["capture"] = {{"state", states[static_cast<int>(cap.state) & 3]}, {"samples", cap.samples}};
-  report.data["firmware"] = {{"version", can_host::firmware_version_text(id.firmware_version)},
-                             {"build_id", can_host::build_id_text(id.build_id)},
-                             {"protocol_version", id.protocol_version}};
+  report.data["firmware"] = firmware_json(id);
   return kExitOk;
 }
 

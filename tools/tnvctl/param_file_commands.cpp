@@ -1,11 +1,8 @@
 // tnvctl params export | import: a node's parameter set as a TOML file
 // (tools/can/param_file.hpp), applied back as one all-or-nothing set.
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <ctime>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -43,25 +40,6 @@ std::string utc_now() {
   return buf;
 }
 
-// Written beside the target and renamed over it: a failed write leaves an
-// existing file as it was.
-void write_whole_file(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::trunc | std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      ::unlink(temporary.c_str());
-      throw RunFailed("cannot write " + temporary);
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    ::unlink(temporary.c_str());
-    throw RunFailed("cannot rename " + temporary + " to " + path);
-  }
-}
-
 int run_export(const ExportOptions& o, Session& session, Report& report) {
   can_host::NodeClient& client = session.client();
   const can_host::NodeIdentity identity = can_host::read_identity(client);
@@ -74,7 +52,7 @@ int run_export(const ExportOptions& o, Session& session, Report& report) {
     std::cout << text;
     std::cout.flush();
   } else {
-    write_whole_file(o.path, text);
+    if (!cli::write_file_replacing(o.path, text)) throw RunFailed("cannot write " + o.path);
     char buf[160];
     std::snprintf(buf, sizeof buf, "%zu parameters of node %u (firmware %s, build %s) written to ", values.size(),
                   unsigned{client.node()}, can_host::firmware_version_text(identity.firmware_version).c_str(),
@@ -84,8 +62,7 @@ int run_export(const ExportOptions& o, Session& session, Report& report) {
   report.data["file"] = o.path;
   report.data["params"] = values.size();
   report.data["params_hash"] = can_host::params_hash(values);
-  report.data["firmware"] = {{"version", can_host::firmware_version_text(identity.firmware_version)},
-                             {"build_id", can_host::build_id_text(identity.build_id)}};
+  report.data["firmware"] = firmware_json(identity);
   return kExitOk;
 }
 

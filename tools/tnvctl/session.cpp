@@ -19,6 +19,7 @@ void Report::line(const std::string& text) const {
 
 void Session::open() {
   const auto node = static_cast<std::uint8_t>(options_.node);
+  const std::string unix_path = drivers::unix_can_path(options_.iface);  // "" unless --iface unix:PATH
   if (options_.emu) {
     can_host::EmulatedNodeOptions emu;
     emu.scenario = options_.emu_scenario;
@@ -49,15 +50,15 @@ void Session::open() {
     socket.node = node;
     // unix:PATH: the datagram link tnv-fw binds with `[can] interface =
     // "unix:PATH"` (docs/hil-rig.md), for rigs without vcan.
-    if (const std::string path = drivers::unix_can_path(options_.iface); !path.empty()) {
-      unix_link_ = std::make_unique<drivers::UnixCanSocketApi>(path, drivers::UnixCanSocketApi::Role::host);
+    if (!unix_path.empty()) {
+      unix_link_ = std::make_unique<drivers::UnixCanSocketApi>(unix_path, drivers::UnixCanSocketApi::Role::host);
       bus_ = std::make_unique<can_host::SocketCanBus>(*unix_link_, socket);
     } else {
       bus_ = std::make_unique<can_host::SocketCanBus>(can_host::linux_socket_api(), socket);
     }
   }
   if (!options_.trace.empty()) {
-    const std::string iface = options_.emu ? "emu" : drivers::unix_can_path(options_.iface).empty() ? options_.iface : "unix";
+    const std::string iface = options_.emu ? "emu" : unix_path.empty() ? options_.iface : "unix";
     traced_ = std::make_unique<can_host::TracingBus>(*bus_, options_.trace, iface);
   }
   can_host::ClientOptions client;
