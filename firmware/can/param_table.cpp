@@ -120,6 +120,12 @@ constexpr const char* kHomeSides = "0=negative 1=positive";
 
 bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 || kbit == 500 || kbit == 1000; }
 
+// One point of an axis' per-turn lead-error table (screw_compensation.hpp).
+#define TNV_TURN_ERROR_ROW(ax, base, p, j)                                                                    \
+  {base + 0xD0 + (j), p "screw.turn_error_um." #j, ParamType::f32, "um", -100, 100, "", Access::read_write,      \
+   Apply::idle, kOpen, TNV_SCALED(firmware.axis[ax].screw.turn_error_mm[j], 1000.0),                           \
+   "per-turn lead-error table: the table's error at point " #j " of 16 over one period, measured (tnv-hil screw-fit)"}
+
 // One axis' parameters: ax is the axis index, base its id block, p its name prefix.
 #define TNV_AXIS_PARAMS(ax, base, p)                                                                                     \
   {base + 0x00, p "controller", ParamType::enumeration, "", 0, 2, kControllers,                                          \
@@ -283,7 +289,26 @@ bool allowed_bitrate(double kbit) noexcept { return kbit == 125 || kbit == 250 |
        "how fast the backlash offset changes at a reversal"},                                                            \
       {base + 0xC2, p "screw.lead_um_per_m", ParamType::f32, "um/m", -1000, 1000, "", Access::read_write, Apply::idle,   \
        kOpen, TNV_REAL(firmware.axis[ax].screw.lead_um_per_m),                                                           \
-       "lead-error compensation: table travel error per metre of motor travel from the origin; 0 = off"}
+       "lead-error compensation: table travel error per metre of motor travel from the origin; 0 = off"}, \
+      {base + 0xC3, p "screw.turn_period_mm", ParamType::f32, "mm", 0.1, 1000, "", Access::read_write, Apply::idle,      \
+       kOpen, TNV_REAL(firmware.axis[ax].screw.turn_period_mm),                                                          \
+       "per-turn lead-error table: its period (the screw's lead)"},                                                      \
+      TNV_TURN_ERROR_ROW(ax, base, p, 0),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 1),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 2),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 3),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 4),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 5),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 6),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 7),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 8),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 9),                                                               \
+      TNV_TURN_ERROR_ROW(ax, base, p, 10),                                                              \
+      TNV_TURN_ERROR_ROW(ax, base, p, 11),                                                              \
+      TNV_TURN_ERROR_ROW(ax, base, p, 12),                                                              \
+      TNV_TURN_ERROR_ROW(ax, base, p, 13),                                                              \
+      TNV_TURN_ERROR_ROW(ax, base, p, 14),                                                              \
+      TNV_TURN_ERROR_ROW(ax, base, p, 15)
 
 constexpr ParamDef kParams[] = {
     {0x0000, "sys.protocol_version", ParamType::u32, "", 0, kBig, "", Access::read_only, Apply::live, kOpen,
@@ -383,6 +408,7 @@ constexpr ParamDef kParams[] = {
 };
 
 #undef TNV_AXIS_PARAMS
+#undef TNV_TURN_ERROR_ROW
 #undef TNV_BORE_PARAMS
 #undef TNV_BORE_LEARNED
 #undef TNV_REAL

@@ -16,7 +16,26 @@ double lead_offset_mm(const ScrewCompensation& c, double reference_mm) noexcept 
   return reference_mm / (1.0 + lead) - reference_mm;
 }
 
+// The motor-side offset for the table-side reference x_ref, given the
+// backlash offset: p0 - e_turn(p0) - x_ref (screw_compensation.hpp).
+double offset_mm(const ScrewCompensation& c, double reference_mm, double backlash_offset_mm) noexcept {
+  const double to_p0_mm = backlash_offset_mm + lead_offset_mm(c, reference_mm);
+  return to_p0_mm - turn_error_mm(c, reference_mm + to_p0_mm);
+}
+
 }  // namespace
+
+double turn_error_mm(const ScrewCompensation& c, double motor_mm) noexcept {
+  // Position in table points, wrapped into [0, 16): floor keeps it exact for negative positions.
+  const double points = motor_mm / c.turn_period_mm * static_cast<double>(kTurnErrorPoints);
+  const double wrapped = points - std::floor(points / static_cast<double>(kTurnErrorPoints)) *
+                                      static_cast<double>(kTurnErrorPoints);
+  const double below = std::floor(wrapped);
+  const double frac = wrapped - below;
+  const std::size_t j = static_cast<std::size_t>(below) % kTurnErrorPoints;  // wrapped == 16.0 by rounding: 0
+  const std::size_t k = (j + 1) % kTurnErrorPoints;
+  return c.turn_error_mm[j] * (1.0 - frac) + c.turn_error_mm[k] * frac;
+}
 
 ParamCheck validate(const ScrewCompensation& c) noexcept {
   if (!std::isfinite(c.backlash_mm)) return param_error("backlash_mm", "must be finite (NaN or inf given)");
@@ -26,12 +45,20 @@ ParamCheck validate(const ScrewCompensation& c) noexcept {
   if (!(c.backlash_rate_mm_s >= 0.01 && c.backlash_rate_mm_s <= 100.0))
     return param_error("backlash_rate_mm_s", "must be 0.01 .. 100 mm/s");
   if (!(std::fabs(c.lead_um_per_m) <= 1000.0)) return param_error("lead_um_per_m", "must be -1000 .. 1000 um/m");
+  if (!std::isfinite(c.turn_period_mm)) return param_error("turn_period_mm", "must be finite (NaN or inf given)");
+  if (!(c.turn_period_mm >= 0.1 && c.turn_period_mm <= 1000.0))
+    return param_error("turn_period_mm", "must be 0.1 .. 1000 mm");
+  for (const double e_mm : c.turn_error_mm) {
+    if (!std::isfinite(e_mm)) return param_error("turn_error_mm", "must be finite (NaN or inf given)");
+    if (!(std::fabs(e_mm) <= 0.1)) return param_error("turn_error_mm", "must be -0.1 .. 0.1 mm (-100 .. 100 um)");
+  }
   return param_ok();
 }
 
 bool same(const ScrewCompensation& a, const ScrewCompensation& b) noexcept {
   return a.backlash_mm == b.backlash_mm && a.backlash_rate_mm_s == b.backlash_rate_mm_s &&
-         a.lead_um_per_m == b.lead_um_per_m;
+         a.lead_um_per_m == b.lead_um_per_m && a.turn_period_mm == b.turn_period_mm &&
+         a.turn_error_mm == b.turn_error_mm;
 }
 
 ScrewCompensator::Offsets ScrewCompensator::advance(const ScrewCompensation& c, double reference_mm,
@@ -44,8 +71,8 @@ ScrewCompensator::Offsets ScrewCompensator::advance(const ScrewCompensation& c, 
   const double now_backlash_mm = backlash_offset_mm_;
   backlash_offset_mm_ += std::clamp(target_mm - backlash_offset_mm_, -max_change_mm, max_change_mm);
   Offsets o;
-  o.now_mm = now_backlash_mm + lead_offset_mm(c, reference_mm);
-  o.next_mm = backlash_offset_mm_ + lead_offset_mm(c, next_reference_mm);
+  o.now_mm = offset_mm(c, reference_mm, now_backlash_mm);
+  o.next_mm = offset_mm(c, next_reference_mm, backlash_offset_mm_);
   next_offset_mm_ = o.next_mm;
   return o;
 }

@@ -15,23 +15,48 @@
 // at backlash_rate_mm_s, not in one step, so a reversal asks the axis for
 // a bounded extra speed. Fixed cost per tick, no allocation.
 //
+// The lead error's periodic part within one turn of the screw (thread
+// form, eccentricity) comes from a measured table: turn_error_mm[j] is the
+// table's error at motor position j * P / 16 (mod P, P = turn_period_mm,
+// from the firmware's zero), linearly interpolated in between. The motor
+// position that puts the table at x_ref is then
+//
+//   x_motor = p0 - e_turn(p0),   p0 = x_ref / (1 + c) + d * b / 2
+//
+// (one fixed-point step: the error left is e_turn' * e_turn, about 0.01 um
+// for the bench's +-4 um per 10 mm turn).
+//
 // What a motor-side encoder cannot tell: whether the lash really was
 // centred at power-up (the first move's table position is off by up to
-// b / 2 otherwise; homing takes the lash up in a known direction), and
-// the lead error's periodic part within one turn (docs/robustness.md).
+// b / 2 otherwise; homing takes the lash up in a known direction), nor any
+// of b, c or the per-turn table: they are measured against the table
+// (a laser interferometer's or gauge's file, tnv-hil screw-fit;
+// docs/robustness.md), and the table holds only from the zero it was
+// measured from (home).
+#include <array>
+#include <cstddef>
+
 #include "firmware/control/param_check.hpp"
 
 namespace tnv::fw {
+
+inline constexpr std::size_t kTurnErrorPoints = 16;
 
 struct ScrewCompensation {
   double backlash_mm = 0.0;          // b: lost motion at a reversal, 0 = off
   double backlash_rate_mm_s = 1.0;   // how fast the offset changes at a reversal (> 0)
   double lead_um_per_m = 0.0;        // c * 1e6: table travel error per metre of motor travel, 0 = off
+  double turn_period_mm = 10.0;      // P: the per-turn table's period (the screw's lead)
+  std::array<double, kTurnErrorPoints> turn_error_mm{};  // table error at j * P / 16; all 0 = off
 };
 
-// Finite; 0 <= b <= 0.2 mm; 0.01 <= rate <= 100 mm/s; |c| <= 1000 um/m.
+// Finite; 0 <= b <= 0.2 mm; 0.01 <= rate <= 100 mm/s; |c| <= 1000 um/m;
+// 0.1 <= P <= 1000 mm; |turn error| <= 0.1 mm.
 ParamCheck validate(const ScrewCompensation& c) noexcept;
 bool same(const ScrewCompensation& a, const ScrewCompensation& b) noexcept;
+
+// e_turn(motor_mm): the per-turn table, periodic, linearly interpolated.
+double turn_error_mm(const ScrewCompensation& c, double motor_mm) noexcept;
 
 class ScrewCompensator {
  public:

@@ -107,8 +107,8 @@ std::string params_hash(const std::vector<ParamValue>& params) {
 }
 
 std::string write_param_file(std::uint32_t node_id, const NodeIdentity& identity, const std::string& exported_utc,
-                             const std::vector<ParamValue>& params) {
-  std::string out = "# A TNV-40 node's parameter set (tnvctl params export). `tnvctl params import`\n"
+                             const std::vector<ParamValue>& params, const std::string& origin) {
+  std::string out = "# A TNV-40 node's parameter set (" + origin + "). `tnvctl params import`\n"
                     "# applies it as one set; an edited file needs --edited (params_hash).\n\n[node]\n";
   out += "id = " + std::to_string(node_id) + "\n";
   out += "firmware_version = \"" + firmware_version_text(identity.firmware_version) + "\"\n";
@@ -152,9 +152,9 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   const auto build = (*node)["build_id"].value<std::string>();
   const auto protocol = (*node)["protocol_version"].value<std::int64_t>();
   const auto hash = (*node)["params_hash"].value<std::string>();
-  if (!id || *id < 1 || *id > 63 || !firmware || !build || !protocol || *protocol < 0 || !hash) {
+  if (!id || *id < 0 || *id > 63 || !firmware || !build || !protocol || *protocol < 0 || !hash) {
     error = line_of(*node) +
-            "[node] needs id (1..63), firmware_version, build_id, protocol_version and params_hash as an export "
+            "[node] needs id (1..63, 0 for a set not read from a node), firmware_version, build_id, protocol_version and params_hash as an export "
             "writes them";
     return std::nullopt;
   }

@@ -32,7 +32,7 @@ struct ParamValue {
 };
 
 struct ParamFile {
-  std::uint32_t node_id = 0;
+  std::uint32_t node_id = 0;  // 0: not read from a node (made by a tool: tnv-hil screw-fit)
   NodeIdentity identity;  // of the node exported from (firmware_version 0 / build_id 0: unknown)
   std::string exported_utc;
   std::string params_hash;           // as written in the file
@@ -45,8 +45,10 @@ struct ParamFile {
 // format_param_value().
 std::string params_hash(const std::vector<ParamValue>& params);
 
+// `origin` names what wrote the file, in its first comment line.
 std::string write_param_file(std::uint32_t node_id, const NodeIdentity& identity, const std::string& exported_utc,
-                             const std::vector<ParamValue>& params);
+                             const std::vector<ParamValue>& params,
+                             const std::string& origin = "tnvctl params export");
 
 // nullopt with `error` ("line L: why", naming the key) for a file that is
 // not TOML, lacks [node] or [params], names an unknown or read-only

@@ -41,13 +41,14 @@ struct CircleOptions {
   std::string csv;
   std::optional<double> gamma;  // both axes' sliding.gamma; unset: the papers'
   std::vector<std::string> sets;  // NAME=VALUE firmware parameters
+  std::vector<std::string> params_files;  // parameter files' [params], before the sets
 };
 
 int run_circle_command(const CircleOptions& o) {
   const auto kind = controller_or_report(o.controller);
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!kind || !scenario) return kExitBadInput;
-  const std::optional<fw::FirmwareConfig> configured = firmware_config_or_report(o.sets);
+  const std::optional<fw::FirmwareConfig> configured = firmware_config_or_report(o.params_files, o.sets);
   if (!configured) return kExitBadInput;
   fw::FirmwareConfig config = *configured;
   for (auto& axis : config.axis) axis.sliding.gamma = o.gamma.value_or(axis.sliding.gamma);
@@ -167,6 +168,9 @@ void add_circle_commands(CLI::App& app, Runner& run) {
   circle_cmd->add_option("--gamma", circle->gamma, "R-DVSC gamma of both axes (default: the papers', S1 Table 2)");
   circle_cmd->add_option("--set", circle->sets,
                          "NAME=VALUE: a firmware parameter as on the node, e.g. x.screw.backlash_um=10 (repeatable)");
+  circle_cmd->add_option("--params", circle->params_files,
+                         "a parameter file (tnvctl params export, tnv-hil screw-fit --params-out) applied before --set (repeatable)")
+      ->check(CLI::ExistingFile);
   circle_cmd->callback([&run, circle] { run = [circle] { return run_circle_command(*circle); }; });
 
   auto table3 = std::make_shared<Table3Options>();

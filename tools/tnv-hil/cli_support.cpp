@@ -7,8 +7,10 @@
 #include <fstream>
 
 #include "emulator/scenario_file.hpp"
+#include "emulator/text_file.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
+#include "tools/can/param_file.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/output_path.hpp"
 
@@ -105,6 +107,28 @@ std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<st
     return std::nullopt;
   }
   return settings.firmware;
+}
+
+std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& params_files,
+                                                            const std::vector<std::string>& assignments) {
+  constexpr std::size_t kMaxParamFileBytes = 1 << 20;
+  std::vector<std::string> all;
+  for (const std::string& path : params_files) {
+    std::string text, error;
+    if (!emu::read_text_file(path, kMaxParamFileBytes, text, error)) {
+      std::fprintf(stderr, "tnv-hil: --params: %s\n", error.c_str());
+      return std::nullopt;
+    }
+    const std::optional<can_host::ParamFile> file = can_host::read_param_file(text, error);
+    if (!file) {
+      std::fprintf(stderr, "tnv-hil: --params: %s: %s\n", path.c_str(), error.c_str());
+      return std::nullopt;
+    }
+    for (const can_host::ParamValue& v : file->params)
+      all.push_back(std::string(v.param->name) + "=" + can_host::format_param_value(*v.param, v.value));
+  }
+  all.insert(all.end(), assignments.begin(), assignments.end());  // --set after the files: it wins
+  return firmware_config_or_report(all);
 }
 
 }  // namespace tnv::cli

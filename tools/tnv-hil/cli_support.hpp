@@ -46,6 +46,10 @@ std::optional<fw::ControllerKind> controller_or_report(const std::string& name);
 // (the node's parameter names and ranges: x.screw.backlash_um=10), the
 // whole set validated; nullopt after a one-line message on stderr.
 std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& assignments);
+// The same with parameter files' [params] (tnvctl params export, tnv-hil
+// screw-fit --params-out) applied first, in order.
+std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& params_files,
+                                                            const std::vector<std::string>& assignments);
 
 // The four scenarios of S1 Table 3 (no-cut, cut-900, cut-1200, cut-1500);
 // nullopt, after the error is printed, when one cannot be built.

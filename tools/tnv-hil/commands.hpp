@@ -18,5 +18,6 @@ void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN se
 void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
 void add_homing_commands(CLI::App& app, Runner& run);       // homing (home switch and index, docs/safety.md)
+void add_screw_commands(CLI::App& app, Runner& run);        // screw-map, screw-fit (lead-error table)
 
 }  // namespace tnv::cli

@@ -81,7 +81,8 @@ can_host::ParamFile checked_file(const ImportOptions& o) {
 
 int run_import(const ImportOptions& o, Session& session, Report& report) {
   const can_host::ParamFile file = checked_file(o);
-  if (file.node_id != static_cast<std::uint32_t>(session.options().node) && !o.any_node)
+  // Node 0: a set made by a tool (tnv-hil screw-fit), for any node.
+  if (file.node_id != 0 && file.node_id != static_cast<std::uint32_t>(session.options().node) && !o.any_node)
     throw BadInput(o.path + " was exported from node " + std::to_string(file.node_id) + ", not node " +
                    std::to_string(session.options().node) + ": --any-node imports it anyway");
   can_host::NodeClient& client = session.client();

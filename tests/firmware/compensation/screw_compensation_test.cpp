@@ -1,6 +1,7 @@
 // Ball-screw compensation: half the backlash in the direction of travel,
 // reached at the stated rate, kept while holding, swapped at a reversal;
-// the cumulative lead error inverted exactly; off is exactly nothing.
+// the cumulative lead error inverted exactly; the per-turn table periodic
+// and interpolated; off is exactly nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,6 +76,52 @@ TEST(ScrewCompensation, OutOfRangeAndNonFiniteValuesAreRefusedByName) {
     EXPECT_FALSE(check.ok) << field;
     EXPECT_STREQ(check.field, field);
   }
+}
+
+ScrewCompensation with_turn_table() {
+  ScrewCompensation c;
+  c.turn_period_mm = 10.0;
+  for (std::size_t j = 0; j < kTurnErrorPoints; ++j) c.turn_error_mm[j] = 0.001 * static_cast<double>(j);  // 0 .. 15 um
+  return c;
+}
+
+TEST(ScrewCompensation, TheTurnTableIsPeriodicAndLinearBetweenItsPoints) {
+  const ScrewCompensation c = with_turn_table();
+  // Points at j * 10 / 16 = j * 0.625 mm, in any turn, either side of zero.
+  for (const double turn_mm : {0.0, 10.0, -10.0, 250.0, -250.0}) {
+    EXPECT_NEAR(turn_error_mm(c, turn_mm + 3 * 0.625), 0.003, 1e-12) << turn_mm;
+    EXPECT_NEAR(turn_error_mm(c, turn_mm + 3.5 * 0.625), 0.0035, 1e-12) << turn_mm;
+    // Between the last point and the next turn's first: 15 um back to 0.
+    EXPECT_NEAR(turn_error_mm(c, turn_mm + 15.5 * 0.625), 0.0075, 1e-12) << turn_mm;
+  }
+}
+
+TEST(ScrewCompensation, TheMotorGoesWhereTheTableMeetsTheReference) {
+  // A smooth per-turn error (4 um, one sine per turn), tabulated at its 16 points.
+  ScrewCompensation c;
+  c.lead_um_per_m = 60.0;
+  for (std::size_t j = 0; j < kTurnErrorPoints; ++j)
+    c.turn_error_mm[j] = 0.004 * std::sin(2.0 * 3.141592653589793 * static_cast<double>(j) / 16.0);
+  ScrewCompensator comp;
+  for (double x : {0.0, 1.3, 6.0, -7.77, 42.0}) {
+    const auto o = comp.advance(c, x, x, kTick_s);
+    const double p = x + o.now_mm;  // the motor position the axis is sent to
+    const double table_mm = p * (1.0 + 60e-6) + turn_error_mm(c, p);
+    EXPECT_NEAR(table_mm, x, 2e-5) << x;  // one fixed-point step: within 0.02 um
+  }
+}
+
+TEST(ScrewCompensation, TurnTableOutOfRangeOrNanIsRefusedByName) {
+  ScrewCompensation c = with_turn_table();
+  EXPECT_TRUE(validate(c).ok);
+  c.turn_error_mm[7] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_STREQ(validate(c).field, "turn_error_mm");
+  c.turn_error_mm[7] = 0.2;
+  EXPECT_STREQ(validate(c).field, "turn_error_mm");
+  c = with_turn_table();
+  c.turn_period_mm = 0.0;
+  EXPECT_STREQ(validate(c).field, "turn_period_mm");
+  EXPECT_FALSE(same(c, with_turn_table()));
 }
 
 }  // namespace

@@ -1,0 +1,128 @@
+// Lead-error measurement and its fit: the file read strictly, the fit
+// exact on a known screw, refusals for what cannot determine it, and on
+// the bench table the measured table taking the true contour error of the
+// S1 circle well below what backlash and cumulative lead compensation
+// leave (docs/robustness.md "Lead-error table").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "emulator/scenario_file.hpp"
+#include "tools/hil/circle_run.hpp"
+#include "tools/hil/gauge_file.hpp"
+#include "tools/hil/screw_fit.hpp"
+#include "tools/hil/screw_map_run.hpp"
+
+namespace tnv::hil {
+namespace {
+
+// A screw with b = 8 um, c = -45 um/m, a first and a second harmonic per 10 mm turn.
+double known_error_um(double p_mm, int d) {
+  const double w = 2.0 * std::numbers::pi / 10.0;
+  return -45.0 * p_mm * 1e-3 - 0.5 * d * 8.0 + 3.0 * std::sin(w * p_mm) + 1.0 * std::cos(2.0 * w * p_mm) + 7.0;
+}
+
+std::vector<GaugePoint> known_points() {
+  std::vector<GaugePoint> pts;
+  for (const int d : {1, -1})
+    for (int k = 0; k <= 64; ++k) {
+      const double p = -20.0 + 0.625 * k + 0.0001 * d;
+      pts.push_back({p, d, p + known_error_um(p, d) * 1e-3});
+    }
+  return pts;
+}
+
+TEST(ScrewFit, RecoversAKnownScrewExactly) {
+  std::string error;
+  const std::optional<ScrewFit> fit = fit_screw(known_points(), 10.0, error);
+  ASSERT_TRUE(fit) << error;
+  EXPECT_NEAR(fit->backlash_um, 8.0, 1e-6);
+  EXPECT_NEAR(fit->lead_um_per_m, -45.0, 1e-6);
+  EXPECT_LT(fit->residual_max_um, 1e-6);
+  for (std::size_t j = 0; j < fit->turn_error_um.size(); ++j) {
+    const double phase = 2.0 * std::numbers::pi * static_cast<double>(j) / 16.0;
+    EXPECT_NEAR(fit->turn_error_um[j], 3.0 * std::sin(phase) + std::cos(2.0 * phase), 1e-6) << j;
+  }
+  // The firmware's interpolated table reproduces the readings to within its interpolation.
+  for (const GaugePoint& p : known_points())
+    EXPECT_NEAR(fitted_error_um(*fit, p.position_mm, p.direction) + 7.0, known_error_um(p.position_mm, p.direction),
+                0.12);
+}
+
+TEST(ScrewFit, RefusesWhatCannotDetermineTheModel) {
+  std::vector<GaugePoint> forward_only;
+  for (const GaugePoint& p : known_points())
+    if (p.direction > 0) forward_only.push_back(p);
+  std::string error;
+  EXPECT_FALSE(fit_screw(forward_only, 10.0, error));
+  EXPECT_NE(error.find("each direction"), std::string::npos) << error;
+  std::vector<GaugePoint> short_span;
+  for (const GaugePoint& p : known_points())
+    if (p.position_mm < -14.0) short_span.push_back(p);
+  EXPECT_FALSE(fit_screw(short_span, 10.0, error));
+  EXPECT_NE(error.find("less than one turn"), std::string::npos) << error;
+  EXPECT_FALSE(fit_screw(known_points(), std::nan(""), error));
+}
+
+TEST(GaugeFile, RoundTripsAndRefusesBadLinesByNumber) {
+  const std::vector<GaugePoint> pts = known_points();
+  std::string error;
+  const auto back = read_gauge_file(write_gauge_file("x axis\nsecond line", pts), error);
+  ASSERT_TRUE(back) << error;
+  ASSERT_EQ(back->size(), pts.size());
+  EXPECT_NEAR((*back)[5].table_mm, pts[5].table_mm, 1e-6);
+  EXPECT_EQ((*back)[100].direction, -1);
+  const std::string header = "position_mm,direction,table_mm\n";
+  const std::pair<std::string, std::string> bad[] = {
+      {"1,1,1\n", "header"},
+      {header + "1,1\n", "line 2: expected 3"},
+      {header + "1,1,1,1\n", "line 2: expected 3"},
+      {header + "1,0,1\n", "direction"},
+      {header + "# ok\n1,1,nan\n", "line 3: table_mm"},
+      {header + "x,1,1\n", "position_mm"},
+      {header, "no measured points"}};
+  for (const auto& [text, why] : bad) {
+    EXPECT_FALSE(read_gauge_file(text, error)) << text;
+    EXPECT_NE(error.find(why), std::string::npos) << error;
+  }
+}
+
+TEST(ScrewMap, TheMeasuredTableHalvesWhatBacklashAndLeadCompensationLeaveOnTheBench) {
+  const emu::Scenario s = *emu::builtin_scenario("bench-no-cut");
+  const fw::FirmwareConfig plain = fw::default_firmware_config();
+  fw::FirmwareConfig measured = plain;
+  for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+    ScrewMapOptions o;
+    o.axis = axis;
+    const ScrewMapResult run = run_screw_map(s, plain, o);
+    ASSERT_TRUE(run.completed) << run.error;
+    std::string error;
+    const std::optional<ScrewFit> fit = fit_screw(run.points, 10.0, error);
+    ASSERT_TRUE(fit) << error;
+    // The bench's screw: 10 um lash (less what the axis settles inside it), +-60 um/m, +-4 um per turn.
+    const double lead_um_per_m = axis == hal::Axis::x ? 60.0 : -60.0;
+    EXPECT_NEAR(fit->backlash_um, 10.0, 2.0);
+    EXPECT_NEAR(fit->lead_um_per_m, lead_um_per_m, 6.0);
+    double peak_um = 0.0;
+    for (const double e : fit->turn_error_um) peak_um = std::max(peak_um, std::fabs(e));
+    EXPECT_NEAR(peak_um, 4.0, 0.5);
+    measured.axis[hal::index(axis)].screw = to_compensation(*fit, plain.axis[hal::index(axis)].screw);
+  }
+  ASSERT_TRUE(fw::validate(measured).ok());
+  // What the two scalars alone do (the true values, as if known exactly).
+  fw::FirmwareConfig scalars = plain;
+  for (fw::AxisConfig& a : scalars.axis) a.screw.backlash_mm = 0.010;
+  scalars.axis[0].screw.lead_um_per_m = 60.0;
+  scalars.axis[1].screw.lead_um_per_m = -60.0;
+  const CircleRunResult with_scalars = run_circle(s, scalars, fw::ControllerKind::rdvsc);
+  const CircleRunResult with_table = run_circle(s, measured, fw::ControllerKind::rdvsc);
+  ASSERT_TRUE(with_scalars.completed) << with_scalars.error;
+  ASSERT_TRUE(with_table.completed) << with_table.error;
+  EXPECT_LE(with_table.true_table_stats.mean_um, 0.5 * with_scalars.true_table_stats.mean_um)
+      << with_table.true_table_stats.mean_um << " vs " << with_scalars.true_table_stats.mean_um;
+  EXPECT_LT(with_table.true_table_stats.max_um, with_scalars.true_table_stats.max_um);
+}
+
+}  // namespace
+}  // namespace tnv::hil
