@@ -45,7 +45,15 @@ def nice_ceiling(v):
     return 10.0 * p
 
 
-def polar_panel(ax, row, radius_mm, suppressed, color):
+def axis_ceiling(v):
+    """A round upper limit at least v: a multiple of a 1-2-5 step near v / 5."""
+    if not v > 0:
+        return 1.0
+    step = nice_ceiling(v / 5.0)
+    return float(np.ceil(v / step) * step)
+
+
+def polar_panel(ax, row, radius_mm, suppressed, color, with_note=True):
     """Radial error about the nominal circle, magnified 1 / (1 - suppressed)."""
     cx, cy = centre_of(row)
     x = np.asarray(row["x_mm"], dtype=float) - cx
@@ -56,12 +64,12 @@ def polar_panel(ax, row, radius_mm, suppressed, color):
     worst = float(np.max(np.abs(error_um))) if error_um.size else 0.0
     r_max = max(2.0 * target_um, target_um + nice_ceiling(1.1 * worst))
     r_plot, clipped = clip(error_um + target_um, 0.0, r_max)
-    theta, r_plot = envelope_by_index(r_plot, [theta, r_plot], 4 * style.ENVELOPE_BUCKETS)
+    theta, r_plot = envelope_by_index(r_plot, [theta, r_plot], 720)
     ax.plot(np.linspace(0, 2 * np.pi, 361), np.full(361, target_um), color=style.REFERENCE_COLOR, lw=0.8, ls="--",
             zorder=1)
-    ax.plot(theta, r_plot, color=color, lw=0.7, zorder=2)
+    ax.plot(theta, r_plot, color=color, lw=0.4, zorder=2)
     ax.set_ylim(0.0, r_max)
-    step = nice_ceiling(r_max / 4.0)
+    step = nice_ceiling(r_max / 6.0)
     ticks = [target_um + k * step for k in range(-8, 9) if 0.0 <= target_um + k * step <= r_max + 1e-9]
     ax.set_yticks(ticks)
     ax.set_yticklabels([f"{t - target_um:+g}" if abs(t - target_um) > 1e-9 else "0" for t in ticks])
@@ -75,20 +83,42 @@ def polar_panel(ax, row, radius_mm, suppressed, color):
             f"rings: error in {style.UM}; dashed: nominal")
     if clipped:
         note += f"\n{clipped} samples drawn on the edge"
-    ax.set_title(note, fontsize=8, pad=8)
+    if with_note or clipped:
+        ax.set_title(note, fontsize=8, pad=8)
     return clipped
 
 
-def time_panel(ax, row, y_max_um, color):
+def bucket_stats(t, v, buckets):
+    """Per bucket of the time range: its first and last time, min, max and mean."""
+    t = np.asarray(t, dtype=float)
+    v = np.asarray(v, dtype=float)
+    if t.size == 0:
+        return (np.array([]),) * 5
+    span = max(float(t.max() - t.min()), 1e-12)
+    index = np.minimum(((t - t.min()) / span * buckets).astype(int), buckets - 1)
+    used = np.unique(index)
+    lo = np.array([v[index == b].min() for b in used])
+    hi = np.array([v[index == b].max() for b in used])
+    mean = np.array([v[index == b].mean() for b in used])
+    t_lo = np.array([t[index == b].min() for b in used])
+    t_hi = np.array([t[index == b].max() for b in used])
+    return t_lo, t_hi, lo, hi, mean
+
+
+def time_panel(ax, row, y_max_um, color, last=True):
     t = np.asarray(row["t_s"], dtype=float)
     e = np.asarray(row["contour_um"], dtype=float)
     e, clipped = clip(e, 0.0, y_max_um)
-    t, e = envelope(t, e, style.ENVELOPE_BUCKETS)
-    ax.plot(t, e, color=color, lw=0.6)
+    # Per pixel column: the min-max range shaded (every peak kept) and the mean as a line.
+    t_lo, t_hi, lo, hi, mean = bucket_stats(t, e, style.ENVELOPE_BUCKETS // 2)
+    centre = 0.5 * (t_lo + t_hi)
+    ax.fill_between(centre, lo, hi, color=color, alpha=0.35, lw=0)
+    ax.plot(centre, mean, color=color, lw=0.7)
     ax.set_ylim(0.0, y_max_um)
     if t.size:
         ax.set_xlim(0.0, max(float(t.max()), 1e-3))
-    ax.set_xlabel("time since start of motion (s)")
+    if last:
+        ax.set_xlabel("time since start of motion (s); shaded: min to max per column, line: mean")
     ax.set_ylabel(f"contour error ({style.UM})")
     s = row.get("stats") or {}
     if s:
@@ -104,14 +134,14 @@ def draw(data):
     radius_mm = float(data["radius_mm"])
     suppressed = float(data.get("suppressed", DEFAULT_SUPPRESSED))
     n = max(len(rows), 1)
-    fig = style.figure(style.DOUBLE_COLUMN_IN, 0.4 + 2.9 * n)
+    fig = style.figure(style.DOUBLE_COLUMN_IN, 0.5 + 3.0 * n)
     if data.get("title"):
         fig.suptitle(style.units(data["title"]))
     worst = max((float(np.max(r["contour_um"])) for r in rows if len(r["contour_um"])), default=0.0)
-    y_max = nice_ceiling(1.05 * worst)
+    y_max = axis_ceiling(1.05 * worst)
     grid = fig.add_gridspec(n, 2, width_ratios=[1.0, 1.6])
     for i, row in enumerate(rows):
         color = style.COLORS[i % len(style.COLORS)]
-        polar_panel(fig.add_subplot(grid[i, 0], projection="polar"), row, radius_mm, suppressed, color)
-        time_panel(fig.add_subplot(grid[i, 1]), row, y_max, color)
+        polar_panel(fig.add_subplot(grid[i, 0], projection="polar"), row, radius_mm, suppressed, color, i == 0)
+        time_panel(fig.add_subplot(grid[i, 1]), row, y_max, color, i + 1 == len(rows))
     return fig

@@ -93,6 +93,13 @@ def draw_panel(ax, panel, vlines=None):
         ax.set_yscale("log")
     if y_range is not None:
         ax.set_ylim(*y_range)
+    elif not log_y:
+        lo, hi = ax.get_ylim()
+        if hi - lo < 1e-6 * max(1.0, abs(hi)):  # a flat trace: give it room, not rounding noise
+            mid = 0.5 * (lo + hi)
+            ax.set_ylim(mid - 1.0, mid + 1.0)
+    if not log_y:
+        ax.ticklabel_format(axis="y", useOffset=False)
     if panel.get("x_range"):
         ax.set_xlim(*panel["x_range"])
     ax.set_ylabel(style.units(panel.get("y_label", "")))
