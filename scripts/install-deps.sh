@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgpiod-dev
   python3-canmatrix   # tests: an independent DBC parser decodes a recorded session
+  python3-matplotlib python3-numpy   # the figures: --plot runs tools/plot/tnvplot
+  python3-pytest      # tests: the plotting package (ctest -L plot)
 )
 
 exec "$(dirname "$0")/install-missing.sh" deps "${packages[@]}"

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "tests/can_host/tnvctl_runner.hpp"
@@ -229,10 +232,17 @@ TEST(TnvctlCli, MotionsRunAndReportTheirEndState) {
 
 TEST(TnvctlCli, PlotComparesSavedCapturesWithoutANode) {
   const auto state = test::state_dir("plot");
+  // A captured circle: one sample before the motion, then a turn of R = 6 mm.
   std::string csv = "t_s,pos_x_mm,pos_y_mm,ref_x_mm,ref_y_mm,contour_um,motion_tick\n";
   csv += "0.000,6.000000,0.000000,6.000000,0.000000,0,-1\n";
-  csv += "0.001,6.000000,0.000100,6.000000,0.000120,0.5,0\n";
-  csv += "0.002,5.999999,0.000300,6.000000,0.000320,1.5,1\n";
+  for (int k = 0; k < 400; ++k) {
+    const double a = 2.0 * std::acos(-1.0) * k / 400.0;
+    const double e = k % 2 == 0 ? 0.5 : 1.5;
+    char row[160];
+    std::snprintf(row, sizeof row, "%.3f,%.6f,%.6f,%.6f,%.6f,%.1f,%d\n", (k + 1) * 1e-3, (6.0 + e * 1e-3) * std::cos(a),
+                  (6.0 + e * 1e-3) * std::sin(a), 6.0 * std::cos(a), 6.0 * std::sin(a), e, k);
+    csv += row;
+  }
   const auto a = test::write_file(state / "a.csv", csv);
   const auto b = test::write_file(state / "b.csv", csv);
   std::string args = "plot --csv ";
@@ -241,7 +251,11 @@ TEST(TnvctlCli, PlotComparesSavedCapturesWithoutANode) {
   ToolRun r = test::tnvctl(state, args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(has(r.out, "first                    max 1.5000 um   mean 1.0000 um   std 0.5000 um")) << r.out;
-  EXPECT_TRUE(std::filesystem::exists(state / "cmp.svg"));
+  std::ifstream svg(state / "cmp.svg");
+  std::stringstream figure;
+  figure << svg.rdbuf();
+  EXPECT_EQ(figure.str().rfind("<?xml", 0), 0u) << "an SVG document";
+  EXPECT_NE(figure.str().find("second"), std::string::npos) << "both rows";
   const auto bad = test::write_file(state / "bad.csv", "t_s,pos_x_mm\n0,1\n0.001\n");
   std::string bad_args = "plot --csv ";
   r = test::tnvctl(state, bad_args.append(bad.string()).append(" --out x.svg"));

@@ -70,6 +70,13 @@ TEST(TnvHilCli, Table3JsonHasTwelveRowsAndThePidGains) {
   EXPECT_NE(r.err.find("[table3]"), std::string::npos) << "progress goes to stderr";
 }
 
+TEST(TnvHilCli, RefusesAFigureOfAnUnknownFormatBeforeTheRun) {
+  const CliRun r = run_tnv_hil("circle --plot " + (std::filesystem::temp_directory_path() / "c.gif").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".svg, .png or .pdf"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "") << "nothing was run";
+}
+
 TEST(TnvHilCli, CircleWritesPlotAndCsv) {
   const auto dir = std::filesystem::temp_directory_path() / ("tnv_hil_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -79,9 +86,12 @@ TEST(TnvHilCli, CircleWritesPlotAndCsv) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["results"][0]["controller"], "pid");
   std::ifstream svg(dir / "c.svg");
-  std::string head(5, '\0');
-  svg.read(head.data(), 5);
-  EXPECT_EQ(head, "<svg ");
+  std::stringstream figure;
+  figure << svg.rdbuf();
+  EXPECT_EQ(figure.str().rfind("<?xml", 0), 0u) << "an SVG document";
+  EXPECT_NE(figure.str().find("<svg"), std::string::npos);
+  EXPECT_NE(figure.str().find("contour error (\u00b5m)"), std::string::npos) << "micrometres on the axis";
+  EXPECT_TRUE(std::filesystem::exists(dir / "c.plot.json")) << "the figure's data, kept beside it";
   std::ifstream csv(dir / "c.csv");
   std::string line;
   int lines = 0;

@@ -39,6 +39,15 @@ std::string output_file_problem(const std::string& path) {
   return writable_dir_problem(dir, path);
 }
 
+std::string plot_file_problem(const std::string& path) {
+  std::string problem = output_file_problem(path);
+  if (!problem.empty() || path == "-") return path == "-" ? path + ": a figure needs a file" : problem;
+  const std::string suffix = fs::path(path).extension().string();
+  if (suffix != ".svg" && suffix != ".png" && suffix != ".pdf")
+    return path + ": a figure is .svg, .png or .pdf (the suffix chooses)";
+  return {};
+}
+
 std::string output_dir_problem(const std::string& path) {
   if (path.empty()) return "an empty output directory";
   fs::path p(path);
@@ -57,6 +66,10 @@ std::string output_dir_problem(const std::string& path) {
 
 CLI::Validator OutputFile() {
   return CLI::Validator(output_file_problem, "FILE", "writable output file");
+}
+
+CLI::Validator PlotFile() {
+  return CLI::Validator(plot_file_problem, "FILE", "writable .svg, .png or .pdf");
 }
 
 CLI::Validator OutputDir() {

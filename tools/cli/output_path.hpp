@@ -11,6 +11,9 @@ namespace tnv::cli {
 // writable, and the path is absent or a regular file (not a directory, a
 // FIFO, a device); else what is wrong, naming the path.
 std::string output_file_problem(const std::string& path);
+// output_file_problem(), and the suffix names a figure format the plotter
+// writes: .svg, .png or .pdf.
+std::string plot_file_problem(const std::string& path);
 // "" when `path` is or can be made a writable directory (the nearest
 // existing ancestor is a writable directory).
 std::string output_dir_problem(const std::string& path);
@@ -23,5 +26,6 @@ bool write_file_replacing(const std::string& path, const std::string& text);
 // The same as CLI11 validators (->check(OutputFile())).
 CLI::Validator OutputFile();
 CLI::Validator OutputDir();
+CLI::Validator PlotFile();
 
 }  // namespace tnv::cli

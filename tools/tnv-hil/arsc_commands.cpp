@@ -13,7 +13,7 @@
 #include "firmware/adaptive/arsc/closed_loop_matrix.hpp"
 #include "firmware/adaptive/arsc/faithful_gain_solve.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/hil/arsc_plot.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/hil/arsc_run.hpp"
 #include "tools/hil/arsc_tick_study.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
@@ -211,7 +211,7 @@ int run_run(const RunOptions& o) {
   } else {
     print_run_text(r);
   }
-  if (!o.plot.empty() && !write_svg(o.plot, hil::arsc_run_figure(r))) return kExitFailure;
+  if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_run_plot_data(r))) return kExitFailure;
   return kExitOk;
 }
 
@@ -249,7 +249,7 @@ int run_compare(const CompareOptions& o) {
       std::printf("  %-6s | %-32s | %-32s\n", to_string(faithful[i].config.poles), a, b);
     }
   }
-  if (!o.plot.empty() && !write_svg(o.plot, hil::arsc_compare_figure(faithful, robust))) return kExitFailure;
+  if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_compare_plot_data(faithful, robust))) return kExitFailure;
   return kExitOk;
 }
 
@@ -441,7 +441,7 @@ int run_tick(const TickOptions& o) {
   } else {
     print_tick_text(runs);
   }
-  if (!o.plot.empty() && !write_svg(o.plot, hil::arsc_tick_figure(runs))) return kExitFailure;
+  if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_tick_plot_data(runs))) return kExitFailure;
   for (const auto& r : runs)
     if (!r.error.empty() || !r.fault.empty()) return kExitFailure;
   return kExitOk;
@@ -467,7 +467,7 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
       ->required()
       ->check(CLI::IsMember({"faithful", "robust"}));
   rc->add_flag("--json", r->json, "print JSON on stdout (summary and the trace)");
-  rc->add_option("--plot", r->plot, "write the run's figure (SVG)")->check(tnv::cli::OutputFile());
+  rc->add_option("--plot", r->plot, "write the run's figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   rc->add_option("--forgetting", r->forgetting, "estimator forgetting factor (default: faithful 0.98, robust 0.05)")
       ->check(CLI::Range(1e-6, 1.0));
   rc->add_option("--p0", r->p0, "estimator initial covariance (default: faithful 1, robust 10)")
@@ -477,7 +477,7 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
   auto cmp = std::make_shared<CompareOptions>();
   CLI::App* cc = arsc->add_subcommand("compare", "both variants, four pole sets, side by side");
   cc->add_flag("--json", cmp->json, "print JSON on stdout");
-  cc->add_option("--plot", cmp->plot, "write the comparison figure (SVG)")->check(tnv::cli::OutputFile());
+  cc->add_option("--plot", cmp->plot, "write the comparison figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cc->callback([&run, cmp] { run = [cmp] { return run_compare(*cmp); }; });
 
   auto tick = std::make_shared<TickOptions>();
@@ -497,7 +497,7 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
                "freeze the cutting-gain estimate at the test stage's (no adaptation; with --period-ms)")
       ->needs(period);
   tc->add_flag("--json", tick->json, "print JSON on stdout");
-  tc->add_option("--plot", tick->plot, "write the figure (SVG)")->check(tnv::cli::OutputFile());
+  tc->add_option("--plot", tick->plot, "write the figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   tc->callback([&run, tick] { run = [tick] { return run_tick(*tick); }; });
 }
 

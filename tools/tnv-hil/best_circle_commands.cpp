@@ -322,7 +322,7 @@ void add_best_circle_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
-  cmd->add_option("--plot-dir", o->plot_dir, "write one before/after SVG figure per scenario here")->check(tnv::cli::OutputDir());
+  cmd->add_option("--plot-dir", o->plot_dir, "write one before/after SVG figure (and its .plot.json data) per scenario here")->check(tnv::cli::OutputDir());
   cmd->add_option("--ff-fraction", o->fraction, "share of the identified friction model fed forward")
       ->check(CLI::Range(0.0, 1.5))
       ->capture_default_str();

@@ -16,7 +16,7 @@
 #include "tools/cli/output_path.hpp"
 #include "tools/can/boring_node_sweep.hpp"
 #include "tools/hil/boring_node_resolution.hpp"
-#include "tools/hil/boring_plot.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/hil/boring_report.hpp"
 #include "tools/hil/boring_sweep.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
@@ -117,7 +117,7 @@ int run_boring_command(const BoringOptions& o) {
     char title[200];
     std::snprintf(title, sizeof title, "S4 adaptive boring: sigma_d = %g mm, alpha0 = %g, S0 = %g mm/rev", o.sigma_mm,
                   o.alpha0, o.s0_mm_rev);
-    ok = write_svg(o.plot, hil::boring_figure(title, request, result)) && ok;
+    ok = write_figure(o.plot, hil::boring_plot_data(title, request, result)) && ok;
   }
   if (!result.error.empty()) std::fprintf(stderr, "tnv-hil: run failed: %s\n", result.error.c_str());
   return ok ? kExitOk : kExitFailure;
@@ -140,7 +140,7 @@ void add_boring_commands(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--seeds", o->seeds, "runs with gauge-noise seeds 1..N")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
-  cmd->add_option("--plot", o->plot, "write the figure (SVG)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--plot", o->plot, "write the figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->add_option("--gain-form", o->gain_form, "Sigma in eqs. (5)/(6): normalised (1, 1) | kalman (Sigma, Sigma) | printed (Sigma, 1)")
       ->check(CLI::IsMember({"normalised", "kalman", "printed"}))
       ->capture_default_str();

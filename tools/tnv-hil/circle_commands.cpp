@@ -9,7 +9,7 @@
 
 #include "firmware/tick/firmware_config.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/hil/circle_plot.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/hil/plant_check.hpp"
 #include "tools/hil/report.hpp"
 #include "tools/hil/seed_sweep.hpp"
@@ -163,7 +163,7 @@ void add_circle_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   circle_cmd->add_flag("--json", circle->json, "print JSON on stdout");
-  circle_cmd->add_option("--plot", circle->plot, "write the polar + contour-error plot (SVG)")->check(tnv::cli::OutputFile());
+  circle_cmd->add_option("--plot", circle->plot, "write the polar + contour-error plot (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   circle_cmd->add_option("--csv", circle->csv, "write the seed-0 trace (CSV)")->check(tnv::cli::OutputFile());
   circle_cmd->add_option("--gamma", circle->gamma, "R-DVSC gamma of both axes (default: the papers', S1 Table 2)");
   circle_cmd->add_option("--set", circle->sets,
@@ -179,7 +179,7 @@ void add_circle_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   table3_cmd->add_flag("--json", table3->json, "print JSON on stdout");
-  table3_cmd->add_option("--plot-dir", table3->plot_dir, "write one SVG figure per scenario here")->check(tnv::cli::OutputDir());
+  table3_cmd->add_option("--plot-dir", table3->plot_dir, "write one SVG figure (and its .plot.json data) per scenario here")->check(tnv::cli::OutputDir());
   table3_cmd->callback([&run, table3] { run = [table3] { return run_table3_command(*table3); }; });
 
   auto plant = std::make_shared<PlantCheckOptions>();

@@ -13,6 +13,7 @@
 #include "tools/can/param_file.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/output_path.hpp"
+#include "tools/cli/run_plotter.hpp"
 
 namespace tnv::cli {
 
@@ -69,19 +70,13 @@ bool write_text(const std::string& path, const std::string& content) {
   return true;
 }
 
-bool write_svg(const std::string& path, const hil::SvgWriter& svg) {
-  std::string error;
-  if (!svg.save(path, error)) {
-    std::fprintf(stderr, "tnv-hil: %s\n", error.c_str());
-    return false;
-  }
-  std::fprintf(stderr, "[plot] wrote %s\n", path.c_str());
-  return true;
+bool write_figure(const std::string& path, const nlohmann::json& plot_data) {
+  return plot_json(path, plot_data, "tnv-hil");
 }
 
 bool write_plot(const std::string& path, const std::string& title, double radius_mm,
                 const std::vector<hil::PlotRow>& rows) {
-  return write_svg(path, hil::circle_figure(title, radius_mm, rows));
+  return write_figure(path, hil::circle_plot_data(title, radius_mm, rows));
 }
 
 std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& assignments) {

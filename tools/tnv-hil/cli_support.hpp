@@ -11,7 +11,9 @@
 #include "emulator/scenario.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/tick/firmware_config.hpp"
-#include "tools/hil/circle_plot.hpp"
+#include <nlohmann/json.hpp>
+
+#include "tools/hil/plot_data.hpp"
 
 namespace tnv::cli {
 
@@ -57,7 +59,8 @@ std::optional<std::vector<emu::Scenario>> resolve_table3_scenarios_or_report();
 
 // Write helpers: print a one-line error on failure and return false.
 bool write_text(const std::string& path, const std::string& content);
-bool write_svg(const std::string& path, const hil::SvgWriter& svg);
+// A figure (SVG, PNG or PDF by its suffix) from its plot data (tools/hil/plot_data.hpp).
+bool write_figure(const std::string& path, const nlohmann::json& plot_data);
 bool write_plot(const std::string& path, const std::string& title, double radius_mm,
                 const std::vector<hil::PlotRow>& rows);
 

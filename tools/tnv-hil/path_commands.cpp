@@ -10,7 +10,8 @@
 #include "tools/cli/output_path.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/hil/best_circle.hpp"
-#include "tools/hil/path_plot.hpp"
+#include "tools/cli/run_plotter.hpp"
+#include "tools/hil/path_csv.hpp"
 #include "tools/hil/path_run.hpp"
 #include "tools/hil/report.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
@@ -100,8 +101,17 @@ int run_path_command(const PathOptions& o) {
   if ((!o.plot.empty() || !o.csv.empty()) && !seed0.samples.empty()) {
     const std::string title = "tnv-hil path " + std::filesystem::path(o.file).filename().string() + ", " +
                               o.controller + ", " + scenario->name + " (seed 0)";
-    if (!o.plot.empty()) ok = write_svg(o.plot, hil::path_figure(title, seed0.program, seed0)) && ok;
-    if (!o.csv.empty()) ok = write_text(o.csv, hil::path_csv(seed0.program, seed0)) && ok;
+    // The figure is drawn from the CSV: --csv's file, or one kept beside the figure.
+    const std::string csv = o.csv.empty() ? plot_data_path(o.plot, ".plot.csv") : o.csv;
+    const bool csv_written = write_text(csv, hil::path_csv(seed0.program, seed0));
+    ok = csv_written && ok;
+    if (csv_written && !o.plot.empty()) {
+      const hil::PathScore& s = seed0.score;
+      char score[200];
+      std::snprintf(score, sizeof score, "\ncontour error max %.3f um, mean %.3f um; feed ratio %.3f, cycle %.2f s",
+                    s.contour_error_max_um, s.contour_error_mean_um, s.feed_ratio, s.cycle_time_s);
+      ok = plot_files(o.plot, "path", {csv}, {"--title", title + score}, "tnv-hil") && ok;
+    }
   }
   return ok ? kExitOk : kExitFailure;
 }
@@ -127,7 +137,7 @@ void add_path_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
-  cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (SVG)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (.svg, .png or .pdf)")->check(tnv::cli::OutputFile());
   cmd->add_option("--csv", o->csv, "write seed 0's ticks: reference, position, contour error, path speed (CSV)")->check(tnv::cli::OutputFile());
   cmd->callback([&run, o] { run = [o] { return run_path_command(*o); }; });
 }

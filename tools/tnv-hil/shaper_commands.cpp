@@ -15,7 +15,7 @@
 #include "tools/hil/shaper_design_report.hpp"
 #include "tools/hil/shaper_jog_run.hpp"
 #include "tools/hil/shaper_move_compare.hpp"
-#include "tools/hil/shaper_plot.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -68,7 +68,7 @@ int run_shaper_design(const ShaperDesignOptions& o) {
     std::cout << hil::shaper_design_json(spec).dump(2) << '\n';
   else
     std::cout << hil::shaper_design_text(spec);
-  if (!o.plot.empty() && !write_svg(o.plot, hil::shaper_sensitivity_figure(spec))) return kExitFailure;
+  if (!o.plot.empty() && !write_figure(o.plot, hil::shaper_sensitivity_plot_data(spec))) return kExitFailure;
   return kExitOk;
 }
 
@@ -195,7 +195,7 @@ int run_move_command(const MoveOptions& o) {
     char title[200];
     std::snprintf(title, sizeof title, "%s: %.4g mm on %s, unshaped vs %s at %.4g Hz (seed 0)", scenario->name.c_str(),
                   o.distance_mm, o.axis.c_str(), o.shaper.c_str(), spec.mode.freq_hz);
-    if (!write_svg(o.plot, hil::move_figure(title, c))) return kExitFailure;
+    if (!write_figure(o.plot, hil::move_plot_data(title, c))) return kExitFailure;
   }
   return kExitOk;
 }
@@ -314,7 +314,7 @@ int run_jog_command(const JogOptions& o) {
     }
   }
   if (!o.plot.empty() &&
-      !write_svg(o.plot, hil::jog_figure(scenario->name + ": operator jog through the real-time shaper", u, s)))
+      !write_figure(o.plot, hil::jog_plot_data(scenario->name + ": operator jog through the real-time shaper", u, s)))
     return kExitFailure;
   return kExitOk;
 }
@@ -378,7 +378,7 @@ int run_grid_command(const GridOptions& o) {
       std::cout << buf;
     }
   }
-  if (!o.plot.empty() && !write_svg(o.plot, hil::grid_method_figure({fw::ShaperType::zv, fw::ShaperType::zvd,
+  if (!o.plot.empty() && !write_figure(o.plot, hil::grid_method_plot_data({fw::ShaperType::zv, fw::ShaperType::zvd,
                                                                      fw::ShaperType::zvdd, fw::ShaperType::mzv},
                                                                     o.zeta)))
     return kExitFailure;
@@ -400,7 +400,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   design->add_option("--freq2-hz", d->freq2_hz, "second mode (two-mode shaper by convolution), 5..200 Hz");
   design->add_option("--zeta", d->zeta, "damping ratio of the mode(s), 0..0.3")->capture_default_str();
   design->add_flag("--json", d->json, "print JSON on stdout");
-  design->add_option("--plot", d->plot, "write the sensitivity curves (SVG)")->check(tnv::cli::OutputFile());
+  design->add_option("--plot", d->plot, "write the sensitivity curves (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   design->callback([&run, d] { run = [d] { return run_shaper_design(*d); }; });
 
   auto m = std::make_shared<MoveOptions>();
@@ -419,7 +419,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   move->add_flag("--json", m->json, "print JSON on stdout");
-  move->add_option("--plot", m->plot, "write the seed-0 traces (SVG)")->check(tnv::cli::OutputFile());
+  move->add_option("--plot", m->plot, "write the seed-0 traces (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   move->callback([&run, m] { run = [m] { return run_move_command(*m); }; });
 
   auto j = std::make_shared<JogOptions>();
@@ -441,7 +441,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   jog->add_option("--path-jerk", j->path_jerk_mm_s3, "the planner's jerk limit on both axes, mm/s^3")
       ->check(CLI::Range(1.0, 1e9));
   jog->add_flag("--json", j->json, "print JSON on stdout");
-  jog->add_option("--plot", j->plot, "write the traces (SVG)")->check(tnv::cli::OutputFile());
+  jog->add_option("--plot", j->plot, "write the traces (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   jog->callback([&run, j] { run = [j] { return run_jog_command(*j); }; });
 
   auto g = std::make_shared<GridOptions>();
@@ -449,7 +449,7 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
       "grid", "residual left at the design frequency by rounding, splitting and the exact taps, 5-200 Hz");
   grid->add_option("--zeta", g->zeta, "damping ratio, 0..0.3")->capture_default_str();
   grid->add_flag("--json", g->json, "print JSON on stdout");
-  grid->add_option("--plot", g->plot, "write the residual-vs-frequency figure (SVG)")->check(tnv::cli::OutputFile());
+  grid->add_option("--plot", g->plot, "write the residual-vs-frequency figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   grid->callback([&run, g] { run = [g] { return run_grid_command(*g); }; });
 }
 

@@ -10,7 +10,7 @@
 #include "firmware/tick/firmware_config.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/hil/hil_rig.hpp"
-#include "tools/hil/soak_plot.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/hil/soak_run.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
@@ -130,7 +130,7 @@ int run_soak_command(const SoakOptions& o) {
   }
   bool ok = r.passed();
   if (!r.error.empty()) std::fprintf(stderr, "tnv-hil: soak: %s\n", r.error.c_str());
-  if (!o.plot.empty()) ok = write_svg(o.plot, hil::soak_figure(r, scenario->name)) && ok;
+  if (!o.plot.empty()) ok = write_figure(o.plot, hil::soak_plot_data(r, scenario->name)) && ok;
   return ok ? kExitOk : kExitFailure;
 }
 
@@ -147,7 +147,7 @@ void add_soak_commands(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "print JSON on stdout (with every cycle)");
-  cmd->add_option("--plot", opts->plot, "write the per-cycle figure (SVG)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--plot", opts->plot, "write the per-cycle figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->callback([&run, opts] { run = [opts] { return run_soak_command(*opts); }; });
 }
 

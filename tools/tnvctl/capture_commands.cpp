@@ -15,8 +15,8 @@
 
 #include "firmware/can/param_table.hpp"
 #include "tools/cli/output_path.hpp"
+#include "tools/cli/run_plotter.hpp"
 #include "tools/can/capture_csv.hpp"
-#include "tools/can/capture_plot.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -143,9 +143,15 @@ void write_outputs(const CaptureOptions& o, const can_host::CaptureTable& table,
     }
     std::string label = o.label;
     if (label.empty()) label = stats ? "captured circle" : "capture";
-    const hil::SvgWriter svg = can_host::capture_figure(title, label, table);
-    std::string error;
-    if (!svg.save(o.plot, error)) throw RunFailed(error);
+    // Drawn from the CSV: --csv's file, or one kept beside the figure. The
+    // plotter chooses the panels from what the capture is (a circle or not).
+    const std::string csv = o.csv.empty() ? cli::plot_data_path(o.plot, ".plot.csv") : o.csv;
+    if (o.csv.empty() && !cli::write_file_replacing(csv, can_host::capture_csv(table))) {
+      std::string message = csv;
+      throw RunFailed(message.append(": cannot write"));
+    }
+    const std::string error = cli::run_plotter("capture", {csv}, o.plot, {"--title", title, "--label", label});
+    if (!error.empty()) throw RunFailed(error);
     std::string text = "[plot] wrote ";
     report.line(text.append(o.plot));
     report.data["plot"] = o.plot;
@@ -288,7 +294,7 @@ void add_capture_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("--tail-s", o->tail_s,
                   "keep recording this long after the motion, then stop (with --trigger immediate: the settling)");
   cmd->add_option("--csv", o->csv, "write the samples (CSV)")->check(tnv::cli::OutputFile());
-  cmd->add_option("--plot", o->plot, "write the plot (SVG)")->check(tnv::cli::OutputFile());
+  cmd->add_option("--plot", o->plot, "write the plot (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->add_option("--title", o->title, "plot title");
   cmd->add_option("--label", o->label, "plot row label");
   cmd->callback([&slot, o] {

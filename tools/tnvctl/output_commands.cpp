@@ -8,8 +8,8 @@
 
 #include "emulator/text_file.hpp"
 #include "tools/cli/output_path.hpp"
+#include "tools/cli/run_plotter.hpp"
 #include "tools/can/capture_csv.hpp"
-#include "tools/can/capture_plot.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -53,11 +53,11 @@ int run_plot(const PlotOptions& o, Session&, Report& report) {
     }
     tables.push_back(std::move(*t));
   }
-  std::vector<can_host::LabelledCapture> rows;
+  std::vector<std::string> plot_args = {"--title", o.title};
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const std::string label = o.labels.empty() ? std::filesystem::path(o.csv[i]).stem().string() : o.labels[i];
-    rows.push_back({label, &tables[i]});
+    plot_args.insert(plot_args.end(), {"--label", label});
     std::string error;
     nlohmann::json row = {{"csv", o.csv[i]}, {"label", label}};
     if (const auto stats = can_host::score_circle(tables[i], error)) {
@@ -69,12 +69,10 @@ int run_plot(const PlotOptions& o, Session&, Report& report) {
     }
     list.push_back(row);
   }
-  const bool circles = std::all_of(tables.begin(), tables.end(), [](const auto& t) { return can_host::is_circle_capture(t); });
-  if (!circles && tables.size() > 1) throw BadInput("comparing several captures needs circle captures (motion_tick, contour, ref_x/y, pos_x/y)");
-  const hil::SvgWriter svg = circles ? can_host::circle_comparison_figure(o.title, rows)
-                                     : can_host::channel_figure(o.title, tables.front());
-  std::string error;
-  if (!svg.save(o.out, error)) throw RunFailed(error);
+  // The plotter draws circle captures as rows of the S1 figure and refuses
+  // to compare anything else; one other capture is drawn channel by channel.
+  const std::string error = cli::run_plotter("capture", o.csv, o.out, plot_args);
+  if (!error.empty()) throw RunFailed(error);
   std::string text = "[plot] wrote ";
   report.line(text.append(o.out));
   report.data["rows"] = list;
@@ -93,7 +91,7 @@ void add_output_commands(CLI::App& app, ActionSlot& slot) {
   CLI::App* cmd = app.add_subcommand("plot", "plot captures saved with `capture --csv`, one row each (no device needed)");
   cmd->add_option("--csv", o->csv, "a capture CSV (repeat to compare)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--label", o->labels, "row label per --csv (default: the file name)");
-  cmd->add_option("--out", o->out, "the SVG to write")->required()->check(tnv::cli::OutputFile());
+  cmd->add_option("--out", o->out, "the figure to write (.svg, .png or .pdf)")->required()->check(tnv::cli::PlotFile());
   cmd->add_option("--title", o->title, "figure title")->capture_default_str();
   cmd->callback([&slot, o] {
     slot = Action{"plot", false, [o](Session& s, Report& r) { return run_plot(*o, s, r); }, [o] { check_plot(*o); }};

@@ -1,0 +1,134 @@
+"""The plotting package: decimation, clipping, units and every figure kind."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import fixtures
+from tnvplot import capture, circle, panels, render, style
+from tnvplot.envelope import clip, envelope, envelope_by_index
+
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+
+
+def test_envelope_keeps_min_and_max_of_every_bucket():
+    rng = np.random.default_rng(1)
+    x = np.arange(19000) * 1e-3
+    y = rng.normal(size=x.size)
+    y[12345] = 40.0  # a single-sample spike
+    y[777] = -40.0
+    buckets = 300
+    xd, yd = envelope(x, y, buckets)
+    assert xd.size <= 2 * buckets
+    assert 40.0 in yd and -40.0 in yd
+    edges = np.minimum(((x - x.min()) / np.ptp(x) * buckets).astype(int), buckets - 1)
+    kept = np.minimum(((xd - x.min()) / np.ptp(x) * buckets).astype(int), buckets - 1)
+    for b in range(buckets):
+        assert y[edges == b].min() in yd[kept == b]
+        assert y[edges == b].max() in yd[kept == b]
+    assert np.all(np.diff(xd) >= 0)  # still in time order
+
+
+def test_envelope_leaves_short_traces_alone():
+    x, y = np.arange(10.0), np.arange(10.0) ** 2
+    xd, yd = envelope(x, y, 100)
+    assert np.array_equal(xd, x) and np.array_equal(yd, y)
+
+
+def test_envelope_by_index_keeps_the_extremes_of_a_polar_trace():
+    r = np.ones(10000)
+    r[4321] = 9.0
+    theta = np.linspace(0, 2 * np.pi, r.size)
+    t2, r2 = envelope_by_index(r, [theta, r], 100)
+    assert r2.max() == 9.0 and t2[np.argmax(r2)] == theta[4321]
+
+
+def test_clipping_keeps_out_of_range_points_on_the_edge():
+    y = np.array([0.5, 3.0, -2.0, 1.0])
+    clipped, count = clip(y, 0.0, 2.0)
+    assert clipped.tolist() == [0.5, 2.0, 0.0, 1.0]
+    assert count == 2 and clipped.size == y.size
+
+
+def test_panel_draws_clipped_samples_and_says_so():
+    fig = panels.draw(fixtures.panels_data())
+    force = fig.axes[0]
+    texts = " ".join(t.get_text() for t in force.texts)
+    assert "beyond the axis drawn on its edge" in texts
+    edge = [line for line in force.get_lines() if line.get_marker() == "|"]
+    assert edge and np.all(np.asarray(edge[0].get_ydata()) == 2.0)
+
+
+def test_units_spell_micrometres():
+    assert style.units("contour error (um)") == "contour error (\u00b5m)"
+    assert style.units("max 3 um") == "max 3 \u00b5m"
+    assert style.units("drum") == "drum"
+
+
+def test_circle_axes_say_micrometres_and_state_the_suppression():
+    fig = circle.draw(fixtures.circle_data())
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert "contour error (\u00b5m)" in labels
+    assert "um" not in " ".join(labels).replace("\u00b5m", "")
+    polar_title = fig.axes[0].get_title()
+    assert "99.8 % of R = 6 mm" in polar_title and "500\u00d7" in polar_title and "\u00b5m" in polar_title
+
+
+def test_circle_time_trace_is_decimated_but_keeps_the_spike():
+    fig = circle.draw(fixtures.circle_data(rows=1))
+    ax = fig.axes[1]
+    assert len(ax.get_lines()[0].get_ydata()) <= style.ENVELOPE_BUCKETS  # the mean per column
+    shaded = ax.collections[0].get_paths()[0].vertices[:, 1]  # min to max per column
+    assert shaded.max() == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("suffix", [".svg", ".png", ".pdf"])
+def test_every_kind_renders(tmp_path, suffix):
+    made = {
+        "circle": [fixtures.write_json(tmp_path / "c.json", fixtures.circle_data())],
+        "panels": [fixtures.write_json(tmp_path / "p.json", fixtures.panels_data())],
+        "path": [fixtures.path_csv(tmp_path / "path.csv")],
+        "capture": [fixtures.capture_csv(tmp_path / "cap.csv", "circle")],
+    }
+    for kind, inputs in made.items():
+        out = tmp_path / f"{kind}{suffix}"
+        render(kind, [str(p) for p in inputs], str(out), title="a figure")
+        head = out.read_bytes()[:200]
+        assert out.stat().st_size > 1000
+        if suffix == ".svg":
+            assert head.startswith(b"<?xml") and b"<svg" in out.read_bytes()[:2000]
+        elif suffix == ".png":
+            assert head.startswith(b"\x89PNG")
+        else:
+            assert head.startswith(b"%PDF")
+
+
+def test_straight_move_capture_has_no_circle_panel(tmp_path):
+    table = capture.read_csv(fixtures.capture_csv(tmp_path / "line.csv", "line"))
+    assert not capture.is_circle(table)
+    fig = capture.draw([table], ["move"], "a straight move")
+    assert all(ax.name != "polar" for ax in fig.axes)
+    assert any("following error x" in ax.get_ylabel() for ax in fig.axes)
+
+
+def test_circle_capture_draws_the_polar_plot(tmp_path):
+    table = capture.read_csv(fixtures.capture_csv(tmp_path / "c.csv", "circle"))
+    assert capture.is_circle(table)
+    fig = capture.draw([table, table], ["before", "after"], "two circles")
+    assert sum(ax.name == "polar" for ax in fig.axes) == 2
+
+
+def test_comparing_a_straight_move_is_refused(tmp_path):
+    line = capture.read_csv(fixtures.capture_csv(tmp_path / "l.csv", "line"))
+    with pytest.raises(ValueError):
+        capture.draw([line, line], ["a", "b"])
+
+
+def test_command_line_names_a_bad_suffix(tmp_path):
+    data = fixtures.write_json(tmp_path / "p.json", fixtures.panels_data())
+    r = subprocess.run([sys.executable, "-m", "tnvplot", "panels", str(data), str(tmp_path / "x.gif")],
+                       cwd=PACKAGE_DIR, capture_output=True, text=True)
+    assert r.returncode == 1 and "x.gif" in r.stderr and ".svg" in r.stderr
