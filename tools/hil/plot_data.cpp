@@ -13,6 +13,18 @@ namespace {
 
 constexpr const char* kBoringPositionColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2"};
 
+// Eight significant digits: a plot's data needs no more (1 nm at 10 mm),
+// and nlohmann writes each value in its shortest form, a third of the
+// seventeen digits of an unrounded double.
+std::vector<double> rounded(std::vector<double> v) {
+  for (double& x : v)
+    if (std::isfinite(x) && x != 0.0) {
+      const double scale = std::pow(10.0, 7 - static_cast<int>(std::floor(std::log10(std::fabs(x)))));
+      x = std::round(x * scale) / scale;
+    }
+  return v;
+}
+
 std::string printf_text(const char* pattern, double v) {
   char buf[160];
   std::snprintf(buf, sizeof buf, pattern, v);
@@ -54,7 +66,7 @@ json per_cycle(const std::string& label, const std::vector<SoakCycle>& cycles, G
 
 json plot_series(const std::string& label, std::vector<double> x, std::vector<double> y, const char* style,
                  const char* color) {
-  json s = {{"label", label}, {"x", std::move(x)}, {"y", std::move(y)}, {"style", style}};
+  json s = {{"label", label}, {"x", rounded(std::move(x))}, {"y", rounded(std::move(y))}, {"style", style}};
   if (color != nullptr) s["color"] = color;
   return s;
 }
@@ -74,7 +86,8 @@ json circle_plot_data(std::string_view title, double radius_mm, const std::vecto
       }
     out["rows"].push_back({{"label", row.label},
                            {"stats", {{"max_um", row.stats.max_um}, {"mean_um", row.stats.mean_um}, {"std_um", row.stats.std_um}}},
-                           {"t_s", t}, {"x_mm", x}, {"y_mm", y}, {"ref_x_mm", rx}, {"ref_y_mm", ry}, {"contour_um", e}});
+                           {"t_s", rounded(t)}, {"x_mm", rounded(x)}, {"y_mm", rounded(y)}, {"ref_x_mm", rounded(rx)},
+                           {"ref_y_mm", rounded(ry)}, {"contour_um", rounded(e)}});
   }
   return out;
 }
