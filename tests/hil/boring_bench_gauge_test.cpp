@@ -66,10 +66,16 @@ TEST(BoringBenchGauge, TheBenchGaugeKeepsTheBadPartsOfThePapersSettings) {
     EXPECT_NEAR(b.resets_mean, a.resets_mean, 0.15) << "sigma_d " << s.sigma_d_mm << " mm: resets per run";
     if (s.sigma_d_mm > 0.01) {  // Fig. 3: in band from part 2; 1-3 bad parts and one reset after part 11
       for (const BoringSegmentStats& g : b.segments) {
-        if (g.first_part == 2) EXPECT_LE(g.bad_parts_mean, 0.05);
-        if (g.first_part == 11) EXPECT_GE(g.seeds_with_one_reset, 0.95);
-        if (g.first_part == 11) EXPECT_LE(g.bad_parts_mean, 3.0);
-        if (g.first_part == 21) EXPECT_GE(g.seeds_without_bad, 0.98);
+        if (g.first_part == 2) {
+          EXPECT_LE(g.bad_parts_mean, 0.05) << "bad parts per run in 2-10";
+        }
+        if (g.first_part == 11) {
+          EXPECT_GE(g.seeds_with_one_reset, 0.95) << "one reset after the large change";
+          EXPECT_LE(g.bad_parts_mean, 3.0) << "bad parts per run in 11-20";
+        }
+        if (g.first_part == 21) {
+          EXPECT_GE(g.seeds_without_bad, 0.98) << "no bad part at the small change";
+        }
       }
     }
   }
