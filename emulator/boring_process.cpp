@@ -60,10 +60,15 @@ std::string validate_boring_process(const BoringProcessConfig& c) {
     return bad("preset_deflection_mm", "must be >= 0 and finite (got " + format_number(c.preset_deflection_mm) + ")");
   if (!(std::isfinite(c.force_angle_deg) && c.force_angle_deg >= 0.0 && c.force_angle_deg < 90.0))
     return bad("force_angle_deg", "must be in [0, 90) (got " + format_number(c.force_angle_deg) + ")");
+  if (!(std::isfinite(c.gauge_noise_mm_rms) && c.gauge_noise_mm_rms >= 0.0))
+    return bad("gauge_noise_mm_rms", "must be >= 0 and finite (got " + format_number(c.gauge_noise_mm_rms) + ")");
+  if (!(std::isfinite(c.gauge_resolution_mm) && c.gauge_resolution_mm >= 0.0))
+    return bad("gauge_resolution_mm", "must be >= 0 and finite (got " + format_number(c.gauge_resolution_mm) + ")");
   return {};
 }
 
-BoringProcess::BoringProcess(BoringProcessConfig config) : config_(std::move(config)), rng_(config_.seed) {
+BoringProcess::BoringProcess(BoringProcessConfig config) : config_(std::move(config)), rng_(config_.seed),
+      gauge_noise_(make_noise_stream(config_.gauge_seed, NoiseStreamId::bore_gauge)) {
   if (const std::string error = validate_boring_process(config_); !error.empty()) throw std::invalid_argument(error);
 }
 
@@ -95,7 +100,11 @@ double BoringProcess::optimal_infeed_mm_rev(int part, double overhang_mm) const 
 double BoringProcess::measure_bore_error_mm(int part, double infeed_mm_rev, double overhang_mm) {
   const double d = deflection_mm(part, infeed_mm_rev, overhang_mm) + config_.sigma_d_mm * gaussian();
   const double cos_phi = std::cos(config_.force_angle_deg * std::numbers::pi / 180.0);
-  return 2.0 * cos_phi * (d - config_.preset_deflection_mm);  // S4 eq. (11) solved for delta
+  double delta_mm = 2.0 * cos_phi * (d - config_.preset_deflection_mm);  // S4 eq. (11) solved for delta
+  if (config_.gauge_noise_mm_rms > 0.0) delta_mm += config_.gauge_noise_mm_rms * gauge_noise_.normal();
+  if (config_.gauge_resolution_mm > 0.0)
+    delta_mm = config_.gauge_resolution_mm * std::round(delta_mm / config_.gauge_resolution_mm);
+  return delta_mm;
 }
 
 // Marsaglia's polar method on 53-bit uniforms from mt19937_64: the same

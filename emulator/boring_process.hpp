@@ -8,9 +8,14 @@
 //   delta = 2 cos phi (d + e - d_preset),  e ~ N(0, sigma_d)   (eq. (11))
 // The tool is preset so that a deflection of d_preset cuts the nominal
 // bore. The noise is drawn from a seeded generator of our own (same
-// numbers on every platform). Knows nothing about any planner.
+// numbers on every platform). A bench's gauge adds its own error to the
+// reading (off by default): Gaussian repeatability on delta, then the
+// reading's step, from a stream of its own (noise_stream.hpp), so switching
+// it on leaves e's sequence as it was. Knows nothing about any planner.
 #include <cstdint>
 #include <random>
+
+#include "emulator/noise_stream.hpp"
 #include <string>
 #include <vector>
 
@@ -31,6 +36,10 @@ struct BoringProcessConfig {
   double preset_deflection_mm = 0.1165;  // d_preset: deflection that cuts the nominal bore (= d0)
   double force_angle_deg = 60.0;         // phi (Sun et al.)
   std::uint64_t seed = 1;
+  // The gauge's own error on the diametral reading delta ([noise] bore_gauge_*; 0 = an exact gauge).
+  double gauge_noise_mm_rms = 0.0;
+  double gauge_resolution_mm = 0.0;      // the reading is rounded to this step; 0 = continuous
+  std::uint64_t gauge_seed = 0;
 };
 
 // Table 1 and section 5: parts 1-10 alpha 0.5025, beta 0.2676, C 0.0871 mm;
@@ -67,6 +76,7 @@ class BoringProcess {
 
   BoringProcessConfig config_;
   std::mt19937_64 rng_;
+  NoiseStream gauge_noise_;
   bool have_spare_ = false;
   double spare_ = 0.0;
 };

@@ -40,6 +40,8 @@ Scenario bench(Scenario s) {
   s.noise.accel_bias_g = 0.025;      // a MEMS part's zero-g offset: tens of mg
   s.noise.dac_offset_v = 0.005;      // 12-bit +-10 V DAC: about 1 LSB (4.88 mV)
   s.noise.dac_gain_error = 0.002;    // 0.2 %
+  s.noise.bore_gauge_um_rms = 1.0;          // S4's post-process gauge: a bore gauge's repeatability (um class)
+  s.noise.bore_gauge_resolution_um = 1.0;   // a 0.001 mm digital indicator
   for (AxisPlantParams& p : s.plant) {
     p.backlash_um = 10.0;        // a worn ball screw (5-20 um)
     p.pitch_error_um = 4.0;      // C5: v_2pi = 8 um peak to peak within one turn

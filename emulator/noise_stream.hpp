@@ -59,6 +59,7 @@ enum class NoiseStreamId : std::uint64_t {
   glitch_x = 4,
   glitch_y = 5,
   io_jitter = 6,
+  bore_gauge = 7,  // the S4 post-process gauge (boring_process.hpp)
 };
 
 inline NoiseStream make_noise_stream(std::uint64_t seed, NoiseStreamId id) {

@@ -123,6 +123,9 @@ struct NoiseParams {
   double dac_gain_error = 0.0;        // relative: the DACs output (1 + gain_error) times the ideal volts
   double encoder_glitch_per_s = 0.0;  // Poisson rate of miscounts, per encoder
   int encoder_glitch_counts = 1;      // counts each miscount adds (sign random), kept by the decoder
+  // The post-process bore gauge of the S4 boring studies (not sampled at the tick):
+  double bore_gauge_um_rms = 0.0;         // Gaussian, its repeatability, on the diametral bore error
+  double bore_gauge_resolution_um = 0.0;  // its reading's step; 0 = a continuous reading
   bool any_sample_noise() const noexcept {  // anything added at the tick latch
     return force_adc_v_rms != 0.0 || accel_g_rms != 0.0 || accel_bias_g != 0.0 || encoder_glitch_per_s != 0.0;
   }

@@ -89,7 +89,9 @@ class ScenarioReader {
                                 {"dac_offset_v", &s.noise.dac_offset_v},
                                 {"dac_gain_error", &s.noise.dac_gain_error},
                                 {"encoder_glitch_per_s", &s.noise.encoder_glitch_per_s},
-                                {"encoder_glitch_counts", &s.noise.encoder_glitch_counts}};
+                                {"encoder_glitch_counts", &s.noise.encoder_glitch_counts},
+                                {"bore_gauge_um_rms", &s.noise.bore_gauge_um_rms},
+                                {"bore_gauge_resolution_um", &s.noise.bore_gauge_resolution_um}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "io") {
         const Field fields[] = {{"read_latency_us", &s.io.read_latency_us},

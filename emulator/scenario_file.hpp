@@ -12,7 +12,8 @@
 // rpm_at_full_scale; [force_sensor]: volts_per_mm_s volts_per_n; [milling];
 // [board]: clock_start; [noise]: seed force_adc_v_rms accel_g_rms
 // accel_bias_g dac_offset_v dac_gain_error encoder_glitch_per_s
-// encoder_glitch_counts; [io]: read_latency_us write_latency_us jitter_us;
+// encoder_glitch_counts bore_gauge_um_rms bore_gauge_resolution_um;
+// [io]: read_latency_us write_latency_us jitter_us;
 // [circle]: radius_mm feed_mm_s ramp_s dwell_s; [[fault]] (any number):
 // kind start_s and, by kind, axis side duration_s code ticks delay_us
 // (fault_schedule.hpp; errors name "fault[i].key", i from 0). Integers are

@@ -112,6 +112,10 @@ void check_noise(Rules& r, const NoiseParams& n) {
   r.plausible("noise.encoder_glitch_per_s", n.encoder_glitch_per_s, 0.0, 1000.0,
               "miscounts per second (a thousand a second is a broken cable)");
   r.int_range("noise.encoder_glitch_counts", n.encoder_glitch_counts, 1, 1000);
+  r.plausible("noise.bore_gauge_um_rms", n.bore_gauge_um_rms, 0.0, 50.0,
+              "a bore gauge's repeatability (um class; 50 um is a tenth of a millimetre band)");
+  r.plausible("noise.bore_gauge_resolution_um", n.bore_gauge_resolution_um, 0.0, 100.0,
+              "a bore gauge's reading step (0.1-10 um)");
 }
 
 // Read, work and write must fit in the tick: the transfers may take at most this much of its 1 ms.

@@ -84,6 +84,29 @@ TEST(BoringProcess, TheSmallChangeIsOutOfBandOnlyAtTheBottomWhenSigmaIsFiveMicro
     EXPECT_GT(p.deflection_mm(11, p.optimal_infeed_mm_rev(10, l), l) - 0.1165, 3 * 0.016231) << "L = " << l;
 }
 
+// A bench's bore gauge ([noise] bore_gauge_*): its repeatability adds to the
+// reading from a stream of its own, so the process noise e is drawn as
+// before, and the reading lands on the gauge's step.
+TEST(BoringProcess, ABenchGaugeAddsItsOwnNoiseAndStepToTheReading) {
+  const BoringProcessConfig paper = paper_boring_process(0.016231, 7);
+  BoringProcessConfig stepped = paper;
+  stepped.gauge_resolution_mm = 0.001;
+  BoringProcessConfig noisy = paper;
+  noisy.gauge_noise_mm_rms = 0.001;
+  noisy.gauge_seed = 3;
+  BoringProcess exact(paper), step(stepped), gauge(noisy);
+  double sum_sq = 0.0;
+  constexpr int kReadings = 4000;
+  for (int i = 0; i < kReadings; ++i) {
+    const double e = exact.measure_bore_error_mm(1, 0.5, 175.0);
+    const double r = step.measure_bore_error_mm(1, 0.5, 175.0);
+    ASSERT_EQ(r, 0.001 * std::round(e / 0.001)) << "reading " << i << ": on the 1 um step of the exact one";
+    const double g = gauge.measure_bore_error_mm(1, 0.5, 175.0);
+    sum_sq += (g - e) * (g - e);
+  }
+  EXPECT_NEAR(std::sqrt(sum_sq / kReadings), 0.001, 0.05e-3) << "gauge noise, mm rms on the bore error";
+}
+
 TEST(BoringProcess, InvalidConfigurationsAreRefusedNamingTheField) {
   const auto error_of = [](auto mutate) {
     BoringProcessConfig c = paper_boring_process(0.01, 1);
@@ -100,6 +123,9 @@ TEST(BoringProcess, InvalidConfigurationsAreRefusedNamingTheField) {
   EXPECT_NE(error_of([](auto& c) { c.depth_of_cut_mm = std::numeric_limits<double>::infinity(); }).find("depth_of_cut_mm"),
             std::string::npos);
   EXPECT_NE(error_of([](auto& c) { c.force_angle_deg = 90.0; }).find("force_angle_deg"), std::string::npos);
+  EXPECT_NE(error_of([](auto& c) { c.gauge_noise_mm_rms = -1e-3; }).find("gauge_noise_mm_rms"), std::string::npos);
+  EXPECT_NE(error_of([](auto& c) { c.gauge_resolution_mm = std::nan(""); }).find("gauge_resolution_mm"),
+            std::string::npos);
   BoringProcessConfig bad = paper_boring_process(0.01, 1);
   bad.sigma_d_mm = std::nan("");
   EXPECT_THROW(BoringProcess{bad}, std::invalid_argument);

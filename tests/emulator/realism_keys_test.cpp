@@ -35,6 +35,8 @@ dac_offset_v = 0.005
 dac_gain_error = -0.002
 encoder_glitch_per_s = 0.5
 encoder_glitch_counts = 2
+bore_gauge_um_rms = 1.5
+bore_gauge_resolution_um = 0.5
 
 [io]
 read_latency_us = 100
@@ -63,6 +65,8 @@ TEST(RealismKeys, EveryKeyIsRead) {
   EXPECT_EQ(s.noise.dac_gain_error, -0.002);
   EXPECT_EQ(s.noise.encoder_glitch_per_s, 0.5);
   EXPECT_EQ(s.noise.encoder_glitch_counts, 2);
+  EXPECT_EQ(s.noise.bore_gauge_um_rms, 1.5);
+  EXPECT_EQ(s.noise.bore_gauge_resolution_um, 0.5);
   EXPECT_EQ(s.io.read_latency_us, 100.0);
   EXPECT_EQ(s.io.write_latency_us, 50.5);
   EXPECT_EQ(s.io.jitter_us, 30.0);
@@ -81,6 +85,8 @@ TEST(RealismKeys, AllOffByDefault) {
   EXPECT_FALSE(s.noise.any_sample_noise());
   EXPECT_EQ(s.noise.dac_offset_v, 0.0);
   EXPECT_EQ(s.noise.dac_gain_error, 0.0);
+  EXPECT_EQ(s.noise.bore_gauge_um_rms, 0.0);
+  EXPECT_EQ(s.noise.bore_gauge_resolution_um, 0.0);
   EXPECT_FALSE(s.io.enabled());
 }
 
@@ -153,6 +159,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"[noise]\nencoder_glitch_counts = 0\n", "2:1: noise.encoder_glitch_counts: must be in 1..1000 (got 0)"},
         BadKey{"[noise]\nencoder_glitch_counts = 2.0\n",
                "2:1: noise.encoder_glitch_counts: expected an integer, got a float"},
+        BadKey{"[noise]\nbore_gauge_um_rms = -1\n",
+               "2:1: noise.bore_gauge_um_rms: must be 0..50: a bore gauge's repeatability (um class; 50 um is a tenth "
+               "of a millimetre band) (got -1)"},
+        BadKey{"[noise]\nbore_gauge_resolution_um = 200\n",
+               "2:1: noise.bore_gauge_resolution_um: must be 0..100: a bore gauge's reading step (0.1-10 um) (got 200)"},
         BadKey{"[noise]\nencoder_noise = 1\n", "2:1: noise.encoder_noise: unknown key"},
         BadKey{"[io]\nread_latency_us = 600\n",
                "2:1: io.read_latency_us: must be 0..500: a register transport's read after the latch (SPI or "
@@ -182,6 +193,8 @@ TEST(RealismKeys, BenchProfilesAreValidAndStateTheirMagnitudes) {
     EXPECT_EQ(s->plant[0].backlash_um, 10.0) << name;
     EXPECT_EQ(s->plant[0].lead_error_um_per_m, 60.0) << name;
     EXPECT_EQ(s->plant[1].lead_error_um_per_m, -60.0) << name;
+    EXPECT_EQ(s->noise.bore_gauge_um_rms, 1.0) << name;
+    EXPECT_EQ(s->noise.bore_gauge_resolution_um, 1.0) << name;
     // The reference table underneath: the plant's own constants untouched.
     EXPECT_EQ(s->plant[0].tau_s, Scenario{}.plant[0].tau_s) << name;
     EXPECT_EQ(s->plant[1].tau_s, Scenario{}.plant[1].tau_s) << name;

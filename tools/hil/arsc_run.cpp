@@ -1,8 +1,10 @@
 #include "tools/hil/arsc_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
+#include "emulator/noise_stream.hpp"
 #include "firmware/adaptive/arsc/faithful_arsc.hpp"
 #include "firmware/adaptive/arsc/robust_arsc.hpp"
 
@@ -43,11 +45,34 @@ struct RobustLoop final : Loop {
 
 }  // namespace
 
+ArscScenarioNoise arsc_force_noise(const emu::Scenario& s) {
+  ArscScenarioNoise out;
+  out.noise.seed = s.noise.seed;
+  if (s.noise.force_adc_v_rms == 0.0) return out;
+  if (!(s.force_sensor.volts_per_n > 0.0)) {
+    out.error = "force_sensor.volts_per_n is 0: the force ADC would read noise only";
+    return out;
+  }
+  const double noise_n = s.noise.force_adc_v_rms / s.force_sensor.volts_per_n;  // V / (V/N)
+  out.noise.rms = noise_n / kS3ForceReferenceN;                                // f* = 1 is 150 N
+  return out;
+}
+
+double robust_gain_trend_alpha(const ArscRunConfig& c) noexcept {
+  if (c.robust_gain_trend_alpha > 0.0) return c.robust_gain_trend_alpha;
+  return c.force_noise.rms > 0.0 ? kNoisyGainTrendAlpha : 1.0;
+}
+
 ArscRunResult run_arsc(const ArscRunConfig& config) {
   ArscRunResult r;
   r.config = config;
   r.process_coefficients = emu::milling_coefficients(config.process);
   const Poles7 poles = paper_poles(config.poles);
+  // One stream for the test stage and the cut, in that order (the force ADC's stream number).
+  emu::NoiseStream noise = emu::make_noise_stream(config.force_noise.seed, emu::NoiseStreamId::force_adc);
+  const auto measured = [&](double force) {
+    return config.force_noise.rms > 0.0 ? force + config.force_noise.rms * noise.normal() : force;
+  };
 
   std::unique_ptr<Loop> loop;
   if (config.variant == ArscVariant::faithful) {
@@ -57,8 +82,9 @@ ArscRunResult run_arsc(const ArscRunConfig& config) {
     c.force_ref = config.force_ref;
     loop = std::make_unique<FaithfulLoop>(c);
   } else {
-    r.test_stage = fit_structured_model(
-        run_test_stage(config.process, config.depth.start_mm, config.test_stage_samples), false);
+    std::vector<TestStageSample> stage = run_test_stage(config.process, config.depth.start_mm, config.test_stage_samples);
+    for (TestStageSample& sample : stage) sample.force = measured(sample.force);
+    r.test_stage = fit_structured_model(stage, false);
     const StructuredModel& m = r.test_stage->model;
     RobustArscConfig c;
     c.d_star = desired_coefficients(six_of_seven(poles));
@@ -67,6 +93,7 @@ ArscRunResult run_arsc(const ArscRunConfig& config) {
     c.estimator.initial_gain = m.cutting_gain;
     c.estimator.forgetting = config.robust_forgetting;
     c.estimator.initial_covariance = config.robust_initial_covariance;
+    c.gain_trend.alpha = robust_gain_trend_alpha(config);
     c.force_ref = config.force_ref;
     loop = std::make_unique<RobustLoop>(c);
   }
@@ -80,12 +107,14 @@ ArscRunResult run_arsc(const ArscRunConfig& config) {
     const double t_s = static_cast<double>(n) * config.process.sample_s;
     const double depth_mm = emu::depth_profile_mm(config.depth, t_s);
     const double f = process.force(), v = process.feed();
-    const double u_next = loop->step(f, v);
+    const double f_measured = measured(f);
+    const double u_next = loop->step(f_measured, v);
 
     ArscTracePoint p;
     p.t_s = t_s;
     p.depth_mm = depth_mm;
     p.force = f;
+    p.force_measured = f_measured;
     p.feed = v;
     p.u = u_applied;
     const ArscSignals& s = loop->signals();
@@ -117,6 +146,23 @@ ArscRunResult run_arsc(const ArscRunConfig& config) {
   r.reason_counts = loop->signals().reason_counts;
   r.force_error_rms_pct = r.scored_samples ? std::sqrt(sum_sq / static_cast<double>(r.scored_samples)) : 0.0;
   return r;
+}
+
+ArscSeedSweep run_arsc_seeds(const ArscRunConfig& config, int seeds) {
+  ArscSeedSweep out;
+  out.seeds = std::max(seeds, 1);
+  double rms_sum = 0.0;
+  for (int k = 0; k < out.seeds; ++k) {
+    ArscRunConfig c = config;
+    c.force_noise.seed = config.force_noise.seed + static_cast<std::uint64_t>(k);
+    ArscRunResult r = run_arsc(c);
+    out.force_error_max_pct_worst = std::max(out.force_error_max_pct_worst, r.force_error_max_pct);
+    rms_sum += r.force_error_rms_pct;
+    out.diverged_runs += r.diverged ? 1 : 0;
+    if (k == 0) out.first = std::move(r);
+  }
+  out.force_error_rms_pct_mean = rms_sum / static_cast<double>(out.seeds);
+  return out;
 }
 
 }  // namespace tnv::hil

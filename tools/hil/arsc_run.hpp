@@ -6,9 +6,11 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "emulator/milling_process.hpp"
+#include "emulator/scenario.hpp"
 #include "firmware/adaptive/arsc/arsc_gains.hpp"
 #include "firmware/adaptive/arsc/arv2_rls.hpp"
 #include "firmware/adaptive/arsc/cutting_gain_rls.hpp"
@@ -17,6 +19,31 @@
 #include "tools/hil/arsc_test_stage.hpp"
 
 namespace tnv::hil {
+
+// The force reference f* = 1 of the normalised study is the S3 experiment's
+// peak-force reference, 150 N (seed digest S3; the tick study's f*).
+inline constexpr double kS3ForceReferenceN = 150.0;
+
+// Gaussian noise on the force the loop (and its test stage) reads,
+// normalised (f* = 1); seeded. 0: the paper's noiseless measurement.
+struct ArscForceNoise {
+  double rms = 0.0;
+  std::uint64_t seed = 0;
+};
+
+// A scenario's force ADC noise in the study's units. The emulator's force
+// sensor puts force_n * [force_sensor] volts_per_n on the ADC's input and
+// adds [noise] force_adc_v_rms there (emulator/machine.cpp,
+// Machine::Impl::tick_samples; docs/scenarios.md): the noise is
+// force_adc_v_rms / volts_per_n newtons, and f* = 1 is kS3ForceReferenceN.
+// The bench: 0.004 V / (1/30 V/N) = 0.12 N = 8.0e-4 of f*. Seeded from
+// [noise] seed. Empty error, or why the scenario cannot be used (a sensor
+// with volts_per_n = 0 under noise reads nothing but noise).
+struct ArscScenarioNoise {
+  ArscForceNoise noise{};
+  std::string error;
+};
+ArscScenarioNoise arsc_force_noise(const emu::Scenario& scenario);
 
 enum class ArscVariant : std::uint8_t { faithful, robust };
 constexpr const char* to_string(ArscVariant v) noexcept { return v == ArscVariant::faithful ? "faithful" : "robust"; }
@@ -34,12 +61,22 @@ struct ArscRunConfig {
   double robust_forgetting = 0.05;
   double robust_initial_covariance = 10.0;
   std::size_t test_stage_samples = 100;  // robust: open-loop samples at the start depth
+  ArscForceNoise force_noise{};          // on the force the loop and the test stage read
+  // Robust: alpha of the gain design's tracker (fw::arsc::GainTrendParams); 0 = automatic:
+  // 1 (off) on a noiseless force, kNoisyGainTrendAlpha on a noisy one.
+  double robust_gain_trend_alpha = 0.0;
 };
+
+// The tracker's alpha with a noisy force: from a sweep of 0.25 ... 0.5 over
+// 32 noise seeds at 0, 1 and 2 times the bench's noise (docs/robustness.md).
+inline constexpr double kNoisyGainTrendAlpha = 0.35;
+double robust_gain_trend_alpha(const ArscRunConfig& config) noexcept;
 
 struct ArscTracePoint {
   double t_s = 0.0;
   double depth_mm = 0.0;
-  double force = 0.0;  // f(t)
+  double force = 0.0;  // f(t), the process' (what is scored)
+  double force_measured = 0.0;  // f(t) as the loop read it (with force_noise)
   double feed = 0.0;   // v(t)
   double u = 0.0;      // applied over [t, t+1)
   fw::arsc::ArscGains gains{};  // after this sample's update
@@ -66,5 +103,16 @@ struct ArscRunResult {
 };
 
 ArscRunResult run_arsc(const ArscRunConfig& config);
+
+// run_arsc over noise seeds force_noise.seed + 0 .. seeds - 1: the worst
+// peak error, the mean rms, the runs that diverged; `first` is seed + 0's.
+struct ArscSeedSweep {
+  ArscRunResult first;
+  int seeds = 0;
+  double force_error_max_pct_worst = 0.0;
+  double force_error_rms_pct_mean = 0.0;
+  int diverged_runs = 0;
+};
+ArscSeedSweep run_arsc_seeds(const ArscRunConfig& config, int seeds);
 
 }  // namespace tnv::hil

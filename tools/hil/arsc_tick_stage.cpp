@@ -18,7 +18,8 @@ TickTestStage run_tick_test_stage(const TickStudyConfig& c, std::string& error) 
   TickTestStage fit;
   emu::MillingParams m = c.milling;
   m.depth = {c.milling.depth.start_mm, c.milling.depth.start_mm, 1.0, 1.0};
-  const emu::Scenario s = tick_study_scenario(m);
+  emu::Scenario s = tick_study_scenario(c.table, m);
+  s.noise.seed ^= 0x7E57'57A6u;  // a separate cut: its own noise and jitter (inert while [noise] and [io] are off)
   fw::arsc::ArscSourceParams off{};
   off.enabled = false;
   const fw::FirmwareConfig firmware = study_firmware_config(c, off);

@@ -42,8 +42,8 @@ std::unique_ptr<HilRig> ready_study_rig(const emu::Scenario& s, const fw::Firmwa
   return rig;
 }
 
-emu::Scenario tick_study_scenario(const emu::MillingParams& milling) {
-  emu::Scenario s;
+emu::Scenario tick_study_scenario(const emu::Scenario& table, const emu::MillingParams& milling) {
+  emu::Scenario s = table;
   s.name = "mill-x";
   s.milling = milling;
   s.milling.enabled = true;
@@ -85,7 +85,7 @@ struct Judge {
   TickStudyResult& r;
   std::array<std::array<double, 4>, hal::kAxisCount> ref{};  // x_ref,k .. x_ref,k-3 per axis
   std::uint64_t seen = 0, scored = 0, saturated_run = 0, pinned_run = 0;
-  double sum_sq = 0.0;
+  double sum_sq = 0.0, true_sum_sq = 0.0;
 
   void limits(const fw::TickRecord& rec) {
     constexpr double dt = kTickPeriodS;
@@ -107,6 +107,12 @@ struct Judge {
     r.force_error_max_pct = std::max(r.force_error_max_pct, e);
     sum_sq += e * e;
     ++scored;
+  }
+  void true_force(double t_s, double f_n) {
+    if (t_s < c.settle_s) return;
+    const double e = std::fabs(f_n - c.force_ref_n) / c.force_ref_n * 100.0;
+    r.force_error_true_max_pct = std::max(r.force_error_true_max_pct, e);
+    true_sum_sq += e * e;
   }
   void dac(double t_s, std::uint16_t code, std::uint16_t max_code) {
     if (code != 0 && code != max_code) {
@@ -149,7 +155,7 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     r.target_z = fw::arsc::outer_target_poles(fw::arsc::discretise(oc.model, r.period_s), r.period_s, oc.poles);
   }
 
-  const emu::Scenario s = tick_study_scenario(c.milling);
+  const emu::Scenario s = tick_study_scenario(c.table, c.milling);
   std::unique_ptr<HilRig> rig = ready_study_rig(s, firmware, c, r.error);
   if (!rig) return r;
   fw::TickTask& task = rig->task;
@@ -171,6 +177,7 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     const fw::TickRecord& rec = task.last_record();
     const double f_n = study_force_n(rec, firmware);
     judge.force(t_s, f_n);
+    judge.true_force(t_s, rig->machine.milling_force_n());  // held by the ADC at this record's latch
     if (k % 10 == 0) {
       const double depth = rig->machine.milling_depth_mm();
       const double vx = rig->machine.truth(Axis::x).speed_mm_s, vy = rig->machine.truth(Axis::y).speed_mm_s;
@@ -219,7 +226,9 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
   if (r.refused_segments > 0 && r.error.empty())
     r.error = std::string("segment refused: ") + fw::motion::to_string(feeder.last_refusal());
   r.force_error_rms_pct = judge.scored ? std::sqrt(judge.sum_sq / static_cast<double>(judge.scored)) : 0.0;
+  r.force_error_true_rms_pct = judge.scored ? std::sqrt(judge.true_sum_sq / static_cast<double>(judge.scored)) : 0.0;
   if (r.diverged) r.force_error_max_pct = std::max(r.force_error_max_pct, 100.0);
+  if (r.diverged) r.force_error_true_max_pct = std::max(r.force_error_true_max_pct, 100.0);
   r.travel_x_mm = task.last_record().axis[0].position_mm - start_x;
   const fw::arsc::ArscSourceStatus& st = task.feed_source().status();
   r.samples = st.samples;

@@ -66,6 +66,10 @@ struct TickStudyConfig {
   // 200,000 mm/s^3 so that the jerk filter keeps its default 20 ticks (taps = 2 a / (j dt)).
   fw::PathLimits path_limits{.speed_mm_s = 100.0, .accel_mm_s2 = 2000.0, .jerk_mm_s3 = 200000.0};
   emu::MillingParams milling{.enabled = true, .depth = {0.2, 1.0, 5.0, 5.0}};
+  // The table the study and its test stage run on (tnv-hil arsc tick --scenario): its plant, [noise],
+  // [io] and the rest apply as in any run; its [milling] is replaced by `milling` above. The default
+  // is the reference table.
+  emu::Scenario table{};
 };
 
 // The test-and-learning stage's fit (continuous time, physical units).
@@ -101,6 +105,9 @@ struct TickStudyResult {
   double force_error_max_pct = 0.0;   // after settle_s, of force_ref_n, every tick
   double force_error_max_at_s = -1.0;
   double force_error_rms_pct = 0.0;
+  // The same against the milling force itself (the emulator's, without the ADC's noise and steps).
+  double force_error_true_max_pct = 0.0;
+  double force_error_true_rms_pct = 0.0;
   // A firmware fault, or (force loop on) the force pinned at the ADC's full scale (2 f*) for 0.1 s;
   // the run stops there and the error counts as at least 100 %.
   bool diverged = false;
@@ -135,7 +142,8 @@ struct TickStudyResult {
   std::string error;                        // set if the run could not start
 };
 
-emu::Scenario tick_study_scenario(const emu::MillingParams& milling);
+// `table` with the study's milling force (and, for the test stage's separate cut, its own noise realisation).
+emu::Scenario tick_study_scenario(const emu::Scenario& table, const emu::MillingParams& milling);
 TickTestStage run_tick_test_stage(const TickStudyConfig& config, std::string& error);
 // The outer loop's force poles for a pole set: the paper's (S3 Fig. 7)
 // force-loop pair, mapped from z at 0.15 s to continuous time, times speedup.

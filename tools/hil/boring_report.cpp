@@ -8,7 +8,7 @@ namespace {
 
 nlohmann::json settings_json(const BoringRunRequest& r, int seeds) {
   const fw::BoringPlannerParams& p = r.planner;
-  return {{"sigma_mm", p.sigma_d_mm},
+  nlohmann::json j = {{"sigma_mm", p.sigma_d_mm},
           {"process_sigma_mm", r.process_sigma_mm},
           {"band_sigma_mm", r.band_sigma_mm},
           {"band_half_width_mm", p.band_sigmas * r.band_sigma_mm},
@@ -26,6 +26,11 @@ nlohmann::json settings_json(const BoringRunRequest& r, int seeds) {
           {"startup_in_rls", p.startup_in_rls},
           {"log_base", fw::to_string(p.log_base)},
           {"p0", p.initial_covariance}};
+  if (r.gauge_noise_mm_rms > 0.0 || r.gauge_resolution_mm > 0.0)  // a bench's gauge (--scenario)
+    j["bench_gauge"] = {{"noise_mm_rms", r.gauge_noise_mm_rms},
+                        {"resolution_mm", r.gauge_resolution_mm},
+                        {"seed", r.gauge_seed}};
+  return j;
 }
 
 nlohmann::json part_json(const BoringPartRecord& p) {
@@ -95,6 +100,11 @@ std::string boring_sweep_text(const BoringRunRequest& r, const BoringSweepResult
                 p.reset_after, fw::to_string(p.reset_count), p.target_deflection_mm, p.band_sigmas * p.sigma_d_mm,
                 p.startup_in_rls ? "yes" : "no", fw::to_string(p.log_base), p.band_sigmas * r.band_sigma_mm);
   out += buf;
+  if (r.gauge_noise_mm_rms > 0.0 || r.gauge_resolution_mm > 0.0) {
+    std::snprintf(buf, sizeof buf, "bench gauge: %.4g mm rms on the bore error, read in steps of %.4g mm\n",
+                  r.gauge_noise_mm_rms, r.gauge_resolution_mm);
+    out += buf;
+  }
   out += "planner runs: " + s.planner + "\n\n";
   std::snprintf(buf, sizeof buf, "bad parts: mean %.3f, max %d    resets: mean %.3f    rms(d - d0) parts 2..: %.4f mm\n\n",
                 s.bad_parts_mean, s.bad_parts_max, s.resets_mean, s.deflection_rms_mean_mm);

@@ -17,6 +17,13 @@ BoringRunRequest paper_boring_request(double sigma_d_mm, double alpha0) {
   return r;
 }
 
+BoringRunRequest with_scenario_gauge(BoringRunRequest r, const emu::Scenario& s) {
+  r.gauge_noise_mm_rms = s.noise.bore_gauge_um_rms * 1e-3;
+  r.gauge_resolution_mm = s.noise.bore_gauge_resolution_um * 1e-3;
+  r.gauge_seed = s.noise.seed;
+  return r;
+}
+
 namespace {
 
 emu::BoringProcessConfig process_config(const BoringRunRequest& r, std::uint64_t seed) {
@@ -25,6 +32,9 @@ emu::BoringProcessConfig process_config(const BoringRunRequest& r, std::uint64_t
   emu::BoringProcessConfig c = emu::paper_boring_process(r.process_sigma_mm, seed, c1, c2);
   c.preset_deflection_mm = r.planner.target_deflection_mm;
   c.force_angle_deg = r.planner.force_angle_deg;
+  c.gauge_noise_mm_rms = r.gauge_noise_mm_rms;
+  c.gauge_resolution_mm = r.gauge_resolution_mm;
+  c.gauge_seed = emu::mix_seed(r.gauge_seed, seed);
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "emulator/boring_process.hpp"
+#include "emulator/scenario.hpp"
 #include "firmware/adaptive/boring/boring_planner_params.hpp"
 #include "tools/hil/boring_planner_link.hpp"
 
@@ -21,11 +22,22 @@ struct BoringRunRequest {
   int parts = 30;
   std::vector<int> change_at = {11, 21};     // part numbers where sets 2 and 3 take over (0-2 entries)
   std::vector<double> positions_mm = {40.0, 310.0};  // measuring overhangs, in order
+  // A bench's bore gauge on top of process_sigma_mm (boring --scenario: [noise] bore_gauge_*):
+  // repeatability and reading step on the diametral bore error; 0 = an exact gauge. Its noise
+  // stream is seeded from gauge_seed and the run's seed.
+  double gauge_noise_mm_rms = 0.0;
+  double gauge_resolution_mm = 0.0;
+  std::uint64_t gauge_seed = 0;
 };
 
 // The paper's setting for sigma_d and alpha0 (Figs. 3, 4): planner and
 // process share sigma_d; the band is d0 +- 3 sigma_d.
 BoringRunRequest paper_boring_request(double sigma_d_mm, double alpha0);
+
+// `request` measured with the scenario's bore gauge ([noise] bore_gauge_um_rms,
+// bore_gauge_resolution_um, seed). The rest of a scenario does not reach a
+// part's deflection (docs/robustness.md, "What the bench does").
+BoringRunRequest with_scenario_gauge(BoringRunRequest request, const emu::Scenario& scenario);
 
 // "" if valid, else "field: reason" (the planner params, the process, the
 // parts count, the change points and the positions).

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "firmware/adaptive/arsc/closed_loop_matrix.hpp"
 #include "firmware/adaptive/arsc/faithful_gain_solve.hpp"
@@ -109,7 +110,23 @@ struct RunOptions {
   std::string plot;
   double forgetting = -1.0;  // variant's default
   double p0 = -1.0;
+  std::string scenario;      // empty: the paper's noiseless measurement
+  double trend_alpha = 0.0;  // robust: 0 = automatic
 };
+
+// --scenario: the scenario's force ADC noise on the force the S3 loop reads
+// (hil::arsc_force_noise); nullopt after a one-line message.
+std::optional<hil::ArscForceNoise> force_noise_or_report(const std::string& name_or_file) {
+  if (name_or_file.empty()) return hil::ArscForceNoise{};
+  const auto scenario = resolve_scenario_or_report(name_or_file);
+  if (!scenario) return std::nullopt;
+  const hil::ArscScenarioNoise n = hil::arsc_force_noise(*scenario);
+  if (!n.error.empty()) {
+    std::fprintf(stderr, "tnv-hil: --scenario %s: %s\n", name_or_file.c_str(), n.error.c_str());
+    return std::nullopt;
+  }
+  return n.noise;
+}
 
 hil::ArscRunConfig run_config(const std::string& poles, const std::string& variant, double forgetting, double p0) {
   hil::ArscRunConfig c;
@@ -141,6 +158,7 @@ json run_summary_json(const hil::ArscRunResult& r) {
             {"force_error_max_pct", r.force_error_max_pct},
             {"force_error_rms_pct", r.force_error_rms_pct},
             {"samples_over_10pct", r.samples_over_10pct},
+            {"force_noise", {{"rms", r.config.force_noise.rms}, {"seed", r.config.force_noise.seed}}},
             {"diverged", r.diverged},
             {"diverged_at_s", r.diverged_at_s ? json(*r.diverged_at_s) : json(nullptr)},
             {"first_gains_s", r.first_gains_s ? json(*r.first_gains_s) : json(nullptr)},
@@ -153,6 +171,7 @@ json run_summary_json(const hil::ArscRunResult& r) {
   } else {
     j["estimator"] = {{"kind", "cutting gain only, scalar RLS"},
                       {"forgetting", r.config.robust_forgetting},
+                      {"gain_trend_alpha", hil::robust_gain_trend_alpha(r.config)},
                       {"initial_covariance", r.config.robust_initial_covariance}};
   }
   if (r.test_stage) {
@@ -168,7 +187,7 @@ json run_summary_json(const hil::ArscRunResult& r) {
 json trace_json(const hil::ArscRunResult& r) {
   json out = json::array();
   for (const hil::ArscTracePoint& p : r.trace) {
-    json e = {{"t_s", p.t_s},     {"depth_mm", p.depth_mm}, {"force", p.force},
+    json e = {{"t_s", p.t_s},     {"depth_mm", p.depth_mm}, {"force", p.force}, {"force_measured", p.force_measured},
               {"feed", p.feed},   {"u", p.u},               {"have_gains", p.have_gains},
               {"reason", to_string(p.reason)}, {"gains", design_gains_json(p.gains)},
               {"cutting_gain_estimate", p.cutting_gain}, {"cutting_gain_process", p.true_cutting_gain}};
@@ -183,6 +202,9 @@ void print_run_text(const hil::ArscRunResult& r) {
               hil::to_string(r.config.variant), to_string(r.config.poles), r.config.process.sample_s,
               r.config.force_ref, r.config.depth.start_mm, r.config.depth.peak_mm, r.config.depth.start_mm,
               r.config.duration_s);
+  if (r.config.force_noise.rms > 0.0)
+    std::printf("  force measured with noise %.3g rms (of f*), seed %llu; the process' force is scored\n",
+                r.config.force_noise.rms, static_cast<unsigned long long>(r.config.force_noise.seed));
   std::printf("  force error after %.0f s: max %.2f%%  rms %.2f%%  (%zu of %zu samples over 10%%)%s\n",
               r.config.settle_s, r.force_error_max_pct, r.force_error_rms_pct, r.samples_over_10pct,
               r.scored_samples, r.diverged ? "" : "");
@@ -203,7 +225,12 @@ void print_run_text(const hil::ArscRunResult& r) {
 }
 
 int run_run(const RunOptions& o) {
-  const hil::ArscRunResult r = hil::run_arsc(run_config(o.poles, o.variant, o.forgetting, o.p0));
+  const auto noise = force_noise_or_report(o.scenario);
+  if (!noise) return kExitBadInput;
+  hil::ArscRunConfig config = run_config(o.poles, o.variant, o.forgetting, o.p0);
+  config.force_noise = *noise;
+  config.robust_gain_trend_alpha = o.trend_alpha;
+  const hil::ArscRunResult r = hil::run_arsc(config);
   if (o.json) {
     json j = run_summary_json(r);
     j["trace"] = trace_json(r);
@@ -218,38 +245,68 @@ int run_run(const RunOptions& o) {
 struct CompareOptions {
   bool json = false;
   std::string plot;
+  std::string scenario;  // empty: the paper's noiseless measurement
+  int seeds = 1;         // noise seeds (with --scenario)
 };
 
+json sweep_json(const hil::ArscSeedSweep& s) {
+  json j = run_summary_json(s.first);
+  j["seeds"] = s.seeds;
+  j["force_error_max_pct_worst"] = s.force_error_max_pct_worst;
+  j["force_error_rms_pct_mean"] = s.force_error_rms_pct_mean;
+  j["diverged_runs"] = s.diverged_runs;
+  return j;
+}
+
 int run_compare(const CompareOptions& o) {
-  std::vector<hil::ArscRunResult> faithful, robust;
+  const auto noise = force_noise_or_report(o.scenario);
+  if (!noise) return kExitBadInput;
+  const int seeds = noise->rms > 0.0 ? o.seeds : 1;  // without noise every seed is the same run
+  std::vector<hil::ArscSeedSweep> faithful, robust;
   for (const char* set : {"case1", "case2", "case3", "case4"}) {
-    faithful.push_back(hil::run_arsc(run_config(set, "faithful", -1.0, -1.0)));
-    robust.push_back(hil::run_arsc(run_config(set, "robust", -1.0, -1.0)));
+    for (const char* variant : {"faithful", "robust"}) {
+      hil::ArscRunConfig c = run_config(set, variant, -1.0, -1.0);
+      c.force_noise = *noise;
+      (variant[0] == 'f' ? faithful : robust).push_back(hil::run_arsc_seeds(c, seeds));
+    }
   }
   if (o.json) {
     json j = json::array();
     for (std::size_t i = 0; i < 4; ++i) {
-      j.push_back(run_summary_json(faithful[i]));
-      j.push_back(run_summary_json(robust[i]));
+      j.push_back(o.scenario.empty() ? run_summary_json(faithful[i].first) : sweep_json(faithful[i]));
+      j.push_back(o.scenario.empty() ? run_summary_json(robust[i].first) : sweep_json(robust[i]));
     }
     std::cout << json{{"runs", j}}.dump(2) << '\n';
   } else {
     std::printf("S3 ARSC, T = 0.15 s, depth 0.2 -> 1.0 -> 0.2 mm over 30 s; force error after 3 s, %% of f*\n");
+    if (!o.scenario.empty())
+      std::printf("force measured with %s's force ADC noise: %.3g of f* rms (f* = %.0f N), %d noise seed%s from %llu;\n"
+                  "worst max and mean rms over the seeds, of the process' force\n",
+                  o.scenario.c_str(), noise->rms, hil::kS3ForceReferenceN, seeds, seeds == 1 ? "" : "s",
+                  static_cast<unsigned long long>(noise->seed));
     std::printf("  %-6s | %-32s | %-32s\n", "poles", "faithful (paper, corrected)", "robust");
     for (std::size_t i = 0; i < 4; ++i) {
       char a[64], b[64];
-      const auto cell = [](char* buf, const hil::ArscRunResult& r) {
-        if (r.diverged)
-          std::snprintf(buf, 64, "diverged at %.2f s", *r.diverged_at_s);
+      const auto cell = [](char* buf, const hil::ArscSeedSweep& s) {
+        if (s.diverged_runs == s.seeds)
+          std::snprintf(buf, 64, "diverged at %.2f s", *s.first.diverged_at_s);
+        else if (s.diverged_runs > 0)
+          std::snprintf(buf, 64, "diverged in %d of %d runs", s.diverged_runs, s.seeds);
         else
-          std::snprintf(buf, 64, "max %7.2f  rms %7.2f", r.force_error_max_pct, r.force_error_rms_pct);
+          std::snprintf(buf, 64, "max %7.2f  rms %7.2f", s.force_error_max_pct_worst, s.force_error_rms_pct_mean);
       };
       cell(a, faithful[i]);
       cell(b, robust[i]);
-      std::printf("  %-6s | %-32s | %-32s\n", to_string(faithful[i].config.poles), a, b);
+      std::printf("  %-6s | %-32s | %-32s\n", to_string(faithful[i].first.config.poles), a, b);
     }
   }
-  if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_compare_plot_data(faithful, robust))) return kExitFailure;
+  std::vector<hil::ArscRunResult> faithful_first, robust_first;
+  for (std::size_t i = 0; i < 4; ++i) {
+    faithful_first.push_back(faithful[i].first);
+    robust_first.push_back(robust[i].first);
+  }
+  if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_compare_plot_data(faithful_first, robust_first)))
+    return kExitFailure;
   return kExitOk;
 }
 
@@ -261,14 +318,16 @@ struct TickOptions {
   bool fixed_gain = false;
   bool json = false;
   std::string plot;
+  std::string scenario;  // empty: the reference table
 };
 
 // The comparison behind "what the faster loop buys": no force loop, the
 // paper's rate, faster rates at the same poles, and the fast loop with
 // poles it alone can use.
-std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set, hil::StudyPath path) {
+std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set, hil::StudyPath path, const emu::Scenario& table) {
   std::vector<hil::TickStudyConfig> out;
   hil::TickStudyConfig c;
+  c.table = table;
   c.poles = set;
   c.path = path;
   c.label = "constant feed";
@@ -311,6 +370,9 @@ json tick_json(const hil::TickStudyResult& r) {
             {"force_error_max_pct", r.force_error_max_pct},
             {"force_error_max_at_s", r.force_error_max_at_s},
             {"force_error_rms_pct", r.force_error_rms_pct},
+            {"force_error_true_max_pct", r.force_error_true_max_pct},
+            {"force_error_true_rms_pct", r.force_error_true_rms_pct},
+            {"scenario", r.config.table.name},
             {"diverged", r.diverged},
             {"diverged_at_s", r.diverged ? json(r.diverged_at_s) : json(nullptr)},
             {"fault", r.fault.empty() ? json(nullptr) : json(r.fault)},
@@ -377,6 +439,10 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
               hil::to_string(c0.path), c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm,
               c0.milling.depth.peak_mm, c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s,
               c0.settle_s);
+  if (c0.table.name != emu::Scenario{}.name)
+    std::printf("on %s (its noise, transport and plant; the study's milling force); in brackets: against the "
+                "milling force itself\n",
+                c0.table.name.c_str());
   const hil::TickTestStage& ts = runs.front().test_stage;
   std::printf("test stage: T_f %.4f s, G %.4f N per mm/s at %.1f mm, feed lag %.2f ms (gain %.3f)\n",
               ts.force_time_constant_s, ts.cutting_gain_n_per_mm_s, c0.milling.depth.start_mm,
@@ -399,6 +465,9 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
                 r.force_error_max_pct, r.force_error_rms_pct, diverged,
                 static_cast<unsigned long long>(r.dac_saturated_ticks), r.clamped_samples,
                 r.config.outer_loop ? r.max_abs_gain : 0.0);
+    if (c0.table.name != emu::Scenario{}.name)
+      std::printf("  %-26s %9s %9.2f %9.2f  (the milling force)\n", "", "", r.force_error_true_max_pct,
+                  r.force_error_true_rms_pct);
     if (!r.fault.empty()) std::printf("  %-26s firmware fault: %s\n", "", r.fault.c_str());
     if (r.program_end_s >= 0.0) std::printf("  %-26s the program ran out at %.2f s\n", "", r.program_end_s);
   }
@@ -407,9 +476,16 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
 int run_tick(const TickOptions& o) {
   const PoleSet set = *parse_pole_set(o.poles);
   const hil::StudyPath path = *hil::parse_study_path(o.path);
+  emu::Scenario table{};
+  if (!o.scenario.empty()) {
+    const auto resolved = resolve_scenario_or_report(o.scenario);
+    if (!resolved) return kExitBadInput;
+    table = *resolved;
+  }
   std::vector<hil::TickStudyConfig> configs;
   if (o.period_ms > 0) {
     hil::TickStudyConfig c;
+    c.table = table;
     c.poles = set;
     c.path = path;
     c.ticks_per_sample = static_cast<std::uint32_t>(o.period_ms);
@@ -426,7 +502,7 @@ int run_tick(const TickOptions& o) {
     c.label = label;
     configs.push_back(c);
   } else {
-    configs = tick_comparison(set, path);
+    configs = tick_comparison(set, path, table);
   }
   std::vector<hil::TickStudyResult> runs;
   for (const auto& c : configs) runs.push_back(hil::run_tick_study(c));  // about 50 ms each
@@ -472,12 +548,24 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1e-6, 1.0));
   rc->add_option("--p0", r->p0, "estimator initial covariance (default: faithful 1, robust 10)")
       ->check(CLI::PositiveNumber);
+  const char* s3_scenario_help =
+      "measure the force with this table's force ADC noise (built-in name or TOML file; [noise] force_adc_v_rms "
+      "over [force_sensor] volts_per_n, f* = 150 N; [noise] seed); default: the paper's noiseless force";
+  rc->add_option("--scenario", r->scenario, s3_scenario_help);
+  rc->add_option("--trend-alpha", r->trend_alpha,
+                 "robust: alpha of the gain design's tracker, 1 = off (default: 1 without noise, 0.35 with --scenario noise)")
+      ->check(CLI::Range(0.01, 1.0));
   rc->callback([&run, r] { run = [r] { return run_run(*r); }; });
 
   auto cmp = std::make_shared<CompareOptions>();
   CLI::App* cc = arsc->add_subcommand("compare", "both variants, four pole sets, side by side");
   cc->add_flag("--json", cmp->json, "print JSON on stdout");
   cc->add_option("--plot", cmp->plot, "write the comparison figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
+  CLI::Option* cmp_scenario = cc->add_option("--scenario", cmp->scenario, s3_scenario_help);
+  cc->add_option("--seeds", cmp->seeds, "noise seeds [noise] seed + 0 .. N-1 per run: worst max, mean rms (with --scenario)")
+      ->check(CLI::Range(1, 1000))
+      ->needs(cmp_scenario)
+      ->capture_default_str();
   cc->callback([&run, cmp] { run = [cmp] { return run_compare(*cmp); }; });
 
   auto tick = std::make_shared<TickOptions>();
@@ -496,6 +584,9 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
   tc->add_flag("--fixed-gain", tick->fixed_gain,
                "freeze the cutting-gain estimate at the test stage's (no adaptation; with --period-ms)")
       ->needs(period);
+  tc->add_option("--scenario", tick->scenario,
+                 "run on this table (built-in name or TOML file): its noise, transport and plant apply, its [milling] "
+                 "is the study's; default: the reference table");
   tc->add_flag("--json", tick->json, "print JSON on stdout");
   tc->add_option("--plot", tick->plot, "write the figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   tc->callback([&run, tick] { run = [tick] { return run_tick(*tick); }; });

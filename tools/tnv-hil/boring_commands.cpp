@@ -43,6 +43,7 @@ struct BoringOptions {
   double band_sigma_mm = 0.0;   // 0: same as --sigma-mm
   double gauge_sigma_mm = -1.0; // < 0: same as --sigma-mm
   std::string planner = "node";
+  std::string scenario;         // empty: an exact gauge (the paper's setting)
 };
 
 // "11,21", "11" or "none"; nullopt with a message when malformed.
@@ -81,6 +82,11 @@ int run_boring_command(const BoringOptions& o) {
   request.planner.log_base = o.log_base == "decimal" ? fw::BoringLogBase::decimal : fw::BoringLogBase::natural;
   if (o.band_sigma_mm != 0.0) request.band_sigma_mm = o.band_sigma_mm;
   if (o.gauge_sigma_mm >= 0.0) request.process_sigma_mm = o.gauge_sigma_mm;
+  if (!o.scenario.empty()) {
+    const auto scenario = resolve_scenario_or_report(o.scenario);
+    if (!scenario) return kExitBadInput;
+    request = hil::with_scenario_gauge(request, *scenario);
+  }
   request.parts = o.parts;
   const auto change_at = parse_change_at(o.change_at);
   if (!change_at) return kExitBadInput;
@@ -164,6 +170,9 @@ void add_boring_commands(CLI::App& app, Runner& run) {
   cmd->add_option("--gauge-sigma-mm", o->gauge_sigma_mm,
                   "noise of the emulated gauge, 0 = exact (default: --sigma-mm; the planner keeps --sigma-mm)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--scenario", o->scenario,
+                  "measure with this table's bore gauge (built-in name or TOML file; [noise] bore_gauge_um_rms, "
+                  "bore_gauge_resolution_um, seed): its error adds to the gauge noise; default: an exact gauge");
   cmd->callback([&run, o] { run = [o] { return run_boring_command(*o); }; });
 }
 

@@ -13,13 +13,15 @@ ParamCheck validate(const RobustArscConfig& c) noexcept {
   if (const ParamCheck p = validate(c.fixed); !p.ok) return p;
   if (const ParamCheck p = validate(c.drive); !p.ok) return p;
   if (const ParamCheck p = validate(c.estimator); !p.ok) return p;
+  if (const ParamCheck p = validate(c.gain_trend); !p.ok) return p;
   if (const ParamCheck p = validate(c.limits); !p.ok) return p;
   if (!std::isfinite(c.force_ref) || !(c.force_ref > 0.0)) return param_error("force_ref", "must be > 0");
   if (!std::isfinite(c.u_limit) || !(c.u_limit > 0.0)) return param_error("u_limit", "must be > 0");
   return param_ok();
 }
 
-RobustArsc::RobustArsc(const RobustArscConfig& config) noexcept : config_(config), estimator_(config.estimator) {
+RobustArsc::RobustArsc(const RobustArscConfig& config) noexcept
+    : config_(config), estimator_(config.estimator), trend_(config.gain_trend) {
   reset();
 }
 
@@ -35,7 +37,8 @@ StructuredModel RobustArsc::model() const noexcept {
 
 void RobustArsc::design() noexcept {
   ArscSignals& s = signals_;
-  const RobustDesign d = solve_robust_gains(model(), config_.d_star, config_.fixed, config_.limits);
+  const StructuredModel m{config_.drive, config_.estimator.a21, design_gain_};
+  const RobustDesign d = solve_robust_gains(m, config_.d_star, config_.fixed, config_.limits);
   s.last_reason = d.reason;
   s.rcond = d.rcond;
   ++s.reason_counts[static_cast<std::size_t>(d.reason)];
@@ -47,6 +50,8 @@ void RobustArsc::design() noexcept {
 
 void RobustArsc::reset() noexcept {
   estimator_.reset();
+  trend_.reset();
+  design_gain_ = estimator_.gain();
   signals_ = ArscSignals{};
   signals_.gains = with_fixed(config_.fixed);
   f1_ = v1_ = 0.0;
@@ -71,6 +76,8 @@ double RobustArsc::step(double force, double feed) noexcept {
   }
 
   // Gain update from the new estimate, used from t+1.
+  if (s.estimator_updated)
+    design_gain_ = trend_.update(estimator_.gain(), config_.estimator.gain_min, config_.estimator.gain_max);
   design();
 
   f1_ = measured ? force : f1_;

@@ -10,7 +10,9 @@
 //   - the gains are designed on that 3-state model (6th-order loop,
 //     RobustGains), where the design equations are well conditioned,
 //     instead of on a 4-state ARV(2) model whose exact fits make (26)
-//     singular.
+//     singular;
+//   - with a noisy force signal, the design takes the estimate through
+//     an alpha-beta tracker (gain_trend_filter.hpp; off by default).
 // Same per-sample order as the faithful loop (estimate, next input, gain
 // update) and the same one-sample computation delay. When the output is
 // clamped at u_limit the servo compensator (7) holds instead of
@@ -18,6 +20,7 @@
 // whose u_limit is not reached). Fixed size, no allocation.
 #include "firmware/adaptive/arsc/arsc_signals.hpp"
 #include "firmware/adaptive/arsc/cutting_gain_rls.hpp"
+#include "firmware/adaptive/arsc/gain_trend_filter.hpp"
 #include "firmware/adaptive/arsc/robust_gain_solve.hpp"
 #include "firmware/control/param_check.hpp"
 
@@ -28,6 +31,7 @@ struct RobustArscConfig {
   FixedGains fixed{};
   DriveModel drive{};
   CuttingGainRlsParams estimator{};
+  GainTrendParams gain_trend{};  // alpha 1: design with the estimate itself
   RobustDesignLimits limits{};
   double force_ref = 1.0;
   double u_limit = 1.0e6;
@@ -45,7 +49,8 @@ class RobustArsc {
   bool set_force_ref(double force_ref) noexcept;
 
   const ArscSignals& signals() const noexcept { return signals_; }
-  StructuredModel model() const noexcept;
+  StructuredModel model() const noexcept;  // with the estimator's gain
+  double design_gain() const noexcept { return design_gain_; }  // the gain the gains were designed for
   const RobustArscConfig& config() const noexcept { return config_; }
 
  private:
@@ -53,8 +58,10 @@ class RobustArsc {
 
   RobustArscConfig config_;
   CuttingGainRls estimator_;
+  GainTrendFilter trend_;
   ArscSignals signals_{};
   double f1_ = 0.0, v1_ = 0.0;
+  double design_gain_ = 0.0;
 };
 
 }  // namespace tnv::fw::arsc
