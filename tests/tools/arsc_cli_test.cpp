@@ -98,6 +98,13 @@ TEST(ArscCli, BadArgumentsAreExitCode2) {
   EXPECT_EQ(run_tnv_hil("arsc tick --poles case9").exit_code, 2);
   EXPECT_EQ(run_tnv_hil("arsc tick --period-ms 1 --speedup -2").exit_code, 2);
   EXPECT_EQ(run_tnv_hil("arsc tick --speedup 4").exit_code, 2);  // only with --period-ms
+  // The bench options: an unknown table is named and nothing runs; --seeds needs --scenario.
+  const CliRun unknown = run_tnv_hil("arsc compare --scenario no-such-table");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_TRUE(unknown.out.empty()) << unknown.out;
+  EXPECT_NE(unknown.err.find("no-such-table"), std::string::npos) << unknown.err;
+  EXPECT_EQ(run_tnv_hil("arsc compare --seeds 4").exit_code, 2);
+  EXPECT_EQ(run_tnv_hil("arsc tick --scenario no-such-table").exit_code, 2);
   EXPECT_EQ(run_tnv_hil("arsc tick --path circle").exit_code, 2);
 }
 
