@@ -109,10 +109,14 @@ def test_move_then_capture_to_numpy_and_a_data_frame(node):
     assert all(isinstance(a, np.ndarray) and a.shape == (n,) for a in data.values())
     assert data["t_s"][1] - data["t_s"][0] == pytest.approx(0.002)
     assert data["pos_x_mm"].min() < data["pos_x_mm"][0] - 0.4  # it moved back by 0.5 mm
+    # The node's sample count, and what was uploaded: samples x 3 channels x 4 bytes.
+    assert node.last_capture["samples"] == n and node.last_capture["bytes"] == n * 3 * 4
+    assert node.last_capture["decimation"] == 2
 
     frame = node.capture_frame(lambda n: n.move("x", 0.5, 10.0), channels="pos_x,speed_x", trigger="motion")
     assert list(frame.columns) == ["t_s", "pos_x_mm", "speed_x_mm_s"]
-    assert len(frame) > 10 and frame["speed_x_mm_s"].max() > 5.0
+    assert len(frame) == frame.attrs["samples"] > 10 and frame.attrs["bytes"] == len(frame) * 2 * 4
+    assert frame["speed_x_mm_s"].max() > 5.0
 
 
 def test_capture_setup_is_checked_before_anything_is_sent(node):

@@ -147,6 +147,7 @@ class Node:
                                   seed=emu.get("seed", 0), storage=emu.get("storage", ""), trace=trace)
         self.params = Params(self)
         self.notes = list(self._c.notes)
+        self.last_capture = None
 
     @classmethod
     def emulated(cls, scenario="no-cut", *, seed=0, storage=None, node=1, host_id=1, timeout_ms=250, trace=""):
@@ -214,7 +215,8 @@ class Node:
         or "all"; trigger: immediate | motion | fault; None keeps the node's),
         calls run(node) if given (a motion), records tail_s more seconds and
         stops, waits up to wait_s for the recording, uploads it. Returns
-        {"t_s": array, "<column>": array, ...} of numpy arrays."""
+        {"t_s": array, "<column>": array, ...} of numpy arrays; last_capture
+        then holds samples, decimation, period_s, bytes, upload_s, rerequests."""
         import numpy as np
 
         tail = _finite("tail_s", tail_s)
@@ -228,15 +230,19 @@ class Node:
         if tail > 0.0:
             conn.stop_capture_after(tail)
         d = conn.download_capture(wait)
+        self.last_capture = {k: v for k, v in d.items() if k != "columns"}
         out = {"t_s": np.arange(d["samples"], dtype=float) * d["period_s"]}
         out.update(d["columns"])
         return out
 
     def capture_frame(self, run=None, **options):
-        """capture() as a pandas DataFrame: a t_s column, then one per channel."""
+        """capture() as a pandas DataFrame: a t_s column, then one per channel;
+        attrs holds last_capture."""
         import pandas as pd
 
-        return pd.DataFrame(self.capture(run, **options))
+        frame = pd.DataFrame(self.capture(run, **options))
+        frame.attrs.update(self.last_capture)
+        return frame
 
     # --- telemetry
     def telemetry(self, period_s=0.1, count=None, duration_s=None, realtime=False):
