@@ -154,3 +154,28 @@ def test_unix_iface_against_tnv_fw(daemon):
             node.params[GAMMA] = 1e9
         assert node.params[GAMMA] == 0.375
         assert node.status()["protocol_version"] == tnv.protocol_version
+
+
+def test_waiting_on_the_bus_releases_the_gil(node):
+    # Paced to the wall clock, 0.3 s of telemetry waits about 0.3 s: another thread runs meanwhile.
+    import threading
+    import time
+
+    done = threading.Event()
+    ticks = 0
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    try:
+        samples = list(node.telemetry(period_s=0.1, count=3, realtime=True))
+    finally:
+        done.set()
+        t.join()
+    assert len(samples) == 3
+    assert ticks > 20  # holding the GIL, it would count a few at most, between samples
