@@ -8,7 +8,8 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgpiod-dev
   python3-canmatrix   # tests: an independent DBC parser decodes a recorded session
   python3-matplotlib python3-numpy   # the figures: --plot runs tools/plot/tnvplot
-  python3-pytest      # tests: the plotting package (ctest -L plot)
+  python3-pytest      # tests: the plotting package (ctest -L plot) and the Python module (ctest -L python)
+  python3-dev pybind11-dev python3-pandas   # the Python module tnv (tools/python): built, and capture_frame()
 )
 
 exec "$(dirname "$0")/install-missing.sh" deps "${packages[@]}"

@@ -14,7 +14,7 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 # -O1 -g1 with assertions on, as the ASan preset: a shorter build than -O2 -g.
 cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNITY_BUILD=ON \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-  -DTNV_BUILD_BENCHMARKS=OFF -DTNV_CLI_PROCESS_TESTS=OFF "${launcher[@]}" \
+  -DTNV_BUILD_BENCHMARKS=OFF -DTNV_CLI_PROCESS_TESTS=OFF -DTNV_BUILD_PYTHON=OFF "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
 cmake --build "$dir" -j"${TNV_JOBS:-2}" --target test_linux tnv-fw tnv-board-emu

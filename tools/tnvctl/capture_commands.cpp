@@ -17,6 +17,7 @@
 #include "tools/cli/output_path.hpp"
 #include "tools/cli/run_plotter.hpp"
 #include "tools/can/capture_csv.hpp"
+#include "tools/can/capture_run.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -47,15 +48,7 @@ struct CaptureOptions {
   std::string label;
 };
 
-const char* state_name(can::CaptureState s) {
-  switch (s) {
-    case can::CaptureState::idle: return "idle";
-    case can::CaptureState::armed: return "armed";
-    case can::CaptureState::recording: return "recording";
-    case can::CaptureState::done: return "done";
-  }
-  return "?";
-}
+using can_host::capture_state_name;
 
 // The motion to run after arming, parsed before anything is sent.
 std::optional<Action> motion_action(const CaptureOptions& o) {
@@ -95,33 +88,14 @@ std::optional<Action> motion_action(const CaptureOptions& o) {
 }
 
 void configure(const CaptureOptions& o, can_host::NodeClient& client, Report& report) {
-  std::vector<std::pair<const can::ParamDef*, double>> changes;
-  std::string error;
-  if (!o.channels.empty()) {
-    const auto mask = can_host::parse_channel_list(o.channels, error);
-    changes.emplace_back(can::find_param("capture.channels"), static_cast<double>(*mask));
-  }
-  if (!o.trigger.empty()) {
-    const can::ParamDef* p = can::find_param("capture.trigger");
-    changes.emplace_back(p, *can_host::parse_param_value(*p, o.trigger, error));
-  }
-  if (o.decimation > 0) changes.emplace_back(can::find_param("capture.decimation"), o.decimation);
-  if (!changes.empty()) {
-    for (const auto& [p, v] : changes) client.stage(*p, v);
-    client.commit();
-  }
-  const auto mask = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels")));
-  const can::ParamDef& trigger = *can::find_param("capture.trigger");
-  const std::string trigger_text = can_host::format_param_value(trigger, client.get(trigger));
-  const auto decimation = static_cast<int>(client.get(*can::find_param("capture.decimation")));
-  const can_host::CaptureStatus armed = client.capture(can::CaptureOp::arm);
+  const can_host::ArmedCapture armed = can_host::arm_capture(client, {o.channels, o.trigger, o.decimation});
   std::string text = "capture ";
-  text.append(state_name(armed.state)).append(": ").append(can_host::channel_list_text(mask));
-  text.append(", trigger ").append(trigger_text).append(", every ").append(std::to_string(decimation)).append(" tick(s)");
+  text.append(capture_state_name(armed.status.state)).append(": ").append(can_host::channel_list_text(armed.channel_mask));
+  text.append(", trigger ").append(armed.trigger).append(", every ").append(std::to_string(armed.decimation)).append(" tick(s)");
   report.line(text);
-  report.data["channels"] = can_host::channel_list_text(mask);
-  report.data["trigger"] = trigger_text;
-  report.data["decimation"] = decimation;
+  report.data["channels"] = can_host::channel_list_text(armed.channel_mask);
+  report.data["trigger"] = armed.trigger;
+  report.data["decimation"] = armed.decimation;
 }
 
 void write_outputs(const CaptureOptions& o, const can_host::CaptureTable& table,
@@ -196,10 +170,11 @@ std::optional<Action> check_capture(const CaptureOptions& o) {
   if (o.circle && !o.run.empty()) throw BadInput("--circle and --run exclude each other");
   if ((o.radius_mm || o.feed_mm_s) && !o.circle) throw BadInput("--radius-mm / --feed-mm-s go with --circle");
   if (o.arm_only && (!o.csv.empty() || !o.plot.empty())) throw BadInput("--csv / --plot need an upload, not --arm");
-  std::string error;
-  if (!o.channels.empty() && !can_host::parse_channel_list(o.channels, error)) throw BadInput(error);
-  if (!o.trigger.empty() && !can_host::parse_param_value(*can::find_param("capture.trigger"), o.trigger, error))
-    throw BadInput(error);
+  try {
+    can_host::check_capture_setup({o.channels, o.trigger, o.decimation});
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
   if (!(o.wait_s >= 0.0 && std::isfinite(o.wait_s))) throw BadInput("--wait-s must be >= 0");
   if (!(o.tail_s >= 0.0 && o.tail_s <= 3600.0)) throw BadInput("--tail-s must be in [0, 3600]");
   if (o.tail_s > 0.0 && (o.arm_only || o.upload_only)) throw BadInput("--tail-s goes with a recording run here");
@@ -210,7 +185,6 @@ std::optional<Action> check_capture(const CaptureOptions& o) {
 
 int run_capture(const CaptureOptions& o, Session& session, Report& report) {
   const std::optional<Action> motion = check_capture(o);
-  std::string error;
   can_host::NodeClient& client = session.client();
   if (!o.upload_only) {
     configure(o, client, report);
@@ -221,44 +195,27 @@ int run_capture(const CaptureOptions& o, Session& session, Report& report) {
       report.data["motion"] = motion_report.data;
       if (code != kExitOk) return code;
     }
-    if (o.tail_s > 0.0) {
-      // What follows the motion (settling), then stop: the recording keeps what it has.
-      client.pump(Micros{static_cast<long long>(o.tail_s * 1e6)});
-      if (client.capture(can::CaptureOp::status).state != can::CaptureState::done) client.capture(can::CaptureOp::abort);
-    }
+    // What follows the motion (settling), then stop: the recording keeps what it has.
+    if (o.tail_s > 0.0) can_host::stop_capture_after(client, Micros{static_cast<long long>(o.tail_s * 1e6)});
   }
-  can_host::CaptureStatus status = client.capture(can::CaptureOp::status);
-  if (status.state != can::CaptureState::done) {
-    if (o.wait_s <= 0.0) {
-      std::string message = "capture not done (";
-      throw RunFailed(message.append(state_name(status.state)).append("); wait with --wait-s S"));
-    }
-    status = client.wait_capture_done(Micros{static_cast<long long>(o.wait_s * 1e6)}, Micros{100'000});
-  }
-  const auto mask = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels")));
-  if (std::popcount(mask) != status.channels) {
-    std::string message = "capture.channels was changed after the recording: the image cannot be decoded (";
-    message.append(std::to_string(status.channels)).append(" channels recorded, capture.channels has ");
-    throw RunFailed(message.append(std::to_string(std::popcount(mask))).append(")"));
-  }
-  const Micros started = client.bus().now();
   UploadProgressLine progress;
-  const std::vector<std::uint8_t> image = client.upload(status, std::ref(progress));
-  const double upload_s = static_cast<double>((client.bus().now() - started).count()) * 1e-6;
-  const auto table = can_host::decode_capture(image, mask, status.samples, status.decimation, error);
-  if (!table) throw RunFailed(error);
-
+  const can_host::DownloadedCapture d =
+      can_host::download_capture(client, Micros{static_cast<long long>(o.wait_s * 1e6)}, std::ref(progress));
+  const can_host::CaptureTable* table = &d.table;
+  const can_host::CaptureStatus& status = d.status;
+  const std::uint32_t mask = d.channel_mask;
+  const double upload_s = d.upload_s;
   char buf[200];
   std::snprintf(buf, sizeof buf, "captured %u samples x %u channels (%.3f s), %zu bytes uploaded in %.2f s, %llu re-requests",
-                status.samples, status.channels, status.samples * status.decimation * 1e-3, image.size(), upload_s,
-                static_cast<unsigned long long>(client.upload_rerequests()));
+                status.samples, status.channels, status.samples * status.decimation * 1e-3, d.bytes, upload_s,
+                static_cast<unsigned long long>(d.rerequests));
   report.line(buf);
   report.data["samples"] = status.samples;
   report.data["channels"] = can_host::channel_list_text(mask);
   report.data["decimation"] = status.decimation;
-  report.data["bytes"] = image.size();
+  report.data["bytes"] = d.bytes;
   report.data["upload_s"] = upload_s;
-  report.data["rerequests"] = client.upload_rerequests();
+  report.data["rerequests"] = d.rerequests;
 
   std::string score_error;
   const std::optional<hil::ContourStats> stats = can_host::score_circle(*table, score_error);

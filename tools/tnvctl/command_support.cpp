@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "tools/can/motion_run.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/cli_frame.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -136,18 +137,6 @@ nlohmann::json firmware_json(const can_host::NodeIdentity& id) {
           {"protocol_version", id.protocol_version}};
 }
 
-nlohmann::json heartbeat_json(const can_host::Heartbeat& hb) {
-  nlohmann::json bits = nlohmann::json::array();
-  for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
-    if ((hb.errors & b.mask) != 0) bits.push_back(b.name);
-  return {{"state", fw::to_string(hb.state)},
-          {"fault", fw::to_string(hb.fault)},
-          {"flags", bits},
-          {"overruns", hb.overruns},
-          {"free_slots", hb.free_slots},
-          {"owner", hb.owner}};
-}
-
 std::string heartbeat_text(const can_host::Heartbeat& hb) {
   const nlohmann::json j = heartbeat_json(hb);
   std::string out = "state ";
@@ -162,17 +151,7 @@ std::string heartbeat_text(const can_host::Heartbeat& hb) {
 }
 
 void require_no_fault(const can_host::Heartbeat& hb, can_host::NodeClient& client, const std::string& what) {
-  if (hb.state != fw::MotionState::faulted) return;
-  std::string message = what;
-  message.append(" ended in a fault: ").append(fw::to_string(hb.fault));
-  if (const auto& ev = client.last_fault_event(); ev && ev->reason == hb.fault) {
-    if (ev->axis >= 0) message.append(" on axis ").append(ev->axis == 0 ? "x" : "y");
-    char buf[64];
-    std::snprintf(buf, sizeof buf, " (value %g, tick ...%u)", ev->value, static_cast<unsigned>(ev->tick_low));
-    message += buf;
-  }
-  message += "; `tnvctl clear-faults` unlatches it";
-  throw RunFailed(message);
+  if (const std::optional<std::string> fault = can_host::fault_message(hb, client, what)) throw RunFailed(*fault);
 }
 
 }  // namespace tnv::tnvctl

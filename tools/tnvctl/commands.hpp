@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/can/node_identity.hpp"
+#include "tools/can/telemetry_json.hpp"
 #include "tools/tnvctl/session.hpp"
 
 namespace tnv::tnvctl {
@@ -69,7 +70,7 @@ std::uint8_t parse_axis(const std::string& name);  // "x" -> 0, "y" -> 1
 const fw::can::ParamDef& param_named(const std::string& name);  // from the table, or throws BadInput
 // Throws RunFailed when the node ended in a fault: names the reason.
 void require_no_fault(const can_host::Heartbeat& hb, can_host::NodeClient& client, const std::string& what);
-nlohmann::json heartbeat_json(const can_host::Heartbeat& hb);
+using can_host::heartbeat_json;  // tools/can/telemetry_json.hpp
 // {"version": "0.1.0", "build_id": "1a2b3c4d", "protocol_version": 3}
 nlohmann::json firmware_json(const can_host::NodeIdentity& id);
 std::string heartbeat_text(const can_host::Heartbeat& hb);

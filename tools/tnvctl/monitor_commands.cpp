@@ -27,24 +27,6 @@ struct MonitorOptions {
   bool csv = false;  // CSV rows on stdout (header first), summary on stderr
 };
 
-nlohmann::json sample_json(const can_host::TelemetryView& l, double t_s, double load) {
-  nlohmann::json j = {{"t_s", t_s}, {"frames", l.frames}, {"bus_load", load}};
-  if (l.heartbeat) j["status"] = heartbeat_json(*l.heartbeat);
-  if (l.position_mm) j["position_mm"] = *l.position_mm;
-  if (l.following_mm) j["following_um"] = {(*l.following_mm)[0] * 1e3, (*l.following_mm)[1] * 1e3};
-  if (l.s_mm_s) j["s_mm_s"] = *l.s_mm_s;
-  if (l.d_hat_mm_s) j["d_hat_mm_s"] = *l.d_hat_mm_s;
-  if (l.output)
-    j["output"] = {{"dac_x", l.output->dac_code[0]}, {"dac_y", l.output->dac_code[1]}, {"force_n", l.output->force_n}};
-  if (l.contour) j["contour"] = {{"um", l.contour->contour_um}, {"motion_tick", l.contour->motion_tick}};
-  if (l.arsc)
-    j["arsc"] = {{"force_n", l.arsc->force_n},
-                 {"force_ref_n", l.arsc->force_ref_n},
-                 {"feed_override", l.arsc->feed_override},
-                 {"cutting_gain_n_per_mm_s", l.arsc->cutting_gain_n_per_mm_s}};
-  return j;
-}
-
 std::string sample_text(const can_host::TelemetryView& l, double t_s) {
   char buf[400];
   int n = std::snprintf(buf, sizeof buf, "t %7.2f s  %-8s %-10s", t_s,
@@ -96,7 +78,7 @@ int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
       if (wait > Micros{0}) client.pump(wait);
       const double t_s = static_cast<double>((client.bus().now() - start).count()) * 1e-6;
       const double load = t_s > 0.0 ? static_cast<double>(latest.bits) / (t_s * bitrate_bit_s) : 0.0;
-      if (report.json_mode()) std::cout << sample_json(latest, t_s, load).dump() << '\n';
+      if (report.json_mode()) std::cout << can_host::telemetry_json(latest, t_s, load).dump() << '\n';
       else if (o.csv) std::cout << can_host::telemetry_csv_row(latest, t_s, load) << '\n';
       else std::cout << sample_text(latest, t_s) << '\n';
       std::cout.flush();

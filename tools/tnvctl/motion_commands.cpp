@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numbers>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/can/motion_run.hpp"
 #include "tools/can/node_identity.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -19,7 +19,6 @@ using can_host::Micros;
 double seconds(Micros t) { return static_cast<double>(t.count()) * 1e-6; }
 Micros micros(double s) { return Micros{static_cast<long long>(std::ceil(s * 1e6))}; }
 
-double param(can_host::NodeClient& client, const char* name) { return client.get(*can::find_param(name)); }
 
 void require_positive(const char* what, double v, double max = 1e9) {
   if (std::isfinite(v) && v > 0.0 && v <= max) return;
@@ -31,8 +30,7 @@ void require_positive(const char* what, double v, double max = 1e9) {
 // Waits until the heartbeat shows the motion is over; a fault is a failure.
 can_host::Heartbeat finish(can_host::NodeClient& client, const std::string& what, double expected_s, Report& report) {
   const Micros started = client.bus().now();
-  const can_host::Heartbeat hb = client.wait_at_rest(micros(expected_s * 1.5 + 5.0));
-  require_no_fault(hb, client, what);
+  const can_host::Heartbeat hb = can_host::wait_motion_done(client, what, expected_s);
   const double took_s = seconds(client.bus().now() - started);
   char buf[160];
   std::snprintf(buf, sizeof buf, "%s done after %.2f s: %s", what.c_str(), took_s, heartbeat_text(hb).c_str());
@@ -73,8 +71,7 @@ int run_circle(const CircleOptions& o, Session& session, Report& report) {
   report.data["radius_mm"] = radius_mm;
   report.data["feed_mm_s"] = feed_mm_s;
   if (o.no_wait) return kExitOk;
-  const double expected_s = param(client, "motion.circle_dwell_s") + param(client, "motion.circle_ramp_s") +
-                            2.0 * std::numbers::pi * radius_mm / feed_mm_s;
+  const double expected_s = can_host::circle_expected_s(client, radius_mm, feed_mm_s);
   finish(client, "circle", expected_s, report);
   return kExitOk;
 }
@@ -102,8 +99,7 @@ int run_move(const MoveOptions& o, Session& session, Report& report) {
                 o.speed_mm_s, fw::to_string(ack.state));
   report.line(buf);
   if (o.no_wait) return kExitOk;
-  const double expected_s = param(client, "motion.move_dwell_s") + 2.0 * param(client, "motion.move_ramp_s") +
-                            std::fabs(o.distance_mm) / o.speed_mm_s;
+  const double expected_s = can_host::move_expected_s(client, o.distance_mm, o.speed_mm_s);
   finish(client, "move", expected_s, report);
   return kExitOk;
 }
@@ -158,33 +154,32 @@ int run_jog(const JogOptions& o, Session& session, Report& report) {
   return kExitOk;
 }
 
-int run_simple_command(can::CommandCode code, Session& session, Report& report) {
-  can_host::NodeClient& client = session.client();
-  const can_host::CommandAck ack = client.command(code);
+void report_ack(can::CommandCode code, const can_host::CommandAck& ack, Report& report) {
   std::string text = can::to_string(code);
   text.append(": ok (state ").append(fw::to_string(ack.state)).append(", fault ").append(fw::to_string(ack.fault)).append(")");
   report.line(text);
   report.data["state"] = fw::to_string(ack.state);
   report.data["fault"] = fw::to_string(ack.fault);
+}
+
+int run_simple_command(can::CommandCode code, Session& session, Report& report) {
+  report_ack(code, session.client().command(code), report);
   return kExitOk;
 }
 
-// A board trip (watchdog, encoder or DAC latch) takes two clears: the
-// first resets the board's latch and is refused with cause_present, the
-// next unlatches once a snapshot shows the latch gone. So one retry, a few
-// ticks later; a cause that is still there after it (an e-stop held, a
-// limit switch pressed) is the node's refusal, reported as it is.
+// A board trip (watchdog, encoder or DAC latch) takes two clears
+// (can_host::clear_faults sends the second); a cause that is still there
+// after it (an e-stop held, a limit switch pressed) is the node's refusal,
+// reported as it is.
 int run_clear_faults(Session& session, Report& report) {
-  can_host::NodeClient& client = session.client();
-  try {
-    return run_simple_command(can::CommandCode::clear_faults, session, report);
-  } catch (const can_host::RequestError& e) {
-    if (e.kind() != can_host::RequestError::Kind::refused || e.code() != can::ErrorCode::cause_present) throw;
+  bool retried = false;
+  const can_host::CommandAck ack = can_host::clear_faults(session.client(), retried);
+  if (retried) {
+    report.line("clear_faults: cause_present (a board latch is reset by the first clear); sent again 5 ms later");
+    report.data["retried"] = true;
   }
-  client.pump(Micros{5'000});
-  report.line("clear_faults: cause_present (a board latch is reset by the first clear); sent again 5 ms later");
-  report.data["retried"] = true;
-  return run_simple_command(can::CommandCode::clear_faults, session, report);
+  report_ack(can::CommandCode::clear_faults, ack, report);
+  return kExitOk;
 }
 
 int run_stop(bool no_wait, Session& session, Report& report) {
@@ -227,13 +222,7 @@ int run_home(const std::string& axis_name, Session& session, Report& report) {
   const bool all = axis_name == "all";
   const std::uint8_t axis = all ? 255 : parse_axis(axis_name);
   can_host::NodeClient& client = session.client();
-  double bound_s = 0.0;
-  for (const char* a : {"x", "y"}) {
-    if (!all && axis_name != a) continue;
-    const std::string p = std::string(a) + ".homing.";
-    bound_s += param(client, (p + "search_max_mm").c_str()) / param(client, (p + "search_mm_s").c_str()) +
-               2.0 * param(client, (p + "latch_max_mm").c_str()) / param(client, (p + "latch_mm_s").c_str()) + 1.0;
-  }
+  const double bound_s = can_host::homing_bound_s(client, all || axis == 0, all || axis == 1);
   client.command(can::CommandCode::home, axis);
   const can_host::Heartbeat hb = finish(client, "home " + axis_name, bound_s, report);
   const bool x_homed = (hb.errors & can::kHbHomedX) != 0;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/can/param_set.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -30,24 +31,6 @@ std::string access_text(const can::ParamDef& p) {
   out += can::to_string(p.apply);
   if (can::safety_param(p)) out += "/safety";
   return out;
-}
-
-constexpr const char* kEnterCommissioning = "enter commissioning mode first (tnvctl commissioning enter, servo disabled)";
-
-// "x.limits.following_floor_mm is a safety parameter: enter ..." for the
-// safety parameters among `changes` (the node refused commissioning_required).
-template <typename Changes>
-std::string safety_refusal(const Changes& changes) {
-  std::string names;
-  int n = 0;
-  for (const auto& c : changes)
-    if (can::safety_param(*c.param)) {
-      names.append(n == 0 ? "" : ", ").append(c.param->name);
-      ++n;
-    }
-  if (n == 0) names = "the set";  // the node saw a change this host did not ask for
-  names.append(n > 1 ? " are safety parameters: " : " is a safety parameter: ").append(kEnterCommissioning);
-  return names;
 }
 
 nlohmann::json value_json(const can::ParamDef& p, double v) {
@@ -146,10 +129,7 @@ std::optional<double> safety_value_for_the_node(const can::ParamDef& p, const st
   return v;
 }
 
-struct Change {
-  const can::ParamDef* param = nullptr;
-  double requested = 0.0;
-};
+using Change = can_host::ParamAssignment;
 
 std::vector<Change> parse_assignments(const std::vector<std::string>& assignments) {
   std::vector<Change> changes;
@@ -176,19 +156,10 @@ std::vector<Change> parse_assignments(const std::vector<std::string>& assignment
   return changes;
 }
 
-// Why the node called the set invalid: the same whole-set check, run here
-// on the node's values with the changes applied.
-std::string explain_invalid(can_host::NodeClient& client, const std::vector<Change>& changes) {
-  can::NodeSettings s = can::default_node_settings();
-  for (const can::ParamDef& p : can::param_table())
-    if (p.access == can::Access::read_write) p.set(s, client.get(p));
-  for (const Change& c : changes) c.param->set(s, can::from_wire(*c.param, can::to_wire(*c.param, c.requested)));
-  const can::SettingsCheck check = can::validate(s);
-  if (check.ok) return "";
-  std::string out;
-  if (const can::ParamDef* p = can::find_param(check.param)) out.append(p->name).append(": ");
-  out.append(check.section).append(": ").append(check.reason);
-  return out;
+std::size_t unique_ids(const std::vector<Change>& changes) {
+  std::set<std::uint16_t> ids;
+  for (const Change& c : changes) ids.insert(c.param->id);
+  return ids.size();
 }
 
 }  // namespace
@@ -198,65 +169,14 @@ int set_params(const std::vector<std::string>& assignments, Session& session, Re
   can_host::NodeClient& client = session.client();
   std::vector<double> before;
   for (const Change& c : changes) before.push_back(client.get(*c.param));
-  std::vector<double> staged;  // what the node said it staged, per change
-  try {
-    for (const Change& c : changes) staged.push_back(client.stage(*c.param, c.requested));
-  } catch (const RequestError& e) {
-    if (e.kind() == RequestError::Kind::refused) {
-      try {
-        client.discard();
-      } catch (const std::exception&) {
-        // The refusal is what matters; the node drops a stale stage at the next commit anyway.
-      }
-      if (e.code() == can::ErrorCode::commissioning_required)
-        throw RequestError(RequestError::Kind::refused, safety_refusal(changes), e.code());
-    }
-    throw;
-  }
-  std::uint16_t applied = 0;
-  try {
-    applied = client.commit();
-  } catch (const RequestError& e) {
-    if (e.kind() != RequestError::Kind::refused) throw;
-    std::string message = e.what();
-    if (e.code() == can::ErrorCode::commissioning_required) message = safety_refusal(changes);
-    if (e.code() == can::ErrorCode::invalid)
-      if (const std::string why = explain_invalid(client, changes); !why.empty()) message.append(": ").append(why);
-    if (e.code() == can::ErrorCode::busy) {
-      std::string idle;
-      for (const Change& c : changes)
-        if (c.param->apply == can::Apply::idle) idle.append(idle.empty() ? "" : ", ").append(c.param->name);
-      if (!idle.empty()) message.append(": ").append(idle).append(" can only change at rest (apply: idle)");
-    }
-    try {
-      client.discard();
-    } catch (const std::exception&) {
-    }
-    throw RequestError(RequestError::Kind::refused, message, e.code());
-  }
-  // The commit must have applied exactly this host's stages, and each must read back as staged.
-  std::vector<std::uint16_t> ids;
-  for (const Change& c : changes)
-    if (std::find(ids.begin(), ids.end(), c.param->id) == ids.end()) ids.push_back(c.param->id);
-  if (applied != ids.size()) {
-    std::string message = "the node's commit applied ";
-    message.append(std::to_string(applied)).append(" parameters, tnvctl staged ").append(std::to_string(ids.size()));
-    message.append(" (another host's stages, or stages lost): check the values with `params get`");
-    throw RunFailed(message);
-  }
+  const std::vector<double> staged = can_host::stage_params(client, changes);
   std::vector<double> after;
-  for (const Change& c : changes) after.push_back(client.get(*c.param));
-  for (std::size_t i = 0; i < changes.size(); ++i) {
-    // A later change of the same parameter wins; compare the last one only.
-    bool last = true;
-    for (std::size_t j = i + 1; j < changes.size(); ++j) last = last && changes[j].param != changes[i].param;
-    if (!last || can::to_wire(*changes[i].param, after[i]) == can::to_wire(*changes[i].param, staged[i])) continue;
-    const can::ParamDef& p = *changes[i].param;
-    std::string message = "read back ";
-    message.append(p.name).append(" = ").append(format_param_value(p, after[i])).append(" after the commit, staged ");
-    message.append(format_param_value(p, staged[i])).append(": another host changed it, or the commit did not apply it");
-    throw RunFailed(message);
+  try {
+    after = can_host::commit_params(client, changes, staged);
+  } catch (const can_host::ParamSetMismatch& e) {
+    throw RunFailed(e.what());
   }
+  const std::uint16_t applied = static_cast<std::uint16_t>(unique_ids(changes));
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < changes.size(); ++i) {
     const can::ParamDef& p = *changes[i].param;
@@ -282,7 +202,7 @@ int run_storage_command(can::CommandCode code, Session& session, Report& report)
   } catch (const RequestError& e) {
     if (e.kind() != RequestError::Kind::refused || e.code() != can::ErrorCode::commissioning_required) throw;
     std::string message = e.what();
-    message.append(": the stored set changes safety parameters: ").append(kEnterCommissioning);
+    message.append(": the stored set changes safety parameters: ").append(can_host::kEnterCommissioning);
     throw RequestError(RequestError::Kind::refused, message, e.code());
   }
   std::string text;

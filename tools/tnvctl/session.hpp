@@ -10,7 +10,7 @@
 
 #include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
-#include "tools/can/socket_api.hpp"
+#include "tools/can/node_connection.hpp"
 
 namespace tnv::tnvctl {
 
@@ -76,7 +76,7 @@ class Session {
   // tnvctl); a failure is reported on stderr, never thrown.
   void end() noexcept;
   // The emulated node, if this session opened one (never opens it).
-  can_host::EmulatedBus* opened_emulation() const noexcept { return emulated_; }
+  can_host::EmulatedBus* opened_emulation() const noexcept { return connection_ ? connection_->emulated() : nullptr; }
   const GlobalOptions& options() const noexcept { return options_; }
   // Set in script mode: JSON objects are printed one per line.
   bool compact_json = false;
@@ -84,11 +84,7 @@ class Session {
  private:
   void open();
   GlobalOptions options_;
-  std::unique_ptr<can_host::SocketApi> unix_link_;  // --iface unix:PATH; outlives bus_, which uses it
-  std::unique_ptr<can_host::HostBus> bus_;
-  std::unique_ptr<can_host::HostBus> traced_;  // --trace: records what passes through bus_
-  can_host::EmulatedBus* emulated_ = nullptr;
-  std::unique_ptr<can_host::NodeClient> client_;
+  std::unique_ptr<can_host::NodeConnection> connection_;
 };
 
 }  // namespace tnv::tnvctl

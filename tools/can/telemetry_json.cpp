@@ -1,0 +1,37 @@
+#include "tools/can/telemetry_json.hpp"
+
+#include "firmware/can/param_table.hpp"
+
+namespace tnv::can_host {
+
+nlohmann::json heartbeat_json(const Heartbeat& hb) {
+  nlohmann::json bits = nlohmann::json::array();
+  for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
+    if ((hb.errors & b.mask) != 0) bits.push_back(b.name);
+  return {{"state", fw::to_string(hb.state)},
+          {"fault", fw::to_string(hb.fault)},
+          {"flags", bits},
+          {"overruns", hb.overruns},
+          {"free_slots", hb.free_slots},
+          {"owner", hb.owner}};
+}
+
+nlohmann::json telemetry_json(const TelemetryView& l, double t_s, double load) {
+  nlohmann::json j = {{"t_s", t_s}, {"frames", l.frames}, {"bus_load", load}};
+  if (l.heartbeat) j["status"] = heartbeat_json(*l.heartbeat);
+  if (l.position_mm) j["position_mm"] = *l.position_mm;
+  if (l.following_mm) j["following_um"] = {(*l.following_mm)[0] * 1e3, (*l.following_mm)[1] * 1e3};
+  if (l.s_mm_s) j["s_mm_s"] = *l.s_mm_s;
+  if (l.d_hat_mm_s) j["d_hat_mm_s"] = *l.d_hat_mm_s;
+  if (l.output)
+    j["output"] = {{"dac_x", l.output->dac_code[0]}, {"dac_y", l.output->dac_code[1]}, {"force_n", l.output->force_n}};
+  if (l.contour) j["contour"] = {{"um", l.contour->contour_um}, {"motion_tick", l.contour->motion_tick}};
+  if (l.arsc)
+    j["arsc"] = {{"force_n", l.arsc->force_n},
+                 {"force_ref_n", l.arsc->force_ref_n},
+                 {"feed_override", l.arsc->feed_override},
+                 {"cutting_gain_n_per_mm_s", l.arsc->cutting_gain_n_per_mm_s}};
+  return j;
+}
+
+}  // namespace tnv::can_host
