@@ -6,7 +6,7 @@
 #   asan     the suite under AddressSanitizer + UndefinedBehaviorSanitizer,
 #            without the tests that run tnv-hil or tnvctl as a process
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
-#   fuzz     every libFuzzer target for 60 s                   (scripts/fuzz.sh)
+#   fuzz     every libFuzzer target for 30 s                   (scripts/fuzz.sh)
 #   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
 #   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
 #            build's binaries                                  (scripts/kernel-tests.sh)
@@ -39,7 +39,7 @@ for stage in "${stages[@]}"; do
   case "${stage}" in
     release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
     tsan) run_stage tsan scripts/tsan.sh ;;
-    fuzz) run_stage fuzz scripts/fuzz.sh --seconds 60 ;;
+    fuzz) run_stage fuzz scripts/fuzz.sh --seconds 30 ;;
     arm64) run_stage arm64 scripts/arm64.sh ;;
     kernel) run_stage kernel scripts/kernel-tests.sh build/release ;;
     *) echo "unknown stage '${stage}' (release asan tsan fuzz arm64 kernel)" >&2; exit 2 ;;
