@@ -84,7 +84,8 @@ def polar_panel(ax, row, radius_mm, suppressed, color, with_note=True):
     if clipped:
         note += f"\n{clipped} samples drawn on the edge"
     if with_note or clipped:
-        ax.set_title(note, fontsize=8, pad=8)
+        # Below the panel: above it, the note would meet the figure's title.
+        ax.set_xlabel(note, fontsize=7, labelpad=6)
     return clipped
 
 
@@ -118,7 +119,7 @@ def time_panel(ax, row, y_max_um, color, last=True):
     if t.size:
         ax.set_xlim(0.0, max(float(t.max()), 1e-3))
     if last:
-        ax.set_xlabel("time since start of motion (s); shaded: min to max per column, line: mean")
+        ax.set_xlabel("time since start of motion (s)\nshaded: min to max per column; line: mean")
     ax.set_ylabel(f"contour error ({style.UM})")
     s = row.get("stats") or {}
     if s:
