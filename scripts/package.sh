@@ -103,7 +103,7 @@ build_arch() {
   local files
   files=$(shopt -s nullglob; echo "$dir"/*.deb "$dir"/*.ddeb)
   [[ -n $files ]] || die "no packages in $dir"
-  rm -f out/deb/*_"$a".deb out/deb/*_"$a".ddeb
+  rm -f out/deb/*_"$a".deb out/deb/*_"$a".ddeb out/deb/*_"$a".changes
   cp $files out/deb/
   report+=("$(printf '%-6s %4d s  %s' "$a" $((SECONDS - t0)) "$(cd out/deb && ls -- *_"$a".*deb | tr '\n' ' ')")")
   if ((lintian)); then
