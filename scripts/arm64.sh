@@ -32,42 +32,16 @@ if [[ ! -f $deps/lib/cmake/GTest/GTestConfig.cmake ]]; then
   cmake --install "$out/gtest-build" >/dev/null
 fi
 
-# 2. Shims for the header-only packages: only their own include dirs (never
-#    the host's /usr/include, whose libc headers are x86-64's).
+# 2. Shims for the header-only packages (scripts/arm64/shims.sh).
 shim=$out/shim
-mkdir -p "$shim/include"
-ln -sfn /usr/include/eigen3 "$shim/include/eigen3"
-for d in toml++ CLI nlohmann; do ln -sfn "/usr/include/$d" "$shim/include/$d"; done
-write_shim() {  # NAME VERSION TARGET INCLUDE_DIR [DEFINES]
-  mkdir -p "$shim/$1"
-  cat > "$shim/$1/$1Config.cmake" <<EOC
-if(NOT TARGET $3)
-  add_library($3 INTERFACE IMPORTED)
-  set_target_properties($3 PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "$4" INTERFACE_COMPILE_DEFINITIONS "${5:-}")
-endif()
-set($1_FOUND TRUE)
-EOC
-  cat > "$shim/$1/$1ConfigVersion.cmake" <<EOC
-set(PACKAGE_VERSION "$2")
-if(PACKAGE_FIND_VERSION VERSION_GREATER PACKAGE_VERSION)
-  set(PACKAGE_VERSION_COMPATIBLE FALSE)
-else()
-  set(PACKAGE_VERSION_COMPATIBLE TRUE)
-endif()
-EOC
-}
-write_shim Eigen3 3.4.0 Eigen3::Eigen "$shim/include/eigen3"
-write_shim tomlplusplus 3.3.0 tomlplusplus::tomlplusplus "$shim/include" "TOML_HEADER_ONLY=1"
-write_shim CLI11 2.3.0 CLI11::CLI11 "$shim/include"
-write_shim nlohmann_json 3.11.2 nlohmann_json::nlohmann_json "$shim/include"
+shim_args=$(scripts/arm64/shims.sh "$shim")
 
 # 3. Configure and build only the unit-test binaries that matter on the board.
 #    No arm64 libgpiod: pkg-config looks only at the (absent) arm64 dir.
 echo "[arm64] configure"
 PKG_CONFIG_LIBDIR=/usr/lib/aarch64-linux-gnu/pkgconfig PKG_CONFIG_PATH="" \
 cmake --preset arm64 -B "$out/tnv" "${launcher[@]}" \
-  -DGTest_DIR="$deps/lib/cmake/GTest" -DEigen3_DIR="$shim/Eigen3" -Dtomlplusplus_DIR="$shim/tomlplusplus" \
-  -DCLI11_DIR="$shim/CLI11" -Dnlohmann_json_DIR="$shim/nlohmann_json" >/dev/null
+  -DGTest_DIR="$deps/lib/cmake/GTest" $shim_args >/dev/null
 suites=(test_firmware test_emulator test_drivers)
 if ninja -C "$out/tnv" -t targets all 2>/dev/null | grep -q '^test_linux:'; then suites+=(test_linux); fi
 t_build=$SECONDS

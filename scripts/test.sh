@@ -10,7 +10,10 @@
 #   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
 #   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
 #            build's binaries                                  (scripts/kernel-tests.sh)
-# TNV_STAGES="release asan" scripts/test.sh runs a subset (default: all).
+#   package  the Debian packages for amd64 and lintian; not in the default
+#            list (a whole extra build)                        (scripts/package.sh)
+# TNV_STAGES="release asan" scripts/test.sh runs a subset (default: all
+# but package; TNV_STAGES=package runs the package build alone).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -42,7 +45,8 @@ for stage in "${stages[@]}"; do
     fuzz) run_stage fuzz scripts/fuzz.sh --seconds 30 ;;
     arm64) run_stage arm64 scripts/arm64.sh ;;
     kernel) run_stage kernel scripts/kernel-tests.sh build/release ;;
-    *) echo "unknown stage '${stage}' (release asan tsan fuzz arm64 kernel)" >&2; exit 2 ;;
+    package) run_stage package scripts/package.sh --arch amd64 --jobs "${jobs}" ;;
+    *) echo "unknown stage '${stage}' (release asan tsan fuzz arm64 kernel package)" >&2; exit 2 ;;
   esac
 done
 

@@ -1,6 +1,8 @@
 // tnv-fw: the TNV-40 firmware on a Linux board (docs/install-board.md).
 //   tnv-fw --config FILE                    run until SIGTERM / SIGINT
 //   tnv-fw --config FILE --check-config     validate the file and exit
+//   tnv-fw --config FILE --check-config --probe   ... and open its devices
+//   tnv-fw --config FILE --can IFACE        use IFACE, not can.interface
 //   tnv-fw [--config FILE] --latency-test S wake-up latency histogram
 // Exit codes: 0 clean stop, 1 a device could not be opened or the
 // real-time policy was refused, 2 bad command line or config file.
@@ -13,6 +15,7 @@
 
 #include "drivers/linux/stop_signals.hpp"
 #include "tools/cli/cli_frame.hpp"
+#include "tools/tnv-fw/config_probe.hpp"
 #include "tools/tnv-fw/daemon.hpp"
 #include "tools/tnv-fw/fw_config.hpp"
 #include "tools/tnv-fw/latency_test.hpp"
@@ -52,6 +55,33 @@ int run(const fwd::DaemonConfig& config, const fwd::DaemonOptions& options) {
   return safe.safe ? 0 : 1;
 }
 
+// --check-config --probe: one line per device on stdout, each failure
+// also on stderr naming the key, the device and the error; exit 1 when any
+// could not be opened (as the daemon's start would fail).
+int probe(const std::string& config_path, const fwd::DaemonConfig& config) {
+  const fwd::ProbeReport report = fwd::probe_devices(config);
+  std::size_t opened = 0;
+  for (const fwd::ProbeItem& item : report.items) {
+    if (!item.probed) {
+      std::printf("  skipped  %s (%s)\n", item.what.c_str(), item.detail.c_str());
+    } else if (item.ok) {
+      ++opened;
+      std::printf("  ok       %s\n", item.what.c_str());
+    } else {
+      std::printf("  FAILED   %s: %s\n", item.what.c_str(), item.detail.c_str());
+      std::fprintf(stderr, "tnv-fw: %s: %s: %s\n", config_path.c_str(), item.what.c_str(), item.detail.c_str());
+    }
+  }
+  std::fflush(stdout);
+  if (!report.ok()) {
+    std::fprintf(stderr, "tnv-fw: %s: probe failed: %zu of %zu devices could not be opened\n", config_path.c_str(),
+                 report.failures(), report.failures() + opened);
+    return 1;
+  }
+  std::printf("%s: ok (%zu devices opened)\n", config_path.c_str(), opened);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -59,11 +89,17 @@ int main(int argc, char** argv) {
   std::string config_path;
   double latency_seconds = 0.0;
   bool check_only = false;
+  bool probe_flag = false;
+  std::string can_interface;
   std::uint64_t max_ticks = 0;
   app.add_option("--config", config_path, "TOML configuration file");
   app.add_option("--latency-test", latency_seconds, "measure the wake-up latency for SECONDS and print a histogram")
       ->check(CLI::Range(0.01, 86400.0));
-  app.add_flag("--check-config", check_only, "validate the config file and exit");
+  CLI::Option* check_flag = app.add_flag("--check-config", check_only, "validate the config file and exit");
+  app.add_flag("--probe", probe_flag,
+               "with --check-config: also open the configured spidev device, GPIO lines and CAN interface")
+      ->needs(check_flag);
+  app.add_option("--can", can_interface, "CAN interface to use instead of the config's can.interface (tnv-fw@IFACE)");
   app.add_option("--ticks", max_ticks, "stop after this many ticks (tests)");
   tnv::cli::add_version_flag(app, "tnv-fw");
   try {
@@ -81,6 +117,14 @@ int main(int argc, char** argv) {
     }
     config = *loaded.config;
   }
+  if (!can_interface.empty()) {
+    if (can_interface.rfind("unix:", 0) != 0 && can_interface.size() > 15) {
+      std::fprintf(stderr, "tnv-fw: --can %s: a network interface name has at most 15 characters\n",
+                   can_interface.c_str());
+      return 2;
+    }
+    config.can.interface_name = can_interface;
+  }
   if (latency_seconds > 0.0) {
     // Without a config file the test measures whatever the policy gets (and says so).
     if (config_path.empty()) config.rt.require = false;
@@ -95,6 +139,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (check_only) {
+    if (probe_flag) return probe(config_path, config);
     std::printf("%s: ok\n", config_path.c_str());
     return 0;
   }
