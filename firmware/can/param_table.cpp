@@ -28,8 +28,10 @@ namespace {
       nullptr
 #define TNV_RO(expr) [](const NodeSettings&) noexcept -> double { return static_cast<double>(expr); }, nullptr, nullptr
 // A double member shown in another unit: the parameter is member * scale (um for a member in mm: 1000).
-#define TNV_SCALED(path, scale)                                                   \
-  [](const NodeSettings& s) noexcept -> double { return s.path * (scale); },      \
+// Read back at f32 precision (the parameter's wire type): a value set reads
+// back exactly, not with the last bit of (v / scale) * scale's rounding.
+#define TNV_SCALED(path, scale)                                                                        \
+  [](const NodeSettings& s) noexcept -> double { return static_cast<double>(static_cast<float>(s.path * (scale))); }, \
       [](NodeSettings& s, double v) noexcept { s.path = v / (scale); }, nullptr
 
 std::size_t param_count() noexcept;
