@@ -61,7 +61,15 @@ for s in "${suites[@]}"; do
     || die "$exe is not an aarch64 binary"
   while (($(jobs -rp | wc -l) >= $(nproc))); do sleep 0.2; done
   echo "[arm64] qemu-aarch64 $s"
-  (cd "$repo" && qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1) >"$out/$s.log" 2>&1 &
+  # The storage test that forks a writer 1,000 times and SIGKILLs it runs
+  # natively (release, asan) only: under qemu-user the file system is the
+  # host's anyway, and a fork + SIGKILL there once left the parent waiting
+  # on a child still running (the stage hung). A suite that runs over
+  # 15 minutes is stopped and fails, not the whole CI run.
+  filter=()
+  [[ $s == test_drivers ]] && filter=(--gtest_filter=-FileParamStorage.AWriterKilledAtRandomPoints*)
+  (cd "$repo" && timeout --kill-after=10 900 qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1 "${filter[@]}") \
+    >"$out/$s.log" 2>&1 &
   pid_of[$s]=$!
 done
 for s in "${!pid_of[@]}"; do
