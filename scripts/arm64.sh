@@ -61,13 +61,15 @@ for s in "${suites[@]}"; do
     || die "$exe is not an aarch64 binary"
   while (($(jobs -rp | wc -l) >= $(nproc))); do sleep 0.2; done
   echo "[arm64] qemu-aarch64 $s"
-  # The storage test that forks a writer 1,000 times and SIGKILLs it runs
-  # natively (release, asan) only: under qemu-user the file system is the
-  # host's anyway, and a fork + SIGKILL there once left the parent waiting
-  # on a child still running (the stage hung). A suite that runs over
-  # 15 minutes is stopped and fails, not the whole CI run.
+  # The two storage tests that fork run natively (release, asan) only: a
+  # child forked by qemu-user sometimes spins for ever (it inherits a lock
+  # of qemu's own threads; seen with the 1,000 SIGKILLed writers and with
+  # the child that drops root), and the file system under qemu-user is the
+  # host's anyway. A suite that runs over 15 minutes is stopped and fails,
+  # not the whole CI run.
   filter=()
-  [[ $s == test_drivers ]] && filter=(--gtest_filter=-FileParamStorage.AWriterKilledAtRandomPoints*)
+  [[ $s == test_drivers ]] &&
+    filter=(--gtest_filter=-FileParamStorage.AWriterKilledAtRandomPoints*:FileParamStorage.AReadOnlyDirectoryRefuses*)
   (cd "$repo" && timeout --kill-after=10 900 qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1 "${filter[@]}") \
     >"$out/$s.log" 2>&1 &
   pid_of[$s]=$!
