@@ -6,8 +6,8 @@
 # BUILD_DIR defaults to build/release; NAME_GLOB (e.g. 'boring-*') redraws
 # only the figures whose file name matches. The emulated node's saved
 # parameters live in a fresh folder for the run (XDG_STATE_HOME), so a set
-# saved on this machine does not change the figures. About 25 minutes on
-# two cores; the Monte Carlo boring runs and the one-hour soak are most of it.
+# saved on this machine does not change the figures. About 10 minutes on
+# the shared two-core machine (the circles, the path and the soak most of it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build/release}
@@ -97,14 +97,14 @@ if wanted 'tuning-*'; then
      --title "tnvctl --emu capture --circle: the papers' defaults (no-cut, seed 0)") >"$work/out.txt" 2>&1 \
     || { cat "$work/out.txt" >&2; exit 1; }
   for g in 0 0.6; do
-    printf 'params set y.sliding.gamma=%s\ncapture --circle --csv %s/gamma-%s.csv\n' "$g" "$t" "$g" | "$ctl" --emu script - >/dev/null
+    printf 'params set y.sliding.gamma=%s\ncapture --circle --csv %s/gamma-%s.csv\n' "$g" "$t" "$g" | "$ctl" --emu script - >/dev/null 2>&1
   done
-  printf 'params set y.sliding.gamma=0.304\n' | "$ctl" --emu script - >/dev/null
+  printf 'params set y.sliding.gamma=0.304\n' | "$ctl" --emu script - >/dev/null 2>&1
   draw tuning-gamma "$ctl" plot --csv "$t/gamma-0.csv" --csv "$t/baseline.csv" --csv "$t/gamma-0.6.csv" \
     --label "y gamma 0" --label "y gamma 0.304 (papers')" --label "y gamma 0.6" \
     --title "y.sliding.gamma: no-cut circle, seed 0 (polar plot: 99.8% of R suppressed)" --out "$img/tuning-gamma.svg"
   for e in 0.2 0.4 0.8; do
-    printf 'params set y.sliding.eta_mm_s=%s\ncapture --circle --csv %s/eta-%s.csv\n' "$e" "$t" "$e" | "$ctl" --emu script - >/dev/null
+    printf 'params set y.sliding.eta_mm_s=%s\ncapture --circle --csv %s/eta-%s.csv\n' "$e" "$t" "$e" | "$ctl" --emu script - >/dev/null 2>&1
   done
   draw tuning-eta "$ctl" plot --csv "$t/baseline.csv" --csv "$t/eta-0.2.csv" --csv "$t/eta-0.4.csv" --csv "$t/eta-0.8.csv" \
     --label "y eta 0.1014 (papers')" --label "y eta 0.2" --label "y eta 0.4" --label "y eta 0.8" \
@@ -113,4 +113,7 @@ if wanted 'tuning-*'; then
     "$t" "$img/tuning-move-y.svg" | "$ctl" --emu script - >"$work/out.txt" 2>&1 || { cat "$work/out.txt" >&2; exit 1; }
   echo "figures: tuning-baseline, tuning-move-y"
 fi
+# The figures' data files (.plot.json or .plot.csv, written beside each figure so it can
+# be redrawn) are not kept in docs/.
+rm -f "$img"/*.plot.json "$img"/*.plot.csv
 echo "figures: done"

@@ -243,7 +243,7 @@ json boring_plot_data(std::string_view title, const BoringRunRequest& r, const B
   for (int at : r.change_at) changes.push_back(at - 0.5);
   json panels = json::array();
   panels.push_back({{"y_label", "deflection d (mm)"}, {"y_range", {std::max(0.0, d0 - 6.0 * band), d0 + 6.0 * band}},
-                    {"band", {d0 - band, d0 + band}}, {"band_label", printf_text("d0 +- %.3g mm", band)},
+                    {"band", {d0 - band, d0 + band}}, {"band_label", printf_text("d0 ± %.3g mm", band)},
                     {"series", deflection}, {"legend_columns", 3}});
   panels.push_back({{"y_label", "infeed S (mm/rev)"}, {"log_y", true}, {"series", infeed}, {"legend_columns", 2}});
   panels.push_back({{"y_label", "exponents"}, {"y_cap", {-1.0, 3.0}}, {"series", exps}});
@@ -265,7 +265,7 @@ json soak_plot_data(const SoakResult& r, std::string_view scenario_name) {
   const char* joined = "line";
   json contour = {per_cycle("max contour error", cy, [](const SoakCycle& c) { return c.circle.max_um; }, joined),
                   per_cycle("mean", cy, [](const SoakCycle& c) { return c.circle.mean_um; }, joined),
-                  per_cycle("std", cy, [](const SoakCycle& c) { return c.circle.std_um; }, joined)};
+                  per_cycle("std", cy, [](const SoakCycle& c) { return c.circle.std_um; }, "dashed")};
   for (auto& s : contour) s["markers"] = true;
   json rest = {per_cycle("X reference - position", cy, [](const SoakCycle& c) { return c.rest_error_um[0]; }, "dots"),
                per_cycle("Y", cy, [](const SoakCycle& c) { return c.rest_error_um[1]; }, "dots")};

@@ -151,7 +151,7 @@ json move_plot_data(const std::string& title, const MoveComparison& c) {
   for (double v : eu) err_max = std::max(err_max, std::fabs(v));
   for (double v : es) err_max = std::max(err_max, std::fabs(v));
   char sub[200];
-  std::snprintf(sub, sizeof sub, "unshaped: residual %.1f um p-p, settles (+-1 um) %.3f s after the move;  shaped: %.2f um p-p, %s",
+  std::snprintf(sub, sizeof sub, "unshaped: residual %.1f µm p-p, settles (±1 µm) %.3f s after the move;  shaped: %.2f µm p-p, %s",
                 u.residual_pp_um, u.settling_s.value_or(-1.0), s.residual_pp_um,
                 s.settling_s ? shaper_text("%.3f s", *s.settling_s).c_str() : "not settled");
   const json errors = {plot_series("unshaped", teu, eu, "line", "#d62728"), plot_series("shaped", tes, es, "line", "#2ca02c")};
@@ -167,7 +167,7 @@ json move_plot_data(const std::string& title, const MoveComparison& c) {
   panels.push_back({{"y_label", "tool - target (um)"}, {"x_range", {0.0, t_end}}, {"y_range", {-err_max * 1.05, err_max * 1.05}},
                     {"note", "each after its own command has ended"}, {"series", errors}});
   panels.push_back({{"y_label", "tool - target (um)"}, {"x_range", {0.0, t_end}}, {"y_range", {-5.0, 5.0}},
-                    {"band", {-1.0, 1.0}}, {"band_label", "+-1 um settling band"}, {"series", errors}});
+                    {"band", {-1.0, 1.0}}, {"band_label", "±1 µm settling band"}, {"series", errors}});
   return {{"kind", "panels"}, {"title", title}, {"subtitle", sub}, {"sharex", false},
           {"x_label", "time since the start of the move (s)"}, {"panels", panels}};
 }
@@ -186,7 +186,7 @@ json jog_plot_data(const std::string& title, const JogRunResult& u, const JogRun
                       {"series", {plot_series("operator stream (unshaped)", t, cmd, "reference", "#999999"),
                                   plot_series("shaped reference", t, ref, "line", "#1f77b4")}}});
     panels.push_back({{"y_label", axis + ": tool - end (um)"}, {"y_range", {-10.0, 10.0}}, {"band", {-1.0, 1.0}},
-                      {"band_label", "+-1 um"}, {"note", "after the stop"},
+                      {"band_label", "±1 µm"}, {"note", "after the stop"},
                       {"series", {plot_series("unshaped", teu, eu, "line", "#d62728"),
                                   plot_series("shaped", tes, es, "line", "#2ca02c")}}});
   }

@@ -122,11 +122,15 @@ def time_panel(ax, row, y_max_um, color, last=True):
         ax.set_xlabel("time since start of motion (s)\nshaded: min to max per column; line: mean")
     ax.set_ylabel(f"contour error ({style.UM})")
     s = row.get("stats") or {}
+    title = row["label"]
     if s:
-        ax.set_title(f"{row['label']}: max {s['max_um']:.3f} {style.UM}, mean {s['mean_um']:.3f} {style.UM}, "
-                     f"std {s['std_um']:.3f} {style.UM}", fontsize=8, loc="left", color=color)
-    else:
-        ax.set_title(row["label"], fontsize=8, loc="left", color=color)
+        stats = f"max {s['max_um']:.3f} {style.UM}, mean {s['mean_um']:.3f} {style.UM}, std {s['std_um']:.3f} {style.UM}"
+        one_line = f"{title}: {stats}"
+        # The statistics on a line of their own when the label and they do not fit on one.
+        fits = style.wrap(one_line, ax.get_position().width * ax.figure.get_figwidth(), 8) == one_line
+        title = one_line if fits else f"{title}\n{stats}"
+    width_in = ax.get_position().width * ax.figure.get_figwidth()
+    ax.set_title(style.wrap(title, width_in, 8), fontsize=8, loc="left", color=color)
     return clipped
 
 
@@ -136,8 +140,7 @@ def draw(data):
     suppressed = float(data.get("suppressed", DEFAULT_SUPPRESSED))
     n = max(len(rows), 1)
     fig = style.figure(style.DOUBLE_COLUMN_IN, 0.5 + 3.0 * n)
-    if data.get("title"):
-        fig.suptitle(style.units(data["title"]))
+    style.suptitle(fig, style.units(data.get("title", "")), fontsize=10)
     worst = max((float(np.max(r["contour_um"])) for r in rows if len(r["contour_um"])), default=0.0)
     y_max = axis_ceiling(1.05 * worst)
     grid = fig.add_gridspec(n, 2, width_ratios=[1.0, 1.6])

@@ -14,12 +14,19 @@ underneath the rest; every labelled series is in the legend above its
 panel.
 """
 
+from matplotlib import ticker
 import numpy as np
 
 from tnvplot import style
 from tnvplot.envelope import clip, envelope
 
 LINE_STYLES = {"line": "-", "dashed": "--", "reference": "-", "steps": "--"}
+
+
+def _two_and_five(value, _pos):
+    """A minor tick's label on a log axis: only at 2 and 5 times a decade."""
+    mantissa = value / 10.0 ** np.floor(np.log10(value) + 1e-9)
+    return f"{value:g}" if round(mantissa) in (2, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
 
 
 def _series(ax, s, color, y_range, log_y):
@@ -91,6 +98,9 @@ def draw_panel(ax, panel, vlines=None):
         clipped += _series(ax, s, color, y_range, log_y)
     if log_y:
         ax.set_yscale("log")
+        # Plain numbers (0.05, not 5e-02) on the decades and on 2 and 5 between them.
+        ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.yaxis.set_minor_formatter(ticker.FuncFormatter(_two_and_five))
     if y_range is not None:
         ax.set_ylim(*y_range)
     elif not log_y:
@@ -122,8 +132,7 @@ def draw(data):
     title = style.units(data.get("title", ""))
     if data.get("subtitle"):
         title += "\n" + style.units(data["subtitle"])
-    if title:
-        fig.suptitle(title, fontsize=9)
+    style.suptitle(fig, title)
     axes = fig.subplots(n, 1, sharex=data.get("sharex", True), squeeze=False)[:, 0]
     for ax, panel in zip(axes, panels):
         draw_panel(ax, panel, data.get("vlines"))

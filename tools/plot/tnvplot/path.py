@@ -18,8 +18,7 @@ def read_csv(path):
 
 def draw(table, title=""):
     fig = style.figure(style.DOUBLE_COLUMN_IN, 6.4)
-    if title:
-        fig.suptitle(style.units(title), fontsize=9)
+    style.suptitle(fig, style.units(title))
     grid = fig.add_gridspec(3, 1, height_ratios=[2.4, 1.0, 1.0])
     xy = fig.add_subplot(grid[0])
     contour = np.asarray(table["contour_um"])

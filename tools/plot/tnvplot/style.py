@@ -2,6 +2,7 @@
 right, one way to make and save a figure."""
 
 from pathlib import Path
+import textwrap
 
 import matplotlib
 
@@ -49,6 +50,20 @@ def units(text):
     for word in str(text).replace("(um)", f"({UM})").split(" "):
         out.append(UM if word == "um" else word)
     return " ".join(out)
+
+
+def wrap(text, width_in, fontsize):
+    """text broken into lines that fit width_in inches at fontsize points
+    (an average glyph of the sans-serif font is about half an em wide), each
+    given line kept apart."""
+    chars = max(int(width_in * 72.0 / (0.5 * fontsize)), 20)
+    return "\n".join(textwrap.fill(line, chars) if line else line for line in str(text).split("\n"))
+
+
+def suptitle(fig, text, fontsize=9):
+    """A figure title that never runs off the figure."""
+    if text:
+        fig.suptitle(wrap(text, fig.get_figwidth() * 0.96, fontsize), fontsize=fontsize)
 
 
 def figure(width_in, height_in):
