@@ -11,7 +11,7 @@
 namespace tnv::test {
 namespace {
 
-void expect_shape(const nlohmann::json& j, const std::string& who) {
+void expect_freq_shape(const nlohmann::json& j, const std::string& who) {
   ASSERT_TRUE(j.contains("points") && j["points"].is_array()) << who << ": " << j.dump();
   ASSERT_FALSE(j["points"].empty()) << who;
   double previous_hz = 0.0;
@@ -35,7 +35,7 @@ TEST(FreqResponseCli, TnvctlJsonHasPointsAndMargins) {
                                   "/tests/data/tables/no-friction.toml freq-response --axis y --loop closed --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  expect_shape(j, "tnvctl");
+  expect_freq_shape(j, "tnvctl");
   EXPECT_EQ(j["loop"], "closed");
   EXPECT_EQ(j["axis"], "y");
   EXPECT_TRUE(j["ok"].get<bool>());
@@ -46,7 +46,7 @@ TEST(FreqResponseCli, TnvHilJsonHasPointsAndMarginsAndTheScenario) {
                             "/tests/data/tables/no-friction.toml --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  expect_shape(j, "tnv-hil");
+  expect_freq_shape(j, "tnv-hil");
   EXPECT_EQ(j["loop"], "plant");
   EXPECT_EQ(j["excitation"], "multisine_open");
   EXPECT_NE(j["scenario"].get<std::string>().find("no-friction"), std::string::npos);

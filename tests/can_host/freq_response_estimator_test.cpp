@@ -19,21 +19,21 @@
 namespace tnv::tune {
 namespace {
 
-constexpr double kT = 1e-3;
+constexpr double kEstTickS = 1e-3;
 
 // The loop of freq_response_model.hpp's implemented view, simulated: the
 // controller fed [p_k, (p_k - p_{k-1}) / T], u = c + d.
-LoopRecord simulate_loop(const LoopModel& m, const fw::MultisineTones& tones, double rms, int periods) {
+LoopRecord simulate_freq_loop(const LoopModel& m, const fw::MultisineTones& tones, double rms, int periods) {
   fw::Multisine d;
   d.start(tones, rms);
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   Eigen::Vector3d xi = Eigen::Vector3d::Zero();
   double p_prev = 0.0;
   LoopRecord r;
-  r.period_s = kT;
+  r.period_s = kEstTickS;
   const std::int64_t n = tones.period_ticks * periods;
   for (std::int64_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d seen(x(0), (x(0) - p_prev) / kT);
+    const Eigen::Vector2d seen(x(0), (x(0) - p_prev) / kEstTickS);
     const double c = (m.controller.Cc * xi + m.controller.Dc * seen).value();
     const double dk = d.sample(k);
     const double u = c + dk;
@@ -48,21 +48,21 @@ LoopRecord simulate_loop(const LoopModel& m, const fw::MultisineTones& tones, do
   return r;
 }
 
-LoopModel pid_loop() {
+LoopModel freq_pid_loop() {
   LoopModel m;
-  m.plant = fw::zoh_axis_model(0.00536, 1.0, kT);
+  m.plant = fw::zoh_axis_model(0.00536, 1.0, kEstTickS);
   m.controller = fw::linear_pid(m.plant, 300.0, 5000.0, 1.0, 0.0);
   m.measured_speed = true;
   return m;
 }
 
 TEST(FreqResponseEstimator, MultisineRecordOfAKnownLoopGivesItsTransferFunctionsExactly) {
-  const LoopModel m = pid_loop();
-  const fw::MultisineTones tones = fw::multisine_tones(2.0, 300.0, 25, kT);
+  const LoopModel m = freq_pid_loop();
+  const fw::MultisineTones tones = fw::multisine_tones(2.0, 300.0, 25, kEstTickS);
   ASSERT_EQ(tones.count, 25u);
   // 12 periods, the first 6 dropped: the closed loop's transient (poles inside
   // radius ~0.9) has died out to rounding.
-  const LoopRecord r = simulate_loop(m, tones, 1.0, 12);
+  const LoopRecord r = simulate_freq_loop(m, tones, 1.0, 12);
   const std::vector<std::int32_t> h(tones.harmonic.begin(), tones.harmonic.begin() + tones.count);
   const std::vector<SpectraPoint> s = multisine_spectra(r, tones.period_ticks, h, 6);
   ASSERT_EQ(s.size(), 25u);
@@ -80,9 +80,9 @@ TEST(FreqResponseEstimator, MultisineRecordOfAKnownLoopGivesItsTransferFunctions
 }
 
 TEST(FreqResponseEstimator, NoiseOutsideTheExcitationLowersTheCoherence) {
-  const LoopModel m = pid_loop();
-  const fw::MultisineTones tones = fw::multisine_tones(5.0, 200.0, 20, kT);
-  LoopRecord r = simulate_loop(m, tones, 1.0, 20);
+  const LoopModel m = freq_pid_loop();
+  const fw::MultisineTones tones = fw::multisine_tones(5.0, 200.0, 20, kEstTickS);
+  LoopRecord r = simulate_freq_loop(m, tones, 1.0, 20);
   // A deterministic, aperiodic disturbance on the measured position only.
   for (std::size_t k = 0; k < r.position_mm.size(); ++k)
     r.position_mm[k] += 2e-3 * std::sin(0.7371 * static_cast<double>(k) * static_cast<double>(k) * 1e-3);
@@ -114,11 +114,11 @@ TEST(FreqResponseEstimator, MarginsFromDensePointsMatchLoopAnalysis) {
 }
 
 TEST(FreqResponseEstimator, WelchOnASweepRecordApproachesThePlant) {
-  const LoopModel m = pid_loop();
+  const LoopModel m = freq_pid_loop();
   fw::LogSweep sweep;
-  sweep.start(5.0, 150.0, 8.0, 2.0, kT);
+  sweep.start(5.0, 150.0, 8.0, 2.0, kEstTickS);
   LoopRecord r;
-  r.period_s = kT;
+  r.period_s = kEstTickS;
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
   for (std::int64_t k = 0; k < 8000; ++k) {
     const double u = sweep.sample(k);

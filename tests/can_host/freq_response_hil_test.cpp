@@ -24,22 +24,24 @@ using can_host::NodeClient;
 
 constexpr const char* kNoFriction = TNV_SOURCE_DIR "/tests/data/tables/no-friction.toml";
 
-struct Node {
+struct FreqNode {
   std::unique_ptr<EmulatedBus> bus;
   std::unique_ptr<NodeClient> client;
-  ~Node() {
+  FreqNode() = default;
+  FreqNode(FreqNode&&) = default;
+  ~FreqNode() {
     if (bus) std::filesystem::remove(bus->storage_path());
   }
 };
 
-Node enabled_node(const std::string& scenario, const std::string& name) {
+FreqNode freq_enabled_node(const std::string& scenario, const std::string& name) {
   can_host::EmulatedNodeOptions o;
   o.scenario = scenario;
   std::string file = "tnv_freq_";
   o.storage_path = (std::filesystem::temp_directory_path() / file.append(std::to_string(::getpid())).append(name)).string();
   std::filesystem::remove(o.storage_path);
   std::string error;
-  Node n;
+  FreqNode n;
   n.bus = EmulatedBus::create(o, error);
   EXPECT_TRUE(n.bus) << error;
   if (!n.bus) return n;
@@ -49,20 +51,20 @@ Node enabled_node(const std::string& scenario, const std::string& name) {
   return n;
 }
 
-fw::AxisModel table_zoh(const EmulatedBus& bus, hal::Axis axis) {
+fw::AxisModel freq_table_zoh(const EmulatedBus& bus, hal::Axis axis) {
   const emu::AxisPlantParams& p = bus.scenario().plant[hal::index(axis)];
   return fw::zoh_axis_model(p.tau_s, p.gain, fw::kControlPeriod_s);
 }
 
-double wrapped_deg(double deg) { return std::remainder(deg, 360.0); }
+double freq_wrapped_deg(double deg) { return std::remainder(deg, 360.0); }
 
 TEST(FreqResponseHil, FrictionOffPlantMatchesTheExactZohModelFrom1To100Hz) {
   for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
-    Node n = enabled_node(kNoFriction, axis == hal::Axis::x ? "plant_x" : "plant_y");
+    FreqNode n = freq_enabled_node(kNoFriction, axis == hal::Axis::x ? "plant_x" : "plant_y");
     ASSERT_TRUE(n.bus);
     can_host::FreqResponseOptions o;
     o.loop = tune::LoopKind::plant;
-    o.plant_model = table_zoh(*n.bus, axis);
+    o.plant_model = freq_table_zoh(*n.bus, axis);
     const can_host::FreqResponseResult r = can_host::run_freq_response(*n.client, axis, o);
     ASSERT_EQ(r.points.size(), o.tones);
     EXPECT_NEAR(r.points.front().freq_hz, 1.0, 1e-9);
@@ -70,9 +72,9 @@ TEST(FreqResponseHil, FrictionOffPlantMatchesTheExactZohModelFrom1To100Hz) {
     double worst_db = 0.0, worst_deg = 0.0;
     for (const can_host::FreqResponsePoint& p : r.points) {
       // The model here is computed from the scenario's tau, not from the measurement.
-      const std::complex<double> zoh = tune::plant_response(table_zoh(*n.bus, axis), p.freq_hz);
+      const std::complex<double> zoh = tune::plant_response(freq_table_zoh(*n.bus, axis), p.freq_hz);
       worst_db = std::fmax(worst_db, std::fabs(tune::gain_db(p.measured) - tune::gain_db(zoh)));
-      worst_deg = std::fmax(worst_deg, std::fabs(wrapped_deg(tune::phase_deg(p.measured) - tune::phase_deg(zoh))));
+      worst_deg = std::fmax(worst_deg, std::fabs(freq_wrapped_deg(tune::phase_deg(p.measured) - tune::phase_deg(zoh))));
       EXPECT_GE(p.coherence, 0.0);
       EXPECT_LE(p.coherence, 1.0);
     }
@@ -86,13 +88,13 @@ TEST(FreqResponseHil, FrictionOffPlantMatchesTheExactZohModelFrom1To100Hz) {
 }
 
 TEST(FreqResponseHil, FrictionOffPidLoopCrossoverAndPhaseMarginWithin5PercentOfTheModel) {
-  Node n = enabled_node(kNoFriction, "pid_margins");
+  FreqNode n = freq_enabled_node(kNoFriction, "pid_margins");
   ASSERT_TRUE(n.bus);
   n.client->command(can::CommandCode::select_controller, 0, static_cast<std::uint8_t>(fw::ControllerKind::pid));
   can_host::FreqResponseOptions o;
   o.loop = tune::LoopKind::open;
   o.loop_level_mm_s = 5.0;
-  o.plant_model = table_zoh(*n.bus, hal::Axis::x);
+  o.plant_model = freq_table_zoh(*n.bus, hal::Axis::x);
   const can_host::FreqResponseResult r = can_host::run_freq_response(*n.client, hal::Axis::x, o);
   ASSERT_EQ(r.controller, "pid");
   ASSERT_TRUE(r.margins.crossover_found);
@@ -105,11 +107,11 @@ TEST(FreqResponseHil, FrictionOffPidLoopCrossoverAndPhaseMarginWithin5PercentOfT
 }
 
 TEST(FreqResponseHil, FrictionOnRunCompletesAndReportsItsCoherence) {
-  Node n = enabled_node("no-cut", "friction");
+  FreqNode n = freq_enabled_node("no-cut", "friction");
   ASSERT_TRUE(n.bus);
   can_host::FreqResponseOptions o;
   o.loop = tune::LoopKind::plant;
-  o.plant_model = table_zoh(*n.bus, hal::Axis::x);
+  o.plant_model = freq_table_zoh(*n.bus, hal::Axis::x);
   const can_host::FreqResponseResult r = can_host::run_freq_response(*n.client, hal::Axis::x, o);
   ASSERT_EQ(r.points.size(), o.tones);
   double worst_db = 0.0;
@@ -127,7 +129,7 @@ TEST(FreqResponseHil, FrictionOnRunCompletesAndReportsItsCoherence) {
 }
 
 TEST(FreqResponseHil, BadBandIsRefusedNamingTheParameterAndChangesNothing) {
-  Node n = enabled_node(kNoFriction, "bad_band");
+  FreqNode n = freq_enabled_node(kNoFriction, "bad_band");
   ASSERT_TRUE(n.bus);
   const can::ParamDef& f_min = *can::find_param("excite.f_min_hz");
   const can::ParamDef& f_max = *can::find_param("excite.f_max_hz");

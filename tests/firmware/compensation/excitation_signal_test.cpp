@@ -13,17 +13,19 @@
 namespace tnv::fw {
 namespace {
 
-constexpr double kT = 1e-3;
+constexpr double kSignalTickS = 1e-3;
 
 TEST(ExcitationSignal, MultisineTonesAreDistinctHarmonicsInsideTheBand) {
-  const MultisineTones t = multisine_tones(1.0, 100.0, 40, kT);
+  const MultisineTones t = multisine_tones(1.0, 100.0, 40, kSignalTickS);
   ASSERT_EQ(t.count, 40u);
   EXPECT_EQ(t.period_ticks, 1000);  // 1 / f_min
   for (std::uint32_t i = 0; i < t.count; ++i) {
-    const double f_hz = t.harmonic[i] / (t.period_ticks * kT);
+    const double f_hz = t.harmonic[i] / (static_cast<double>(t.period_ticks) * kSignalTickS);
     EXPECT_GE(f_hz, 1.0 - 1e-9) << "tone " << i;
     EXPECT_LE(f_hz, 100.0 + 1e-9) << "tone " << i;
-    if (i > 0) EXPECT_GT(t.harmonic[i], t.harmonic[i - 1]) << "tone " << i << " not above its predecessor";
+    if (i > 0) {
+      EXPECT_GT(t.harmonic[i], t.harmonic[i - 1]) << "tone " << i << " not above its predecessor";
+    }
   }
   EXPECT_EQ(t.harmonic[0], 1);
   EXPECT_EQ(t.harmonic[39], 100);
@@ -32,17 +34,17 @@ TEST(ExcitationSignal, MultisineTonesAreDistinctHarmonicsInsideTheBand) {
 }
 
 TEST(ExcitationSignal, TooManyTonesForTheBandGiveNone) {
-  EXPECT_EQ(multisine_tone_capacity(10.0, 50.0, kT), 5u);  // 10, 20, 30, 40, 50 Hz
-  EXPECT_EQ(multisine_tones(10.0, 50.0, 6, kT).count, 0u);
-  EXPECT_EQ(multisine_tones(10.0, 50.0, 5, kT).count, 5u);
-  EXPECT_EQ(multisine_tones(1.0, 100.0, kMaxMultisineTones + 1, kT).count, 0u);
-  EXPECT_EQ(multisine_tone_capacity(50.0, 10.0, kT), 0u);
-  EXPECT_EQ(multisine_tone_capacity(std::numeric_limits<double>::quiet_NaN(), 10.0, kT), 0u);
+  EXPECT_EQ(multisine_tone_capacity(10.0, 50.0, kSignalTickS), 5u);  // 10, 20, 30, 40, 50 Hz
+  EXPECT_EQ(multisine_tones(10.0, 50.0, 6, kSignalTickS).count, 0u);
+  EXPECT_EQ(multisine_tones(10.0, 50.0, 5, kSignalTickS).count, 5u);
+  EXPECT_EQ(multisine_tones(1.0, 100.0, kMaxMultisineTones + 1, kSignalTickS).count, 0u);
+  EXPECT_EQ(multisine_tone_capacity(50.0, 10.0, kSignalTickS), 0u);
+  EXPECT_EQ(multisine_tone_capacity(std::numeric_limits<double>::quiet_NaN(), 10.0, kSignalTickS), 0u);
 }
 
 TEST(ExcitationSignal, MultisineRepeatsEveryPeriodWithTheRequestedRms) {
   Multisine m;
-  const MultisineTones t = multisine_tones(5.0, 200.0, 30, kT);
+  const MultisineTones t = multisine_tones(5.0, 200.0, 30, kSignalTickS);
   ASSERT_EQ(t.count, 30u);
   m.start(t, 2.0);
   double sum_sq = 0.0, peak = 0.0;
@@ -59,7 +61,7 @@ TEST(ExcitationSignal, MultisineRepeatsEveryPeriodWithTheRequestedRms) {
 
 TEST(ExcitationSignal, LogSweepStartsAtZeroAndSweepsItsBand) {
   LogSweep s;
-  s.start(2.0, 200.0, 4.0, 3.0, kT);
+  s.start(2.0, 200.0, 4.0, 3.0, kSignalTickS);
   EXPECT_EQ(s.sample(0), 0.0);
   // Zero crossings near t count half periods of the instantaneous frequency f(t) = 2 * 100^(t/4).
   auto crossings = [&](std::int64_t k0, std::int64_t k1) {
@@ -75,7 +77,7 @@ TEST(ExcitationSignal, LogSweepStartsAtZeroAndSweepsItsBand) {
   EXPECT_GT(peak, 2.9);
 }
 
-ExcitationSpec banded(ExcitationKind kind) {
+ExcitationSpec banded_spec(ExcitationKind kind) {
   ExcitationSpec s;
   s.kind = kind;
   s.level_mm_s = 2.0;
@@ -88,14 +90,14 @@ ExcitationSpec banded(ExcitationKind kind) {
 }
 
 TEST(ExcitationSignal, GeneratorRunsWholeMultisinePeriodsThenSettles) {
-  ExcitationSpec spec = banded(ExcitationKind::multisine);
+  ExcitationSpec spec = banded_spec(ExcitationKind::multisine);
   spec.duration_s = 2.5;  // 2 whole periods of 1 s
   ExcitationGenerator gen;
   gen.start(spec);
   EXPECT_TRUE(gen.closed_loop());
   EXPECT_EQ(gen.drive_ticks(), 2000);
   Multisine reference;
-  reference.start(multisine_tones(1.0, 100.0, 40, kT), 2.0 / std::sqrt(2.0));
+  reference.start(multisine_tones(1.0, 100.0, 40, kSignalTickS), 2.0 / std::sqrt(2.0));
   for (std::int64_t k = 0; k < 2000; ++k) ASSERT_DOUBLE_EQ(gen.next(0), reference.sample(k)) << "tick " << k;
   int zeros = 0;
   while (gen.active()) {
@@ -104,20 +106,20 @@ TEST(ExcitationSignal, GeneratorRunsWholeMultisinePeriodsThenSettles) {
   }
   EXPECT_EQ(zeros, 11);  // the stop tick and 10 settle ticks
   ExcitationGenerator open;
-  open.start(banded(ExcitationKind::multisine_open));
+  open.start(banded_spec(ExcitationKind::multisine_open));
   EXPECT_FALSE(open.closed_loop());
 }
 
 TEST(ExcitationSignal, ValidationNamesTheOffendingField) {
-  EXPECT_TRUE(validate(banded(ExcitationKind::sweep)).ok);
-  EXPECT_TRUE(validate(banded(ExcitationKind::multisine)).ok);
-  EXPECT_TRUE(validate(banded(ExcitationKind::multisine_open)).ok);
+  EXPECT_TRUE(validate(banded_spec(ExcitationKind::sweep)).ok);
+  EXPECT_TRUE(validate(banded_spec(ExcitationKind::multisine)).ok);
+  EXPECT_TRUE(validate(banded_spec(ExcitationKind::multisine_open)).ok);
   struct Bad {
     const char* field;
     ExcitationSpec spec;
   };
   auto with = [](ExcitationKind k, auto change) {
-    ExcitationSpec s = banded(k);
+    ExcitationSpec s = banded_spec(k);
     change(s);
     return s;
   };
