@@ -77,5 +77,5 @@ def draw(data):
     style.legend_above(ax_gain)
     lines = [_margin_text("measured", measured), _margin_text("model", data.get("model_margins"))]
     title = f"axis {data.get('axis', '?')}, {data.get('loop', '?')} loop ({data.get('excitation', '?')})"
-    fig.suptitle(title + "\n" + "; ".join(lines))
+    fig.suptitle("\n".join([title] + lines))
     return fig
