@@ -1,10 +1,13 @@
-// CanNode: EXCITE, the open-loop excitation for identification
-// (TickTask::start_excitation, docs/autotune.md). Answered by one
-// COMMAND_ACK (detail = index of the offending field); every check comes
-// first, a refused request changes nothing. The frame carries axis, kind,
-// duration and level; the ramp rate, the settle time and the breakaway
-// count are ExcitationSpec's defaults (2 mm/s^2, 0.2 s, 12 counts), the
-// values of the host's identification sequence (tools/hil/tune_sequence.hpp).
+// CanNode: EXCITE, the open-loop excitation for identification and the
+// sweep / multisine (closed loop) and multisine_open for frequency response
+// (TickTask::start_excitation, docs/autotune.md, docs/frequency-response.md).
+// Answered by one COMMAND_ACK (detail = index of the offending field); every
+// check comes first, a refused request changes nothing. The frame carries
+// axis, kind, duration and level; the ramp rate, the settle time and the
+// breakaway count are ExcitationSpec's defaults (2 mm/s^2, 0.2 s, 12
+// counts), the values of the host's identification sequence
+// (tools/hil/tune_sequence.hpp); the band and tone count of a sweep /
+// multisine are the excite.* parameters (validated when set).
 #include <cmath>
 
 #include "firmware/can/can_node.hpp"
@@ -24,17 +27,25 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   const std::uint8_t id = kExciteMsg.id;
   if (!owns()) return reply_ack(id, 0, ErrorCode::not_owner, 0);
   if (axis > 1) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
-  if (kind > 1) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
+  if (kind > 4) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
   const std::uint8_t level = index_of(kExciteMsg, kExciteLevel);
   if (!std::isfinite(level_mm_s)) return reply_ack(id, 0, ErrorCode::not_finite, level);
   if (!(std::fabs(level_mm_s) > 0.0) || std::fabs(level_mm_s) > 100.0)
     return reply_ack(id, 0, ErrorCode::out_of_range, level);
   const std::uint8_t duration = index_of(kExciteMsg, kExciteDuration);
-  if (duration_s < 0.001 || duration_s > 10.0) return reply_ack(id, 0, ErrorCode::out_of_range, duration);
+  const auto excitation_kind = static_cast<ExcitationKind>(kind);
+  const bool with_band = banded(excitation_kind);
+  const double longest_s = with_band ? kExcitationMaxRecordS : 10.0;
+  const double shortest_s = with_band ? 0.1 : 0.001;
+  if (duration_s < shortest_s || duration_s > longest_s) return reply_ack(id, 0, ErrorCode::out_of_range, duration);
   ExcitationSpec spec;  // rate, settle and breakaway: the defaults (see the top of this file)
-  spec.kind = kind == 0 ? ExcitationKind::step : ExcitationKind::ramp;
+  spec.kind = excitation_kind;
   spec.level_mm_s = level_mm_s;
   spec.duration_s = duration_s;
+  spec.f_min_hz = settings_.excite.f_min_hz;
+  spec.f_max_hz = settings_.excite.f_max_hz;
+  spec.tones = settings_.excite.tones;
+  // The band was checked when it was set; what is left is the duration (a multisine's 2 periods).
   if (!validate(spec).ok) return reply_ack(id, 0, ErrorCode::invalid, duration);
   const CommandStatus st = task_.start_excitation(hal::axis_from_index(axis), spec);
   if (st != CommandStatus::ok) return reply_ack(id, 0, to_error(st), 0);

@@ -19,15 +19,15 @@ struct ChannelDef {
   const char* doc;
 };
 
-inline constexpr std::array<ChannelDef, 25> kCaptureChannels{{
+inline constexpr std::array<ChannelDef, 27> kCaptureChannels{{
     {0, "pos_x", WireType::i32, 1e-6, "mm", "encoder position, x"},
     {1, "pos_y", WireType::i32, 1e-6, "mm", "encoder position, y"},
     {2, "ref_x", WireType::i32, 1e-6, "mm", "reference the loop follows (after the shaper), x"},
     {3, "ref_y", WireType::i32, 1e-6, "mm", "reference the loop follows (after the shaper), y"},
     {4, "speed_x", WireType::f32, 1, "mm/s", "M-method speed, x"},
     {5, "speed_y", WireType::f32, 1, "mm/s", "M-method speed, y"},
-    {6, "command_x", WireType::f32, 1, "mm/s", "controller output u_k, x"},
-    {7, "command_y", WireType::f32, 1, "mm/s", "controller output u_k, y"},
+    {6, "command_x", WireType::f32, 1, "mm/s", "speed command u_k (controller output, plus a closed-loop excitation), x"},
+    {7, "command_y", WireType::f32, 1, "mm/s", "speed command u_k (controller output, plus a closed-loop excitation), y"},
     {8, "s_x", WireType::f32, 1, "mm/s", "sliding variable s_k, x"},
     {9, "s_y", WireType::f32, 1, "mm/s", "sliding variable s_k, y"},
     {10, "d_hat_x", WireType::f32, 1, "mm/s", "disturbance estimate d^_k, x"},
@@ -45,6 +45,8 @@ inline constexpr std::array<ChannelDef, 25> kCaptureChannels{{
     {22, "feed_override", WireType::f32, 1, "", "feed override of the motion core (the force loop's when arsc.enable)"},
     {23, "arsc_force_ref", WireType::f32, 1, "N", "the force loop's reference now (soft start included), 0 when off"},
     {24, "arsc_gain", WireType::f32, 1, "N*s/mm", "the force loop's cutting-gain estimate, 0 when off"},
+    {25, "excite_x", WireType::f32, 1, "mm/s", "excitation d_k of EXCITE: added to command_x (sweep, multisine) or all of it (step, ramp, multisine_open); 0 otherwise"},
+    {26, "excite_y", WireType::f32, 1, "mm/s", "excitation d_k of EXCITE: added to command_y (sweep, multisine) or all of it (step, ramp, multisine_open); 0 otherwise"},
 }};
 
 // The default set: enough to score a circle and plot the tracking.

@@ -56,6 +56,8 @@ std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSign
     case 22: return f32_word(r.feed_override);
     case 23: return f32_word(r.arsc_force_ref_n);
     case 24: return f32_word(r.arsc_cutting_gain_n_per_mm_s);
+    case 25: return f32_word(x.excitation_mm_s);
+    case 26: return f32_word(y.excitation_mm_s);
     default: return 0;
   }
 }

@@ -46,6 +46,14 @@ struct CaptureSettings {
   std::uint32_t decimation = 1;  // ticks per sample
 };
 
+// Band of the closed-loop excitations (EXCITE sweep / multisine), which the
+// frame has no room for (excitation.hpp).
+struct ExciteSettings {
+  double f_min_hz = 1.0;
+  double f_max_hz = 100.0;
+  std::uint32_t tones = 40;  // multisine
+};
+
 struct ShaperSettings {
   ShaperSpec spec{};     // type, mode.freq_hz, mode.zeta (one mode over CAN)
   bool enabled = false;
@@ -57,6 +65,7 @@ struct NodeSettings {
   TelemetryPeriods telemetry{};
   MotionDefaults motion{};
   CaptureSettings capture{};
+  ExciteSettings excite{};
   std::array<ShaperSettings, hal::kAxisCount> shaper{};
   BoringStationSettings bore{};     // bore.* parameters
   BoringStationState bore_state{};  // what the planner learned: not a parameter

@@ -8,6 +8,8 @@
 #include "firmware/can/firmware_identity.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_rows_bore.hpp"
+#include "firmware/compensation/excitation.hpp"
+#include "firmware/control/axis_model.hpp"
 #include "firmware/control/same_bytes.hpp"
 #include "firmware/motion/motion_interpolator.hpp"
 #include "firmware/shaper/impulse_design.hpp"
@@ -361,6 +363,14 @@ constexpr ParamDef kParams[] = {
      Apply::live, kOpen, TNV_INT(capture.trigger), "when recording starts"},
     {0x0042, "capture.decimation", ParamType::u32, "tick", 1, 255, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(capture.decimation), "ticks per recorded sample"},
+    {0x0044, "excite.f_min_hz", ParamType::f32, "Hz", kExcitationMinFreqHz, kExcitationMaxFreqHz, "",
+     Access::read_write, Apply::live, kOpen, TNV_REAL(excite.f_min_hz),
+     "EXCITE sweep / multisine: lowest frequency (the multisine's period is 1 / f_min)"},
+    {0x0045, "excite.f_max_hz", ParamType::f32, "Hz", kExcitationMinFreqHz, kExcitationMaxFreqHz, "",
+     Access::read_write, Apply::live, kOpen, TNV_REAL(excite.f_max_hz),
+     "EXCITE sweep / multisine: highest frequency (> f_min)"},
+    {0x0046, "excite.tones", ParamType::u32, "", 1, kMaxMultisineTones, "", Access::read_write, Apply::live, kOpen,
+     TNV_INT(excite.tones), "EXCITE multisine: number of log-spaced tones (that many harmonics of 1 / period in the band)"},
     {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(firmware.force_sensor.n_per_volt), "force-sensor scale (ADC volts to N)"},
     {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, kMissedTicksMax, "", Access::read_write, Apply::idle,
@@ -557,6 +567,9 @@ SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) no
       return {false, static_cast<std::uint16_t>(i == 0 ? 0x0150 : 0x0250), i == 0 ? "axis x: limits" : "axis y: limits",
               "position_min_mm must be below position_max_mm"};
   }
+  if (!(s.excite.f_min_hz < s.excite.f_max_hz)) return {false, 0x0045, "excite", "f_max_hz must be above f_min_hz"};
+  if (s.excite.tones > multisine_tone_capacity(s.excite.f_min_hz, s.excite.f_max_hz, kControlPeriod_s))
+    return {false, 0x0046, "excite", "more tones than harmonics of 1 / period between f_min_hz and f_max_hz"};
   if (base == nullptr || !same_bytes(s.bore, base->bore))
     if (const ParamCheck c = validate(s.bore); !c.ok) return {false, bore_param_for(c.field), "bore", c.reason};
   // The learned state is no parameter; a damaged one fails the set as a whole.

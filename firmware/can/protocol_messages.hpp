@@ -120,10 +120,15 @@ inline constexpr FieldDef kShaper[] = {
 inline constexpr FieldDef kExcite[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to excite; the other holds"},
-    {"kind", WireType::u8, 2, 1, "", "0=step 1=ramp", "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|"},
+    {"kind", WireType::u8, 2, 1, "", "0=step 1=ramp 2=sweep 3=multisine 4=multisine_open",
+     "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|; sweep / multisine: added to the holding "
+     "controller's command; multisine_open: the command itself; band excite.f_min_hz .. f_max_hz "
+     "(docs/frequency-response.md)"},
     {"reserved", WireType::u8, 3, 1, "", "", "0"},
-    {"duration", WireType::u16, 4, 0.001, "s", "", "step length / longest ramp (0.001 .. 10 s)"},
-    {"level", WireType::i16, 6, 0.01, "mm/s", "", "step level, or the ramp's sign and largest |u| (0 < |level| <= 100)"},
+    {"duration", WireType::u16, 4, 0.001, "s", "",
+     "step length / longest ramp (0.001 .. 10 s); sweep / multisine record (0.1 .. 40 s, multisine >= 2 periods of 1 / f_min)"},
+    {"level", WireType::i16, 6, 0.01, "mm/s", "",
+     "step level, the ramp's sign and largest |u|, the sweep's amplitude, the multisine's RMS x sqrt(2) (0 < |level| <= 100)"},
 };
 inline constexpr FieldDef kParamRequest[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},

@@ -33,7 +33,8 @@ struct AxisTickRecord {
   double unshaped_reference_mm = 0.0;  // the source's x_ref,k before the input shaper
   double position_mm = 0.0;  // encoder-measured
   double speed_mm_s = 0.0;   // M-method
-  double command_mm_s = 0.0; // controller output u_k
+  double command_mm_s = 0.0; // controller output u_k (with a closed-loop excitation: c_k + d_k)
+  double excitation_mm_s = 0.0;  // d_k of an excitation (closed loop: added to the controller's; open loop: u_k), else 0
   std::uint16_t dac_code = 0;
   bool enabled = false;
   double s = 0.0;

@@ -251,6 +251,7 @@ void TickTask::tick() noexcept {
       excite_[i] = ExcitationGenerator{};  // a motion, disable or fault cancels it
       continue;
     }
+    if (excite_[i].closed_loop()) continue;  // the controller keeps holding hold_
     // Open loop: the reference follows the table, so the following error stays 0.
     hold_[i] = {record_.axis[i].position_mm, 0.0};
     set_reference(i, hold_[i], hold_[i]);
@@ -270,8 +271,10 @@ void TickTask::tick() noexcept {
     AxisTickRecord& r = record_.axis[i];
     double u_mm_s = 0.0;
     AxisController& ctl = axis_[i].active();
-    if (on && excite_[i].active()) {
+    double excitation_mm_s = 0.0;
+    if (on && excite_[i].active() && !excite_[i].closed_loop()) {
       u_mm_s = excite_[i].next(axis_[i].encoder.counts() - excite_start_counts_[i]);
+      excitation_mm_s = u_mm_s;
       if (!excite_[i].active()) {
         // Holding resumes from where the axis came to rest, bumpless.
         ctl.reset();
@@ -291,7 +294,11 @@ void TickTask::tick() noexcept {
                               next_[i].position_mm + screw.next_mm, next_[i].speed_mm_s};
       u_mm_s = ctl.update(x, ref);
       u_mm_s += friction_feedforward_mm_s(config_.axis[i].friction, r.reference_speed_mm_s, next_[i].speed_mm_s);
+      // Closed-loop excitation at the plant input: u = c + d (excitation.hpp).
+      if (excite_[i].active()) excitation_mm_s = excite_[i].next(axis_[i].encoder.counts() - excite_start_counts_[i]);
+      u_mm_s += excitation_mm_s;
     }
+    r.excitation_mm_s = excitation_mm_s;
     const ControllerSignals sig = ctl.signals();
     r.command_mm_s = u_mm_s;
     r.s = on ? sig.s : 0.0;

@@ -129,7 +129,9 @@ class TickTask {
   CommandStatus select_controller(hal::Axis axis, ControllerKind kind) noexcept;
   // Plant identification (issue 7): the axis' speed command comes from an
   // open-loop excitation (excitation.hpp) instead of its controller; its
-  // reference follows the measured position, the other axis holds. Only
+  // reference follows the measured position, the other axis holds. A
+  // sweep or multisine (issue 17) is added to the controller's command
+  // instead, the controller holding the axis where it stands. Only
   // while holding with no excitation running (busy otherwise), invalid for a
   // bad spec. Ends by itself (the axis then holds where it came to rest);
   // leaving holding (a motion, disable, fault) cancels it.

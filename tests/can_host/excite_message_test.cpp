@@ -113,7 +113,12 @@ TEST(ExciteMessage, MalformedAndRefusedRequestsChangeNothing) {
        can::ErrorCode::out_of_range, &fields::kExciteLevel},
       {"axis 2", excite_frame(2, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
       {"axis 255", excite_frame(255, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
-      {"kind 2", excite_frame(0, 2, 10.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteKind},
+      {"kind 5", excite_frame(0, 5, 10.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteKind},
+      // Sweep / multisine (issue 17): 0.1 .. 40 s; a multisine holds 2 periods of 1 / excite.f_min_hz (1 s).
+      {"sweep 0.05 s", excite_frame(0, 2, 2.0, 0.05), can::ErrorCode::out_of_range, &fields::kExciteDuration},
+      {"multisine 50 s", excite_frame(0, 3, 2.0, 50.0), can::ErrorCode::out_of_range, &fields::kExciteDuration},
+      {"multisine 1.5 s", excite_frame(0, 3, 2.0, 1.5), can::ErrorCode::invalid, &fields::kExciteDuration},
+      {"open multisine level 0", excite_frame(0, 4, 0.0, 5.0), can::ErrorCode::out_of_range, &fields::kExciteLevel},
       {"level 0", excite_frame(0, 0, 0.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteLevel},
       {"level 150 mm/s", excite_frame(0, 0, 150.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteLevel},
       {"duration 0 s", excite_frame(0, 0, 10.0, 0.0), can::ErrorCode::out_of_range, &fields::kExciteDuration},

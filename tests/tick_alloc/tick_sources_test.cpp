@@ -211,6 +211,27 @@ std::vector<SourceCase> source_cases() {
     c.end_state = fw::MotionState::holding;
     out.push_back(c);
   }
+  for (const fw::ExcitationKind kind :
+       {fw::ExcitationKind::sweep, fw::ExcitationKind::multisine, fw::ExcitationKind::multisine_open}) {
+    SourceCase c;  // frequency-response excitations (issue 17): 64 tones at most, run out
+    c.name = kind == fw::ExcitationKind::sweep       ? "excitation_sweep"
+             : kind == fw::ExcitationKind::multisine ? "excitation_multisine"
+                                                     : "excitation_multisine_open";
+    c.start = [kind](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      fw::ExcitationSpec spec;
+      spec.kind = kind;
+      spec.level_mm_s = 3.0;
+      spec.duration_s = 2.0;
+      spec.f_min_hz = 5.0;
+      spec.f_max_hz = 400.0;
+      spec.tones = fw::kMaxMultisineTones;
+      return held != fw::CommandStatus::ok ? held : rig.task.start_excitation(hal::Axis::x, spec);
+    };
+    c.ticks = 2500;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
   {
     SourceCase c;  // the fault latch: a remote e-stop mid-circle, then faulted ticks
     c.name = "fault_latch_remote_estop";

@@ -123,6 +123,11 @@ ParamReply NodeClient::param_op(can::ParamOp op, const can::ParamDef* p, std::ui
         message.append(", value now ").append(format_param_value(*p, can::from_wire(*p, r.value_raw)));
       message += ")";
     }
+    if (r.result == can::ErrorCode::invalid && p == nullptr && r.value_raw != 0) {
+      // A refused commit names the parameter the node blames in its value field.
+      const can::ParamDef* blamed = can::find_param(static_cast<std::uint16_t>(r.value_raw));
+      if (blamed != nullptr) message.append(" (").append(blamed->name).append(")");
+    }
     if (r.result == can::ErrorCode::commissioning_required) {
       // A commit names the safety parameter in its value field.
       const can::ParamDef* blamed = p != nullptr ? p : can::find_param(static_cast<std::uint16_t>(r.value_raw));
@@ -248,7 +253,8 @@ CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_
 
 CommandAck NodeClient::excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s) {
   char what[96];
-  std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", axis == 0 ? "x" : "y", kind == 0 ? "step" : "ramp",
+  std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", axis == 0 ? "x" : "y",
+                kind == 0 ? "step" : kind == 1 ? "ramp" : kind == 2 ? "sweep" : kind == 3 ? "multisine" : "kind?",
                 level_mm_s, duration_s);
   need_ownership();
   const std::uint8_t tag = next_tag();

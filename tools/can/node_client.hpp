@@ -56,7 +56,7 @@ class NodeClient {
   CommandAck circle(double radius_mm, double feed_mm_s);
   CommandAck jog(double speed_x_mm_s, double speed_y_mm_s);
   CommandAck shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
-  // Open-loop excitation (EXCITE): kind 0 step, 1 ramp.
+  // EXCITE: kind 0 step, 1 ramp (open loop), 2 sweep, 3 multisine (closed loop, band: excite.* parameters).
   CommandAck excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s);
   // Never acknowledged; broadcast = node 0 (every node on the bus).
   void estop(bool broadcast);

@@ -18,6 +18,7 @@ void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN se
 void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
 void add_homing_commands(CLI::App& app, Runner& run);       // homing (home switch and index, docs/safety.md)
-void add_screw_commands(CLI::App& app, Runner& run);        // screw-map, screw-fit (lead-error table)
+void add_screw_commands(CLI::App& app, Runner& run);
+void add_freq_response_commands(CLI::App& app, Runner& run);  // freq-response (issue 17, over the emulated CAN node)        // screw-map, screw-fit (lead-error table)
 
 }  // namespace tnv::cli

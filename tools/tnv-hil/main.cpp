@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add_bus_stress_commands(app, run);
   add_homing_commands(app, run);
   add_screw_commands(app, run);
+  add_freq_response_commands(app, run);
 
   try {
     app.parse(argc, argv);

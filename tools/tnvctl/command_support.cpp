@@ -18,6 +18,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_monitor_commands(app, slot);
   add_capture_commands(app, slot);
   add_tune_commands(app, slot);
+  add_freq_response_commands(app, slot);
   add_output_commands(app, slot);
   add_commissioning_commands(app, slot);
   add_bore_commands(app, slot);

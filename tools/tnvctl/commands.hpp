@@ -36,6 +36,7 @@ void add_shaper_commands(CLI::App& app, ActionSlot& slot);   // shaper
 void add_monitor_commands(CLI::App& app, ActionSlot& slot);  // monitor
 void add_capture_commands(CLI::App& app, ActionSlot& slot);  // capture
 void add_tune_commands(CLI::App& app, ActionSlot& slot);     // identify, autotune
+void add_freq_response_commands(CLI::App& app, ActionSlot& slot);  // freq-response
 void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_commissioning_commands(CLI::App& app, ActionSlot& slot);  // commissioning enter | leave
 void add_bore_commands(CLI::App& app, ActionSlot& slot);     // bore gauge | status | restart

@@ -70,3 +70,23 @@ def capture_csv(path, kind="circle", n=4000):
         lines.append(f"{t[k]:.3f},{px[k]:.6f},{py[k]:.6f},{rx[k]:.6f},{ry[k]:.6f},{contour[k]:.9g},{tick[k]}")
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def bode_data(low_coherence_at=None):
+    """A freq-response JSON of an integrator-plus-lag loop, margins included."""
+    import cmath
+    import math
+
+    pts = []
+    for i in range(30):
+        f = 1.0 * (300.0 ** (i / 29))
+        s = 2j * math.pi * f
+        h = 300.0 / (s * (0.005 * s + 1.0)) * cmath.exp(-s * 1e-3)
+        coherence = 0.5 if low_coherence_at is not None and i == low_coherence_at else 0.999
+        pts.append({"freq_hz": f, "gain_db": 20 * math.log10(abs(h)), "phase_deg": math.degrees(cmath.phase(h)),
+                    "coherence": coherence, "model_gain_db": 20 * math.log10(abs(h)) + 0.1,
+                    "model_phase_deg": math.degrees(cmath.phase(h)) + 1.0})
+    margins = {"gain_db": 8.0, "phase_deg": 45.0, "crossover_hz": 40.0, "phase_crossover_hz": 150.0,
+               "bandwidth_hz": 70.0}
+    return {"axis": "x", "loop": "open", "excitation": "multisine", "points": pts, "margins": margins,
+            "model_margins": dict(margins, gain_db=None)}

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import fixtures
-from tnvplot import capture, circle, panels, render, style
+from tnvplot import bode, capture, circle, panels, render, style
 from tnvplot.envelope import clip, envelope, envelope_by_index
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
@@ -92,6 +92,7 @@ def test_every_kind_renders(tmp_path, suffix):
         "panels": [fixtures.write_json(tmp_path / "p.json", fixtures.panels_data())],
         "path": [fixtures.path_csv(tmp_path / "path.csv")],
         "capture": [fixtures.capture_csv(tmp_path / "cap.csv", "circle")],
+        "bode": [fixtures.write_json(tmp_path / "b.json", fixtures.bode_data())],
     }
     for kind, inputs in made.items():
         out = tmp_path / f"{kind}{suffix}"
@@ -132,3 +133,31 @@ def test_command_line_names_a_bad_suffix(tmp_path):
     r = subprocess.run([sys.executable, "-m", "tnvplot", "panels", str(data), str(tmp_path / "x.gif")],
                        cwd=PACKAGE_DIR, capture_output=True, text=True)
     assert r.returncode == 1 and "x.gif" in r.stderr and ".svg" in r.stderr
+
+
+def test_bode_draws_gain_and_phase_on_log_frequency_with_the_model():
+    fig = bode.draw(fixtures.bode_data())
+    gain, phase = fig.axes[0], fig.axes[1]
+    assert gain.get_xscale() == "log" and phase.get_xscale() == "log"
+    assert "dB" in gain.get_ylabel() and "deg" in phase.get_ylabel()
+    assert [line.get_label() for line in gain.get_lines()][0] == "model"
+    # The phase is unwrapped: no 360-degree jump between neighbouring points.
+    offsets = phase.collections[0].get_offsets()
+    assert np.max(np.abs(np.diff(offsets[:, 1]))) < 180.0
+    # Margins measured and modelled in the title; a missing one shows as '-'.
+    title = fig._suptitle.get_text()
+    assert "PM 45.0 deg" in title and "crossover 40.0 Hz" in title and "GM -" in title
+
+
+def test_bode_marks_low_coherence_points_apart():
+    fig = bode.draw(fixtures.bode_data(low_coherence_at=5))
+    labels = [c.get_label() for c in fig.axes[0].collections]
+    assert any("coherence <" in label for label in labels)
+    assert len(fig.axes[0].collections[0].get_offsets()) == 29  # the 30th is drawn open
+    colors = bode.coherence_colors([1.0, 0.0])
+    assert not np.allclose(colors[0], colors[1])
+
+
+def test_bode_without_points_is_refused():
+    with pytest.raises(ValueError):
+        bode.draw({"points": []})

@@ -7,11 +7,12 @@ capture CSV) and saves SVG, PNG or PDF by the output file's suffix:
     python3 -m tnvplot panels  DATA.json     OUT.pdf
     python3 -m tnvplot path    PATH.csv      OUT.png [--title T]
     python3 -m tnvplot capture A.csv [B.csv] OUT.svg [--label L ...] [--title T]
+    python3 -m tnvplot bode    RESPONSE.json OUT.svg   (freq-response JSON)
 
 or from Python: ``tnvplot.render(kind, inputs, output, title=..., labels=...)``.
 """
 
-KINDS = ("circle", "panels", "path", "capture")
+KINDS = ("circle", "panels", "path", "capture", "bode")
 
 
 def render(kind, inputs, output, title="", labels=None):

@@ -6,7 +6,7 @@ import sys
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m tnvplot", description="Draw a TNV-40 host figure.")
-    parser.add_argument("kind", help="circle, panels (plot-data JSON), path (path CSV) or capture (capture CSVs)")
+    parser.add_argument("kind", help="circle, panels (plot-data JSON), path (path CSV), capture (capture CSVs) or bode (freq-response JSON)")
     parser.add_argument("files", nargs="+", metavar="FILE", help="the inputs, then the output (.svg, .png or .pdf)")
     parser.add_argument("--title", default="", help="figure title (path and capture)")
     parser.add_argument("--label", action="append", default=[], help="row label per capture CSV")

@@ -26,6 +26,9 @@ def draw(kind, inputs, title="", labels=None):
         labels = list(labels or [])
         labels += [Path(p).stem for p in inputs[len(labels):]]
         return capture.draw([capture.read_csv(p) for p in inputs], labels, title)
+    if kind == "bode":
+        from tnvplot import bode
+        return bode.draw(load_json(inputs[0]))
     raise ValueError(f"unknown figure kind '{kind}' (one of {', '.join(KINDS)})")
 
 
