@@ -186,9 +186,9 @@ TEST(ExciteMessage, AutotuneSetTheNodeRefusesLeavesEveryParameterAsItWas) {
   NodeClient client(*bus, 1);
   client.command(can::CommandCode::enable);
   client.pump(Micros{100'000});
-  const hil::AxisIdentification id = can_host::identify_axis_over_can(client, hal::Axis::x);
+  const tune::AxisIdentification id = can_host::identify_axis_over_can(client, hal::Axis::x);
   ASSERT_TRUE(id.ok) << id.error;
-  hil::AxisDesign design = hil::design_axis(id);
+  tune::AxisDesign design = tune::design_axis(id);
   ASSERT_TRUE(design.ok) << design.error;
   // Break Theorem 2 (phi > eta/(q+1)) in the last sliding-mode value staged.
   design.sliding.phi_mm_s = 0.5 * design.sliding.eta_mm_s / (design.sliding.q + 1.0);
