@@ -15,8 +15,8 @@
 #include "firmware/io/dac_code.hpp"
 #include "tools/can/autotune_plan.hpp"
 #include "tools/can/can_identify.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv::excite_message_test {
 namespace {
