@@ -1,7 +1,6 @@
-// Lead-error measurement: the file read strictly and, on
-// the bench table the measured table taking the true contour error of the
-// S1 circle well below what backlash and cumulative lead compensation
-// leave (docs/robustness.md "Lead-error table").
+// Lead-error measurement: the file read strictly and, on the bench table,
+// the measured table taking the true contour error of the S1 circle well
+// below what backlash and cumulative lead compensation leave (docs/robustness.md "Lead-error table").
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
-// Automatic design from an identified axis. The rules,
-// stated (docs/autotune.md gives the reasons):
+// Automatic design from an identified axis. The rules, stated
+// (docs/autotune.md gives the reasons):
 //
 //   model     A, B = exact 1 ms zero-order hold of the identified (tau, K)
 //   G         [c_G / tau, 1], c_G = 1.5            (S1 eq. 5; the papers'

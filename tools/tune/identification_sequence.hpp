@@ -1,8 +1,8 @@
 #pragma once
 // The identification sequence and the records it yields, shared by the
 // HIL rig (tools/hil/tune_identify.hpp) and the CAN tool (tnvctl identify,
-// tools/can/can_identify.hpp): the same excitations, cut into StepRecord / RampRecord the
-// same way, so both feed identify_from_records() alike.
+// tools/can/can_identify.hpp): the same excitations, cut into StepRecord /
+// RampRecord the same way, so both feed identify_from_records() alike.
 //
 //   steps  +10, -10, +20, -20 mm/s for 0.15 s, then 0.2 s at u = 0
 //   ramps  +-2 mm/s^2 t (|u| <= 10 mm/s, at most 5 s) until 12 counts moved
