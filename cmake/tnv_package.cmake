@@ -2,11 +2,12 @@
 # puts the host-side libraries, their headers and tnvConfig.cmake under P;
 # a consumer then writes
 #   find_package(tnv CONFIG REQUIRED)
-#   target_link_libraries(app PRIVATE tnv::firmware)   # or tnv::can_host
+#   target_link_libraries(app PRIVATE tnv::firmware)   # or tnv::tune, tnv::can_host, tnv::can_emu
 # (docs/architecture.md "Using the libraries"; tests/package/ builds one).
 include(CMakePackageConfigHelpers)
 
-# The static libraries behind tnv::firmware and tnv::can_host, with the
+# The static libraries behind tnv::firmware, tnv::tune, tnv::can_host and
+# tnv::can_emu, with the
 # name each carries in the tnv:: namespace. tnv_warnings is only a link-
 # time reference of the static libraries (their own -Werror flags are not
 # passed on), but CMake needs it in the export set.
@@ -14,7 +15,8 @@ set(tnv_exported
   tnv_hal:hal tnv_work_meter:work_meter tnv_firmware:firmware tnv_warnings:build_warnings
   tnv_emulator:emulator tnv_driver_fpga:driver_fpga tnv_driver_emulated:driver_emulated
   tnv_driver_linux:driver_linux tnv_driver_storage:driver_storage
-  tnv_gcode_lib:gcode tnv_hil_lib:hil tnv_tune:tune tnv_protogen_lib:protogen tnv_can_host:can_host)
+  tnv_tune:tune tnv_gcode_lib:gcode tnv_hil_lib:hil tnv_protogen_lib:protogen tnv_can_host:can_host
+  tnv_can_emu:can_emu)
 set(tnv_export_targets "")
 foreach(pair ${tnv_exported})
   string(REPLACE ":" ";" pair "${pair}")
@@ -30,7 +32,7 @@ install(TARGETS ${tnv_export_targets} EXPORT tnvTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tnv)
 # Headers keep their source-tree paths under include/tnv/.
-foreach(dir hal firmware emulator drivers tools/can tools/hil tools/tune tools/gcode tools/protogen)
+foreach(dir hal firmware emulator drivers tools/tune tools/can tools/can_emu tools/hil tools/gcode tools/protogen)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tnv/${dir}
           COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
 endforeach()

@@ -3,10 +3,11 @@
 #include <algorithm>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <numbers>
+
+#include "firmware/control/matrix_poles.hpp"
 
 namespace tnv::fw {
 
@@ -112,14 +113,7 @@ ClosedLoopPoles closed_loop_poles(const AxisModel& model, const LinearController
   acl.topRightCorner<2, 3>() = model.B * c.Cc;
   acl.bottomLeftCorner<3, 2>() = c.Bc;
   acl.bottomRightCorner<3, 3>() = c.Ac;
-  const Eigen::EigenSolver<Eigen::Matrix<double, 5, 5>> solver(acl, false);
-  ClosedLoopPoles poles{};
-  if (solver.info() != Eigen::Success) {
-    poles.fill({std::numeric_limits<double>::infinity(), 0.0});
-    return poles;
-  }
-  for (int i = 0; i < 5; ++i) poles[static_cast<std::size_t>(i)] = solver.eigenvalues()(i);
-  return poles;
+  return matrix_poles<5>(acl);
 }
 
 double spectral_radius(const ClosedLoopPoles& poles) noexcept {

@@ -12,7 +12,7 @@
 
 #include "emulator/boring_process.hpp"
 #include "tools/can/boring_node_link.hpp"
-#include "tools/can/emulated_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 #include "tools/hil/boring_direct_link.hpp"
 #include "tools/hil/boring_run.hpp"
 

@@ -1,10 +1,10 @@
-// tnv-hil bus-stress (tools/can/bus_stress.hpp): the goals of docs/safety.md
+// tnv-hil bus-stress (tools/can_emu/bus_stress.hpp): the goals of docs/safety.md
 // "Bus priority, tags, hosts and ownership" at 100 % load from 0x7ff, and
 // the same run with the flood above the node's identifiers, where nothing of
 // lower priority can get through (the honest limit of any CAN node).
 #include <gtest/gtest.h>
 
-#include "tools/can/bus_stress.hpp"
+#include "tools/can_emu/bus_stress.hpp"
 
 namespace tnv {
 namespace {

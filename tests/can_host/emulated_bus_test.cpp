@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "firmware/can/param_table.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
 #include "tools/can/telemetry_view.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv {
 namespace {

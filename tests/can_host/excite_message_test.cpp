@@ -15,8 +15,8 @@
 #include "firmware/io/dac_code.hpp"
 #include "tools/can/autotune_plan.hpp"
 #include "tools/can/can_identify.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv::excite_message_test {
 namespace {
@@ -191,9 +191,9 @@ TEST(ExciteMessage, AutotuneSetTheNodeRefusesLeavesEveryParameterAsItWas) {
   NodeClient client(*bus, 1);
   client.command(can::CommandCode::enable);
   client.pump(Micros{100'000});
-  const hil::AxisIdentification id = can_host::identify_axis_over_can(client, hal::Axis::x);
+  const tune::AxisIdentification id = can_host::identify_axis_over_can(client, hal::Axis::x);
   ASSERT_TRUE(id.ok) << id.error;
-  hil::AxisDesign design = hil::design_axis(id);
+  tune::AxisDesign design = tune::design_axis(id);
   ASSERT_TRUE(design.ok) << design.error;
   // Break Theorem 2 (phi > eta/(q+1)) in the last sliding-mode value staged.
   design.sliding.phi_mm_s = 0.5 * design.sliding.eta_mm_s / (design.sliding.q + 1.0);

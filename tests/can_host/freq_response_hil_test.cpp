@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "firmware/can/param_table.hpp"
-#include "tools/can/emulated_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 #include "tools/can/freq_response_run.hpp"
 #include "tools/can/node_client.hpp"
 

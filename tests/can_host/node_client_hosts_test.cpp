@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "firmware/can/param_table.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv {
 namespace {

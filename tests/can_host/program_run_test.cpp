@@ -15,8 +15,8 @@
 
 #include "firmware/can/param_table.hpp"
 #include "tests/tools/gcode/test_piece_path.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/program_run.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 #include "tools/gcode/path_distance.hpp"
 
 namespace tnv {

@@ -9,10 +9,10 @@
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tools/can/candump_log.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/frame_text.hpp"
 #include "tools/can/node_client.hpp"
 #include "tools/can/tracing_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv {
 namespace {

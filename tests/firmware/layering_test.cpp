@@ -11,7 +11,14 @@
 //    except the three headers of emulator/text_file.cpp (a FIFO or device
 //    must be refused by fstat on an fd opened non-blocking, which
 //    <filesystem> cannot do without a race);
-//  - drivers/: never firmware/.
+//  - drivers/: never firmware/;
+//  - tools/tune/ (the tuning library): tools/tune/, firmware/, hal/, Eigen
+//    and the standard library without threads or files (no emulator, no
+//    HIL rig, no JSON, no CLI; its link closure: layering.tune_links);
+//  - tools/can/ (tnv_can_host): never the emulated node (tools/can_emu/)
+//    nor the HIL rig; of tools/hil/ and emulator/ only the scoring and
+//    text helpers it still shares with them (kCanHostSharedHeaders: to be
+//    moved out of tools/hil, the list may only shrink).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -135,6 +142,44 @@ TEST(Layering, DriversNeverIncludeFirmware) {
     EXPECT_FALSE(starts_with(inc.target, "firmware/")) << where(inc);
 }
 
+// What the tuning library may not use of the standard library: threads and files.
+const std::set<std::string> kTuneRefusedStd = {"thread",    "mutex", "shared_mutex", "condition_variable", "future",
+                                               "semaphore", "latch", "barrier",      "stop_token",         "iostream",
+                                               "fstream",   "filesystem"};
+
+bool tune_may_include(const Include& inc) {
+  const std::string& t = inc.target;
+  if (!inc.angle) return starts_with(t, "tools/tune/") || starts_with(t, "firmware/") || starts_with(t, "hal/");
+  return starts_with(t, "Eigen/") || (in(kCxxStd, t) && !in(kTuneRefusedStd, t));
+}
+
+TEST(Layering, TuneIncludesOnlyTuneFirmwareHalEigenAndStd) {
+  const auto incs = includes_under("tools/tune");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs) EXPECT_TRUE(tune_may_include(inc)) << where(inc) << " is not on the tuning library's allow-list";
+}
+
+// What tools/can still takes from tools/hil and emulator/ (scoring,
+// boring-node field resolution, one-line text): no rig, no emulated node.
+const std::set<std::string> kCanHostSharedHeaders = {
+    "tools/hil/boring_node_resolution.hpp", "tools/hil/boring_planner_link.hpp", "tools/hil/circle_run.hpp",
+    "tools/hil/contour_stats.hpp",          "tools/hil/path_score.hpp",          "emulator/text_file.hpp"};
+
+bool can_host_may_include(const Include& inc) {
+  const std::string& t = inc.target;
+  if (inc.angle) return true;  // third-party and standard headers: the link check is layering.can_host_links
+  if (starts_with(t, "tools/can_emu/") || starts_with(t, "drivers/emulated/")) return false;
+  if (starts_with(t, "tools/hil/") || starts_with(t, "emulator/")) return in(kCanHostSharedHeaders, t);
+  return true;
+}
+
+TEST(Layering, CanHostNeverIncludesTheEmulatedNodeOrTheRig) {
+  const auto incs = includes_under("tools/can");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs)
+    EXPECT_TRUE(can_host_may_include(inc)) << where(inc) << ": tools/can (tnv_can_host) may not use the emulated node or the HIL rig";
+}
+
 // Guards the guard: the scan sees both include forms and what the lists refuse.
 TEST(Layering, TheScanReadsBothIncludeForms) {
   EXPECT_EQ(include_target("#include <vector>"), "vector");
@@ -145,6 +190,16 @@ TEST(Layering, TheScanReadsBothIncludeForms) {
   EXPECT_FALSE(in(kFirmwareStd, "chrono"));
   EXPECT_FALSE(in(kHalStd, "fstream"));
   EXPECT_FALSE(in(kCxxStd, "unistd.h"));
+  EXPECT_FALSE(tune_may_include({"tools/tune/x.cpp", 1, "emulator/scenario.hpp", false}));
+  EXPECT_FALSE(tune_may_include({"tools/tune/x.cpp", 1, "tools/hil/hil_rig.hpp", false}));
+  EXPECT_FALSE(tune_may_include({"tools/tune/x.cpp", 1, "nlohmann/json.hpp", true}));
+  EXPECT_FALSE(tune_may_include({"tools/tune/x.cpp", 1, "thread", true}));
+  EXPECT_TRUE(tune_may_include({"tools/tune/x.cpp", 1, "firmware/control/loop_analysis.hpp", false}));
+  EXPECT_TRUE(tune_may_include({"tools/tune/x.cpp", 1, "Eigen/Dense", true}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "tools/can_emu/emulated_bus.hpp", false}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "tools/hil/hil_rig.hpp", false}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "emulator/scenario.hpp", false}));
+  EXPECT_TRUE(can_host_may_include({"tools/can/x.cpp", 1, "tools/tune/axis_design.hpp", false}));
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Issue 7, item 1: the firmware's open-loop excitation on the emulated
+// Identification on the rig: the firmware's open-loop excitation on the emulated
 // table, fitted on the host, against each scenario's true plant values.
 // Three tables that differ from the defaults (and from each other) in tau,
 // K and friction, plus the reference plant; none of them was used to tune
@@ -13,6 +13,8 @@
 
 namespace tnv::hil {
 namespace {
+
+using namespace tnv::tune;
 
 struct IdentifyCase {
   const char* name;
@@ -63,25 +65,6 @@ TEST(AutotuneIdentify, MatchesTrueValuesOnFourTables) {
   expect_identified(slow_heavy, hal::Axis::x);
   expect_identified(fast_light, hal::Axis::y);
   expect_identified(sticky, hal::Axis::x);
-}
-
-// The fit alone, on a synthetic exact step: tau and V come back.
-TEST(AutotuneIdentify, StepFitRecoversTauAndSpeed) {
-  const double tau = 0.0065, v = 8.5;
-  std::vector<double> p;
-  for (int j = 0; j <= 150; ++j) {
-    const double t = j * 1e-3;
-    p.push_back(1.25 + v * (t - tau * (1.0 - std::exp(-t / tau))));
-  }
-  const StepFit f = fit_step(p, 1e-3);
-  EXPECT_NEAR(f.tau_s, tau, 1e-6) << "tau " << f.tau_s * 1e3 << " ms";
-  EXPECT_NEAR(f.speed_mm_s, v, 1e-6) << "V " << f.speed_mm_s << " mm/s";
-}
-
-TEST(AutotuneIdentify, RefusesTooFewRecords) {
-  const AxisIdentification id = identify_from_records(hal::Axis::x, {}, {}, 1e-3);
-  EXPECT_FALSE(id.ok);
-  EXPECT_FALSE(id.error.empty());
 }
 
 }  // namespace

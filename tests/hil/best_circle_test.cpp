@@ -12,10 +12,13 @@
 
 #include "emulator/scenario_file.hpp"
 #include "tools/hil/best_circle.hpp"
-#include "tools/hil/tune_design.hpp"
+#include "tools/hil/tune_identify.hpp"
+#include "tools/tune/axis_design.hpp"
 
 namespace tnv::hil {
 namespace {
+
+using namespace tnv::tune;
 
 constexpr int kBestCircleSeeds = 8;  // the goal is an 8-seed average
 

@@ -12,6 +12,8 @@
 namespace tnv::hil {
 namespace {
 
+using namespace tnv::tune;
+
 TEST(FrictionFeedForwardCircle, CoulombFeedForwardLowersTheReversalGlitch) {
   const emu::Scenario no_cut = *emu::builtin_scenario("no-cut");
   std::array<fw::FrictionFeedForward, 2> friction{};

@@ -11,10 +11,13 @@
 
 #include "emulator/scenario_file.hpp"
 #include "tools/hil/circle_run.hpp"
-#include "tools/hil/tune_design.hpp"
+#include "tools/hil/tune_identify.hpp"
+#include "tools/tune/axis_design.hpp"
 
 namespace tnv::hil {
 namespace {
+
+using namespace tnv::tune;
 
 bool observer_same_trace(const CircleRunResult& a, const CircleRunResult& b) {
   if (a.trace.size() != b.trace.size()) return false;

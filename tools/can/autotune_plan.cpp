@@ -5,11 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include <Eigen/Dense>
-
-#include "firmware/control/linear_controller.hpp"
 #include "firmware/control/pid_params.hpp"
 #include "firmware/control/sliding_mode_params.hpp"
+#include "tools/can/tune_json.hpp"
 
 namespace tnv::can_host {
 
@@ -55,19 +53,9 @@ fw::PidParams pid_of(const std::vector<ParamChange>& c, bool old) {
   return p;
 }
 
-LoopPrediction from_controller(const fw::AxisModel& model, const fw::LinearController& controller) {
-  LoopPrediction out;
-  const fw::ClosedLoopPoles poles = fw::closed_loop_poles(model, controller);
-  out.poles.assign(poles.begin(), poles.end());
-  out.spectral_radius = fw::spectral_radius(poles);
-  out.ok = std::isfinite(out.spectral_radius);
-  if (!out.ok) out.why = "the closed-loop poles are not finite";
-  return out;
-}
-
 }  // namespace
 
-std::vector<ParamChange> design_changes(const hil::AxisDesign& d, hal::Axis axis) {
+std::vector<ParamChange> design_changes(const tune::AxisDesign& d, hal::Axis axis) {
   if (!d.ok) throw std::logic_error("design_changes: the design failed: " + d.error);
   const fw::SlidingModeParams& s = d.sliding;
   const fw::FrictionFeedForward& f = d.friction;
@@ -106,7 +94,7 @@ std::vector<ParamChange> design_changes(const hil::AxisDesign& d, hal::Axis axis
   return out;
 }
 
-std::vector<ParamChange> shaper_changes(const hil::AxisDesign& design, hal::Axis axis) {
+std::vector<ParamChange> shaper_changes(const tune::AxisDesign& design, hal::Axis axis) {
   if (!design.shaper.enabled) return {};
   // The node's own encoding of the spec, through the parameters' accessors.
   can::NodeSettings wanted;
@@ -117,42 +105,6 @@ std::vector<ParamChange> shaper_changes(const hil::AxisDesign& design, hal::Axis
     const can::ParamDef& p = axis_param(axis, suffix);
     out.push_back({&p, 0.0, p.get(wanted)});
   }
-  return out;
-}
-
-LoopPrediction predict_sliding(const fw::AxisModel& model, const fw::SlidingModeParams& p) {
-  if (const fw::ParamCheck c = fw::validate(p, model); !c.ok) {
-    LoopPrediction out;
-    out.why = std::string(c.field) + ": " + c.reason;
-    return out;
-  }
-  return from_controller(model, fw::linearised_sliding_mode(model, p));
-}
-
-LoopPrediction predict_pid(const fw::AxisModel& model, const fw::PidParams& p) {
-  if (const fw::ParamCheck c = fw::validate(p, model); !c.ok) {
-    LoopPrediction out;
-    out.why = std::string(c.field) + ": " + c.reason;
-    return out;
-  }
-  return from_controller(model, fw::linear_pid(model, p.kp, p.ki, p.kd, p.derivative_filter_tf_s));
-}
-
-LoopPrediction predict_observer(const fw::AxisModel& model, const fw::SpeedObserverParams& p) {
-  LoopPrediction out;
-  if (p.gain_position == 0.0 && p.gain_speed_1_s == 0.0 && p.gain_disturbance_1_s == 0.0) {
-    out.why = "no gains";  // no observer (its poles would sit at 1)
-    return out;
-  }
-  // Roots of det(zI - M) = z^3 + c2 z^2 + c1 z + c0: the companion matrix' eigenvalues.
-  const fw::ObserverPolynomial c = fw::observer_error_polynomial(p, model);
-  Eigen::Matrix3d companion;
-  companion << -c.c2, -c.c1, -c.c0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0;
-  const Eigen::Vector3cd roots = companion.eigenvalues();
-  out.poles.assign(roots.data(), roots.data() + roots.size());
-  for (const std::complex<double>& z : out.poles) out.spectral_radius = std::max(out.spectral_radius, std::abs(z));
-  out.ok = std::isfinite(out.spectral_radius);
-  if (!out.ok) out.why = "the observer poles are not finite";
   return out;
 }
 
@@ -170,7 +122,7 @@ fw::SpeedObserverParams observer_of(const std::vector<ParamChange>& c, bool old)
 
 }  // namespace
 
-AxisPlan plan_autotune(NodeClient& client, const hil::AxisIdentification& id, const hil::AxisDesign& design) {
+AxisPlan plan_autotune(NodeClient& client, const tune::AxisIdentification& id, const tune::AxisDesign& design) {
   AxisPlan plan;
   plan.axis = id.axis;
   plan.id = id;
@@ -182,16 +134,16 @@ AxisPlan plan_autotune(NodeClient& client, const hil::AxisIdentification& id, co
   const fw::AxisModel& m = id.model;
   fw::SlidingModeParams old_s = sliding_of(plan.changes, true);
   fw::SlidingModeParams new_s = sliding_of(plan.changes, false);
-  plan.prediction.rdvsc_old = predict_sliding(m, old_s);
-  plan.prediction.rdvsc_new = predict_sliding(m, new_s);
+  plan.prediction.rdvsc_old = tune::predict_sliding(m, old_s);
+  plan.prediction.rdvsc_new = tune::predict_sliding(m, new_s);
   old_s.gamma = 0.0;
   new_s.gamma = 0.0;
-  plan.prediction.dvsc_old = predict_sliding(m, old_s);
-  plan.prediction.dvsc_new = predict_sliding(m, new_s);
-  plan.prediction.pid_old = predict_pid(m, pid_of(plan.changes, true));
-  plan.prediction.pid_new = predict_pid(m, pid_of(plan.changes, false));
-  plan.prediction.observer_old = predict_observer(m, observer_of(plan.changes, true));
-  plan.prediction.observer_new = predict_observer(m, observer_of(plan.changes, false));
+  plan.prediction.dvsc_old = tune::predict_sliding(m, old_s);
+  plan.prediction.dvsc_new = tune::predict_sliding(m, new_s);
+  plan.prediction.pid_old = tune::predict_pid(m, pid_of(plan.changes, true));
+  plan.prediction.pid_new = tune::predict_pid(m, pid_of(plan.changes, false));
+  plan.prediction.observer_old = tune::predict_observer(m, observer_of(plan.changes, true));
+  plan.prediction.observer_new = tune::predict_observer(m, observer_of(plan.changes, false));
   return plan;
 }
 
@@ -246,8 +198,8 @@ nlohmann::json plan_json(const AxisPlan& plan) {
     changes.push_back({{"name", c.param->name}, {"old", c.old_value}, {"new", c.new_value}});
   const AxisPrediction& p = plan.prediction;
   return {{"axis", plan.axis == hal::Axis::x ? "x" : "y"},
-          {"identified", hil::identification_json(plan.id)},
-          {"design", hil::design_json(plan.design)},
+          {"identified", identification_json(plan.id)},
+          {"design", design_json(plan.design)},
           {"changes", changes},
           {"predicted",
            {{"rdvsc", {{"old", prediction_json(p.rdvsc_old)}, {"new", prediction_json(p.rdvsc_new)}}},

@@ -1,6 +1,6 @@
 #pragma once
 // `tnvctl autotune` without the command line: from an identified axis, the
-// design of tools/hil/tune_design.hpp as parameter changes against what
+// design of tools/tune/axis_design.hpp as parameter changes against what
 // the node has now, the predicted linearised closed loops of the old and
 // the new gains on the identified model, and the atomic apply (stage
 // every change, one commit: the node applies all of them or none).
@@ -11,10 +11,9 @@
 
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
-#include "firmware/control/loop_analysis.hpp"
-#include "firmware/control/speed_observer.hpp"
 #include "tools/can/node_client.hpp"
-#include "tools/hil/tune_design.hpp"
+#include "tools/tune/axis_design.hpp"
+#include "tools/tune/loop_prediction.hpp"
 
 namespace tnv::can_host {
 
@@ -24,14 +23,7 @@ struct ParamChange {
   double new_value = 0.0;  // the design (the node stores it as float32)
 };
 
-// One linearised loop on the identified model: spectral radius and poles;
-// ok = false (with why) when the gains do not even pass validate() there.
-struct LoopPrediction {
-  bool ok = false;
-  std::string why;
-  double spectral_radius = 0.0;
-  std::vector<std::complex<double>> poles;
-};
+using tune::LoopPrediction;
 
 struct AxisPrediction {
   LoopPrediction rdvsc_old, rdvsc_new;
@@ -44,8 +36,8 @@ struct AxisPrediction {
 
 struct AxisPlan {
   hal::Axis axis = hal::Axis::x;
-  hil::AxisIdentification id;
-  hil::AxisDesign design;
+  tune::AxisIdentification id;
+  tune::AxisDesign design;
   std::vector<ParamChange> changes;
   AxisPrediction prediction;
 };
@@ -53,21 +45,16 @@ struct AxisPlan {
 // The parameters autotune writes for one axis, in order: model.*, the
 // sliding-mode gains, pid.kp/ki/kd/derivative_filter_tf_s, friction.*,
 // observer.*. The design must be ok.
-std::vector<ParamChange> design_changes(const hil::AxisDesign& design, hal::Axis axis);
-// The design's input shaper (hil::shaper_for_mode: ZVD at the mode the
+std::vector<ParamChange> design_changes(const tune::AxisDesign& design, hal::Axis axis);
+// The design's input shaper (tune::shaper_for_mode: ZVD at the mode the
 // tool-side accelerometer identified) as x|y.shaper.type, freq_hz, zeta
 // and enable = on; nothing when the design has none (the shaper is left
 // as it is).
-std::vector<ParamChange> shaper_changes(const hil::AxisDesign& design, hal::Axis axis);
+std::vector<ParamChange> shaper_changes(const tune::AxisDesign& design, hal::Axis axis);
 
 // Reads the current values of every change (old_value) and predicts the
 // loops of the old and the new gains on the identified model.
-AxisPlan plan_autotune(NodeClient& client, const hil::AxisIdentification& id, const hil::AxisDesign& design);
-
-// Predictions for given gains on a model (also for tests).
-LoopPrediction predict_sliding(const fw::AxisModel& model, const fw::SlidingModeParams& p);
-LoopPrediction predict_pid(const fw::AxisModel& model, const fw::PidParams& p);
-LoopPrediction predict_observer(const fw::AxisModel& model, const fw::SpeedObserverParams& p);
+AxisPlan plan_autotune(NodeClient& client, const tune::AxisIdentification& id, const tune::AxisDesign& design);
 
 // Stages every change and commits once: applied whole, or (RequestError
 // refused, the staged set discarded) not at all. Returns the values read

@@ -6,7 +6,7 @@
 
 #include "firmware/can/param_table.hpp"
 #include "tools/can/capture_table.hpp"
-#include "tools/hil/tune_sequence.hpp"
+#include "tools/tune/identification_sequence.hpp"
 
 namespace tnv::can_host {
 
@@ -23,19 +23,20 @@ const can::ParamDef& identify_param(const std::string& name) {
   return *p;
 }
 
-// The capture settings the identification needs, and what was there before.
-struct CaptureSetup {
+// The capture parameters the identification sets, and what was there before
+// (raw values; named apart from capture_run.hpp's CaptureSetup for the unity build).
+struct CaptureParamValues {
   double channels = 0.0;
   double trigger = 0.0;
   double decimation = 0.0;
 };
 
-CaptureSetup read_capture_setup(NodeClient& client) {
+CaptureParamValues read_capture_params(NodeClient& client) {
   return {client.get(identify_param("capture.channels")), client.get(identify_param("capture.trigger")),
           client.get(identify_param("capture.decimation"))};
 }
 
-void write_capture_setup(NodeClient& client, const CaptureSetup& s) {
+void write_capture_params(NodeClient& client, const CaptureParamValues& s) {
   client.stage(identify_param("capture.channels"), s.channels);
   client.stage(identify_param("capture.trigger"), s.trigger);
   client.stage(identify_param("capture.decimation"), s.decimation);
@@ -94,7 +95,7 @@ ExcitationSeries run_excitation_over_can(NodeClient& client, hal::Axis axis, con
   return out;
 }
 
-hil::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis axis, const IdentifyProgress& progress) {
+tune::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis axis, const IdentifyProgress& progress) {
   const std::string prefix = std::string(excite_axis_name(axis)) + ".";
   fw::DacScale dac;  // the firmware's 12-bit DAC; its full scale from the node
   dac.full_scale_mm_s = client.get(identify_param(prefix + "hw.dac_full_scale_mm_s"));
@@ -102,41 +103,41 @@ hil::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis axi
   if (const can::CaptureState st = client.capture(can::CaptureOp::status).state;
       st == can::CaptureState::recording || st == can::CaptureState::armed)
     client.capture(can::CaptureOp::abort);  // capture.* cannot change while armed
-  const CaptureSetup before = read_capture_setup(client);
+  const CaptureParamValues before = read_capture_params(client);
   std::string error;
   const std::string channels = std::string("pos_") + excite_axis_name(axis) + ",dac_" + excite_axis_name(axis);
-  // With the tool-side accelerometer where the protocol has it: the structural mode (tune_mode.hpp).
+  // With the tool-side accelerometer where the protocol has it: the structural mode (tools/tune/mode_fit.hpp).
   std::optional<std::uint32_t> mask = parse_channel_list(channels + ",accel_" + excite_axis_name(axis), error);
   if (!mask) mask = parse_channel_list(channels, error);
   if (!mask) throw std::logic_error(error);
-  write_capture_setup(client, {static_cast<double>(*mask), static_cast<double>(can::CaptureTrigger::motion), 1.0});
+  write_capture_params(client, {static_cast<double>(*mask), static_cast<double>(can::CaptureTrigger::motion), 1.0});
 
-  std::vector<hil::StepRecord> steps;
-  std::vector<hil::RampRecord> ramps;
+  std::vector<tune::StepRecord> steps;
+  std::vector<tune::RampRecord> ramps;
   try {
-    for (const fw::ExcitationSpec& spec : hil::identification_steps()) {
+    for (const fw::ExcitationSpec& spec : tune::identification_steps()) {
       if (progress) progress(excitation_text(axis, spec));
       const ExcitationSeries s = run_excitation_over_can(client, axis, spec, dac);
-      steps.push_back(hil::step_record_from(spec, s.position_mm, s.command_mm_s));
+      steps.push_back(tune::step_record_from(spec, s.position_mm, s.command_mm_s));
       steps.back().accel_mm_s2 = s.accel_mm_s2;  // the whole excitation: drive and settle
       client.pump(kHoldBetween);
     }
-    for (const fw::ExcitationSpec& spec : hil::identification_ramps()) {
+    for (const fw::ExcitationSpec& spec : tune::identification_ramps()) {
       if (progress) progress(excitation_text(axis, spec));
       const ExcitationSeries s = run_excitation_over_can(client, axis, spec, dac);
-      ramps.push_back(hil::ramp_record_from(s.position_mm, s.command_mm_s));
+      ramps.push_back(tune::ramp_record_from(s.position_mm, s.command_mm_s));
       client.pump(kHoldBetween);
     }
   } catch (...) {
     try {
-      write_capture_setup(client, before);
+      write_capture_params(client, before);
     } catch (const std::exception&) {
       // The first failure is the one to report.
     }
     throw;
   }
-  write_capture_setup(client, before);
-  return hil::identify_from_records(axis, steps, ramps, kIdentifyPeriodS);
+  write_capture_params(client, before);
+  return tune::identify_from_records(axis, steps, ramps, kIdentifyPeriodS);
 }
 
 }  // namespace tnv::can_host

@@ -1,6 +1,6 @@
 #pragma once
 // Plant identification over CAN (issue 7): the identification sequence of
-// the HIL rig (tools/hil/tune_sequence.hpp), each excitation started by an
+// the HIL rig (tools/tune/identification_sequence.hpp), each excitation started by an
 // EXCITE and recorded by the node's own capture (trigger motion: first
 // tick of the excitation to its last), uploaded, cut into the same
 // StepRecord / RampRecord and fitted by identify_from_records(). The same
@@ -13,7 +13,7 @@
 #include "firmware/io/dac_code.hpp"
 #include "hal/axis.hpp"
 #include "tools/can/node_client.hpp"
-#include "tools/hil/tune_identify.hpp"
+#include "tools/tune/axis_identification.hpp"
 
 namespace tnv::can_host {
 
@@ -41,7 +41,7 @@ ExcitationSeries run_excitation_over_can(NodeClient& client, hal::Axis axis, con
 // .trigger and .decimation for it and restores them afterwards. Throws
 // RequestError / std::runtime_error when the node refuses or a recording
 // is missing; a fit that fails comes back with ok = false and its error.
-hil::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis axis,
+tune::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis axis,
                                                const IdentifyProgress& progress = {});
 
 }  // namespace tnv::can_host

@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "tools/tune/least_squares.hpp"
+
 namespace tnv::hil {
 
 TestStageFit fit_structured_model(const std::vector<TestStageSample>& s, bool with_bias) {
@@ -24,8 +26,8 @@ TestStageFit fit_structured_model(const std::vector<TestStageSample>& s, bool wi
     force(i, 1) = a.feed;
     f_next(i) = b.force;
   }
-  const Eigen::VectorXd pd = drive.colPivHouseholderQr().solve(v_next);
-  const Eigen::VectorXd pf = force.colPivHouseholderQr().solve(f_next);
+  const Eigen::VectorXd pd = tune::least_squares(drive, v_next).x;
+  const Eigen::VectorXd pf = tune::least_squares(force, f_next).x;
   fit.model.drive.a11 = -pd(0);
   fit.model.drive.b11 = pd(1);
   fit.model.drive.c11 = -pd(2);

@@ -11,6 +11,7 @@
 #include "tools/hil/arsc_tick_study.hpp"
 #include "tools/hil/hil_rig.hpp"
 #include "tools/hil/program_feeder.hpp"
+#include "tools/tune/least_squares.hpp"
 
 namespace tnv::hil {
 
@@ -71,7 +72,7 @@ TickTestStage run_tick_test_stage(const TickStudyConfig& c, std::string& error) 
       a(i, 1) = u[k - 1];
       b(i) = v[k + 1];
     }
-    const Eigen::Vector2d ab = a.colPivHouseholderQr().solve(b);
+    const Eigen::VectorXd ab = tune::least_squares(a, b).x;
     fit.drive_time_constant_s = -kTickPeriodS / std::log(std::clamp(ab(0), 1e-6, 1.0 - 1e-9));
     fit.drive_gain = ab(1) / (1.0 - ab(0));
     fit.drive_rms_mm_s = std::sqrt((a * ab - b).squaredNorm() / static_cast<double>(n));
@@ -89,7 +90,7 @@ TickTestStage run_tick_test_stage(const TickStudyConfig& c, std::string& error) 
       a(i, 1) = std::hypot(x[k + step] - x[k], y[k + step] - y[k]) / (kTickPeriodS * static_cast<double>(step));
       b(i) = f[k + step];
     }
-    const Eigen::Vector2d ab = a.colPivHouseholderQr().solve(b);
+    const Eigen::VectorXd ab = tune::least_squares(a, b).x;
     const double pole = std::clamp(ab(0), 1e-6, 1.0 - 1e-9);
     fit.force_time_constant_s = -kTickPeriodS * static_cast<double>(step) / std::log(pole);
     fit.cutting_gain_n_per_mm_s = ab(1) / (1.0 - pole);

@@ -51,8 +51,8 @@ BestConfigDesign design_best_config(const emu::Scenario& table, const BestConfig
   idle.milling.enabled = false;
   for (std::size_t i = 0; i < 2; ++i) {
     const char* axis_name = i == 0 ? "x" : "y";
-    const AxisIdentification& id = out.identified[i] = identify_axis_on_emulator(idle, hal::axis_from_index(i));
-    AxisDesign& d = out.designs[i] = design_axis(id);
+    const tune::AxisIdentification& id = out.identified[i] = identify_axis_on_emulator(idle, hal::axis_from_index(i));
+    tune::AxisDesign& d = out.designs[i] = tune::design_axis(id);
     if (!d.ok) {
       out.error = std::string("axis ") + axis_name + ": " + d.error;
       return out;
@@ -61,11 +61,11 @@ BestConfigDesign design_best_config(const emu::Scenario& table, const BestConfig
     // stribeck: the whole identified model (f_s and the assumed v_s) fed forward.
     if (choice.ff == BestFeedForward::stribeck) d.friction.stiction_mm_s = std::max(id.stiction_mm_s, id.coulomb_mm_s);
     if (choice.ff == BestFeedForward::off) d.friction.enabled = false;
-    if (choice.observer_sigma_v_mm_s != kObserverSpeedNoise_mm_s ||
-        choice.observer_sigma_d_mm_s != kObserverDisturbanceNoise_mm_s) {
+    if (choice.observer_sigma_v_mm_s != tune::kObserverSpeedNoise_mm_s ||
+        choice.observer_sigma_d_mm_s != tune::kObserverDisturbanceNoise_mm_s) {
       d.observer_noise.speed_mm_s = choice.observer_sigma_v_mm_s;
       d.observer_noise.disturbance_mm_s = choice.observer_sigma_d_mm_s;
-      const fw::ObserverDesign obs = design_observer(d.model, d.observer_noise);
+      const fw::ObserverDesign obs = tune::design_observer(d.model, d.observer_noise);
       if (!obs.ok) {
         out.bad_input = true;
         out.error = std::string("axis ") + axis_name + ": no stable observer for these noise levels";
@@ -79,7 +79,7 @@ BestConfigDesign design_best_config(const emu::Scenario& table, const BestConfig
     d.observer.enabled = choice.observer != BestObserverUse::off;
     d.observer.use_position = choice.observer == BestObserverUse::position;
   }
-  out.config = apply_designs(fw::default_firmware_config(), out.designs[0], out.designs[1]);
+  out.config = tune::apply_designs(fw::default_firmware_config(), out.designs[0], out.designs[1]);
   if (choice.gains == BestGains::papers) {
     out.config = fw::default_firmware_config();
     for (std::size_t i = 0; i < 2; ++i) {

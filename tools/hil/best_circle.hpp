@@ -17,8 +17,8 @@
 #include "firmware/tick/firmware_config.hpp"
 #include "tools/hil/contour_stats.hpp"
 #include "tools/hil/seed_sweep.hpp"
-#include "tools/hil/tune_design.hpp"
 #include "tools/hil/tune_identify.hpp"
+#include "tools/tune/axis_design.hpp"
 
 namespace tnv::hil {
 
@@ -46,7 +46,7 @@ struct BestCircleRequest {
 std::vector<BestCircleRow> run_best_circle(const BestCircleRequest& request, const fw::FirmwareConfig& best);
 
 // How the best configuration is made from an identified table (the flags of
-// tnv-hil best-circle); the defaults are the rule of tune_design.hpp.
+// tnv-hil best-circle); the defaults are the rule of tools/tune/axis_design.hpp.
 enum class BestGains { autotune, papers };       // designed from the table | S1 Tables 1/2
 enum class BestFeedForward { coulomb, stribeck, off };
 enum class BestObserverUse { speed, position, off };
@@ -56,8 +56,8 @@ struct BestConfigChoice {
   BestFeedForward ff = BestFeedForward::coulomb;
   double ff_fraction = 1.0;
   BestObserverUse observer = BestObserverUse::speed;
-  double observer_sigma_v_mm_s = kObserverSpeedNoise_mm_s;
-  double observer_sigma_d_mm_s = kObserverDisturbanceNoise_mm_s;
+  double observer_sigma_v_mm_s = tune::kObserverSpeedNoise_mm_s;
+  double observer_sigma_d_mm_s = tune::kObserverDisturbanceNoise_mm_s;
   bool observer_friction = true;  // the identified f_c / K in the observer's model
 };
 
@@ -65,8 +65,8 @@ struct BestConfigDesign {
   bool ok = false;
   bool bad_input = false;  // the choice itself is refused (no stable observer, config invalid)
   std::string error;       // one line, names the axis / field
-  std::array<AxisIdentification, 2> identified{};
-  std::array<AxisDesign, 2> designs{};
+  std::array<tune::AxisIdentification, 2> identified{};
+  std::array<tune::AxisDesign, 2> designs{};
   fw::FirmwareConfig config{};
 };
 

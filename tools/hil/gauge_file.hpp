@@ -17,13 +17,11 @@
 #include <string>
 #include <vector>
 
+#include "tools/tune/gauge_point.hpp"
+
 namespace tnv::hil {
 
-struct GaugePoint {
-  double position_mm = 0.0;
-  int direction = 1;
-  double table_mm = 0.0;
-};
+using tune::GaugePoint;
 
 std::string write_gauge_file(const std::string& comment, const std::vector<GaugePoint>& points);
 

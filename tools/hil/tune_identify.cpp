@@ -1,167 +1,15 @@
 #include "tools/hil/tune_identify.hpp"
 
-#include <Eigen/Dense>
-#include <algorithm>
-#include <cmath>
-#include <limits>
+#include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "firmware/io/dac_code.hpp"
-#include "hal/io_board_registers.hpp"
 #include "tools/hil/command_status_text.hpp"
 #include "tools/hil/hil_rig.hpp"
-#include "tools/hil/tune_sequence.hpp"
+#include "tools/tune/identification_sequence.hpp"
 
 namespace tnv::hil {
-
-namespace {
-
-struct LinearFit {
-  double p0 = 0.0;
-  double v = 0.0;
-  double sse = std::numeric_limits<double>::infinity();
-};
-
-// For a fixed tau: p_j = p0 + V g_j, g_j = t - tau (1 - e^{-t/tau}); linear least squares in (p0, V).
-LinearFit fit_for_tau(const std::vector<double>& p, double period_s, double tau_s) {
-  const auto n = static_cast<Eigen::Index>(p.size());
-  Eigen::MatrixXd phi(n, 2);
-  Eigen::VectorXd y(n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const double t = static_cast<double>(j) * period_s;
-    phi(j, 0) = 1.0;
-    phi(j, 1) = t - tau_s * (1.0 - std::exp(-t / tau_s));
-    y(j) = p[static_cast<std::size_t>(j)] - p[0];
-  }
-  const Eigen::Vector2d theta = phi.colPivHouseholderQr().solve(y);
-  LinearFit f;
-  f.p0 = theta(0) + p[0];
-  f.v = theta(1);
-  f.sse = (phi * theta - y).squaredNorm();
-  return f;
-}
-
-}  // namespace
-
-StepFit fit_step(const std::vector<double>& position_mm, double period_s) {
-  StepFit out;
-  if (position_mm.size() < 5) return out;
-  // Coarse: log grid 0.2 ms .. 200 ms; then golden section around the best.
-  constexpr int kGrid = 120;
-  const double lo = std::log(2e-4);
-  const double hi = std::log(0.2);
-  int best = 0;
-  double best_sse = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < kGrid; ++i) {
-    const double tau = std::exp(lo + (hi - lo) * i / (kGrid - 1));
-    const double sse = fit_for_tau(position_mm, period_s, tau).sse;
-    if (sse < best_sse) {
-      best_sse = sse;
-      best = i;
-    }
-  }
-  double a = std::exp(lo + (hi - lo) * std::max(0, best - 1) / (kGrid - 1));
-  double b = std::exp(lo + (hi - lo) * std::min(kGrid - 1, best + 1) / (kGrid - 1));
-  const double r = (std::sqrt(5.0) - 1.0) / 2.0;
-  double c = b - r * (b - a);
-  double d = a + r * (b - a);
-  double fc = fit_for_tau(position_mm, period_s, c).sse;
-  double fd = fit_for_tau(position_mm, period_s, d).sse;
-  for (int it = 0; it < 80; ++it) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - r * (b - a);
-      fc = fit_for_tau(position_mm, period_s, c).sse;
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + r * (b - a);
-      fd = fit_for_tau(position_mm, period_s, d).sse;
-    }
-  }
-  out.tau_s = 0.5 * (a + b);
-  const LinearFit f = fit_for_tau(position_mm, period_s, out.tau_s);
-  out.speed_mm_s = f.v;
-  out.rms_residual_mm = std::sqrt(f.sse / static_cast<double>(position_mm.size()));
-  return out;
-}
-
-namespace {
-// The mode from the accelerometer windows of every step (tune_mode.hpp).
-void identify_mode(AxisIdentification& id, double period_s) {
-  std::vector<AccelWindow> windows;
-  for (std::size_t i = 0; i < id.step_records.size() && i < id.steps.size(); ++i) {
-    const StepRecord& s = id.step_records[i];
-    if (s.accel_mm_s2.empty() || s.position_mm.size() < 2) continue;
-    for (AccelWindow& w : step_accel_windows(s.accel_mm_s2, s.position_mm.size() - 1, id.tau_s,
-                                             id.steps[i].speed_mm_s, id.coulomb_mm_s, period_s))
-      windows.push_back(std::move(w));
-  }
-  if (windows.empty()) return;
-  id.mode_fit = fit_mode(windows, period_s, hal::regs::kAccelFullScaleMmS2 / (1u << (hal::regs::kAdcBits - 1)));
-  id.mode_found = id.mode_fit.found;
-  id.mode_hz = id.mode_found ? id.mode_fit.freq_hz : 0.0;
-  id.mode_zeta = id.mode_found ? id.mode_fit.zeta : 0.0;
-}
-}  // namespace
-
-AxisIdentification identify_from_records(hal::Axis axis, const std::vector<StepRecord>& steps,
-                                         const std::vector<RampRecord>& ramps, double period_s) {
-  AxisIdentification id;
-  id.axis = axis;
-  id.step_records = steps;
-  id.ramps = ramps;
-  if (steps.size() < 2) {
-    id.error = "needs at least two steps";
-    return id;
-  }
-  // tau: the mean of the step fits; K, f_c: V_i = K U_i - sign(U_i) f_c.
-  const auto n = static_cast<Eigen::Index>(steps.size());
-  Eigen::MatrixXd phi(n, 2);
-  Eigen::VectorXd v(n);
-  double tau_sum = 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const StepRecord& s = steps[static_cast<std::size_t>(i)];
-    const StepFit f = fit_step(s.position_mm, period_s);
-    if (!(f.tau_s > 0.0)) {
-      id.error = "a step record is too short to fit";
-      return id;
-    }
-    id.steps.push_back(f);
-    tau_sum += f.tau_s;
-    phi(i, 0) = s.level_mm_s;
-    phi(i, 1) = s.level_mm_s > 0.0 ? -1.0 : 1.0;
-    v(i) = f.speed_mm_s;
-  }
-  const Eigen::Vector2d theta = phi.colPivHouseholderQr().solve(v);
-  id.tau_s = tau_sum / static_cast<double>(n);
-  id.gain = theta(0);
-  id.coulomb_mm_s = std::max(0.0, theta(1));
-  double breakaway_sum = 0.0;
-  int broke = 0;
-  for (const RampRecord& r : ramps) {
-    if (!r.broke_away) continue;
-    breakaway_sum += std::fabs(r.breakaway_mm_s);
-    ++broke;
-  }
-  if (broke == 0) {
-    id.error = "no ramp broke the axis away";
-    return id;
-  }
-  if (!(id.gain > 0.0)) {
-    id.error = "fitted gain is not positive";
-    return id;
-  }
-  // The axis breaks away when K |u| > f_s.
-  id.stiction_mm_s = std::max(id.coulomb_mm_s, id.gain * breakaway_sum / broke);
-  id.model = fw::zoh_axis_model(id.tau_s, id.gain, period_s);
-  identify_mode(id, period_s);
-  id.ok = fw::is_finite(id.model);
-  if (!id.ok) id.error = "the identified model is not finite";
-  return id;
-}
 
 namespace {
 
@@ -198,8 +46,8 @@ bool run_excitation(HilRig& rig, hal::Axis axis, const fw::ExcitationSpec& spec,
 
 }  // namespace
 
-AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal::Axis axis) {
-  AxisIdentification failed;
+tune::AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal::Axis axis) {
+  tune::AxisIdentification failed;
   failed.axis = axis;
   std::unique_ptr<HilRig> rig = HilRig::create(scenario, fw::default_firmware_config(), fw::ControllerKind::rdvsc,
                                                failed.error);
@@ -210,63 +58,49 @@ AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal:
     return failed;
   }
   hold_ticks(*rig, 300);
-  std::vector<StepRecord> steps;
-  std::vector<RampRecord> ramps;
+  std::vector<tune::StepRecord> steps;
+  std::vector<tune::RampRecord> ramps;
   std::vector<double> pos;
   std::vector<double> cmd;
   std::vector<double> accel;
-  for (const fw::ExcitationSpec& spec : identification_steps()) {
+  for (const fw::ExcitationSpec& spec : tune::identification_steps()) {
     if (!run_excitation(*rig, axis, spec, pos, cmd, accel, failed.error)) return failed;
-    steps.push_back(step_record_from(spec, pos, cmd));
+    steps.push_back(tune::step_record_from(spec, pos, cmd));
     steps.back().accel_mm_s2 = accel;  // the whole excitation: drive and settle
     hold_ticks(*rig, 300);
   }
-  for (const fw::ExcitationSpec& spec : identification_ramps()) {
+  for (const fw::ExcitationSpec& spec : tune::identification_ramps()) {
     if (!run_excitation(*rig, axis, spec, pos, cmd, accel, failed.error)) return failed;
-    ramps.push_back(ramp_record_from(pos, cmd));
+    ramps.push_back(tune::ramp_record_from(pos, cmd));
     hold_ticks(*rig, 300);
   }
-  return identify_from_records(axis, steps, ramps, kTickPeriodS);
+  return tune::identify_from_records(axis, steps, ramps, kTickPeriodS);
 }
 
-fw::FrictionFeedForward friction_feedforward_from(const AxisIdentification& id) {
-  fw::FrictionFeedForward ff;
-  ff.enabled = true;
-  ff.coulomb_mm_s = id.coulomb_mm_s;
-  // Coulomb only: the Stribeck branch is unstable open loop (slope of f
-  // down to -12 mm/s per mm/s on the reference plant, a pole at tau/12,
-  // 0.45 ms: faster than the 1 ms tick), so feeding f_s forward makes the
-  // axis jump at every reversal; the breakaway excess f_s - f_c is left to
-  // the disturbance compensation (S1 eq. 7). Measured: docs/autotune.md.
-  ff.stiction_mm_s = id.coulomb_mm_s;
-  ff.stribeck_mm_s = kAssumedStribeck_mm_s;
-  ff.gain = id.gain;
-  ff.fraction = 1.0;
-  return ff;
-}
-
-nlohmann::json identification_json(const AxisIdentification& id) {
-  nlohmann::json steps = nlohmann::json::array();
-  for (std::size_t i = 0; i < id.steps.size(); ++i)
-    steps.push_back({{"level_mm_s", id.step_records[i].level_mm_s},
-                     {"tau_s", id.steps[i].tau_s},
-                     {"speed_mm_s", id.steps[i].speed_mm_s},
-                     {"rms_residual_um", id.steps[i].rms_residual_mm * 1000.0}});
-  nlohmann::json ramps = nlohmann::json::array();
-  for (const RampRecord& r : id.ramps) ramps.push_back({{"broke_away", r.broke_away}, {"breakaway_mm_s", r.breakaway_mm_s}});
-  return {{"axis", id.axis == hal::Axis::x ? "x" : "y"},
-          {"ok", id.ok},
-          {"error", id.error},
-          {"tau_s", id.tau_s},
-          {"gain", id.gain},
-          {"coulomb_mm_s", id.coulomb_mm_s},
-          {"stiction_mm_s", id.stiction_mm_s},
-          {"stribeck_mm_s_assumed", kAssumedStribeck_mm_s},
-          {"A", {{id.model.A(0, 0), id.model.A(0, 1)}, {id.model.A(1, 0), id.model.A(1, 1)}}},
-          {"B", {id.model.B(0), id.model.B(1)}},
-          {"steps", steps},
-          {"ramps", ramps},
-          {"mode", mode_fit_json(id.mode_fit)}};
+std::string mode_fit_text(const tune::ModeFit& fit, double true_hz, double true_zeta) {
+  char line[512];
+  if (fit.samples == 0) {
+    std::snprintf(line, sizeof line, "  structural mode       not looked for (no accelerometer samples)\n");
+  } else if (!fit.found) {
+    std::snprintf(line, sizeof line, "  structural mode       none found     %s\n", true_hz > 0.0 ? "scenario has one" : "none");
+  } else if (true_hz > 0.0) {
+    std::snprintf(line, sizeof line,
+                  "  mode f (Hz)           %10.4f    %10.4f       %+6.2f %%\n"
+                  "  mode zeta             %10.5f    %10.5f       %+6.2f %%\n",
+                  fit.freq_hz, true_hz, 100.0 * (fit.freq_hz / true_hz - 1.0), fit.zeta, true_zeta,
+                  true_zeta > 0.0 ? 100.0 * (fit.zeta / true_zeta - 1.0) : 0.0);
+  } else {
+    std::snprintf(line, sizeof line,
+                  "  mode f (Hz)           %10.4f    none\n"
+                  "  mode zeta             %10.5f    none\n",
+                  fit.freq_hz, fit.zeta);
+  }
+  std::string text = line;
+  std::snprintf(line, sizeof line, "  mode fit: ring %.1f mm/s^2, explains %.1f %% of the table-model residual, rms left %.2f mm/s^2%s%s\n",
+                fit.ring_amplitude_mm_s2, 100.0 * fit.explained_share, fit.residual_rms_mm_s2,
+                fit.note.empty() ? "" : "; ", fit.note.c_str());
+  text += line;
+  return text;
 }
 
 }  // namespace tnv::hil

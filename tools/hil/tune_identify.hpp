@@ -1,89 +1,21 @@
 #pragma once
-// Plant identification for auto-tuning (issue 7, item 1): the firmware's
-// own open-loop excitation (fw::ExcitationGenerator, run by the tick task)
-// on one axis, the encoder record the firmware keeps, and a least-squares
-// fit on the host.
-//
-//   steps  at +-U1, +-U2: p(t) = p0 + V (t - tau (1 - e^{-t/tau}))  -> tau, V
-//          (the speed loop tau dv/dt = K u - f_c sign(v) - v from rest)
-//          V = K U - sign(U) f_c over the four steps                 -> K, f_c
-//   ramps  +- (slow): the DAC command at the first tick the encoder
-//          moves is the breakaway level f_s / K                      -> f_s
-//   mode   the steps' tool-side accelerometer samples, when present: the
-//          ringing after each pulse (tune_mode.hpp)                  -> f, zeta
-//
-// Not identified: the Stribeck speed v_s (the Stribeck branch has a
-// negative slope, an open-loop axis jumps across it). The encoder cannot
-// see a structural mode (it deflects the tool, not the table): the mode
-// comes from the accelerometer only. friction_feedforward_from() feeds
-// Coulomb friction only (the reason is given there).
+// Plant identification on the HIL rig: the identification sequence
+// (tools/tune/identification_sequence.hpp) run by the real firmware on the
+// emulated board and table of a scenario, its records fitted by the tuning
+// library (tools/tune/axis_identification.hpp).
 #include <string>
-#include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "emulator/scenario.hpp"
-#include "firmware/compensation/friction_feedforward.hpp"
-#include "firmware/control/axis_model.hpp"
 #include "hal/axis.hpp"
-#include "tools/hil/tune_mode.hpp"
+#include "tools/tune/axis_identification.hpp"
+#include "tools/tune/mode_fit.hpp"
 
 namespace tnv::hil {
 
-inline constexpr double kAssumedStribeck_mm_s = 0.1;
+tune::AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal::Axis axis);
 
-struct StepRecord {
-  double level_mm_s = 0.0;            // the command the DAC applied (quantised)
-  std::vector<double> position_mm;    // encoder position at the ticks after the step started: p(jT), j = 0..n
-  // Tool-side accelerometer at the ticks j = 0.. from the step start through
-  // the settle (longer than position_mm); empty: no accelerometer.
-  std::vector<double> accel_mm_s2;
-};
-
-struct RampRecord {
-  double breakaway_mm_s = 0.0;  // DAC-quantised command of the tick before the first count moved
-  bool broke_away = false;
-};
-
-struct StepFit {
-  double tau_s = 0.0;
-  double speed_mm_s = 0.0;  // V
-  double rms_residual_mm = 0.0;
-};
-
-// Least squares over tau (coarse log grid, then golden section), p0 and V linear.
-StepFit fit_step(const std::vector<double>& position_mm, double period_s);
-
-struct AxisIdentification {
-  bool ok = false;
-  std::string error;
-  hal::Axis axis = hal::Axis::x;
-  double tau_s = 0.0;
-  double gain = 0.0;
-  double coulomb_mm_s = 0.0;
-  double stiction_mm_s = 0.0;
-  fw::AxisModel model{};             // zero-order hold of (tau, K) at 1 ms
-  std::vector<StepFit> steps;        // one per step record
-  std::vector<StepRecord> step_records;
-  std::vector<RampRecord> ramps;
-  // Structural mode from the tool-side accelerometer (tune_mode.hpp); only
-  // looked for when the step records carry accelerometer samples.
-  bool mode_found = false;
-  double mode_hz = 0.0;
-  double mode_zeta = 0.0;
-  ModeFit mode_fit{};
-};
-
-// The fit from the records (the same on the emulator and over CAN).
-AxisIdentification identify_from_records(hal::Axis axis, const std::vector<StepRecord>& steps,
-                                         const std::vector<RampRecord>& ramps, double period_s);
-
-// Runs the excitation sequence on the HIL rig (the real firmware on the
-// emulated board and table of `scenario`) and fits it.
-AxisIdentification identify_axis_on_emulator(const emu::Scenario& scenario, hal::Axis axis);
-
-fw::FrictionFeedForward friction_feedforward_from(const AxisIdentification& id);
-
-nlohmann::json identification_json(const AxisIdentification& id);
+// Two text lines for `tnv-hil identify`: the fit beside the scenario's true
+// mode (true_hz == 0: the scenario has none).
+std::string mode_fit_text(const tune::ModeFit& fit, double true_hz, double true_zeta);
 
 }  // namespace tnv::hil

@@ -19,12 +19,12 @@
 #include "firmware/can/param_table.hpp"
 #include "tools/can/capture_run.hpp"
 #include "tools/can/motion_run.hpp"
-#include "tools/can/node_connection.hpp"
 #include "tools/can/node_identity.hpp"
 #include "tools/can/param_set.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/can/telemetry_json.hpp"
 #include "tools/can/telemetry_view.hpp"
+#include "tools/can_emu/node_connection.hpp"
 
 namespace py = pybind11;
 

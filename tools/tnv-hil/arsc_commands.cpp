@@ -1,7 +1,6 @@
 // tnv-hil arsc design | run | compare | tick: S3 adaptive cutting-force
 // regulation (ARSC), the paper's loop and the robust variant.
 #include <CLI/CLI.hpp>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -13,10 +12,11 @@
 
 #include "firmware/adaptive/arsc/closed_loop_matrix.hpp"
 #include "firmware/adaptive/arsc/faithful_gain_solve.hpp"
+#include "firmware/control/matrix_poles.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/hil/plot_data.hpp"
 #include "tools/hil/arsc_run.hpp"
 #include "tools/hil/arsc_tick_study.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -75,8 +75,7 @@ int run_arsc_design(const ArscDesignOptions& o) {
     j["achieved_coefficients"] = achieved;
     j["max_coefficient_error"] = worst;
     json poles = json::array();
-    const Eigen::EigenSolver<Matrix7> es(a);
-    for (int i = 0; i < 7; ++i) poles.push_back({es.eigenvalues()(i).real(), es.eigenvalues()(i).imag()});
+    for (const std::complex<double>& z : fw::matrix_poles<7>(a)) poles.push_back({z.real(), z.imag()});
     j["closed_loop_poles"] = poles;
   } else {
     j["gains"] = nullptr;

@@ -1,6 +1,6 @@
 // tnv-hil best-circle | identify (issue 7): the product's best circle
 // configuration (identified on the emulated no-cut table, R-DVSC+DDC gains
-// by the design rule of tools/hil/tune_design.hpp, Coulomb friction
+// by the design rule of tools/tune/axis_design.hpp, Coulomb friction
 // feed-forward, speed observer with the identified friction) beside the
 // papers' R-DVSC+DDC on the four S1 scenarios, seed-averaged like table3;
 // with --scenario, the same made from and run on other tables (beside the
@@ -15,13 +15,13 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "tools/can/tune_json.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/hil/best_circle.hpp"
-#include "tools/hil/tune_design.hpp"
+#include "tools/hil/report.hpp"
 #include "tools/hil/tune_identify.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
-#include "tools/hil/report.hpp"
 
 namespace tnv::cli {
 
@@ -35,8 +35,8 @@ struct BestCircleOptions {
   std::string gains = "autotune";  // autotune | papers
   std::string ff = "coulomb";      // coulomb | stribeck | off
   std::string observer = "speed";  // speed | position | off (speed_observer.hpp)
-  double observer_sigma_v_mm_s = hil::kObserverSpeedNoise_mm_s;
-  double observer_sigma_d_mm_s = hil::kObserverDisturbanceNoise_mm_s;
+  double observer_sigma_v_mm_s = tune::kObserverSpeedNoise_mm_s;
+  double observer_sigma_d_mm_s = tune::kObserverDisturbanceNoise_mm_s;
   std::string observer_friction = "on";  // on: the identified f_c / K in the observer's model | off
   std::vector<std::string> tables;       // --scenario: run on these tables instead of the four S1 scenarios
 };
@@ -71,7 +71,7 @@ nlohmann::json best_identified_json(const hil::BestConfigDesign& d) {
   nlohmann::json identified = nlohmann::json::array();
   for (std::size_t i = 0; i < 2; ++i)
     identified.push_back(
-        {{"identification", hil::identification_json(d.identified[i])}, {"design", hil::design_json(d.designs[i])}});
+        {{"identification", can_host::identification_json(d.identified[i])}, {"design", can_host::design_json(d.designs[i])}});
   return identified;
 }
 
@@ -150,7 +150,7 @@ int run_best_circle_on_tables(const BestCircleOptions& o) {
                     r.observer_off.std_um);
       out += line;
       for (std::size_t i = 0; i < 2; ++i) {
-        const hil::AxisIdentification& id = designs[t].identified[i];
+        const tune::AxisIdentification& id = designs[t].identified[i];
         std::snprintf(line, sizeof line,
                       "  identified %s: tau %.3f ms, K %.5f, f_c %.4f mm/s, f_s %.4f mm/s (true %.3f ms, %.5f, %.4f, "
                       "%.4f)\n",
@@ -269,9 +269,9 @@ int run_identify_command(const IdentifyOptions& o) {
   std::string text;
   bool ok = true;
   for (const hal::Axis axis : axes) {
-    const hil::AxisIdentification id = hil::identify_axis_on_emulator(*scenario, axis);
+    const tune::AxisIdentification id = hil::identify_axis_on_emulator(*scenario, axis);
     ok = ok && id.ok;
-    j.push_back(hil::identification_json(id));
+    j.push_back(can_host::identification_json(id));
     const std::size_t i = hal::index(axis);
     const emu::AxisPlantParams& truth = scenario->plant[i];
     char line[512];
@@ -333,7 +333,7 @@ void add_best_circle_commands(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"coulomb", "stribeck", "off"}))
       ->capture_default_str();
   cmd->add_option("--observer", o->observer,
-                  "speed observer (designed by tune_design): speed (estimated speed fed back, the rule) | position "
+                  "speed observer (designed by the tuning library): speed (estimated speed fed back, the rule) | position "
                   "(estimated speed and position) | off (M-method speed)")
       ->check(CLI::IsMember({"speed", "position", "off"}))
       ->capture_default_str();

@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "tools/can_emu/boring_node_sweep.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/can/boring_node_sweep.hpp"
 #include "tools/hil/boring_node_resolution.hpp"
-#include "tools/hil/plot_data.hpp"
 #include "tools/hil/boring_report.hpp"
 #include "tools/hil/boring_sweep.hpp"
+#include "tools/hil/plot_data.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 

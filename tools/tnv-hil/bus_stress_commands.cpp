@@ -1,5 +1,5 @@
 // tnv-hil bus-stress: hosts, tags and transmit priority on a flooded
-// emulated bus (tools/can/bus_stress.hpp). Prints the counts; exit 1 when
+// emulated bus (tools/can_emu/bus_stress.hpp). Prints the counts; exit 1 when
 // a goal of docs/safety.md "Bus priority, tags, hosts and ownership" is missed.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "tools/can/bus_stress.hpp"
+#include "tools/can_emu/bus_stress.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "tools/can/emulated_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 #include "tools/can/freq_response_json.hpp"
 #include "tools/can/freq_response_run.hpp"
 #include "tools/can/freq_response_text.hpp"

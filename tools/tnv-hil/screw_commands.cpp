@@ -1,6 +1,6 @@
 // tnv-hil screw-map / screw-fit: measure a ball screw's lead error against
 // a table-side reference and turn it into the firmware's compensation
-// parameters (tools/hil/screw_map_run.hpp, screw_fit.hpp;
+// parameters (tools/hil/screw_map_run.hpp, tools/tune/screw_fit.hpp;
 // docs/robustness.md "Lead-error table").
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -12,10 +12,10 @@
 #include "tools/can/param_file.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/hil/screw_fit.hpp"
 #include "tools/hil/screw_map_run.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
+#include "tools/tune/screw_fit.hpp"
 
 namespace tnv::cli {
 
@@ -45,7 +45,7 @@ struct ScrewFitCliOptions {
 };
 
 // The fit as the axis' screw.* parameters (backlash_rate stays as the node has it).
-std::vector<can_host::ParamValue> fit_params(const hil::ScrewFit& fit, const std::string& axis) {
+std::vector<can_host::ParamValue> fit_params(const tune::ScrewFit& fit, const std::string& axis) {
   std::vector<can_host::ParamValue> out;
   const auto add = [&](const std::string& name, double value) {
     out.push_back({can_host::find_param_by_text(axis + ".screw." + name), value});
@@ -58,7 +58,7 @@ std::vector<can_host::ParamValue> fit_params(const hil::ScrewFit& fit, const std
   return out;
 }
 
-int report_fit(const hil::ScrewFit& fit, const FitOutputs& o, const std::string& source) {
+int report_fit(const tune::ScrewFit& fit, const FitOutputs& o, const std::string& source) {
   const std::vector<can_host::ParamValue> params = fit_params(fit, o.axis);
   if (!o.params_out.empty()) {
     can_host::NodeIdentity identity;
@@ -99,10 +99,10 @@ int report_fit(const hil::ScrewFit& fit, const FitOutputs& o, const std::string&
   return kExitOk;
 }
 
-std::optional<hil::ScrewFit> fit_or_report(const std::vector<hil::GaugePoint>& points, double period_mm,
+std::optional<tune::ScrewFit> fit_or_report(const std::vector<hil::GaugePoint>& points, double period_mm,
                                            const std::string& source) {
   std::string error;
-  std::optional<hil::ScrewFit> fit = hil::fit_screw(points, period_mm, error);
+  std::optional<tune::ScrewFit> fit = tune::fit_screw(points, period_mm, error);
   if (!fit) std::fprintf(stderr, "tnv-hil: %s: %s\n", source.c_str(), error.c_str());
   return fit;
 }
@@ -133,7 +133,7 @@ int run_screw_map(ScrewMapCliOptions o) {
     }
     std::fprintf(stderr, "[gauge] wrote %s (%zu points)\n", o.gauge_out.c_str(), run.points.size());
   }
-  const std::optional<hil::ScrewFit> fit = fit_or_report(run.points, o.fit.period_mm, source);
+  const std::optional<tune::ScrewFit> fit = fit_or_report(run.points, o.fit.period_mm, source);
   return fit ? report_fit(*fit, o.fit, source) : kExitFailure;
 }
 
@@ -148,7 +148,7 @@ int run_screw_fit(const ScrewFitCliOptions& o) {
     std::fprintf(stderr, "tnv-hil: %s: %s\n", o.gauge_file.c_str(), error.c_str());
     return kExitBadInput;
   }
-  const std::optional<hil::ScrewFit> fit = fit_or_report(*points, o.fit.period_mm, o.gauge_file);
+  const std::optional<tune::ScrewFit> fit = fit_or_report(*points, o.fit.period_mm, o.gauge_file);
   return fit ? report_fit(*fit, o.fit, o.gauge_file) : kExitBadInput;
 }
 

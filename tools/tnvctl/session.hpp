@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
-#include "tools/can/node_connection.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
+#include "tools/can_emu/node_connection.hpp"
 
 namespace tnv::tnvctl {
 

@@ -12,6 +12,7 @@
 #include "tools/can/autotune_plan.hpp"
 #include "tools/can/can_identify.hpp"
 #include "tools/can/param_text.hpp"
+#include "tools/can/tune_json.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -53,12 +54,12 @@ class IdentifyProgressLine {
   std::chrono::steady_clock::time_point start_{};
 };
 
-std::vector<hil::AxisIdentification> identify_axes(const std::vector<hal::Axis>& axes, Session& session) {
+std::vector<tune::AxisIdentification> identify_axes(const std::vector<hal::Axis>& axes, Session& session) {
   can_host::NodeClient& client = session.client();
   IdentifyProgressLine progress;
-  std::vector<hil::AxisIdentification> out;
+  std::vector<tune::AxisIdentification> out;
   for (const hal::Axis a : axes) {
-    hil::AxisIdentification id = can_host::identify_axis_over_can(client, a, std::ref(progress));
+    tune::AxisIdentification id = can_host::identify_axis_over_can(client, a, std::ref(progress));
     if (!id.ok) {
       std::string message = "axis ";
       throw RunFailed(message.append(tune_axis_name(a)).append(": the fit failed: ").append(id.error));
@@ -68,14 +69,14 @@ std::vector<hil::AxisIdentification> identify_axes(const std::vector<hal::Axis>&
   return out;
 }
 
-std::string mode_text(const hil::AxisIdentification& id) {
+std::string mode_text(const tune::AxisIdentification& id) {
   if (!id.mode_found) return id.mode_fit.note.empty() ? "none" : "none (" + id.mode_fit.note + ")";
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.2f Hz, zeta %.4f", id.mode_hz, id.mode_zeta);
   return buf;
 }
 
-std::string identification_row(const hil::AxisIdentification& id) {
+std::string identification_row(const tune::AxisIdentification& id) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%-4s %9.3f %9.5f %11.4f %11.4f   [%.6f %.6e; %.6f %.6f]   [%.6e; %.6f]",
                 tune_axis_name(id.axis), id.tau_s * 1e3, id.gain, id.coulomb_mm_s, id.stiction_mm_s, id.model.A(0, 0),
@@ -83,27 +84,27 @@ std::string identification_row(const hil::AxisIdentification& id) {
   return buf;
 }
 
-void report_identifications(const std::vector<hil::AxisIdentification>& ids, Report& report) {
+void report_identifications(const std::vector<tune::AxisIdentification>& ids, Report& report) {
   report.line("axis  tau (ms)         K  f_c (mm/s)  f_s (mm/s)   A = [a11 a12; a21 a22]                         "
               "B = [b1; b2]");
   nlohmann::json list = nlohmann::json::array();
-  for (const hil::AxisIdentification& id : ids) {
+  for (const tune::AxisIdentification& id : ids) {
     report.line(identification_row(id));
-    list.push_back(hil::identification_json(id));
+    list.push_back(can_host::identification_json(id));
   }
-  for (const hil::AxisIdentification& id : ids) {
+  for (const tune::AxisIdentification& id : ids) {
     std::string line = tune_axis_name(id.axis);
     report.line(line.append(" structural mode (tool accelerometer): ").append(mode_text(id)));
   }
   char buf[160];
   std::snprintf(buf, sizeof buf, "(A, B: 1 ms zero-order hold of tau, K; Stribeck speed not identified, %.1f mm/s assumed)",
-                hil::kAssumedStribeck_mm_s);
+                tune::kAssumedStribeck_mm_s);
   report.line(buf);
   report.data["axes"] = list;
 }
 
 int run_identify(const TuneOptions& o, Session& session, Report& report) {
-  const std::vector<hil::AxisIdentification> ids = identify_axes(axes_of(o.axis), session);
+  const std::vector<tune::AxisIdentification> ids = identify_axes(axes_of(o.axis), session);
   report_identifications(ids, report);
   return kExitOk;
 }
@@ -117,7 +118,7 @@ std::string loop_text(const can_host::LoopPrediction& p) {
 }
 
 void report_plan(const can_host::AxisPlan& plan, Report& report) {
-  const hil::AxisIdentification& id = plan.id;
+  const tune::AxisIdentification& id = plan.id;
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s: identified tau %.3f ms, K %.5f, f_c %.4f mm/s, f_s %.4f mm/s", tune_axis_name(id.axis),
                 id.tau_s * 1e3, id.gain, id.coulomb_mm_s, id.stiction_mm_s);
@@ -182,13 +183,13 @@ bool confirmed(std::size_t count, int node) {
 
 int run_autotune(const TuneOptions& o, Session& session, Report& report) {
   check_autotune(o);
-  const std::vector<hil::AxisIdentification> ids = identify_axes(axes_of(o.axis), session);
+  const std::vector<tune::AxisIdentification> ids = identify_axes(axes_of(o.axis), session);
   can_host::NodeClient& client = session.client();
   std::vector<can_host::AxisPlan> plans;
   std::vector<can_host::ParamChange> all;
   nlohmann::json list = nlohmann::json::array();
-  for (const hil::AxisIdentification& id : ids) {
-    const hil::AxisDesign design = hil::design_axis(id);
+  for (const tune::AxisIdentification& id : ids) {
+    const tune::AxisDesign design = tune::design_axis(id);
     if (!design.ok) {
       std::string message = "axis ";
       throw RunFailed(message.append(tune_axis_name(id.axis)).append(": no design: ").append(design.error));

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "firmware/can/param_table.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_client.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

@@ -1,6 +1,6 @@
 #pragma once
-// Automatic design from an identified axis (issue 7, item 2). The rules,
-// stated (docs/autotune.md gives the reasons):
+// Automatic design from an identified axis. The rules, stated
+// (docs/autotune.md gives the reasons):
 //
 //   model     A, B = exact 1 ms zero-order hold of the identified (tau, K)
 //   G         [c_G / tau, 1], c_G = 1.5            (S1 eq. 5; the papers'
@@ -20,7 +20,7 @@
 //             (friction_feedforward_from: the stiction/Stribeck part is
 //             left to the DDC, see there)
 //   shaper    ZVD at the mode identified from the tool-side accelerometer,
-//             none without one (shaper_for_mode in tune_mode.hpp says why)
+//             none without one (shaper_choice.hpp says why)
 //   observer  steady-state Kalman gain on the identified model augmented with
 //             a constant disturbance (fw::steady_state_kalman_gain), noise
 //             per tick sigma_v = kObserverSpeedNoise_mm_s, sigma_d =
@@ -32,17 +32,15 @@
 // Checked: fw::validate() of the whole config (the theorems' conditions
 // among others) and the linearised closed loop's spectral radius < 1 on
 // the identified model and, when given, on another (e.g. the true) model.
-#include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "firmware/control/pid_tuning.hpp"
 #include "firmware/control/speed_observer_design.hpp"
 #include "firmware/tick/firmware_config.hpp"
-#include "tools/hil/tune_identify.hpp"
+#include "tools/tune/axis_identification.hpp"
+#include "tools/tune/shaper_choice.hpp"
 
-namespace tnv::hil {
+namespace tnv::tune {
 
 struct AxisDesign {
   bool ok = false;
@@ -77,6 +75,4 @@ double sliding_loop_spectral_radius(const fw::AxisModel& model, const fw::Slidin
 // base with the designed model, gains and friction feed-forward of both axes.
 fw::FirmwareConfig apply_designs(const fw::FirmwareConfig& base, const AxisDesign& x, const AxisDesign& y);
 
-nlohmann::json design_json(const AxisDesign& d);
-
-}  // namespace tnv::hil
+}  // namespace tnv::tune

@@ -1,4 +1,4 @@
-#include "tools/can/emulated_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 #include <thread>
 

@@ -1,5 +1,6 @@
-#include "tools/hil/tune_mode.hpp"
+#include "tools/tune/mode_fit.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -8,8 +9,9 @@
 #include <numbers>
 
 #include "hal/io_board_registers.hpp"
+#include "tools/tune/least_squares.hpp"
 
-namespace tnv::hil {
+namespace tnv::tune {
 
 namespace {
 
@@ -18,48 +20,18 @@ struct WindowSolution {
   double ring_amplitude = 0.0;  // sqrt(A^2 + B^2); 0 for the table-only model
 };
 
-// (G + ridge I) theta = h for n <= 4 columns, by Cholesky; a column whose
-// pivot is not positive (collinear with the others) is dropped (theta 0).
-// Plain arrays: this runs ~10^4 times per fit, also in sanitizer builds.
-void solve_normal_equations(const double (&g)[4][4], const double (&h)[4], int n, double ridge, double (&theta)[4]) {
-  double l[4][4] = {};
-  double z[4] = {};
-  for (int j = 0; j < n; ++j) {
-    double d = g[j][j] + ridge;
-    for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
-    if (!(d > ridge * 1e-6)) continue;  // dropped: l[.][j] stays 0
-    l[j][j] = std::sqrt(d);
-    for (int i = j + 1; i < n; ++i) {
-      double v = g[i][j];
-      for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
-      l[i][j] = v / l[j][j];
-    }
-  }
-  for (int j = 0; j < n; ++j) {
-    if (l[j][j] == 0.0) continue;
-    double v = h[j];
-    for (int k = 0; k < j; ++k) v -= l[j][k] * z[k];
-    z[j] = v / l[j][j];
-  }
-  for (int j = n - 1; j >= 0; --j) {
-    theta[j] = 0.0;
-    if (l[j][j] == 0.0) continue;
-    double v = z[j];
-    for (int k = j + 1; k < n; ++k) v -= l[k][j] * theta[k];
-    theta[j] = v / l[j][j];
-  }
-}
-
 // Least squares of one window on its columns: [e^{-t/tau}] (when tau > 0),
 // 1, and with a mode e^{-sigma t} cos(w_d t), e^{-sigma t} sin(w_d t).
-// The columns come from recurrences (one complex multiply per sample).
+// The columns come from recurrences (one complex multiply per sample). A
+// column that has decayed to nothing (short tau, long window) is rank
+// deficient: the solve gives it a zero coefficient.
 WindowSolution solve_window(const AccelWindow& w, double period_s, bool with_mode, double freq_hz, double zeta,
                             double clip_mm_s2) {
   const bool with_decay = w.table_tau_s > 0.0;
   const int cols = (with_decay ? 1 : 0) + 1 + (with_mode ? 2 : 0);
-  double g[4][4] = {};
-  double h[4] = {};
-  double yy = 0.0;
+  Eigen::MatrixXd phi(static_cast<Eigen::Index>(w.accel_mm_s2.size()), cols);
+  Eigen::VectorXd y(phi.rows());
+  Eigen::Index rows = 0;
   const double decay_step = with_decay ? std::exp(-period_s / w.table_tau_s) : 0.0;
   const double omega = 2.0 * std::numbers::pi * freq_hz;
   const std::complex<double> ring_step =
@@ -67,41 +39,28 @@ WindowSolution solve_window(const AccelWindow& w, double period_s, bool with_mod
                 : std::complex<double>(0.0, 0.0);
   const double step_re = ring_step.real(), step_im = ring_step.imag();
   double decay = 1.0, ring_re = 1.0, ring_im = 0.0;
-  for (const double y : w.accel_mm_s2) {
+  for (const double sample : w.accel_mm_s2) {
     // A saturated sample says nothing about the shape: left out.
-    if (std::fabs(y) < clip_mm_s2) {
-      double phi[4];
-      int c = 0;
-      if (with_decay) phi[c++] = decay;
-      phi[c++] = 1.0;
+    if (std::fabs(sample) < clip_mm_s2) {
+      Eigen::Index c = 0;
+      if (with_decay) phi(rows, c++) = decay;
+      phi(rows, c++) = 1.0;
       if (with_mode) {
-        phi[c++] = ring_re;
-        phi[c++] = ring_im;
+        phi(rows, c++) = ring_re;
+        phi(rows, c++) = ring_im;
       }
-      for (int i = 0; i < cols; ++i) {
-        for (int j = 0; j <= i; ++j) g[i][j] += phi[i] * phi[j];
-        h[i] += phi[i] * y;
-      }
-      yy += y * y;
+      y(rows++) = sample;
     }
     decay *= decay_step;
     const double re = ring_re * step_re - ring_im * step_im;
     ring_im = ring_re * step_im + ring_im * step_re;
     ring_re = re;
   }
-  for (int i = 0; i < cols; ++i)
-    for (int j = i + 1; j < cols; ++j) g[i][j] = g[j][i];
-  // Tiny ridge: a column that has decayed to nothing (short tau, long window)
-  // must not make the system singular.
-  double diag_max = 1.0;
-  for (int i = 0; i < cols; ++i) diag_max = std::max(diag_max, g[i][i]);
-  double theta[4] = {};
-  solve_normal_equations(g, h, cols, 1e-12 * diag_max, theta);
   WindowSolution out;
-  double explained = 0.0;
-  for (int i = 0; i < cols; ++i) explained += h[i] * theta[i];
-  out.sse = std::max(0.0, yy - explained);
-  if (with_mode) out.ring_amplitude = std::hypot(theta[cols - 2], theta[cols - 1]);
+  if (rows == 0) return out;
+  const LeastSquares ls = least_squares(phi.topRows(rows), y.head(rows));
+  out.sse = ls.sse;
+  if (with_mode) out.ring_amplitude = std::hypot(ls.x(cols - 2), ls.x(cols - 1));
   return out;
 }
 
@@ -226,66 +185,4 @@ std::vector<AccelWindow> step_accel_windows(const std::vector<double>& accel_mm_
   return out;
 }
 
-nlohmann::json mode_fit_json(const ModeFit& fit) {
-  return {{"found", fit.found},
-          {"note", fit.note},
-          {"freq_hz", fit.freq_hz},
-          {"zeta", fit.zeta},
-          {"ring_amplitude_mm_s2", fit.ring_amplitude_mm_s2},
-          {"explained_share", fit.explained_share},
-          {"residual_rms_mm_s2", fit.residual_rms_mm_s2},
-          {"samples", fit.samples}};
-}
-
-ShaperChoice shaper_for_mode(bool mode_found, double mode_hz, double mode_zeta) {
-  ShaperChoice c;
-  if (!mode_found) {
-    c.note = "no structural mode identified";
-    return c;
-  }
-  c.spec.type = fw::ShaperType::zvd;
-  c.spec.mode = {mode_hz, mode_zeta};
-  c.spec.second_mode = {0.0, 0.0};
-  if (const fw::ParamCheck check = fw::validate(c.spec); !check.ok) {
-    c.note = std::string("identified mode outside the shaper's range: ") + check.field + ": " + check.reason;
-    return c;
-  }
-  c.enabled = true;
-  return c;
-}
-
-nlohmann::json shaper_choice_json(const ShaperChoice& choice) {
-  return {{"enable", choice.enabled},
-          {"type", choice.enabled ? fw::to_string(choice.spec.type) : "none"},
-          {"freq_hz", choice.enabled ? choice.spec.mode.freq_hz : 0.0},
-          {"zeta", choice.enabled ? choice.spec.mode.zeta : 0.0},
-          {"note", choice.note}};
-}
-
-std::string mode_fit_text(const ModeFit& fit, double true_hz, double true_zeta) {
-  char line[512];
-  if (fit.samples == 0) {
-    std::snprintf(line, sizeof line, "  structural mode       not looked for (no accelerometer samples)\n");
-  } else if (!fit.found) {
-    std::snprintf(line, sizeof line, "  structural mode       none found     %s\n", true_hz > 0.0 ? "scenario has one" : "none");
-  } else if (true_hz > 0.0) {
-    std::snprintf(line, sizeof line,
-                  "  mode f (Hz)           %10.4f    %10.4f       %+6.2f %%\n"
-                  "  mode zeta             %10.5f    %10.5f       %+6.2f %%\n",
-                  fit.freq_hz, true_hz, 100.0 * (fit.freq_hz / true_hz - 1.0), fit.zeta, true_zeta,
-                  true_zeta > 0.0 ? 100.0 * (fit.zeta / true_zeta - 1.0) : 0.0);
-  } else {
-    std::snprintf(line, sizeof line,
-                  "  mode f (Hz)           %10.4f    none\n"
-                  "  mode zeta             %10.5f    none\n",
-                  fit.freq_hz, fit.zeta);
-  }
-  std::string text = line;
-  std::snprintf(line, sizeof line, "  mode fit: ring %.1f mm/s^2, explains %.1f %% of the table-model residual, rms left %.2f mm/s^2%s%s\n",
-                fit.ring_amplitude_mm_s2, 100.0 * fit.explained_share, fit.residual_rms_mm_s2,
-                fit.note.empty() ? "" : "; ", fit.note.c_str());
-  text += line;
-  return text;
-}
-
-}  // namespace tnv::hil
+}  // namespace tnv::tune

@@ -1,4 +1,4 @@
-#include "tools/can/node_connection.hpp"
+#include "tools/can_emu/node_connection.hpp"
 
 #include "drivers/linux/unix_can_socket_api.hpp"
 #include "firmware/can/param_table.hpp"

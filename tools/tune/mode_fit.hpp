@@ -1,6 +1,6 @@
 #pragma once
-// Structural-mode identification from the tool-side accelerometer (issue 7,
-// "a structural mode if present"). The excitation steps give the table two
+// Structural-mode identification from the tool-side accelerometer (the
+// mode fit: "a structural mode if present"). The excitation steps give the table two
 // strong acceleration pulses each (the step's start and end); the tool
 // point follows the table through the mode, so after each pulse it reads
 //
@@ -18,14 +18,11 @@
 // table-only model (c1 e^{-t/tau} + c0) leaves, and its largest ring
 // amplitude is at least kMinRingLsb accelerometer LSB; and the frequency is
 // inside the searched band (not on its edge).
+#include <cstddef>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "firmware/shaper/shaper_design.hpp"
-
-namespace tnv::hil {
+namespace tnv::tune {
 
 inline constexpr double kModeSearchMinHz = 3.0;
 inline constexpr double kModeSearchMaxHz = 400.0;  // 0.8 x the 500 Hz Nyquist frequency of the 1 ms tick
@@ -64,24 +61,4 @@ ModeFit fit_mode(const std::vector<AccelWindow>& windows, double period_s, doubl
 std::vector<AccelWindow> step_accel_windows(const std::vector<double>& accel_mm_s2, std::size_t drive_ticks,
                                             double tau_s, double speed_mm_s, double coulomb_mm_s, double period_s);
 
-nlohmann::json mode_fit_json(const ModeFit& fit);
-
-// The input shaper for an identified mode (x.shaper.* / y.shaper.*), the
-// rule: ZVD at the identified (f, zeta), enabled; none without a mode or
-// outside the shaper's design range (5..200 Hz, zeta <= 0.3). ZVD rather
-// than ZV: at a 3 % frequency error (this fit's tolerance) ZV leaves about
-// 5 % of the vibration, ZVD well under 1 % (docs/autotune.md, measured by
-// `tnv-hil shaper design`), for one damped period of delay instead of half.
-struct ShaperChoice {
-  bool enabled = false;
-  fw::ShaperSpec spec{};  // meaningful when enabled
-  std::string note;       // why none
-};
-ShaperChoice shaper_for_mode(bool mode_found, double mode_hz, double mode_zeta);
-nlohmann::json shaper_choice_json(const ShaperChoice& choice);
-
-// Two text lines for `tnv-hil identify`: the fit beside the scenario's true
-// mode (true_hz == 0: the scenario has none).
-std::string mode_fit_text(const ModeFit& fit, double true_hz, double true_zeta);
-
-}  // namespace tnv::hil
+}  // namespace tnv::tune

@@ -1,4 +1,4 @@
-#include "tools/can/emulated_storage_path.hpp"
+#include "tools/can_emu/emulated_storage_path.hpp"
 
 #include <cstdlib>
 #include <filesystem>

@@ -10,13 +10,13 @@
 #include <memory>
 #include <string>
 
-#include "emulator/scenario.hpp"
-#include "firmware/can/can_node.hpp"
 #include "drivers/storage/file_param_storage.hpp"
 #include "drivers/storage/stepped_storage_worker.hpp"
-#include "tools/can/emulated_storage_path.hpp"
+#include "emulator/scenario.hpp"
+#include "firmware/can/can_node.hpp"
 #include "tools/can/host_bus.hpp"
 #include "tools/can/virtual_can_bus.hpp"
+#include "tools/can_emu/emulated_storage_path.hpp"
 #include "tools/hil/hil_rig.hpp"
 
 namespace tnv::can_host {

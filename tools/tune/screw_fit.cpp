@@ -1,11 +1,13 @@
-#include "tools/hil/screw_fit.hpp"
+#include "tools/tune/screw_fit.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace tnv::hil {
+#include "tools/tune/least_squares.hpp"
+
+namespace tnv::tune {
 
 namespace {
 
@@ -57,13 +59,13 @@ std::optional<ScrewFit> fit_screw(const std::vector<GaugePoint>& points, double 
     fill_row(a, i, p.position_mm, p.direction, turn_period_mm);
     y(i) = (p.table_mm - p.position_mm) * 1e3;
   }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-  if (qr.rank() < kColumns) {
-    error = "the points do not determine the model (rank " + std::to_string(qr.rank()) + " of " +
+  const LeastSquares ls = least_squares(a, y);
+  if (ls.rank < kColumns) {
+    error = "the points do not determine the model (rank " + std::to_string(ls.rank) + " of " +
             std::to_string(kColumns) + "): spread them over at least a turn, at more than 8 phases of it";
     return std::nullopt;
   }
-  const Eigen::VectorXd x = qr.solve(y);
+  const Eigen::VectorXd& x = ls.x;
   ScrewFit fit;
   fit.lead_um_per_m = x(0);
   fit.backlash_um = x(1);
@@ -98,4 +100,4 @@ double fitted_error_um(const ScrewFit& fit, double position_mm, int direction) {
          fw::turn_error_mm(c, position_mm) * 1e3;
 }
 
-}  // namespace tnv::hil
+}  // namespace tnv::tune

@@ -1,4 +1,4 @@
-#include "tools/can/boring_node_sweep.hpp"
+#include "tools/can_emu/boring_node_sweep.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "tools/can/boring_node_link.hpp"
-#include "tools/can/emulated_bus.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv::can_host {
 

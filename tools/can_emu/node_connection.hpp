@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/host_bus.hpp"
 #include "tools/can/node_client.hpp"
 #include "tools/can/socket_api.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv::can_host {
 

@@ -1,12 +1,12 @@
-#include "tools/hil/tune_sequence.hpp"
+#include "tools/tune/identification_sequence.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 
-#include "tools/hil/hil_rig.hpp"
+#include "firmware/control/axis_model.hpp"
 
-namespace tnv::hil {
+namespace tnv::tune {
 
 std::vector<fw::ExcitationSpec> identification_steps() {
   std::vector<fw::ExcitationSpec> out;
@@ -40,7 +40,7 @@ StepRecord step_record_from(const fw::ExcitationSpec& spec, const std::vector<do
                             const std::vector<double>& command_mm_s) {
   StepRecord s;
   if (position_mm.empty() || command_mm_s.empty()) return s;
-  const auto drive = static_cast<std::size_t>(std::llround(spec.duration_s / kTickPeriodS));
+  const auto drive = static_cast<std::size_t>(std::llround(spec.duration_s / fw::kControlPeriod_s));
   s.level_mm_s = command_mm_s.front();
   s.position_mm.assign(position_mm.begin(),
                        position_mm.begin() + static_cast<std::ptrdiff_t>(std::min(drive + 1, position_mm.size())));
@@ -60,4 +60,4 @@ RampRecord ramp_record_from(const std::vector<double>& position_mm, const std::v
   return r;
 }
 
-}  // namespace tnv::hil
+}  // namespace tnv::tune

@@ -1,4 +1,4 @@
-#include "tools/can/bus_stress.hpp"
+#include "tools/can_emu/bus_stress.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,8 +12,8 @@
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/request_tag.hpp"
-#include "tools/can/emulated_bus.hpp"
 #include "tools/can/node_messages.hpp"
+#include "tools/can_emu/emulated_bus.hpp"
 
 namespace tnv::can_host {
 

@@ -1,11 +1,11 @@
-#include "tools/hil/tune_design.hpp"
+#include "tools/tune/axis_design.hpp"
 
 #include <algorithm>
 
 #include "firmware/control/linear_controller.hpp"
 #include "firmware/control/loop_analysis.hpp"
 
-namespace tnv::hil {
+namespace tnv::tune {
 
 namespace {
 constexpr double kPeriodS = 1e-3;
@@ -97,39 +97,4 @@ fw::FirmwareConfig apply_designs(const fw::FirmwareConfig& base, const AxisDesig
   return config;
 }
 
-nlohmann::json design_json(const AxisDesign& d) {
-  const fw::SlidingModeParams& p = d.sliding;
-  return {{"ok", d.ok},
-          {"error", d.error},
-          {"model", {{"a12", d.model.A(0, 1)}, {"a22", d.model.A(1, 1)}, {"b1", d.model.B(0)}, {"b2", d.model.B(1)}}},
-          {"sliding",
-           {{"G_position_1_s", p.G_position_1_s},
-            {"G_speed", p.G_speed},
-            {"eta_mm_s", p.eta_mm_s},
-            {"phi_mm_s", p.phi_mm_s},
-            {"q", p.q},
-            {"g", p.g},
-            {"gamma", p.gamma}}},
-          {"theorem2_phi_bound_mm_s", p.eta_mm_s / (p.q + 1.0)},
-          {"theorem5_gamma_bound", std::min(1.0 - p.g, p.q)},
-          {"pid", {{"kp", d.pid.kp}, {"ki", d.pid.ki}, {"kd", d.pid.kd}}},
-          {"friction",
-           {{"coulomb_mm_s", d.friction.coulomb_mm_s},
-            {"stiction_mm_s", d.friction.stiction_mm_s},
-            {"stribeck_mm_s", d.friction.stribeck_mm_s},
-            {"gain", d.friction.gain}}},
-          {"observer",
-           {{"enabled", d.observer.enabled},
-            {"use_position", d.observer.use_position},
-            {"sigma_speed_mm_s", d.observer_noise.speed_mm_s},
-            {"sigma_disturbance_mm_s", d.observer_noise.disturbance_mm_s},
-            {"gain_position", d.observer.gain_position},
-            {"gain_speed_1_s", d.observer.gain_speed_1_s},
-            {"gain_disturbance_1_s", d.observer.gain_disturbance_1_s},
-            {"friction_mm_s", d.observer.friction_mm_s},
-            {"friction_deadband_mm_s", d.observer.friction_deadband_mm_s}}},
-          {"shaper", shaper_choice_json(d.shaper)},
-          {"spectral_radius", {{"rdvsc", d.rdvsc_spectral_radius}, {"dvsc", d.dvsc_spectral_radius}, {"pid", d.pid_spectral_radius}}}};
-}
-
-}  // namespace tnv::hil
+}  // namespace tnv::tune

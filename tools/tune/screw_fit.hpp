@@ -1,5 +1,5 @@
 #pragma once
-// What a lead-error measurement (gauge_file.hpp) says about the screw, in
+// What a lead-error measurement (gauge_point.hpp) says about the screw, in
 // the firmware's compensation terms (firmware/compensation/
 // screw_compensation.hpp): the backlash b, the cumulative lead error c and
 // the per-turn table. Least squares on the reading's error against the
@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "firmware/compensation/screw_compensation.hpp"
-#include "tools/hil/gauge_file.hpp"
+#include "tools/tune/gauge_point.hpp"
 
-namespace tnv::hil {
+namespace tnv::tune {
 
 struct ScrewFit {
   double backlash_um = 0.0;
@@ -45,4 +45,4 @@ fw::ScrewCompensation to_compensation(const ScrewFit& fit, const fw::ScrewCompen
 // The fitted model's reading error (um) at p approached from d, without the zero k.
 double fitted_error_um(const ScrewFit& fit, double position_mm, int direction);
 
-}  // namespace tnv::hil
+}  // namespace tnv::tune
