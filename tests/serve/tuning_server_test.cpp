@@ -161,6 +161,22 @@ TEST_F(TuningServerTest, OnlyTheTabWithControlChangesAnything) {
   EXPECT_EQ(post("/api/params/set", kTabA, {{"name", "motion.move_ramp_s"}, {"value", 0.4}})->status, kHttpForbidden);
 }
 
+TEST_F(TuningServerTest, ReleasingControlGivesTheNodeBackToOtherHosts) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  ASSERT_EQ(post("/api/params/set", kTabA, {{"name", "motion.move_ramp_s"}, {"value", 0.3}})->status, 200);
+  const auto owner = [&] {
+    const nlohmann::json status = nlohmann::json::parse(http_->Get("/api/status")->body);
+    return status["heartbeat"].is_null() ? -1 : status["heartbeat"]["owner"].get<int>();
+  };
+  const auto wait_owner = [&](int expected) {
+    for (int i = 0; i < 100 && owner() != expected; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return owner();
+  };
+  EXPECT_EQ(wait_owner(1), 1) << "the server (host 1) did not take command ownership for the set";
+  ASSERT_EQ(post("/api/control/release", kTabA)->status, 200);
+  EXPECT_EQ(wait_owner(0), 0) << "the node still belongs to the server after the page released control";
+}
+
 TEST_F(TuningServerTest, TheTelemetryStreamRunsAtTheNodesRateAndTheTableMoves) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
   const httplib::Result moved = post("/api/motion", kTabA, {{"kind", "move"}, {"axis", "x"}, {"distance_mm", 2.0},

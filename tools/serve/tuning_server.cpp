@@ -217,7 +217,12 @@ void TuningServer::routes() {
   s.Post("/api/control/release", [this](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const std::string token = req.get_header_value(kTokenHeader);
-      control_.release(token);
+      // Released by the page, the node is free for another host too (tnvctl --host-id 2 autotune ...).
+      if (control_.release(token))
+        worker_.run([](can_host::NodeClient& c) {
+          c.release_ownership_if_taken();
+          return nlohmann::json();
+        });
       return control_json(token);
     });
   });
