@@ -30,7 +30,7 @@ namespace tnv::serve {
 struct ServeOptions {
   std::string bind = "127.0.0.1";  // a motion controller's page is not open to the network by default
   int port = 0;                    // 0: any free port (bind() says which)
-  std::string web_dir;             // index.html, app.js, style.css
+  std::string web_dir;             // index.html, style.css and the page's scripts
   std::string js_dir;              // holds chart.js/chart.min.js
   std::size_t history_samples = 2048;  // > 10 s of TLM_POSITION at its default 10 ms
   std::size_t max_pending_jobs = 16;
