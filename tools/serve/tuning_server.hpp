@@ -60,6 +60,7 @@ class TuningServer {
 
  private:
   void routes();
+  void node_routes();  // node_routes.cpp
   // A command or a change: only from the tab with control.
   void commanded(const httplib::Request& req, httplib::Response& res,
                  const std::function<nlohmann::json(const nlohmann::json& body)>& f);
