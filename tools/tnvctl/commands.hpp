@@ -43,6 +43,7 @@ void add_bore_commands(CLI::App& app, ActionSlot& slot);     // bore gauge | sta
 void add_run_commands(CLI::App& app, ActionSlot& slot);      // run FILE.ngc
 void add_trace_commands(CLI::App& app, ActionSlot& slot);    // decode, replay
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
+void add_serve_commands(CLI::App& app, ActionSlot& slot);    // serve (built with cpp-httplib)
 
 // Every family above except `script` (what a script line may use).
 void add_device_commands(CLI::App& app, ActionSlot& slot);

@@ -59,6 +59,9 @@ int main(int argc, char** argv) {
   ActionSlot slot;
   add_device_commands(app, slot);
   add_script_commands(app, slot);
+#ifdef TNV_HAVE_SERVE
+  add_serve_commands(app, slot);
+#endif
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,53 @@
+// Between browser tabs, one has control; the others read only and are
+// told why, until it gives control back or goes quiet.
+#include <gtest/gtest.h>
+
+#include "tools/serve/browser_control.hpp"
+
+namespace tnv::serve {
+namespace {
+
+using namespace std::chrono_literals;
+const BrowserControl::Clock::time_point t0{};
+const std::string kTabA = "tab-a-0123456789";
+const std::string kTabB = "tab-b-0123456789";
+
+TEST(BrowserControl, TheSecondTabIsToldAnotherBrowserHasControl) {
+  BrowserControl control(10s);
+  EXPECT_NE(control.check(kTabA, t0 + 1s), "") << "a tab sent commands without taking control";
+  EXPECT_EQ(control.take(kTabA, t0 + 1s), "");
+  EXPECT_EQ(control.check(kTabA, t0 + 2s), "");
+  EXPECT_EQ(control.take(kTabB, t0 + 2s), kAnotherBrowserHasControl);
+  EXPECT_EQ(control.check(kTabB, t0 + 2s), kAnotherBrowserHasControl);
+  EXPECT_TRUE(control.holds(kTabA, t0 + 2s));
+  EXPECT_FALSE(control.holds(kTabB, t0 + 2s));
+}
+
+TEST(BrowserControl, ReleasedControlCanBeTakenByTheOtherTab) {
+  BrowserControl control(10s);
+  ASSERT_EQ(control.take(kTabA, t0), "");
+  EXPECT_FALSE(control.release(kTabB)) << "a tab without control released it";
+  EXPECT_EQ(control.take(kTabB, t0 + 1s), kAnotherBrowserHasControl);
+  EXPECT_TRUE(control.release(kTabA));
+  EXPECT_EQ(control.take(kTabB, t0 + 1s), "");
+  EXPECT_EQ(control.check(kTabA, t0 + 1s), kAnotherBrowserHasControl);
+}
+
+TEST(BrowserControl, AQuietHolderLosesControlAfterTheIdleTime) {
+  BrowserControl control(10s);
+  ASSERT_EQ(control.take(kTabA, t0), "");
+  control.seen(kTabA, t0 + 8s);  // its telemetry stream is open
+  EXPECT_EQ(control.take(kTabB, t0 + 17s), kAnotherBrowserHasControl) << "taken from a holder seen 9 s ago";
+  EXPECT_EQ(control.take(kTabB, t0 + 19s), "") << "a holder quiet for 11 s (> 10 s) still held control";
+}
+
+TEST(BrowserControl, RefusesAMalformedToken) {
+  BrowserControl control(10s);
+  EXPECT_NE(control.take("", t0), "");
+  EXPECT_NE(control.take("short", t0), "");
+  EXPECT_NE(control.take("has space 0123456", t0), "");
+  EXPECT_FALSE(control.anyone_holds(t0)) << "a malformed token took control";
+}
+
+}  // namespace
+}  // namespace tnv::serve

@@ -1,0 +1,59 @@
+#include "tools/serve/browser_control.hpp"
+
+#include <algorithm>
+
+namespace tnv::serve {
+
+bool BrowserControl::valid_token(const std::string& token) {
+  if (token.size() < 8 || token.size() > 64) return false;
+  return std::all_of(token.begin(), token.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+  });
+}
+
+bool BrowserControl::expired(Clock::time_point now) const {
+  return holder_.empty() || now - holder_seen_ > idle_release_;
+}
+
+std::string BrowserControl::take(const std::string& token, Clock::time_point now) {
+  if (!valid_token(token)) return "no valid browser token (reload the page)";
+  const std::lock_guard lock(mutex_);
+  if (holder_ != token && !expired(now)) return kAnotherBrowserHasControl;
+  holder_ = token;
+  holder_seen_ = now;
+  return "";
+}
+
+bool BrowserControl::release(const std::string& token) {
+  const std::lock_guard lock(mutex_);
+  if (holder_.empty() || holder_ != token) return false;
+  holder_.clear();
+  return true;
+}
+
+void BrowserControl::seen(const std::string& token, Clock::time_point now) {
+  const std::lock_guard lock(mutex_);
+  if (!holder_.empty() && holder_ == token) holder_seen_ = now;
+}
+
+std::string BrowserControl::check(const std::string& token, Clock::time_point now) {
+  const std::lock_guard lock(mutex_);
+  if (!holder_.empty() && holder_ == token && !expired(now)) {
+    holder_seen_ = now;
+    return "";
+  }
+  if (!expired(now)) return kAnotherBrowserHasControl;
+  return "take control first (the \"Take control\" button)";
+}
+
+bool BrowserControl::holds(const std::string& token, Clock::time_point now) {
+  const std::lock_guard lock(mutex_);
+  return !holder_.empty() && holder_ == token && !expired(now);
+}
+
+bool BrowserControl::anyone_holds(Clock::time_point now) {
+  const std::lock_guard lock(mutex_);
+  return !expired(now);
+}
+
+}  // namespace tnv::serve

@@ -1,0 +1,43 @@
+#pragma once
+// Which browser tab may send commands and parameter changes. The server is
+// one host on the bus (the node's ownership rules apply to it as to any
+// host); between browsers, the tab that took control holds it until it
+// gives it back or goes quiet (its telemetry stream closed) for
+// `idle_release`. Every other tab reads only.
+#include <chrono>
+#include <mutex>
+#include <string>
+
+namespace tnv::serve {
+
+inline constexpr const char* kAnotherBrowserHasControl = "another browser has control";
+
+class BrowserControl {
+ public:
+  using Clock = std::chrono::steady_clock;
+  explicit BrowserControl(std::chrono::milliseconds idle_release) : idle_release_(idle_release) {}
+
+  // "" when `token` has control now, else why not (the token is malformed,
+  // or another tab holds control). The holder taking it again is fine.
+  std::string take(const std::string& token, Clock::time_point now);
+  // Gives control back if `token` holds it; false otherwise.
+  bool release(const std::string& token);
+  // The tab is alive (a request or its open telemetry stream).
+  void seen(const std::string& token, Clock::time_point now);
+  // "" when `token` may send commands, else the refusal text.
+  std::string check(const std::string& token, Clock::time_point now);
+  bool holds(const std::string& token, Clock::time_point now);
+  bool anyone_holds(Clock::time_point now);
+
+  // A tab token: 8..64 characters of [A-Za-z0-9_-].
+  static bool valid_token(const std::string& token);
+
+ private:
+  bool expired(Clock::time_point now) const;  // mutex held
+  std::mutex mutex_;
+  std::chrono::milliseconds idle_release_;
+  std::string holder_;  // "" = nobody
+  Clock::time_point holder_seen_{};
+};
+
+}  // namespace tnv::serve

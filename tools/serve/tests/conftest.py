@@ -1,0 +1,110 @@
+"""Fixtures: `tnvctl --emu serve --port 0` with its own parameter file, and
+Debian's chromium, headless, driven by python3-selenium."""
+
+import os
+import re
+import shutil
+import signal
+import subprocess
+import time
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMEDRIVER = "/usr/bin/chromedriver"
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """The page's URL on a running `tnvctl --emu serve --port 0`."""
+    exe = os.environ.get("TNVCTL_EXE")
+    if not exe:
+        pytest.fail("TNVCTL_EXE is not set (ctest sets it to the built tnvctl)")
+    storage = tmp_path_factory.mktemp("node") / "node.params"
+    proc = subprocess.Popen([exe, "--emu", "--emu-storage", str(storage), "serve", "--port", "0"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = proc.stdout.readline()
+    match = re.search(r"(http://\S+/)", line)
+    if not match:
+        proc.kill()
+        pytest.fail(f"tnvctl serve printed no URL: {line!r} {proc.stderr.read()!r}")
+    yield match.group(1)
+    proc.send_signal(signal.SIGINT)
+    try:
+        assert proc.wait(timeout=10) == 0, proc.stderr.read()
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("tnvctl serve did not end within 10 s of SIGINT")
+
+
+def _chromium_or_skip():
+    if not (os.path.exists(CHROMIUM) and os.path.exists(CHROMEDRIVER)):
+        pytest.skip("Debian's chromium and chromium-driver are not installed (scripts/install-deps.sh installs them)")
+    try:
+        from selenium import webdriver  # noqa: F401
+    except ImportError:
+        pytest.skip("python3-selenium is not installed (scripts/install-deps.sh installs it)")
+
+
+def _start_browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1400,1000",
+                "--hide-scrollbars", "--force-device-scale-factor=1"):
+        options.add_argument(arg)
+    browser = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    browser.set_page_load_timeout(30)  # a hung page fails the test instead of the ctest timeout
+    browser.set_script_timeout(30)
+    return browser
+
+
+@pytest.fixture(scope="module")
+def browsers():
+    """Opens headless chromium windows on demand: browsers() -> a new one."""
+    _chromium_or_skip()
+    opened = []
+
+    def open_one():
+        opened.append(_start_browser())
+        return opened[-1]
+
+    yield open_one
+    for b in opened:
+        b.quit()
+
+
+def wait_for(condition, timeout_s=10.0, what="condition"):
+    """Polls `condition` until it returns a true value; fails naming `what`."""
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
+
+    deadline = time.monotonic() + timeout_s
+    while True:
+        try:
+            value = condition()
+        except (NoSuchElementException, StaleElementReferenceException):
+            value = None  # the page is redrawing that part: look again
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            pytest.fail(f"{what} not seen within {timeout_s} s")
+        time.sleep(0.05)
+
+
+@pytest.fixture
+def screenshot():
+    """Saves a PNG of a browser window into $TNV_SCREENSHOT_DIR (when set)."""
+    target = os.environ.get("TNV_SCREENSHOT_DIR")
+
+    def take(browser, name):
+        if target:
+            os.makedirs(target, exist_ok=True)
+            browser.save_screenshot(os.path.join(target, name + ".png"))
+
+    return take
+
+
+def pytest_report_header():
+    return f"chromium: {shutil.which('chromium') or 'not installed'}"
