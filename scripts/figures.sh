@@ -55,6 +55,10 @@ if wanted shaper-jog-flex30; then
     --plot "$img/shaper-jog-flex30.svg"
 fi
 
+# docs/frequency-response.md
+draw freq-response-x-open "$hil" freq-response --axis x --loop open --scenario tests/data/tables/no-friction.toml \
+  --plot "$img/freq-response-x-open.svg"
+
 # docs/motion.md
 draw path-nas979-rdvsc "$hil" path tests/data/paths/nas979_diamond_circle_square.ngc --plot "$img/path-nas979-rdvsc.svg"
 
