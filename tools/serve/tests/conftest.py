@@ -1,4 +1,5 @@
-"""Fixtures: `tnvctl --emu serve --port 0` with its own parameter file, and
+"""Fixtures: `tnvctl --emu serve --port 0` (the friction-free reference table)
+with its own parameter file, and
 Debian's chromium, headless, driven by python3-selenium."""
 
 import os
@@ -21,7 +22,12 @@ def server(tmp_path_factory):
     if not exe:
         pytest.fail("TNVCTL_EXE is not set (ctest sets it to the built tnvctl)")
     storage = tmp_path_factory.mktemp("node") / "node.params"
-    proc = subprocess.Popen([exe, "--emu", "--emu-storage", str(storage), "serve", "--port", "0"],
+    # The reference table with friction off: the Bode view's measurement is
+    # then the linear loop its model describes (docs/frequency-response.md).
+    scenario = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tests", "data", "tables",
+                            "no-friction.toml")
+    proc = subprocess.Popen([exe, "--emu", "--emu-scenario", scenario, "--emu-storage", str(storage), "serve",
+                             "--port", "0"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     line = proc.stdout.readline()
     match = re.search(r"(http://\S+/)", line)
