@@ -9,26 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "tests/tune/known_screw.hpp"
 #include "tools/tune/screw_fit.hpp"
 
 namespace tnv::tune {
 namespace {
 
-// A screw with b = 8 um, c = -45 um/m, a first and a second harmonic per 10 mm turn.
-double known_error_um(double p_mm, int d) {
-  const double w = 2.0 * std::numbers::pi / 10.0;
-  return -45.0 * p_mm * 1e-3 - 0.5 * d * 8.0 + 3.0 * std::sin(w * p_mm) + 1.0 * std::cos(2.0 * w * p_mm) + 7.0;
-}
-
-std::vector<GaugePoint> known_points() {
-  std::vector<GaugePoint> pts;
-  for (const int d : {1, -1})
-    for (int k = 0; k <= 64; ++k) {
-      const double p = -20.0 + 0.625 * k + 0.0001 * d;
-      pts.push_back({p, d, p + known_error_um(p, d) * 1e-3});
-    }
-  return pts;
-}
+using test::known_error_um;
+using test::known_points;
 
 TEST(ScrewFit, RecoversAKnownScrewExactly) {
   std::string error;
