@@ -65,13 +65,9 @@ int run_freq_command(const FreqCli& c) {
     else
       std::printf("scenario %s\n%s", c.scenario.c_str(), can_host::freq_response_text(r).c_str());
     if (!c.plot.empty()) {
-      const std::string data = plot_data_path(c.plot);
-      if (!write_file_replacing(data, j.dump(1))) {
-        std::fprintf(stderr, "tnv-hil: freq-response: %s: cannot write\n", data.c_str());
-        code = kExitFailure;
-      } else if (!plot_files(c.plot, "bode", {data}, {}, "tnv-hil")) {
-        code = kExitFailure;
-      }
+      nlohmann::json data = j;
+      data["kind"] = "bode";
+      if (!plot_json(c.plot, data, "tnv-hil")) code = kExitFailure;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tnv-hil: freq-response: %s\n", e.what());

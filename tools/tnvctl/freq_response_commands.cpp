@@ -43,11 +43,12 @@ int run_freq(const FreqOptions& o, Session& session, Report& report) {
     client.pump(can_host::Micros{300'000});
   }
   const can_host::FreqResponseResult result = can_host::run_freq_response(client, axis, run);
-  report.data.update(can_host::freq_response_json(result));
+  const nlohmann::json json = can_host::freq_response_json(result);
+  report.data.update(json);
   report.line(can_host::freq_response_text(result));
   if (!o.plot.empty()) {
     const std::string data = cli::plot_data_path(o.plot);
-    if (!cli::write_file_replacing(data, can_host::freq_response_json(result).dump(1)))
+    if (!cli::write_file_replacing(data, json.dump(1)))
       throw RunFailed(data + ": cannot write");
     const std::string error = cli::run_plotter("bode", {data}, o.plot);
     if (!error.empty()) throw RunFailed(error);
