@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/tick/firmware_config.hpp"
-#include "tools/hil/contour_stats.hpp"
-#include "tools/hil/path_score.hpp"
+#include "tools/score/contour_stats.hpp"
+#include "tools/score/path_score.hpp"
 #include "tools/hil/plant_check.hpp"
 #include "tools/hil/seed_sweep.hpp"
 
