@@ -16,8 +16,8 @@
 //    and the standard library without threads or files (no emulator, no
 //    HIL rig, no JSON, no CLI; its link closure: layering.tune_links);
 //  - tools/score/ (tnv_score, what tnv-hil and tnvctl judge a run by):
-//    tools/score/, tools/gcode/, firmware/, hal/, Eigen and the standard
-//    library without threads or files (its link closure:
+//    tools/score/, tools/gcode/, firmware/, hal/, Eigen, nlohmann/json and
+//    the standard library without threads or files (its link closure:
 //    layering.score_links);
 //  - tools/gcode/ (tnv_gcode_lib): never the emulator nor the HIL rig (it
 //    reads files with drivers/storage/regular_file.hpp; layering.gcode_links);
@@ -25,6 +25,7 @@
 //    drivers/emulated/), the HIL rig (tools/hil/) or the emulator; what it
 //    shares with tnv-hil is tools/score/ (its link closure:
 //    layering.can_host_links).
+//  - tools/tnvctl/: the emulator and the rig only through tools/can_emu/.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -166,16 +167,16 @@ TEST(Layering, TuneIncludesOnlyTuneFirmwareHalEigenAndStd) {
 }
 
 // What the scoring library may use: itself, the programmed path, the
-// firmware's types; of the standard library neither threads nor files.
+// firmware's types, JSON; of the standard library neither threads nor files.
 bool score_may_include(const Include& inc) {
   const std::string& t = inc.target;
   if (!inc.angle)
     return starts_with(t, "tools/score/") || starts_with(t, "tools/gcode/") || starts_with(t, "firmware/") ||
            starts_with(t, "hal/");
-  return starts_with(t, "Eigen/") || (in(kCxxStd, t) && !in(kTuneRefusedStd, t));
+  return starts_with(t, "Eigen/") || t == "nlohmann/json.hpp" || (in(kCxxStd, t) && !in(kTuneRefusedStd, t));
 }
 
-TEST(Layering, ScoreIncludesOnlyScoreGcodeFirmwareHalAndStd) {
+TEST(Layering, ScoreIncludesOnlyScoreGcodeFirmwareHalJsonAndStd) {
   const auto incs = includes_under("tools/score");
   ASSERT_FALSE(incs.empty());
   for (const Include& inc : incs) EXPECT_TRUE(score_may_include(inc)) << where(inc) << " is not on the scoring library's allow-list";
@@ -204,6 +205,15 @@ TEST(Layering, CanHostNeverIncludesTheEmulatedNodeOrTheRig) {
   ASSERT_FALSE(incs.empty());
   for (const Include& inc : incs)
     EXPECT_TRUE(can_host_may_include(inc)) << where(inc) << ": tools/can (tnv_can_host) may not use the emulated node or the HIL rig";
+}
+
+// tnvctl's own code reaches the emulator and the rig only through the
+// emulated node (tools/can_emu/, for --emu).
+TEST(Layering, TnvctlReachesTheEmulatorOnlyThroughCanEmu) {
+  const auto incs = includes_under("tools/tnvctl");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs)
+    EXPECT_FALSE(!inc.angle && is_rig_side(inc.target)) << where(inc) << ": tnvctl uses the emulator only through tools/can_emu";
 }
 
 // Guards the guard: the scan sees both include forms and what the lists refuse.
@@ -235,6 +245,7 @@ TEST(Layering, TheScanReadsBothIncludeForms) {
   EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "drivers/storage/regular_file.hpp", false}));
   EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "fstream", true}));
   EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "tools/gcode/path_distance.hpp", false}));
+  EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "nlohmann/json.hpp", true}));
   EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "firmware/motion/motion_limits.hpp", false}));
   EXPECT_TRUE(is_rig_side("emulator/text_file.hpp"));
   EXPECT_FALSE(is_rig_side("drivers/storage/regular_file.hpp"));

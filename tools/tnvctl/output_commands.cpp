@@ -12,8 +12,8 @@
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/protogen/dbc_writer.hpp"
+#include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
-#include "tools/hil/report.hpp"
 
 namespace tnv::tnvctl {
 
