@@ -14,8 +14,8 @@ include(CMakePackageConfigHelpers)
 set(tnv_exported
   tnv_hal:hal tnv_work_meter:work_meter tnv_firmware:firmware tnv_warnings:build_warnings
   tnv_emulator:emulator tnv_driver_fpga:driver_fpga tnv_driver_emulated:driver_emulated
-  tnv_driver_linux:driver_linux tnv_driver_storage:driver_storage
-  tnv_tune:tune tnv_gcode_lib:gcode tnv_hil_lib:hil tnv_protogen_lib:protogen tnv_can_host:can_host
+  tnv_driver_linux:driver_linux tnv_driver_socketcan:driver_socketcan tnv_driver_storage:driver_storage
+  tnv_tune:tune tnv_gcode_lib:gcode tnv_score:score tnv_hil_lib:hil tnv_protogen_lib:protogen tnv_can_host:can_host
   tnv_can_emu:can_emu)
 set(tnv_export_targets "")
 foreach(pair ${tnv_exported})
@@ -32,7 +32,7 @@ install(TARGETS ${tnv_export_targets} EXPORT tnvTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tnv)
 # Headers keep their source-tree paths under include/tnv/.
-foreach(dir hal firmware emulator drivers tools/tune tools/can tools/can_emu tools/hil tools/gcode tools/protogen)
+foreach(dir hal firmware emulator drivers tools/tune tools/can tools/can_emu tools/hil tools/score tools/gcode tools/protogen)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tnv/${dir}
           COMPONENT dev FILES_MATCHING PATTERN "*.hpp")
 endforeach()

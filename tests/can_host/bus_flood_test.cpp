@@ -16,7 +16,7 @@
 #include "firmware/can/param_table.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv {
 namespace {

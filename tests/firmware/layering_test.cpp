@@ -15,10 +15,17 @@
 //  - tools/tune/ (the tuning library): tools/tune/, firmware/, hal/, Eigen
 //    and the standard library without threads or files (no emulator, no
 //    HIL rig, no JSON, no CLI; its link closure: layering.tune_links);
-//  - tools/can/ (tnv_can_host): never the emulated node (tools/can_emu/)
-//    nor the HIL rig; of tools/hil/ and emulator/ only the scoring and
-//    text helpers it still shares with them (kCanHostSharedHeaders: to be
-//    moved out of tools/hil, the list may only shrink).
+//  - tools/score/ (tnv_score, what tnv-hil and tnvctl judge a run by):
+//    tools/score/, tools/gcode/, firmware/, hal/, Eigen, nlohmann/json and
+//    the standard library without threads or files (its link closure:
+//    layering.score_links);
+//  - tools/gcode/ (tnv_gcode_lib): never the emulator nor the HIL rig (it
+//    reads files with drivers/storage/regular_file.hpp; layering.gcode_links);
+//  - tools/can/ (tnv_can_host): never the emulated node (tools/can_emu/,
+//    drivers/emulated/), the HIL rig (tools/hil/) or the emulator; what it
+//    shares with tnv-hil is tools/score/ (its link closure:
+//    layering.can_host_links).
+//  - tools/tnvctl/: the emulator and the rig only through tools/can_emu/.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -159,18 +166,38 @@ TEST(Layering, TuneIncludesOnlyTuneFirmwareHalEigenAndStd) {
   for (const Include& inc : incs) EXPECT_TRUE(tune_may_include(inc)) << where(inc) << " is not on the tuning library's allow-list";
 }
 
-// What tools/can still takes from tools/hil and emulator/ (scoring,
-// boring-node field resolution, one-line text): no rig, no emulated node.
-const std::set<std::string> kCanHostSharedHeaders = {
-    "tools/hil/boring_node_resolution.hpp", "tools/hil/boring_planner_link.hpp", "tools/hil/circle_run.hpp",
-    "tools/hil/contour_stats.hpp",          "tools/hil/path_score.hpp",          "emulator/text_file.hpp"};
+// What the scoring library may use: itself, the programmed path, the
+// firmware's types, JSON; of the standard library neither threads nor files.
+bool score_may_include(const Include& inc) {
+  const std::string& t = inc.target;
+  if (!inc.angle)
+    return starts_with(t, "tools/score/") || starts_with(t, "tools/gcode/") || starts_with(t, "firmware/") ||
+           starts_with(t, "hal/");
+  return starts_with(t, "Eigen/") || t == "nlohmann/json.hpp" || (in(kCxxStd, t) && !in(kTuneRefusedStd, t));
+}
+
+TEST(Layering, ScoreIncludesOnlyScoreGcodeFirmwareHalJsonAndStd) {
+  const auto incs = includes_under("tools/score");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs) EXPECT_TRUE(score_may_include(inc)) << where(inc) << " is not on the scoring library's allow-list";
+}
+
+// The rig's side of the tree: the emulator, the emulated register bus, the HIL rig.
+bool is_rig_side(const std::string& t) {
+  return starts_with(t, "emulator/") || starts_with(t, "drivers/emulated/") || starts_with(t, "tools/hil/");
+}
+
+TEST(Layering, GcodeNeverIncludesTheEmulatorOrTheRig) {
+  const auto incs = includes_under("tools/gcode");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs)
+    EXPECT_FALSE(!inc.angle && is_rig_side(inc.target)) << where(inc) << ": tools/gcode may not use the emulator or the HIL rig";
+}
 
 bool can_host_may_include(const Include& inc) {
   const std::string& t = inc.target;
   if (inc.angle) return true;  // third-party and standard headers: the link check is layering.can_host_links
-  if (starts_with(t, "tools/can_emu/") || starts_with(t, "drivers/emulated/")) return false;
-  if (starts_with(t, "tools/hil/") || starts_with(t, "emulator/")) return in(kCanHostSharedHeaders, t);
-  return true;
+  return !starts_with(t, "tools/can_emu/") && !is_rig_side(t);
 }
 
 TEST(Layering, CanHostNeverIncludesTheEmulatedNodeOrTheRig) {
@@ -178,6 +205,15 @@ TEST(Layering, CanHostNeverIncludesTheEmulatedNodeOrTheRig) {
   ASSERT_FALSE(incs.empty());
   for (const Include& inc : incs)
     EXPECT_TRUE(can_host_may_include(inc)) << where(inc) << ": tools/can (tnv_can_host) may not use the emulated node or the HIL rig";
+}
+
+// tnvctl's own code reaches the emulator and the rig only through the
+// emulated node (tools/can_emu/, for --emu).
+TEST(Layering, TnvctlReachesTheEmulatorOnlyThroughCanEmu) {
+  const auto incs = includes_under("tools/tnvctl");
+  ASSERT_FALSE(incs.empty());
+  for (const Include& inc : incs)
+    EXPECT_FALSE(!inc.angle && is_rig_side(inc.target)) << where(inc) << ": tnvctl uses the emulator only through tools/can_emu";
 }
 
 // Guards the guard: the scan sees both include forms and what the lists refuse.
@@ -200,6 +236,19 @@ TEST(Layering, TheScanReadsBothIncludeForms) {
   EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "tools/hil/hil_rig.hpp", false}));
   EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "emulator/scenario.hpp", false}));
   EXPECT_TRUE(can_host_may_include({"tools/can/x.cpp", 1, "tools/tune/axis_design.hpp", false}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "tools/hil/circle_run.hpp", false}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "emulator/text_file.hpp", false}));
+  EXPECT_FALSE(can_host_may_include({"tools/can/x.cpp", 1, "drivers/emulated/emulated_register_bus.hpp", false}));
+  EXPECT_TRUE(can_host_may_include({"tools/can/x.cpp", 1, "tools/score/contour_stats.hpp", false}));
+  EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "emulator/scenario.hpp", false}));
+  EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "tools/hil/hil_rig.hpp", false}));
+  EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "drivers/storage/regular_file.hpp", false}));
+  EXPECT_FALSE(score_may_include({"tools/score/x.cpp", 1, "fstream", true}));
+  EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "tools/gcode/path_distance.hpp", false}));
+  EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "nlohmann/json.hpp", true}));
+  EXPECT_TRUE(score_may_include({"tools/score/x.cpp", 1, "firmware/motion/motion_limits.hpp", false}));
+  EXPECT_TRUE(is_rig_side("emulator/text_file.hpp"));
+  EXPECT_FALSE(is_rig_side("drivers/storage/regular_file.hpp"));
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include "firmware/can/capture_channels.hpp"
 #include "tests/hil/can_node_rig.hpp"
 #include "tools/hil/circle_run.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::test {
 namespace {

@@ -7,9 +7,9 @@
 #include "emulator/quadrature_encoder.hpp"
 #include "firmware/timing/encoder_position.hpp"
 #include "firmware/trajectory/circle_trajectory.hpp"
-#include "tools/hil/contour_stats.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/seeded_scenario.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::hil {
 namespace {

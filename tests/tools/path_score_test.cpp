@@ -1,10 +1,10 @@
-// tools/hil/path_score.hpp on samples with known answers: a reference that
+// tools/score/path_score.hpp on samples with known answers: a reference that
 // runs a line at constant acceleration, a measured position offset from it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "tools/hil/path_score.hpp"
+#include "tools/score/path_score.hpp"
 
 namespace tnv::hil {
 namespace {

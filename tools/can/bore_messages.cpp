@@ -1,7 +1,7 @@
 #include "tools/can/bore_messages.hpp"
 
 #include "firmware/can/node_fields.hpp"
-#include "tools/hil/boring_node_resolution.hpp"
+#include "tools/score/boring_node_resolution.hpp"
 
 namespace tnv::can_host {
 

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "tools/can/node_client.hpp"
-#include "tools/hil/boring_planner_link.hpp"
+#include "tools/score/boring_planner_link.hpp"
 
 namespace tnv::can_host {
 

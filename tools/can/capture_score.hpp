@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "tools/can/capture_table.hpp"
-#include "tools/hil/circle_run.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/circle_trace.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::can_host {
 

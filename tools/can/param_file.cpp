@@ -3,14 +3,22 @@
 #include <algorithm>
 #include <cstdio>
 #include <set>
+#include <string_view>
 #include <toml++/toml.h>
 
-#include "emulator/text_file.hpp"
 #include "tools/can/param_text.hpp"
 
 namespace tnv::can_host {
 
 namespace {
+
+// A key or message quoted from the file into a one-line error.
+std::string one_line(std::string_view text) {
+  std::string out(text);
+  std::ranges::replace(out, '\n', ' ');
+  std::ranges::replace(out, '\r', ' ');
+  return out;
+}
 
 std::string line_of(const toml::node& n) {
   return "line " + std::to_string(n.source().begin.line) + ": ";
@@ -131,7 +139,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   try {
     root = toml::parse(text);
   } catch (const toml::parse_error& e) {
-    error = "line " + std::to_string(e.source().begin.line) + ": not TOML: " + emu::one_line(e.description());
+    error = "line " + std::to_string(e.source().begin.line) + ": not TOML: " + one_line(e.description());
     return std::nullopt;
   }
   const toml::table* node = root["node"].as_table();
@@ -142,7 +150,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   }
   for (const auto& [key, value] : root) {
     if (key.str() != "node" && key.str() != "params") {
-      error = line_of(value) + emu::one_line(key.str()) + ": unknown table (a file has [node] and [params])";
+      error = line_of(value) + one_line(key.str()) + ": unknown table (a file has [node] and [params])";
       return std::nullopt;
     }
   }
@@ -171,7 +179,7 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   file.params_hash = *hash;
   std::set<std::uint16_t> seen;
   if (!read_params(*params, "", file, seen, error)) {
-    error = emu::one_line(error);
+    error = one_line(error);
     return std::nullopt;
   }
   if (file.params.empty()) {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "tools/can/node_messages.hpp"
-#include "tools/hil/path_score.hpp"
+#include "tools/score/path_score.hpp"
 
 namespace tnv::can_host {
 

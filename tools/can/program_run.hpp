@@ -3,7 +3,7 @@
 // where the table stands, parse the program from there with those limits,
 // turn telemetry on at 1 ms (TLM_POSITION and TLM_FOLLOWING), enable the
 // servo, stream the program (program_stream.hpp), restore the telemetry
-// periods and score the run (tools/hil/path_score.hpp).
+// periods and score the run (tools/score/path_score.hpp).
 //
 // Telemetry rate: 1 ms, two 8-byte frames per tick, is 22 % of 1 Mbit/s
 // (27 % with worst-case stuffing). Both identifiers (0x401, 0x441 for node
@@ -20,7 +20,7 @@
 
 #include "tools/can/node_client.hpp"
 #include "tools/can/program_stream.hpp"
-#include "tools/hil/path_score.hpp"
+#include "tools/score/path_score.hpp"
 
 namespace tnv::can_host {
 

@@ -1,12 +1,12 @@
 #include "tools/gcode/gcode_program.hpp"
 
-#include "emulator/text_file.hpp"
-
 #include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <sstream>
+
+#include "drivers/storage/regular_file.hpp"
 
 namespace tnv::gcode {
 
@@ -286,7 +286,7 @@ GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options) {
 }
 
 bool read_program_file(const std::string& path, std::string& text, std::string& error) {
-  return emu::read_text_file(path, kMaxProgramBytes, text, error);
+  return drivers::read_regular_file(path, kMaxProgramBytes, drivers::LinkPolicy::follow, text, error);
 }
 
 GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options) {

@@ -15,9 +15,9 @@
 
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
-#include "tools/hil/contour_stats.hpp"
 #include "tools/hil/seed_sweep.hpp"
 #include "tools/hil/tune_identify.hpp"
+#include "tools/score/contour_stats.hpp"
 #include "tools/tune/axis_design.hpp"
 
 namespace tnv::hil {

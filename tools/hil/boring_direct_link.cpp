@@ -1,7 +1,7 @@
 #include "tools/hil/boring_direct_link.hpp"
 
 #include "firmware/can/param_table.hpp"
-#include "tools/hil/boring_node_resolution.hpp"
+#include "tools/score/boring_node_resolution.hpp"
 
 namespace tnv::hil {
 

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "firmware/adaptive/boring/boring_infeed_planner.hpp"
-#include "tools/hil/boring_planner_link.hpp"
+#include "tools/score/boring_planner_link.hpp"
 
 namespace tnv::hil {
 

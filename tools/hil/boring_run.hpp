@@ -11,7 +11,7 @@
 #include "emulator/boring_process.hpp"
 #include "emulator/scenario.hpp"
 #include "firmware/adaptive/boring/boring_planner_params.hpp"
-#include "tools/hil/boring_planner_link.hpp"
+#include "tools/score/boring_planner_link.hpp"
 
 namespace tnv::hil {
 

@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "firmware/control/axis_controller.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::hil {
 

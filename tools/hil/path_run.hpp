@@ -3,7 +3,7 @@
 // The program is read for the table's home (tools/gcode), streamed into the
 // tick task's motion queue as room frees up (as a host streams over CAN),
 // and every tick's reference and measured position are scored against the
-// exact programmed geometry (tools/hil/path_score.hpp).
+// exact programmed geometry (tools/score/path_score.hpp).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -12,7 +12,7 @@
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
-#include "tools/hil/path_score.hpp"
+#include "tools/score/path_score.hpp"
 
 namespace tnv::hil {
 

@@ -28,17 +28,6 @@ nlohmann::json model_json(const fw::AxisModel& m) {
 
 }  // namespace
 
-nlohmann::json contour_stats_json(const ContourStats& s) {
-  return {{"max_um", s.max_um}, {"mean_um", s.mean_um}, {"std_um", s.std_um}, {"samples", s.samples}};
-}
-
-nlohmann::json path_score_json(const PathScore& s) {
-  return {{"contour_error_max_um", s.contour_error_max_um}, {"contour_error_mean_um", s.contour_error_mean_um},
-          {"contour_error_std_um", s.contour_error_std_um}, {"path_deviation_max_um", s.path_deviation_max_um},
-          {"accel_ratio_max", s.accel_ratio_max},           {"jerk_ratio_max", s.jerk_ratio_max},
-          {"feed_ratio", s.feed_ratio},                     {"cycle_time_s", s.cycle_time_s}};
-}
-
 nlohmann::json results_json(const std::vector<SweepCell>& cells, int seeds) {
   nlohmann::json rows = nlohmann::json::array();
   for (const SweepCell& c : cells) {

@@ -6,19 +6,14 @@
 #include <nlohmann/json.hpp>
 
 #include "firmware/tick/firmware_config.hpp"
-#include "tools/hil/contour_stats.hpp"
-#include "tools/hil/path_score.hpp"
 #include "tools/hil/plant_check.hpp"
 #include "tools/hil/seed_sweep.hpp"
+#include "tools/score/contour_stats.hpp"
+#include "tools/score/score_json.hpp"
 
 namespace tnv::hil {
 
 // {"scenario","controller","max_um","mean_um","std_um","seeds"} per cell.
-// {"max_um", "mean_um", "std_um", "samples"}.
-nlohmann::json contour_stats_json(const ContourStats& s);
-// The score keys of tnv-hil path and tnvctl run --json (path_score.hpp).
-nlohmann::json path_score_json(const PathScore& s);
-
 nlohmann::json results_json(const std::vector<SweepCell>& cells, int seeds);
 // {"x":{"kp","ki","kd",...},"y":{...},"rule":...} from the config in use.
 nlohmann::json pid_gains_json(const fw::FirmwareConfig& config);

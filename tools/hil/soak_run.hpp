@@ -16,7 +16,7 @@
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::hil {
 

@@ -15,10 +15,10 @@
 
 #include "tools/can_emu/boring_node_sweep.hpp"
 #include "tools/cli/output_path.hpp"
-#include "tools/hil/boring_node_resolution.hpp"
 #include "tools/hil/boring_report.hpp"
 #include "tools/hil/boring_sweep.hpp"
 #include "tools/hil/plot_data.hpp"
+#include "tools/score/boring_node_resolution.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 

@@ -20,8 +20,8 @@
 #include "tools/can/capture_run.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/can/param_text.hpp"
+#include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
-#include "tools/hil/report.hpp"
 
 namespace tnv::tnvctl {
 

@@ -6,14 +6,14 @@
 #include <memory>
 #include <sstream>
 
-#include "emulator/text_file.hpp"
+#include "drivers/storage/regular_file.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/cli/run_plotter.hpp"
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/protogen/dbc_writer.hpp"
+#include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
-#include "tools/hil/report.hpp"
 
 namespace tnv::tnvctl {
 
@@ -45,7 +45,9 @@ int run_plot(const PlotOptions& o, Session&, Report& report) {
   for (const std::string& path : o.csv) {
     std::string text;
     std::string error;
-    if (!emu::read_text_file(path, kMaxCaptureCsvBytes, text, error)) throw BadInput(error);
+    if (!drivers::read_regular_file(path, kMaxCaptureCsvBytes, drivers::LinkPolicy::follow, text, error)) {
+      throw BadInput(error);
+    }
     std::optional<can_host::CaptureTable> t = can_host::read_capture_csv(text, error);
     if (!t) {
       std::string message = path;

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <memory>
 
-#include "emulator/text_file.hpp"
+#include "drivers/storage/regular_file.hpp"
 #include "tools/can/node_identity.hpp"
 #include "tools/can/param_file.hpp"
 #include "tools/can/param_text.hpp"
@@ -70,7 +70,9 @@ int run_export(const ExportOptions& o, Session& session, Report& report) {
 // or --edited. Throws BadInput.
 can_host::ParamFile checked_file(const ImportOptions& o) {
   std::string text, error;
-  if (!emu::read_text_file(o.path, kMaxParamFileBytes, text, error)) throw BadInput(error);
+  if (!drivers::read_regular_file(o.path, kMaxParamFileBytes, drivers::LinkPolicy::follow, text, error)) {
+    throw BadInput(error);
+  }
   std::optional<can_host::ParamFile> file = can_host::read_param_file(text, error);
   if (!file) throw BadInput(o.path + ": " + error);
   if (!file->hash_matches && !o.edited)

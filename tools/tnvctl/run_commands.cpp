@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "tools/can/program_run.hpp"
-#include "tools/hil/report.hpp"
+#include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <sstream>
 
-#include "emulator/text_file.hpp"
+#include "drivers/storage/regular_file.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -29,7 +29,9 @@ std::string read_script(const std::string& path) {
   }
   std::string file;
   std::string error;
-  if (!emu::read_text_file(path, kMaxScriptBytes, file, error)) throw BadInput(error);
+  if (!drivers::read_regular_file(path, kMaxScriptBytes, drivers::LinkPolicy::follow, file, error)) {
+    throw BadInput(error);
+  }
   return file;
 }
 

@@ -2,8 +2,9 @@
 // What the node's planner sees of a boring run (BORE_GAUGE on the board):
 // its settings as the bore.* parameters carry them (f32 on the wire), the
 // gauge readings on BORE_GAUGE's grid (0.1 um) and the infeeds on
-// BORE_INFEED's grid. The in-process planner (boring_direct_link.hpp) uses
-// the same, so the two give the same infeeds bit for bit.
+// BORE_INFEED's grid. The in-process planner
+// (tools/hil/boring_direct_link.hpp) uses the same, so the two give the
+// same infeeds bit for bit.
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,9 +1,10 @@
 #pragma once
-// How run_boring() reaches the S4 infeed planner: the node over CAN
-// (tools/can/boring_node_link.hpp: BORE_GAUGE / BORE_INFEED and the bore.*
-// parameters) or the firmware planner called in this process
-// (boring_direct_link.hpp). A run asks for the infeeds at the measuring
-// positions, cuts the part with them, gauges it and records the readings.
+// How run_boring() (tools/hil/boring_run.hpp) reaches the S4 infeed
+// planner: the node over CAN (tools/can/boring_node_link.hpp: BORE_GAUGE /
+// BORE_INFEED and the bore.* parameters) or the firmware planner called in
+// this process (tools/hil/boring_direct_link.hpp). A run asks for the
+// infeeds at the measuring positions, cuts the part with them, gauges it
+// and records the readings.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 #include <algorithm>
 

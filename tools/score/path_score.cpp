@@ -1,10 +1,10 @@
-#include "tools/hil/path_score.hpp"
+#include "tools/score/path_score.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "tools/gcode/path_distance.hpp"
-#include "tools/hil/contour_stats.hpp"
+#include "tools/score/contour_stats.hpp"
 
 namespace tnv::hil {
 

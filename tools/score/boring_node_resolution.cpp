@@ -1,4 +1,4 @@
-#include "tools/hil/boring_node_resolution.hpp"
+#include "tools/score/boring_node_resolution.hpp"
 
 #include <algorithm>
 #include <cmath>
