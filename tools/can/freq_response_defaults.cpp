@@ -17,7 +17,8 @@ double incommensurate_carrier_mm_s(double nominal_mm_s, double count_mm, std::in
   const double per_tick = std::fabs(nominal_mm_s) * kTickS / count_mm;
   const auto p = static_cast<double>(period_ticks);
   const double k = std::max(0.0, std::round((1.0 - kGoldenFraction) * p - kGoldenFraction));
-  const double counts_per_tick = std::floor(per_tick) + (k + kGoldenFraction) / p;
+  // count_mm arrives as an f32: within a millionth of a count is whole (10 mm/s: 24 counts, not 23.9999993).
+  const double counts_per_tick = std::floor(per_tick + 1e-6) + (k + kGoldenFraction) / p;
   return std::copysign(counts_per_tick * count_mm / kTickS, nominal_mm_s);
 }
 
