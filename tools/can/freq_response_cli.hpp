@@ -4,6 +4,8 @@
 // subcommand and parsed into FreqResponseOptions. The closed-loop
 // experiment's level, tones, carrier and the duration are left unset unless
 // given: the active controller's defaults fill them (freq_response_defaults.hpp).
+// Built as tnv_freq_response_cli (tools/CMakeLists.txt), not into
+// tnv_can_host: the installed host library needs no CLI11.
 #include "tools/can/freq_response_run.hpp"
 
 namespace CLI {
