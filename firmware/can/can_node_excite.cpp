@@ -7,7 +7,10 @@
 // breakaway count are ExcitationSpec's defaults (2 mm/s^2, 0.2 s, 12
 // counts), the values of the host's identification sequence
 // (tools/hil/tune_sequence.hpp); the band and tone count of a sweep /
-// multisine are the excite.* parameters (validated when set).
+// multisine are the excite.* parameters (validated when set), and so is a
+// sweep / multisine's carrier (excite.carrier_mm_s), whose travel, carrier x
+// duration from where the axis stands, must end inside the soft limits
+// (else out_of_range on the duration field).
 #include <cmath>
 
 #include "firmware/can/can_node.hpp"
@@ -45,8 +48,11 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   spec.f_min_hz = settings_.excite.f_min_hz;
   spec.f_max_hz = settings_.excite.f_max_hz;
   spec.tones = settings_.excite.tones;
+  spec.carrier_mm_s = closed_loop(excitation_kind) ? settings_.excite.carrier_mm_s : 0.0;
   // The band was checked when it was set; what is left is the duration (a multisine's 2 periods).
   if (!validate(spec).ok) return reply_ack(id, 0, ErrorCode::invalid, duration);
+  if (!task_.carrier_travel_fits(hal::axis_from_index(axis), spec))
+    return reply_ack(id, 0, ErrorCode::out_of_range, duration);
   const CommandStatus st = task_.start_excitation(hal::axis_from_index(axis), spec);
   if (st != CommandStatus::ok) return reply_ack(id, 0, to_error(st), 0);
   motion_accepted();

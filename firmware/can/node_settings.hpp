@@ -52,6 +52,7 @@ struct ExciteSettings {
   double f_min_hz = 1.0;
   double f_max_hz = 100.0;
   std::uint32_t tones = 40;  // multisine
+  double carrier_mm_s = 0.0;  // sweep / multisine: the reference's constant speed (0: a standing table)
 };
 
 struct ShaperSettings {

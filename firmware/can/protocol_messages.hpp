@@ -122,11 +122,12 @@ inline constexpr FieldDef kExcite[] = {
     {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to excite; the other holds"},
     {"kind", WireType::u8, 2, 1, "", "0=step 1=ramp 2=sweep 3=multisine 4=multisine_open",
      "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|; sweep / multisine: added to the holding "
-     "controller's command; multisine_open: the command itself; band excite.f_min_hz .. f_max_hz "
-     "(docs/frequency-response.md)"},
+     "controller's command, the reference moving at excite.carrier_mm_s meanwhile; multisine_open: the command "
+     "itself; band excite.f_min_hz .. f_max_hz (docs/frequency-response.md)"},
     {"reserved", WireType::u8, 3, 1, "", "", "0"},
     {"duration", WireType::u16, 4, 0.001, "s", "",
-     "step length / longest ramp (0.001 .. 10 s); sweep / multisine record (0.1 .. 40 s, multisine >= 2 periods of 1 / f_min)"},
+     "step length / longest ramp (0.001 .. 10 s); sweep / multisine record (0.1 .. 40 s, multisine >= 2 periods of "
+     "1 / f_min; on a carrier, carrier x duration must end inside the soft limits, else out_of_range)"},
     {"level", WireType::i16, 6, 0.01, "mm/s", "",
      "step level, the ramp's sign and largest |u|, the sweep's amplitude, the multisine's RMS x sqrt(2) (0 < |level| <= 100)"},
 };

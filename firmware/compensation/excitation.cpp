@@ -36,6 +36,10 @@ ParamCheck validate(const ExcitationSpec& s) noexcept {
     return param_error("kind", "must be step, ramp, sweep, multisine or multisine_open");
   if (!std::isfinite(s.level_mm_s) || !(std::fabs(s.level_mm_s) > 0.0) || std::fabs(s.level_mm_s) > 100.0)
     return param_error("level_mm_s", "must be finite, 0 < |level| <= 100 mm/s");
+  if (!std::isfinite(s.carrier_mm_s) || std::fabs(s.carrier_mm_s) > kExcitationMaxCarrierMmS)
+    return param_error("carrier_mm_s", "must be finite, |carrier| <= 20 mm/s");
+  if (s.carrier_mm_s != 0.0 && !closed_loop(s.kind))
+    return param_error("carrier_mm_s", "only a sweep or multisine (closed loop) runs on a carrier");
   if (banded(s.kind)) return validate_band(s);
   if (!std::isfinite(s.duration_s) || s.duration_s < 0.001 || s.duration_s > 10.0)
     return param_error("duration_s", "must be 0.001 .. 10 s");

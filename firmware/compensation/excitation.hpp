@@ -28,6 +28,13 @@
 //          command keeps an integrator plant's position periodic (bounded),
 //          up to the offset of the start-up transient; see
 //          docs/frequency-response.md for why the plant is measured this way.
+//
+// Carrier (sweep, multisine only): with carrier_mm_s != 0 the holding
+// controller's reference moves at that constant speed through the drive
+// phase (the tick task moves it) and stops with it, so the excitation is
+// measured about a steady motion instead of a standing table: the encoder's
+// quantisation phase sweeps and decorrelates from the excitation, and the
+// table never reverses (docs/frequency-response.md).
 #include <cstdint>
 
 #include "firmware/compensation/excitation_signal.hpp"
@@ -52,6 +59,9 @@ inline constexpr double kExcitationMaxFreqHz = 450.0;  // below the 500 Hz Nyqui
 inline constexpr double kExcitationMinFreqHz = 0.1;
 // Longest sweep / multisine record: 3 channels at 1 kHz fill the capture in 43.7 s.
 inline constexpr double kExcitationMaxRecordS = 40.0;
+// Fastest carrier of a sweep / multisine (a slow, steady motion: the
+// measurement is about it, not a traverse).
+inline constexpr double kExcitationMaxCarrierMmS = 20.0;
 
 struct ExcitationSpec {
   ExcitationKind kind = ExcitationKind::step;
@@ -63,13 +73,16 @@ struct ExcitationSpec {
   double f_min_hz = 1.0;         // sweep / multisine: lowest frequency
   double f_max_hz = 100.0;       // sweep / multisine: highest frequency
   std::uint32_t tones = 40;      // multisine only: number of tones, 1 .. kMaxMultisineTones
+  double carrier_mm_s = 0.0;     // sweep / multisine only: the reference's constant speed during the drive phase
 };
 
 // Finite; 0 < |level| <= 100 mm/s; 0.001 <= duration_s <= 10;
 // 0 <= settle_s <= 10; ramp: 0 < rate <= 1000, 1 <= breakaway_counts <= 10000;
 // sweep / multisine(_open): 0.1 <= duration_s <= 40, kExcitationMinFreqHz <= f_min
 // < f_max <= kExcitationMaxFreqHz, multisine(_open): 1 <= tones <= the distinct
-// harmonics in the band (multisine_tone_capacity) and duration_s >= 2 periods.
+// harmonics in the band (multisine_tone_capacity) and duration_s >= 2 periods;
+// carrier_mm_s finite, |carrier| <= kExcitationMaxCarrierMmS, and 0 unless
+// sweep / multisine.
 ParamCheck validate(const ExcitationSpec& spec) noexcept;
 
 class ExcitationGenerator {
@@ -79,6 +92,10 @@ class ExcitationGenerator {
   double next(std::int64_t counts_moved) noexcept;
   bool active() const noexcept { return active_; }
   bool closed_loop() const noexcept { return fw::closed_loop(spec_.kind); }
+  // The reference's speed for the coming tick: the carrier through the drive
+  // phase, then 0.
+  double carrier_mm_s() const noexcept { return active_ && k_ < drive_ticks_ ? spec_.carrier_mm_s : 0.0; }
+  bool has_carrier() const noexcept { return active_ && spec_.carrier_mm_s != 0.0; }
   // Ticks of the drive phase (the multisine's: whole periods), from start().
   std::int64_t drive_ticks() const noexcept { return drive_ticks_; }
   // Tick index (from 0) at which the ramp saw the axis move; -1 if not (yet).

@@ -251,7 +251,21 @@ void TickTask::tick() noexcept {
       excite_[i] = ExcitationGenerator{};  // a motion, disable or fault cancels it
       continue;
     }
-    if (excite_[i].closed_loop()) continue;  // the controller keeps holding hold_
+    if (excite_[i].closed_loop()) {
+      // The controller keeps holding hold_; on a carrier, hold_ moves at the
+      // carrier's speed through the drive phase and then rests where it ended
+      // (the shaper, bypassed meanwhile, rests there with it).
+      if (excite_[i].has_carrier()) {
+        const double v_mm_s = excite_[i].carrier_mm_s();
+        const AxisSample now{hold_[i].position_mm, v_mm_s};
+        const AxisSample next{hold_[i].position_mm + v_mm_s * kTickPeriodS, v_mm_s};
+        record_.axis[i].unshaped_reference_mm = now.position_mm;
+        set_reference(i, now, next);
+        hold_[i] = {next.position_mm, 0.0};
+        shaping_[i].shaper.reset(hold_[i]);
+      }
+      continue;
+    }
     // Open loop: the reference follows the table, so the following error stays 0.
     hold_[i] = {record_.axis[i].position_mm, 0.0};
     set_reference(i, hold_[i], hold_[i]);

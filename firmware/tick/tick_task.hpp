@@ -135,7 +135,13 @@ class TickTask {
   // while holding with no excitation running (busy otherwise), invalid for a
   // bad spec. Ends by itself (the axis then holds where it came to rest);
   // leaving holding (a motion, disable, fault) cancels it.
+  // A sweep / multisine on a carrier moves the holding reference at
+  // spec.carrier_mm_s through the drive phase, then holds where it ended;
+  // invalid when that travel would end outside the axis' soft limits.
   CommandStatus start_excitation(hal::Axis axis, const ExcitationSpec& spec) noexcept;
+  // The carrier's travel (carrier x duration from where the axis stands) ends
+  // inside the soft limits (always, without a carrier).
+  bool carrier_travel_fits(hal::Axis axis, const ExcitationSpec& spec) const noexcept;
   bool exciting() const noexcept;
   CommandStatus disable() noexcept;
   // Clears a latched fault once its cause is gone (cause_present while

@@ -74,6 +74,51 @@ TEST(ExcitationTick, OpenLoopStepMovesTheAxisThenItHoldsThere) {
   EXPECT_EQ(rig->task.state(), fw::MotionState::holding);
 }
 
+// A multisine on a carrier: the reference moves at the carrier's speed
+// through the drive phase and then rests, the supervisor stays quiet, and a
+// carrier whose travel would leave the soft limits is refused.
+TEST(ExcitationTick, CarrierMovesTheHoldingReferenceAtItsSpeedThenRests) {
+  auto rig = rig_for_no_cut();
+  ASSERT_NE(rig, nullptr);
+  ASSERT_EQ(rig->task.hold_position(), fw::CommandStatus::ok);
+  for (int k = 0; k < 50; ++k) rig->tick();
+  const double x0 = rig->task.last_record().axis[0].reference_mm;
+  fw::ExcitationSpec spec;
+  spec.kind = fw::ExcitationKind::multisine;
+  spec.level_mm_s = 2.0;
+  spec.f_min_hz = 10.0;
+  spec.f_max_hz = 200.0;
+  spec.tones = 10;
+  spec.duration_s = 1.0;
+  spec.carrier_mm_s = -3.0;
+  fw::ExcitationSpec too_far = spec;
+  too_far.carrier_mm_s = 20.0;
+  too_far.duration_s = 40.0;  // 800 mm: beyond the 250 mm soft limit
+  EXPECT_EQ(rig->task.start_excitation(hal::Axis::x, too_far), fw::CommandStatus::invalid);
+  EXPECT_FALSE(rig->task.exciting());
+  ASSERT_EQ(rig->task.start_excitation(hal::Axis::x, spec), fw::CommandStatus::ok);
+  int ticks = 0;
+  double worst_speed_error = 0.0;
+  while (rig->task.exciting() && ticks < 3000) {
+    rig->tick();
+    ++ticks;
+    const fw::AxisTickRecord& x = rig->task.last_record().axis[0];
+    if (ticks <= 1000) {
+      EXPECT_NEAR(x.reference_mm, x0 - 3.0e-3 * (ticks - 1), 1e-9) << "tick " << ticks;
+      EXPECT_EQ(x.reference_speed_mm_s, -3.0) << "tick " << ticks;
+      if (ticks > 300) worst_speed_error = std::fmax(worst_speed_error, std::fabs(x.speed_mm_s + 3.0));
+    } else {
+      EXPECT_NEAR(x.reference_mm, x0 - 3.0, 1e-9) << "tick " << ticks;
+    }
+  }
+  EXPECT_NEAR(ticks, 1200, 2);  // the drive phase, then the 0.2 s settle
+  EXPECT_EQ(rig->task.state(), fw::MotionState::holding) << fw::to_string(rig->task.fault().reason);
+  for (int k = 0; k < 200; ++k) rig->tick();
+  EXPECT_NEAR(rig->task.last_record().axis[0].position_mm, x0 - 3.0, 2e-3);
+  EXPECT_NEAR(rig->task.last_record().axis[0].reference_mm, x0 - 3.0, 1e-9);
+  ::testing::Test::RecordProperty("worst_speed_error_mm_s", std::to_string(worst_speed_error));
+}
+
 TEST(ExcitationTick, DisableCancelsIt) {
   auto rig = rig_for_no_cut();
   ASSERT_NE(rig, nullptr);

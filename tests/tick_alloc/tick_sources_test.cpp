@@ -233,6 +233,25 @@ std::vector<SourceCase> source_cases() {
     out.push_back(c);
   }
   {
+    SourceCase c;  // a multisine on a carrier: the holding reference moves, then rests (run out)
+    c.name = "excitation_multisine_carrier";
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      fw::ExcitationSpec spec;
+      spec.kind = fw::ExcitationKind::multisine;
+      spec.level_mm_s = 3.0;
+      spec.duration_s = 2.0;
+      spec.f_min_hz = 5.0;
+      spec.f_max_hz = 400.0;
+      spec.tones = fw::kMaxMultisineTones;
+      spec.carrier_mm_s = 3.0776;
+      return held != fw::CommandStatus::ok ? held : rig.task.start_excitation(hal::Axis::x, spec);
+    };
+    c.ticks = 2500;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
     SourceCase c;  // the fault latch: a remote e-stop mid-circle, then faulted ticks
     c.name = "fault_latch_remote_estop";
     c.start = start_test_circle;

@@ -45,6 +45,10 @@ nlohmann::json freq_response_json(const FreqResponseResult& r) {
           {"margins", freq_margins_json(r.margins, r.bandwidth_hz)},
           {"model_margins", freq_margins_json(r.model.margins, r.model.bandwidth_hz)},
           {"design_margins", freq_margins_json(r.design.margins, r.design.bandwidth_hz)},
+          {"loop_experiment", {{"tones", r.options.loop_tones.value_or(0)},
+                               {"level_mm_s", r.options.loop_level_mm_s.value_or(0.0)},
+                               {"carrier_mm_s", r.options.carrier_mm_s.value_or(0.0)},
+                               {"duration_s", r.options.duration_s.value_or(0.0)}}},
           {"samples", r.samples},
           {"averages", r.averages},
           {"min_coherence", r.min_coherence}};

@@ -29,24 +29,36 @@ struct FreqResponseOptions {
   tune::LoopKind loop = tune::LoopKind::plant;
   // The closed-loop experiment (open / closed loop, margins): multisine or sweep.
   fw::ExcitationKind kind = fw::ExcitationKind::multisine;
+  // Unset (nullopt): the active controller's default (freq_response_defaults.hpp).
   double plant_level_mm_s = 10.0;  // open-loop multisine of the plant: RMS x sqrt(2)
-  double loop_level_mm_s = 3.0;    // closed-loop excitation: sweep amplitude / multisine RMS x sqrt(2)
-  double duration_s = 12.0;        // each experiment's record; a multisine's whole periods of 1 / f_min
+  std::optional<double> loop_level_mm_s;  // closed-loop excitation: sweep amplitude / multisine RMS x sqrt(2)
+  std::optional<double> duration_s;       // each experiment's record; a multisine's whole periods of 1 / f_min
   double f_min_hz = 1.0;
   double f_max_hz = 100.0;         // the plant experiment's band
   double loop_f_min_hz = 10.0;     // the closed-loop experiment's band: below, the stiff loop leaves the
                                    // plant input under the DAC's resolution (docs/frequency-response.md)
   double loop_f_max_hz = 450.0;    // ... up to the phase crossover
   std::uint32_t tones = 40;        // the plant experiment's tones
-  std::uint32_t loop_tones = 30;   // the closed-loop experiment's tones (a sweep's points)
+  std::optional<std::uint32_t> loop_tones;  // the closed-loop experiment's tones (a sweep's points)
   int skip_periods = 1;            // multisine: periods dropped as the transient
+  // Margins and bandwidth are read off the measured points smoothed over
+  // this many tones each side (tools/tune/freq_response_smoothing.hpp); 0:
+  // off. The points printed are the raw ones.
+  int smooth_half_window = 3;
+  // The closed-loop experiment's carrier (excite.carrier_mm_s): the holding
+  // reference moves at this speed while the excitation runs, so the
+  // encoder's quantisation decorrelates from the excitation and the table
+  // never reverses; 0 = a standing table. The run goes the other way when
+  // the soft limits leave no room ahead, and moves the table back after.
+  std::optional<double> carrier_mm_s;
   // The plant the model side uses: the emulated table's exact ZOH when
   // known (tnv-hil, --emu); otherwise the node's configured model.
   std::optional<fw::AxisModel> plant_model;
 };
 
 // The options' own checks (ranges as the node's, plus the capture's room
-// for 4 channels); "" when fine, else the first problem naming the option.
+// for 4 channels), with the unset ones at every controller's defaults; ""
+// when fine, else the first problem naming the option.
 std::string check_options(const FreqResponseOptions& options);
 
 struct FreqResponsePoint {
@@ -62,6 +74,7 @@ struct FreqResponseResult {
   fw::ExcitationKind kind = fw::ExcitationKind::multisine;
   std::string controller;          // "pid", "dvsc", "rdvsc"
   std::string plant_model;         // what the model side used, in words
+  FreqResponseOptions options;     // as run: every default filled in (the carrier's sign as it went)
   std::vector<FreqResponsePoint> points;
   tune::BodeMargins margins;       // measured open loop
   double bandwidth_hz = 0.0;       // measured closed loop, -3 dB (NaN if not reached in the band)

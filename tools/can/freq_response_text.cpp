@@ -37,6 +37,11 @@ std::string freq_response_text(const FreqResponseResult& r) {
                 r.controller.c_str(),
                 r.plant_model.c_str());
   out += buf;
+  const FreqResponseOptions& o = r.options;
+  std::snprintf(buf, sizeof buf, "closed-loop experiment: %u tones, level %.3g mm/s, carrier %.6g mm/s, %.3g s\n",
+                o.loop_tones.value_or(0), o.loop_level_mm_s.value_or(0.0), o.carrier_mm_s.value_or(0.0),
+                o.duration_s.value_or(0.0));
+  out += buf;
   std::snprintf(buf, sizeof buf, "%zu ticks recorded, %d averages, lowest coherence %.3f%s\n", r.samples, r.averages,
                 r.min_coherence, r.observer_enabled ? " (speed observer on: the model leaves it out)" : "");
   out += buf;

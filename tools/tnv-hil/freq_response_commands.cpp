@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "tools/can_emu/emulated_bus.hpp"
+#include "tools/can/freq_response_cli.hpp"
 #include "tools/can/freq_response_json.hpp"
 #include "tools/can/freq_response_run.hpp"
 #include "tools/can/freq_response_text.hpp"
@@ -20,8 +21,6 @@ namespace {
 
 struct FreqCli {
   std::string axis = "x";
-  std::string loop = "plant";
-  std::string excitation = "multisine";
   std::string scenario = "no-cut";
   std::string plot;
   bool json = false;
@@ -30,8 +29,6 @@ struct FreqCli {
 
 int run_freq_command(const FreqCli& c) {
   can_host::FreqResponseOptions o = c.run;
-  tune::parse_loop_kind(c.loop, o.loop);  // CLI11 checked the name
-  o.kind = c.excitation == "sweep" ? fw::ExcitationKind::sweep : fw::ExcitationKind::multisine;
   if (const std::string e = can_host::check_options(o); !e.empty()) {
     std::fprintf(stderr, "tnv-hil: freq-response: %s\n", e.c_str());
     return kExitBadInput;
@@ -86,28 +83,11 @@ void add_freq_response_commands(CLI::App& app, Runner& run) {
       "freq-response",
       "frequency response on the emulated controller (tnvctl freq-response with --scenario): the plant from an "
       "open-loop multisine, the open / closed loop from a multisine or sweep added to the holding controller's "
-      "command, coherence, margins measured vs the model (docs/frequency-response.md)");
+      "command (on a slow carrier motion, --carrier), coherence, margins measured vs the model; the closed-loop "
+      "experiment's level, tones and duration default by the active controller (docs/frequency-response.md)");
   cmd->add_option("--axis", o->axis, "x or y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
-  cmd->add_option("--loop", o->loop, "plant, open or closed")
-      ->check(CLI::IsMember({"plant", "open", "closed"}))
-      ->capture_default_str();
-  cmd->add_option("--excitation", o->excitation, "closed-loop experiment: multisine or sweep")
-      ->check(CLI::IsMember({"multisine", "sweep"}))
-      ->capture_default_str();
   cmd->add_option("--scenario", o->scenario, "built-in scenario name or TOML file")->capture_default_str();
-  cmd->add_option("--plant-level", o->run.plant_level_mm_s, "mm/s: the plant's open-loop multisine, RMS x sqrt(2)")
-      ->capture_default_str();
-  cmd->add_option("--loop-level", o->run.loop_level_mm_s, "mm/s: the closed-loop excitation")->capture_default_str();
-  cmd->add_option("--duration", o->run.duration_s, "s of record per experiment")->capture_default_str();
-  cmd->add_option("--f-min", o->run.f_min_hz, "Hz, lowest frequency of the plant experiment")->capture_default_str();
-  cmd->add_option("--f-max", o->run.f_max_hz, "Hz, highest frequency of the plant experiment")->capture_default_str();
-  cmd->add_option("--loop-f-min", o->run.loop_f_min_hz, "Hz, lowest frequency of the closed-loop experiment")
-      ->capture_default_str();
-  cmd->add_option("--loop-f-max", o->run.loop_f_max_hz, "Hz, highest frequency of the closed-loop experiment")
-      ->capture_default_str();
-  cmd->add_option("--tones", o->run.tones, "the plant experiment's tones")->capture_default_str();
-  cmd->add_option("--loop-tones", o->run.loop_tones, "the closed-loop experiment's tones / sweep points")
-      ->capture_default_str();
+  can_host::add_freq_response_options(*cmd, o->run);
   cmd->add_option("--plot", o->plot, "write the Bode plot (.svg, .png or .pdf)")->check(PlotFile());
   cmd->add_flag("--json", o->json, "print JSON");
   cmd->callback([o, &run] { run = [o] { return run_freq_command(*o); }; });

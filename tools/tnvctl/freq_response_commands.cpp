@@ -3,6 +3,7 @@
 // estimate; docs/frequency-response.md).
 #include <memory>
 
+#include "tools/can/freq_response_cli.hpp"
 #include "tools/can/freq_response_json.hpp"
 #include "tools/can/freq_response_run.hpp"
 #include "tools/can/freq_response_text.hpp"
@@ -16,16 +17,12 @@ namespace {
 
 struct FreqOptions {
   std::string axis = "x";
-  std::string loop = "plant";
-  std::string excitation = "multisine";
   std::string plot;
   can_host::FreqResponseOptions run{};
 };
 
 can_host::FreqResponseOptions checked_options(const FreqOptions& o) {
-  can_host::FreqResponseOptions run = o.run;
-  if (!tune::parse_loop_kind(o.loop, run.loop)) throw BadInput("--loop must be plant, open or closed");
-  run.kind = o.excitation == "sweep" ? fw::ExcitationKind::sweep : fw::ExcitationKind::multisine;
+  const can_host::FreqResponseOptions& run = o.run;
   if (const std::string e = can_host::check_options(run); !e.empty()) throw BadInput(e);
   return run;
 }
@@ -67,31 +64,10 @@ void add_freq_response_commands(CLI::App& app, ActionSlot& slot) {
       "frequency response of an axis: a closed-loop EXCITE (multisine or sweep added to the holding controller's "
       "command) recorded at every tick by the node's capture; prints the plant, open- or closed-loop response "
       "with coherence and the model's, and the margins measured vs the model (docs/frequency-response.md); the "
-      "node must be enabled and holding (--emu: enabled here)");
+      "closed-loop experiment rides on a slow carrier motion (--carrier) and its level, tones and duration "
+      "default by the active controller; the node must be enabled and holding (--emu: enabled here)");
   cmd->add_option("--axis", o->axis, "x or y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
-  cmd->add_option("--loop", o->loop, "plant, open or closed")
-      ->check(CLI::IsMember({"plant", "open", "closed"}))
-      ->capture_default_str();
-  cmd->add_option("--excitation", o->excitation, "multisine or sweep")
-      ->check(CLI::IsMember({"multisine", "sweep"}))
-      ->capture_default_str();
-  cmd->add_option("--plant-level", o->run.plant_level_mm_s, "mm/s: the plant's open-loop multisine, RMS x sqrt(2)")
-      ->capture_default_str();
-  cmd->add_option("--loop-level", o->run.loop_level_mm_s,
-                  "mm/s: the closed-loop excitation, sweep amplitude / multisine RMS x sqrt(2)")
-      ->capture_default_str();
-  cmd->add_option("--duration", o->run.duration_s, "s of record per experiment (multisine: whole periods of 1 / f_min)")
-      ->capture_default_str();
-  cmd->add_option("--f-min", o->run.f_min_hz, "Hz, lowest frequency of the plant experiment")->capture_default_str();
-  cmd->add_option("--f-max", o->run.f_max_hz, "Hz, highest frequency of the plant experiment")->capture_default_str();
-  cmd->add_option("--loop-f-min", o->run.loop_f_min_hz, "Hz, lowest frequency of the closed-loop experiment")
-      ->capture_default_str();
-  cmd->add_option("--loop-f-max", o->run.loop_f_max_hz,
-                  "Hz, highest frequency of the closed-loop experiment (<= 450; margins need the phase crossover)")
-      ->capture_default_str();
-  cmd->add_option("--tones", o->run.tones, "the plant experiment's tones")->capture_default_str();
-  cmd->add_option("--loop-tones", o->run.loop_tones, "the closed-loop experiment's tones / sweep points")
-      ->capture_default_str();
+  can_host::add_freq_response_options(*cmd, o->run);
   cmd->add_option("--plot", o->plot, "write the Bode plot (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->callback([&slot, o] {
     slot = Action{"freq-response", true, [o](Session& s, Report& r) { return run_freq(*o, s, r); },

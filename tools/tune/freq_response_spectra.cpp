@@ -114,4 +114,21 @@ std::vector<SpectraPoint> welch_spectra(const LoopRecord& record, const std::vec
   return out;
 }
 
+void remove_linear_trend(std::vector<double>& x) {
+  const std::size_t n = x.size();
+  if (n < 2) return;
+  // Centred time t = k - (n - 1) / 2: slope = sum(t x) / sum(t^2), offset = mean(x).
+  const double mid = 0.5 * static_cast<double>(n - 1);
+  double sum_x = 0.0, sum_tx = 0.0, sum_tt = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) - mid;
+    sum_x += x[k];
+    sum_tx += t * x[k];
+    sum_tt += t * t;
+  }
+  const double mean = sum_x / static_cast<double>(n);
+  const double slope = sum_tx / sum_tt;
+  for (std::size_t k = 0; k < n; ++k) x[k] -= mean + slope * (static_cast<double>(k) - mid);
+}
+
 }  // namespace tnv::tune

@@ -48,4 +48,9 @@ std::vector<SpectraPoint> multisine_spectra(const LoopRecord& record, std::int64
 std::vector<SpectraPoint> welch_spectra(const LoopRecord& record, const std::vector<double>& freqs_hz,
                                         std::int64_t segment_ticks, std::int64_t skip_ticks = 0);
 
+// Removes the least-squares straight line from x (a position ramping under a
+// constant carrier speed), leaving what varies about it. Fewer than 2
+// samples: unchanged.
+void remove_linear_trend(std::vector<double>& x);
+
 }  // namespace tnv::tune

@@ -81,5 +81,50 @@ TEST(Excitation, ValidationNamesTheField) {
   EXPECT_STREQ(validate(spec).field, "breakaway_counts");
 }
 
+TEST(Excitation, CarrierIsCheckedAndOnlyForTheClosedLoopKinds) {
+  ExcitationSpec spec;
+  spec.kind = ExcitationKind::multisine;
+  spec.duration_s = 4.0;
+  spec.carrier_mm_s = 3.0;
+  EXPECT_TRUE(validate(spec).ok);
+  spec.carrier_mm_s = -kExcitationMaxCarrierMmS;
+  EXPECT_TRUE(validate(spec).ok);
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 20.5}) {
+    spec.carrier_mm_s = bad;
+    EXPECT_STREQ(validate(spec).field, "carrier_mm_s") << bad;
+  }
+  for (const ExcitationKind open : {ExcitationKind::step, ExcitationKind::ramp, ExcitationKind::multisine_open}) {
+    ExcitationSpec o;
+    o.kind = open;
+    o.duration_s = 4.0;
+    o.carrier_mm_s = 1.0;
+    EXPECT_STREQ(validate(o).field, "carrier_mm_s") << static_cast<int>(open);
+  }
+}
+
+TEST(Excitation, CarrierRunsThroughTheDrivePhaseOnly) {
+  ExcitationSpec spec;
+  spec.kind = ExcitationKind::multisine;
+  spec.f_min_hz = 10.0;
+  spec.f_max_hz = 100.0;
+  spec.tones = 5;
+  spec.duration_s = 0.25;  // 2 whole periods of 100 ticks
+  spec.carrier_mm_s = 2.5;
+  ExcitationGenerator g;
+  g.start(spec);
+  ASSERT_EQ(g.drive_ticks(), 200);
+  int carried = 0;
+  while (g.active()) {
+    if (g.carrier_mm_s() != 0.0) {
+      EXPECT_EQ(g.carrier_mm_s(), 2.5);
+      ++carried;
+    }
+    g.next(0);
+  }
+  EXPECT_EQ(carried, 200);
+  EXPECT_EQ(g.carrier_mm_s(), 0.0);
+  EXPECT_FALSE(g.has_carrier());
+}
+
 }  // namespace
 }  // namespace tnv::fw
