@@ -373,8 +373,8 @@ constexpr ParamDef kParams[] = {
      TNV_INT(excite.tones), "EXCITE multisine: number of log-spaced tones (that many harmonics of 1 / period in the band)"},
     {0x0047, "excite.carrier_mm_s", ParamType::f32, "mm/s", -kExcitationMaxCarrierMmS, kExcitationMaxCarrierMmS, "",
      Access::read_write, Apply::live, kOpen, TNV_REAL(excite.carrier_mm_s),
-     "EXCITE sweep / multisine: the holding reference moves at this constant speed through the drive phase "
-     "(0: a standing table; the travel must stay inside the soft limits)"},
+     "EXCITE sweep / multisine: the holding reference moves at this speed through the drive phase, ramped in "
+     "and out over 50 ms (0: a standing table; the travel must stay inside the soft limits)"},
     {0x0048, "force.n_per_volt", ParamType::f32, "N/V", -1e6, 1e6, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(firmware.force_sensor.n_per_volt), "force-sensor scale (ADC volts to N)"},
     {0x0050, "supervisor.max_missed_ticks", ParamType::u32, "tick", 0, kMissedTicksMax, "", Access::read_write, Apply::idle,

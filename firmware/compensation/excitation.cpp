@@ -40,6 +40,8 @@ ParamCheck validate(const ExcitationSpec& s) noexcept {
     return param_error("carrier_mm_s", "must be finite, |carrier| <= 20 mm/s");
   if (s.carrier_mm_s != 0.0 && !closed_loop(s.kind))
     return param_error("carrier_mm_s", "only a sweep or multisine (closed loop) runs on a carrier");
+  if (s.carrier_mm_s != 0.0 && !(s.settle_s >= static_cast<double>(kCarrierRampTicks) * kPeriodS))
+    return param_error("settle_s", "must cover the carrier's ramp out (0.05 s)");
   if (banded(s.kind)) return validate_band(s);
   if (!std::isfinite(s.duration_s) || s.duration_s < 0.001 || s.duration_s > 10.0)
     return param_error("duration_s", "must be 0.001 .. 10 s");
@@ -71,6 +73,17 @@ void ExcitationGenerator::start(const ExcitationSpec& spec) noexcept {
   }
   stop_tick_ = -1;
   breakaway_tick_ = -1;
+}
+
+double ExcitationGenerator::carrier_mm_s() const noexcept {
+  if (!active_ || spec_.carrier_mm_s == 0.0) return 0.0;
+  // Ramp in: (k + 1) / R of the carrier for k < R; ramp out after the drive
+  // phase: 1 - (j + 1) / R for j = k - drive < R. The two ramps leave out and
+  // add back the same (R - 1) / 2 ticks of travel.
+  const double ramp = static_cast<double>(kCarrierRampTicks);
+  const double share = k_ < drive_ticks_ ? std::fmin(1.0, static_cast<double>(k_ + 1) / ramp)
+                                         : std::fmax(0.0, 1.0 - static_cast<double>(k_ - drive_ticks_ + 1) / ramp);
+  return share * spec_.carrier_mm_s;
 }
 
 double ExcitationGenerator::next(std::int64_t counts_moved) noexcept {

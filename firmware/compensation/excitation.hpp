@@ -62,6 +62,12 @@ inline constexpr double kExcitationMaxRecordS = 40.0;
 // Fastest carrier of a sweep / multisine (a slow, steady motion: the
 // measurement is about it, not a traverse).
 inline constexpr double kExcitationMaxCarrierMmS = 20.0;
+// The carrier ramps in over this many ticks at the start of the drive phase
+// and out over as many after it (in the settle), so the reference's speed
+// never steps: at most 20 mm/s / 50 ms = 400 mm/s^2. The ramp in lies inside
+// the multisine's first period, which the host drops as the transient; the
+// travel is carrier x drive phase, as without a ramp.
+inline constexpr std::int64_t kCarrierRampTicks = 50;
 
 struct ExcitationSpec {
   ExcitationKind kind = ExcitationKind::step;
@@ -82,7 +88,7 @@ struct ExcitationSpec {
 // < f_max <= kExcitationMaxFreqHz, multisine(_open): 1 <= tones <= the distinct
 // harmonics in the band (multisine_tone_capacity) and duration_s >= 2 periods;
 // carrier_mm_s finite, |carrier| <= kExcitationMaxCarrierMmS, and 0 unless
-// sweep / multisine.
+// sweep / multisine; with a carrier, settle_s covers the ramp out.
 ParamCheck validate(const ExcitationSpec& spec) noexcept;
 
 class ExcitationGenerator {
@@ -93,8 +99,9 @@ class ExcitationGenerator {
   bool active() const noexcept { return active_; }
   bool closed_loop() const noexcept { return fw::closed_loop(spec_.kind); }
   // The reference's speed for the coming tick: the carrier through the drive
-  // phase, then 0.
-  double carrier_mm_s() const noexcept { return active_ && k_ < drive_ticks_ ? spec_.carrier_mm_s : 0.0; }
+  // phase, ramped in over its first kCarrierRampTicks and out over as many
+  // after it, then 0.
+  double carrier_mm_s() const noexcept;
   bool has_carrier() const noexcept { return active_ && spec_.carrier_mm_s != 0.0; }
   // Ticks of the drive phase (the multisine's: whole periods), from start().
   std::int64_t drive_ticks() const noexcept { return drive_ticks_; }

@@ -74,9 +74,10 @@ TEST(ExcitationTick, OpenLoopStepMovesTheAxisThenItHoldsThere) {
   EXPECT_EQ(rig->task.state(), fw::MotionState::holding);
 }
 
-// A multisine on a carrier: the reference moves at the carrier's speed
-// through the drive phase and then rests, the supervisor stays quiet, and a
-// carrier whose travel would leave the soft limits is refused.
+// A multisine on a carrier: the reference ramps to the carrier's speed,
+// moves at it through the drive phase, ramps out and rests exactly carrier x
+// drive phase away; the supervisor stays quiet, and a carrier whose travel
+// would leave the soft limits is refused.
 TEST(ExcitationTick, CarrierMovesTheHoldingReferenceAtItsSpeedThenRests) {
   auto rig = rig_for_no_cut();
   ASSERT_NE(rig, nullptr);
@@ -98,18 +99,24 @@ TEST(ExcitationTick, CarrierMovesTheHoldingReferenceAtItsSpeedThenRests) {
   EXPECT_FALSE(rig->task.exciting());
   ASSERT_EQ(rig->task.start_excitation(hal::Axis::x, spec), fw::CommandStatus::ok);
   int ticks = 0;
-  double worst_speed_error = 0.0;
+  double worst_speed_error = 0.0, previous_speed = 0.0, previous_reference = x0;
+  const double max_speed_step = 3.0 / static_cast<double>(fw::kCarrierRampTicks) + 1e-12;
   while (rig->task.exciting() && ticks < 3000) {
     rig->tick();
     ++ticks;
     const fw::AxisTickRecord& x = rig->task.last_record().axis[0];
-    if (ticks <= 1000) {
-      EXPECT_NEAR(x.reference_mm, x0 - 3.0e-3 * (ticks - 1), 1e-9) << "tick " << ticks;
+    // The reference moves by last tick's speed, and its speed never steps.
+    EXPECT_NEAR(x.reference_mm, previous_reference + previous_speed * 1e-3, 1e-9) << "tick " << ticks;
+    EXPECT_LE(std::fabs(x.reference_speed_mm_s - previous_speed), max_speed_step) << "tick " << ticks;
+    if (ticks > fw::kCarrierRampTicks && ticks <= 1000) {
       EXPECT_EQ(x.reference_speed_mm_s, -3.0) << "tick " << ticks;
       if (ticks > 300) worst_speed_error = std::fmax(worst_speed_error, std::fabs(x.speed_mm_s + 3.0));
-    } else {
+    }
+    if (ticks > 1000 + fw::kCarrierRampTicks) {
       EXPECT_NEAR(x.reference_mm, x0 - 3.0, 1e-9) << "tick " << ticks;
     }
+    previous_speed = x.reference_speed_mm_s;
+    previous_reference = x.reference_mm;
   }
   EXPECT_NEAR(ticks, 1200, 2);  // the drive phase, then the 0.2 s settle
   EXPECT_EQ(rig->task.state(), fw::MotionState::holding) << fw::to_string(rig->task.fault().reason);

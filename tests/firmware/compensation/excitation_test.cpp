@@ -102,7 +102,10 @@ TEST(Excitation, CarrierIsCheckedAndOnlyForTheClosedLoopKinds) {
   }
 }
 
-TEST(Excitation, CarrierRunsThroughTheDrivePhaseOnly) {
+// The carrier ramps in and out, never stepping by more than 1/R of itself
+// per tick, holds its speed in between, and travels exactly carrier x drive
+// phase (what the host moves the table back by).
+TEST(Excitation, CarrierRampsInAndOutAndTravelsCarrierTimesTheDrivePhase) {
   ExcitationSpec spec;
   spec.kind = ExcitationKind::multisine;
   spec.f_min_hz = 10.0;
@@ -113,17 +116,45 @@ TEST(Excitation, CarrierRunsThroughTheDrivePhaseOnly) {
   ExcitationGenerator g;
   g.start(spec);
   ASSERT_EQ(g.drive_ticks(), 200);
-  int carried = 0;
+  const double max_step = 2.5 / static_cast<double>(kCarrierRampTicks) + 1e-12;
+  double previous = 0.0, travel_ticks_x_speed = 0.0;
+  std::int64_t k = 0;
   while (g.active()) {
-    if (g.carrier_mm_s() != 0.0) {
-      EXPECT_EQ(g.carrier_mm_s(), 2.5);
-      ++carried;
+    const double v = g.carrier_mm_s();
+    EXPECT_LE(std::fabs(v - previous), max_step) << "tick " << k;
+    EXPECT_GE(v, 0.0) << "tick " << k;
+    EXPECT_LE(v, 2.5) << "tick " << k;
+    if (k >= kCarrierRampTicks - 1 && k < g.drive_ticks()) {
+      EXPECT_EQ(v, 2.5) << "tick " << k;
     }
+    if (k >= g.drive_ticks() + kCarrierRampTicks - 1) {
+      EXPECT_EQ(v, 0.0) << "tick " << k;
+    }
+    travel_ticks_x_speed += v;
+    previous = v;
     g.next(0);
+    ++k;
   }
-  EXPECT_EQ(carried, 200);
+  EXPECT_GE(k, g.drive_ticks() + kCarrierRampTicks);  // the settle covers the ramp out
+  EXPECT_NEAR(travel_ticks_x_speed, 2.5 * 200.0, 1e-9);
   EXPECT_EQ(g.carrier_mm_s(), 0.0);
   EXPECT_FALSE(g.has_carrier());
+}
+
+TEST(Excitation, ACarrierNeedsASettleThatCoversItsRampOut) {
+  ExcitationSpec spec;
+  spec.kind = ExcitationKind::sweep;
+  spec.f_min_hz = 10.0;
+  spec.f_max_hz = 100.0;
+  spec.duration_s = 1.0;
+  spec.carrier_mm_s = 3.0;
+  spec.settle_s = 0.01;
+  EXPECT_STREQ(validate(spec).field, "settle_s");
+  spec.settle_s = 0.05;
+  EXPECT_TRUE(validate(spec).ok);
+  spec.carrier_mm_s = 0.0;
+  spec.settle_s = 0.0;
+  EXPECT_TRUE(validate(spec).ok);  // a standing table needs no ramp
 }
 
 }  // namespace
