@@ -2,7 +2,9 @@
 # Builds and runs every test stage, stops at the first failure and prints
 # how long each stage took:
 #   release  unity build, default generator (tests and benchmarks compiled),
-#            every test but the kernel ones, the installed CMake package
+#            every source compiled on its own once more, syntax only (what a
+#            plain non-unity build needs: scripts/compile-each.py), every
+#            test but the kernel ones, the installed CMake package
 #   asan     the suite under AddressSanitizer + UndefinedBehaviorSanitizer,
 #            without the tests that run tnv-hil or tnvctl as a process
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
@@ -34,6 +36,7 @@ build_and_test() {
   local preset=$1
   cmake --preset "${preset}" >/dev/null
   cmake --build --preset "${preset}" -j "${jobs}"
+  if [[ "${preset}" == release ]]; then scripts/compile-each.py build/release -j "${jobs}"; fi
   ctest --preset "${preset}" -j "${jobs}" -LE kernel
 }
 

@@ -30,13 +30,13 @@ fi
 rm -rf "$root"
 mkdir -p "$root/debs" "$root/rootfs"
 
-pkgs=(
-  "linux-image-${release}=${version}"
-  "linux-headers-${release}=${version}"
-  "linux-headers-${abi}-common=${version}"
-  "linux-kbuild-${series}=${version}"
-  "linux-source-${series}=${version}"
-)
+# The packages of one kernel, each at a version the archive has.
+source "$here/pick-version.sh"
+pkgs=("linux-image-${release}=${version}")
+for pkg in "linux-headers-${release}" "linux-headers-${abi}-common" "linux-kbuild-${series}" "linux-source-${series}"; do
+  picked=$(pick_version "$pkg" "$version") || exit 1
+  pkgs+=("${pkg}=${picked}")
+done
 log "downloading ${pkgs[*]}"
 (cd "$root/debs" && apt-get download -q -o APT::Sandbox::User=root "${pkgs[@]}" >&2) || die "apt-get download failed for ${pkgs[*]}"
 for deb in "$root"/debs/*.deb; do

@@ -2,7 +2,9 @@
 // (a closed-loop EXCITE multisine or sweep, the node's capture, the host's
 // estimate; docs/frequency-response.md).
 #include <memory>
+#include <string>
 
+#include "firmware/can/protocol_enums.hpp"
 #include "tools/can/freq_response_cli.hpp"
 #include "tools/can/freq_response_json.hpp"
 #include "tools/can/freq_response_run.hpp"
@@ -36,7 +38,7 @@ int run_freq(const FreqOptions& o, Session& session, Report& report) {
     // fresh emulated node starts disabled; a real one is enabled by its operator).
     const emu::AxisPlantParams& p = emu->scenario().plant[hal::index(axis)];
     run.plant_model = fw::zoh_axis_model(p.tau_s, p.gain, fw::kControlPeriod_s);
-    client.command(can::CommandCode::enable);
+    client.command(fw::can::CommandCode::enable);
     client.pump(can_host::Micros{300'000});
   }
   const can_host::FreqResponseResult result = can_host::run_freq_response(client, axis, run);

@@ -82,9 +82,9 @@ def browsers():
         b.quit()
 
 
-def wait_for(condition, timeout_s=10.0, what="condition"):
+def wait_for(condition, timeout_s=30.0, what="condition"):
     """Polls `condition` until it returns a true value; fails naming `what`."""
-    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException, TimeoutException
 
     deadline = time.monotonic() + timeout_s
     while True:
@@ -92,6 +92,8 @@ def wait_for(condition, timeout_s=10.0, what="condition"):
             value = condition()
         except (NoSuchElementException, StaleElementReferenceException):
             value = None  # the page is redrawing that part: look again
+        except TimeoutException:
+            value = None  # a starved renderer did not answer the script in time: ask again until the deadline
         if value:
             return value
         if time.monotonic() > deadline:

@@ -1,11 +1,10 @@
 """The live tuning page in Debian's headless chromium against
-`tnvctl --emu serve --port 0`: it loads, the scope moves at >= 50 updates
-per second, a parameter set round-trips, a refusal is shown with its
+`tnvctl --emu serve --port 0`: it loads, the scope draws what the node
+sent and keeps its 10 s window, pauses and resumes, a parameter set round-trips, a refusal is shown with its
 reason, the fault banner clears, the Bode view draws a result file and
 measures the open loop on the node, and two browsers obey the control rules."""
 
 import os
-import time
 
 import pytest
 from conftest import wait_for
@@ -20,15 +19,15 @@ def page_value(browser, expr):
 
 def open_page(browser, url):
     browser.get(url)
-    wait_for(lambda: page_value(browser, "window.tnvPage && window.tnvPage.events > 0"), 30,
+    wait_for(lambda: page_value(browser, "window.tnvPage && window.tnvPage.events > 0"), 120,
              "the first telemetry event on the page")
-    wait_for(lambda: browser.find_elements("css selector", f'tr[data-param="{PARAM}"]'), 15,
+    wait_for(lambda: browser.find_elements("css selector", f'tr[data-param="{PARAM}"]'), 60,
              "the parameter table")
 
 
 def take_control(browser):
     browser.find_element("id", "take-control").click()
-    wait_for(lambda: page_value(browser, "window.tnvPage.control.you"), 5, "control taken")
+    wait_for(lambda: page_value(browser, "window.tnvPage.control.you"), 30, "control taken")
 
 
 def row(browser, name):
@@ -60,68 +59,120 @@ def first(server, browsers):
     return b
 
 
-def test_the_scope_moves_at_50_updates_per_second(first, screenshot):
+HISTORY_S = 10.0  # the scope's window (scope.js HISTORY_S)
+TRACE = "pos_x_mm"
+
+# The drawn trace of one channel, [[t, value], ...], as the chart holds it.
+DRAWN = """const d = Chart.getChart('scope').data.datasets.find((s) => s.label === arguments[0]);
+    return d ? (d._data || d.data).map((p) => [p.x, p.y]) : null;"""
+
+# The server's own ring, as a new telemetry stream's first event carries it
+# (its whole history), read with the page's own credentials.
+RING = """const done = arguments[arguments.length - 1];
+    (async () => {
+      const info = await (await fetch('/api/info')).json();
+      const r = await fetch('/api/telemetry');
+      const reader = r.body.getReader();
+      const decoder = new TextDecoder();
+      let text = '';
+      while (!text.includes('\\n\\n')) {
+        const { value, done: end } = await reader.read();
+        if (end) break;
+        text += decoder.decode(value, { stream: true });
+      }
+      reader.cancel();
+      const ev = JSON.parse(text.slice(text.indexOf('data: ') + 6, text.indexOf('\\n\\n')));
+      const k = info.channels.findIndex((c) => c.name === arguments[0]);
+      done(ev.t.map((t, i) => [t, ev.v[i][k]]));
+    })().catch((e) => done('error: ' + e));"""
+
+
+def drawn(browser, name=TRACE):
+    return browser.execute_script(DRAWN, name)
+
+
+def newest_drawn_t(browser):
+    trace = drawn(browser)
+    return trace[-1][0] if trace else None
+
+
+def test_the_scope_draws_what_the_node_sent_and_keeps_its_10_s_window(first, screenshot):
+    t_start = page_value(first, "window.tnvPage.lastT")
     first.find_element("css selector", '[data-motion="circle"]').click()
-    newest = "Chart.getChart('scope').data.datasets[0].data.slice(-1)[0].x"
-    newest_before = page_value(first, newest)
-    t_before = page_value(first, "window.tnvPage.lastT")
-    updates_before = page_value(first, "window.tnvPage.updates")
-    started = time.monotonic()
-    time.sleep(2.0)
-    updates = page_value(first, "window.tnvPage.updates") - updates_before
-    elapsed = time.monotonic() - started
-    rate = page_value(first, "window.tnvPage.updatesPerS")
-    assert page_value(first, "window.tnvPage.lastT") > t_before + 1.5, "the scope's time did not advance"
-    assert page_value(first, newest) > newest_before + 1.5, "the trace's newest point did not advance"
-    assert page_value(first, "window.tnvPage.points()") >= 3 * 900, "less than 10 s of three traces drawn"
-    assert updates / elapsed >= 50.0, f"{updates} scope updates in {elapsed:.2f} s"
-    assert rate >= 50.0, f"the page's counter shows {rate} updates/s"
-    print(f"scope: {updates / elapsed:.1f} updates/s measured, page counter {rate:.0f}/s")
-    # The circle moves x: its trace spans more than 0.5 mm in the window.
-    span = page_value(first, """(() => { const d = Chart.getChart('scope').data.datasets
-        .find((s) => s.label === 'pos_x_mm').data.map((p) => p.y).filter((y) => y !== null);
-        return Math.max(...d) - Math.min(...d); })()""")
-    assert span > 0.5, f"pos_x_mm spans {span} mm during a circle"
+    # However slow the machine, the window fills: wait for it on the node's
+    # clock (the samples' own times), with a deadline for a busy machine.
+    wait_for(lambda: (lambda d: d and d[-1][0] - d[0][0] >= HISTORY_S - 0.05 and d[-1][0] > t_start + 1.0)(
+        drawn(first)), 120, "a full 10 s window of pos_x_mm drawn, 1 s of it after the circle started")
     first.find_element("id", "pause").click()
-    frozen = page_value(first, "window.tnvPage.updates")
-    time.sleep(0.3)
-    assert page_value(first, "window.tnvPage.updates") == frozen, "the scope kept drawing while paused"
+    trace = drawn(first)
+    ring = first.execute_async_script(RING, TRACE)
+    assert not isinstance(ring, str), ring
+    t0, t1 = trace[0][0], trace[-1][0]
+    assert HISTORY_S - 0.05 <= t1 - t0 <= HISTORY_S, f"the scope holds {t1 - t0:.3f} s, not its 10 s window"
+    assert t1 > t_start + 1.0, "the scope's time did not advance while the circle ran"
+    # Every sample the node sent inside the window is drawn, at its time and
+    # value, once; nothing is drawn that the node did not send.
+    sent = [p for p in ring if t0 <= p[0] <= t1]
+    assert ring[0][0] <= t0, "the server's ring does not reach back to the drawn window's start"
+    assert len(sent) == len(trace), f"{len(trace)} points drawn, the node sent {len(sent)} in that window"
+    mismatched = [(a, b) for a, b in zip(trace, sent) if a != b]
+    assert not mismatched, f"{len(mismatched)} drawn points differ from the node's, first {mismatched[0]}"
+    # The circle moves x: its trace spans more than 0.5 mm in the window.
+    values = [y for _, y in trace if y is not None]
+    assert max(values) - min(values) > 0.5, f"pos_x_mm spans {max(values) - min(values)} mm during a circle"
+
+
+def test_the_scope_pauses_while_data_arrives_and_resumes(first, screenshot):
+    # Paused by the test above: the data keeps arriving (lastT moves on),
+    # the drawing does not.
+    frozen_updates = page_value(first, "window.tnvPage.updates")
+    frozen_t = newest_drawn_t(first)
+    wait_for(lambda: page_value(first, "window.tnvPage.lastT") > frozen_t + 0.5, 60,
+             "0.5 s of new telemetry while paused")
+    assert page_value(first, "window.tnvPage.updates") == frozen_updates, "the scope redrew while paused"
+    assert newest_drawn_t(first) == frozen_t, "the drawn trace moved while paused"
     box = first.find_element("id", "scope")
     for dx in (-300, 200):  # cursor A, then cursor B
         first.execute_script("""const c = Chart.getChart('scope'); const r = arguments[0].getBoundingClientRect();
             arguments[0].dispatchEvent(new MouseEvent('click', {clientX: r.left + r.width / 2 + arguments[1],
             clientY: r.top + r.height / 2, bubbles: true}));""", box, dx)
     readout = first.find_element("id", "cursor-readout").text
-    assert "Δt" in readout and "pos_x_mm" in readout, readout
+    assert "Δt" in readout and TRACE in readout, readout
     screenshot(first, "tuning-scope")
+    # Resumed, it draws again and catches up with what arrived meanwhile.
+    first.find_element("id", "pause").click()
+    wait_for(lambda: page_value(first, "window.tnvPage.updates") > frozen_updates, 30, "a redraw after resume")
+    caught_up = page_value(first, "window.tnvPage.lastT")
+    wait_for(lambda: newest_drawn_t(first) >= caught_up, 30, "the trace caught up after resume")
     # Left paused: the later tests need no redraws (the data keeps arriving).
+    first.find_element("id", "pause").click()
 
 
 def test_a_parameter_set_round_trips_and_a_refusal_is_shown(first, screenshot):
     first.find_element("id", "param-filter").send_keys("motion.")
     set_value(first, PARAM, "0.25")
-    wait_for(lambda: row_state(first, PARAM)["msg"] == "read back 0.25", 10, "the value read back after the set")
+    wait_for(lambda: row_state(first, PARAM)["msg"] == "read back 0.25", 30, "the value read back after the set")
     assert row_state(first, PARAM)["value"] == "0.25"
     set_value(first, PARAM, "50")
-    state = wait_for(lambda: (lambda s: s if s["refusal"] else None)(row_state(first, PARAM)), 10, "the refusal")
+    state = wait_for(lambda: (lambda s: s if s["refusal"] else None)(row_state(first, PARAM)), 30, "the refusal")
     assert PARAM in state["msg"] and "10" in state["msg"], f"the refusal does not name the range: {state['msg']!r}"
     assert state["value"] == "0.25", "a refused value was shown"
     # The node still has 0.25: the table read again shows it.
     first.find_element("id", "param-refresh").click()
-    wait_for(lambda: row_state(first, PARAM)["msg"] == "", 10, "the table read again")
+    wait_for(lambda: row_state(first, PARAM)["msg"] == "", 30, "the table read again")
     assert row_state(first, PARAM)["value"] == "0.25"
     set_value(first, PARAM, "50")
-    wait_for(lambda: row_state(first, PARAM)["refusal"], 10, "the refusal again")
+    wait_for(lambda: row_state(first, PARAM)["refusal"], 30, "the refusal again")
     first.execute_script("arguments[0].scrollIntoView({block: 'center'});", row(first, PARAM))
     screenshot(first, "tuning-refusal")
 
 
 def test_the_fault_banner_shows_the_reason_and_clears(first):
     first.find_element("css selector", '[data-motion="estop"]').click()
-    wait_for(lambda: first.find_element("id", "fault-banner").is_displayed(), 10, "the fault banner")
+    wait_for(lambda: first.find_element("id", "fault-banner").is_displayed(), 30, "the fault banner")
     assert "estop" in first.find_element("id", "fault-reason").text
     first.find_element("id", "clear-fault").click()
-    wait_for(lambda: not first.find_element("id", "fault-banner").is_displayed(), 10, "the banner gone after clear")
+    wait_for(lambda: not first.find_element("id", "fault-banner").is_displayed(), 30, "the banner gone after clear")
 
 
 def test_a_capture_is_drawn_and_downloads_as_csv(first):
@@ -130,9 +181,9 @@ def test_a_capture_is_drawn_and_downloads_as_csv(first):
     duration.send_keys("0.5")
     first.find_element("id", "capture-channels").send_keys("pos_x,pos_y")
     first.find_element("id", "capture-take").click()
-    wait_for(lambda: first.find_elements("css selector", "#capture-list li"), 20, "the capture in the list")
+    wait_for(lambda: first.find_elements("css selector", "#capture-list li"), 30, "the capture in the list")
     wait_for(lambda: page_value(first, "(Chart.getChart('capture-chart') || {data: {datasets: []}}).data.datasets.length")
-             == 2, 10, "the capture drawn (pos_x_mm, pos_y_mm)")
+             == 2, 30, "the capture drawn (pos_x_mm, pos_y_mm)")
     csv = first.execute_script("""const a = document.querySelector('#capture-list li a');
         return fetch(a.href).then((r) => r.text());""")
     assert csv.startswith("t_s,pos_x_mm,pos_y_mm\n"), csv[:80]
@@ -141,7 +192,7 @@ def test_a_capture_is_drawn_and_downloads_as_csv(first):
 
 def test_the_bode_view_draws_a_result_file(first):
     first.find_element("id", "bode-file").send_keys(os.path.join(HERE, "bode_fixture.json"))
-    wait_for(lambda: page_value(first, "window.tnvPage.bode && window.tnvPage.bode.points === 11"), 10,
+    wait_for(lambda: page_value(first, "window.tnvPage.bode && window.tnvPage.bode.points === 11"), 30,
              "11 Bode points drawn")
     margins = first.find_element("id", "margins").text
     assert "52.0" in margins and "22.0" in margins and "30.50" in margins, margins
@@ -150,7 +201,7 @@ def test_the_bode_view_draws_a_result_file(first):
 
 def test_the_bode_view_measures_the_open_loop_on_the_node(first, screenshot):
     first.find_element("css selector", '[data-motion="enable"]').click()
-    time.sleep(0.5)
+    wait_for(lambda: first.find_element("id", "link-state").text.startswith("holding"), 30, "the node holding")
     first.find_element("id", "bode-loop").send_keys("open")
     first.find_element("id", "bode-measure").click()
     # Two experiments of 12 s of machine time on the emulated node.
@@ -170,23 +221,22 @@ def test_a_second_browser_reads_only_and_is_told_why(first, server, browsers):
     second = browsers()
     open_page(second, server)
     second.find_element("id", "pause").click()
-    wait_for(lambda: "another browser has control" in second.find_element("id", "control-state").text, 10,
+    wait_for(lambda: "another browser has control" in second.find_element("id", "control-state").text, 30,
              "the second browser's read-only state")
     before = row_state(first, PARAM)["value"]
     second.find_element("id", "take-control").click()
-    wait_for(lambda: second.find_element("id", "control-error").text == "another browser has control", 10,
+    wait_for(lambda: second.find_element("id", "control-error").text == "another browser has control", 30,
              "the refusal to take control")
     set_value(second, PARAM, "0.5")
-    wait_for(lambda: row_state(second, PARAM)["msg"] == "another browser has control", 10,
+    wait_for(lambda: row_state(second, PARAM)["msg"] == "another browser has control", 30,
              "the refusal of a set from the second browser")
     assert row_state(second, PARAM)["value"] == before
     assert row_state(first, PARAM)["value"] == before, "the read-only browser's set changed the value"
     # Both see the same node: the second browser's scope moves too.
     t0 = page_value(second, "window.tnvPage.lastT")
-    time.sleep(0.5)
-    assert page_value(second, "window.tnvPage.lastT") > t0
+    wait_for(lambda: page_value(second, "window.tnvPage.lastT") > t0, 30, "new telemetry on the second page")
     # Released by the first, taken by the second; now the first is refused.
     first.find_element("id", "release-control").click()
     take_control(second)
-    wait_for(lambda: "another browser has control" in first.find_element("id", "control-state").text, 10,
+    wait_for(lambda: "another browser has control" in first.find_element("id", "control-state").text, 30,
              "the first browser's read-only state")

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Compiles every translation unit of a unity build on its own, syntax only.
+
+The presets build with CMAKE_UNITY_BUILD, where a source that forgets an
+include still compiles because an earlier file of its batch brought the
+header in; the plain `cmake -S . -B build && cmake --build build` then
+fails. This runs each source that the build's unity batches include (and
+each source outside them) through its own target's compile command with
+-fsyntax-only: the same flags, warnings as errors, no object written, so a
+missing include fails here, naming the file, without a second full build.
+
+    scripts/compile-each.py build/release [-j N] [PATH_PREFIX ...]
+
+(with prefixes, only the sources under them, e.g. `tools/tnvctl`).
+
+Needs the build's compile_commands.json (CMAKE_EXPORT_COMPILE_COMMANDS is
+on in CMakeLists.txt) and its generated headers, so it runs after the build.
+Exit status 0 when every source compiles, 1 otherwise, 2 on bad arguments.
+"""
+
+import argparse
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+UNITY_INCLUDE = re.compile(r'^#include "(.+)"\s*$', re.MULTILINE)
+
+
+def units(entry):
+    """The sources one compile_commands entry stands for."""
+    path = entry["file"]
+    if os.path.basename(os.path.dirname(path)) == "Unity" and re.match(r"unity_\d+_cxx\.cxx$", os.path.basename(path)):
+        with open(path, encoding="utf-8") as f:
+            return UNITY_INCLUDE.findall(f.read())
+    return [path]
+
+
+def syntax_command(entry, source):
+    """The entry's command for `source`: -fsyntax-only, no object file."""
+    args = shlex.split(entry["command"]) if "command" in entry else list(entry["arguments"])
+    out, skip = [], False
+    for a in args:
+        if skip:
+            skip = False
+            continue
+        if a in ("-o", "-c", "-MF", "-MT", "-MQ"):
+            skip = True
+            continue
+        if a in ("-MD", "-MMD") or a == entry["file"]:
+            continue
+        out.append(a)
+    return out + ["-fsyntax-only", source]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("build_dir")
+    parser.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("prefixes", nargs="*", help="only the sources under these paths (relative to the source tree)")
+    opts = parser.parse_intermixed_args()
+    db = os.path.join(opts.build_dir, "compile_commands.json")
+    if not os.path.isfile(db):
+        print(f"compile-each: no {db} (configure and build first)", file=sys.stderr)
+        return 2
+    with open(db, encoding="utf-8") as f:
+        entries = json.load(f)
+    roots = [os.path.abspath(p) for p in opts.prefixes]
+
+    def wanted(source):
+        return not roots or any(source == r or source.startswith(r.rstrip("/") + "/") for r in roots)
+
+    jobs = {}  # source -> (directory, command): each source once, with its first target's flags
+    for entry in entries:
+        for source in units(entry):
+            if source.endswith((".cpp", ".cc", ".cxx")) and wanted(source):
+                jobs.setdefault(source, (entry["directory"], syntax_command(entry, source)))
+
+    def check(item):
+        source, (directory, command) = item
+        r = subprocess.run(command, cwd=directory, capture_output=True, text=True)
+        return source, r.returncode, r.stderr
+
+    failed = []
+    with ThreadPoolExecutor(max_workers=max(1, opts.jobs)) as pool:
+        for source, code, err in pool.map(check, sorted(jobs.items())):
+            if code != 0:
+                failed.append(source)
+                lines = err.splitlines()
+                print(f"--- {source} does not compile on its own:", file=sys.stderr)
+                print("\n".join(lines[:40] + (["..."] if len(lines) > 40 else [])), file=sys.stderr)
+    print(f"compile-each: {len(jobs) - len(failed)} of {len(jobs)} sources compile on their own")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
