@@ -12,7 +12,7 @@ capture CSV) and saves SVG, PNG or PDF by the output file's suffix:
 or from Python: ``tnvplot.render(kind, inputs, output, title=..., labels=...)``.
 """
 
-KINDS = ("circle", "panels", "path", "capture", "bode")
+KINDS = ("circle", "panels", "path", "capture", "bode", "campaign")
 
 
 def render(kind, inputs, output, title="", labels=None):
