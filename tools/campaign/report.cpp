@@ -159,7 +159,7 @@ std::string report_text(const CampaignReport& report) {
   char buf[256];
   for (const ControllerReport& r : report.controllers) {
     std::snprintf(buf, sizeof buf,
-                  "%s: %zu runs, %zu finished; yield %.1f %% (%s <= %g) ; %s p50 %.3f  p90 %.3f  p99 %.3f  max %.3f\n",
+                  "%s: %zu runs, %zu finished; yield %.1f %% (%s <= %g); %s p50 %.3f  p90 %.3f  p99 %.3f  max %.3f\n",
                   r.controller.c_str(), r.runs, r.ok, 100.0 * r.yield, report.metric.c_str(), report.limit,
                   report.metric.c_str(), r.p50, r.p90, r.p99, r.max);
     out += buf;
