@@ -23,5 +23,16 @@ array=$(sbatch --parsable --export=ALL,TNV_HIL="$tnv_hil" --array="1-$shards" "$
         "$here/slurm-array.sbatch" "$dir")
 array=${array%%;*}
 echo "array job $array: $shards shards of $dir"
-sbatch --parsable "${wait_flag[@]}" --dependency="afterok:$array" --kill-on-invalid-dep=yes --job-name=tnv-campaign-merge \
-       --output="$dir/merge-%j.out" "${extra[@]}" --wrap "'$tnv_hil' campaign merge '$dir'"
+status=0
+merge=$(sbatch --parsable "${wait_flag[@]}" --dependency="afterok:$array" --kill-on-invalid-dep=yes \
+        --job-name=tnv-campaign-merge --output="$dir/merge-%j.out" "${extra[@]}" \
+        --wrap "'$tnv_hil' campaign merge '$dir'") || status=$?
+merge=${merge%%;*}
+if [[ ${#wait_flag[@]} -eq 0 ]]; then
+  echo "merge job $merge: runs after the array ($dir/merge-$merge.out)"
+elif [[ $status -eq 0 ]]; then
+  echo "merge job $merge: done ($dir/merge-$merge.out)"
+else
+  echo "merge job $merge: failed or cancelled (exit $status; a shard failed? see tnv-campaign-${array}_*.out)" >&2
+fi
+exit "$status"
