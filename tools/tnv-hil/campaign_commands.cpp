@@ -111,13 +111,26 @@ std::string recorded_line(const std::string& dir, const cmp::Manifest& m, std::u
     if (run_id < range.first_run || run_id > range.last_run) continue;
     std::string text, error;
     if (!emu::read_text_file(entry.path().string(), std::size_t{1} << 34, text, error)) continue;
+    // The shard's own header: a row recorded by another build is still
+    // compared (and the builds named), as long as it is this campaign's.
+    const std::string expected = cmp::shard_header_line(m, parsed->first, parsed->second);
+    const std::string header = text.substr(0, text.find('\n') + 1);
+    nlohmann::ordered_json h, e = nlohmann::ordered_json::parse(expected);
+    try {
+      h = nlohmann::ordered_json::parse(header);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (h.value("campaign", "") != e["campaign"] || h.value("shard", 0) != parsed->first) continue;
     std::string line;
-    cmp::scan_shard_text(text, cmp::shard_header_line(m, parsed->first, parsed->second), range,
-                         [&](const nlohmann::ordered_json& row) {
-                           if (row["run_id"] == run_id) line = row.dump();
-                         });
+    cmp::scan_shard_text(text, header, range, [&](const nlohmann::ordered_json& row) {
+      if (row["run_id"] == run_id) line = row.dump();
+    });
     if (!line.empty()) {
       where = entry.path().string();
+      if (header != expected)
+        where += " (recorded by tool " + h.value("tool_version", "?") + " build " + h.value("build_id", "?") +
+                 ", replayed by " + cmp::tool_version_text() + " build " + cmp::tool_build_id_text() + ")";
       return line;
     }
   }
