@@ -73,7 +73,7 @@ std::optional<Scenario> builtin_scenario(std::string_view name) {
 std::vector<std::string> builtin_scenario_names() { return {kNames.begin(), kNames.end()}; }
 
 ScenarioResult resolve_scenario(std::string_view name_or_path) {
-  if (auto builtin = builtin_scenario(name_or_path)) return ScenarioResult{std::move(builtin), {}};
+  if (auto builtin = builtin_scenario(name_or_path)) return ScenarioResult{std::move(builtin), {}, false};
   return load_scenario_file(std::string(name_or_path));
 }
 

@@ -123,6 +123,7 @@ class ScenarioReader {
     return false;
   }
 
+  bool unknown_key() const { return unknown_key_; }
   bool given(std::string_view key) const { return positions_.find(std::string(key)) != positions_.end(); }
   const std::string& error() const { return error_; }
 
@@ -314,6 +315,7 @@ class ScenarioReader {
   }
 
   bool unknown(const toml::key& key, const std::string& path, const toml::node& node) {
+    unknown_key_ = true;
     return fail(key, path, node.is_table() ? "unknown section" : "unknown key");
   }
 
@@ -334,32 +336,38 @@ class ScenarioReader {
   std::string_view source_;
   std::map<std::string, toml::source_position> positions_;
   std::string error_;
+  bool unknown_key_ = false;
 };
 
 }  // namespace
 
 ScenarioResult parse_scenario_text(std::string_view text, std::string_view source_name) {
+  return apply_scenario_text(Scenario{}, text, source_name);
+}
+
+ScenarioResult apply_scenario_text(const Scenario& base, std::string_view text, std::string_view source_name) {
   toml::table root;
   try {
     root = toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
     const auto& at = e.source().begin;
     return {std::nullopt, std::string(source_name) + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
-                              ": TOML syntax error: " + one_line(e.description())};
+                              ": TOML syntax error: " + one_line(e.description()), false};
   }
-  Scenario scenario;
+  Scenario scenario = base;
   ScenarioReader reader(source_name);
   // one_line: a key or value quoted from the file may hold a newline (found by fuzzing).
-  if (!reader.read(root, scenario) || !reader.check(scenario)) return {std::nullopt, one_line(reader.error())};
-  return {std::move(scenario), {}};
+  if (!reader.read(root, scenario) || !reader.check(scenario))
+    return {std::nullopt, one_line(reader.error()), reader.unknown_key()};
+  return {std::move(scenario), {}, false};
 }
 
 ScenarioResult load_scenario_file(const std::string& path) {
   std::string text, error;
   try {
-    if (!read_text_file(path, kMaxScenarioBytes, text, error)) return {std::nullopt, one_line(error)};
+    if (!read_text_file(path, kMaxScenarioBytes, text, error)) return {std::nullopt, one_line(error), false};
   } catch (const std::exception& e) {
-    return {std::nullopt, path + ": cannot read file: " + one_line(e.what())};
+    return {std::nullopt, path + ": cannot read file: " + one_line(e.what()), false};
   }
   return parse_scenario_text(text, path);
 }

@@ -31,6 +31,7 @@ namespace tnv::emu {
 struct ScenarioResult {
   std::optional<Scenario> scenario;
   std::string error;  // empty on success
+  bool unknown_key = false;  // the error is a key or section the format does not have
 };
 
 // A scenario is a few kB of TOML; past kMaxScenarioBytes (1 MiB) it is refused,
@@ -38,6 +39,10 @@ struct ScenarioResult {
 inline constexpr std::size_t kMaxScenarioBytes = std::size_t{1} << 20;
 ScenarioResult load_scenario_file(const std::string& path);
 ScenarioResult parse_scenario_text(std::string_view text, std::string_view source_name);
+// `base` with the keys of `overlay` (this format, e.g. "plant.x.gain = 1.1")
+// applied on top, then the whole scenario checked as a file is: a campaign
+// run's scenario (tools/campaign).
+ScenarioResult apply_scenario_text(const Scenario& base, std::string_view overlay, std::string_view source_name);
 
 // Built-ins: no-cut, cut-900, cut-1200, cut-1500, flex-30, flex-100,
 // bench-no-cut, bench-cut-1200.

@@ -10,6 +10,8 @@ packages=(
   python3-matplotlib python3-numpy   # the figures: --plot runs tools/plot/tnvplot
   python3-pytest      # tests: the plotting package (ctest -L plot) and the Python module (ctest -L python)
   python3-dev pybind11-dev python3-pandas   # the Python module tnv (tools/python): built, and capture_frame()
+  libsqlite3-dev      # tnv-hil campaign: the merged results (tools/campaign)
+  parallel            # tests: a campaign's shards run by GNU parallel (ctest -R Campaign)
   libcpp-httplib-dev libjs-chart.js   # tnvctl serve (tools/serve): the HTTP/SSE server, the page's plots
   chromium chromium-driver python3-selenium   # tests: the tuning page in a headless browser (ctest -L web)
 )

@@ -69,6 +69,7 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
                    (result.fault.axis == 0 ? "x" : result.fault.axis == 1 ? "y" : "-") + " at tick " +
                    std::to_string(result.fault.tick);
   } else if (task.state() != fw::MotionState::holding) {
+    result.timed_out = true;
     result.error = "the circle did not finish in the expected time";
   } else {
     result.completed = true;

@@ -19,6 +19,7 @@ struct CircleRunOptions {
 struct CircleRunResult {
   bool completed = false;
   std::string error;  // why the run did not complete; empty when it did
+  bool timed_out = false;  // not a fault: the circle did not reach holding in its simulated time
   ContourStats stats{};             // S1 eq. (33) from the encoder-measured positions, as the paper scored
   // The same error from the emulator's truth on the same ticks: the table,
   // and the tool point (table + structural mode). With backlash or lead

@@ -10,6 +10,7 @@
 #include "emulator/text_file.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
+#include "tools/can/param_assignments.hpp"
 #include "tools/can/param_file.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/output_path.hpp"
@@ -80,28 +81,9 @@ bool write_plot(const std::string& path, const std::string& title, double radius
 }
 
 std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& assignments) {
-  fw::can::NodeSettings settings = fw::can::default_node_settings();
-  for (const std::string& a : assignments) {
-    const auto eq = a.find('=');
-    const fw::can::ParamDef* p = eq == std::string::npos ? nullptr : can_host::find_param_by_text(a.substr(0, eq));
-    if (p == nullptr || p->access != fw::can::Access::read_write) {
-      std::fprintf(stderr, "tnv-hil: --set %s: expected NAME=VALUE with a writable parameter (tnvctl params list)\n",
-                   a.c_str());
-      return std::nullopt;
-    }
-    std::string error;
-    const std::optional<double> v = can_host::parse_param_value(*p, a.substr(eq + 1), error);
-    if (!v) {
-      std::fprintf(stderr, "tnv-hil: --set: %s\n", error.c_str());
-      return std::nullopt;
-    }
-    p->set(settings, *v);
-  }
-  if (const fw::can::SettingsCheck check = fw::can::validate(settings); !check.ok) {
-    std::fprintf(stderr, "tnv-hil: --set: %s: %s\n", check.section, check.reason);
-    return std::nullopt;
-  }
-  return settings.firmware;
+  can_host::AssignmentsResult r = can_host::firmware_config_from_assignments(assignments);
+  if (!r.config) std::fprintf(stderr, "tnv-hil: --set %s\n", r.error.c_str());
+  return r.config;
 }
 
 std::optional<fw::FirmwareConfig> firmware_config_or_report(const std::vector<std::string>& params_files,

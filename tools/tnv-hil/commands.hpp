@@ -19,6 +19,9 @@ void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safet
 void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
 void add_homing_commands(CLI::App& app, Runner& run);       // homing (home switch and index, docs/safety.md)
 void add_screw_commands(CLI::App& app, Runner& run);
+#ifdef TNV_HAVE_CAMPAIGN
+void add_campaign_commands(CLI::App& app, Runner& run);  // campaign plan | run | merge | replay | report
+#endif
 void add_freq_response_commands(CLI::App& app, Runner& run);  // freq-response (issue 17, over the emulated CAN node)        // screw-map, screw-fit (lead-error table)
 
 }  // namespace tnv::cli

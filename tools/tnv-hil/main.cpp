@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
   add_homing_commands(app, run);
   add_screw_commands(app, run);
   add_freq_response_commands(app, run);
+#ifdef TNV_HAVE_CAMPAIGN
+  add_campaign_commands(app, run);
+#endif
 
   try {
     app.parse(argc, argv);

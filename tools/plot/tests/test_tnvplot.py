@@ -161,3 +161,42 @@ def test_bode_marks_low_coherence_points_apart():
 def test_bode_without_points_is_refused():
     with pytest.raises(ValueError):
         bode.draw({"points": []})
+
+
+def _campaign_db(path, rows):
+    """A merged campaign's tables (tools/campaign/merge.cpp), as few columns as the figure reads."""
+    import json
+    import sqlite3
+
+    con = sqlite3.connect(path)
+    con.execute('CREATE TABLE runs (run_id INTEGER PRIMARY KEY, controller TEXT, status TEXT, '
+                '"plant.x.gain", "plant.x.backlash_um", max_um REAL)')
+    con.execute("CREATE TABLE campaign (key TEXT PRIMARY KEY, value)")
+    con.execute("INSERT INTO campaign VALUES ('limit_um', 5.0)")
+    con.execute("INSERT INTO campaign VALUES ('vary', ?)",
+                (json.dumps([{"name": "plant.x.gain"}, {"name": "plant.x.backlash_um"}]),))
+    con.executemany("INSERT INTO runs VALUES (?, ?, ?, ?, ?, ?)", rows)
+    con.commit()
+    con.close()
+
+
+def test_campaign_reads_the_merged_table_and_counts_unfinished_runs_out(tmp_path):
+    from tnvplot import campaign
+
+    rows = []
+    for i in range(20):
+        backlash = 0.5 * i
+        rows.append((2 * i + 1, "pid", "ok", 1.0 + 0.01 * (i % 3), backlash, 2.0 + backlash))
+        rows.append((2 * i + 2, "rdvsc", "fault" if i == 0 else "ok", 1.0, backlash, None if i == 0 else 1.0 + backlash))
+    db = tmp_path / "campaign.sqlite"
+    _campaign_db(db, rows)
+    data, inputs, limit = campaign.read(db)
+    assert inputs == ["plant.x.gain", "plant.x.backlash_um"]
+    assert limit == 5.0
+    assert data["pid"]["runs"] == 20 and len(data["pid"]["metric"]) == 20
+    assert data["rdvsc"]["runs"] == 20 and len(data["rdvsc"]["metric"]) == 19  # the faulted run has no result
+    assert campaign.spearman(data["pid"]["inputs"]["plant.x.backlash_um"], data["pid"]["metric"]) == pytest.approx(1.0)
+    assert campaign.spearman([1, 1, 2, 3], [1, 2, 3, 4]) == pytest.approx(0.9486832980505138)
+    out = tmp_path / "c.svg"
+    render("campaign", [str(db)], str(out), options={"limit": "4"})
+    assert "<svg" in out.read_text()

@@ -12,13 +12,13 @@ capture CSV) and saves SVG, PNG or PDF by the output file's suffix:
 or from Python: ``tnvplot.render(kind, inputs, output, title=..., labels=...)``.
 """
 
-KINDS = ("circle", "panels", "path", "capture", "bode")
+KINDS = ("circle", "panels", "path", "capture", "bode", "campaign")
 
 
-def render(kind, inputs, output, title="", labels=None):
-    """Draws `kind` from `inputs` into `output` (.svg, .png or .pdf)."""
+def render(kind, inputs, output, title="", labels=None, options=None):
+    """Draws `kind` from `inputs` into `output` (.svg, .png or .pdf); `options`: a figure's own settings."""
     # matplotlib is imported on first use, so `python3 -m tnvplot` can say
     # which Debian package is missing.
     from tnvplot.render import render as _render
 
-    return _render(kind, inputs, output, title, labels)
+    return _render(kind, inputs, output, title, labels, options)

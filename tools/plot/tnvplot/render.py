@@ -10,7 +10,7 @@ def load_json(path):
         return json.load(f)
 
 
-def draw(kind, inputs, title="", labels=None):
+def draw(kind, inputs, title="", labels=None, options=None):
     if kind == "circle":
         from tnvplot import circle
         return circle.draw(load_json(inputs[0]))
@@ -29,12 +29,15 @@ def draw(kind, inputs, title="", labels=None):
     if kind == "bode":
         from tnvplot import bode
         return bode.draw(load_json(inputs[0]))
+    if kind == "campaign":
+        from tnvplot import campaign
+        return campaign.draw(inputs[0], title, options)
     raise ValueError(f"unknown figure kind '{kind}' (one of {', '.join(KINDS)})")
 
 
-def render(kind, inputs, output, title="", labels=None):
+def render(kind, inputs, output, title="", labels=None, options=None):
     """Draws `kind` from `inputs` (file paths) into `output` (.svg, .png or .pdf)."""
     style.output_format(output)
-    fig = draw(kind, list(inputs), title, labels)
+    fig = draw(kind, list(inputs), title, labels, options)
     style.save(fig, output)
     return output
