@@ -18,6 +18,8 @@ set(tnv_precompiled
     tnv_score tnv_pch_json
     tnv_serve tnv_pch_json
     tnv_tune tnv_pch_eigen
+    tnv_campaign tnv_pch_json
+    test_campaign tnv_pch_json
     test_can_host tnv_pch_json
     test_tools tnv_pch_json
     test_hil tnv_pch_json

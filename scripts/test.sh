@@ -5,6 +5,10 @@
 #            every source compiled on its own once more, syntax only (what a
 #            plain non-unity build needs: scripts/compile-each.py), every
 #            test but the kernel ones, the installed CMake package
+#   slurm    a small campaign through a real single-node Slurm (munge,
+#            slurmctld, slurmd on localhost; sbatch --array --wait), merged,
+#            replayed, and refused with a shard missing, using the release
+#            build's tnv-hil                         (scripts/slurm-campaign-test.sh)
 #   asan     the suite under AddressSanitizer + UndefinedBehaviorSanitizer,
 #            without the tests that run tnv-hil or tnvctl as a process
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
@@ -19,7 +23,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-stages=(${TNV_STAGES:-release asan tsan fuzz arm64 kernel})
+stages=(${TNV_STAGES:-release slurm asan tsan fuzz arm64 kernel})
 jobs=$(nproc)
 declare -a report=()
 
@@ -44,12 +48,13 @@ scripts/install-deps.sh
 for stage in "${stages[@]}"; do
   case "${stage}" in
     release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
+    slurm) run_stage slurm scripts/slurm-campaign-test.sh build/release ;;
     tsan) run_stage tsan scripts/tsan.sh ;;
     fuzz) run_stage fuzz scripts/fuzz.sh --seconds 30 ;;
     arm64) run_stage arm64 scripts/arm64.sh ;;
     kernel) run_stage kernel scripts/kernel-tests.sh build/release ;;
     package) run_stage package scripts/package.sh --arch amd64 --jobs "${jobs}" ;;
-    *) echo "unknown stage '${stage}' (release asan tsan fuzz arm64 kernel package)" >&2; exit 2 ;;
+    *) echo "unknown stage '${stage}' (release slurm asan tsan fuzz arm64 kernel package)" >&2; exit 2 ;;
   esac
 done
 
