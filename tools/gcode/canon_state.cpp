@@ -36,7 +36,7 @@ std::string g_text(int code) {
 // Modal group of a supported G-code (x 10), or -1.
 int g_group(int code) {
   switch (code) {
-    case 0: case 10: case 20: case 30: case 800: return 1;
+    case 0: case 10: case 20: case 30: case 800: case 730: case 810: case 820: case 830: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -56,7 +56,7 @@ int g_group(int code) {
 std::string unsupported_g(int code) {
   std::string why;
   if (code == 410 || code == 420 || code == 411 || code == 421) why = " (cutter radius compensation is not supported yet)";
-  else if ((code >= 810 && code <= 890) || code == 730) why = " (canned cycles are not supported yet)";
+  else if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
   else if (code >= 382 && code <= 385) why = " (probing is not supported yet)";
   else if (code == 930) why = " (inverse-time feed is not supported yet)";
   return "unsupported G-code " + g_text(code) + why;
@@ -96,7 +96,7 @@ void CanonMachine::start() {
     g92_[static_cast<std::size_t>(a)] = params_.get(kG92Enabled, 1) != 0.0 ? params_.get(kG92Base + a, 1) : 0.0;
   }
   params_.set(kG5xSelected, origin_, 1);
-  pos_ = machine_to_program({0.0, 0.0, 0.0});
+  pos_ = canon_pos_ = machine_to_program({0.0, 0.0, 0.0});
   emit("USE_LENGTH_UNITS(CANON_UNITS_MM)");
   emit_g5x();
   emit_g92();
@@ -233,13 +233,13 @@ CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) con
 
 void CanonMachine::move_traverse(const Vec3& to) {
   emit("STRAIGHT_TRAVERSE(" + xyz(to) + ")");
-  pos_ = to;
+  pos_ = canon_pos_ = to;
 }
 
 void CanonMachine::move_feed(const Vec3& to, int column) {
   if (feed_ <= 0.0) throw NgcError(column, "cannot do G1 with zero feed rate (F)");
   emit("STRAIGHT_FEED(" + xyz(to) + ")");
-  pos_ = to;
+  pos_ = canon_pos_ = to;
 }
 
 void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column) {
@@ -293,14 +293,26 @@ void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, i
   }
   emit("ARC_FEED(" + num(e1) + ", " + num(e2) + ", " + num(c1) + ", " + num(c2) + ", " +
        std::to_string(clockwise ? -turns : turns) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)");
-  pos_ = end;
+  pos_ = canon_pos_ = end;
+}
+
+void CanonMachine::emit_control_mode() {
+  if (control_ == 610) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+  else if (control_ == 611) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)");
+  else {
+    emit("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, " + fixed(control_p_, 6) + ")");
+    emit("SET_NAIVECAM_TOLERANCE(" + fixed(control_q_, 4) + ")");
+  }
 }
 
 void CanonMachine::set_origin(int index) {
   const Vec3 old = g5x_;
   origin_ = index;
   for (int a = 0; a < 3; ++a) g5x_[static_cast<std::size_t>(a)] = params_.get(kG5xBase + 20 * (index - 1) + a, 1);
-  for (std::size_t a = 0; a < 3; ++a) pos_[a] += old[a] - g5x_[a];
+  for (std::size_t a = 0; a < 3; ++a) {
+    pos_[a] += old[a] - g5x_[a];
+    canon_pos_[a] += old[a] - g5x_[a];
+  }
   params_.set(kG5xSelected, index, 1);
 }
 
@@ -335,15 +347,18 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
                                           " (this machine has X, Y and Z)");
   if (block.has('d')) throw NgcError(block.column('d'), "unsupported word D (cutter radius compensation is not supported yet)");
   const bool arc = motion == 20 || motion == 30;
+  const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
     if (block.has(c) && !arc)
       throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
-  if (block.has('r') && !arc && non_modal != 100)
+  if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
-  if (block.has('l') && non_modal != 100) throw NgcError(block.column('l'), "word L with no G10 to use it");
+  if (block.has('l') && non_modal != 100 && !cycle)
+    throw NgcError(block.column('l'), "word L with no G10 or canned cycle to use it");
   if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
-  if (block.has('q') && !has_code(block.g, 640)) throw NgcError(block.column('q'), "word Q with no G64 to use it");
-  if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || has_code(block.g, 640)))
+  if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
+    throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
+  if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || motion == 820 || has_code(block.g, 640)))
     throw NgcError(block.column('p'), "word P with no G4, G10, G64 or arc to use it");
 }
 
@@ -378,6 +393,10 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (axis_words && !axis_consumer && motion == 800)
     throw NgcError(block.has('x') ? block.column('x') : block.has('y') ? block.column('y') : block.has('z') ? block.column('z') : 1,
                    "cannot use axis values without a G-code that uses them (G0, G1, G2, G3)");
+
+  if ((block.polar_radius || block.polar_angle) && plane_ != 170)  // the plane before this line's G17
+    throw NgcError(block.polar_radius ? block.polar_radius_column : block.polar_angle_column,
+                   "polar @/^ only in the XY plane (G17)");
 
   apply_assignments(block);  // settings take effect after the line is read
   run_comments(block);
@@ -453,10 +472,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       for (std::size_t a = 0; a < 3; ++a)
         if (block.has(kAxes[a])) offset[a] = length(block.value(kAxes[a]));
     }
-    // After a tool change (M6 on the line) LinuxCNC takes its position back
-    // from the machine, where a new length offset has not moved it yet.
-    if (!m_by_group[6])
-      for (std::size_t a = 0; a < 3; ++a) pos_[a] += tool_offset_[a] - offset[a];
+    for (std::size_t a = 0; a < 3; ++a) pos_[a] += tool_offset_[a] - offset[a];
     tool_offset_ = offset;
     emit("USE_TOOL_LENGTH_OFFSET(" + num(offset[0]) + " " + num(offset[1]) + " " + num(offset[2]) +
          ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)");
@@ -473,15 +489,14 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     }
   }
   if (const NgcCode* g = g_by_group[13]) {
-    if (g->code == 610) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
-    else if (g->code == 611) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)");
-    else {
-      const double p = block.has('p') ? block.value('p') : 0.0;
-      const double q = block.has('q') ? block.value('q') : p;
-      if (p < 0.0 || q < 0.0) throw NgcError(block.column(p < 0.0 ? 'p' : 'q'), "G64 tolerances P and Q must be >= 0");
-      emit("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, " + fixed(p, 6) + ")");
-      emit("SET_NAIVECAM_TOLERANCE(" + fixed(q, 4) + ")");
+    control_ = g->code;
+    if (g->code == 640) {
+      control_p_ = block.has('p') ? block.value('p') : 0.0;
+      control_q_ = block.has('q') ? block.value('q') : control_p_;
+      if (control_p_ < 0.0 || control_q_ < 0.0)
+        throw NgcError(block.column(control_p_ < 0.0 ? 'p' : 'q'), "G64 tolerances P and Q must be >= 0");
     }
+    emit_control_mode();
   }
   if (const NgcCode* g = g_by_group[3]) {
     const bool absolute = g->code == 900;
@@ -490,8 +505,18 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
                     : "COMMENT(\"interpreter: distance mode changed to incremental\")");
     absolute_ = absolute;
   }
-  if (const NgcCode* g = g_by_group[4]) arc_absolute_ = g->code == 901;
-  // G98/G99 (group 10): the canned cycles' retract mode, kept for them.
+  if (const NgcCode* g = g_by_group[4]) {
+    const bool absolute = g->code == 901;
+    if (absolute != arc_absolute_)
+      emit(absolute ? "COMMENT(\"interpreter: IJK distance mode changed to absolute\")"
+                    : "COMMENT(\"interpreter: IJK distance mode changed to incremental\")");
+    arc_absolute_ = absolute;
+  }
+  if (const NgcCode* g = g_by_group[10]) {  // G98/G99: the canned cycles' retract
+    retract_old_z_ = g->code == 980;
+    emit(retract_old_z_ ? "COMMENT(\"interpreter: retract mode set to old_z\")"
+                        : "COMMENT(\"interpreter: retract mode set to r_plane\")");
+  }
 
   // Group 0: G10, G28/G30, G92 family (G4 ran above, G53 modifies the motion).
   if (non_modal == 100) {
@@ -539,6 +564,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       if (!block.has(kAxes[a])) continue;
       const double offset = pos_[a] + g92_[a] - length(block.value(kAxes[a]));
       pos_[a] += g92_[a] - offset;
+      canon_pos_[a] += g92_[a] - offset;
       g92_[a] = offset;
     }
     for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, g92_[static_cast<std::size_t>(a)], 1);
@@ -548,7 +574,10 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     Vec3 offset{};
     if (non_modal == 923)
       for (int a = 0; a < 3; ++a) offset[static_cast<std::size_t>(a)] = params_.get(kG92Base + a, 1);
-    for (std::size_t a = 0; a < 3; ++a) pos_[a] += g92_[a] - offset[a];
+    for (std::size_t a = 0; a < 3; ++a) {
+      pos_[a] += g92_[a] - offset[a];
+      canon_pos_[a] += g92_[a] - offset[a];
+    }
     g92_ = offset;
     if (non_modal == 921) {
       for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, 0.0, 1);
@@ -558,6 +587,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   }
 
   // Motion.
+  if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_)) cycle_start_z_ = pos_[2];
   if (g_motion) motion_ = g_motion->code;
   const bool machine = non_modal == 530;
   if (machine) {
@@ -575,7 +605,13 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     if (motion == 0) move_traverse(to);
     else if (motion == 10) move_feed(to, column);
     else if (motion == 20 || motion == 30) arc(block, motion == 20, to, column);
+    else if (is_cycle(motion)) canned_cycle(block, motion, column);
   }
+
+  // After a tool change LinuxCNC takes its position back from the machine
+  // (the last point moved to, shifted by offset changes but not by a new
+  // tool length offset, which moves nothing until the next move).
+  if (m_by_group[6]) pos_ = canon_pos_;
 
   if (const NgcCode* m = m_by_group[4]) {
     if (m->code == 0) emit("PROGRAM_STOP()");

@@ -45,6 +45,10 @@ class CanonMachine {
   Vec3 program_to_machine(const Vec3& program) const;
   double length(double value) const { return value * unit_mm_; }
   void program_end(bool m30);
+  void emit_control_mode();
+  // G73, G81, G82, G83 in the XY plane (canon_cycles.cpp).
+  static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
+  void canned_cycle(const NgcBlock& block, int motion, int column);
   void check_words(const NgcBlock& block, int motion, int non_modal) const;
 
   const CanonSetup& setup_;
@@ -69,6 +73,13 @@ class CanonMachine {
   Vec3 g5x_{};             // mm
   Vec3 g92_{};             // mm
   Vec3 pos_{};             // program coordinates, mm
+  int control_ = 640;      // G61 / G61.1 / G64 (x 10), with G64's P and Q
+  double control_p_ = 0.0, control_q_ = 0.0;
+  bool retract_old_z_ = false;  // G98; rs274 starts in G99 (retract to R)
+  double cycle_start_z_ = 0.0;  // Z where the run of canned cycles began (mm)
+  double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;  // sticky words, mm (P seconds)
+  bool cycle_has_r_ = false, cycle_has_z_ = false;
+  Vec3 canon_pos_{};       // the last point moved to, as the machine knows it (program coordinates)
 };
 
 }  // namespace tnv::gcode

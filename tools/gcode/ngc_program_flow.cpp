@@ -46,8 +46,10 @@ std::size_t ProgramFlow::find_backward(std::size_t from, const std::string& name
 bool ProgramFlow::closes_do(std::size_t while_line) const {
   const std::string& name = o_[while_line].name;
   for (std::size_t i = while_line; i-- > 0;) {
-    if (o_[i].name != name || o_[i].keyword == OKeyword::none) continue;
-    return o_[i].keyword == OKeyword::do_;
+    if (o_[i].name != name) continue;
+    const OKeyword k = o_[i].keyword;
+    if (k == OKeyword::do_) return true;
+    if (k == OKeyword::while_ || k == OKeyword::endwhile || k == OKeyword::sub || k == OKeyword::endsub) return false;
   }
   return false;
 }

@@ -84,7 +84,7 @@ TEST(CanonInterpreter, WorkOffsetsFromTheVarFileAndG10) {
   const auto c = calls_of("G55\nG0 X0 Y0\nG10 L20 P0 X1\nG0 X0\nM2\n", setup);
   EXPECT_EQ(c[0], "SET_G5X_OFFSET(2, 10.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
   EXPECT_EQ(c[3], "STRAIGHT_TRAVERSE(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
-  EXPECT_EQ(c[5], "SET_G5X_OFFSET(2, 9.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)") << "X0 is now 1 mm on";
+  EXPECT_EQ(c[4], "SET_G5X_OFFSET(2, 9.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)") << "X0 is now 1 mm on";
   EXPECT_FALSE(setup.parameters.load_var_text("5221 ten\n", error));
   EXPECT_NE(error.find("line 1"), std::string::npos) << error;
 }
@@ -124,8 +124,11 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   e = error_of("G41 D1\nM2\n");
   EXPECT_EQ(e.column, 1);
   EXPECT_NE(e.message.find("G41"), std::string::npos) << e.message;
-  e = error_of("G81 X1 Y1 Z-1 R1\nM2\n");
-  EXPECT_NE(e.message.find("canned cycles"), std::string::npos) << e.message;
+  e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
+  EXPECT_EQ(e.line, 2);
+  EXPECT_NE(e.message.find("G85"), std::string::npos) << e.message;
+  e = error_of("F100\nG91 G81 X1 Y1 Z-1 R1\nM2\n");
+  EXPECT_NE(e.message.find("incremental"), std::string::npos) << e.message;
   e = error_of("G1 X1\nM2\n");
   EXPECT_NE(e.message.find("zero feed rate"), std::string::npos) << e.message;
   e = error_of("X1\nM2\n");
@@ -146,6 +149,25 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   EXPECT_NE(e.message.find("lines run"), std::string::npos) << "an endless loop is an error, not a hang";
   e = error_of("F10 G2 X10 Y0 I1 J0\nM2\n");
   EXPECT_NE(e.message.find("radius"), std::string::npos) << e.message;
+}
+
+TEST(CanonInterpreter, DrillingCycleAsRs274RunsIt) {
+  const auto c = calls_of("G0 X0 Y0 Z5\nF100\nG81 X1 Y2 Z-1 R1\nX3\nG80\nM2\n");
+  const std::vector<std::string> expected = {
+      "STRAIGHT_TRAVERSE(0.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)", "SET_FEED_RATE(100.0000)",
+      "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)",
+      "STRAIGHT_TRAVERSE(1.0000, 2.0000, 5.0000, 0.0000, 0.0000, 0.0000)",
+      "STRAIGHT_TRAVERSE(1.0000, 2.0000, 1.0000, 0.0000, 0.0000, 0.0000)",
+      "STRAIGHT_FEED(1.0000, 2.0000, -1.0000, 0.0000, 0.0000, 0.0000)",
+      "STRAIGHT_TRAVERSE(1.0000, 2.0000, 1.0000, 0.0000, 0.0000, 0.0000)",
+      "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, 0.000000)", "SET_NAIVECAM_TOLERANCE(0.0000)",
+      "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)",
+      "STRAIGHT_TRAVERSE(3.0000, 2.0000, 1.0000, 0.0000, 0.0000, 0.0000)",
+      "STRAIGHT_FEED(3.0000, 2.0000, -1.0000, 0.0000, 0.0000, 0.0000)",
+      "STRAIGHT_TRAVERSE(3.0000, 2.0000, 1.0000, 0.0000, 0.0000, 0.0000)",
+      "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, 0.000000)", "SET_NAIVECAM_TOLERANCE(0.0000)",
+      "COMMENT(\"interpreter: motion mode set to none\")"};
+  EXPECT_EQ(c, with_end(expected));
 }
 
 TEST(CanonInterpreter, PercentDelimitedProgramAndBlockDelete) {

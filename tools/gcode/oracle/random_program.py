@@ -25,6 +25,7 @@ class Generator:
         self.plane = 17
         self.params: dict[str, float] = {}
         self.depth = 0
+        self.length_offset = False  # G43 in force
 
     # -- values --------------------------------------------------------
     def num(self, lo: float, hi: float) -> str:
@@ -115,7 +116,9 @@ class Generator:
         if c == 0:
             self.plane = self.r.choice([17, 18, 19])
             self.lines.append(f"G{self.plane}")
-        elif c == 1:
+        elif c == 1 and not self.length_offset:
+            # LinuxCNC does not convert a tool length offset at G20/G21 (a
+            # deliberate deviation, docs/gcode.md): units change only without one.
             self.inch = not self.inch
             self.lines.append("G20" if self.inch else "G21")
         elif c == 2:
@@ -130,7 +133,9 @@ class Generator:
         elif c == 6:
             t = self.r.randint(1, self.tool_count)
             self.lines.append(f"T{t} M6")
-            self.lines.append(self.r.choice(["G43", f"G43 H{self.r.randint(1, self.tool_count)}", "G49"]))
+            offset = self.r.choice(["G43", f"G43 H{self.r.randint(1, self.tool_count)}", "G49"])
+            self.length_offset = offset != "G49"
+            self.lines.append(offset)
         elif c == 7:
             self.lines.append(self.r.choice(["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]))
         elif c == 8:
@@ -157,6 +162,25 @@ class Generator:
         else:
             self.lines.append("G94")
             self.lines.append(f"F{self.num(10, 3000)}")
+
+    def cycle(self) -> None:
+        """A run of canned cycles (absolute, XY plane), ended by G80."""
+        if self.plane != 17 or not self.absolute:
+            return self.move()
+        s = self.scale()
+        r = self.r.uniform(-5, 10) * s
+        bottom = r - self.r.uniform(0.5, 15) * s
+        code = self.r.choice(["G81", "G82", "G83", "G73"])
+        extra = {"G81": "", "G82": f" P{self.num(0, 1)}", "G83": f" Q{self.r.uniform(0.3, 4) * s:.4f}",
+                 "G73": f" Q{self.r.uniform(0.3, 4) * s:.4f}"}[code]
+        repeat = f" L{self.r.randint(1, 3)}" if self.r.random() < 0.2 else ""
+        retract = self.r.choice(["G98 ", "G99 ", ""])
+        span = 40.0 * s
+        self.lines.append(f"{retract}{code} X{self.value(-span, span)} Y{self.value(-span, span)} "
+                          f"Z{bottom:.4f} R{r:.4f}{extra}{repeat}")
+        for _ in range(self.r.randint(0, 2)):
+            self.lines.append(f"X{self.value(-span, span)}" + (f" Y{self.num(-span, span)}" if self.r.random() < 0.5 else ""))
+        self.lines.append("G80")
 
     def control(self) -> None:
         if self.depth >= 2:
@@ -202,8 +226,10 @@ class Generator:
             self.arc()
         elif r < 0.8:
             self.modal()
-        elif r < 0.9:
+        elif r < 0.85:
             self.set_param()
+        elif r < 0.9:
+            self.cycle()
         else:
             self.control()
 

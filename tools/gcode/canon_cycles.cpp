@@ -1,0 +1,78 @@
+// Canned cycles G73, G81, G82, G83 in the XY plane, in absolute distance
+// mode, as LinuxCNC runs them: Z up to R if below it, exact path for the
+// cycle, XY at the Z it is at, down to R, the cycle's own moves, back to
+// the clearance (R in G99, the Z the cycles began at in G98); R, Z, P and Q
+// stay from the last cycle line; L repeats.
+#include <cmath>
+#include <cstdio>
+
+#include "tools/gcode/canon_state.hpp"
+#include "tools/gcode/ngc_error.hpp"
+
+namespace tnv::gcode {
+
+void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
+  if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
+  if (!absolute_) throw NgcError(column, "canned cycles in incremental distance mode (G91) are not supported yet");
+  if (block.polar_radius || block.polar_angle) throw NgcError(column, "polar @/^ with a canned cycle is not supported yet");
+  if (block.has('r')) { cycle_r_ = length(block.value('r')); cycle_has_r_ = true; }
+  if (block.has('z')) { cycle_z_ = length(block.value('z')); cycle_has_z_ = true; }
+  if (block.has('q')) cycle_q_ = length(block.value('q'));
+  if (block.has('p')) cycle_p_ = block.value('p');
+  if (!cycle_has_r_) throw NgcError(column, "canned cycle needs R (the retract plane)");
+  if (!cycle_has_z_) throw NgcError(column, "canned cycle needs Z (the bottom)");
+  if ((motion == 730 || motion == 830) && !(cycle_q_ > 0.0))
+    throw NgcError(block.has('q') ? block.column('q') : column, "G73/G83 need a peck depth Q > 0");
+  if (motion == 820 && cycle_p_ < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
+  if (feed_ <= 0.0) throw NgcError(column, "cannot run a canned cycle with zero feed rate (F)");
+  const double r = cycle_r_, bottom = cycle_z_;
+  if (bottom > r) throw NgcError(column, "canned cycle: R below the bottom Z");
+  int repeats = 1;
+  if (block.has('l')) {
+    repeats = static_cast<int>(block.value('l'));
+    if (repeats < 0 || repeats > 100000) throw NgcError(block.column('l'), "canned cycle repeats L must be 0..100000");
+  }
+  const double clear = retract_old_z_ ? std::fmax(cycle_start_z_, r) : r;
+  const double rapid_delta = 0.010 * 25.4;  // LinuxCNC's peck clearance, 0.010 inch
+  const double x = block.has('x') ? length(block.value('x')) : pos_[0];
+  const double y = block.has('y') ? length(block.value('y')) : pos_[1];
+  // Up to R first, before the cycle's exact-path mode, when below it: in
+  // G98 LinuxCNC judges by the Z the cycles began at, in G99 by Z now.
+  if ((retract_old_z_ ? cycle_start_z_ : pos_[2]) < r) move_traverse({pos_[0], pos_[1], r});
+  double old_z = pos_[2];
+  emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+  for (int k = 0; k < repeats; ++k) {
+    move_traverse({x, y, old_z});
+    if (old_z != r) move_traverse({x, y, r});
+    if (motion == 810 || motion == 820) {
+      move_feed({x, y, bottom}, column);
+      if (motion == 820) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "DWELL(%.4f)", cycle_p_);
+        emit(buf);
+      }
+    } else if (motion == 830) {
+      double depth = std::fmax(r - cycle_q_, bottom);
+      move_feed({x, y, depth}, column);
+      while (depth > bottom) {
+        move_traverse({x, y, r});
+        move_traverse({x, y, depth + rapid_delta});
+        depth = std::fmax(depth - cycle_q_, bottom);
+        move_feed({x, y, depth}, column);
+      }
+    } else {  // G73
+      double depth = r;
+      for (;;) {
+        depth = std::fmax(depth - cycle_q_, bottom);
+        move_feed({x, y, depth}, column);
+        if (depth <= bottom) break;
+        move_traverse({x, y, depth + rapid_delta});
+      }
+    }
+    move_traverse({x, y, clear});
+    old_z = clear;
+  }
+  emit_control_mode();
+}
+
+}  // namespace tnv::gcode
