@@ -36,11 +36,12 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   const double rapid_delta = 0.010 * 25.4;  // LinuxCNC's peck clearance, 0.010 inch
   const double x = block.has('x') ? length(block.value('x')) : pos_[0];
   const double y = block.has('y') ? length(block.value('y')) : pos_[1];
-  // Up to R first, before the cycle's exact-path mode, when below it: in
-  // G98 LinuxCNC judges by the Z the cycles began at, in G99 by Z now.
-  if ((retract_old_z_ ? cycle_start_z_ : pos_[2]) < r) move_traverse({pos_[0], pos_[1], r});
+  // Up to R first, before the cycle's exact-path mode, when the run of
+  // cycles began below it (LinuxCNC judges by that Z, not by Z now).
+  if (cycle_start_z_ < r) move_traverse({pos_[0], pos_[1], r});
   double old_z = pos_[2];
-  emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+  const bool switch_mode = control_ != 610;  // already exact path (G61): no switch, no switch back
+  if (switch_mode) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   for (int k = 0; k < repeats; ++k) {
     move_traverse({x, y, old_z});
     if (old_z != r) move_traverse({x, y, r});
@@ -72,7 +73,15 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
     move_traverse({x, y, clear});
     old_z = clear;
   }
+  // Back to the program's path mode: the same call G61/G61.1/G64 makes,
+  // and the naive-CAM tolerance whatever the mode.
+  if (!switch_mode) return;
   emit_control_mode();
+  if (control_ != 640) emit("SET_NAIVECAM_TOLERANCE(" + [this] {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", control_q_);
+    return std::string(buf);
+  }() + ")");
 }
 
 }  // namespace tnv::gcode

@@ -16,6 +16,19 @@ ProgramFlow::ProgramFlow(const std::vector<NgcLine>& lines, std::size_t max_line
       o_.emplace_back();  // read_block reports it when the line runs
     }
   }
+  // A label opens one block (sub, if, while, do, repeat): LinuxCNC refuses
+  // a second block under the same label.
+  std::map<std::string, std::size_t> opened;
+  first_opening_.resize(o_.size());
+  for (std::size_t i = 0; i < o_.size(); ++i) {
+    first_opening_[i] = i;
+    const OKeyword k = o_[i].keyword;
+    const bool opens = k == OKeyword::sub || k == OKeyword::if_ || k == OKeyword::do_ || k == OKeyword::repeat ||
+                       (k == OKeyword::while_ && !closes_do(i));
+    if (!opens) continue;
+    const auto [it, inserted] = opened.emplace(o_[i].name, i);
+    if (!inserted) first_opening_[i] = it->second;
+  }
 }
 
 std::optional<std::size_t> ProgramFlow::next_line() {
@@ -70,6 +83,9 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
     if (o.args.size() != 1) throw NgcError(o.column, "o" + o.name + ": needs one [condition]");
     return o.args[0] != 0.0;
   };
+  if (first_opening_[at] != at)
+    throw NgcError(o.column, "duplicate O-word label o" + o.name + " (it opened a block on line " +
+                                 std::to_string(first_opening_[at] + 1) + ")");
   const bool via_branch = branch_target_ == at;
   branch_target_.reset();
   switch (o.keyword) {

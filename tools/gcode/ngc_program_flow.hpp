@@ -37,6 +37,7 @@ class ProgramFlow {
   std::size_t loop_end(std::size_t from, const std::string& name, int column) const;
 
   std::vector<NgcOWord> o_;  // per line; keyword none where there is none (or it does not scan)
+  std::vector<std::size_t> first_opening_;  // per line: where its label first opened a block (itself if it did)
   std::size_t pc_ = 0;       // the next line
   std::size_t current_ = 0;  // the line being run
   std::size_t lines_run_ = 0;

@@ -26,6 +26,7 @@ class Generator:
         self.params: dict[str, float] = {}
         self.depth = 0
         self.length_offset = False  # G43 in force
+        self.next_label = 100
 
     # -- values --------------------------------------------------------
     def num(self, lo: float, hi: float) -> str:
@@ -186,7 +187,8 @@ class Generator:
         if self.depth >= 2:
             return self.move()
         self.depth += 1
-        label = f"o{self.r.randint(100, 999)}"
+        label = f"o{self.next_label}"  # LinuxCNC refuses a label that opens two blocks
+        self.next_label += 1 + self.r.randint(0, 9)
         kind = self.r.randrange(3)
         if kind == 0:
             self.lines.append(f"{label} if [{self.r.choice(['1', '0', '#<_g0> gt 0', '2 lt 3'])} and 1]"
