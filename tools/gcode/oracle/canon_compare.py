@@ -68,8 +68,11 @@ def run_rs274(program: Path, tool_table: Path, var_file: Path | None = None, tim
             args += ["-v", str(Path(tmp) / "rs274ngc.var")]
             (Path(tmp) / "rs274ngc.var").write_text("")
         args.append(str(program.resolve()))
+        # rs274 keeps its tool table in $HOME/.tool.mmap, shared by every
+        # rs274 of that user: two at once would read each other's tools.
+        env = dict(os.environ, HOME=tmp)
         p = subprocess.run(args, cwd=program.resolve().parent, stdin=subprocess.DEVNULL, capture_output=True,
-                           text=True, timeout=timeout, errors="replace")
+                           text=True, timeout=timeout, errors="replace", env=env)
     calls = [m.group(1) for m in map(_RS274_LINE.match, p.stdout.splitlines()) if m]
     # The driver resets the interpreter after the run: not the program's calls.
     while calls and calls[-1] == "ON_RESET()":
