@@ -1,8 +1,7 @@
-// Canned cycles G73, G81, G82, G83 in the XY plane, in absolute distance
-// mode, as LinuxCNC runs them: Z up to R if below it, exact path for the
-// cycle, XY at the Z it is at, down to R, the cycle's own moves, back to
-// the clearance (R in G99, the Z the cycles began at in G98); R, Z, P and Q
-// stay from the last cycle line; L repeats.
+// Canned cycles G73, G81, G82, G83 in the XY plane as LinuxCNC runs them:
+// Z up to R if below it, exact path for the cycle, XY above R, down to R,
+// the cycle's own moves, back to the clearance (R in G99, the Z the cycles
+// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats.
 #include <cmath>
 #include <cstdio>
 
@@ -13,7 +12,6 @@ namespace tnv::gcode {
 
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
-  if (!absolute_) throw NgcError(column, "canned cycles in incremental distance mode (G91) are not supported yet");
   if (block.polar_radius || block.polar_angle) throw NgcError(column, "polar @/^ with a canned cycle is not supported yet");
   if (block.has('r')) { cycle_r_ = length(block.value('r')); cycle_has_r_ = true; }
   if (block.has('z')) { cycle_z_ = length(block.value('z')); cycle_has_z_ = true; }
@@ -25,7 +23,9 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
     throw NgcError(block.has('q') ? block.column('q') : column, "G73/G83 need a peck depth Q > 0");
   if (motion == 820 && cycle_p_ < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
   if (feed_ <= 0.0) throw NgcError(column, "cannot run a canned cycle with zero feed rate (F)");
-  const double r = cycle_r_, bottom = cycle_z_;
+  // G91: R from the Z the run of cycles began at, the bottom from R.
+  const double r = absolute_ ? cycle_r_ : cycle_start_z_ + cycle_r_;
+  const double bottom = absolute_ ? cycle_z_ : r + cycle_z_;
   if (bottom > r) throw NgcError(column, "canned cycle: R below the bottom Z");
   int repeats = 1;
   if (block.has('l')) {
@@ -34,15 +34,22 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   }
   const double clear = retract_old_z_ ? std::fmax(cycle_start_z_, r) : r;
   const double rapid_delta = 0.010 * 25.4;  // LinuxCNC's peck clearance, 0.010 inch
-  const double x = block.has('x') ? length(block.value('x')) : pos_[0];
-  const double y = block.has('y') ? length(block.value('y')) : pos_[1];
+  // G91: X and Y step from the last hole, once per repeat.
+  const double dx = block.has('x') ? length(block.value('x')) : 0.0;
+  const double dy = block.has('y') ? length(block.value('y')) : 0.0;
+  double x = absolute_ ? (block.has('x') ? dx : pos_[0]) : pos_[0];
+  double y = absolute_ ? (block.has('y') ? dy : pos_[1]) : pos_[1];
   // Up to R first, before the cycle's exact-path mode, when the run of
   // cycles began below it (LinuxCNC judges by that Z, not by Z now).
   if (cycle_start_z_ < r) move_traverse({pos_[0], pos_[1], r});
-  double old_z = pos_[2];
+  double old_z = std::fmax(pos_[2], r);
   const bool switch_mode = control_ != 610;  // already exact path (G61): no switch, no switch back
   if (switch_mode) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   for (int k = 0; k < repeats; ++k) {
+    if (!absolute_) {
+      x += dx;
+      y += dy;
+    }
     move_traverse({x, y, old_z});
     if (old_z != r) move_traverse({x, y, r});
     if (motion == 810 || motion == 820) {

@@ -165,12 +165,14 @@ class Generator:
             self.lines.append(f"F{self.num(10, 3000)}")
 
     def cycle(self) -> None:
-        """A run of canned cycles (absolute, XY plane), ended by G80."""
-        if self.plane != 17 or not self.absolute:
+        """A run of canned cycles (XY plane, G90 or G91), ended by G80."""
+        if self.plane != 17:
             return self.move()
         s = self.scale()
         r = self.r.uniform(-5, 10) * s
         bottom = r - self.r.uniform(0.5, 15) * s
+        if not self.absolute:  # G91: R from the start Z, Z from R
+            bottom = bottom - r
         code = self.r.choice(["G81", "G82", "G83", "G73"])
         extra = {"G81": "", "G82": f" P{self.num(0, 1)}", "G83": f" Q{self.r.uniform(0.3, 4) * s:.4f}",
                  "G73": f" Q{self.r.uniform(0.3, 4) * s:.4f}"}[code]

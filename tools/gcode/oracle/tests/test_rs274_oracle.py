@@ -41,8 +41,8 @@ SAMPLES_DIFFERING = {
     "gridprobe": "G38.2 probing (not yet: needs the machine's probe input)",
     "smartprobe": "G38.x probing (not yet: needs the machine's probe input)",
     "x-trim": "a subroutine in another file (touchoff.ngc) with G38.2 probing and M66",
-    "hole-circle": "a canned cycle in G91 with polar ^ increments (not yet)",
-    "polar": "canned cycles with polar @ ^ and in G91 (not yet)",
+    "hole-circle": "a canned cycle with polar ^ increments (polar words in cycles not yet)",
+    "polar": "canned cycles with polar @ ^ (not yet)",
     "systems": "G5.1 quadratic B-splines (not yet)",
     "toplevel": "M70-M72 modal state save and restore (not yet)",
 }
