@@ -531,7 +531,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     for (std::size_t a = 0; a < 3; ++a) {
       if (!block.has(kAxes[a])) continue;
       const double v = length(block.value(kAxes[a]));
-      const double offset = l == 2 ? v : pos_[a] + g5x_[a] + g92_[a] - v;
+      const double offset = l == 2 ? v : pos_[a] + g5x_[a] - v;  // L20: here becomes v
       params_.set(kG5xBase + 20 * (system - 1) + static_cast<int>(a), offset, block.column(kAxes[a]));
     }
     if (system != origin_) {
