@@ -85,6 +85,9 @@ TEST(CanonInterpreter, WorkOffsetsFromTheVarFileAndG10) {
   EXPECT_EQ(c[0], "SET_G5X_OFFSET(2, 10.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
   EXPECT_EQ(c[3], "STRAIGHT_TRAVERSE(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
   EXPECT_EQ(c[4], "SET_G5X_OFFSET(2, 9.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)") << "X0 is now 1 mm on";
+  // With G92 in force, L20 still makes here the given value.
+  const auto g92 = calls_of("G0 X5\nG92 X1\nG0 X3\nG10 L20 P0 X0\nM2\n");
+  EXPECT_EQ(g92[3], "SET_G5X_OFFSET(1, 3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
   EXPECT_FALSE(setup.parameters.load_var_text("5221 ten\n", error));
   EXPECT_NE(error.find("line 1"), std::string::npos) << error;
 }
@@ -127,8 +130,10 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
   EXPECT_EQ(e.line, 2);
   EXPECT_NE(e.message.find("G85"), std::string::npos) << e.message;
-  e = error_of("F100\nG91 G81 X1 Y1 Z-1 R1\nM2\n");
-  EXPECT_NE(e.message.find("incremental"), std::string::npos) << e.message;
+  e = error_of("F100\nG81 @1 ^30 Z-1 R1\nM2\n");
+  EXPECT_NE(e.message.find("polar"), std::string::npos) << e.message;
+  e = error_of("F100\nG18 G81 X1 Y1 Z-1 R1\nM2\n");
+  EXPECT_NE(e.message.find("XY plane"), std::string::npos) << e.message;
   e = error_of("G1 X1\nM2\n");
   EXPECT_NE(e.message.find("zero feed rate"), std::string::npos) << e.message;
   e = error_of("X1\nM2\n");
