@@ -385,7 +385,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   const NgcCode* g_motion = g_by_group[1];
   const int non_modal = g_by_group[0] ? g_by_group[0]->code : -1;
   const bool axis_words = block.has('x') || block.has('y') || block.has('z') || block.polar_radius || block.polar_angle;
-  const bool axis_consumer = non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920;
+  const bool axis_consumer = non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920 ||
+                             (g_by_group[8] && g_by_group[8]->code == 431);  // G43.1 Z: an offset, not a move
   if (g_motion && axis_consumer)
     throw NgcError(g_motion->column, "a motion code and " + g_text(non_modal) + " on one line both use the axis words");
   int motion = g_motion ? g_motion->code : motion_;
