@@ -27,6 +27,8 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   const double r = absolute_ ? cycle_r_ : cycle_start_z_ + cycle_r_;
   const double bottom = absolute_ ? cycle_z_ : r + cycle_z_;
   if (bottom > r) throw NgcError(column, "canned cycle: R below the bottom Z");
+  if ((motion == 730 || motion == 830) && (r - bottom) / cycle_q_ > 100000.0)
+    throw NgcError(block.has('q') ? block.column('q') : column, "peck depth Q too small: more than 100000 pecks");
   int repeats = 1;
   if (block.has('l')) {
     repeats = static_cast<int>(block.value('l'));
@@ -59,23 +61,18 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
         std::snprintf(buf, sizeof buf, "DWELL(%.4f)", cycle_p_);
         emit(buf);
       }
-    } else if (motion == 830) {
-      double depth = std::fmax(r - cycle_q_, bottom);
-      move_feed({x, y, depth}, column);
-      while (depth > bottom) {
-        move_traverse({x, y, r});
-        move_traverse({x, y, depth + rapid_delta});
-        depth = std::fmax(depth - cycle_q_, bottom);
+    } else {
+      // Pecks while above the bottom (within float noise, so a depth that
+      // is the bottom in the program's decimals counts as the bottom), then
+      // the last feed to the bottom. G83 retracts to R between pecks, G73
+      // backs off by the clearance.
+      constexpr double kSame_mm = 1e-7;
+      for (double depth = r - cycle_q_; depth > bottom + kSame_mm; depth -= cycle_q_) {
         move_feed({x, y, depth}, column);
-      }
-    } else {  // G73
-      double depth = r;
-      for (;;) {
-        depth = std::fmax(depth - cycle_q_, bottom);
-        move_feed({x, y, depth}, column);
-        if (depth <= bottom) break;
+        if (motion == 830) move_traverse({x, y, r});
         move_traverse({x, y, depth + rapid_delta});
       }
+      move_feed({x, y, bottom}, column);
     }
     move_traverse({x, y, clear});
     old_z = clear;
