@@ -39,6 +39,7 @@ TEST(FuzzCorpus, FrameCodec) { EXPECT_GE(run_corpus("frame_codec", fuzz::frame_c
 TEST(FuzzCorpus, ParamSet) { EXPECT_GE(run_corpus("param_set", fuzz::param_set), kMinSeeds); }
 TEST(FuzzCorpus, ScenarioToml) { EXPECT_GE(run_corpus("scenario_toml", fuzz::scenario_toml), kMinSeeds); }
 TEST(FuzzCorpus, ParamImage) { EXPECT_GE(run_corpus("param_image", fuzz::param_image), kMinSeeds); }
+TEST(FuzzCorpus, GcodeCanon) { EXPECT_GE(run_corpus("gcode_canon", fuzz::gcode_canon), kMinSeeds); }
 
 // The empty input (libFuzzer's first) is a valid input for every entry.
 TEST(FuzzCorpus, EmptyInputsAreHandled) {
@@ -47,6 +48,7 @@ TEST(FuzzCorpus, EmptyInputsAreHandled) {
   EXPECT_EQ(fuzz::param_set(nullptr, 0), "");
   EXPECT_EQ(fuzz::scenario_toml(reinterpret_cast<const std::uint8_t*>(""), 0), "");
   EXPECT_EQ(fuzz::param_image(nullptr, 0), "");
+  EXPECT_EQ(fuzz::gcode_canon(reinterpret_cast<const std::uint8_t*>(""), 0), "");
 }
 
 }  // namespace

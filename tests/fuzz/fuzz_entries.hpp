@@ -40,4 +40,8 @@ std::string scenario_toml(const std::uint8_t* data, std::size_t size);
 // bit 1 re-seal the CRC (so mutations reach the value checks).
 std::string param_image(const std::uint8_t* data, std::size_t size);
 
+// Bytes as an RS274/NGC program through the LinuxCNC-dialect interpreter
+// (tools/gcode/canon_interpreter.hpp) with a small tool table and offsets.
+std::string gcode_canon(const std::uint8_t* data, std::size_t size);
+
 }  // namespace tnv::fuzz

@@ -23,6 +23,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_commissioning_commands(app, slot);
   add_bore_commands(app, slot);
   add_run_commands(app, slot);
+  add_gcode_commands(app, slot);
   add_trace_commands(app, slot);
 }
 

@@ -41,6 +41,7 @@ void add_output_commands(CLI::App& app, ActionSlot& slot);   // dump-dbc, plot
 void add_commissioning_commands(CLI::App& app, ActionSlot& slot);  // commissioning enter | leave
 void add_bore_commands(CLI::App& app, ActionSlot& slot);     // bore gauge | status | restart
 void add_run_commands(CLI::App& app, ActionSlot& slot);      // run FILE.ngc
+void add_gcode_commands(CLI::App& app, ActionSlot& slot);    // gcode canon FILE.ngc
 void add_trace_commands(CLI::App& app, ActionSlot& slot);    // decode, replay
 void add_script_commands(CLI::App& app, ActionSlot& slot);   // script
 void add_serve_commands(CLI::App& app, ActionSlot& slot);    // serve (built with cpp-httplib)

@@ -1,0 +1,624 @@
+#include "tools/gcode/canon_state.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "tools/gcode/ngc_error.hpp"
+
+namespace tnv::gcode {
+
+namespace {
+
+constexpr double kMmPerInch = 25.4;
+constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1): X Y Z A B C U V W R
+constexpr int kG5xSelected = 5220;
+constexpr int kG92Base = 5211, kG92Enabled = 5210;
+constexpr int kG28Home = 5161, kG30Home = 5181;
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  if (std::fabs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;  // no "-0.0000"
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+bool has_code(const std::vector<NgcCode>& codes, int code) {
+  return std::any_of(codes.begin(), codes.end(), [code](const NgcCode& c) { return c.code == code; });
+}
+
+std::string g_text(int code) {
+  return code % 10 == 0 ? "G" + std::to_string(code / 10) : "G" + std::to_string(code / 10) + "." + std::to_string(code % 10);
+}
+
+// Modal group of a supported G-code (x 10), or -1.
+int g_group(int code) {
+  switch (code) {
+    case 0: case 10: case 20: case 30: case 800: case 730: case 810: case 820: case 830: return 1;
+    case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
+      return 0;
+    case 170: case 180: case 190: return 2;
+    case 900: case 910: return 3;
+    case 901: case 911: return 4;
+    case 940: return 5;
+    case 200: case 210: return 6;
+    case 400: return 7;
+    case 430: case 431: case 490: return 8;
+    case 980: case 990: return 10;
+    case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: return 12;
+    case 610: case 611: case 640: return 13;
+    default: return -1;
+  }
+}
+
+std::string unsupported_g(int code) {
+  std::string why;
+  if (code == 410 || code == 420 || code == 411 || code == 421) why = " (cutter radius compensation is not supported yet)";
+  else if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
+  else if (code >= 382 && code <= 385) why = " (probing is not supported yet)";
+  else if (code == 930) why = " (inverse-time feed is not supported yet)";
+  return "unsupported G-code " + g_text(code) + why;
+}
+
+int m_group(int code) {
+  switch (code) {
+    case 0: case 1: case 2: case 30: return 4;
+    case 6: return 6;
+    case 3: case 4: case 5: return 7;
+    case 7: case 8: case 9: return 8;
+    default: return -1;
+  }
+}
+
+}  // namespace
+
+CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
+    : setup_(setup), calls_(calls), params_(setup.parameters) {}
+
+void CanonMachine::emit(const std::string& text) { calls_.push_back({line_, text}); }
+
+std::string CanonMachine::num(double mm) const { return fixed(mm / unit_mm_, 4); }
+
+std::string CanonMachine::xyz(const Vec3& p) const {
+  return num(p[0]) + ", " + num(p[1]) + ", " + num(p[2]) + ", 0.0000, 0.0000, 0.0000";
+}
+
+void CanonMachine::emit_g5x() { emit("SET_G5X_OFFSET(" + std::to_string(origin_) + ", " + xyz(g5x_) + ")"); }
+void CanonMachine::emit_g92() { emit("SET_G92_OFFSET(" + xyz(g92_) + ")"); }
+
+void CanonMachine::start() {
+  const double selected = params_.get(kG5xSelected, 1);
+  origin_ = (selected >= 1.0 && selected <= 9.0) ? static_cast<int>(selected) : 1;
+  for (int a = 0; a < 3; ++a) {
+    g5x_[static_cast<std::size_t>(a)] = params_.get(kG5xBase + 20 * (origin_ - 1) + a, 1);
+    g92_[static_cast<std::size_t>(a)] = params_.get(kG92Enabled, 1) != 0.0 ? params_.get(kG92Base + a, 1) : 0.0;
+  }
+  params_.set(kG5xSelected, origin_, 1);
+  pos_ = canon_pos_ = machine_to_program({0.0, 0.0, 0.0});
+  emit("USE_LENGTH_UNITS(CANON_UNITS_MM)");
+  emit_g5x();
+  emit_g92();
+  emit("SET_XY_ROTATION(0.0000)");
+  emit("SET_FEED_REFERENCE(CANON_XYZ)");
+  emit("ON_RESET()");
+}
+
+CanonMachine::Vec3 CanonMachine::machine_to_program(const Vec3& m) const {
+  Vec3 p{};
+  for (std::size_t a = 0; a < 3; ++a) p[a] = m[a] - g5x_[a] - g92_[a] - tool_offset_[a];
+  return p;
+}
+
+CanonMachine::Vec3 CanonMachine::program_to_machine(const Vec3& p) const {
+  Vec3 m{};
+  for (std::size_t a = 0; a < 3; ++a) m[a] = p[a] + g5x_[a] + g92_[a] + tool_offset_[a];
+  return m;
+}
+
+void CanonMachine::comments(const NgcBlock& block, int line) {
+  line_ = line;
+  started_ = true;
+  run_comments(block);
+}
+
+// "(debug, text #1 #<name>)": the text with each parameter's value (%f);
+// a named one not defined shows as ######, as LinuxCNC prints it.
+std::string CanonMachine::substitute(const std::string& text) const {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '#') {
+      out.push_back(text[i]);
+      continue;
+    }
+    char buf[64];
+    if (i + 1 < text.size() && text[i + 1] == '<') {
+      const std::size_t close = text.find('>', i);
+      if (close == std::string::npos) {
+        out.append(text.substr(i));
+        break;
+      }
+      std::string name;
+      for (std::size_t k = i + 2; k < close; ++k)
+        if (text[k] != ' ' && text[k] != '\t') name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(text[k]))));
+      if (params_.exists(name) || name[0] == '_') {  // an unset global reads 0 here
+        std::snprintf(buf, sizeof buf, "%f", params_.exists(name) ? params_.get(name, 1) : 0.0);
+        out.append(buf);
+      } else {
+        out.append("######");
+      }
+      i = close;
+      continue;
+    }
+    std::size_t end = i + 1;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+    if (end == i + 1 || end - i > 6) {
+      out.push_back('#');
+      continue;
+    }
+    const int number = std::stoi(text.substr(i + 1, end - i - 1));
+    if (number >= NgcParameters::kCount) {
+      out.append(text.substr(i, end - i));
+    } else {
+      std::snprintf(buf, sizeof buf, "%f", params_.get(number, 1));
+      out.append(buf);
+    }
+    i = end - 1;
+  }
+  return out;
+}
+
+void CanonMachine::run_comments(const NgcBlock& block) {
+  for (const std::string& c : block.comments) {
+    std::string head = c.substr(0, 6);
+    std::transform(head.begin(), head.end(), head.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (head.rfind("msg,", 0) == 0) emit("MESSAGE(\"" + c.substr(4) + "\")");
+    else if (head == "debug,") emit("MESSAGE(\"" + substitute(c.substr(6)) + "\")");
+    else if (head == "print,") continue;  // rs274 prints it on its own output, not as a call
+    else emit("COMMENT(\"" + c.substr(std::min(c.find_first_not_of(" \t"), c.size())) + "\")");
+  }
+}
+
+void CanonMachine::apply_assignments(const NgcBlock& block) {
+  for (const NgcAssignment& a : block.assignments) {
+    if (a.name.empty()) params_.set(a.number, a.value, a.column);
+    else params_.set(a.name, a.value);
+  }
+}
+
+void CanonMachine::percent(int line, int column) {
+  line_ = line;
+  if (!started_ && !percent_started_) {
+    percent_started_ = true;
+  } else if (percent_started_) {
+    emit("FINISH()");
+    ended_ = true;
+  } else {
+    throw NgcError(column, "'%' after the program started (only as its first and last line)");
+  }
+}
+
+void CanonMachine::end_of_file(int line) {
+  line_ = line;
+  throw NgcError(1, "file ended with no percent sign or program end (M2, M30)");
+}
+
+CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) const {
+  Vec3 t = pos_;
+  if (block.polar_radius || block.polar_angle) {  // LinuxCNC's @ (radius) and ^ (angle, degrees) in XY
+    const int column = block.polar_radius ? block.polar_radius_column : block.polar_angle_column;
+    if (block.has('x') || block.has('y')) throw NgcError(column, "polar @/^ with X or Y on one line");
+    if (plane_ != 170) throw NgcError(column, "polar @/^ only in the XY plane (G17)");
+    if (machine) throw NgcError(column, "polar @/^ with G53");
+    const double r0 = std::hypot(pos_[0], pos_[1]);
+    const double a0 = std::atan2(pos_[1], pos_[0]) * 180.0 / std::numbers::pi;
+    const double r = absolute_ ? (block.polar_radius ? length(*block.polar_radius) : r0)
+                               : r0 + length(block.polar_radius.value_or(0.0));
+    const double a = absolute_ ? block.polar_angle.value_or(a0) : a0 + block.polar_angle.value_or(0.0);
+    t[0] = r * std::cos(a * std::numbers::pi / 180.0);
+    t[1] = r * std::sin(a * std::numbers::pi / 180.0);
+    if (block.has('z')) t[2] = absolute_ ? length(block.value('z')) : pos_[2] + length(block.value('z'));
+    return t;
+  }
+  static constexpr char kAxes[3] = {'x', 'y', 'z'};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!block.has(kAxes[a])) continue;
+    const double v = length(block.value(kAxes[a]));
+    if (machine) t[a] = v - g5x_[a] - g92_[a] - tool_offset_[a];
+    else t[a] = absolute_ ? v : pos_[a] + v;
+  }
+  return t;
+}
+
+void CanonMachine::move_traverse(const Vec3& to) {
+  emit("STRAIGHT_TRAVERSE(" + xyz(to) + ")");
+  pos_ = canon_pos_ = to;
+}
+
+void CanonMachine::move_feed(const Vec3& to, int column) {
+  if (feed_ <= 0.0) throw NgcError(column, "cannot do G1 with zero feed rate (F)");
+  emit("STRAIGHT_FEED(" + xyz(to) + ")");
+  pos_ = canon_pos_ = to;
+}
+
+void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column) {
+  if (feed_ <= 0.0) throw NgcError(column, "cannot make an arc with zero feed rate (F)");
+  // (first, second, axis) as LinuxCNC orders them per plane, and the offset letters.
+  std::size_t i1 = 0, i2 = 1, ia = 2;
+  char l1 = 'i', l2 = 'j';
+  if (plane_ == 180) { i1 = 2; i2 = 0; ia = 1; l1 = 'k'; l2 = 'i'; }
+  if (plane_ == 190) { i1 = 1; i2 = 2; ia = 0; l1 = 'j'; l2 = 'k'; }
+  const char other = plane_ == 170 ? 'k' : plane_ == 180 ? 'j' : 'i';
+  if (block.has(other)) throw NgcError(block.column(other), std::string("word ") + static_cast<char>(std::toupper(other)) + " is not in the arc's plane");
+  const double s1 = pos_[i1], s2 = pos_[i2], e1 = end[i1], e2 = end[i2];
+  double c1 = 0.0, c2 = 0.0;
+  const double tolerance_mm = unit_mm_ == 1.0 ? 0.005 : 0.0005 * kMmPerInch;
+  if (block.has('r')) {
+    if (block.has(l1) || block.has(l2)) throw NgcError(block.column('r'), "R with I/J/K: give one arc form");
+    const double radius = length(block.value('r'));
+    if (std::fabs(e1 - s1) < 1e-12 && std::fabs(e2 - s2) < 1e-12)
+      throw NgcError(block.column('r'), "zero-length arc with the R form");
+    const double abs_radius = std::fabs(radius);
+    const double m1 = 0.5 * (s1 + e1), m2 = 0.5 * (s2 + e2);
+    double half = std::hypot(m1 - e1, m2 - e2);
+    if (half / abs_radius > 1.0 + 1e-12) throw NgcError(block.column('r'), "arc radius R too small to reach the end point");
+    if (half / abs_radius > 1.0 - 1e-12) half = abs_radius;
+    const double turn = clockwise ? -1.0 : 1.0;
+    const double theta = std::atan2(e2 - s2, e1 - s1) +
+                         (((turn > 0 && radius > 0) || (turn < 0 && radius < 0)) ? 0.5 : -0.5) * std::numbers::pi;
+    const double offset = abs_radius * std::cos(std::asin(half / abs_radius));
+    c1 = m1 + offset * std::cos(theta);
+    c2 = m2 + offset * std::sin(theta);
+  } else {
+    if (!block.has(l1) && !block.has(l2)) throw NgcError(column, "arc needs an offset (I/J/K) or a radius R");
+    if (arc_absolute_) {
+      c1 = block.has(l1) ? length(block.value(l1)) : s1;
+      c2 = block.has(l2) ? length(block.value(l2)) : s2;
+    } else {
+      c1 = s1 + length(block.value(l1));
+      c2 = s2 + length(block.value(l2));
+    }
+    const double r1 = std::hypot(s1 - c1, s2 - c2), r2 = std::hypot(e1 - c1, e2 - c2);
+    if (r1 < tolerance_mm || r2 < tolerance_mm) throw NgcError(column, "zero-radius arc");
+    const double err = std::fabs(r1 - r2);
+    if (err > tolerance_mm && err > 0.001 * r1)
+      throw NgcError(column, "radius to the end of the arc differs from the radius to its start");
+  }
+  int turns = 1;
+  if (block.has('p')) {
+    const double p = block.value('p');
+    if (p < 1.0 || std::floor(p) != p) throw NgcError(block.column('p'), "arc turns P must be a whole number >= 1");
+    turns = static_cast<int>(std::fmin(p, 1e6));
+  }
+  emit("ARC_FEED(" + num(e1) + ", " + num(e2) + ", " + num(c1) + ", " + num(c2) + ", " +
+       std::to_string(clockwise ? -turns : turns) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)");
+  pos_ = canon_pos_ = end;
+}
+
+void CanonMachine::emit_control_mode() {
+  if (control_ == 610) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+  else if (control_ == 611) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)");
+  else {
+    emit("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, " + fixed(control_p_, 6) + ")");
+    emit("SET_NAIVECAM_TOLERANCE(" + fixed(control_q_, 4) + ")");
+  }
+}
+
+void CanonMachine::set_origin(int index) {
+  const Vec3 old = g5x_;
+  origin_ = index;
+  for (int a = 0; a < 3; ++a) g5x_[static_cast<std::size_t>(a)] = params_.get(kG5xBase + 20 * (index - 1) + a, 1);
+  for (std::size_t a = 0; a < 3; ++a) {
+    pos_[a] += old[a] - g5x_[a];
+    canon_pos_[a] += old[a] - g5x_[a];
+  }
+  params_.set(kG5xSelected, index, 1);
+}
+
+void CanonMachine::program_end(bool m30) {
+  set_origin(1);
+  emit_g5x();
+  emit("SET_XY_ROTATION(0.0000)");
+  if (plane_ != 170) {
+    plane_ = 170;
+    emit("SELECT_PLANE(CANON_PLANE_XY)");
+  }
+  absolute_ = true;
+  emit("SET_FEED_MODE(0, 0)");
+  feed_ = 0.0;
+  emit("SET_FEED_RATE(0.0000)");
+  spindle_ = 5;
+  emit("STOP_SPINDLE_TURNING(0)");
+  emit("SET_SPINDLE_MODE(0 0.0000)");
+  if (mist_) emit("MIST_OFF()");
+  if (flood_) emit("FLOOD_OFF()");
+  mist_ = flood_ = false;
+  motion_ = 10;
+  if (m30) emit("PALLET_SHUTTLE()");
+  emit("PROGRAM_END()");
+  ended_ = true;
+}
+
+void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal) const {
+  for (char c : {'a', 'b', 'c', 'u', 'v', 'w'})
+    if (block.has(c))
+      throw NgcError(block.column(c), std::string("unsupported word ") + static_cast<char>(std::toupper(c)) +
+                                          " (this machine has X, Y and Z)");
+  if (block.has('d')) throw NgcError(block.column('d'), "unsupported word D (cutter radius compensation is not supported yet)");
+  const bool arc = motion == 20 || motion == 30;
+  const bool cycle = is_cycle(motion);
+  for (char c : {'i', 'j', 'k'})
+    if (block.has(c) && !arc)
+      throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
+  if (block.has('r') && !arc && !cycle && non_modal != 100)
+    throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
+  if (block.has('l') && non_modal != 100 && !cycle)
+    throw NgcError(block.column('l'), "word L with no G10 or canned cycle to use it");
+  if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
+  if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
+    throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
+  if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || motion == 820 || has_code(block.g, 640)))
+    throw NgcError(block.column('p'), "word P with no G4, G10, G64 or arc to use it");
+}
+
+void CanonMachine::execute(const NgcBlock& block, int line) {
+  line_ = line;
+  started_ = true;
+  // Modal groups: at most one G-code and M-code of each.
+  std::array<const NgcCode*, 16> g_by_group{};
+  for (const NgcCode& g : block.g) {
+    const int group = g_group(g.code);
+    if (group < 0) throw NgcError(g.column, unsupported_g(g.code));
+    if (g_by_group[static_cast<std::size_t>(group)])
+      throw NgcError(g.column, "two G-codes from one modal group (" + g_text(g_by_group[static_cast<std::size_t>(group)]->code) +
+                                   " and " + g_text(g.code) + ")");
+    g_by_group[static_cast<std::size_t>(group)] = &g;
+  }
+  std::array<const NgcCode*, 10> m_by_group{};
+  for (const NgcCode& m : block.m) {
+    const int group = m_group(m.code);
+    if (group < 0) throw NgcError(m.column, "unsupported M-code M" + std::to_string(m.code));
+    if (m_by_group[static_cast<std::size_t>(group)]) throw NgcError(m.column, "two M-codes from one modal group");
+    m_by_group[static_cast<std::size_t>(group)] = &m;
+  }
+  const NgcCode* g_motion = g_by_group[1];
+  const int non_modal = g_by_group[0] ? g_by_group[0]->code : -1;
+  const bool axis_words = block.has('x') || block.has('y') || block.has('z') || block.polar_radius || block.polar_angle;
+  const bool axis_consumer = non_modal == 100 || non_modal == 280 || non_modal == 300 || non_modal == 920 ||
+                             (g_by_group[8] && g_by_group[8]->code == 431);  // G43.1 Z: an offset, not a move
+  if (g_motion && axis_consumer)
+    throw NgcError(g_motion->column, "a motion code and " + g_text(non_modal) + " on one line both use the axis words");
+  int motion = g_motion ? g_motion->code : motion_;
+  check_words(block, motion, non_modal);
+  if (axis_words && !axis_consumer && motion == 800)
+    throw NgcError(block.has('x') ? block.column('x') : block.has('y') ? block.column('y') : block.has('z') ? block.column('z') : 1,
+                   "cannot use axis values without a G-code that uses them (G0, G1, G2, G3)");
+
+  if ((block.polar_radius || block.polar_angle) && plane_ != 170)  // the plane before this line's G17
+    throw NgcError(block.polar_radius ? block.polar_radius_column : block.polar_angle_column,
+                   "polar @/^ only in the XY plane (G17)");
+
+  apply_assignments(block);  // settings take effect after the line is read
+  run_comments(block);
+  if (const NgcCode* g = g_by_group[5]) {  // G94
+    (void)g;
+    emit("COMMENT(\"interpreter: feed mode set to units per minute\")");
+    emit("SET_FEED_MODE(0, 0)");
+    feed_ = 0.0;
+    emit("SET_FEED_RATE(0.0000)");
+  }
+  if (block.has('f')) {
+    if (block.value('f') < 0.0) throw NgcError(block.column('f'), "negative feed rate F");
+    feed_ = block.value('f');
+    emit("SET_FEED_RATE(" + fixed(feed_, 4) + ")");
+  }
+  if (block.has('s')) {
+    if (block.value('s') < 0.0) throw NgcError(block.column('s'), "negative spindle speed S");
+    speed_ = block.value('s');
+    emit("SET_SPINDLE_SPEED(0, " + fixed(speed_, 4) + ")");
+  }
+  if (block.has('t')) {
+    const int t = static_cast<int>(block.value('t'));
+    if (t < 0) throw NgcError(block.column('t'), "negative tool number T");
+    if (t != 0 && !setup_.tools.find(t))
+      throw NgcError(block.column('t'), "requested tool " + std::to_string(t) + " not found in the tool table");
+    selected_tool_ = t;
+    emit("SELECT_TOOL(" + std::to_string(t) + ")");
+  }
+  if (m_by_group[6]) {  // M6
+    emit("START_CHANGE()");
+    emit("STOP_SPINDLE_TURNING(0)");
+    spindle_ = 5;
+    tool_in_spindle_ = selected_tool_;
+    emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")");
+  }
+  if (const NgcCode* m = m_by_group[7]) {
+    spindle_ = m->code;
+    emit(m->code == 3 ? "START_SPINDLE_CLOCKWISE(0)" : m->code == 4 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                                                                    : "STOP_SPINDLE_TURNING(0)");
+  }
+  if (const NgcCode* m = m_by_group[8]) {
+    if (m->code == 7) { mist_ = true; emit("MIST_ON()"); }
+    if (m->code == 8) { flood_ = true; emit("FLOOD_ON()"); }
+    if (m->code == 9) { mist_ = flood_ = false; emit("MIST_OFF()"); emit("FLOOD_OFF()"); }
+  }
+  if (non_modal == 40) {
+    if (!block.has('p')) throw NgcError(g_by_group[0]->column, "G4 needs P (seconds)");
+    if (block.value('p') < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
+    emit("DWELL(" + fixed(block.value('p'), 4) + ")");
+  }
+  if (const NgcCode* g = g_by_group[2]) {
+    plane_ = g->code;
+    emit(g->code == 170 ? "SELECT_PLANE(CANON_PLANE_XY)" : g->code == 180 ? "SELECT_PLANE(CANON_PLANE_XZ)"
+                                                                          : "SELECT_PLANE(CANON_PLANE_YZ)");
+  }
+  if (const NgcCode* g = g_by_group[6]) {
+    unit_mm_ = g->code == 200 ? kMmPerInch : 1.0;
+    emit(g->code == 200 ? "USE_LENGTH_UNITS(CANON_UNITS_INCHES)" : "USE_LENGTH_UNITS(CANON_UNITS_MM)");
+  }
+  if (g_by_group[7]) emit("COMMENT(\"interpreter: cutter radius compensation off\")");  // G40
+  if (const NgcCode* g = g_by_group[8]) {
+    Vec3 offset{};
+    if (g->code == 430) {
+      const int tool = block.has('h') ? static_cast<int>(block.value('h')) : tool_in_spindle_;
+      if (tool < 0) throw NgcError(block.column('h'), "negative tool number H");
+      if (tool != 0) {
+        const ToolEntry* e = setup_.tools.find(tool);
+        if (!e) throw NgcError(block.has('h') ? block.column('h') : g->column, "tool " + std::to_string(tool) + " not in the tool table");
+        offset = {e->offset[0], e->offset[1], e->offset[2]};
+      }
+    } else if (g->code == 431) {
+      static constexpr char kAxes[3] = {'x', 'y', 'z'};
+      for (std::size_t a = 0; a < 3; ++a)
+        if (block.has(kAxes[a])) offset[a] = length(block.value(kAxes[a]));
+    }
+    for (std::size_t a = 0; a < 3; ++a) pos_[a] += tool_offset_[a] - offset[a];
+    tool_offset_ = offset;
+    emit("USE_TOOL_LENGTH_OFFSET(" + num(offset[0]) + " " + num(offset[1]) + " " + num(offset[2]) +
+         ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)");
+  }
+  if (const NgcCode* g = g_by_group[12]) {
+    const int index = g->code <= 590 ? (g->code - 540) / 10 + 1 : 6 + (g->code - 590);
+    if (index == origin_) {
+      emit("COMMENT(\"interpreter: continuing to use same coordinate system\")");
+    } else {
+      set_origin(index);
+      emit_g5x();
+      emit_g92();
+      emit("SET_XY_ROTATION(0.0000)");
+    }
+  }
+  if (const NgcCode* g = g_by_group[13]) {
+    control_ = g->code;
+    if (g->code == 640) {
+      control_p_ = block.has('p') ? block.value('p') : 0.0;
+      control_q_ = block.has('q') ? block.value('q') : control_p_;
+      if (control_p_ < 0.0 || control_q_ < 0.0)
+        throw NgcError(block.column(control_p_ < 0.0 ? 'p' : 'q'), "G64 tolerances P and Q must be >= 0");
+    }
+    emit_control_mode();
+  }
+  if (const NgcCode* g = g_by_group[3]) {
+    const bool absolute = g->code == 900;
+    if (absolute != absolute_)
+      emit(absolute ? "COMMENT(\"interpreter: distance mode changed to absolute\")"
+                    : "COMMENT(\"interpreter: distance mode changed to incremental\")");
+    absolute_ = absolute;
+  }
+  if (const NgcCode* g = g_by_group[4]) {
+    const bool absolute = g->code == 901;
+    if (absolute != arc_absolute_)
+      emit(absolute ? "COMMENT(\"interpreter: IJK distance mode changed to absolute\")"
+                    : "COMMENT(\"interpreter: IJK distance mode changed to incremental\")");
+    arc_absolute_ = absolute;
+  }
+  if (const NgcCode* g = g_by_group[10]) {  // G98/G99: the canned cycles' retract
+    retract_old_z_ = g->code == 980;
+    emit(retract_old_z_ ? "COMMENT(\"interpreter: retract mode set to old_z\")"
+                        : "COMMENT(\"interpreter: retract mode set to r_plane\")");
+  }
+
+  // Group 0: G10, G28/G30, G92 family (G4 ran above, G53 modifies the motion).
+  if (non_modal == 100) {
+    const int l = block.has('l') ? static_cast<int>(block.value('l')) : -1;
+    if (l != 2 && l != 20) throw NgcError(block.has('l') ? block.column('l') : g_by_group[0]->column, "G10 needs L2 or L20 (L1, L10, L11 are not supported yet)");
+    if (!block.has('p')) throw NgcError(g_by_group[0]->column, "G10 L" + std::to_string(l) + " needs P (0 current, 1..9 G54..G59.3)");
+    const double pv = block.value('p');
+    if (pv < 0.0 || pv > 9.0 || std::floor(pv) != pv) throw NgcError(block.column('p'), "G10 P must be 0..9");
+    if (block.has('r') && block.value('r') != 0.0) throw NgcError(block.column('r'), "G10 rotation R is not supported yet");
+    const int system = pv == 0.0 ? origin_ : static_cast<int>(pv);
+    static constexpr char kAxes[3] = {'x', 'y', 'z'};
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!block.has(kAxes[a])) continue;
+      const double v = length(block.value(kAxes[a]));
+      const double offset = l == 2 ? v : pos_[a] + g5x_[a] - v;  // L20: here becomes v
+      params_.set(kG5xBase + 20 * (system - 1) + static_cast<int>(a), offset, block.column(kAxes[a]));
+    }
+    if (system != origin_) {
+      emit("COMMENT(\"interpreter: setting coordinate system origin\")");
+    } else {
+      set_origin(system);
+      emit_g5x();
+      emit("SET_XY_ROTATION(0.0000)");
+    }
+  } else if (non_modal == 280 || non_modal == 300) {
+    const Vec3 via = target(block, false);
+    move_traverse(via);
+    const int base = non_modal == 280 ? kG28Home : kG30Home;
+    Vec3 home_machine{};
+    for (int a = 0; a < 3; ++a) home_machine[static_cast<std::size_t>(a)] = params_.get(base + a, 1);
+    const Vec3 home = machine_to_program(home_machine);
+    Vec3 to = pos_;
+    static constexpr char kAxes[3] = {'x', 'y', 'z'};
+    for (std::size_t a = 0; a < 3; ++a)
+      if (!axis_words || block.has(kAxes[a])) to[a] = home[a];
+    move_traverse(to);
+  } else if (non_modal == 281 || non_modal == 301) {
+    const Vec3 m = program_to_machine(pos_);
+    const int base = non_modal == 281 ? kG28Home : kG30Home;
+    for (int a = 0; a < 3; ++a) params_.set(base + a, m[static_cast<std::size_t>(a)], 1);
+  } else if (non_modal == 920) {
+    if (!axis_words) throw NgcError(g_by_group[0]->column, "G92 needs at least one axis word");
+    static constexpr char kAxes[3] = {'x', 'y', 'z'};
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!block.has(kAxes[a])) continue;
+      const double offset = pos_[a] + g92_[a] - length(block.value(kAxes[a]));
+      pos_[a] += g92_[a] - offset;
+      canon_pos_[a] += g92_[a] - offset;
+      g92_[a] = offset;
+    }
+    for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, g92_[static_cast<std::size_t>(a)], 1);
+    params_.set(kG92Enabled, 1.0, 1);
+    emit_g92();
+  } else if (non_modal == 921 || non_modal == 922 || non_modal == 923) {
+    Vec3 offset{};
+    if (non_modal == 923)
+      for (int a = 0; a < 3; ++a) offset[static_cast<std::size_t>(a)] = params_.get(kG92Base + a, 1);
+    for (std::size_t a = 0; a < 3; ++a) {
+      pos_[a] += g92_[a] - offset[a];
+      canon_pos_[a] += g92_[a] - offset[a];
+    }
+    g92_ = offset;
+    if (non_modal == 921) {
+      for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, 0.0, 1);
+      params_.set(kG92Enabled, 0.0, 1);
+    }
+    emit_g92();
+  }
+
+  // Motion.
+  if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_)) cycle_start_z_ = pos_[2];
+  if (g_motion) motion_ = g_motion->code;
+  const bool machine = non_modal == 530;
+  if (machine) {
+    if (!(motion == 0 || motion == 10)) throw NgcError(g_by_group[0]->column, "G53 needs G0 or G1");
+    if (!absolute_) throw NgcError(g_by_group[0]->column, "G53 cannot be used in incremental distance mode (G91)");
+  }
+  if (g_motion && g_motion->code == 800) emit("COMMENT(\"interpreter: motion mode set to none\")");
+  // A G0 or G1 without axis words still moves, to where it is (as rs274 does).
+  const bool explicit_line = g_motion && (motion == 0 || motion == 10);
+  if ((axis_words && !axis_consumer) || explicit_line ||
+      (g_motion && (motion == 20 || motion == 30) && !axis_consumer &&
+       (block.has('i') || block.has('j') || block.has('k') || block.has('r')))) {
+    const Vec3 to = target(block, machine);
+    const int column = g_motion ? g_motion->column : 1;
+    if (motion == 0) move_traverse(to);
+    else if (motion == 10) move_feed(to, column);
+    else if (motion == 20 || motion == 30) arc(block, motion == 20, to, column);
+    else if (is_cycle(motion)) canned_cycle(block, motion, column);
+  }
+
+  // After a tool change LinuxCNC takes its position back from the machine
+  // (the last point moved to, shifted by offset changes but not by a new
+  // tool length offset, which moves nothing until the next move).
+  if (m_by_group[6]) pos_ = canon_pos_;
+
+  if (const NgcCode* m = m_by_group[4]) {
+    if (m->code == 0) emit("PROGRAM_STOP()");
+    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()");
+    else program_end(m->code == 30);
+  }
+}
+
+}  // namespace tnv::gcode

@@ -1,0 +1,61 @@
+// tnvctl gcode canon: a program's canonical machine calls as LinuxCNC's
+// rs274 prints them (tools/gcode/canon_interpreter.hpp; no device needed).
+#include <iostream>
+#include <memory>
+
+#include "tools/gcode/canon_interpreter.hpp"
+#include "tools/tnvctl/commands.hpp"
+
+namespace tnv::tnvctl {
+
+namespace {
+
+struct CanonOptions {
+  std::string program;
+  std::string tool_table;
+  std::string var_file;
+};
+
+gcode::CanonSetup load_setup(const CanonOptions& o) {
+  gcode::CanonSetup setup;
+  std::string error;
+  if (!o.tool_table.empty() && !gcode::load_tool_table_file(o.tool_table, setup, error)) throw BadInput(error);
+  if (!o.var_file.empty() && !gcode::load_var_file(o.var_file, setup, error)) throw BadInput(error);
+  return setup;
+}
+
+int run_canon(const CanonOptions& o, Session&, Report& report) {
+  const gcode::CanonResult r = gcode::interpret_canon_file(o.program, load_setup(o));
+  if (r.error) {
+    // Nothing printed but the error: a refused program emits no call.
+    throw BadInput(r.error->line == 0 ? r.error->message : o.program + ": " + gcode::to_string(*r.error));
+  }
+  if (report.json_mode()) {
+    nlohmann::json calls = nlohmann::json::array();
+    for (const gcode::CanonCall& c : r.calls) calls.push_back({{"line", c.line}, {"call", c.text}});
+    report.data["calls"] = calls;
+  } else {
+    std::cout << gcode::canon_text(r.calls);
+    std::cout.flush();
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_gcode_commands(CLI::App& app, ActionSlot& slot) {
+  CLI::App* gcode = app.add_subcommand("gcode", "G-code tools (no device needed)");
+  gcode->require_subcommand(1);
+  auto o = std::make_shared<CanonOptions>();
+  CLI::App* canon = gcode->add_subcommand(
+      "canon", "print a program's canonical machine calls, one per line, as LinuxCNC's rs274 -g prints them");
+  canon->add_option("FILE", o->program, "the program (.ngc)")->required();
+  canon->add_option("--tool-table", o->tool_table, "a LinuxCNC tool table (.tbl), lengths in millimetres");
+  canon->add_option("--var-file", o->var_file, "a LinuxCNC parameter file (.var): work offsets, G28/G30, G92");
+  canon->callback([&slot, o] {
+    slot = Action{"gcode canon", false, [o](Session& s, Report& r) { return run_canon(*o, s, r); },
+                  [o] { (void)load_setup(*o); }};
+  });
+}
+
+}  // namespace tnv::tnvctl
