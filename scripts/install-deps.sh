@@ -14,7 +14,6 @@ packages=(
   parallel            # tests: a campaign's shards run by GNU parallel (ctest -R Campaign)
   libcpp-httplib-dev libjs-chart.js   # tnvctl serve (tools/serve): the HTTP/SSE server, the page's plots
   chromium chromium-driver python3-selenium   # tests: the tuning page in a headless browser (ctest -L web)
-  linuxcnc-uspace     # tests: LinuxCNC's rs274, the G-code oracle (ctest -L gcode-oracle, docs/gcode.md)
 )
 
 exec "$(dirname "$0")/install-missing.sh" deps "${packages[@]}"

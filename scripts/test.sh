@@ -45,6 +45,9 @@ build_and_test() {
 }
 
 scripts/install-deps.sh
+# LinuxCNC's rs274, the G-code oracle (ctest -L gcode-oracle, docs/gcode.md):
+# the tests' alone, so scripts/run-main.sh does not install it.
+scripts/install-missing.sh gcode-oracle linuxcnc-uspace
 for stage in "${stages[@]}"; do
   case "${stage}" in
     release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
