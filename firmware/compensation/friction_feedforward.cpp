@@ -45,9 +45,4 @@ double friction_feedforward_mm_s(const FrictionFeedForward& ff, double ref_speed
   return dir * ff.fraction * stribeck_level_mm_s(ff, v) / ff.gain;
 }
 
-bool same(const FrictionFeedForward& a, const FrictionFeedForward& b) noexcept {
-  return a.enabled == b.enabled && a.coulomb_mm_s == b.coulomb_mm_s && a.stiction_mm_s == b.stiction_mm_s &&
-         a.stribeck_mm_s == b.stribeck_mm_s && a.gain == b.gain && a.fraction == b.fraction;
-}
-
 }  // namespace tnv::fw

@@ -55,12 +55,6 @@ ParamCheck validate(const ScrewCompensation& c) noexcept {
   return param_ok();
 }
 
-bool same(const ScrewCompensation& a, const ScrewCompensation& b) noexcept {
-  return a.backlash_mm == b.backlash_mm && a.backlash_rate_mm_s == b.backlash_rate_mm_s &&
-         a.lead_um_per_m == b.lead_um_per_m && a.turn_period_mm == b.turn_period_mm &&
-         a.turn_error_mm == b.turn_error_mm;
-}
-
 ScrewCompensator::Offsets ScrewCompensator::advance(const ScrewCompensation& c, double reference_mm,
                                                     double next_reference_mm, double tick_s) noexcept {
   const double step_mm = next_reference_mm - reference_mm;

@@ -57,18 +57,13 @@ ParamCheck validate(const SpeedObserverParams& params, const AxisModel& model) n
   return param_ok();
 }
 
-bool same(const SpeedObserverParams& a, const SpeedObserverParams& b) noexcept {
-  return a.enabled == b.enabled && a.use_position == b.use_position && a.gain_position == b.gain_position &&
-         a.gain_speed_1_s == b.gain_speed_1_s && a.gain_disturbance_1_s == b.gain_disturbance_1_s &&
-         a.friction_mm_s == b.friction_mm_s && a.friction_deadband_mm_s == b.friction_deadband_mm_s;
-}
-
 void SpeedObserver::configure(const AxisModel& model, const SpeedObserverParams& params) noexcept {
   phi_ = observer_phi(model);
   gam_ = observer_gamma(model);
   gain_ << params.gain_position, params.gain_speed_1_s, params.gain_disturbance_1_s;
   friction_mm_s_ = params.friction_mm_s;
   deadband_mm_s_ = params.friction_deadband_mm_s;
+  params_ = params;
 }
 
 void SpeedObserver::reset(double position_mm, double speed_mm_s) noexcept { z_ << position_mm, speed_mm_s, 0.0; }

@@ -14,6 +14,7 @@ struct AxisLimits {
   double jerk_mm_s3 = 50000.0;
   double position_min_mm = -250.0;  // soft limits: no programmed point beyond them
   double position_max_mm = 250.0;
+  bool operator==(const AxisLimits&) const = default;
 };
 
 struct MotionLimits {
@@ -24,6 +25,7 @@ struct MotionLimits {
   double min_segment_mm = 0.001;          // shorter lines and arcs are refused as zero length
   double min_arc_radius_mm = 0.01;
   double max_dwell_s = 3600.0;
+  bool operator==(const MotionLimits&) const = default;
 };
 
 // The jerk filter (a moving average over filter_taps ticks) needs capacity.

@@ -21,6 +21,7 @@ struct FollowingErrorLimit {
   double floor_mm = 0.05;
   double lag_s = 0.02;
   double at(double commanded_speed_mm_s) const noexcept { return floor_mm + lag_s * std::fabs(commanded_speed_mm_s); }
+  bool operator==(const FollowingErrorLimit&) const = default;
 };
 
 struct AxisLimits {
@@ -30,6 +31,7 @@ struct AxisLimits {
   FollowingErrorLimit following{};
   StallLimit stall{};
   PlausibilityLimit plausibility{};
+  bool operator==(const AxisLimits&) const = default;
 };
 
 struct SupervisorConfig {
@@ -41,6 +43,7 @@ struct SupervisorConfig {
   // more is a broken real-time loop.
   std::uint32_t tick_period_clocks = 10'000;
   std::uint32_t period_tolerance_clocks = 5'000;
+  bool operator==(const SupervisorConfig&) const = default;
 };
 
 const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid

@@ -27,6 +27,7 @@ struct PathLimits {
   double speed_mm_s = 100.0;
   double accel_mm_s2 = 500.0;
   double jerk_mm_s3 = 50000.0;
+  bool operator==(const PathLimits&) const = default;
 };
 
 struct AxisConfig {
@@ -44,12 +45,14 @@ struct AxisConfig {
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
   HomingParams homing{};             // the homing cycle: switch side, speeds, home position, travel bounds
   ScrewCompensation screw{};         // backlash and lead-error compensation (issue 16); off by default
+  bool operator==(const AxisConfig&) const = default;
 };
 
 // The force sensor on the I/O board's ADC (force_code.hpp): its scale is a
 // fact of the sensor, like the DAC scale.
 struct ForceSensorConfig {
   double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
+  bool operator==(const ForceSensorConfig&) const = default;
 };
 
 struct FirmwareConfig {
@@ -62,6 +65,8 @@ struct FirmwareConfig {
   // homed. Off by default (the papers' runs start where the table stands at
   // power-up); a machine sets it on at commissioning (docs/safety.md).
   bool homing_required = false;
+  // Member by member (C++20): a field added to any part is compared too.
+  bool operator==(const FirmwareConfig&) const = default;
 };
 
 // The planner's limits from a config: each axis' path limits, the
