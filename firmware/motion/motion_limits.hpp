@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 
+#include "firmware/control/param_check.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw::motion {
@@ -31,7 +32,10 @@ struct MotionLimits {
 // The jerk filter (a moving average over filter_taps ticks) needs capacity.
 inline constexpr std::size_t kMaxFilterTaps = 128;
 
-// Empty string when valid; otherwise the reason (static text).
+// The first limit that is wrong: its member in `limits` and why (static
+// text); ok when valid.
+ParamCheck check(const MotionLimits& limits) noexcept;
+// Empty string when valid; otherwise check(limits)'s reason.
 const char* validate(const MotionLimits& limits) noexcept;
 
 // Quantities every part of the planner derives from the limits.

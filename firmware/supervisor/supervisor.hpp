@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "firmware/control/param_check.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/supervisor/motion_plausibility.hpp"
 #include "firmware/supervisor/stall_monitor.hpp"
@@ -46,7 +47,9 @@ struct SupervisorConfig {
   bool operator==(const SupervisorConfig&) const = default;
 };
 
-const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid
+// The first wrong limit: its member in `config` and why; ok when valid.
+ParamCheck check(const SupervisorConfig& config) noexcept;
+const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid, else check()'s reason
 
 struct AxisCheckInput {
   double position_mm = 0.0;

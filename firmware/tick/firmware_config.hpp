@@ -72,6 +72,10 @@ struct FirmwareConfig {
 // The planner's limits from a config: each axis' path limits, the
 // supervisor's position limits as soft limits, the 1 ms tick.
 motion::MotionLimits path_limits(const FirmwareConfig& config) noexcept;
+// The member of `config` a member of `limits` = path_limits(config) comes
+// from; nullptr for one that comes from no member (the tick).
+const void* path_limits_source(const FirmwareConfig& config, const motion::MotionLimits& limits,
+                               const void* member) noexcept;
 
 // The papers' defaults (S1 eq. (31), Tables 1/2) with the PID baseline
 // tuned by the stated rule (pid_tuning.hpp).
@@ -83,6 +87,9 @@ struct ConfigError {
   const char* section = "";
   const char* field = "";
   const char* reason = "";  // empty when valid
+  // The offending member in the config validated (nullptr: none named): the
+  // CAN node's parameter table tells its parameter from it (param_table.cpp).
+  const void* member = nullptr;
   bool ok() const noexcept { return reason[0] == '\0'; }
 };
 
