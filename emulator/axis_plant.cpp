@@ -93,32 +93,13 @@ bool AxisPlant::advance_block(AxisState& s, double command_mm_s, const double* d
   return true;
 }
 
-// The Karnopp switching of advance_with, with the clamped law between switches.
+// The Karnopp switching with the clamped law between switches.
 void AxisPlant::advance_limited(AxisState& s, double drive_mm_s, const Decay& d) const noexcept {
   if (!friction_enabled_) {
     advance_clamped(s, drive_mm_s, d);
     return;
   }
-  const double v0_mm_s = s.speed_mm_s;
-  if (v0_mm_s == 0.0) {
-    if (std::abs(drive_mm_s) <= friction_.stiction_mm_s()) {
-      s.stuck = true;
-      return;
-    }
-    s.stuck = false;
-    advance_clamped(s, drive_mm_s - std::copysign(friction_.stiction_mm_s(), drive_mm_s), d);
-    return;
-  }
-  const double w_mm_s = drive_mm_s - std::copysign(friction_.magnitude_mm_s(v0_mm_s), v0_mm_s);
-  AxisState next = s;
-  advance_clamped(next, w_mm_s, d);
-  if (next.speed_mm_s == 0.0 || (next.speed_mm_s > 0.0) != (v0_mm_s > 0.0)) {
-    s.position_mm += clamped_travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
-    s.speed_mm_s = 0.0;
-    s.stuck = true;
-    return;
-  }
-  s = next;
+  karnopp(s, drive_mm_s, d, ClampedLaw{*this});
 }
 
 // dv/dt = clamp((w - v) / tau, -A, A) from v0: a ramp at A sign(w - v0) for

@@ -94,6 +94,45 @@ class AxisPlant {
   void advance_clamped(AxisState& s, double w_mm_s, const Decay& d) const noexcept;
   double clamped_travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) const noexcept;
 
+  // Karnopp stick/slip (reference plant), the one switching law of both
+  // speed laws: at rest the axis sticks while |K u + d_cut| <= f_s and breaks
+  // away against f_s; moving, friction f(v0) opposes it, and a zero crossing
+  // of v inside the step puts it into the stuck state for the rest of the
+  // step (the next step tests break-away). `Law` moves the axis with a net
+  // drive w held over the step: free(s, w, d); slide(s, drive, |f|, w, d),
+  // the state after the step were there no switch; travel_to_zero(v0, w).
+  template <typename Law>
+  void karnopp(AxisState& s, double drive_mm_s, const Decay& d, const Law& law) const noexcept;
+  // The linear law (v -> w with time constant tau) and the clamped one.
+  struct LinearLaw {
+    const AxisPlant& plant;
+    void free(AxisState& s, double w_mm_s, const Decay& d) const noexcept { advance_linear(s, w_mm_s, d); }
+    AxisState slide(const AxisState& s, double drive_mm_s, double friction_mm_s, double w_mm_s,
+                    const Decay& d) const noexcept {
+      AxisState next = s;
+      // Grouped to keep the v0 -> v1 dependency chain short (this is the hot loop).
+      next.speed_mm_s =
+          (d.decay * s.speed_mm_s + d.rise * drive_mm_s) - std::copysign(d.rise * friction_mm_s, s.speed_mm_s);
+      next.position_mm += d.drive_gain_s * w_mm_s + d.tau_rise_s * s.speed_mm_s;
+      return next;
+    }
+    double travel_to_zero(double v0_mm_s, double w_mm_s) const noexcept {
+      return plant.travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+    }
+  };
+  struct ClampedLaw {
+    const AxisPlant& plant;
+    void free(AxisState& s, double w_mm_s, const Decay& d) const noexcept { plant.advance_clamped(s, w_mm_s, d); }
+    AxisState slide(const AxisState& s, double, double, double w_mm_s, const Decay& d) const noexcept {
+      AxisState next = s;
+      plant.advance_clamped(next, w_mm_s, d);
+      return next;
+    }
+    double travel_to_zero(double v0_mm_s, double w_mm_s) const noexcept {
+      return plant.clamped_travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+    }
+  };
+
   double tau_s_;
   double gain_;
   StribeckFriction friction_;
@@ -116,6 +155,11 @@ inline void AxisPlant::advance_with(AxisState& s, double command_mm_s, double di
     advance_linear(s, drive_mm_s, d);
     return;
   }
+  karnopp(s, drive_mm_s, d, LinearLaw{*this});
+}
+
+template <typename Law>
+inline void AxisPlant::karnopp(AxisState& s, double drive_mm_s, const Decay& d, const Law& law) const noexcept {
   const double v0_mm_s = s.speed_mm_s;
   if (v0_mm_s == 0.0) {
     // reference plant: Karnopp stick condition |K u + d_cut| <= f_s
@@ -125,28 +169,24 @@ inline void AxisPlant::advance_with(AxisState& s, double command_mm_s, double di
     }
     // Break-away: friction at v = 0+ in the direction of the drive is f_s.
     s.stuck = false;
-    advance_linear(s, drive_mm_s - std::copysign(friction_.stiction_mm_s(), drive_mm_s), d);
+    law.free(s, drive_mm_s - std::copysign(friction_.stiction_mm_s(), drive_mm_s), d);
     return;
   }
   const double friction_mm_s = friction_.magnitude_mm_s(v0_mm_s);  // |f(v0)|, signed below
   const double w_mm_s = drive_mm_s - std::copysign(friction_mm_s, v0_mm_s);
+  const AxisState next = law.slide(s, drive_mm_s, friction_mm_s, w_mm_s, d);
   // v(t) runs monotonically from v0 toward w, so it crosses zero inside the
-  // step iff v(dt) is zero or has flipped sign (same test as
-  // r = w / (w - v0) = e^{-t*/tau} >= e^{-dt/tau}, without the division).
-  // Grouped to keep the v0 -> v1 dependency chain short (this is the hot loop).
-  const double v1_mm_s =
-      (d.decay * v0_mm_s + d.rise * drive_mm_s) - std::copysign(d.rise * friction_mm_s, v0_mm_s);
-  if (v1_mm_s == 0.0 || (v1_mm_s > 0.0) != (v0_mm_s > 0.0)) {
+  // step iff v(dt) is zero or has flipped sign.
+  if (next.speed_mm_s == 0.0 || (next.speed_mm_s > 0.0) != (v0_mm_s > 0.0)) {
     // reference plant: "a zero crossing of v inside a sub-step is located
     // exactly and puts the axis into the stuck state" (for the rest of the
     // sub-step; the next step tests break-away).
-    s.position_mm += travel_to_zero_crossing_mm(v0_mm_s, w_mm_s);
+    s.position_mm += law.travel_to_zero(v0_mm_s, w_mm_s);
     s.speed_mm_s = 0.0;
     s.stuck = true;
     return;
   }
-  s.position_mm += d.drive_gain_s * w_mm_s + d.tau_rise_s * v0_mm_s;
-  s.speed_mm_s = v1_mm_s;
+  s = next;
 }
 
 }  // namespace tnv::emu

@@ -5,6 +5,7 @@
 // the I/O board's tick logic, the drive, or the register bus. The firmware
 // is told nothing; it has to notice.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -12,53 +13,6 @@
 #include "hal/axis.hpp"
 
 namespace tnv::emu {
-
-enum class FaultKind : std::uint8_t {
-  estop,            // e-stop input asserted
-  servo_alarm,      // servopack alarm input asserted (axis)
-  limit_switch,     // hardware limit switch input asserted (axis, side)
-  encoder_illegal,  // one illegal A/B transition: the decoder latches FAULTS, loses 2 counts (axis)
-  encoder_dead,     // A/B lines stop: the count register freezes (axis)
-  dac_stuck,        // the DAC output sticks at `code` whatever is written (axis)
-  missed_tick,      // the tick interrupt is lost `ticks` times in a row: the firmware sleeps through them
-  late_tick,        // the board's tick timer stalls: one tick latches `delay_us` late
-  stale_snapshot,   // the snapshot latch stops updating (sequence and clock frozen), ticks still fire
-  runaway,          // the drive's gain sign is flipped (wrong motor phasing): u -> -u (axis)
-  bus_read_error,   // every register read fails
-  encoder_jump,     // the count register jumps by `counts` and keeps the offset (noise burst, lost index) (axis)
-  snapshot_replayed,  // the next tick's snapshot is an older one again (sequence goes backwards)
-};
-
-inline constexpr std::array kFaultKinds{FaultKind::estop,          FaultKind::servo_alarm,   FaultKind::limit_switch,
-                                        FaultKind::encoder_illegal, FaultKind::encoder_dead,  FaultKind::dac_stuck,
-                                        FaultKind::missed_tick,     FaultKind::late_tick,     FaultKind::stale_snapshot,
-                                        FaultKind::runaway,         FaultKind::bus_read_error, FaultKind::encoder_jump,
-                                        FaultKind::snapshot_replayed};
-
-constexpr const char* to_string(FaultKind kind) noexcept {
-  switch (kind) {
-    case FaultKind::estop: return "estop";
-    case FaultKind::servo_alarm: return "servo_alarm";
-    case FaultKind::limit_switch: return "limit_switch";
-    case FaultKind::encoder_illegal: return "encoder_illegal";
-    case FaultKind::encoder_dead: return "encoder_dead";
-    case FaultKind::dac_stuck: return "dac_stuck";
-    case FaultKind::missed_tick: return "missed_tick";
-    case FaultKind::late_tick: return "late_tick";
-    case FaultKind::stale_snapshot: return "stale_snapshot";
-    case FaultKind::runaway: return "runaway";
-    case FaultKind::bus_read_error: return "bus_read_error";
-    case FaultKind::encoder_jump: return "encoder_jump";
-    case FaultKind::snapshot_replayed: return "snapshot_replayed";
-  }
-  return "?";
-}
-
-inline std::optional<FaultKind> fault_kind_from_string(std::string_view name) noexcept {
-  for (FaultKind kind : kFaultKinds)
-    if (name == to_string(kind)) return kind;
-  return std::nullopt;
-}
 
 // Which keys a kind takes besides kind and start_s.
 struct FaultKeys {
@@ -71,23 +25,74 @@ struct FaultKeys {
   bool counts = false;    // required (encoder_jump)
 };
 
+// Every kind once: its name (the scenario file's `kind`) and its keys. The
+// enum, kFaultKinds, to_string() and fault_keys() all come from this list.
+#define TNV_FAULT_KINDS(X) \
+  /* e-stop input asserted */ \
+  X(estop, .duration = true) \
+  /* servopack alarm input asserted (axis) */ \
+  X(servo_alarm, .axis = true, .duration = true) \
+  /* hardware limit switch input asserted (axis, side) */ \
+  X(limit_switch, .axis = true, .side = true, .duration = true) \
+  /* one illegal A/B transition: the decoder latches FAULTS, loses 2 counts (axis) */ \
+  X(encoder_illegal, .axis = true) \
+  /* A/B lines stop: the count register freezes (axis) */ \
+  X(encoder_dead, .axis = true, .duration = true) \
+  /* the DAC output sticks at `code` whatever is written (axis) */ \
+  X(dac_stuck, .axis = true, .duration = true, .code = true) \
+  /* the tick interrupt is lost `ticks` times in a row: the firmware sleeps through them */ \
+  X(missed_tick, .ticks = true) \
+  /* the board's tick timer stalls: one tick latches `delay_us` late */ \
+  X(late_tick, .delay = true) \
+  /* the snapshot latch stops updating (sequence and clock frozen), ticks still fire */ \
+  X(stale_snapshot, .duration = true) \
+  /* the drive's gain sign is flipped (wrong motor phasing): u -> -u (axis) */ \
+  X(runaway, .axis = true, .duration = true) \
+  /* every register read fails */ \
+  X(bus_read_error, .duration = true) \
+  /* the count register jumps by `counts` and keeps the offset (noise burst, lost index) (axis) */ \
+  X(encoder_jump, .axis = true, .counts = true) \
+  /* the next tick's snapshot is an older one again (sequence goes backwards) */ \
+  X(snapshot_replayed)
+
+enum class FaultKind : std::uint8_t {
+#define TNV_ENUMERATOR(name, ...) name,
+  TNV_FAULT_KINDS(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+
+inline constexpr std::array kFaultKinds{
+#define TNV_KIND(name, ...) FaultKind::name,
+    TNV_FAULT_KINDS(TNV_KIND)
+#undef TNV_KIND
+};
+
+inline constexpr std::array kFaultKindNames{
+#define TNV_NAME(name, ...) #name,
+    TNV_FAULT_KINDS(TNV_NAME)
+#undef TNV_NAME
+};
+
+inline constexpr std::array kFaultKindKeys{
+#define TNV_KEYS(name, ...) FaultKeys{__VA_ARGS__},
+    TNV_FAULT_KINDS(TNV_KEYS)
+#undef TNV_KEYS
+};
+
+constexpr const char* to_string(FaultKind kind) noexcept {
+  const auto i = static_cast<std::size_t>(kind);
+  return i < kFaultKindNames.size() ? kFaultKindNames[i] : "?";
+}
+
+inline std::optional<FaultKind> fault_kind_from_string(std::string_view name) noexcept {
+  for (FaultKind kind : kFaultKinds)
+    if (name == to_string(kind)) return kind;
+  return std::nullopt;
+}
+
 constexpr FaultKeys fault_keys(FaultKind kind) noexcept {
-  switch (kind) {
-    case FaultKind::estop: return {.duration = true};
-    case FaultKind::servo_alarm: return {.axis = true, .duration = true};
-    case FaultKind::limit_switch: return {.axis = true, .side = true, .duration = true};
-    case FaultKind::encoder_illegal: return {.axis = true};
-    case FaultKind::encoder_dead: return {.axis = true, .duration = true};
-    case FaultKind::dac_stuck: return {.axis = true, .duration = true, .code = true};
-    case FaultKind::missed_tick: return {.ticks = true};
-    case FaultKind::late_tick: return {.delay = true};
-    case FaultKind::stale_snapshot: return {.duration = true};
-    case FaultKind::runaway: return {.axis = true, .duration = true};
-    case FaultKind::bus_read_error: return {.duration = true};
-    case FaultKind::encoder_jump: return {.axis = true, .counts = true};
-    case FaultKind::snapshot_replayed: return {};
-  }
-  return {};
+  const auto i = static_cast<std::size_t>(kind);
+  return i < kFaultKindKeys.size() ? kFaultKindKeys[i] : FaultKeys{};
 }
 
 inline constexpr std::uint32_t kMaxMissedTicks = 10'000;

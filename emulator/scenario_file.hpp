@@ -4,20 +4,11 @@
 //   "scen.toml:7:1: plant.x.tau_s: must be > 0 and finite (got -1)"
 // and on error no Scenario is returned (nothing half-applied).
 //
-// Keys: name; [plant.x] / [plant.y]: tau_s gain coulomb_mm_s stiction_mm_s
-// stribeck_mm_s mode_hz mode_zeta backlash_um lead_error_um_per_m
-// pitch_error_um pitch_period_mm accel_limit_mm_s2; [cutting]: enabled spindle_rpm flutes
-// mean_mm_s amplitude_mm_s exponent phase_rad; [encoder]: counts_per_rev
-// lead_mm offset_counts_x offset_counts_y; [dac]: bits full_scale_v
-// rpm_at_full_scale; [force_sensor]: volts_per_mm_s volts_per_n; [milling];
-// [board]: clock_start; [noise]: seed force_adc_v_rms accel_g_rms
-// accel_bias_g dac_offset_v dac_gain_error encoder_glitch_per_s
-// encoder_glitch_counts bore_gauge_um_rms bore_gauge_resolution_um;
-// [io]: read_latency_us write_latency_us jitter_us;
-// [circle]: radius_mm feed_mm_s ramp_s dwell_s; [[fault]] (any number):
-// kind start_s and, by kind, axis side duration_s code ticks delay_us
-// (fault_schedule.hpp; errors name "fault[i].key", i from 0). Integers are
-// accepted where numbers are expected, not the other way round.
+// The keys, their ranges and defaults: docs/scenarios.md; the reader's
+// table of them is in scenario_file.cpp, their checks in
+// scenario_validation.cpp. Errors name "fault[i].key" for the i-th
+// [[fault]] (from 0). Integers are accepted where numbers are expected,
+// not the other way round.
 #include <cstddef>
 #include <optional>
 #include <string>

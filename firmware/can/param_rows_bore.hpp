@@ -38,7 +38,7 @@ inline std::uint16_t bore_param_for(const char* field) noexcept {
     const BoringPlannerState& st = s.bore_state.planner;                            \
     return st.started ? static_cast<double>(expr) : 0.0;                            \
   },                                                                                \
-      nullptr, nullptr
+      nullptr, nullptr, nullptr
 
 #define TNV_BORE_PARAMS                                                                                                \
   {0x0070, "bore.enable", ParamType::boolean, "", 0, 1, kOnOff, Access::read_write, Apply::live, kOpen,                \

@@ -19,22 +19,24 @@ namespace {
 
 // Accessor pairs for one settings member. REAL: a double; INT: an integer,
 // bool or enum member (the value is integral by check_value()).
+#define TNV_MEMBER(path) [](const NodeSettings& s) noexcept -> const void* { return &s.path; }
 #define TNV_REAL(path)                                                          \
   [](const NodeSettings& s) noexcept -> double { return s.path; },             \
-      [](NodeSettings& s, double v) noexcept { s.path = v; }, nullptr
+      [](NodeSettings& s, double v) noexcept { s.path = v; }, nullptr, TNV_MEMBER(path)
 #define TNV_INT(path)                                                                                  \
   [](const NodeSettings& s) noexcept -> double { return static_cast<double>(static_cast<long long>(s.path)); }, \
       [](NodeSettings& s, double v) noexcept {                                                          \
         s.path = static_cast<std::remove_cvref_t<decltype(s.path)>>(static_cast<long long>(v));         \
       },                                                                                               \
-      nullptr
-#define TNV_RO(expr) [](const NodeSettings&) noexcept -> double { return static_cast<double>(expr); }, nullptr, nullptr
+      nullptr, TNV_MEMBER(path)
+#define TNV_RO(expr) \
+  [](const NodeSettings&) noexcept -> double { return static_cast<double>(expr); }, nullptr, nullptr, nullptr
 // A double member shown in another unit: the parameter is member * scale (um for a member in mm: 1000).
 // Read back at f32 precision (the parameter's wire type): a value set reads
 // back exactly, not with the last bit of (v / scale) * scale's rounding.
 #define TNV_SCALED(path, scale)                                                                        \
   [](const NodeSettings& s) noexcept -> double { return static_cast<double>(static_cast<float>(s.path * (scale))); }, \
-      [](NodeSettings& s, double v) noexcept { s.path = v / (scale); }, nullptr
+      [](NodeSettings& s, double v) noexcept { s.path = v / (scale); }, nullptr, TNV_MEMBER(path)
 
 std::size_t param_count() noexcept;
 
@@ -330,7 +332,7 @@ constexpr ParamDef kParams[] = {
     {0x0011, "can.bitrate_kbit", ParamType::u32, "kbit/s", 125, 1000, "", Access::read_write, Apply::restart, kOpen,
      [](const NodeSettings& s) noexcept -> double { return s.can.bitrate_kbit; },
      [](NodeSettings& s, double v) noexcept { s.can.bitrate_kbit = static_cast<std::uint32_t>(v); },
-     allowed_bitrate, "bus bit rate: 125, 250, 500 or 1000"},
+     allowed_bitrate, TNV_MEMBER(can.bitrate_kbit), "bus bit rate: 125, 250, 500 or 1000"},
     {0x0012, "can.host_timeout_ms", ParamType::u32, "ms", 0, kHostTimeoutMaxMs, "", Access::read_write, Apply::live,
      kSafety,
      TNV_INT(can.host_timeout_ms), "controlled stop when no frame came from the host this long while moving; 0 = off"},
@@ -431,6 +433,7 @@ constexpr ParamDef kParams[] = {
 #undef TNV_INT
 #undef TNV_RO
 #undef TNV_SCALED
+#undef TNV_MEMBER
 
 constexpr bool sorted_unique() {
   for (std::size_t i = 1; i < std::size(kParams); ++i)
@@ -517,40 +520,13 @@ double from_wire(const ParamDef& p, std::uint32_t raw) noexcept {
 
 namespace {
 
-// The parameter a firmware ConfigError points at: "<axis>.<group>.<field>"
-// with the group from the error's section.
-std::uint16_t blame(const ConfigError& e) noexcept {
-  const char* axis = std::strncmp(e.section, "axis x", 6) == 0 ? "x." : std::strncmp(e.section, "axis y", 6) == 0 ? "y." : "";
-  const char* group = std::strstr(e.section, "sliding-mode") != nullptr ? "sliding."
-                      : std::strstr(e.section, "pid") != nullptr        ? "pid."
-                      : std::strstr(e.section, "jog") != nullptr        ? "jog."
-                      : std::strstr(e.section, "friction") != nullptr   ? "friction."
-                      : std::strstr(e.section, "observer") != nullptr   ? "observer."
-                      : std::strcmp(e.section, "arsc") == 0             ? "arsc."
-                                                                        : "";
-  const char* field = e.field;
-  if (std::strcmp(e.section, "path") == 0) {
-    // motion::validate() names no axis: blame the parameter its reason is about (x's, for an axis limit).
-    const char* path = std::strstr(e.reason, "path_tolerance") != nullptr ? "path.tolerance_mm"
-                       : std::strstr(e.reason, "jerk") != nullptr         ? "x.path.jerk_mm_s3"
-                       : std::strstr(e.reason, "accel") != nullptr        ? "x.path.accel_mm_s2"
-                       : std::strstr(e.reason, "speed") != nullptr        ? "x.path.speed_mm_s"
-                                                                          : "";
-    const ParamDef* p = find_param(path);
-    return p != nullptr ? p->id : 0;
-  }
-  if (std::strcmp(field, "G") == 0) field = "G_position_1_s";
-  if (std::strcmp(field, "enabled") == 0) field = "enable";
-  if (std::strcmp(field, "model") == 0) {
-    group = "model.";
-    field = "b2";
-  }
-  char name[96] = {};
-  std::size_t n = 0;
-  for (const char* part : {axis, group, field})
-    for (const char* c = part; *c != '\0' && n + 1 < sizeof(name); ++c) name[n++] = *c;
-  const ParamDef* p = find_param(name);
-  return p != nullptr ? p->id : 0;
+// The parameter whose member `member` is in `s` (a validation error's
+// offending member); 0 when it is none of them.
+std::uint16_t param_at(const NodeSettings& s, const void* member) noexcept {
+  if (member == nullptr) return 0;
+  for (const ParamDef& p : kParams)
+    if (p.member != nullptr && p.member(s) == member) return p.id;
+  return 0;
 }
 
 SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) noexcept {
@@ -560,7 +536,7 @@ SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) no
     if (check_value(p, p.get(s)) != ErrorCode::ok) return {false, p.id, p.name, "outside the parameter's range"};
   }
   const ConfigError e = base != nullptr ? validate(s.firmware, base->firmware) : validate(s.firmware);
-  if (!e.ok()) return {false, blame(e), e.section, e.reason};
+  if (!e.ok()) return {false, param_at(s, e.member), e.section, e.reason};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     if (base == nullptr || !same_bytes(s.shaper[i].spec, base->shaper[i].spec))
       if (const ParamCheck c = validate(s.shaper[i].spec); !c.ok)

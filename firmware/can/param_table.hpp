@@ -63,6 +63,9 @@ struct ParamDef {
   double (*get)(const NodeSettings&) noexcept;
   void (*set)(NodeSettings&, double) noexcept;  // nullptr for read-only
   bool (*allowed)(double) noexcept;             // extra membership test (e.g. bit rates); nullptr = none
+  // The member the parameter is, in the given settings (nullptr for a
+  // computed one): a validation error naming a member names its parameter.
+  const void* (*member)(const NodeSettings&) noexcept;
   const char* doc;
 };
 

@@ -1,7 +1,9 @@
 #pragma once
 // Enumerations carried in protocol fields. Their numbers are wire values:
 // append, never renumber.
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 namespace tnv::fw::can {
 
@@ -10,67 +12,55 @@ namespace tnv::fw::can {
 //    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
 inline constexpr std::uint32_t kProtocolVersion = 3;
 
-// Result of every request (COMMAND_ACK.result, PARAM_REPLY.result).
+// Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
+// codes, in wire order: the enum, its names and the protocol's value
+// list (protocol_messages.hpp) all come from this one list.
+#define TNV_ERROR_CODES(X) \
+  X(ok) \
+  X(unknown_id)              /* no parameter with this id */ \
+  X(read_only)               /* the parameter cannot be written */ \
+  X(out_of_range)            /* outside the parameter's range, or not one of its values */ \
+  X(not_finite)              /* NaN or infinity */ \
+  X(busy)                    /* not allowed while the machine moves (or a transfer is running) */ \
+  X(bad_length)              /* the frame's DLC is not the message's length */ \
+  X(unknown_command)         /* unknown command code, operation or message */ \
+  X(faulted)                 /* a fault is latched: clear it first */ \
+  X(invalid)                 /* the set as a whole is inconsistent (e.g. phi <= eta/(q+1)); nothing applied */ \
+  X(storage_error)           /* saving or loading the parameters failed */ \
+  X(storage_corrupt)         /* the stored parameter image is damaged or from another version */ \
+  X(not_ready)               /* the request needs something that is not there (no capture, shaper not configured) */ \
+  X(cause_present)           /* clear faults refused: the cause (e.g. e-stop) is still asserted */ \
+  X(bad_axis)                /* axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all) */ \
+  X(commissioning_required)  /* a safety parameter changes only in commissioning mode; nothing applied */ \
+  X(not_permitted)           /* this node's local configuration forbids it (tnv-fw: [safety] allow_commissioning) */ \
+  X(no_host)                 /* the request's tag names host 0: only ESTOP and the broadcast stop may be anonymous */ \
+  X(not_owner)               /* needs command ownership, which another host (or no host) holds */ \
+  /* Segment refusals (motion/segment.hpp SegmentRefusal) the codes above cannot say; the queue is unchanged. */ \
+  X(queue_full)              /* no free slot in the motion queue: wait for the free slots the acks and heartbeat report */ \
+  X(zero_length)             /* a line or arc shorter than 1 um */ \
+  X(bad_arc)                 /* arc radius below the minimum, or start and end radius differ beyond the tolerance */ \
+  X(feed_above_limit)        /* feed above what the axis speed limits allow on this element */ \
+  X(outside_workspace)       /* the end point lies outside the soft travel limits */ \
+  X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */
+
 enum class ErrorCode : std::uint8_t {
-  ok = 0,
-  unknown_id,       // no parameter with this id
-  read_only,        // the parameter cannot be written
-  out_of_range,     // outside the parameter's range, or not one of its values
-  not_finite,       // NaN or infinity
-  busy,             // not allowed while the machine moves (or a transfer is running)
-  bad_length,       // the frame's DLC is not the message's length
-  unknown_command,  // unknown command code, operation or message
-  faulted,          // a fault is latched: clear it first
-  invalid,          // the set as a whole is inconsistent (e.g. phi <= eta/(q+1)); nothing applied
-  storage_error,    // saving or loading the parameters failed
-  storage_corrupt,  // the stored parameter image is damaged or from another version
-  not_ready,        // the request needs something that is not there (no capture, shaper not configured)
-  cause_present,    // clear faults refused: the cause (e.g. e-stop) is still asserted
-  bad_axis,         // axis byte is not 0 (x), 1 (y) or, where allowed, 255 (all)
-  commissioning_required,  // a safety parameter changes only in commissioning mode; nothing applied
-  not_permitted,           // this node's local configuration forbids it (tnv-fw: [safety] allow_commissioning)
-  no_host,          // the request's tag names host 0: only ESTOP and the broadcast stop may be anonymous
-  not_owner,        // needs command ownership, which another host (or no host) holds
-  // Segment refusals (motion/segment.hpp SegmentRefusal) the codes above cannot say; the queue is unchanged.
-  queue_full,         // no free slot in the motion queue: wait for the free slots the acks and heartbeat report
-  zero_length,        // a line or arc shorter than 1 um
-  bad_arc,            // arc radius below the minimum, or start and end radius differ beyond the tolerance
-  feed_above_limit,   // feed above what the axis speed limits allow on this element
-  outside_workspace,  // the end point lies outside the soft travel limits
-  not_homed,          // homing.required is on and an axis the motion moves is not homed (COMMAND home)
+#define TNV_ENUMERATOR(name) name,
+  TNV_ERROR_CODES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+
+// Its names, by value.
+inline constexpr const char* kErrorCodeNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_ERROR_CODES(TNV_NAME)
+#undef TNV_NAME
 };
 
 constexpr const char* to_string(ErrorCode e) noexcept {
-  switch (e) {
-    case ErrorCode::ok: return "ok";
-    case ErrorCode::unknown_id: return "unknown_id";
-    case ErrorCode::read_only: return "read_only";
-    case ErrorCode::out_of_range: return "out_of_range";
-    case ErrorCode::not_finite: return "not_finite";
-    case ErrorCode::busy: return "busy";
-    case ErrorCode::bad_length: return "bad_length";
-    case ErrorCode::unknown_command: return "unknown_command";
-    case ErrorCode::faulted: return "faulted";
-    case ErrorCode::invalid: return "invalid";
-    case ErrorCode::storage_error: return "storage_error";
-    case ErrorCode::storage_corrupt: return "storage_corrupt";
-    case ErrorCode::not_ready: return "not_ready";
-    case ErrorCode::cause_present: return "cause_present";
-    case ErrorCode::bad_axis: return "bad_axis";
-    case ErrorCode::commissioning_required: return "commissioning_required";
-    case ErrorCode::not_permitted: return "not_permitted";
-    case ErrorCode::no_host: return "no_host";
-    case ErrorCode::not_owner: return "not_owner";
-    case ErrorCode::queue_full: return "queue_full";
-    case ErrorCode::zero_length: return "zero_length";
-    case ErrorCode::bad_arc: return "bad_arc";
-    case ErrorCode::feed_above_limit: return "feed_above_limit";
-    case ErrorCode::outside_workspace: return "outside_workspace";
-    case ErrorCode::not_homed: return "not_homed";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(e);
+  return i < std::size(kErrorCodeNames) ? kErrorCodeNames[i] : "?";
 }
-inline constexpr std::uint8_t kErrorCodeCount = 25;
+inline constexpr auto kErrorCodeCount = static_cast<std::uint8_t>(std::size(kErrorCodeNames));
 
 // COMMAND.code
 enum class CommandCode : std::uint8_t {

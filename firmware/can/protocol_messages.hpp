@@ -7,7 +7,10 @@
 #include <array>
 
 #include "firmware/can/protocol_enums.hpp"
+#include "firmware/can/value_list.hpp"
 #include "firmware/can/wire.hpp"
+#include "firmware/supervisor/fault.hpp"
+#include "firmware/tick/tick_record.hpp"
 
 namespace tnv::fw::can {
 
@@ -43,17 +46,10 @@ enum class MessageId : std::uint8_t {
 
 namespace detail {
 
-inline constexpr const char* kStateValues = "0=disabled 1=dwell 2=moving 3=holding 4=faulted";
-inline constexpr const char* kFaultValues =
-    "0=none 1=bus_error 2=stale_snapshot 3=missed_ticks 4=estop 5=servo_alarm 6=limit_switch "
-    "7=watchdog_tripped 8=following_error 9=position_limit 10=speed_limit 11=non_finite_command 12=remote_estop "
-    "13=encoder_error 14=dac_error 15=late_tick 16=encoder_stall 17=encoder_implausible 18=runaway "
-    "19=output_write_failed 20=homing_failed";
-inline constexpr const char* kErrorValues =
-    "0=ok 1=unknown_id 2=read_only 3=out_of_range 4=not_finite 5=busy 6=bad_length 7=unknown_command "
-    "8=faulted 9=invalid 10=storage_error 11=storage_corrupt 12=not_ready 13=cause_present 14=bad_axis "
-    "15=commissioning_required 16=not_permitted 17=no_host 18=not_owner 19=queue_full 20=zero_length 21=bad_arc "
-    "22=feed_above_limit 23=outside_workspace 24=not_homed";
+// The enums' value lists, from their own name lists (value_list.hpp).
+inline constexpr const char* kStateValues = kValueList<kMotionStateNames>;
+inline constexpr const char* kFaultValues = kValueList<kFaultReasonNames>;
+inline constexpr const char* kErrorValues = kValueList<kErrorCodeNames>;
 inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
 inline constexpr const char* kTagDoc =
     "request tag: host id (high nibble, 1..15; 0 is refused) and the host's own sequence (low nibble); the reply "

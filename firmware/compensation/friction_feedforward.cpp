@@ -7,20 +7,21 @@ namespace tnv::fw {
 ParamCheck validate(const FrictionFeedForward& ff) noexcept {
   struct Field {
     const char* name;
-    double value;
+    const double* value;
   };
-  const Field fields[] = {{"coulomb_mm_s", ff.coulomb_mm_s},
-                          {"stiction_mm_s", ff.stiction_mm_s},
-                          {"stribeck_mm_s", ff.stribeck_mm_s},
-                          {"gain", ff.gain},
-                          {"fraction", ff.fraction}};
+  const Field fields[] = {{"coulomb_mm_s", &ff.coulomb_mm_s},
+                          {"stiction_mm_s", &ff.stiction_mm_s},
+                          {"stribeck_mm_s", &ff.stribeck_mm_s},
+                          {"gain", &ff.gain},
+                          {"fraction", &ff.fraction}};
   for (const Field& f : fields)
-    if (!std::isfinite(f.value)) return param_error(f.name, "must be finite (NaN or inf given)");
-  if (!(ff.coulomb_mm_s >= 0.0)) return param_error("coulomb_mm_s", "must be >= 0");
-  if (!(ff.stiction_mm_s >= ff.coulomb_mm_s)) return param_error("stiction_mm_s", "must be >= coulomb_mm_s");
-  if (!(ff.stribeck_mm_s > 0.0)) return param_error("stribeck_mm_s", "must be > 0");
-  if (!(ff.gain > 0.0)) return param_error("gain", "must be > 0");
-  if (!(ff.fraction >= 0.0 && ff.fraction <= 1.5)) return param_error("fraction", "must be 0 .. 1.5");
+    if (!std::isfinite(*f.value)) return param_error(f.value, f.name, "must be finite (NaN or inf given)");
+  if (!(ff.coulomb_mm_s >= 0.0)) return param_error(&ff.coulomb_mm_s, "coulomb_mm_s", "must be >= 0");
+  if (!(ff.stiction_mm_s >= ff.coulomb_mm_s))
+    return param_error(&ff.stiction_mm_s, "stiction_mm_s", "must be >= coulomb_mm_s");
+  if (!(ff.stribeck_mm_s > 0.0)) return param_error(&ff.stribeck_mm_s, "stribeck_mm_s", "must be > 0");
+  if (!(ff.gain > 0.0)) return param_error(&ff.gain, "gain", "must be > 0");
+  if (!(ff.fraction >= 0.0 && ff.fraction <= 1.5)) return param_error(&ff.fraction, "fraction", "must be 0 .. 1.5");
   return param_ok();
 }
 
@@ -43,11 +44,6 @@ double friction_feedforward_mm_s(const FrictionFeedForward& ff, double ref_speed
     if (change < 0.0) dir = -1.0;
   }
   return dir * ff.fraction * stribeck_level_mm_s(ff, v) / ff.gain;
-}
-
-bool same(const FrictionFeedForward& a, const FrictionFeedForward& b) noexcept {
-  return a.enabled == b.enabled && a.coulomb_mm_s == b.coulomb_mm_s && a.stiction_mm_s == b.stiction_mm_s &&
-         a.stribeck_mm_s == b.stribeck_mm_s && a.gain == b.gain && a.fraction == b.fraction;
 }
 
 }  // namespace tnv::fw

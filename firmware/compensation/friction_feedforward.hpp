@@ -24,6 +24,7 @@ struct FrictionFeedForward {
   double stribeck_mm_s = 0.1;   // v_s > 0
   double gain = 1.0;            // K: table speed per commanded mm/s (> 0)
   double fraction = 1.0;        // share of the model applied, 0..1.5
+  bool operator==(const FrictionFeedForward&) const = default;
 };
 
 inline constexpr double kReversalSpeed_mm_s = 1e-6;
@@ -39,6 +40,5 @@ double stribeck_level_mm_s(const FrictionFeedForward& ff, double speed_mm_s) noe
 double friction_feedforward_mm_s(const FrictionFeedForward& ff, double ref_speed_now_mm_s,
                                  double ref_speed_next_mm_s) noexcept;
 
-bool same(const FrictionFeedForward& a, const FrictionFeedForward& b) noexcept;
 
 }  // namespace tnv::fw

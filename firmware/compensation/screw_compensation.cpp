@@ -38,27 +38,28 @@ double turn_error_mm(const ScrewCompensation& c, double motor_mm) noexcept {
 }
 
 ParamCheck validate(const ScrewCompensation& c) noexcept {
-  if (!std::isfinite(c.backlash_mm)) return param_error("backlash_mm", "must be finite (NaN or inf given)");
-  if (!std::isfinite(c.backlash_rate_mm_s)) return param_error("backlash_rate_mm_s", "must be finite (NaN or inf given)");
-  if (!std::isfinite(c.lead_um_per_m)) return param_error("lead_um_per_m", "must be finite (NaN or inf given)");
-  if (!(c.backlash_mm >= 0.0 && c.backlash_mm <= 0.2)) return param_error("backlash_mm", "must be 0 .. 0.2 mm");
+  if (!std::isfinite(c.backlash_mm))
+    return param_error(&c.backlash_mm, "backlash_mm", "must be finite (NaN or inf given)");
+  if (!std::isfinite(c.backlash_rate_mm_s))
+    return param_error(&c.backlash_rate_mm_s, "backlash_rate_mm_s", "must be finite (NaN or inf given)");
+  if (!std::isfinite(c.lead_um_per_m))
+    return param_error(&c.lead_um_per_m, "lead_um_per_m", "must be finite (NaN or inf given)");
+  if (!(c.backlash_mm >= 0.0 && c.backlash_mm <= 0.2))
+    return param_error(&c.backlash_mm, "backlash_mm", "must be 0 .. 0.2 mm");
   if (!(c.backlash_rate_mm_s >= 0.01 && c.backlash_rate_mm_s <= 100.0))
-    return param_error("backlash_rate_mm_s", "must be 0.01 .. 100 mm/s");
-  if (!(std::fabs(c.lead_um_per_m) <= 1000.0)) return param_error("lead_um_per_m", "must be -1000 .. 1000 um/m");
-  if (!std::isfinite(c.turn_period_mm)) return param_error("turn_period_mm", "must be finite (NaN or inf given)");
+    return param_error(&c.backlash_rate_mm_s, "backlash_rate_mm_s", "must be 0.01 .. 100 mm/s");
+  if (!(std::fabs(c.lead_um_per_m) <= 1000.0))
+    return param_error(&c.lead_um_per_m, "lead_um_per_m", "must be -1000 .. 1000 um/m");
+  if (!std::isfinite(c.turn_period_mm))
+    return param_error(&c.turn_period_mm, "turn_period_mm", "must be finite (NaN or inf given)");
   if (!(c.turn_period_mm >= 0.1 && c.turn_period_mm <= 1000.0))
-    return param_error("turn_period_mm", "must be 0.1 .. 1000 mm");
-  for (const double e_mm : c.turn_error_mm) {
-    if (!std::isfinite(e_mm)) return param_error("turn_error_mm", "must be finite (NaN or inf given)");
-    if (!(std::fabs(e_mm) <= 0.1)) return param_error("turn_error_mm", "must be -0.1 .. 0.1 mm (-100 .. 100 um)");
+    return param_error(&c.turn_period_mm, "turn_period_mm", "must be 0.1 .. 1000 mm");
+  for (const double& e_mm : c.turn_error_mm) {
+    if (!std::isfinite(e_mm)) return param_error(&e_mm, "turn_error_mm", "must be finite (NaN or inf given)");
+    if (!(std::fabs(e_mm) <= 0.1))
+      return param_error(&e_mm, "turn_error_mm", "must be -0.1 .. 0.1 mm (-100 .. 100 um)");
   }
   return param_ok();
-}
-
-bool same(const ScrewCompensation& a, const ScrewCompensation& b) noexcept {
-  return a.backlash_mm == b.backlash_mm && a.backlash_rate_mm_s == b.backlash_rate_mm_s &&
-         a.lead_um_per_m == b.lead_um_per_m && a.turn_period_mm == b.turn_period_mm &&
-         a.turn_error_mm == b.turn_error_mm;
 }
 
 ScrewCompensator::Offsets ScrewCompensator::advance(const ScrewCompensation& c, double reference_mm,

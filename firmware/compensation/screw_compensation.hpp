@@ -48,12 +48,12 @@ struct ScrewCompensation {
   double lead_um_per_m = 0.0;        // c * 1e6: table travel error per metre of motor travel, 0 = off
   double turn_period_mm = 10.0;      // P: the per-turn table's period (the screw's lead)
   std::array<double, kTurnErrorPoints> turn_error_mm{};  // table error at j * P / 16; all 0 = off
+  bool operator==(const ScrewCompensation&) const = default;
 };
 
 // Finite; 0 <= b <= 0.2 mm; 0.01 <= rate <= 100 mm/s; |c| <= 1000 um/m;
 // 0.1 <= P <= 1000 mm; |turn error| <= 0.1 mm.
 ParamCheck validate(const ScrewCompensation& c) noexcept;
-bool same(const ScrewCompensation& a, const ScrewCompensation& b) noexcept;
 
 // e_turn(motor_mm): the per-turn table, periodic, linearly interpolated.
 double turn_error_mm(const ScrewCompensation& c, double motor_mm) noexcept;

@@ -15,6 +15,7 @@ struct AxisModel {
   Eigen::Matrix2d A = (Eigen::Matrix2d() << 1.0, 0.0009, 0.0, 0.8298).finished();
   Eigen::Vector2d B = Eigen::Vector2d(0.0001, 0.1702);
   double period_s = kControlPeriod_s;
+  bool operator==(const AxisModel&) const = default;
 };
 
 // S1 eq. (31): the printed, 4-decimal matrices.

@@ -16,6 +16,7 @@ struct PidParams {
   double derivative_filter_tf_s = 0.0;  // first-order filter on the derivative; 0 = off
   double u_max_mm_s = kDacFullScaleSpeed_mm_s;
   bool feedforward = true;  // model-based velocity + acceleration feed-forward
+  bool operator==(const PidParams&) const = default;
 };
 
 // Checks: all finite; kp > 0; ki >= 0; kd >= 0; filter >= 0; u_max > 0;

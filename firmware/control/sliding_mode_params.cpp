@@ -41,31 +41,31 @@ SlidingModeParams paper_sliding_mode_params(hal::Axis axis, ControllerKind kind)
 ParamCheck validate(const SlidingModeParams& p, const AxisModel& model) noexcept {
   struct Field {
     const char* name;
-    double value;
+    const double* value;
   };
-  const Field fields[] = {{"G_position_1_s", p.G_position_1_s}, {"G_speed", p.G_speed}, {"eta_mm_s", p.eta_mm_s},
-                          {"phi_mm_s", p.phi_mm_s},             {"q", p.q},             {"g", p.g},
-                          {"gamma", p.gamma},                   {"u_max_mm_s", p.u_max_mm_s}};
+  const Field fields[] = {{"G_position_1_s", &p.G_position_1_s}, {"G_speed", &p.G_speed}, {"eta_mm_s", &p.eta_mm_s},
+                          {"phi_mm_s", &p.phi_mm_s},             {"q", &p.q},             {"g", &p.g},
+                          {"gamma", &p.gamma},                   {"u_max_mm_s", &p.u_max_mm_s}};
   for (const Field& f : fields)
-    if (!std::isfinite(f.value)) return param_error(f.name, "must be finite (NaN or inf given)");
+    if (!std::isfinite(*f.value)) return param_error(f.value, f.name, "must be finite (NaN or inf given)");
 
-  if (!(p.q > 0.0 && p.q < 1.0)) return param_error("q", "must satisfy 0 < q < 1 (reaching law, S1 eq. (4))");
-  if (!(p.g > 0.0 && p.g < 1.0)) return param_error("g", "must satisfy 0 < g < 1 (|1 - g| < 1, Theorem 1)");
-  if (!(p.eta_mm_s > 0.0)) return param_error("eta_mm_s", "must be > 0");
+  if (!(p.q > 0.0 && p.q < 1.0)) return param_error(&p.q, "q", "must satisfy 0 < q < 1 (reaching law, S1 eq. (4))");
+  if (!(p.g > 0.0 && p.g < 1.0)) return param_error(&p.g, "g", "must satisfy 0 < g < 1 (|1 - g| < 1, Theorem 1)");
+  if (!(p.eta_mm_s > 0.0)) return param_error(&p.eta_mm_s, "eta_mm_s", "must be > 0");
   if (!(p.phi_mm_s > p.eta_mm_s / (p.q + 1.0)))
-    return param_error("phi_mm_s", "must satisfy phi > eta / (q + 1) (Theorem 2)");
-  if (!(p.gamma >= 0.0 && p.gamma < 1.0)) return param_error("gamma", "must satisfy 0 <= gamma < 1");
+    return param_error(&p.phi_mm_s, "phi_mm_s", "must satisfy phi > eta / (q + 1) (Theorem 2)");
+  if (!(p.gamma >= 0.0 && p.gamma < 1.0)) return param_error(&p.gamma, "gamma", "must satisfy 0 <= gamma < 1");
   if (p.gamma > 0.0 && !(p.gamma < std::min(1.0 - p.g, p.q)))
-    return param_error("gamma", "must satisfy gamma < min(1 - g, q) (Theorem 5 / Remark 2)");
-  if (!(p.u_max_mm_s > 0.0)) return param_error("u_max_mm_s", "must be > 0");
+    return param_error(&p.gamma, "gamma", "must satisfy gamma < min(1 - g, q) (Theorem 5 / Remark 2)");
+  if (!(p.u_max_mm_s > 0.0)) return param_error(&p.u_max_mm_s, "u_max_mm_s", "must be > 0");
 
-  if (!is_finite(model)) return param_error("model", "A, B and period must be finite, period > 0");
+  if (!is_finite(model)) return param_error(&model.B(1), "model", "A, B and period must be finite, period > 0");
   const double g0 = p.G_position_1_s;
   const double g1 = p.G_speed;
   const double gb = g0 * model.B(0) + g1 * model.B(1);
   const double gb_scale = std::fabs(g0 * model.B(0)) + std::fabs(g1 * model.B(1));
   if (!(std::fabs(gb) > 1e-9 * gb_scale) || !(gb_scale > 0.0))
-    return param_error("G", "GB must be non-zero for the model in use (S1 eq. (6) divides by GB)");
+    return param_error(&p.G_position_1_s, "G", "GB must be non-zero for the model in use (S1 eq. (6) divides by GB)");
 
   // Zero of G (zI - A)^{-1} B = [z GB + G adj-terms] / det(zI - A); on the
   // surface G e = 0 the remaining error decays with this pole.
@@ -75,7 +75,8 @@ ParamCheck validate(const SlidingModeParams& p, const AxisModel& model) noexcept
   const double zero_num = g0 * (a(1, 1) * b(0) - a(0, 1) * b(1)) + g1 * (a(0, 0) * b(1) - a(1, 0) * b(0));
   const double z0 = zero_num / gb;
   if (!(std::fabs(z0) < 1.0))
-    return param_error("G", "sliding-surface zero dynamics unstable: zero of G(zI-A)^-1 B outside the unit circle");
+    return param_error(&p.G_position_1_s, "G",
+                       "sliding-surface zero dynamics unstable: zero of G(zI-A)^-1 B outside the unit circle");
   return param_ok();
 }
 

@@ -22,6 +22,7 @@ struct SlidingModeParams {
   double g = 0.1498;              // DDC gain                     S1 eq. (7)
   double gamma = 0.4155;          // recursive-surface weight     S1 eq. (5); 0 = DVSC+DDC
   double u_max_mm_s = kDacFullScaleSpeed_mm_s;  // output clamp
+  bool operator==(const SlidingModeParams&) const = default;
 };
 
 // Tables 1/2 for the given axis; gamma = 0 for DVSC+DDC.

@@ -39,28 +39,24 @@ ObserverPolynomial observer_error_polynomial(const SpeedObserverParams& params, 
 ParamCheck validate(const SpeedObserverParams& params, const AxisModel& model) noexcept {
   struct Field {
     const char* name;
-    double value;
+    const double* value;
   };
-  const Field fields[] = {{"gain_position", params.gain_position},
-                          {"gain_speed_1_s", params.gain_speed_1_s},
-                          {"gain_disturbance_1_s", params.gain_disturbance_1_s},
-                          {"friction_mm_s", params.friction_mm_s},
-                          {"friction_deadband_mm_s", params.friction_deadband_mm_s}};
+  const Field fields[] = {{"gain_position", &params.gain_position},
+                          {"gain_speed_1_s", &params.gain_speed_1_s},
+                          {"gain_disturbance_1_s", &params.gain_disturbance_1_s},
+                          {"friction_mm_s", &params.friction_mm_s},
+                          {"friction_deadband_mm_s", &params.friction_deadband_mm_s}};
   for (const Field& f : fields)
-    if (!std::isfinite(f.value)) return param_error(f.name, "must be finite (NaN or inf given)");
-  if (!(params.friction_mm_s >= 0.0)) return param_error("friction_mm_s", "must be >= 0");
-  if (!(params.friction_deadband_mm_s > 0.0)) return param_error("friction_deadband_mm_s", "must be > 0");
-  if (!is_finite(model)) return param_error("model", "A and B must be finite");
+    if (!std::isfinite(*f.value)) return param_error(f.value, f.name, "must be finite (NaN or inf given)");
+  if (!(params.friction_mm_s >= 0.0)) return param_error(&params.friction_mm_s, "friction_mm_s", "must be >= 0");
+  if (!(params.friction_deadband_mm_s > 0.0))
+    return param_error(&params.friction_deadband_mm_s, "friction_deadband_mm_s", "must be > 0");
+  if (!is_finite(model)) return param_error(&model.B(1), "model", "A and B must be finite");
   if (!params.enabled) return param_ok();  // the zero default gains are not an observer; unused while off
   if (!observer_error_polynomial(params, model).stable)
-    return param_error("gain_position", "observer error dynamics (I - L C) Phi not stable with these gains");
+    return param_error(&params.gain_position, "gain_position",
+                       "observer error dynamics (I - L C) Phi not stable with these gains");
   return param_ok();
-}
-
-bool same(const SpeedObserverParams& a, const SpeedObserverParams& b) noexcept {
-  return a.enabled == b.enabled && a.use_position == b.use_position && a.gain_position == b.gain_position &&
-         a.gain_speed_1_s == b.gain_speed_1_s && a.gain_disturbance_1_s == b.gain_disturbance_1_s &&
-         a.friction_mm_s == b.friction_mm_s && a.friction_deadband_mm_s == b.friction_deadband_mm_s;
 }
 
 void SpeedObserver::configure(const AxisModel& model, const SpeedObserverParams& params) noexcept {
@@ -69,6 +65,7 @@ void SpeedObserver::configure(const AxisModel& model, const SpeedObserverParams&
   gain_ << params.gain_position, params.gain_speed_1_s, params.gain_disturbance_1_s;
   friction_mm_s_ = params.friction_mm_s;
   deadband_mm_s_ = params.friction_deadband_mm_s;
+  params_ = params;
 }
 
 void SpeedObserver::reset(double position_mm, double speed_mm_s) noexcept { z_ << position_mm, speed_mm_s, 0.0; }

@@ -44,6 +44,7 @@ struct SpeedObserverParams {
   double gain_disturbance_1_s = 0.0;   // l_d: mm/s per mm of innovation
   double friction_mm_s = 0.0;          // f_c / K in command terms (>= 0); 0 = no friction term
   double friction_deadband_mm_s = 0.02;  // |v^| below this: no friction term (> 0)
+  bool operator==(const SpeedObserverParams&) const = default;
 };
 
 // Finite gains always, friction_mm_s >= 0, friction_deadband_mm_s > 0;
@@ -53,7 +54,6 @@ struct SpeedObserverParams {
 // poles at 1): fine while off.
 ParamCheck validate(const SpeedObserverParams& params, const AxisModel& model) noexcept;
 
-bool same(const SpeedObserverParams& a, const SpeedObserverParams& b) noexcept;
 
 // Coefficients c2, c1, c0 of det(zI - M) = z^3 + c2 z^2 + c1 z + c0 for
 // M = (I - L C) Phi, and whether all its roots lie inside the unit circle.
@@ -80,6 +80,8 @@ class SpeedObserver {
   double position_mm() const noexcept { return z_(0); }
   double speed_mm_s() const noexcept { return z_(1); }
   double disturbance_mm_s() const noexcept { return z_(2); }
+  // The gains of the last configure().
+  const SpeedObserverParams& params() const noexcept { return params_; }
 
  private:
   Eigen::Matrix3d phi_ = Eigen::Matrix3d::Identity();
@@ -88,6 +90,7 @@ class SpeedObserver {
   double friction_mm_s_ = 0.0;
   double deadband_mm_s_ = 0.02;
   Eigen::Vector3d z_ = Eigen::Vector3d::Zero();
+  SpeedObserverParams params_{};
 };
 
 // Phi and Gam of the augmented model above.

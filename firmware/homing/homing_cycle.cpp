@@ -6,12 +6,16 @@
 namespace tnv::fw {
 
 ParamCheck validate(const HomingParams& p) noexcept {
-  if (!std::isfinite(p.search_mm_s) || p.search_mm_s <= 0.0) return {false, "search_mm_s", "must be > 0 and finite"};
-  if (!std::isfinite(p.latch_mm_s) || p.latch_mm_s <= 0.0) return {false, "latch_mm_s", "must be > 0 and finite"};
-  if (p.latch_mm_s > p.search_mm_s) return {false, "latch_mm_s", "must be <= search_mm_s"};
-  if (!std::isfinite(p.position_mm)) return {false, "position_mm", "must be finite"};
-  if (!std::isfinite(p.search_max_mm) || p.search_max_mm <= 0.0) return {false, "search_max_mm", "must be > 0 and finite"};
-  if (!std::isfinite(p.latch_max_mm) || p.latch_max_mm <= 0.0) return {false, "latch_max_mm", "must be > 0 and finite"};
+  if (!std::isfinite(p.search_mm_s) || p.search_mm_s <= 0.0)
+    return param_error(&p.search_mm_s, "search_mm_s", "must be > 0 and finite");
+  if (!std::isfinite(p.latch_mm_s) || p.latch_mm_s <= 0.0)
+    return param_error(&p.latch_mm_s, "latch_mm_s", "must be > 0 and finite");
+  if (p.latch_mm_s > p.search_mm_s) return param_error(&p.latch_mm_s, "latch_mm_s", "must be <= search_mm_s");
+  if (!std::isfinite(p.position_mm)) return param_error(&p.position_mm, "position_mm", "must be finite");
+  if (!std::isfinite(p.search_max_mm) || p.search_max_mm <= 0.0)
+    return param_error(&p.search_max_mm, "search_max_mm", "must be > 0 and finite");
+  if (!std::isfinite(p.latch_max_mm) || p.latch_max_mm <= 0.0)
+    return param_error(&p.latch_max_mm, "latch_max_mm", "must be > 0 and finite");
   return {};
 }
 

@@ -25,6 +25,7 @@ struct HomingParams {
   double position_mm = 0.0;      // machine position given to the index mark home is taken at
   double search_max_mm = 400.0;  // the longest search without finding the switch (the axis' travel)
   double latch_max_mm = 25.0;    // the longest back-off, and the longest run from release to an index
+  bool operator==(const HomingParams&) const = default;
 };
 
 // Checks: speeds > 0 and finite, latch speed <= search speed, travels > 0, position finite.

@@ -9,6 +9,7 @@ namespace tnv::fw {
 struct DacScale {
   unsigned bits = 12;
   double full_scale_mm_s = 1000.0 * 10.0 / 60.0;  // speed at +full scale (10 V)
+  bool operator==(const DacScale&) const = default;
 
   double lsb_mm_s() const noexcept { return full_scale_mm_s / static_cast<double>(mid_code()); }
   std::uint16_t mid_code() const noexcept { return static_cast<std::uint16_t>(1u << (bits - 1)); }

@@ -21,24 +21,39 @@ double filter_taps_exact(const MotionLimits& limits) noexcept {
 
 }  // namespace
 
-const char* validate(const MotionLimits& limits) noexcept {
+ParamCheck check(const MotionLimits& limits) noexcept {
   for (const AxisLimits& a : limits.axis) {
-    if (!positive_finite(a.speed_mm_s)) return "axis speed_mm_s must be > 0 and finite";
-    if (!positive_finite(a.accel_mm_s2)) return "axis accel_mm_s2 must be > 0 and finite";
-    if (!positive_finite(a.jerk_mm_s3)) return "axis jerk_mm_s3 must be > 0 and finite";
+    if (!positive_finite(a.speed_mm_s))
+      return param_error(&a.speed_mm_s, "speed_mm_s", "axis speed_mm_s must be > 0 and finite");
+    if (!positive_finite(a.accel_mm_s2))
+      return param_error(&a.accel_mm_s2, "accel_mm_s2", "axis accel_mm_s2 must be > 0 and finite");
+    if (!positive_finite(a.jerk_mm_s3))
+      return param_error(&a.jerk_mm_s3, "jerk_mm_s3", "axis jerk_mm_s3 must be > 0 and finite");
     if (!std::isfinite(a.position_min_mm) || !std::isfinite(a.position_max_mm) || a.position_min_mm >= a.position_max_mm)
-      return "axis position_min_mm must be below position_max_mm, both finite";
+      return param_error(&a.position_min_mm, "position_min_mm",
+                         "axis position_min_mm must be below position_max_mm, both finite");
   }
-  if (!positive_finite(limits.tick_period_s) || limits.tick_period_s > 0.1) return "tick_period_s must be in (0, 0.1]";
-  if (!positive_finite(limits.path_tolerance_mm)) return "path_tolerance_mm must be > 0 and finite";
-  if (!positive_finite(limits.arc_radius_tolerance_mm)) return "arc_radius_tolerance_mm must be > 0 and finite";
-  if (!positive_finite(limits.min_segment_mm)) return "min_segment_mm must be > 0 and finite";
-  if (!positive_finite(limits.min_arc_radius_mm)) return "min_arc_radius_mm must be > 0 and finite";
-  if (!positive_finite(limits.max_dwell_s)) return "max_dwell_s must be > 0 and finite";
+  if (!positive_finite(limits.tick_period_s) || limits.tick_period_s > 0.1)
+    return param_error(&limits.tick_period_s, "tick_period_s", "tick_period_s must be in (0, 0.1]");
+  if (!positive_finite(limits.path_tolerance_mm))
+    return param_error(&limits.path_tolerance_mm, "path_tolerance_mm", "path_tolerance_mm must be > 0 and finite");
+  if (!positive_finite(limits.arc_radius_tolerance_mm))
+    return param_error(&limits.arc_radius_tolerance_mm, "arc_radius_tolerance_mm",
+                       "arc_radius_tolerance_mm must be > 0 and finite");
+  if (!positive_finite(limits.min_segment_mm))
+    return param_error(&limits.min_segment_mm, "min_segment_mm", "min_segment_mm must be > 0 and finite");
+  if (!positive_finite(limits.min_arc_radius_mm))
+    return param_error(&limits.min_arc_radius_mm, "min_arc_radius_mm", "min_arc_radius_mm must be > 0 and finite");
+  if (!positive_finite(limits.max_dwell_s))
+    return param_error(&limits.max_dwell_s, "max_dwell_s", "max_dwell_s must be > 0 and finite");
+  // The filter's length comes from the lowest acceleration over the jerk: x's jerk stands for it.
   if (std::ceil(filter_taps_exact(limits)) > static_cast<double>(kMaxFilterTaps))
-    return "jerk limits too low for the acceleration limits: the jerk filter would need more than 128 taps";
-  return "";
+    return param_error(&limits.axis[0].jerk_mm_s3, "jerk_mm_s3",
+                       "jerk limits too low for the acceleration limits: the jerk filter would need more than 128 taps");
+  return param_ok();
 }
+
+const char* validate(const MotionLimits& limits) noexcept { return check(limits).reason; }
 
 DerivedLimits derive(const MotionLimits& limits) noexcept {
   DerivedLimits d;

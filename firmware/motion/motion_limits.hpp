@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 
+#include "firmware/control/param_check.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw::motion {
@@ -14,6 +15,7 @@ struct AxisLimits {
   double jerk_mm_s3 = 50000.0;
   double position_min_mm = -250.0;  // soft limits: no programmed point beyond them
   double position_max_mm = 250.0;
+  bool operator==(const AxisLimits&) const = default;
 };
 
 struct MotionLimits {
@@ -24,12 +26,16 @@ struct MotionLimits {
   double min_segment_mm = 0.001;          // shorter lines and arcs are refused as zero length
   double min_arc_radius_mm = 0.01;
   double max_dwell_s = 3600.0;
+  bool operator==(const MotionLimits&) const = default;
 };
 
 // The jerk filter (a moving average over filter_taps ticks) needs capacity.
 inline constexpr std::size_t kMaxFilterTaps = 128;
 
-// Empty string when valid; otherwise the reason (static text).
+// The first limit that is wrong: its member in `limits` and why (static
+// text); ok when valid.
+ParamCheck check(const MotionLimits& limits) noexcept;
+// Empty string when valid; otherwise check(limits)'s reason.
 const char* validate(const MotionLimits& limits) noexcept;
 
 // Quantities every part of the planner derives from the limits.

@@ -1,58 +1,53 @@
 #pragma once
 // Latched fault: the first reason wins and stays until cleared.
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 namespace tnv::fw {
 
+// The reasons, in wire order (append, never renumber): the enum, its names
+// and the protocol's value list (can/protocol_messages.hpp) all come from
+// this one list.
+#define TNV_FAULT_REASONS(X) \
+  X(none) \
+  X(bus_error)            /* the batched register read or write failed */ \
+  X(stale_snapshot)       /* tick sequence or clock did not advance */ \
+  X(missed_ticks)         /* more consecutive ticks lost than allowed */ \
+  X(estop)                /* e-stop input asserted */ \
+  X(servo_alarm)          /* servopack alarm input */ \
+  X(limit_switch)         /* hardware limit switch */ \
+  X(watchdog_tripped)     /* the board watchdog forced the outputs off */ \
+  X(following_error)      /* |x_ref - x| above the speed-scaled limit */ \
+  X(position_limit)       /* soft travel limit */ \
+  X(speed_limit)          /* measured speed above the limit */ \
+  X(non_finite_command)   /* a controller produced NaN/inf */ \
+  X(remote_estop)         /* e-stop requested over CAN (TickTask::estop()) */ \
+  X(encoder_error)        /* the board's decoder latched an illegal A/B transition */ \
+  X(dac_error)            /* the board's DAC readback differs from the code written */ \
+  X(late_tick)            /* tick period off nominal by more than the tolerance */ \
+  X(encoder_stall)        /* no encoder count for N ticks while driven hard: dead encoder or jammed axis */ \
+  X(encoder_implausible)  /* a count step no command or disturbance the axis can meet explains (motion_plausibility.hpp) */ \
+  X(runaway)              /* the table accelerates against its command: the drive pushes the wrong way */ \
+  X(output_write_failed)  /* an output (DAC, enable, servo-enable line) did not take the value written */ \
+  X(homing_failed)        /* a homing cycle ran out of travel: no switch, switch stuck on, or no index (value: travel, limit: bound) */
+
 enum class FaultReason : std::uint8_t {
-  none = 0,
-  bus_error,           // the batched register read or write failed
-  stale_snapshot,      // tick sequence or clock did not advance
-  missed_ticks,        // more consecutive ticks lost than allowed
-  estop,               // e-stop input asserted
-  servo_alarm,         // servopack alarm input
-  limit_switch,        // hardware limit switch
-  watchdog_tripped,    // the board watchdog forced the outputs off
-  following_error,     // |x_ref - x| above the speed-scaled limit
-  position_limit,      // soft travel limit
-  speed_limit,         // measured speed above the limit
-  non_finite_command,  // a controller produced NaN/inf
-  remote_estop,        // e-stop requested over CAN (TickTask::estop())
-  encoder_error,       // the board's decoder latched an illegal A/B transition
-  dac_error,           // the board's DAC readback differs from the code written
-  late_tick,           // tick period off nominal by more than the tolerance
-  encoder_stall,       // no encoder count for N ticks while driven hard: dead encoder or jammed axis
-  encoder_implausible,  // a count step no command or disturbance the axis can meet explains (motion_plausibility.hpp)
-  runaway,              // the table accelerates against its command: the drive pushes the wrong way
-  output_write_failed,  // an output (DAC, enable, servo-enable line) did not take the value written
-  homing_failed,        // a homing cycle ran out of travel: no switch, switch stuck on, or no index (value: travel, limit: bound)
+#define TNV_ENUMERATOR(name) name,
+  TNV_FAULT_REASONS(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+
+// Its names, by value.
+inline constexpr const char* kFaultReasonNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_FAULT_REASONS(TNV_NAME)
+#undef TNV_NAME
 };
 
 constexpr const char* to_string(FaultReason r) noexcept {
-  switch (r) {
-    case FaultReason::none: return "none";
-    case FaultReason::bus_error: return "bus_error";
-    case FaultReason::stale_snapshot: return "stale_snapshot";
-    case FaultReason::missed_ticks: return "missed_ticks";
-    case FaultReason::estop: return "estop";
-    case FaultReason::servo_alarm: return "servo_alarm";
-    case FaultReason::limit_switch: return "limit_switch";
-    case FaultReason::watchdog_tripped: return "watchdog_tripped";
-    case FaultReason::following_error: return "following_error";
-    case FaultReason::position_limit: return "position_limit";
-    case FaultReason::speed_limit: return "speed_limit";
-    case FaultReason::non_finite_command: return "non_finite_command";
-    case FaultReason::remote_estop: return "remote_estop";
-    case FaultReason::encoder_error: return "encoder_error";
-    case FaultReason::dac_error: return "dac_error";
-    case FaultReason::late_tick: return "late_tick";
-    case FaultReason::encoder_stall: return "encoder_stall";
-    case FaultReason::encoder_implausible: return "encoder_implausible";
-    case FaultReason::runaway: return "runaway";
-    case FaultReason::output_write_failed: return "output_write_failed";
-    case FaultReason::homing_failed: return "homing_failed";
-  }
-  return "unknown";
+  const auto i = static_cast<std::size_t>(r);
+  return i < std::size(kFaultReasonNames) ? kFaultReasonNames[i] : "unknown";
 }
 
 struct FaultRecord {

@@ -57,6 +57,7 @@ struct PlausibilityLimit {
   // w against the command beyond this fraction of |u| (and the quantisation)
   // is a runaway; a healthy drive gives w ~ +K u.
   double runaway_push_fraction = 0.25;
+  bool operator==(const PlausibilityLimit&) const = default;
 };
 
 struct PlausibilityVerdict {

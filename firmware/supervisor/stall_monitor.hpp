@@ -17,6 +17,7 @@ namespace tnv::fw {
 struct StallLimit {
   double command_mm_s = 8.0;  // |u| at or above this counts; reference plant breaks away at 3 mm/s
   std::uint32_t ticks = 4;    // consecutive ticks without a count that trip
+  bool operator==(const StallLimit&) const = default;
 };
 
 class StallMonitor {

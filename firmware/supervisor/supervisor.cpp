@@ -15,33 +15,48 @@ FaultRecord fault(FaultReason reason, const SupervisorInput& in, int axis = -1, 
 
 }  // namespace
 
-const char* validate(const SupervisorConfig& config) noexcept {
+ParamCheck check(const SupervisorConfig& config) noexcept {
   for (const AxisLimits& a : config.axis) {
     if (!std::isfinite(a.position_min_mm) || !std::isfinite(a.position_max_mm) ||
         a.position_min_mm >= a.position_max_mm)
-      return "position limits must be finite with min < max";
-    if (!finite_positive(a.speed_max_mm_s)) return "speed_max_mm_s must be > 0 and finite";
-    if (!finite_positive(a.following.floor_mm)) return "following-error floor_mm must be > 0 and finite";
+      return param_error(&a.position_min_mm, "position_min_mm", "position limits must be finite with min < max");
+    if (!finite_positive(a.speed_max_mm_s))
+      return param_error(&a.speed_max_mm_s, "speed_max_mm_s", "speed_max_mm_s must be > 0 and finite");
+    if (!finite_positive(a.following.floor_mm))
+      return param_error(&a.following.floor_mm, "following.floor_mm",
+                         "following-error floor_mm must be > 0 and finite");
     if (!std::isfinite(a.following.lag_s) || a.following.lag_s < 0.0)
-      return "following-error lag_s must be >= 0 and finite";
-    if (!finite_positive(a.stall.command_mm_s)) return "stall command_mm_s must be > 0 and finite";
-    if (a.stall.ticks < 1 || a.stall.ticks > kMaxStallTicks) return "stall ticks must be 1..1000";
-    if (!(a.plausibility.jump_disturbance_scale >= 0.5 && a.plausibility.jump_disturbance_scale <= 4.0))
-      return "plausibility jump_disturbance_scale must be 0.5..4";
-    if (!(a.plausibility.runaway_margin_mm_s >= 0.0 && a.plausibility.runaway_margin_mm_s <= 100.0))
-      return "plausibility runaway_margin_mm_s must be 0..100";
-    if (!(a.plausibility.runaway_min_command_mm_s > 0.0 && a.plausibility.runaway_min_command_mm_s <= 100.0))
-      return "plausibility runaway_min_command_mm_s must be > 0 and <= 100";
-    if (!(a.plausibility.runaway_push_min_command_mm_s >= 1.0 && a.plausibility.runaway_push_min_command_mm_s <= 100.0))
-      return "plausibility runaway_push_min_command_mm_s must be 1..100";
-    if (!(a.plausibility.runaway_push_fraction >= 0.1 && a.plausibility.runaway_push_fraction <= 1.0))
-      return "plausibility runaway_push_fraction must be 0.1..1";
+      return param_error(&a.following.lag_s, "following.lag_s", "following-error lag_s must be >= 0 and finite");
+    if (!finite_positive(a.stall.command_mm_s))
+      return param_error(&a.stall.command_mm_s, "stall.command_mm_s", "stall command_mm_s must be > 0 and finite");
+    if (a.stall.ticks < 1 || a.stall.ticks > kMaxStallTicks)
+      return param_error(&a.stall.ticks, "stall.ticks", "stall ticks must be 1..1000");
+    const PlausibilityLimit& p = a.plausibility;
+    if (!(p.jump_disturbance_scale >= 0.5 && p.jump_disturbance_scale <= 4.0))
+      return param_error(&p.jump_disturbance_scale, "plausibility.jump_disturbance_scale",
+                         "plausibility jump_disturbance_scale must be 0.5..4");
+    if (!(p.runaway_margin_mm_s >= 0.0 && p.runaway_margin_mm_s <= 100.0))
+      return param_error(&p.runaway_margin_mm_s, "plausibility.runaway_margin_mm_s",
+                         "plausibility runaway_margin_mm_s must be 0..100");
+    if (!(p.runaway_min_command_mm_s > 0.0 && p.runaway_min_command_mm_s <= 100.0))
+      return param_error(&p.runaway_min_command_mm_s, "plausibility.runaway_min_command_mm_s",
+                         "plausibility runaway_min_command_mm_s must be > 0 and <= 100");
+    if (!(p.runaway_push_min_command_mm_s >= 1.0 && p.runaway_push_min_command_mm_s <= 100.0))
+      return param_error(&p.runaway_push_min_command_mm_s, "plausibility.runaway_push_min_command_mm_s",
+                         "plausibility runaway_push_min_command_mm_s must be 1..100");
+    if (!(p.runaway_push_fraction >= 0.1 && p.runaway_push_fraction <= 1.0))
+      return param_error(&p.runaway_push_fraction, "plausibility.runaway_push_fraction",
+                         "plausibility runaway_push_fraction must be 0.1..1");
   }
-  if (config.tick_period_clocks == 0) return "tick_period_clocks must be > 0";
+  if (config.tick_period_clocks == 0)
+    return param_error(&config.tick_period_clocks, "tick_period_clocks", "tick_period_clocks must be > 0");
   if (config.period_tolerance_clocks == 0 || config.period_tolerance_clocks >= config.tick_period_clocks)
-    return "period_tolerance_clocks must be > 0 and below tick_period_clocks";
-  return "";
+    return param_error(&config.period_tolerance_clocks, "period_tolerance_clocks",
+                       "period_tolerance_clocks must be > 0 and below tick_period_clocks");
+  return param_ok();
 }
+
+const char* validate(const SupervisorConfig& config) noexcept { return check(config).reason; }
 
 FaultRecord check(const SupervisorConfig& config, const SupervisorInput& in) noexcept {
   if (!in.bus_ok) return fault(FaultReason::bus_error, in);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "firmware/control/param_check.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/supervisor/motion_plausibility.hpp"
 #include "firmware/supervisor/stall_monitor.hpp"
@@ -21,6 +22,7 @@ struct FollowingErrorLimit {
   double floor_mm = 0.05;
   double lag_s = 0.02;
   double at(double commanded_speed_mm_s) const noexcept { return floor_mm + lag_s * std::fabs(commanded_speed_mm_s); }
+  bool operator==(const FollowingErrorLimit&) const = default;
 };
 
 struct AxisLimits {
@@ -30,6 +32,7 @@ struct AxisLimits {
   FollowingErrorLimit following{};
   StallLimit stall{};
   PlausibilityLimit plausibility{};
+  bool operator==(const AxisLimits&) const = default;
 };
 
 struct SupervisorConfig {
@@ -41,9 +44,12 @@ struct SupervisorConfig {
   // more is a broken real-time loop.
   std::uint32_t tick_period_clocks = 10'000;
   std::uint32_t period_tolerance_clocks = 5'000;
+  bool operator==(const SupervisorConfig&) const = default;
 };
 
-const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid
+// The first wrong limit: its member in `config` and why; ok when valid.
+ParamCheck check(const SupervisorConfig& config) noexcept;
+const char* validate(const SupervisorConfig& config) noexcept;  // "" when valid, else check()'s reason
 
 struct AxisCheckInput {
   double position_mm = 0.0;

@@ -32,10 +32,33 @@ motion::MotionLimits path_limits(const FirmwareConfig& config) noexcept {
   return m;
 }
 
+const void* path_limits_source(const FirmwareConfig& config, const motion::MotionLimits& limits,
+                               const void* member) noexcept {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const motion::AxisLimits& m = limits.axis[i];
+    if (member == &m.speed_mm_s) return &config.axis[i].path.speed_mm_s;
+    if (member == &m.accel_mm_s2) return &config.axis[i].path.accel_mm_s2;
+    if (member == &m.jerk_mm_s3) return &config.axis[i].path.jerk_mm_s3;
+    if (member == &m.position_min_mm) return &config.supervisor.axis[i].position_min_mm;
+    if (member == &m.position_max_mm) return &config.supervisor.axis[i].position_max_mm;
+  }
+  if (member == &limits.path_tolerance_mm) return &config.path_tolerance_mm;
+  return nullptr;
+}
+
 namespace {
 
 ConfigError axis_error(std::size_t axis, const char* what_x, const char* what_y, const ParamCheck& check) noexcept {
-  return {axis == 0 ? what_x : what_y, check.field, check.reason};
+  return {axis == 0 ? what_x : what_y, check.field, check.reason, check.member};
+}
+
+// The member `member` of `copy` is, in `original` (what a check of a copy names).
+template <typename T>
+const void* in_original(const T& copy, const T& original, const void* member) noexcept {
+  const auto* first = reinterpret_cast<const unsigned char*>(&copy);
+  const auto* at = static_cast<const unsigned char*>(member);
+  if (at < first || at >= first + sizeof(T)) return member;
+  return reinterpret_cast<const unsigned char*>(&original) + (at - first);
 }
 
 ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* base) noexcept {
@@ -43,22 +66,25 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
     const AxisConfig& a = config.axis[i];
     if (base != nullptr && same_bytes(a, base->axis[i])) continue;
     const char* section = i == 0 ? "axis x" : "axis y";
-    if (!std::isfinite(a.count_mm) || a.count_mm <= 0.0) return {section, "count_mm", "must be > 0 and finite"};
-    if (a.dac.bits < 8 || a.dac.bits > 16) return {section, "dac.bits", "must be 8..16"};
+    if (!std::isfinite(a.count_mm) || a.count_mm <= 0.0)
+      return {section, "count_mm", "must be > 0 and finite", &a.count_mm};
+    if (a.dac.bits < 8 || a.dac.bits > 16) return {section, "dac.bits", "must be 8..16", &a.dac.bits};
     if (!std::isfinite(a.dac.full_scale_mm_s) || a.dac.full_scale_mm_s <= 0.0)
-      return {section, "dac.full_scale_mm_s", "must be > 0 and finite"};
-    if (!std::isfinite(a.home_position_mm)) return {section, "home_position_mm", "must be finite"};
-    if (!is_finite(a.model)) return {section, "model", "A and B must be finite with period > 0"};
+      return {section, "dac.full_scale_mm_s", "must be > 0 and finite", &a.dac.full_scale_mm_s};
+    if (!std::isfinite(a.home_position_mm)) return {section, "home_position_mm", "must be finite", &a.home_position_mm};
+    if (!is_finite(a.model)) return {section, "model", "A and B must be finite with period > 0", &a.model.B(1)};
     if (const ParamCheck c = validate(a.sliding, a.model); !c.ok)
       return axis_error(i, "axis x: sliding-mode", "axis y: sliding-mode", c);
     SlidingModeParams dvsc = a.sliding;
     dvsc.gamma = 0.0;
-    if (const ParamCheck c = validate(dvsc, a.model); !c.ok)
+    if (ParamCheck c = validate(dvsc, a.model); !c.ok) {
+      c.member = in_original(dvsc, a.sliding, c.member);
       return axis_error(i, "axis x: sliding-mode (gamma = 0)", "axis y: sliding-mode (gamma = 0)", c);
+    }
     if (const ParamCheck c = validate(a.pid, a.model); !c.ok) return axis_error(i, "axis x: pid", "axis y: pid", c);
     if (a.controller != ControllerKind::pid && a.controller != ControllerKind::dvsc &&
         a.controller != ControllerKind::rdvsc)
-      return {section, "controller", "must be pid, dvsc or rdvsc"};
+      return {section, "controller", "must be pid, dvsc or rdvsc", &a.controller};
     if (const ParamCheck c = validate(a.jog); !c.ok) return axis_error(i, "axis x: jog", "axis y: jog", c);
     if (const ParamCheck c = validate(a.friction); !c.ok)
       return axis_error(i, "axis x: friction feed-forward", "axis y: friction feed-forward", c);
@@ -69,12 +95,15 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
       return axis_error(i, "axis x: screw compensation", "axis y: screw compensation", c);
   }
   if (base == nullptr || !same_bytes(config.supervisor, base->supervisor))
-    if (const char* reason = validate(config.supervisor); reason[0] != '\0') return {"supervisor", "", reason};
-  if (!std::isfinite(config.force_sensor.n_per_volt)) return {"force sensor", "n_per_volt", "must be finite"};
+    if (const ParamCheck c = check(config.supervisor); !c.ok) return {"supervisor", "", c.reason, c.member};
+  if (!std::isfinite(config.force_sensor.n_per_volt))
+    return {"force sensor", "n_per_volt", "must be finite", &config.force_sensor.n_per_volt};
   // The force loop's check solves its pole placement (a 4x4 system): only when it changed.
   if (base == nullptr || !same_bytes(config.arsc, base->arsc))
-    if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason};
-  if (const char* reason = motion::validate(path_limits(config)); reason[0] != '\0') return {"path", "", reason};
+    if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason, c.member};
+  const motion::MotionLimits limits = path_limits(config);
+  if (const ParamCheck c = motion::check(limits); !c.ok)
+    return {"path", "", c.reason, path_limits_source(config, limits, c.member)};
   return {};
 }
 

@@ -27,6 +27,7 @@ struct PathLimits {
   double speed_mm_s = 100.0;
   double accel_mm_s2 = 500.0;
   double jerk_mm_s3 = 50000.0;
+  bool operator==(const PathLimits&) const = default;
 };
 
 struct AxisConfig {
@@ -44,12 +45,14 @@ struct AxisConfig {
   SpeedObserverParams observer{};    // speed observer fed back instead of the M-method (issue 7); off by default
   HomingParams homing{};             // the homing cycle: switch side, speeds, home position, travel bounds
   ScrewCompensation screw{};         // backlash and lead-error compensation (issue 16); off by default
+  bool operator==(const AxisConfig&) const = default;
 };
 
 // The force sensor on the I/O board's ADC (force_code.hpp): its scale is a
 // fact of the sensor, like the DAC scale.
 struct ForceSensorConfig {
   double n_per_volt = 30.0;  // force per ADC volt (S3 experiment: 1/30 V per N)
+  bool operator==(const ForceSensorConfig&) const = default;
 };
 
 struct FirmwareConfig {
@@ -62,11 +65,17 @@ struct FirmwareConfig {
   // homed. Off by default (the papers' runs start where the table stands at
   // power-up); a machine sets it on at commissioning (docs/safety.md).
   bool homing_required = false;
+  // Member by member (C++20): a field added to any part is compared too.
+  bool operator==(const FirmwareConfig&) const = default;
 };
 
 // The planner's limits from a config: each axis' path limits, the
 // supervisor's position limits as soft limits, the 1 ms tick.
 motion::MotionLimits path_limits(const FirmwareConfig& config) noexcept;
+// The member of `config` a member of `limits` = path_limits(config) comes
+// from; nullptr for one that comes from no member (the tick).
+const void* path_limits_source(const FirmwareConfig& config, const motion::MotionLimits& limits,
+                               const void* member) noexcept;
 
 // The papers' defaults (S1 eq. (31), Tables 1/2) with the PID baseline
 // tuned by the stated rule (pid_tuning.hpp).
@@ -78,6 +87,9 @@ struct ConfigError {
   const char* section = "";
   const char* field = "";
   const char* reason = "";  // empty when valid
+  // The offending member in the config validated (nullptr: none named): the
+  // CAN node's parameter table tells its parameter from it (param_table.cpp).
+  const void* member = nullptr;
   bool ok() const noexcept { return reason[0] == '\0'; }
 };
 

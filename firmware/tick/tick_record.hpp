@@ -1,30 +1,40 @@
 #pragma once
 // What one tick saw and did: the telemetry / trace sample.
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 #include "firmware/supervisor/fault.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw {
 
+// The states, in wire order: the enum, its names and the protocol's value
+// list (can/protocol_messages.hpp) all come from this one list.
+#define TNV_MOTION_STATES(X) \
+  X(disabled)  /* servo off, DACs at mid-scale */ \
+  X(dwell)     /* servo on, holding the start point */ \
+  X(moving)    /* following the trajectory */ \
+  X(holding)   /* servo on, holding the end point */ \
+  X(faulted)   /* outputs safe, fault latched */
+
 enum class MotionState : std::uint8_t {
-  disabled = 0,  // servo off, DACs at mid-scale
-  dwell,         // servo on, holding the start point
-  moving,        // following the trajectory
-  holding,       // servo on, holding the end point
-  faulted,       // outputs safe, fault latched
+#define TNV_ENUMERATOR(name) name,
+  TNV_MOTION_STATES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+
+// Its names, by value.
+inline constexpr const char* kMotionStateNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_MOTION_STATES(TNV_NAME)
+#undef TNV_NAME
 };
 
 constexpr const char* to_string(MotionState s) noexcept {
-  switch (s) {
-    case MotionState::disabled: return "disabled";
-    case MotionState::dwell: return "dwell";
-    case MotionState::moving: return "moving";
-    case MotionState::holding: return "holding";
-    case MotionState::faulted: return "faulted";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(s);
+  return i < std::size(kMotionStateNames) ? kMotionStateNames[i] : "?";
 }
 
 struct AxisTickRecord {

@@ -236,6 +236,11 @@ class TickTask {
   // R-DVSC+DDC; DVSC+DDC applies it with gamma = 0).
   const SlidingModeParams& sliding_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].rdvsc.params(); }
   const PidParams& pid_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].pid.params(); }
+  // The model the controllers were formed with, and the speed observer's gains.
+  const AxisModel& controller_model(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].rdvsc.model(); }
+  const SpeedObserverParams& observer_params(hal::Axis axis) const noexcept {
+    return axis_[hal::index(axis)].observer.params();
+  }
 
  private:
   struct AxisLoop {

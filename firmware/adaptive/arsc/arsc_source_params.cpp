@@ -38,32 +38,40 @@ OuterArscConfig outer_config(const ArscSourceParams& p) noexcept {
 }
 
 ParamCheck validate(const ArscSourceParams& p) noexcept {
-  if (!std::isfinite(p.force_ref_n) || !(p.force_ref_n >= 0.0)) return param_error("force_ref_n", "must be >= 0");
+  if (!std::isfinite(p.force_ref_n) || !(p.force_ref_n >= 0.0))
+    return param_error(&p.force_ref_n, "force_ref_n", "must be >= 0");
   if (p.period_ticks < 1 || p.period_ticks > kMaxArscPeriodTicks)
-    return param_error("period_ticks", "must be 1 .. 500 ticks");
+    return param_error(&p.period_ticks, "period_ticks", "must be 1 .. 500 ticks");
   if (!std::isfinite(p.pole_re_rad_s) || !(p.pole_re_rad_s < 0.0))
-    return param_error("pole_re_rad_s", "must be < 0 (a stable force loop)");
-  if (!std::isfinite(p.pole_im_rad_s) || !(p.pole_im_rad_s >= 0.0)) return param_error("pole_im_rad_s", "must be >= 0");
-  if (!arsc_finite_positive(p.force_time_constant_s)) return param_error("force_time_constant_s", "must be > 0");
-  if (!arsc_finite_positive(p.cutting_gain_n_per_mm_s)) return param_error("cutting_gain_n_per_mm_s", "must be > 0");
-  if (!arsc_finite_positive(p.drive_time_constant_s)) return param_error("drive_time_constant_s", "must be > 0");
-  if (!arsc_finite_positive(p.memory_s)) return param_error("memory_s", "must be > 0");
+    return param_error(&p.pole_re_rad_s, "pole_re_rad_s", "must be < 0 (a stable force loop)");
+  if (!std::isfinite(p.pole_im_rad_s) || !(p.pole_im_rad_s >= 0.0))
+    return param_error(&p.pole_im_rad_s, "pole_im_rad_s", "must be >= 0");
+  if (!arsc_finite_positive(p.force_time_constant_s))
+    return param_error(&p.force_time_constant_s, "force_time_constant_s", "must be > 0");
+  if (!arsc_finite_positive(p.cutting_gain_n_per_mm_s))
+    return param_error(&p.cutting_gain_n_per_mm_s, "cutting_gain_n_per_mm_s", "must be > 0");
+  if (!arsc_finite_positive(p.drive_time_constant_s))
+    return param_error(&p.drive_time_constant_s, "drive_time_constant_s", "must be > 0");
+  if (!arsc_finite_positive(p.memory_s)) return param_error(&p.memory_s, "memory_s", "must be > 0");
   if (!(arsc_finite_positive(p.gain_min_ratio) && p.gain_min_ratio <= 1.0))
-    return param_error("gain_min_ratio", "must satisfy 0 < gain_min_ratio <= 1");
+    return param_error(&p.gain_min_ratio, "gain_min_ratio", "must satisfy 0 < gain_min_ratio <= 1");
   if (!(std::isfinite(p.gain_max_ratio) && p.gain_max_ratio >= 1.0))
-    return param_error("gain_max_ratio", "must be >= 1");
+    return param_error(&p.gain_max_ratio, "gain_max_ratio", "must be >= 1");
   if (!(std::isfinite(p.override_min) && p.override_min >= 0.0))
-    return param_error("override_min", "must be >= 0");
+    return param_error(&p.override_min, "override_min", "must be >= 0");
   if (!(std::isfinite(p.override_max) && p.override_max <= motion::kMaxFeedOverride))
-    return param_error("override_max", "must be <= 1.5");
-  if (!(p.override_min < p.override_max)) return param_error("override_min", "must be below override_max");
-  if (!std::isfinite(p.soft_start_s) || !(p.soft_start_s >= 0.0)) return param_error("soft_start_s", "must be >= 0");
+    return param_error(&p.override_max, "override_max", "must be <= 1.5");
+  if (!(p.override_min < p.override_max))
+    return param_error(&p.override_min, "override_min", "must be below override_max");
+  if (!std::isfinite(p.soft_start_s) || !(p.soft_start_s >= 0.0))
+    return param_error(&p.soft_start_s, "soft_start_s", "must be >= 0");
   const OuterArscConfig c = outer_config(p);
   if (const ParamCheck check = validate(c); !check.ok) return check;
   // The loop must have gains at the model it starts from (poles far too fast
   // for the period ask for gains beyond kArscMaxGain).
   const OuterDesign d = solve_outer_gains(discretise(c.model, c.period_s), c.period_s, c.poles, c.limits);
-  if (d.reason != GuardReason::none) return param_error("pole_re_rad_s", "no gains for these poles at this model and period");
+  if (d.reason != GuardReason::none)
+    return param_error(&p.pole_re_rad_s, "pole_re_rad_s", "no gains for these poles at this model and period");
   return param_ok();
 }
 

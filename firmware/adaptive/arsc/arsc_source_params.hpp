@@ -51,6 +51,7 @@ struct ArscSourceParams {
   double override_min = 0.0;
   double override_max = 1.5;
   double soft_start_s = 1.0;             // f* ramps from 0 over this long after a program starts
+  bool operator==(const ArscSourceParams&) const = default;
 };
 
 // Ranges, cross-field rules and a design at the model (gains exist).

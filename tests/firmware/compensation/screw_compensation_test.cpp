@@ -121,7 +121,7 @@ TEST(ScrewCompensation, TurnTableOutOfRangeOrNanIsRefusedByName) {
   c = with_turn_table();
   c.turn_period_mm = 0.0;
   EXPECT_STREQ(validate(c).field, "turn_period_mm");
-  EXPECT_FALSE(same(c, with_turn_table()));
+  EXPECT_FALSE(c == with_turn_table());
 }
 
 }  // namespace
