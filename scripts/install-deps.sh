@@ -11,6 +11,7 @@ packages=(
   python3-pytest      # tests: the plotting package (ctest -L plot) and the Python module (ctest -L python)
   python3-dev pybind11-dev python3-pandas   # the Python module tnv (tools/python): built, and capture_frame()
   libcpp-httplib-dev libjs-chart.js   # tnvctl serve (tools/serve): the HTTP/SSE server, the page's plots
+  libssl-dev   # tnvctl serve --tls-cert/--tls-key: cpp-httplib with OpenSSL
   chromium chromium-driver python3-selenium   # tests: the tuning page in a headless browser (ctest -L web)
 )
 

@@ -33,12 +33,18 @@ TEST(BrowserControl, ReleasedControlCanBeTakenByTheOtherTab) {
   EXPECT_EQ(control.check(kTabA, t0 + 1s), kAnotherBrowserHasControl);
 }
 
-TEST(BrowserControl, AQuietHolderLosesControlAfterTheIdleTime) {
-  BrowserControl control(10s);
+TEST(BrowserControl, AQuietHolderLosesControlAfterTheDeadmanTime) {
+  BrowserControl control(300ms);
   ASSERT_EQ(control.take(kTabA, t0), "");
-  control.seen(kTabA, t0 + 8s);  // its telemetry stream is open
-  EXPECT_EQ(control.take(kTabB, t0 + 17s), kAnotherBrowserHasControl) << "taken from a holder seen 9 s ago";
-  EXPECT_EQ(control.take(kTabB, t0 + 19s), "") << "a holder quiet for 11 s (> 10 s) still held control";
+  EXPECT_TRUE(control.seen(kTabA, t0 + 200ms));  // its heartbeat
+  EXPECT_FALSE(control.seen(kTabB, t0 + 200ms)) << "a heartbeat from a tab without control was taken";
+  EXPECT_EQ(control.lapse(t0 + 450ms), "") << "lapsed 250 ms after a heartbeat (< 300 ms)";
+  EXPECT_EQ(control.take(kTabB, t0 + 450ms), kAnotherBrowserHasControl) << "taken from a holder heard 250 ms ago";
+  EXPECT_EQ(control.lapse(t0 + 550ms), kTabA) << "a holder quiet for 350 ms (> 300 ms) still held control";
+  EXPECT_EQ(control.lapse(t0 + 560ms), "") << "the lapse was reported twice";
+  EXPECT_FALSE(control.seen(kTabA, t0 + 560ms)) << "a late heartbeat gave control back";
+  EXPECT_NE(control.check(kTabA, t0 + 560ms), "");
+  EXPECT_EQ(control.take(kTabB, t0 + 600ms), "");
 }
 
 TEST(BrowserControl, RefusesAMalformedToken) {
