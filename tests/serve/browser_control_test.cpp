@@ -47,6 +47,17 @@ TEST(BrowserControl, AQuietHolderLosesControlAfterTheDeadmanTime) {
   EXPECT_EQ(control.take(kTabB, t0 + 600ms), "");
 }
 
+TEST(BrowserControl, AHolderWhoseStreamClosedLapsesAtOnce) {
+  BrowserControl control(10s);
+  ASSERT_EQ(control.take(kTabA, t0), "");
+  control.gone(kTabB);  // not the holder: nothing
+  EXPECT_EQ(control.lapse(t0 + 1s), "");
+  control.gone(kTabA);
+  EXPECT_EQ(control.lapse(t0 + 1s), kTabA) << "a closed tab kept control for the whole dead-man time";
+  EXPECT_EQ(control.take(kTabA, t0 + 2s), "") << "a reloaded tab could not take control again";
+  EXPECT_TRUE(control.holds(kTabA, t0 + 2s));
+}
+
 TEST(BrowserControl, RefusesAMalformedToken) {
   BrowserControl control(10s);
   EXPECT_NE(control.take("", t0), "");

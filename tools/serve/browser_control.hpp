@@ -25,6 +25,9 @@ class BrowserControl {
   bool release(const std::string& token);
   // The tab is alive (its heartbeat); false when it does not hold control.
   bool seen(const std::string& token, Clock::time_point now);
+  // The tab's telemetry stream closed (the tab was closed or reloaded): a
+  // holder's control lapses at the next lapse().
+  void gone(const std::string& token);
   // Ends a holder's control once it has been quiet for `deadman`: its
   // token (once), else "".
   std::string lapse(Clock::time_point now);
@@ -42,6 +45,7 @@ class BrowserControl {
   std::chrono::milliseconds deadman_;
   std::string holder_;  // "" = nobody
   Clock::time_point holder_seen_{};
+  bool holder_gone_ = false;  // its telemetry stream closed
 };
 
 }  // namespace tnv::serve

@@ -21,13 +21,19 @@ using Clock = std::chrono::steady_clock;
 // keep-alive connections; the pool must not run dry.
 constexpr std::size_t kHttpThreads = 32;
 
-// Holds one of the server's telemetry stream slots while a stream lives.
+// Holds one of the server's telemetry stream slots while a stream lives;
+// `on_close` runs when it ends (the tab closed or reloaded).
 struct StreamSlot {
-  explicit StreamSlot(std::atomic<std::size_t>& count) : count_(count) {}
-  ~StreamSlot() { --count_; }
+  StreamSlot(std::atomic<std::size_t>& count, std::function<void()> on_close)
+      : count_(count), on_close_(std::move(on_close)) {}
+  ~StreamSlot() {
+    --count_;
+    if (on_close_) on_close_();
+  }
   StreamSlot(const StreamSlot&) = delete;
   StreamSlot& operator=(const StreamSlot&) = delete;
   std::atomic<std::size_t>& count_;
+  std::function<void()> on_close_;
 };
 
 nlohmann::json batch_json(const std::vector<ScopeSample>& samples) {
@@ -260,8 +266,12 @@ void TuningServer::telemetry_stream(const httplib::Request& req, httplib::Respon
     reply(res, kHttpUnavailable, {{"error", "too many telemetry streams open: close a page"}});
     return;
   }
-  auto slot = std::make_shared<StreamSlot>(streams_);
   const std::string token = req.has_param("token") ? req.get_param_value("token") : "";
+  // A closed tab is gone at once: the dead-man stop need not wait for the missed heartbeats.
+  auto slot = std::make_shared<StreamSlot>(streams_, [this, token] {
+    control_.gone(token);
+    deadman_wake_.notify_all();
+  });
   auto cursor = std::make_shared<std::uint64_t>(0);  // the first batch carries the whole history
   auto last_sent = std::make_shared<Clock::time_point>();
   res.set_header("Cache-Control", "no-cache");

@@ -30,6 +30,7 @@ struct ServeCommandOptions {
   std::string tls_key;
   std::string audit;  // "" = stderr
   bool read_only = false;
+  int deadman_ms = 300;
 };
 
 void check_serve(const ServeCommandOptions& o) {
@@ -56,6 +57,7 @@ int run_serve(const ServeCommandOptions& o, Session& session, Report& report) {
   options.tls_key = o.tls_key;
   options.audit_path = o.audit;
   options.read_only = o.read_only;
+  options.control_deadman = std::chrono::milliseconds(o.deadman_ms);
   options.info = {{"node", session.options().node},
                   {"host_id", session.options().host_id},
                   {"bus", client.bus().describe()},
@@ -117,6 +119,10 @@ void add_serve_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("--tls-key", o->tls_key, "PEM private key of --tls-cert");
   cmd->add_option("--audit", o->audit,
                   "append the audit trail (every command and change, JSON lines) to this file; default stderr");
+  cmd->add_option("--deadman-ms", o->deadman_ms,
+                  "the tab with control that is not heard from for this long loses it, and its motion is stopped")
+      ->check(CLI::Range(100, 10000))
+      ->capture_default_str();
   cmd->add_flag("--read-only", o->read_only, "a second screen: the page may watch, never command or change");
   cmd->callback([&slot, o] {
     slot = Action{"serve", true, [o](Session& s, Report& r) { return run_serve(*o, s, r); }, [o] { check_serve(*o); }};

@@ -42,7 +42,11 @@ def server(tmp_path_factory):
     scenario = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tests", "data", "tables",
                             "no-friction.toml")
     proc = subprocess.Popen([exe, "--emu", "--emu-scenario", scenario, "--emu-storage", str(storage), "serve",
-                             "--port", "0", "--audit", str(audit)],
+                             "--port", "0", "--audit", str(audit),
+                             # Two headless browsers on a busy 2-core machine may stall a page for longer than
+                             # the default 0.3 s: closing a tab is seen at once (its stream ends), and the
+                             # 0.3 s heartbeat rule is DeadmanTest's (test_serve).
+                             "--deadman-ms", "3000"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     line = proc.stdout.readline()
     match = re.search(r"(http://\S+/\?token=[0-9a-f]{64})\s", line)

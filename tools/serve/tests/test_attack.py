@@ -6,6 +6,9 @@ a guessed bearer token and no token at all. Every step is refused, and
 nothing changed on the node. No browser needed."""
 
 import json
+import os
+import signal
+import subprocess
 import time
 
 import pytest
@@ -85,3 +88,42 @@ def test_a_body_that_is_not_small_json_is_refused(server, body, content_type, ex
     status, answer = request(server, "POST", "/api/motion", body, origin=server.base, tab=TAB, bearer=server.secret,
                              content_type=content_type)
     assert status == expected, (status, answer)
+
+
+def _serve(*args, timeout=30):
+    exe = os.environ["TNVCTL_EXE"]
+    return subprocess.run([exe, "--emu", "serve", "--port", "0", *args], capture_output=True, text=True,
+                          timeout=timeout)
+
+
+def test_a_bind_off_the_loopback_needs_tls():
+    for bind in ("0.0.0.0", "::", "192.0.2.1"):
+        r = _serve("--bind", bind)
+        assert r.returncode == 2, (bind, r.returncode, r.stdout, r.stderr)
+        assert "--tls-cert" in r.stderr and "http://" not in r.stdout, (bind, r.stderr)
+    r = _serve("--tls-cert", "/nonexistent.pem")
+    assert r.returncode == 2 and "both --tls-cert and --tls-key" in r.stderr, r.stderr
+
+
+def test_a_token_file_others_may_read_is_refused(tmp_path):
+    secret = "0123456789abcdef" * 4
+    path = tmp_path / "token"
+    path.write_text(secret + "\n")
+    os.chmod(path, 0o644)
+    r = _serve("--token-file", str(path))
+    assert r.returncode == 2 and "chmod 600" in r.stderr, (r.returncode, r.stderr)
+    os.chmod(path, 0o600)
+    short = tmp_path / "short"
+    short.write_text("abc\n")
+    os.chmod(short, 0o600)
+    r = _serve("--token-file", str(short))
+    assert r.returncode == 2 and "at least 32" in r.stderr, (r.returncode, r.stderr)
+    # Owner-only: served, with that secret in the URL.
+    proc = subprocess.Popen([os.environ["TNVCTL_EXE"], "--emu", "serve", "--port", "0", "--token-file", str(path)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = proc.stdout.readline()
+        assert f"/?token={secret} " in line, line
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=10)

@@ -27,6 +27,7 @@ function showStatus(status) {
 
 function showControl(control) {
   page.control = control;
+  tellHeartbeat(control.you);
   const state = $('control-state');
   if (control.you) {
     state.textContent = 'you have control';
@@ -40,26 +41,22 @@ function showControl(control) {
   document.body.classList.toggle('read-only', !control.you);
 }
 
-// The dead-man rule: while this tab has control it says so every third of
-// the server's dead-man time (/api/info); a tab that stops (closed, asleep,
-// offline) loses control and the server stops the motion it started. Sent
-// from the telemetry events as well as a timer: a browser throttles the
-// timers of a page it thinks hidden to one a second, not its network events.
-const heartbeat = { periodMs: 100, lastMs: -Infinity, inFlight: false };
-async function beat() {
-  const now = performance.now();
-  if (!page.control.you || heartbeat.inFlight || now - heartbeat.lastMs < heartbeat.periodMs) return;
-  heartbeat.lastMs = now;
-  heartbeat.inFlight = true;
-  const r = await api('POST', '/api/control/heartbeat');
-  heartbeat.inFlight = false;
-  if (r.ok || !page.control.you) return;
+// The dead-man rule: while this tab has control, a worker (heartbeat.js)
+// says so every quarter of the server's dead-man time (/api/info); a tab
+// that stops (closed, asleep, offline) loses control and the server stops
+// the motion it started.
+const heartbeat = { worker: new Worker('heartbeat.js'), periodMs: 75, you: false };
+heartbeat.worker.onmessage = () => {
   showControl({ you: false, taken: false });
-  $('control-error').textContent = r.status === 403 ? 'control lost: this page went quiet for too long' : r.error;
-}
+  $('control-error').textContent = 'control lost: this page went quiet for too long';
+};
 function startHeartbeat(deadmanMs) {
-  heartbeat.periodMs = Math.max(20, Math.floor(deadmanMs / 3));
-  setInterval(beat, heartbeat.periodMs);
+  heartbeat.periodMs = Math.max(20, Math.floor(deadmanMs / 4));
+}
+function tellHeartbeat(you) {
+  if (you === heartbeat.you) return;
+  heartbeat.you = you;
+  heartbeat.worker.postMessage({ you, token, periodMs: heartbeat.periodMs });
 }
 
 $('take-control').addEventListener('click', async () => {
@@ -95,7 +92,6 @@ function connect() {
   source.onmessage = (e) => {
     const ev = JSON.parse(e.data);
     page.events++;
-    beat();
     scope.take(ev);
     scope.draw();
     showStatus(ev.status);
