@@ -253,7 +253,10 @@ def test_closing_the_tab_with_control_stops_its_jog(server, browsers):
     t_moved = max([t for t, x in after if abs(x - after[-1][1]) > 0.01], default=t_close)
     stopped_after = t_moved - t_close
     print(f"dead-man: the jog stopped {stopped_after:.3f} s of machine time after the tab closed")
-    assert stopped_after <= 0.5, f"the jog ran {stopped_after:.3f} s of machine time after the tab closed"
+    # From before quit() to rest: the browser's own shutdown (hundreds of ms on a loaded machine) is in
+    # it. The 0.5 s goal is DeadmanTest's (test_serve); here a generous bound, well under the module's
+    # 3 s dead-man time, so a pass is the closed stream's doing.
+    assert stopped_after <= 1.5, f"the jog ran {stopped_after:.3f} s of machine time after the tab closed"
     assert owner(server, "/api/control")["taken"] is False, "the closed tab kept control"
     events = [l for l in audit_lines(server) if l.get("event") == "dead-man"]
     assert events and "motion stopped" in events[-1]["detail"], events
