@@ -171,6 +171,7 @@ GateVerdict TuningServer::handle(httplib::Request& req, httplib::Response& res) 
     }
     if (!found) reply(res, kHttpNotFound, {{"error", "no such route"}});
   }
+  if (res.status == -1) res.status = 200;  // as cpp-httplib's server does for a handled request (a stream)
   return verdict;
 }
 
