@@ -13,6 +13,7 @@ packages=(
   libsqlite3-dev      # tnv-hil campaign: the merged results (tools/campaign)
   parallel            # tests: a campaign's shards run by GNU parallel (ctest -R Campaign)
   libcpp-httplib-dev libjs-chart.js   # tnvctl serve (tools/serve): the HTTP/SSE server, the page's plots
+  libssl-dev   # tnvctl serve --tls-cert/--tls-key: cpp-httplib with OpenSSL
   chromium chromium-driver python3-selenium   # tests: the tuning page in a headless browser (ctest -L web)
 )
 

@@ -61,7 +61,10 @@ SysResult UnixCanSocketApi::bind_can(int fd, int) {
       ::unlink(path_.c_str());
     }
     const sockaddr_un a = address_of(path_);
-    return result_of(::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a));
+    if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) return {-1, errno};
+    // Owner-only: connecting needs write permission on the socket, and only
+    // this user's hosts may talk to the node (the daemon checked the directory).
+    return result_of(::chmod(path_.c_str(), 0600));
   }
   // Host: autobind (an abstract name of the kernel's choosing) so the node can answer.
   sockaddr_un self{};

@@ -60,7 +60,8 @@ hal::HalStatus FileParamStorage::write(std::span<const std::uint8_t> image) noex
     const fs::path target(path_);
     const std::string dir = target.has_parent_path() ? target.parent_path().string() : std::string(".");
     std::error_code ec;
-    fs::create_directories(dir, ec);
+    // A directory made here is the owner's only (the image is the machine's tuning).
+    if (fs::create_directories(dir, ec) && !ec) fs::permissions(dir, fs::perms::owner_all, ec);
     if (ec) return fail(dir + ": cannot create the directory: " + ec.message());
 
     // 1. the new image, whole and on disk, under a name nobody loads;
@@ -75,7 +76,7 @@ hal::HalStatus FileParamStorage::write(std::span<const std::uint8_t> image) noex
                     " where the temporary image goes; remove it");
       if (::unlink(tmp.c_str()) != 0) return fail(describe(tmp, "cannot remove the stale temporary image", errno));
     }
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
     if (fd < 0) return fail(describe(tmp, "cannot create", errno));
     const bool written = write_all(fd, image);
     int err = written ? 0 : errno;

@@ -10,6 +10,9 @@
 #include <vector>
 
 #include "tests/fuzz/fuzz_entries.hpp"
+#ifdef TNV_FUZZ_HTTP
+#include "tests/fuzz/http_routes_entry.hpp"
+#endif
 
 namespace tnv {
 namespace {
@@ -40,6 +43,9 @@ TEST(FuzzCorpus, ParamSet) { EXPECT_GE(run_corpus("param_set", fuzz::param_set),
 TEST(FuzzCorpus, ScenarioToml) { EXPECT_GE(run_corpus("scenario_toml", fuzz::scenario_toml), kMinSeeds); }
 TEST(FuzzCorpus, ParamImage) { EXPECT_GE(run_corpus("param_image", fuzz::param_image), kMinSeeds); }
 TEST(FuzzCorpus, GcodeCanon) { EXPECT_GE(run_corpus("gcode_canon", fuzz::gcode_canon), kMinSeeds); }
+#ifdef TNV_FUZZ_HTTP
+TEST(FuzzCorpus, HttpRoutes) { EXPECT_GE(run_corpus("http_routes", fuzz::http_routes), kMinSeeds); }
+#endif
 
 // The empty input (libFuzzer's first) is a valid input for every entry.
 TEST(FuzzCorpus, EmptyInputsAreHandled) {

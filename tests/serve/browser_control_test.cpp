@@ -33,12 +33,29 @@ TEST(BrowserControl, ReleasedControlCanBeTakenByTheOtherTab) {
   EXPECT_EQ(control.check(kTabA, t0 + 1s), kAnotherBrowserHasControl);
 }
 
-TEST(BrowserControl, AQuietHolderLosesControlAfterTheIdleTime) {
+TEST(BrowserControl, AQuietHolderLosesControlAfterTheDeadmanTime) {
+  BrowserControl control(300ms);
+  ASSERT_EQ(control.take(kTabA, t0), "");
+  EXPECT_TRUE(control.seen(kTabA, t0 + 200ms));  // its heartbeat
+  EXPECT_FALSE(control.seen(kTabB, t0 + 200ms)) << "a heartbeat from a tab without control was taken";
+  EXPECT_EQ(control.lapse(t0 + 450ms), "") << "lapsed 250 ms after a heartbeat (< 300 ms)";
+  EXPECT_EQ(control.take(kTabB, t0 + 450ms), kAnotherBrowserHasControl) << "taken from a holder heard 250 ms ago";
+  EXPECT_EQ(control.lapse(t0 + 550ms), kTabA) << "a holder quiet for 350 ms (> 300 ms) still held control";
+  EXPECT_EQ(control.lapse(t0 + 560ms), "") << "the lapse was reported twice";
+  EXPECT_FALSE(control.seen(kTabA, t0 + 560ms)) << "a late heartbeat gave control back";
+  EXPECT_NE(control.check(kTabA, t0 + 560ms), "");
+  EXPECT_EQ(control.take(kTabB, t0 + 600ms), "");
+}
+
+TEST(BrowserControl, AHolderWhoseStreamClosedLapsesAtOnce) {
   BrowserControl control(10s);
   ASSERT_EQ(control.take(kTabA, t0), "");
-  control.seen(kTabA, t0 + 8s);  // its telemetry stream is open
-  EXPECT_EQ(control.take(kTabB, t0 + 17s), kAnotherBrowserHasControl) << "taken from a holder seen 9 s ago";
-  EXPECT_EQ(control.take(kTabB, t0 + 19s), "") << "a holder quiet for 11 s (> 10 s) still held control";
+  control.gone(kTabB);  // not the holder: nothing
+  EXPECT_EQ(control.lapse(t0 + 1s), "");
+  control.gone(kTabA);
+  EXPECT_EQ(control.lapse(t0 + 1s), kTabA) << "a closed tab kept control for the whole dead-man time";
+  EXPECT_EQ(control.take(kTabA, t0 + 2s), "") << "a reloaded tab could not take control again";
+  EXPECT_TRUE(control.holds(kTabA, t0 + 2s));
 }
 
 TEST(BrowserControl, RefusesAMalformedToken) {

@@ -12,7 +12,7 @@ bool BrowserControl::valid_token(const std::string& token) {
 }
 
 bool BrowserControl::expired(Clock::time_point now) const {
-  return holder_.empty() || now - holder_seen_ > idle_release_;
+  return holder_.empty() || holder_gone_ || now - holder_seen_ > deadman_;
 }
 
 std::string BrowserControl::take(const std::string& token, Clock::time_point now) {
@@ -21,6 +21,7 @@ std::string BrowserControl::take(const std::string& token, Clock::time_point now
   if (holder_ != token && !expired(now)) return kAnotherBrowserHasControl;
   holder_ = token;
   holder_seen_ = now;
+  holder_gone_ = false;
   return "";
 }
 
@@ -31,9 +32,24 @@ bool BrowserControl::release(const std::string& token) {
   return true;
 }
 
-void BrowserControl::seen(const std::string& token, Clock::time_point now) {
+bool BrowserControl::seen(const std::string& token, Clock::time_point now) {
   const std::lock_guard lock(mutex_);
-  if (!holder_.empty() && holder_ == token) holder_seen_ = now;
+  if (holder_.empty() || holder_ != token || expired(now)) return false;
+  holder_seen_ = now;
+  return true;
+}
+
+void BrowserControl::gone(const std::string& token) {
+  const std::lock_guard lock(mutex_);
+  if (!holder_.empty() && holder_ == token) holder_gone_ = true;
+}
+
+std::string BrowserControl::lapse(Clock::time_point now) {
+  const std::lock_guard lock(mutex_);
+  if (holder_.empty() || !expired(now)) return "";
+  std::string gone;
+  gone.swap(holder_);
+  return gone;
 }
 
 std::string BrowserControl::check(const std::string& token, Clock::time_point now) {

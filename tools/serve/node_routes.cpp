@@ -28,9 +28,8 @@ int capture_id(const httplib::Request& req) {
 }  // namespace
 
 void TuningServer::node_routes() {
-  httplib::Server& s = *http_;
   // Parameters: anyone reads, the tab with control changes.
-  s.Get("/api/params", [this](const httplib::Request& req, httplib::Response& res) {
+  get("/api/params", [this](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       const std::string filter = req.has_param("filter") ? req.get_param_value("filter") : "";
       return worker_.run([this, filter](can_host::NodeClient& c) {
@@ -38,7 +37,7 @@ void TuningServer::node_routes() {
       });
     });
   });
-  s.Post("/api/params/set", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/params/set", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       const std::string name = text_field(body, "name");
       const nlohmann::json value = body.value("value", nlohmann::json());
@@ -46,7 +45,7 @@ void TuningServer::node_routes() {
       return worker_.run([this, name, value](can_host::NodeClient& c) { return desk_.set(c, name, value); });
     });
   });
-  s.Post("/api/params/stage", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/params/stage", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       const std::string name = text_field(body, "name");
       const nlohmann::json value = body.value("value", nlohmann::json());
@@ -54,24 +53,24 @@ void TuningServer::node_routes() {
       return worker_.run([this, name, value](can_host::NodeClient& c) { return desk_.stage(c, name, value); });
     });
   });
-  s.Post("/api/params/commit", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/params/commit", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json&) {
       return worker_.run([this](can_host::NodeClient& c) { return desk_.commit(c); });
     });
   });
-  s.Post("/api/params/discard", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/params/discard", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json&) {
       return worker_.run([this](can_host::NodeClient& c) { return desk_.discard(c); });
     });
   });
 
   // Faults and motions.
-  s.Post("/api/fault/clear", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/fault/clear", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json&) {
       return worker_.run([](can_host::NodeClient& c) { return clear_faults_for_page(c); });
     });
   });
-  s.Post("/api/motion", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/motion", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       const MotionRequest motion = parse_motion_request(body, emulated_);
       return worker_.run([motion](can_host::NodeClient& c) { return start_motion(c, motion); });
@@ -79,7 +78,7 @@ void TuningServer::node_routes() {
   });
 
   // Captures: taken by the tab with control, listed and downloaded by anyone.
-  s.Post("/api/captures", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/captures", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       can_host::CaptureSetup setup;
       setup.channels = body.value("channels", std::string());
@@ -103,10 +102,10 @@ void TuningServer::node_routes() {
       return result;
     });
   });
-  s.Get("/api/captures", [this](const httplib::Request&, httplib::Response& res) {
+  get("/api/captures", [this](const httplib::Request&, httplib::Response& res) {
     answer(res, [&] { return nlohmann::json{{"captures", captures_.list()}}; });
   });
-  s.Get(R"(/api/captures/(\d+))", [this](const httplib::Request& req, httplib::Response& res) {
+  get(R"(/api/captures/(\d+))", [this](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
       std::optional<nlohmann::json> c = captures_.columns(capture_id(req));
       if (!c) throw ApiError(kHttpNotFound, "no such capture (the server keeps the last " +
@@ -114,7 +113,7 @@ void TuningServer::node_routes() {
       return *c;
     });
   });
-  s.Get(R"(/api/captures/(\d+)\.csv)", [this](const httplib::Request& req, httplib::Response& res) {
+  get(R"(/api/captures/(\d+)\.csv)", [this](const httplib::Request& req, httplib::Response& res) {
     const int id = capture_id(req);
     const std::optional<std::string> csv = captures_.csv(id);
     if (!csv) return reply(res, kHttpNotFound, {{"error", "no such capture"}});
@@ -123,7 +122,7 @@ void TuningServer::node_routes() {
   });
 
   // The Bode view's measurement.
-  s.Post("/api/freq-response", [this](const httplib::Request& req, httplib::Response& res) {
+  post("/api/freq-response", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       FreqResponseRequest request = parse_freq_response_request(body);
       if (emulated_ != nullptr) {  // the model side on the emulated table's own plant, as tnvctl --emu does

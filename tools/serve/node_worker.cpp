@@ -55,6 +55,7 @@ void NodeWorker::stop() {
 }
 
 nlohmann::json NodeWorker::run(Job job) {
+  ++offered_;
   std::future<nlohmann::json> result;
   {
     const std::lock_guard lock(mutex_);

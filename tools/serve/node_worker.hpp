@@ -5,6 +5,7 @@
 // and wait for its result. Between jobs the thread receives the node's
 // frames; every TLM_POSITION adds a scope sample to the ring, also while a
 // long job (a capture upload) is running.
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -41,6 +42,9 @@ class NodeWorker {
   // rethrown here. A full queue throws ApiError(503) at once (nothing queued).
   nlohmann::json run(Job job);
   std::size_t pending() const;
+  // How many jobs run() was given so far (run or refused): a refused
+  // request must leave this unchanged.
+  std::size_t jobs_offered() const noexcept { return offered_.load(); }
 
   // The latest heartbeat and fault event as the page shows them:
   // {"heartbeat": {...} | null, "fault": {...} | null, "bus_error": ""}.
@@ -68,6 +72,7 @@ class NodeWorker {
   bool stopping_ = false;
   nlohmann::json status_;
   std::thread thread_;
+  std::atomic<std::size_t> offered_{0};
 };
 
 }  // namespace tnv::serve

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "drivers/linux/owner_only_path.hpp"
 #include "drivers/linux/socket_register_bus.hpp"
 #include "drivers/linux/spidev_register_bus.hpp"
 #include "drivers/linux/unix_can_socket_api.hpp"
@@ -58,6 +59,10 @@ std::unique_ptr<Daemon> Daemon::open(const DaemonConfig& config, const DaemonOpt
   // CAN.
   drivers::SocketApi* api = &drivers::linux_socket_api();
   if (const std::string path = drivers::unix_can_path(config.can.interface_name); !path.empty()) {
+    if (const std::string why = drivers::unsafe_directory(drivers::parent_directory(path)); !why.empty()) {
+      error = "CAN socket " + path + ": " + why;
+      return nullptr;
+    }
     d->own_socket_api_ = std::make_unique<drivers::UnixCanSocketApi>(path, drivers::UnixCanSocketApi::Role::node);
     api = d->own_socket_api_.get();
   }
@@ -68,6 +73,10 @@ std::unique_ptr<Daemon> Daemon::open(const DaemonConfig& config, const DaemonOpt
   if (!d->can_) return nullptr;
 
   // Parameters: defaults, then the stored image, then what the config fixes.
+  if (const std::string why = drivers::unsafe_directory(drivers::parent_directory(config.params.file)); !why.empty()) {
+    error = "parameter file " + config.params.file + ": " + why;
+    return nullptr;
+  }
   namespace can = fw::can;
   d->storage_ = std::make_unique<drivers::FileParamStorage>(config.params.file);
   can::NodeSettings settings = can::default_node_settings();

@@ -15,26 +15,45 @@ CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
 
 
+class PageUrl(str):
+    """The printed URL, with its parts: base (http://127.0.0.1:PORT), host
+    (127.0.0.1:PORT), secret, and the server's audit file."""
+
+    def __new__(cls, url, audit):
+        self = super().__new__(cls, url)
+        self.base, self.secret = url.split("/?token=")
+        self.host = self.base.split("://", 1)[1]
+        self.audit = audit
+        return self
+
+
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    """The page's URL on a running `tnvctl --emu serve --port 0`."""
+    """The page's URL as printed by a running `tnvctl --emu serve --port 0`:
+    http://127.0.0.1:PORT/?token=SECRET (the secret is new at each start)."""
     exe = os.environ.get("TNVCTL_EXE")
     if not exe:
         pytest.fail("TNVCTL_EXE is not set (ctest sets it to the built tnvctl)")
-    storage = tmp_path_factory.mktemp("node") / "node.params"
+    node_dir = tmp_path_factory.mktemp("node")
+    storage = node_dir / "node.params"
+    audit = node_dir / "audit.jsonl"
     # The reference table with friction off: the Bode view's measurement is
     # then the linear loop its model describes (docs/frequency-response.md).
     scenario = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "tests", "data", "tables",
                             "no-friction.toml")
     proc = subprocess.Popen([exe, "--emu", "--emu-scenario", scenario, "--emu-storage", str(storage), "serve",
-                             "--port", "0"],
+                             "--port", "0", "--audit", str(audit),
+                             # Two headless browsers on a busy 2-core machine may stall a page for longer than
+                             # the default 0.3 s: closing a tab is seen at once (its stream ends), and the
+                             # 0.3 s heartbeat rule is DeadmanTest's (test_serve).
+                             "--deadman-ms", "3000"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     line = proc.stdout.readline()
-    match = re.search(r"(http://\S+/)", line)
+    match = re.search(r"(http://\S+/\?token=[0-9a-f]{64})\s", line)
     if not match:
         proc.kill()
-        pytest.fail(f"tnvctl serve printed no URL: {line!r} {proc.stderr.read()!r}")
-    yield match.group(1)
+        pytest.fail(f"tnvctl serve printed no URL with its secret: {line!r} {proc.stderr.read()!r}")
+    yield PageUrl(match.group(1), audit)
     proc.send_signal(signal.SIGINT)
     try:
         assert proc.wait(timeout=10) == 0, proc.stderr.read()
@@ -77,6 +96,7 @@ def browsers():
         opened.append(_start_browser())
         return opened[-1]
 
+    open_one.opened = opened  # the windows open now (a test that closes one removes it)
     yield open_one
     for b in opened:
         b.quit()

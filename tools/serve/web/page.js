@@ -3,7 +3,8 @@
 // index.html, with Debian's Chart.js; no build step.
 'use strict';
 
-// One token per browser tab: browser control is keyed on it.
+// One token per browser tab: browser control is keyed on it. (Not the
+// server's secret: that lives in an HttpOnly cookie the scripts never see.)
 const token = (() => {
   let t = sessionStorage.getItem('tnv-token');
   if (!t) {

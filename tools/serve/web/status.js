@@ -27,6 +27,7 @@ function showStatus(status) {
 
 function showControl(control) {
   page.control = control;
+  tellHeartbeat(control.you);
   const state = $('control-state');
   if (control.you) {
     state.textContent = 'you have control';
@@ -38,6 +39,24 @@ function showControl(control) {
   $('take-control').hidden = control.you;
   $('release-control').hidden = !control.you;
   document.body.classList.toggle('read-only', !control.you);
+}
+
+// The dead-man rule: while this tab has control, a worker (heartbeat.js)
+// says so every quarter of the server's dead-man time (/api/info); a tab
+// that stops (closed, asleep, offline) loses control and the server stops
+// the motion it started.
+const heartbeat = { worker: new Worker('heartbeat.js'), periodMs: 75, you: false };
+heartbeat.worker.onmessage = () => {
+  showControl({ you: false, taken: false });
+  $('control-error').textContent = 'control lost: this page went quiet for too long';
+};
+function startHeartbeat(deadmanMs) {
+  heartbeat.periodMs = Math.max(20, Math.floor(deadmanMs / 4));
+}
+function tellHeartbeat(you) {
+  if (you === heartbeat.you) return;
+  heartbeat.you = you;
+  heartbeat.worker.postMessage({ you, token, periodMs: heartbeat.periodMs });
 }
 
 $('take-control').addEventListener('click', async () => {
