@@ -25,6 +25,7 @@ import re
 import shlex
 import subprocess
 import sys
+import time
 from concurrent.futures import ThreadPoolExecutor
 
 UNITY_INCLUDE = re.compile(r'^#include "(.+)"\s*$', re.MULTILINE)
@@ -84,6 +85,7 @@ def main():
         r = subprocess.run(command, cwd=directory, capture_output=True, text=True)
         return source, r.returncode, r.stderr
 
+    started = time.monotonic()
     failed = []
     with ThreadPoolExecutor(max_workers=max(1, opts.jobs)) as pool:
         for source, code, err in pool.map(check, sorted(jobs.items())):
@@ -92,7 +94,8 @@ def main():
                 lines = err.splitlines()
                 print(f"--- {source} does not compile on its own:", file=sys.stderr)
                 print("\n".join(lines[:40] + (["..."] if len(lines) > 40 else [])), file=sys.stderr)
-    print(f"compile-each: {len(jobs) - len(failed)} of {len(jobs)} sources compile on their own")
+    print(f"compile-each: {len(jobs) - len(failed)} of {len(jobs)} sources compile on their own "
+          f"({time.monotonic() - started:.0f} s, {opts.jobs} jobs)")
     return 1 if failed else 0
 
 

@@ -77,6 +77,29 @@ TEST(SocketCanBus, SetupFailuresNameTheInterfaceAndTheStepAndCloseTheSocket) {
   EXPECT_EQ(no_can.closed, 0) << "nothing was opened";
 }
 
+// tnv-fw's owner-only `unix:` socket: another user's host is told why it
+// was refused (tnvctl prints it, the Python module raises it).
+TEST(SocketCanBus, ARefusedUnixSocketSaysItIsOwnerOnly) {
+  SocketCanOptions unix_options = options();
+  unix_options.interface_name = "unix:/run/tnv/can.sock";
+  const auto error_for = [&](int bind_error) {
+    FakeSocketApi api;
+    api.fail_bind = bind_error;
+    try {
+      SocketCanBus bus(api, unix_options);
+    } catch (const BusError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string e = error_for(EACCES);
+  EXPECT_NE(e.find("unix:/run/tnv/can.sock: refused"), std::string::npos) << e;
+  EXPECT_NE(e.find("owner-only"), std::string::npos) << e;
+  EXPECT_EQ(e.find("ip link set"), std::string::npos) << "a CAN interface's advice for a socket: " << e;
+  e = error_for(ENOENT);
+  EXPECT_NE(e.find("no node listening"), std::string::npos) << e;
+}
+
 TEST(SocketCanBus, ReceiveSkipsShortReadsErrorFramesAndRemoteFrames) {
   FakeSocketApi api;
   SocketCanBus bus(api, options());

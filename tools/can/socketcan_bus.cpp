@@ -29,7 +29,18 @@ SocketCanBus::SocketCanBus(SocketApi& api, const SocketCanOptions& options) : ap
   if (const SysResult r = api_.set_error_mask(fd_, errors); r.failed()) fail("cannot enable error frames", r.error);
   if (const SysResult r = api_.set_nonblocking(fd_); r.failed()) fail("cannot make the socket non-blocking", r.error);
   if (const SysResult r = api_.bind_can(fd_, static_cast<int>(index.value)); r.failed())
-    fail("cannot bind (is the interface up? ip link set can0 up type can bitrate 1000000)", r.error);
+    fail(bind_failure(options_.interface_name, r.error), r.error);
+}
+
+// What a failed bind means: on a CAN interface, usually that it is down;
+// on tnv-fw's `unix:` socket, that the node is not there or that its
+// owner-only socket (0600, docs/safety.md) refused another user.
+const char* SocketCanBus::bind_failure(const std::string& interface_name, int error) noexcept {
+  if (interface_name.rfind("unix:", 0) != 0) return "cannot bind (is the interface up? ip link set can0 up type can bitrate 1000000)";
+  if (error == EACCES || error == EPERM)
+    return "refused: the node's socket is owner-only (tnv-fw makes it 0600); connect as the user that runs tnv-fw";
+  if (error == ENOENT || error == ECONNREFUSED) return "no node listening there (is tnv-fw running with this socket?)";
+  return "cannot connect to the node's socket";
 }
 
 SocketCanBus::~SocketCanBus() {

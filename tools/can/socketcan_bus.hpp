@@ -36,6 +36,7 @@ class SocketCanBus final : public HostBus {
 
  private:
   [[noreturn]] void fail(const char* step, int error) const;
+  static const char* bind_failure(const std::string& interface_name, int error) noexcept;
   int wait_ms(Micros deadline);
 
   SocketApi& api_;
