@@ -33,7 +33,7 @@ void expect_best_beats_papers(const char* file) {
   ASSERT_NE(table.name, "default") << file << " did not load";
   const BestConfigDesign design = design_best_config(table, BestConfigChoice{});
   ASSERT_TRUE(design.ok) << table.name << ": " << design.error;
-  for (const AxisDesign& d : design.designs) EXPECT_TRUE(d.observer.enabled) << table.name << ": observer off";
+  for (const tune::AxisDesign& d : design.designs) EXPECT_TRUE(d.observer.enabled) << table.name << ": observer off";
 
   TableCheckRequest request;
   request.table = table;
