@@ -4,8 +4,9 @@
 The presets build with CMAKE_UNITY_BUILD, where a source that forgets an
 include still compiles because an earlier file of its batch brought the
 header in; the plain `cmake -S . -B build && cmake --build build` then
-fails. This runs each source that the build's unity batches include (and
-each source outside them) through its own target's compile command with
+fails. This runs each source that a unity batch includes after its first (the
+build itself compiled the first, and every source outside the batches, on
+its own) through its own target's compile command with
 -fsyntax-only: the same flags, warnings as errors, no object written, so a
 missing include fails here, naming the file, without a second full build.
 
@@ -32,12 +33,15 @@ UNITY_INCLUDE = re.compile(r'^#include "(.+)"\s*$', re.MULTILINE)
 
 
 def units(entry):
-    """The sources one compile_commands entry stands for."""
+    """The sources of one compile_commands entry that the build did not
+    already compile on their own: a unity batch's second and later files
+    (its first sees nothing before it but what the plain build sees, and a
+    source outside the batches is compiled alone anyway)."""
     path = entry["file"]
     if os.path.basename(os.path.dirname(path)) == "Unity" and re.match(r"unity_\d+_cxx\.cxx$", os.path.basename(path)):
         with open(path, encoding="utf-8") as f:
-            return UNITY_INCLUDE.findall(f.read())
-    return [path]
+            return UNITY_INCLUDE.findall(f.read())[1:]
+    return []
 
 
 def syntax_command(entry, source):
