@@ -9,7 +9,7 @@
 namespace tnv::fw::can {
 namespace detail {
 
-consteval std::size_t decimal_digits(std::size_t v) {
+constexpr std::size_t decimal_digits(std::size_t v) {
   std::size_t n = 1;
   while (v >= 10) {
     v /= 10;
@@ -18,14 +18,14 @@ consteval std::size_t decimal_digits(std::size_t v) {
   return n;
 }
 
-consteval std::size_t name_chars(const char* name) {
+constexpr std::size_t name_chars(const char* name) {
   std::size_t n = 0;
   while (name[n] != '\0') ++n;
   return n;
 }
 
 template <const auto& Names>
-consteval std::size_t value_list_chars() {
+constexpr std::size_t value_list_chars() {
   std::size_t n = 0;
   for (std::size_t i = 0; i < std::size(Names); ++i)
     n += (i > 0 ? 1 : 0) + decimal_digits(i) + 1 + name_chars(Names[i]);
@@ -33,7 +33,7 @@ consteval std::size_t value_list_chars() {
 }
 
 template <const auto& Names>
-consteval std::array<char, value_list_chars<Names>()> make_value_list() {
+constexpr std::array<char, value_list_chars<Names>()> make_value_list() {
   std::array<char, value_list_chars<Names>()> out{};
   std::size_t at = 0;
   for (std::size_t i = 0; i < std::size(Names); ++i) {
