@@ -39,7 +39,7 @@ cmake -S . -B "${build}" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UNIT
   -DTNV_FUZZ=ON "${launcher[@]}" >/dev/null
 cmake --build "${build}" --target fuzz_targets -j 2
 
-targets=(can_frames param_set scenario_toml param_image frame_codec gcode_canon)
+targets=(can_frames param_set scenario_toml param_image frame_codec gcode_canon http_routes)
 run_one() {
   local t="$1" run_seconds="${seconds}"
   [[ "${t}" == frame_codec ]] && run_seconds=$(( (seconds + 3) / 4 ))

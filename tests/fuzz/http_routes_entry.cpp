@@ -1,6 +1,7 @@
 #include "tests/fuzz/http_routes_entry.hpp"
 
 #include <array>
+#include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -49,6 +50,10 @@ Rig& rig() {
     serve::ServeOptions o;
     o.audit_path = "/dev/null";
     o.port = 8040;
+    // Control changes by request only: with the 0.3 s dead-man, a holder
+    // went quiet between two snapshots of one input and its lapse read as
+    // the request's doing (the dead-man has its own tests).
+    o.control_deadman = std::chrono::hours(24);
     made->server = std::make_unique<serve::TuningServer>(made->connection->client(), made->connection->emulated(), o);
     made->server->worker().stop();  // every node job refused at once (503)
     httplib::Request req;

@@ -80,6 +80,20 @@ TEST_F(PageAccessTest, AForeignHostIs403WhateverTheSecret) {
   EXPECT_EQ(raw("GET", "/api/info", local)->status, 200);
 }
 
+// Found by the http_routes fuzz target: the refusal quoted the Host's bytes,
+// and a byte that is not UTF-8 made the JSON answer throw instead of being sent.
+TEST_F(PageAccessTest, AHostThatIsNotUtf8IsRefusedWithAReadableAnswer) {
+  const nlohmann::json before = server_->state_snapshot();
+  httplib::Headers h = bearer();
+  h.emplace("Host", "\xff\xfe:" + std::to_string(port_));
+  const httplib::Result r = raw("POST", "/api/control/take", h);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 403);
+  EXPECT_FALSE(nlohmann::json::parse(r->body, nullptr, false).is_discarded()) << r->body;
+  EXPECT_FALSE(error_of(r).empty());
+  EXPECT_EQ(server_->state_snapshot(), before);
+}
+
 TEST_F(PageAccessTest, ACommandWithoutThePagesOriginIs403AndChangesNothing) {
   const double ramp = param("motion.move_ramp_s")["value"].get<double>();
   const nlohmann::json before = server_->state_snapshot();

@@ -18,7 +18,9 @@ constexpr const char* kJson = "application/json";
 
 void reply(httplib::Response& res, int status, const nlohmann::json& body) {
   res.status = status;
-  res.set_content(body.dump(), kJson);
+  // A refusal may quote the request's own bytes (a Host, a name): those
+  // that are not UTF-8 become U+FFFD rather than an exception.
+  res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kJson);
 }
 
 // Runs `f`; its failures become the HTTP status and {"error": reason}.

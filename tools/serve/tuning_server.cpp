@@ -232,7 +232,17 @@ int TuningServer::start() {
   return port;
 }
 
-void TuningServer::listen() { http_->listen_after_bind(); }
+void TuningServer::listen() {
+  {
+    const std::lock_guard lock(listen_mutex_);
+    if (stopping_) return;
+    listen_entered_ = true;
+  }
+  http_->listen_after_bind();
+  const std::lock_guard lock(listen_mutex_);
+  listen_returned_ = true;
+  listen_done_.notify_all();
+}
 
 void TuningServer::stop() {
   {
@@ -240,7 +250,15 @@ void TuningServer::stop() {
     stopping_ = true;
   }
   deadman_wake_.notify_all();
-  http_->stop();
+  {
+    std::unique_lock lock(listen_mutex_);
+    stopping_ = true;  // under this mutex too: listen() has either seen it or entered
+    do {
+      lock.unlock();
+      http_->stop();
+      lock.lock();
+    } while (listen_entered_ && !listen_done_.wait_for(lock, std::chrono::milliseconds(5), [this] { return listen_returned_; }));
+  }
   if (deadman_.joinable() && deadman_.get_id() != std::this_thread::get_id()) deadman_.join();
 }
 
@@ -289,7 +307,7 @@ void TuningServer::telemetry_stream(const httplib::Request& req, httplib::Respon
         nlohmann::json event = batch_json(samples);
         event["status"] = worker_.status();
         event["control"] = control_json(token);
-        const std::string text = "data: " + event.dump() + "\n\n";
+        const std::string text = "data: " + event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n\n";
         *last_sent = Clock::now();
         return sink.write(text.data(), text.size());
       });

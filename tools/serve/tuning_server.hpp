@@ -70,8 +70,11 @@ class TuningServer {
   // Starts the node thread and binds; returns the port. Throws
   // std::runtime_error naming the address when it cannot bind.
   int start();
-  // Serves until stop() (from another thread or a signal watcher).
+  // Serves until stop() (from another thread or a signal watcher); returns
+  // at once when stop() came first.
   void listen();
+  // Ends listen() wherever it is: cpp-httplib's stop() is lost on a server
+  // that has not started accepting yet, so it is repeated until listen() returns.
   void stop();
 
   std::size_t stream_count() const noexcept { return streams_.load(); }
@@ -130,6 +133,10 @@ class TuningServer {
   std::mutex deadman_mutex_;
   std::condition_variable deadman_wake_;
   std::thread deadman_;
+  std::mutex listen_mutex_;
+  std::condition_variable listen_done_;
+  bool listen_entered_ = false;   // listen_mutex_ held
+  bool listen_returned_ = false;  // listen_mutex_ held
 };
 
 }  // namespace tnv::serve
