@@ -4,24 +4,15 @@
 
 #include <string>
 
+#include "tests/campaign/campaign_fixture.hpp"
+
 namespace tnv::campaign {
 namespace {
-
-constexpr const char* kIssueExample = R"(experiment = "circle"
-controllers = ["rdvsc"]
-scenario = "no-cut"
-runs = 200
-seed = 7
-[vary]
-"plant.x.coulomb_mm_s" = { normal = [1.5, 0.3] }
-"plant.y.gain" = { uniform = [0.8, 1.2] }
-"x.sliding.gamma" = { uniform = [0.35, 0.45] }
-)";
 
 CampaignResult parse(const std::string& text) { return parse_campaign_text(text, "study.toml", "."); }
 
 TEST(CampaignFile, TheIssuesExampleIsRead) {
-  const CampaignResult r = parse(kIssueExample);
+  const CampaignResult r = parse(test::example_campaign());
   ASSERT_TRUE(r.spec) << r.error;
   const CampaignSpec& s = *r.spec;
   EXPECT_EQ(s.experiment, "circle");

@@ -19,6 +19,28 @@ inline constexpr const char* kShortScenario =
     "feed_mm_s = 20.0\n"
     "dwell_s = 0.05\n";
 
+// The issue's example campaign (docs/campaigns.md "The campaign file"):
+// a circle, R-DVSC+DDC on no-cut, 200 runs, seed 7, three inputs varied
+// (lines 7-9). A test puts in its own controllers, scenario, run count or
+// sampling (a sampling line comes before [vary]: the inputs move to 8-10).
+struct ExampleCampaign {
+  std::string controllers = R"(["rdvsc"])";
+  std::string scenario = "no-cut";
+  int runs = 200;
+  std::string sampling;  // empty: the file's default
+};
+
+inline std::string example_campaign(const ExampleCampaign& c = {}) {
+  std::string text = "experiment = \"circle\"\ncontrollers = " + c.controllers + "\nscenario = \"" + c.scenario +
+                     "\"\nruns = " + std::to_string(c.runs) + "\nseed = 7\n";
+  if (!c.sampling.empty()) text += "sampling = \"" + c.sampling + "\"\n";
+  return text +
+         "[vary]\n"
+         "\"plant.x.coulomb_mm_s\" = { normal = [1.5, 0.3] }\n"
+         "\"plant.y.gain\" = { uniform = [0.8, 1.2] }\n"
+         "\"x.sliding.gamma\" = { uniform = [0.35, 0.45] }\n";
+}
+
 inline std::string read_all(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream ss;

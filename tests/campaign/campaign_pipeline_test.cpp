@@ -21,16 +21,7 @@ namespace fs = std::filesystem;
 using test::read_all;
 using test::write_all;
 
-constexpr const char* kCampaign = R"(experiment = "circle"
-controllers = ["pid", "rdvsc"]
-scenario = "short.toml"
-runs = 3
-seed = 7
-[vary]
-"plant.x.coulomb_mm_s" = { normal = [1.5, 0.3] }
-"plant.y.gain" = { uniform = [0.8, 1.2] }
-"x.sliding.gamma" = { uniform = [0.35, 0.45] }
-)";
+const std::string kCampaign = test::example_campaign({.controllers = R"(["pid", "rdvsc"])", .scenario = "short.toml", .runs = 3, .sampling = ""});
 
 class CampaignPipeline : public ::testing::Test {
  protected:
