@@ -5,33 +5,12 @@
 // program's start (underruns, elements done).
 #include <cstdint>
 
+#include "firmware/can/protocol_enums.hpp"
 #include "firmware/tick/tick_task.hpp"
 
 namespace tnv::fw::can {
 
-// PROGRAM_STATUS.state
-enum class ProgramState : std::uint8_t {
-  none = 0,  // no program since start-up
-  running,
-  holding,   // feed hold
-  stopping,  // braking on the path after abort / stop
-  starved,   // underrun: at rest on the path until elements arrive
-  done,      // ran its queue dry after end_program
-  aborted,   // stopped before its end (abort, stop, fault, host timeout, disable)
-};
-
-constexpr const char* to_string(ProgramState s) noexcept {
-  switch (s) {
-    case ProgramState::none: return "none";
-    case ProgramState::running: return "running";
-    case ProgramState::holding: return "holding";
-    case ProgramState::stopping: return "stopping";
-    case ProgramState::starved: return "starved";
-    case ProgramState::done: return "done";
-    case ProgramState::aborted: return "aborted";
-  }
-  return "?";
-}
+// ProgramState, its names and its value list: protocol_enums.hpp.
 
 constexpr bool active(ProgramState s) noexcept {
   return s == ProgramState::running || s == ProgramState::holding || s == ProgramState::stopping ||

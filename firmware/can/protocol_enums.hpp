@@ -62,96 +62,149 @@ constexpr const char* to_string(ErrorCode e) noexcept {
 }
 inline constexpr auto kErrorCodeCount = static_cast<std::uint8_t>(std::size(kErrorCodeNames));
 
-// COMMAND.code
+// COMMAND.code, in wire order: the enum, its names and the protocol's
+// value list (protocol_messages.hpp) all come from this one list.
+#define TNV_COMMAND_CODES(X) \
+  X(enable)               /* servo on, hold where the table stands */ \
+  X(disable)              /* servo off (DACs mid-scale, enables dropped) */ \
+  X(stop)                 /* controlled stop: decelerate along the path, then hold */ \
+  X(clear_faults)         /* unlatch the fault if its cause is gone */ \
+  X(zero)                 /* set the axis' position to COMMAND.value (mm); only when at rest */ \
+  X(select_controller)    /* COMMAND.arg = 0 pid, 1 dvsc, 2 rdvsc; only when at rest */ \
+  X(shaper_enable)        /* COMMAND.arg = 0 off, 1 on */ \
+  X(save_params)          /* write the live parameter set to storage */ \
+  X(load_params)          /* read the stored set and apply it whole; only when at rest */ \
+  X(restore_defaults)     /* the papers' defaults (not saved until save_params); only when at rest */ \
+  X(take_ownership)       /* the requesting host becomes the one that may command (if nobody else holds it) */ \
+  X(release_ownership)    /* the owner gives command ownership up */ \
+  X(enter_commissioning)  /* safety parameters become writable; only while disabled (docs/safety.md) */ \
+  X(leave_commissioning)  /* back to normal; also left on enable, motion or a fault */ \
+  /* Program control (a program is the segments streamed by SEGMENT / SEGMENT_TAIL). */ \
+  X(feed_hold)            /* brake on the path and wait there; the queue is kept */ \
+  X(feed_resume)          /* continue after a feed hold */ \
+  X(feed_override)        /* COMMAND.arg = path speed in percent of the programmed feeds, 0..150 */ \
+  X(end_program)          /* the last segment has been sent: running the queue dry is then the end, not an underrun */ \
+  X(abort_program)        /* controlled stop on the path; the queue and a half-received segment are dropped */ \
+  X(program_status)       /* answer, and send a PROGRAM_STATUS now */ \
+  X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */
+
 enum class CommandCode : std::uint8_t {
-  enable = 0,         // servo on, hold where the table stands
-  disable,            // servo off (DACs mid-scale, enables dropped)
-  stop,               // controlled stop: decelerate along the path, then hold
-  clear_faults,       // unlatch the fault if its cause is gone
-  zero,               // set the axis' position to COMMAND.value (mm); only when at rest
-  select_controller,  // COMMAND.arg = 0 pid, 1 dvsc, 2 rdvsc; only when at rest
-  shaper_enable,      // COMMAND.arg = 0 off, 1 on
-  save_params,        // write the live parameter set to storage
-  load_params,        // read the stored set and apply it whole; only when at rest
-  restore_defaults,   // the papers' defaults (not saved until save_params); only when at rest
-  take_ownership,     // the requesting host becomes the one that may command (if nobody else holds it)
-  release_ownership,  // the owner gives command ownership up
-  enter_commissioning,  // safety parameters become writable; only while disabled (docs/safety.md)
-  leave_commissioning,  // back to normal; also left on enable, motion or a fault
-  // Program control (a program is the segments streamed by SEGMENT / SEGMENT_TAIL).
-  feed_hold,       // brake on the path and wait there; the queue is kept
-  feed_resume,     // continue after a feed hold
-  feed_override,   // COMMAND.arg = path speed in percent of the programmed feeds, 0..150
-  end_program,     // the last segment has been sent: running the queue dry is then the end, not an underrun
-  abort_program,   // controlled stop on the path; the queue and a half-received segment are dropped
-  program_status,  // answer, and send a PROGRAM_STATUS now
-  home,            // homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing")
+#define TNV_ENUMERATOR(name) name,
+  TNV_COMMAND_CODES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
 };
-inline constexpr std::uint8_t kCommandCodeCount = 21;
+inline constexpr const char* kCommandCodeNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_COMMAND_CODES(TNV_NAME)
+#undef TNV_NAME
+};
+inline constexpr auto kCommandCodeCount = static_cast<std::uint8_t>(std::size(kCommandCodeNames));
 
 constexpr const char* to_string(CommandCode c) noexcept {
-  switch (c) {
-    case CommandCode::enable: return "enable";
-    case CommandCode::disable: return "disable";
-    case CommandCode::stop: return "stop";
-    case CommandCode::clear_faults: return "clear_faults";
-    case CommandCode::zero: return "zero";
-    case CommandCode::select_controller: return "select_controller";
-    case CommandCode::shaper_enable: return "shaper_enable";
-    case CommandCode::save_params: return "save_params";
-    case CommandCode::load_params: return "load_params";
-    case CommandCode::restore_defaults: return "restore_defaults";
-    case CommandCode::take_ownership: return "take_ownership";
-    case CommandCode::release_ownership: return "release_ownership";
-    case CommandCode::enter_commissioning: return "enter_commissioning";
-    case CommandCode::leave_commissioning: return "leave_commissioning";
-    case CommandCode::feed_hold: return "feed_hold";
-    case CommandCode::feed_resume: return "feed_resume";
-    case CommandCode::feed_override: return "feed_override";
-    case CommandCode::end_program: return "end_program";
-    case CommandCode::abort_program: return "abort_program";
-    case CommandCode::program_status: return "program_status";
-    case CommandCode::home: return "home";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(c);
+  return i < std::size(kCommandCodeNames) ? kCommandCodeNames[i] : "?";
 }
 
 // PARAM_REQUEST.op
+#define TNV_PARAM_OPS(X) \
+  X(get)      /* read; the reply carries the value */ \
+  X(set)      /* write one parameter and apply it now (validated with the whole set) */ \
+  X(stage)    /* write into the pending set; nothing applied yet (range-checked now) */ \
+  X(commit)   /* validate the pending set with everything else and apply it whole, between ticks */ \
+  X(discard)  /* drop the pending set */
+
 enum class ParamOp : std::uint8_t {
-  get = 0,   // read; the reply carries the value
-  set,       // write one parameter and apply it now (validated with the whole set)
-  stage,     // write into the pending set; nothing applied yet (range-checked now)
-  commit,    // validate the pending set with everything else and apply it whole, between ticks
-  discard,   // drop the pending set
+#define TNV_ENUMERATOR(name) name,
+  TNV_PARAM_OPS(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
 };
-inline constexpr std::uint8_t kParamOpCount = 5;
+inline constexpr const char* kParamOpNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_PARAM_OPS(TNV_NAME)
+#undef TNV_NAME
+};
+inline constexpr auto kParamOpCount = static_cast<std::uint8_t>(std::size(kParamOpNames));
 
 // CAPTURE_CONTROL.op
-enum class CaptureOp : std::uint8_t {
-  arm = 0,  // start waiting for the trigger (capture.* parameters say what and when)
-  abort,    // stop recording; keeps what was recorded
-  status,   // reply with CAPTURE_STATUS
-  upload,   // send CAPTURE_CONTROL.frames CAPTURE_DATA frames from byte CAPTURE_CONTROL.offset
-};
-inline constexpr std::uint8_t kCaptureOpCount = 4;
+#define TNV_CAPTURE_OPS(X) \
+  X(arm)     /* start waiting for the trigger (capture.* parameters say what and when) */ \
+  X(abort)   /* stop recording; keeps what was recorded */ \
+  X(status)  /* reply with CAPTURE_STATUS */ \
+  X(upload)  /* send CAPTURE_CONTROL.frames CAPTURE_DATA frames from byte CAPTURE_CONTROL.offset */
 
-enum class CaptureState : std::uint8_t { idle = 0, armed, recording, done };
+enum class CaptureOp : std::uint8_t {
+#define TNV_ENUMERATOR(name) name,
+  TNV_CAPTURE_OPS(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+inline constexpr const char* kCaptureOpNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_CAPTURE_OPS(TNV_NAME)
+#undef TNV_NAME
+};
+inline constexpr auto kCaptureOpCount = static_cast<std::uint8_t>(std::size(kCaptureOpNames));
+
+// CAPTURE_STATUS.state
+#define TNV_CAPTURE_STATES(X) X(idle) X(armed) X(recording) X(done)
+
+enum class CaptureState : std::uint8_t {
+#define TNV_ENUMERATOR(name) name,
+  TNV_CAPTURE_STATES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+inline constexpr const char* kCaptureStateNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_CAPTURE_STATES(TNV_NAME)
+#undef TNV_NAME
+};
 
 // BORE_GAUGE.op
+#define TNV_BORE_OPS(X) \
+  X(record)   /* a finished part's readings: record it, answer the next part's infeeds */ \
+  X(query)    /* the infeeds of the part being cut now; nothing changes */ \
+  X(restart)  /* learning starts again: the next part is the start-up part, cut at S0 */
+
 enum class BoreOp : std::uint8_t {
-  record = 0,  // a finished part's readings: record it, answer the next part's infeeds
-  query,       // the infeeds of the part being cut now; nothing changes
-  restart,     // learning starts again: the next part is the start-up part, cut at S0
+#define TNV_ENUMERATOR(name) name,
+  TNV_BORE_OPS(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
 };
-inline constexpr std::uint8_t kBoreOpCount = 3;
+inline constexpr const char* kBoreOpNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_BORE_OPS(TNV_NAME)
+#undef TNV_NAME
+};
+inline constexpr auto kBoreOpCount = static_cast<std::uint8_t>(std::size(kBoreOpNames));
 
 constexpr const char* to_string(BoreOp op) noexcept {
-  switch (op) {
-    case BoreOp::record: return "record";
-    case BoreOp::query: return "query";
-    case BoreOp::restart: return "restart";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(op);
+  return i < std::size(kBoreOpNames) ? kBoreOpNames[i] : "?";
+}
+
+// PROGRAM_STATUS.state: the state of the program a host streams (program_tracker.hpp).
+#define TNV_PROGRAM_STATES(X) \
+  X(none)      /* no program since start-up */ \
+  X(running) \
+  X(holding)   /* feed hold */ \
+  X(stopping)  /* braking on the path after abort / stop */ \
+  X(starved)   /* underrun: at rest on the path until elements arrive */ \
+  X(done)      /* ran its queue dry after end_program */ \
+  X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */
+
+enum class ProgramState : std::uint8_t {
+#define TNV_ENUMERATOR(name) name,
+  TNV_PROGRAM_STATES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
+};
+inline constexpr const char* kProgramStateNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_PROGRAM_STATES(TNV_NAME)
+#undef TNV_NAME
+};
+
+constexpr const char* to_string(ProgramState s) noexcept {
+  const auto i = static_cast<std::size_t>(s);
+  return i < std::size(kProgramStateNames) ? kProgramStateNames[i] : "?";
 }
 
 // BORE_INFEED.flags bits

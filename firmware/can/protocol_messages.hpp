@@ -9,6 +9,8 @@
 #include "firmware/can/protocol_enums.hpp"
 #include "firmware/can/value_list.hpp"
 #include "firmware/can/wire.hpp"
+#include "firmware/compensation/excitation.hpp"
+#include "firmware/shaper/shaper_type.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
 
@@ -65,9 +67,7 @@ inline constexpr FieldDef kFaultEvent[] = {
 inline constexpr FieldDef kCommand[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"code", WireType::u8, 1, 1, "",
-     "0=enable 1=disable 2=stop 3=clear_faults 4=zero 5=select_controller 6=shaper_enable 7=save_params "
-     "8=load_params 9=restore_defaults 10=take_ownership 11=release_ownership 12=enter_commissioning 13=leave_commissioning "
-     "14=feed_hold 15=feed_resume 16=feed_override 17=end_program 18=abort_program 19=program_status 20=home",
+     kValueList<kCommandCodeNames>,
      "what to do"},
     {"axis", WireType::u8, 2, 1, "", kAxisValues, "axis for zero, select_controller, shaper_enable, home"},
     {"arg", WireType::u8, 3, 1, "", "",
@@ -108,7 +108,7 @@ inline constexpr FieldDef kCircle[] = {
 inline constexpr FieldDef kShaper[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis"},
-    {"type", WireType::u8, 2, 1, "", "0=zv 1=zvd 2=zvdd 3=ei 4=mzv", "shaper family"},
+    {"type", WireType::u8, 2, 1, "", kValueList<kShaperTypeNames>, "shaper family"},
     {"reserved", WireType::u8, 3, 1, "", "", "0"},
     {"zeta", WireType::u16, 4, 0.0001, "", "", "damping ratio of the mode"},
     {"freq", WireType::u16, 6, 0.01, "Hz", "", "mode frequency"},
@@ -116,7 +116,7 @@ inline constexpr FieldDef kShaper[] = {
 inline constexpr FieldDef kExcite[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to excite; the other holds"},
-    {"kind", WireType::u8, 2, 1, "", "0=step 1=ramp 2=sweep 3=multisine 4=multisine_open",
+    {"kind", WireType::u8, 2, 1, "", kValueList<kExcitationKindNames>,
      "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|; sweep / multisine: added to the holding "
      "controller's command, the reference moving at excite.carrier_mm_s meanwhile; multisine_open: the command "
      "itself; band excite.f_min_hz .. f_max_hz (docs/frequency-response.md)"},
@@ -129,7 +129,7 @@ inline constexpr FieldDef kExcite[] = {
 };
 inline constexpr FieldDef kParamRequest[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"op", WireType::u8, 1, 1, "", "0=get 1=set 2=stage 3=commit 4=discard", "operation"},
+    {"op", WireType::u8, 1, 1, "", kValueList<kParamOpNames>, "operation"},
     {"param", WireType::u16, 2, 1, "", "", "parameter id (param_table)"},
     {"value", WireType::raw32, 4, 1, "", "", "set/stage: the value, f32 or u32/i32 by the parameter's type"},
 };
@@ -143,14 +143,14 @@ inline constexpr FieldDef kParamReply[] = {
 };
 inline constexpr FieldDef kCaptureControl[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"op", WireType::u8, 1, 1, "", "0=arm 1=abort 2=status 3=upload", "operation"},
+    {"op", WireType::u8, 1, 1, "", kValueList<kCaptureOpNames>, "operation"},
     {"frames", WireType::u8, 2, 1, "", "", "upload: number of CAPTURE_DATA frames to send (1..255)"},
     {"reserved", WireType::u8, 3, 1, "", "", "0"},
     {"offset", WireType::u32, 4, 1, "byte", "", "upload: first byte of the capture image to send"},
 };
 inline constexpr FieldDef kCaptureStatus[] = {
     {"tag", WireType::u8, 0, 1, "", "", kReplyTagDoc},
-    {"state", WireType::u8, 1, 1, "", "0=idle 1=armed 2=recording 3=done", "capture state"},
+    {"state", WireType::u8, 1, 1, "", kValueList<kCaptureStateNames>, "capture state"},
     {"result", WireType::u8, 2, 1, "", kErrorValues, "result of the request that caused this reply"},
     {"channels", WireType::u8, 3, 1, "", "", "number of channels per sample"},
     {"decimation", WireType::u8, 4, 1, "tick", "", "ticks per sample"},
@@ -188,7 +188,7 @@ inline constexpr FieldDef kSegmentTail[] = {
      "arc: the centre's offset from the chord's midpoint along the chord (start -> end); 0 for a line"},
 };
 inline constexpr FieldDef kProgramStatus[] = {
-    {"state", WireType::u8, 0, 1, "", "0=none 1=running 2=holding 3=stopping 4=starved 5=done 6=aborted",
+    {"state", WireType::u8, 0, 1, "", kValueList<kProgramStateNames>,
      "program state: holding = feed hold; starved = underrun, at rest on the path until segments arrive; aborted = "
      "stopped (abort, stop, fault, host timeout) before its end"},
     {"free_slots", WireType::u8, 1, 1, "", "", "free slots in the motion queue"},
@@ -230,7 +230,7 @@ inline constexpr FieldDef kTlmArsc[] = {
 };
 inline constexpr FieldDef kBoreGauge[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"op", WireType::u8, 1, 1, "", "0=record 1=query 2=restart",
+    {"op", WireType::u8, 1, 1, "", kValueList<kBoreOpNames>,
      "record: a finished part's readings (needs command ownership); query: the current infeeds, nothing changes; "
      "restart: learning starts again, the next part is cut at bore.s0_mm_rev (needs command ownership)"},
     {"part", WireType::u16, 2, 1, "", "",

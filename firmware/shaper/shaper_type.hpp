@@ -1,32 +1,43 @@
 #pragma once
 // The input-shaper families (seed digest S2 and the usual robust
 // extensions): which impulse sequence cancels a mode, and how robustly.
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <optional>
 #include <string_view>
 
 namespace tnv::fw {
 
+// The families in wire order (SHAPER_CONFIG.type): the enum, its names and
+// the protocol's value list come from this one list.
+#define TNV_SHAPER_TYPES(X) \
+  X(zv)    /* zero vibration: 2 impulses, half a damped period */ \
+  X(zvd)   /* zero vibration and derivative: 3 impulses, one period */ \
+  X(zvdd)  /* second derivative too: 4 impulses, 1.5 periods */ \
+  X(ei)    /* extra-insensitive, 5 % vibration tolerance: 3 impulses, one period */ \
+  X(mzv)   /* modified ZV: 3 impulses spaced 3/8 of a period (0.75 periods) */
+
 enum class ShaperType : std::uint8_t {
-  zv = 0,  // zero vibration: 2 impulses, half a damped period
-  zvd,     // zero vibration and derivative: 3 impulses, one period
-  zvdd,    // second derivative too: 4 impulses, 1.5 periods
-  ei,      // extra-insensitive, 5 % vibration tolerance: 3 impulses, one period
-  mzv,     // modified ZV: 3 impulses spaced 3/8 of a period (0.75 periods)
+#define TNV_ENUMERATOR(name) name,
+  TNV_SHAPER_TYPES(TNV_ENUMERATOR)
+#undef TNV_ENUMERATOR
 };
 
-inline constexpr ShaperType kShaperTypes[] = {ShaperType::zv, ShaperType::zvd, ShaperType::zvdd, ShaperType::ei,
-                                              ShaperType::mzv};
+inline constexpr ShaperType kShaperTypes[] = {
+#define TNV_VALUE(name) ShaperType::name,
+    TNV_SHAPER_TYPES(TNV_VALUE)
+#undef TNV_VALUE
+};
+inline constexpr const char* kShaperTypeNames[] = {
+#define TNV_NAME(name) #name,
+    TNV_SHAPER_TYPES(TNV_NAME)
+#undef TNV_NAME
+};
 
 constexpr const char* to_string(ShaperType t) noexcept {
-  switch (t) {
-    case ShaperType::zv: return "zv";
-    case ShaperType::zvd: return "zvd";
-    case ShaperType::zvdd: return "zvdd";
-    case ShaperType::ei: return "ei";
-    case ShaperType::mzv: return "mzv";
-  }
-  return "?";
+  const auto i = static_cast<std::size_t>(t);
+  return i < std::size(kShaperTypeNames) ? kShaperTypeNames[i] : "?";
 }
 
 constexpr std::optional<ShaperType> parse_shaper_type(std::string_view name) noexcept {

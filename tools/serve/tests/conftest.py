@@ -81,8 +81,11 @@ def _start_browser():
                 "--hide-scrollbars", "--force-device-scale-factor=1"):
         options.add_argument(arg)
     browser = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
-    browser.set_page_load_timeout(30)  # a hung page fails the test instead of the ctest timeout
-    browser.set_script_timeout(30)
+    # A hung page fails the test instead of the ctest timeout (900 s); 120 s,
+    # not 30: a page load took longer than 30 s beside a two-job build and
+    # the two-job suite on the 2-core machine (the renderer did not answer).
+    browser.set_page_load_timeout(120)
+    browser.set_script_timeout(120)
     return browser
 
 
