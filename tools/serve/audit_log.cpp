@@ -89,12 +89,12 @@ void AuditLog::request(const httplib::Request& req, const httplib::Response& res
                          {"status", res.status}};
   nlohmann::json answer = logged_body(res.body);
   line["answer"] = std::move(answer);
-  write(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  write(json_text(line));
 }
 
 void AuditLog::event(const std::string& what, const std::string& detail) {
   const nlohmann::json line = {{"time", utc_now()}, {"session", "server"}, {"event", what}, {"detail", detail}};
-  write(line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  write(json_text(line));
 }
 
 }  // namespace tnv::serve

@@ -16,11 +16,11 @@ constexpr const char* kJson = "application/json";
 
 }  // namespace
 
+std::string json_text(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
+
 void reply(httplib::Response& res, int status, const nlohmann::json& body) {
   res.status = status;
-  // A refusal may quote the request's own bytes (a Host, a name): those
-  // that are not UTF-8 become U+FFFD rather than an exception.
-  res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kJson);
+  res.set_content(json_text(body), kJson);
 }
 
 // Runs `f`; its failures become the HTTP status and {"error": reason}.

@@ -16,6 +16,11 @@ namespace tnv::serve {
 // The browser tab's token travels in this header.
 inline constexpr const char* kTokenHeader = "X-Tnv-Token";
 
+// `j` as one line of JSON. Answers, events and audit lines may quote a
+// request's own bytes (a Host, a name): those that are not UTF-8 become
+// U+FFFD rather than an exception.
+std::string json_text(const nlohmann::json& j);
+
 void reply(httplib::Response& res, int status, const nlohmann::json& body);
 // Runs `f` and replies with its JSON; its failures become the HTTP status and {"error": reason}.
 void answer(httplib::Response& res, const std::function<nlohmann::json()>& f);

@@ -307,7 +307,7 @@ void TuningServer::telemetry_stream(const httplib::Request& req, httplib::Respon
         nlohmann::json event = batch_json(samples);
         event["status"] = worker_.status();
         event["control"] = control_json(token);
-        const std::string text = "data: " + event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n\n";
+        const std::string text = "data: " + json_text(event) + "\n\n";
         *last_sent = Clock::now();
         return sink.write(text.data(), text.size());
       });
