@@ -98,13 +98,17 @@ double BoringProcess::optimal_infeed_mm_rev(int part, double overhang_mm) const 
 }
 
 double BoringProcess::measure_bore_error_mm(int part, double infeed_mm_rev, double overhang_mm) {
+  return sample_bore(part, infeed_mm_rev, overhang_mm).reading_mm;
+}
+
+BoreSample BoringProcess::sample_bore(int part, double infeed_mm_rev, double overhang_mm) {
   const double d = deflection_mm(part, infeed_mm_rev, overhang_mm) + config_.sigma_d_mm * gaussian();
   const double cos_phi = std::cos(config_.force_angle_deg * std::numbers::pi / 180.0);
   double delta_mm = 2.0 * cos_phi * (d - config_.preset_deflection_mm);  // S4 eq. (11) solved for delta
   if (config_.gauge_noise_mm_rms > 0.0) delta_mm += config_.gauge_noise_mm_rms * gauge_noise_.normal();
   if (config_.gauge_resolution_mm > 0.0)
     delta_mm = config_.gauge_resolution_mm * std::round(delta_mm / config_.gauge_resolution_mm);
-  return delta_mm;
+  return BoreSample{.radius_error_mm = d - config_.preset_deflection_mm, .reading_mm = delta_mm};
 }
 
 // Marsaglia's polar method on 53-bit uniforms from mt19937_64: the same

@@ -55,6 +55,14 @@ BoringProcessConfig unchanged_boring_process(double sigma_d_mm, std::uint64_t se
 // "" if valid, else "field: reason".
 std::string validate_boring_process(const BoringProcessConfig& config);
 
+// One bore reading: the radius error along the deflection, d + e - d_preset,
+// and what the gauge shows for it (eq. (11)'s diametral delta, with the
+// gauge's own error).
+struct BoreSample {
+  double radius_error_mm = 0.0;
+  double reading_mm = 0.0;
+};
+
 class BoringProcess {
  public:
   // Throws std::invalid_argument with validate_boring_process()'s message.
@@ -68,6 +76,8 @@ class BoringProcess {
   double optimal_infeed_mm_rev(int part, double overhang_mm) const;
   // Gauge reading at L of a part cut with infeed S there; draws one noise sample.
   double measure_bore_error_mm(int part, double infeed_mm_rev, double overhang_mm);
+  // The same draw, with the radius error it came from.
+  BoreSample sample_bore(int part, double infeed_mm_rev, double overhang_mm);
 
   const BoringProcessConfig& config() const { return config_; }
 

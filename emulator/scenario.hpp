@@ -4,6 +4,7 @@
 // is settable from a TOML scenario file (scenario_file.hpp).
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,85 @@ struct CircleParams {
   double dwell_s = 0.5;    // servo-on dwell before the start
 };
 
+// The machining centre beyond the XY table (docs/machine.md): the Z axis,
+// the spindle, the tool, the stock and the processes that act where the
+// tool is. Built and tested as emulator classes; not yet on the I/O board.
+
+// Z: the axis law of AxisPlantParams plus the head's uncompensated weight
+// (reference plant "Z axis"). Positions are the spindle nose in machine
+// coordinates, 0 at the top.
+struct ZAxisParams {
+  AxisPlantParams plant{.tau_s = 0.009, .gain = 1.0, .coulomb_mm_s = 2.0, .stiction_mm_s = 4.0, .stribeck_mm_s = 0.1};
+  double gravity_mm_s = -1.0;       // d_g: a constant pull toward -Z
+  double travel_top_mm = 0.0;       // the travel's ends
+  double travel_bottom_mm = -300.0;
+  double overtravel_mm = 5.0;       // hard stops this far beyond each end of the travel
+  double home_switch_mm = 0.0;      // the home switch is actuated at and above this
+};
+
+// The spindle drive and its encoder (reference plant "Spindle").
+struct SpindleParams {
+  double tau_s = 0.20;                  // tau_sp
+  int dac_bits = 12;                    // its speed DAC, offset binary, +-full_scale_v
+  double full_scale_v = 10.0;
+  double rpm_at_full_scale = 12'000.0;  // K_sp: rpm at +full scale; the sign is the direction
+  double accel_limit_rpm_s = 6'000.0;   // a_sp, the drive's current limit
+  double droop_rpm_per_n = 0.2;         // k_d
+  int encoder_counts_per_rev = 4096;    // after x4 decoding
+  double index_deg = 0.0;               // angle of the index mark
+};
+
+// S3's reference cut (S3: a_p 1 mm, f_z 0.05 mm, 3/8" end mill, 4 flutes: 150 N).
+inline constexpr double kReferenceForceN = 150.0;
+inline constexpr double kReferenceDepthMm = 1.0;
+inline constexpr double kReferenceFeedPerToothMm = 0.05;
+inline constexpr double kReferenceDiameterMm = 9.525;
+// K_c that gives `force_n` at a_p, f_z and D: F = K_c a_p f_z^0.75 D^0.25 solved for K_c.
+double specific_cutting_force_n_mm2(double force_n, double depth_mm, double feed_per_tooth_mm, double diameter_mm);
+
+// The tool in the spindle.
+struct ToolParams {
+  double diameter_mm = kReferenceDiameterMm;  // D
+  int flutes = 4;                             // N
+  double flute_length_mm = 20.0;              // the longest a_p it can take
+  double length_mm = 125.0;                   // spindle nose to tool point (the tool table's length offset)
+};
+
+// The block of stock (reference plant "Stock"): top face and XY rectangle.
+// Default rectangle: the whole table (unbounded).
+struct StockParams {
+  double top_mm = -150.0;  // z_top, machine coordinates
+  double x_min_mm = -std::numeric_limits<double>::infinity();
+  double x_max_mm = std::numeric_limits<double>::infinity();
+  double y_min_mm = -std::numeric_limits<double>::infinity();
+  double y_max_mm = std::numeric_limits<double>::infinity();
+};
+
+// The milling force where the tool is (reference plant "Stock, and cutting where the tool is").
+struct ToolCutParams {
+  double k_c_n_mm2 = specific_cutting_force_n_mm2(kReferenceForceN, kReferenceDepthMm, kReferenceFeedPerToothMm,
+                                                  kReferenceDiameterMm);
+  double time_constant_s = 0.20;          // T_f, S3
+  double stiffness_n_per_mm_s = 100.0;    // each XY drive: newtons per mm/s of table-speed disturbance
+  double crash_speed_fraction = 0.5;      // engaging below this fraction of the commanded speed is a crash
+  double max_feed_per_tooth_mm = 1.0;     // f_z is capped here (a slow spindle's chip is bounded by the crash)
+};
+
+// S4 on real axes (reference plant "Boring (S4, on real axes)").
+struct BoringAxesParams {
+  double overhang_at_top_mm = 40.0;      // L0: overhang with the tool point at the stock top
+  double gauge_top_depth_mm = 0.0;       // depths below the stock top the gauge reads after a part
+  double gauge_bottom_depth_mm = 270.0;  // (L = 40 and 310 mm, the S4 study's measuring overhangs)
+  double sigma_d_um = 16.231;            // process noise on the deflection, S4 Table 1
+  int change_at_1 = 11;                  // S4 section 5: parameter sets change at these parts
+  int change_at_2 = 21;
+};
+
+// Touch probe: triggered when the tool point is within tip_radius_mm of the stock.
+struct ProbeParams {
+  double tip_radius_mm = 0.0;
+};
+
 struct Scenario {
   std::string name = "default";
   std::array<AxisPlantParams, hal::kAxisCount> plant{AxisPlantParams{}, AxisPlantParams{.tau_s = 0.007122}};
@@ -158,6 +238,13 @@ struct Scenario {
   NoiseParams noise{};
   IoParams io{};
   CircleParams circle{};
+  ZAxisParams z_axis{};        // [plant.z]
+  SpindleParams spindle{};     // [spindle]
+  ToolParams tool{};           // [tool]
+  StockParams stock{};         // [stock]
+  ToolCutParams tool_cut{};    // [tool_cut]
+  BoringAxesParams boring{};   // [boring]
+  ProbeParams probe{};         // [probe]
   std::vector<FaultSpec> faults{};  // [[fault]]: injected on schedule (fault_schedule.hpp)
 };
 

@@ -102,6 +102,94 @@ void check_plant(Rules& r, const AxisPlantParams& p, const std::string& section)
   }
 }
 
+// A machining centre of the TNV-40 class: Z travel well under 1 m.
+constexpr double kMachineRangeMm = 1000.0;
+
+void check_z_axis(Rules& r, const ZAxisParams& z) {
+  check_plant(r, z.plant, "plant.z");
+  r.plausible("plant.z.gravity_mm_s", z.gravity_mm_s, -100.0, 100.0,
+              "what the counterbalance leaves of the head's weight, as a table speed");
+  r.plausible("plant.z.travel_top_mm", z.travel_top_mm, -kMachineRangeMm, kMachineRangeMm, "machine coordinates");
+  r.plausible("plant.z.travel_bottom_mm", z.travel_bottom_mm, -kMachineRangeMm, kMachineRangeMm, "machine coordinates");
+  r.ordered("plant.z.travel_bottom_mm", z.travel_bottom_mm, "plant.z.travel_top_mm", z.travel_top_mm);
+  if (!r.found && z.travel_bottom_mm == z.travel_top_mm)
+    r.fail_text(r.is_given("plant.z.travel_top_mm") ? "plant.z.travel_top_mm" : "plant.z.travel_bottom_mm",
+                "the travel must not be empty (travel_bottom_mm = travel_top_mm = " + format_number(z.travel_top_mm) + ")");
+  r.plausible("plant.z.overtravel_mm", z.overtravel_mm, 0.0, 100.0, "the room between a travel end and its hard stop");
+  r.plausible("plant.z.home_switch_mm", z.home_switch_mm, z.travel_bottom_mm, z.travel_top_mm + z.overtravel_mm,
+              "a home switch between the bottom of the travel and the top hard stop");
+}
+
+void check_spindle(Rules& r, const SpindleParams& sp) {
+  r.plausible("spindle.tau_s", sp.tau_s, 1e-3, 10.0, "a spindle drive's speed loop settles in 1 ms to 10 s");
+  r.int_range("spindle.dac_bits", sp.dac_bits, 8, 16);
+  r.plausible("spindle.full_scale_v", sp.full_scale_v, 0.5, 50.0, "a drive's analogue speed reference (10 V class)");
+  r.plausible("spindle.rpm_at_full_scale", sp.rpm_at_full_scale, 1.0, 100'000.0, "a machining spindle's speed");
+  r.plausible("spindle.accel_limit_rpm_s", sp.accel_limit_rpm_s, 1.0, 1e6,
+              "a spindle drive's current-limited acceleration (thousands of rpm/s)");
+  r.plausible("spindle.droop_rpm_per_n", sp.droop_rpm_per_n, 0.0, 100.0, "speed lost per newton of cutting load");
+  if (!r.found && (sp.encoder_counts_per_rev <= 0 || sp.encoder_counts_per_rev % 4 != 0))
+    r.fail_text("spindle.encoder_counts_per_rev", "must be a positive multiple of 4 (x4 decoding) (got " +
+                                                      std::to_string(sp.encoder_counts_per_rev) + ")");
+  r.int_range("spindle.encoder_counts_per_rev", sp.encoder_counts_per_rev, 4, 1'000'000);
+  r.plausible("spindle.index_deg", sp.index_deg, 0.0, 360.0, "a spindle angle in degrees");
+}
+
+void check_tool_and_stock(Rules& r, const Scenario& s) {
+  r.plausible("tool.diameter_mm", s.tool.diameter_mm, 0.1, 100.0, "an end mill's diameter");
+  r.int_range("tool.flutes", s.tool.flutes, 1, 20);
+  r.plausible("tool.flute_length_mm", s.tool.flute_length_mm, 0.1, 300.0, "an end mill's flute length");
+  r.plausible("tool.length_mm", s.tool.length_mm, 0.0, 500.0, "spindle nose to tool point");
+  r.plausible("stock.top_mm", s.stock.top_mm, -kMachineRangeMm, kMachineRangeMm, "machine coordinates");
+  const auto side = [&r](const char* key, double value) {
+    // The default rectangle is unbounded (the whole table): +-inf are allowed.
+    if (!r.found && !(std::isinf(value) || (value >= -kMachineRangeMm && value <= kMachineRangeMm)))
+      r.fail_text(key, "must be -1000..1000 (machine coordinates) or +-inf (unbounded) (got " + format_number(value) + ")");
+  };
+  side("stock.x_min_mm", s.stock.x_min_mm);
+  side("stock.x_max_mm", s.stock.x_max_mm);
+  side("stock.y_min_mm", s.stock.y_min_mm);
+  side("stock.y_max_mm", s.stock.y_max_mm);
+  r.ordered("stock.x_min_mm", s.stock.x_min_mm, "stock.x_max_mm", s.stock.x_max_mm);
+  r.ordered("stock.y_min_mm", s.stock.y_min_mm, "stock.y_max_mm", s.stock.y_max_mm);
+  if (!r.found && (s.stock.x_min_mm == s.stock.x_max_mm || s.stock.y_min_mm == s.stock.y_max_mm))
+    r.fail_text(s.stock.x_min_mm == s.stock.x_max_mm ? "stock.x_max_mm" : "stock.y_max_mm",
+                "the stock's rectangle must not be empty (min = max)");
+  r.plausible("tool_cut.k_c_n_mm2", s.tool_cut.k_c_n_mm2, 1.0, 20'000.0,
+              "a specific cutting force (aluminium ~700, steel ~2000 N/mm^2)");
+  r.plausible("tool_cut.time_constant_s", s.tool_cut.time_constant_s, 1e-4, 100.0, "a cutting process' time constant");
+  r.plausible("tool_cut.stiffness_n_per_mm_s", s.tool_cut.stiffness_n_per_mm_s, 0.1, 1e6,
+              "a drive's stiffness against a load, newtons per mm/s");
+  r.plausible("tool_cut.crash_speed_fraction", s.tool_cut.crash_speed_fraction, 0.0, 1.0,
+              "a fraction of the commanded spindle speed");
+  r.plausible("tool_cut.max_feed_per_tooth_mm", s.tool_cut.max_feed_per_tooth_mm, 1e-3, 10.0, "a chip thickness");
+  r.plausible("probe.tip_radius_mm", s.probe.tip_radius_mm, 0.0, 10.0, "a touch probe's stylus ball radius");
+}
+
+void check_boring(Rules& r, const Scenario& s) {
+  const BoringAxesParams& b = s.boring;
+  r.plausible("boring.overhang_at_top_mm", b.overhang_at_top_mm, 1.0, 2000.0, "a boring bar's overhang");
+  r.plausible("boring.gauge_top_depth_mm", b.gauge_top_depth_mm, 0.0, kMachineRangeMm, "a depth below the stock top");
+  r.plausible("boring.gauge_bottom_depth_mm", b.gauge_bottom_depth_mm, 0.0, kMachineRangeMm, "a depth below the stock top");
+  r.ordered("boring.gauge_top_depth_mm", b.gauge_top_depth_mm, "boring.gauge_bottom_depth_mm", b.gauge_bottom_depth_mm);
+  r.plausible("boring.sigma_d_um", b.sigma_d_um, 0.0, 1000.0, "the process noise on the bar's deflection");
+  r.int_range("boring.change_at_1", b.change_at_1, 0, 1'000'000);
+  r.int_range("boring.change_at_2", b.change_at_2, 0, 1'000'000);
+  if (r.found) return;
+  // The tool point reaches down to the bottom of Z's travel minus the tool's length.
+  const double lowest_mm = s.z_axis.travel_bottom_mm - s.tool.length_mm;
+  const double bottom_mm = s.stock.top_mm - b.gauge_bottom_depth_mm;
+  if (bottom_mm < lowest_mm) {
+    const std::string key = r.is_given("boring.gauge_bottom_depth_mm") ? "boring.gauge_bottom_depth_mm"
+                            : r.is_given("tool.length_mm")             ? "tool.length_mm"
+                            : r.is_given("stock.top_mm")               ? "stock.top_mm"
+                                                                       : "plant.z.travel_bottom_mm";
+    r.fail_text(key, "the bottom gauge depth must be within reach: stock.top_mm - boring.gauge_bottom_depth_mm = " +
+                         format_number(bottom_mm) + " mm < plant.z.travel_bottom_mm - tool.length_mm = " +
+                         format_number(lowest_mm) + " mm");
+  }
+}
+
 void check_noise(Rules& r, const NoiseParams& n) {
   r.plausible("noise.force_adc_v_rms", n.force_adc_v_rms, 0.0, 1.0,
               "noise at the force ADC's input (its 0-10 V range has a 2.4 mV LSB)");
@@ -265,6 +353,10 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.plausible("milling.depth_start_mm", s.milling.depth.start_mm, 0.0, 100.0, "a depth of cut");
   r.plausible("milling.depth_peak_mm", s.milling.depth.peak_mm, 0.0, 100.0, "a depth of cut");
 
+  check_z_axis(r, s.z_axis);
+  check_spindle(r, s.spindle);
+  check_tool_and_stock(r, s);
+  check_boring(r, s);
   check_noise(r, s.noise);
   check_io(r, s.io);
   check_circle(r, s.circle);

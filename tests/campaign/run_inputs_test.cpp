@@ -33,7 +33,7 @@ TEST(CampaignRunInputs, ABadValueNamesItsInputAndGivesNoSetup) {
   EXPECT_FALSE(s.config);
   EXPECT_EQ(s.bad_input, "x.sliding.gamma");
 
-  s = resolve_run_inputs(base, {{"plant.z.gain", false}}, {{"plant.z.gain", 1.0}});
+  s = resolve_run_inputs(base, {{"plant.w.gain", false}}, {{"plant.w.gain", 1.0}});
   EXPECT_FALSE(s.scenario);
   EXPECT_TRUE(s.unknown_key);
 }

@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
     EveryErrorClass, ScenarioFileErrors,
     ::testing::Values(
         BadScenarioCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
-        BadScenarioCase{"unknown section", "[plant.z]\ntau_s = 1\n", "1:8: plant.z: unknown section"},
+        BadScenarioCase{"unknown section", "[plant.w]\ntau_s = 1\n", "1:8: plant.w: unknown section"},
         BadScenarioCase{"absurd tau", "[plant.x]\ntau_s = 1e-300\n",
                 "2:1: plant.x.tau_s: must be 1e-04..1: a servo axis' speed loop settles in 0.1 ms to 1 s (got 1e-300)"},
         BadScenarioCase{"absurd dac volts", "[dac]\nfull_scale_v = 1e-30\n",
@@ -178,7 +178,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "2:1: circle.feed_mm_s: must be 0.001..1000: a contouring feed up to 60 m/min (got 5000)"},
         BadScenarioCase{"absurd friction", "[plant.x]\nstiction_mm_s = 5000\ncoulomb_mm_s = 2\n",
                 "2:1: plant.x.stiction_mm_s: must be 0..1000: friction above 1000 mm/s is no moving table (a jam is 200) (got 5000)"},
-        BadScenarioCase{"unknown top section", "[spindle]\nrpm = 1\n", "1:2: spindle: unknown section"},
+        BadScenarioCase{"unknown top section", "[turret]\nrpm = 1\n", "1:2: turret: unknown section"},
         BadScenarioCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
         BadScenarioCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
         BadScenarioCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},

@@ -1,0 +1,220 @@
+// Scenario keys of the machining centre beyond the table ([plant.z],
+// [spindle], [tool], [stock], [tool_cut], [boring], [probe]): each parsed,
+// each range refused with file, line and key, nothing half-applied.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+
+#include "emulator/scenario_file.hpp"
+#include "emulator/scenario_validation.hpp"
+
+namespace tnv::emu {
+namespace {
+
+constexpr std::string_view kMachineKeys = R"([plant.z]
+tau_s = 0.01
+gain = 1.05
+coulomb_mm_s = 1.5
+stiction_mm_s = 3.5
+stribeck_mm_s = 0.2
+accel_limit_mm_s2 = 2000
+gravity_mm_s = -0.5
+travel_top_mm = 10
+travel_bottom_mm = -350
+overtravel_mm = 3
+home_switch_mm = 8
+
+[spindle]
+tau_s = 0.3
+dac_bits = 16
+full_scale_v = 5
+rpm_at_full_scale = 8000
+accel_limit_rpm_s = 4000
+droop_rpm_per_n = 0.1
+encoder_counts_per_rev = 1024
+index_deg = 45
+
+[tool]
+diameter_mm = 12
+flutes = 3
+flute_length_mm = 30
+length_mm = 90
+
+[stock]
+top_mm = -120
+x_min_mm = -50
+x_max_mm = 50
+y_min_mm = -inf
+y_max_mm = 20
+
+[tool_cut]
+k_c_n_mm2 = 1500
+time_constant_s = 0.1
+stiffness_n_per_mm_s = 250
+crash_speed_fraction = 0.8
+max_feed_per_tooth_mm = 0.5
+
+[boring]
+overhang_at_top_mm = 50
+gauge_top_depth_mm = 5
+gauge_bottom_depth_mm = 200
+sigma_d_um = 10
+change_at_1 = 8
+change_at_2 = 16
+
+[probe]
+tip_radius_mm = 1.5
+)";
+
+TEST(MachineKeys, EveryKeyIsParsed) {
+  const ScenarioResult r = parse_scenario_text(kMachineKeys, "machine.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  const Scenario& s = *r.scenario;
+  EXPECT_EQ(s.z_axis.plant.tau_s, 0.01);
+  EXPECT_EQ(s.z_axis.plant.gain, 1.05);
+  EXPECT_EQ(s.z_axis.plant.coulomb_mm_s, 1.5);
+  EXPECT_EQ(s.z_axis.plant.stiction_mm_s, 3.5);
+  EXPECT_EQ(s.z_axis.plant.stribeck_mm_s, 0.2);
+  EXPECT_EQ(s.z_axis.plant.accel_limit_mm_s2, 2000.0);
+  EXPECT_EQ(s.z_axis.gravity_mm_s, -0.5);
+  EXPECT_EQ(s.z_axis.travel_top_mm, 10.0);
+  EXPECT_EQ(s.z_axis.travel_bottom_mm, -350.0);
+  EXPECT_EQ(s.z_axis.overtravel_mm, 3.0);
+  EXPECT_EQ(s.z_axis.home_switch_mm, 8.0);
+  EXPECT_EQ(s.spindle.tau_s, 0.3);
+  EXPECT_EQ(s.spindle.dac_bits, 16);
+  EXPECT_EQ(s.spindle.full_scale_v, 5.0);
+  EXPECT_EQ(s.spindle.rpm_at_full_scale, 8000.0);
+  EXPECT_EQ(s.spindle.accel_limit_rpm_s, 4000.0);
+  EXPECT_EQ(s.spindle.droop_rpm_per_n, 0.1);
+  EXPECT_EQ(s.spindle.encoder_counts_per_rev, 1024);
+  EXPECT_EQ(s.spindle.index_deg, 45.0);
+  EXPECT_EQ(s.tool.diameter_mm, 12.0);
+  EXPECT_EQ(s.tool.flutes, 3);
+  EXPECT_EQ(s.tool.flute_length_mm, 30.0);
+  EXPECT_EQ(s.tool.length_mm, 90.0);
+  EXPECT_EQ(s.stock.top_mm, -120.0);
+  EXPECT_EQ(s.stock.x_min_mm, -50.0);
+  EXPECT_EQ(s.stock.x_max_mm, 50.0);
+  EXPECT_TRUE(std::isinf(s.stock.y_min_mm) && s.stock.y_min_mm < 0.0);
+  EXPECT_EQ(s.stock.y_max_mm, 20.0);
+  EXPECT_EQ(s.tool_cut.k_c_n_mm2, 1500.0);
+  EXPECT_EQ(s.tool_cut.time_constant_s, 0.1);
+  EXPECT_EQ(s.tool_cut.stiffness_n_per_mm_s, 250.0);
+  EXPECT_EQ(s.tool_cut.crash_speed_fraction, 0.8);
+  EXPECT_EQ(s.tool_cut.max_feed_per_tooth_mm, 0.5);
+  EXPECT_EQ(s.boring.overhang_at_top_mm, 50.0);
+  EXPECT_EQ(s.boring.gauge_top_depth_mm, 5.0);
+  EXPECT_EQ(s.boring.gauge_bottom_depth_mm, 200.0);
+  EXPECT_EQ(s.boring.sigma_d_um, 10.0);
+  EXPECT_EQ(s.boring.change_at_1, 8);
+  EXPECT_EQ(s.boring.change_at_2, 16);
+  EXPECT_EQ(s.probe.tip_radius_mm, 1.5);
+}
+
+TEST(MachineKeys, DefaultsAreTheReferencePlantAndValid) {
+  const Scenario s;
+  EXPECT_EQ(validate_scenario(s), "");
+  EXPECT_EQ(s.stock.top_mm, -150.0);
+  EXPECT_TRUE(std::isinf(s.stock.x_min_mm) && std::isinf(s.stock.x_max_mm)) << "the whole table";
+  EXPECT_EQ(s.spindle.tau_s, 0.2);
+  EXPECT_EQ(s.spindle.rpm_at_full_scale, 12'000.0);
+  EXPECT_EQ(s.spindle.full_scale_v, 10.0);
+  EXPECT_EQ(s.spindle.dac_bits, 12);
+  EXPECT_EQ(s.spindle.accel_limit_rpm_s, 6'000.0);
+  EXPECT_EQ(s.spindle.droop_rpm_per_n, 0.2);
+  EXPECT_EQ(s.spindle.encoder_counts_per_rev, 4096);
+  EXPECT_EQ(s.tool_cut.time_constant_s, 0.2);
+  EXPECT_EQ(s.tool_cut.stiffness_n_per_mm_s, 100.0);
+  EXPECT_EQ(s.tool_cut.crash_speed_fraction, 0.5);
+  EXPECT_EQ(s.boring.overhang_at_top_mm, 40.0);
+  // The S1 experiment's section is untouched by the machine's.
+  EXPECT_FALSE(s.cutting.enabled);
+  EXPECT_EQ(s.cutting.spindle_rpm, 900.0);
+}
+
+struct BadKeyCase {
+  const char* what;
+  const char* text;
+  const char* expected;  // the whole line after "m.toml:"
+};
+
+void PrintTo(const BadKeyCase& c, std::ostream* os) { *os << c.what; }
+
+class MachineKeyErrors : public ::testing::TestWithParam<BadKeyCase> {};
+
+TEST_P(MachineKeyErrors, RefusedWithFileLineAndKey) {
+  const BadKeyCase& c = GetParam();
+  const ScenarioResult r = parse_scenario_text(c.text, "m.toml");
+  EXPECT_FALSE(r.scenario) << c.what << ": accepted";
+  EXPECT_EQ(r.error, std::string("m.toml:") + c.expected) << c.what;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EverySection, MachineKeyErrors,
+    ::testing::Values(
+        BadKeyCase{"z tau", "[plant.z]\ntau_s = 0\n", "2:1: plant.z.tau_s: must be > 0 and finite (got 0)"},
+        BadKeyCase{"z stiction below coulomb", "[plant.z]\nstiction_mm_s = 1\n",
+                   "2:1: plant.z.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1)"},
+        BadKeyCase{"z has no structural mode", "[plant.z]\nmode_hz = 30\n", "2:1: plant.z.mode_hz: unknown key"},
+        BadKeyCase{"z gravity", "[plant.z]\ngravity_mm_s = -500\n",
+                   "2:1: plant.z.gravity_mm_s: must be -100..100: what the counterbalance leaves of the head's weight, "
+                   "as a table speed (got -500)"},
+        BadKeyCase{"z travel upside down", "[plant.z]\ntravel_bottom_mm = 10\n",
+                   "2:1: plant.z.travel_bottom_mm: must be <= travel_top_mm = 0 (got 10)"},
+        BadKeyCase{"z home switch off the travel", "\n[plant.z]\nhome_switch_mm = 50\n",
+                   "3:1: plant.z.home_switch_mm: must be -300..5: a home switch between the bottom of the travel and "
+                   "the top hard stop (got 50)"},
+        BadKeyCase{"spindle tau", "[spindle]\ntau_s = -0.2\n",
+                   "2:1: spindle.tau_s: must be 0.001..10: a spindle drive's speed loop settles in 1 ms to 10 s (got -0.2)"},
+        BadKeyCase{"spindle ramp", "[spindle]\naccel_limit_rpm_s = 0\n",
+                   "2:1: spindle.accel_limit_rpm_s: must be 1..1e+06: a spindle drive's current-limited acceleration "
+                   "(thousands of rpm/s) (got 0)"},
+        BadKeyCase{"spindle droop nan", "[spindle]\ndroop_rpm_per_n = nan\n",
+                   "2:1: spindle.droop_rpm_per_n: must be 0..100: speed lost per newton of cutting load (got nan)"},
+        BadKeyCase{"spindle encoder not x4", "[spindle]\nencoder_counts_per_rev = 4097\n",
+                   "2:1: spindle.encoder_counts_per_rev: must be a positive multiple of 4 (x4 decoding) (got 4097)"},
+        BadKeyCase{"spindle dac bits", "[spindle]\ndac_bits = 20\n", "2:1: spindle.dac_bits: must be in 8..16 (got 20)"},
+        BadKeyCase{"spindle dac as float", "[spindle]\ndac_bits = 12.5\n",
+                   "2:1: spindle.dac_bits: expected an integer, got a float"},
+        BadKeyCase{"tool flutes", "[tool]\nflutes = 0\n", "2:1: tool.flutes: must be in 1..20 (got 0)"},
+        BadKeyCase{"tool diameter", "[tool]\ndiameter_mm = 0\n",
+                   "2:1: tool.diameter_mm: must be 0.1..100: an end mill's diameter (got 0)"},
+        BadKeyCase{"stock top", "[stock]\ntop_mm = 5000\n", "2:1: stock.top_mm: must be -1000..1000: machine coordinates (got 5000)"},
+        BadKeyCase{"stock side nan", "[stock]\nx_min_mm = nan\n",
+                   "2:1: stock.x_min_mm: must be -1000..1000 (machine coordinates) or +-inf (unbounded) (got nan)"},
+        BadKeyCase{"stock rectangle upside down", "[stock]\nx_min_mm = 10\nx_max_mm = -10\n",
+                   "3:1: stock.x_max_mm: must be >= x_min_mm = 10 (got -10)"},
+        BadKeyCase{"stock unknown key", "[stock]\nheight_mm = 10\n", "2:1: stock.height_mm: unknown key"},
+        BadKeyCase{"k_c", "[tool_cut]\nk_c_n_mm2 = -1\n",
+                   "2:1: tool_cut.k_c_n_mm2: must be 1..20000: a specific cutting force (aluminium ~700, steel ~2000 "
+                   "N/mm^2) (got -1)"},
+        BadKeyCase{"crash fraction", "[tool_cut]\ncrash_speed_fraction = 1.5\n",
+                   "2:1: tool_cut.crash_speed_fraction: must be 0..1: a fraction of the commanded spindle speed (got 1.5)"},
+        BadKeyCase{"stiffness", "[tool_cut]\nstiffness_n_per_mm_s = 0\n",
+                   "2:1: tool_cut.stiffness_n_per_mm_s: must be 0.1..1e+06: a drive's stiffness against a load, newtons "
+                   "per mm/s (got 0)"},
+        BadKeyCase{"overhang", "[boring]\noverhang_at_top_mm = 0\n",
+                   "2:1: boring.overhang_at_top_mm: must be 1..2000: a boring bar's overhang (got 0)"},
+        BadKeyCase{"gauge depths upside down", "[boring]\ngauge_top_depth_mm = 300\n",
+                   "2:1: boring.gauge_top_depth_mm: must be <= gauge_bottom_depth_mm = 270 (got 300)"},
+        BadKeyCase{"gauge out of reach", "[boring]\ngauge_bottom_depth_mm = 400\n",
+                   "2:1: boring.gauge_bottom_depth_mm: the bottom gauge depth must be within reach: stock.top_mm - "
+                   "boring.gauge_bottom_depth_mm = -550 mm < plant.z.travel_bottom_mm - tool.length_mm = -425 mm"},
+        BadKeyCase{"a longer tool is what cannot reach", "[tool]\nlength_mm = 100\n",
+                   "2:1: tool.length_mm: the bottom gauge depth must be within reach: stock.top_mm - "
+                   "boring.gauge_bottom_depth_mm = -420 mm < plant.z.travel_bottom_mm - tool.length_mm = -400 mm"},
+        BadKeyCase{"change part", "[boring]\nchange_at_1 = -3\n", "2:1: boring.change_at_1: must be in 0..1000000 (got -3)"},
+        BadKeyCase{"probe", "[probe]\ntip_radius_mm = -1\n",
+                   "2:1: probe.tip_radius_mm: must be 0..10: a touch probe's stylus ball radius (got -1)"}),
+    [](const ::testing::TestParamInfo<BadKeyCase>& param_info) {
+      std::string name = param_info.param.what;
+      for (char& ch : name) {
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      }
+      return name;
+    });
+
+}  // namespace
+}  // namespace tnv::emu
