@@ -180,7 +180,8 @@ inline constexpr double kReferenceForceN = 150.0;
 inline constexpr double kReferenceDepthMm = 1.0;
 inline constexpr double kReferenceFeedPerToothMm = 0.05;
 inline constexpr double kReferenceDiameterMm = 9.525;
-// K_c that gives `force_n` at a_p, f_z and D: F = K_c a_p f_z^0.75 D^0.25 solved for K_c.
+// K_c that gives `force_n` at a_p, f_z and D: F = K_c a_p f_z^0.75 D^0.25 solved for K_c
+// (defined beside the force law, tool_milling_force.cpp).
 double specific_cutting_force_n_mm2(double force_n, double depth_mm, double feed_per_tooth_mm, double diameter_mm);
 
 // The tool in the spindle.

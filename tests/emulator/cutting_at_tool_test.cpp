@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "emulator/spindle_drive.hpp"
 #include "emulator/substep_timing.hpp"
 
 namespace tnv::emu {
@@ -100,6 +101,30 @@ TEST(CuttingAtTool, SlowerSpindleThickerChipMoreForce) {
   // Commanded 6000, actually 4000 (above half): no crash, f_z = 0.075 mm.
   run(cut, ToolPointMotion{.z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0}, 4000.0, 4.0);
   EXPECT_NEAR(cut.force().force_n(), 150.0 * std::pow(1.5, 0.75), 1e-3);
+  EXPECT_EQ(cut.crashes().count(), 0u);
+}
+
+// The force loads the spindle, the droop thickens the chip: the pair settles
+// where n = 6000 - k_d F and F = 150 (6000 / n)^0.75.
+TEST(CuttingAtTool, TheSpindlesDroopFeedsBackIntoTheChip) {
+  const Scenario s;
+  CuttingAtTool cut(s, kSubstep_s);
+  SpindleDrive spindle(s.spindle);
+  spindle.set_command_code(spindle.code_for_rpm(6000.0));
+  for (int i = 0; i < 300'000; ++i) spindle.step();  // 3 s: at speed before the cut
+  const ToolPointMotion at{.z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0};
+  for (std::uint64_t i = 0; i < 600'000; ++i) {  // 6 s = 30 T_f
+    cut.advance(at, spindle.speed_rpm(), spindle.commanded_rpm(), substep_time_s(i));
+    spindle.step(cut.force().force_n());
+  }
+  double n_rpm = 6000.0, f_n = 150.0;
+  for (int k = 0; k < 50; ++k) {
+    f_n = 150.0 * std::pow(6000.0 / n_rpm, 0.75);
+    n_rpm = 6000.0 - 0.2 * f_n;
+  }
+  EXPECT_NEAR(spindle.speed_rpm(), n_rpm, 1e-3);
+  EXPECT_NEAR(cut.force().force_n(), f_n, 1e-3);
+  EXPECT_GT(cut.force().force_n(), 150.5) << "the drooped spindle cuts a thicker chip than at 6000 rpm";
   EXPECT_EQ(cut.crashes().count(), 0u);
 }
 
