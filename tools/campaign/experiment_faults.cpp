@@ -43,9 +43,13 @@ void run_faults_row(const RunContext& c, nlohmann::ordered_json& row) {
   const bool met = hil::fault_case_met(fault_case, obs, mid_code);
   const nlohmann::json j = hil::fault_case_json(fault_case, obs, met);
   row["status"] = "ok";
-  if (!met)
+  if (!met) {
+    const bool latched_expected = obs.detected && (obs.fault.reason == fault_case.expected ||
+                                                   obs.fault.reason == fault_case.also_accepted);
     row["reason"] = std::string("not met: expected ") + fw::to_string(fault_case.expected) + ", latched " +
-                    hil::latched_text(obs);
+                    hil::latched_text(obs) +
+                    (latched_expected ? " but the outputs were not safe right after the latching tick" : "");
+  }
   for (const auto& [key, value] : j.items())
     if (row.contains(key) && key != "status" && key != "reason") row[key] = value;
 }
