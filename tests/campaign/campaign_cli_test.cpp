@@ -111,5 +111,39 @@ TEST(CampaignCli, MergeOfACampaignWithAShardMissingNamesItAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "campaign.sqlite"));
 }
 
+// An experiment without a controller choice, through the tool: its rows
+// say "none", the report judges the experiment's own metric and plots it.
+TEST(CampaignCli, ABoringCampaignRunsMergesReplaysAndReports) {
+  test::TempDir tmp;
+  write_all(tmp.path() / "boring.toml",
+            "experiment = \"boring\"\nscenario = \"no-cut\"\nruns = 4\nseed = 9\nparts = 12\nchange_at = [7]\n"
+            "[vary]\n\"bore.alpha0\" = { uniform = [0.4, 0.6] }\n");
+  const fs::path dir = tmp.path() / "c";
+  auto r = tnv::test::run_tnv_hil("campaign plan " + q(tmp.path() / "boring.toml") + " --out " + q(dir));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("4 runs"), std::string::npos) << r.out;
+  for (const char* shard : {"1/2", "2/2"})
+    ASSERT_EQ(tnv::test::run_tnv_hil("campaign run " + q(dir) + " --shard " + shard).exit_code, 0);
+  r = tnv::test::run_tnv_hil("campaign merge " + q(dir));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  const std::string shard = read_all(dir / "shards" / shard_file_name(2, 2));
+  const std::size_t row1 = shard.find('\n') + 1;
+  const std::string line = shard.substr(row1, shard.find('\n', row1) - row1);
+  ASSERT_NE(line.find("\"run_id\":3,"), std::string::npos) << line;
+  r = tnv::test::run_tnv_hil("campaign replay " + q(dir) + " 3 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, line + "\n");
+
+  r = tnv::test::run_tnv_hil("campaign report " + q(dir) + " --json --plot " + q(tmp.path() / "b.svg"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["metric"], "bad_parts");
+  ASSERT_EQ(j["controllers"].size(), 1u);
+  EXPECT_EQ(j["controllers"][0]["controller"], "none");
+  EXPECT_EQ(j["controllers"][0]["finished"], 4);
+  EXPECT_NE(read_all(tmp.path() / "b.svg").find("<svg"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace tnv::campaign

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include <toml++/toml.h>
 
 #include "emulator/scenario_file.hpp"
 #include "emulator/text_file.hpp"
 #include "firmware/can/param_table.hpp"
+#include "tools/campaign/experiment.hpp"
+#include "tools/gcode/gcode_program.hpp"
 #include "tools/campaign/run_inputs.hpp"
 #include "tools/can/param_text.hpp"
 
@@ -56,6 +59,10 @@ class CampaignReader {
     spec.source = source_;
     const toml::node* vary = nullptr;
     toml::source_position vary_at{};
+    const Experiment* experiment = nullptr;
+    const toml::node* controllers = nullptr;
+    toml::source_position controllers_at{};
+    std::vector<OwnKey> own_keys;
     bool has[5] = {};
     for (auto&& [key, node] : root) {
       const std::string name(key.str());
@@ -63,11 +70,13 @@ class CampaignReader {
       if (name == "experiment") {
         has[0] = true;
         if (!read_string(at, name, node, spec.experiment)) return error();
-        if (spec.experiment != "circle")
-          return fail_at(at, name, "\"" + spec.experiment + "\": campaigns run \"circle\" (other experiments: not yet)");
+        experiment = find_experiment(spec.experiment);
+        if (experiment == nullptr)
+          return fail_at(at, name, "\"" + spec.experiment + "\": campaigns run " + experiment_names());
       } else if (name == "controllers") {
         has[1] = true;
-        if (!read_controllers(at, node, spec.controllers)) return error();
+        controllers = &node;
+        controllers_at = at;
       } else if (name == "scenario") {
         has[2] = true;
         if (!read_string(at, name, node, spec.scenario) || !resolve_scenario(at, spec)) return error();
@@ -100,17 +109,134 @@ class CampaignReader {
         vary = &node;
         vary_at = at;
       } else {
-        return fail_at(at, name, node.is_table() ? "unknown section" : "unknown key");
+        own_keys.push_back({name, &node, at});  // the experiment's own, once it is known
       }
     }
     static constexpr const char* kRequired[] = {"experiment", "controllers", "scenario", "runs", "seed"};
-    for (std::size_t k = 0; k < 5; ++k)
+    if (!has[0]) return fail_at(toml::source_position{1, 1}, "experiment", "required");
+    if (!read_settings(own_keys, *experiment, spec)) return error();
+    has[1] = has[1] || experiment->controllers != ControllerUse::choose;
+    for (std::size_t k = 1; k < 5; ++k)
       if (!has[k]) return fail_at(toml::source_position{1, 1}, kRequired[k], "required");
+    if (!read_controller_choice(controllers, controllers_at, *experiment, spec.controllers)) return error();
     if (vary != nullptr && !read_vary(vary_at, *vary, spec)) return error();
     return {std::move(spec), {}};
   }
 
  private:
+  struct OwnKey {
+    std::string name;
+    const toml::node* node;
+    toml::source_position at;
+  };
+
+  bool read_controller_choice(const toml::node* node, const toml::source_position& at, const Experiment& experiment,
+                              std::vector<fw::ControllerKind>& out) {
+    switch (experiment.controllers) {
+      case ControllerUse::choose: return read_controllers(at, *node, out);
+      case ControllerUse::rdvsc_only:
+        if (node != nullptr) {
+          if (!read_controllers(at, *node, out)) return false;
+          if (out.size() != 1 || out[0] != fw::ControllerKind::rdvsc)
+            return fail(at, "controllers", "\"" + experiment.name + "\" runs R-DVSC+DDC only: [\"rdvsc\"] or leave it out");
+        }
+        out = {fw::ControllerKind::rdvsc};
+        return true;
+      case ControllerUse::none:
+        if (node != nullptr)
+          return fail(at, "controllers", "\"" + experiment.name + "\" runs no axis loops: leave it out");
+        return true;
+    }
+    return true;
+  }
+
+  // The experiment's own keys: typed, required ones present, defaults
+  // filled in, then checked as a whole by the experiment.
+  bool read_settings(const std::vector<OwnKey>& keys, const Experiment& experiment, CampaignSpec& spec) {
+    std::map<std::string, toml::source_position> where;
+    for (const OwnKey& k : keys) {
+      const SettingKey* def = nullptr;
+      for (const SettingKey& s : experiment.settings)
+        if (s.name == k.name) def = &s;
+      if (def == nullptr) {
+        for (const Experiment* other : all_experiments())
+          for (const SettingKey& s : other->settings)
+            if (s.name == k.name)
+              return fail(k.at, k.name, "a key of experiment \"" + other->name + "\", not of \"" + experiment.name + "\"");
+        return fail(k.at, k.name, k.node->is_table() ? "unknown section" : "unknown key");
+      }
+      nlohmann::ordered_json value;
+      if (!read_setting(k, *def, value)) return false;
+      spec.settings[k.name] = value;
+      where[k.name] = k.at;
+    }
+    nlohmann::ordered_json ordered = nlohmann::ordered_json::object();  // the experiment's order
+    for (const SettingKey& s : experiment.settings) {
+      if (spec.settings.contains(s.name)) {
+        ordered[s.name] = spec.settings[s.name];
+      } else if (s.required) {
+        return fail(toml::source_position{1, 1}, s.name, "required for experiment \"" + experiment.name + "\"");
+      } else {
+        ordered[s.name] = s.default_value;
+      }
+    }
+    spec.settings = std::move(ordered);
+    const auto at = [&](const std::string& key) {
+      const auto it = where.find(key);
+      return it != where.end() ? it->second : toml::source_position{1, 1};
+    };
+    if (spec.settings.contains("program")) {
+      const std::filesystem::path path = base_dir_ / spec.settings["program"].get<std::string>();
+      std::string error;
+      if (!gcode::read_program_file(path.string(), spec.program_text, error)) return fail(at("program"), "program", error);
+    }
+    std::string key;
+    const std::string why = experiment.check_settings(spec.settings, spec.program_text, key);
+    if (!why.empty()) return fail(at(key), key, why);
+    return true;
+  }
+
+  bool read_setting(const OwnKey& k, const SettingKey& def, nlohmann::ordered_json& value) {
+    switch (def.type) {
+      case SettingType::string:
+        if (const auto* s = k.node->as_string()) {
+          value = s->get();
+          return true;
+        }
+        return fail(k.at, k.name, "expected a string");
+      case SettingType::number:
+        if (const auto v = k.node->value<double>(); v && std::isfinite(*v) && (k.node->is_number())) {
+          value = *v;
+          return true;
+        }
+        return fail(k.at, k.name, "expected a finite number");
+      case SettingType::integer:
+        if (const auto* i = k.node->as_integer()) {
+          value = i->get();
+          return true;
+        }
+        return fail(k.at, k.name, "expected an integer");
+      case SettingType::boolean:
+        if (const auto* b = k.node->as_boolean()) {
+          value = b->get();
+          return true;
+        }
+        return fail(k.at, k.name, "expected true or false");
+      case SettingType::integer_list:
+        if (const auto* list = k.node->as_array()) {
+          value = nlohmann::ordered_json::array();
+          for (const toml::node& item : *list) {
+            const auto* i = item.as_integer();
+            if (i == nullptr) return fail(k.at, k.name, "expected a list of integers");
+            value.push_back(i->get());
+          }
+          return true;
+        }
+        return fail(k.at, k.name, "expected a list of integers");
+    }
+    return fail(k.at, k.name, "unsupported");
+  }
+
   bool read_string(const toml::source_position& at, const std::string& key, const toml::node& node, std::string& out) {
     const auto* s = node.as_string();
     if (s == nullptr) return fail(at, key, "expected a string");
@@ -216,7 +342,7 @@ class CampaignReader {
       }
       for (const VaryInput& other : spec.vary)
         if (other.name == v.name) return fail(where, path, "varied twice");
-      if (!classify_and_check(where, path, spec.base, v)) return false;
+      if (!classify_and_check(where, path, spec, v)) return false;
       spec.vary.push_back(std::move(v));
     }
     // toml++ keeps a table's keys sorted; the file's order is the user's.
@@ -230,7 +356,7 @@ class CampaignReader {
   // distribution's end points (uniform), centre (normal, lognormal) or
   // every value (list) must be valid for it. Every drawn value is checked
   // again when the campaign is planned.
-  bool classify_and_check(const toml::source_position& at, const std::string& path, const emu::Scenario& base,
+  bool classify_and_check(const toml::source_position& at, const std::string& path, const CampaignSpec& spec,
                           VaryInput& v) {
     const fw::can::ParamDef* p = can_host::find_param_by_text(v.name);
     v.is_parameter = p != nullptr && v.name == p->name;
@@ -248,13 +374,15 @@ class CampaignReader {
     for (const auto& [what, value] : probes) {
       nlohmann::ordered_json values = nlohmann::ordered_json::object();
       values[v.name] = value;
-      const RunSetup setup = resolve_run_inputs(base, {{v.name, v.is_parameter}}, values);
-      if (setup.scenario) continue;
+      const RunSetup setup = resolve_run_inputs(spec.base, {{v.name, v.is_parameter}}, values, spec.experiment);
       if (setup.unknown_key) {
         const std::string near = can_host::closest_param_name(v.name);
         return fail(at, path, "neither a scenario key (docs/scenarios.md) nor a firmware parameter (tnvctl params list)" +
                                   (near.empty() ? std::string() : "; did you mean " + near + "?"));
       }
+      if (const std::string why = find_experiment(spec.experiment)->check_input(v.name, v.is_parameter); !why.empty())
+        return fail(at, path, "not an input of experiment \"" + spec.experiment + "\": " + why);
+      if (setup.scenario) continue;
       return fail(at, path, std::string(to_string(v.kind)) + " " + what + " (" + param_value_text(value) +
                                 ") is outside the key's valid range: " + setup.error);
     }

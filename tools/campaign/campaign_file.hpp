@@ -37,8 +37,8 @@ struct VaryInput {
 
 struct CampaignSpec {
   std::string source;      // the file as named
-  std::string experiment;  // "circle"
-  std::vector<fw::ControllerKind> controllers;
+  std::string experiment;  // "circle", "path", ... (experiment.hpp)
+  std::vector<fw::ControllerKind> controllers;  // empty for an experiment without a controller choice
   std::string scenario;       // a built-in name, or the file as written
   std::string scenario_text;  // the file's text when it is a file ("" for a built-in)
   emu::Scenario base;
@@ -47,6 +47,10 @@ struct CampaignSpec {
   Sampling sampling = Sampling::random;
   double limit_um = 5.0;  // the report's yield limit
   std::vector<VaryInput> vary;
+  // The experiment's own keys (path's program, ...), every one present:
+  // absent ones at their defaults.
+  nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+  std::string program_text;  // path: the program file's text
 };
 
 struct CampaignResult {

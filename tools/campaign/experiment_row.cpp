@@ -2,46 +2,33 @@
 
 #include <exception>
 
-#include "tools/hil/circle_run.hpp"
-#include "tools/hil/seeded_scenario.hpp"
-
 namespace tnv::campaign {
 
-const std::vector<std::string>& result_keys(const std::string& experiment) {
-  // circle: the encoder-measured contour error (S1 eq. 33, as the paper
-  // scored), and the same from the emulator's truth: the table and the tool point.
-  static const std::vector<std::string> circle = {"max_um",          "mean_um",          "std_um",
-                                                  "true_table_max_um", "true_table_mean_um", "true_tool_max_um",
-                                                  "true_tool_mean_um"};
-  static const std::vector<std::string> none;
-  return experiment == "circle" ? circle : none;
+const std::vector<ResultKey>& result_keys(const std::string& experiment) {
+  static const std::vector<ResultKey> none;
+  const Experiment* e = find_experiment(experiment);
+  return e != nullptr ? e->results : none;
 }
 
 nlohmann::ordered_json run_row(const Manifest& manifest, const ManifestRun& run) {
   nlohmann::ordered_json row = {{"run_id", run.run_id}, {"status", "error"}, {"reason", ""}};
-  const std::vector<std::string>& keys = result_keys(manifest.experiment);
-  for (const std::string& k : keys) row[k] = nullptr;
-  const RunSetup setup = resolve_run_inputs(manifest.base, manifest.inputs, run.inputs);
+  const Experiment* experiment = find_experiment(manifest.experiment);
+  if (experiment == nullptr) {
+    row["reason"] = "experiment \"" + manifest.experiment + "\" is not one campaigns run";
+    return row;
+  }
+  for (const ResultKey& k : experiment->results) row[k.name] = nullptr;
+  const RunSetup setup = resolve_run_inputs(manifest.base, manifest.inputs, run.inputs, manifest.experiment);
   if (!setup.scenario) {
     row["reason"] = setup.error;
     return row;
   }
   try {
-    const hil::CircleRunResult r = hil::run_circle(hil::seeded(*setup.scenario, run.seed), *setup.config, run.controller);
-    if (r.completed) {
-      row["status"] = "ok";
-      row["max_um"] = r.stats.max_um;
-      row["mean_um"] = r.stats.mean_um;
-      row["std_um"] = r.stats.std_um;
-      row["true_table_max_um"] = r.true_table_stats.max_um;
-      row["true_table_mean_um"] = r.true_table_stats.mean_um;
-      row["true_tool_max_um"] = r.true_tool_stats.max_um;
-      row["true_tool_mean_um"] = r.true_tool_stats.mean_um;
-    } else {
-      row["status"] = r.timed_out ? "timeout" : r.fault.reason != fw::FaultReason::none ? "fault" : "error";
-      row["reason"] = r.error;
-    }
+    experiment->run(RunContext{manifest, run, setup}, row);
+    if (row["status"] != "ok")  // results only for a finished run
+      for (const ResultKey& k : experiment->results) row[k.name] = nullptr;
   } catch (const std::exception& e) {
+    for (const ResultKey& k : experiment->results) row[k.name] = nullptr;
     row["status"] = "error";
     row["reason"] = std::string("exception: ") + e.what();
   }

@@ -9,12 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tools/campaign/experiment.hpp"
 #include "tools/campaign/manifest.hpp"
 
 namespace tnv::campaign {
 
-// The result keys of an experiment's rows, in row order ("max_um", ...).
-const std::vector<std::string>& result_keys(const std::string& experiment);
+// The result keys of an experiment's rows, in row order ("max_um", ...);
+// empty for an experiment no campaign runs.
+const std::vector<ResultKey>& result_keys(const std::string& experiment);
 
 nlohmann::ordered_json run_row(const Manifest& manifest, const ManifestRun& run);
 

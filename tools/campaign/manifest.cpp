@@ -6,6 +6,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "emulator/text_file.hpp"
+#include "tools/campaign/experiment.hpp"
 #include "tools/campaign/sampling.hpp"
 
 namespace tnv::campaign {
@@ -53,6 +54,10 @@ std::optional<fw::ControllerKind> controller_from_string(std::string_view name) 
   return std::nullopt;
 }
 
+const char* controller_text(const std::optional<fw::ControllerKind>& controller) noexcept {
+  return controller ? fw::to_string(*controller) : "none";
+}
+
 namespace {
 
 std::string manifest_text(const CampaignSpec& spec, const std::vector<ManifestRun>& runs) {
@@ -68,6 +73,7 @@ std::string manifest_text(const CampaignSpec& spec, const std::vector<ManifestRu
   head["seed"] = spec.seed;
   head["sampling"] = spec.sampling == Sampling::random ? "random" : "latin-hypercube";
   head["limit_um"] = spec.limit_um;
+  if (!spec.settings.empty()) head["settings"] = spec.settings;
   ojson vary = ojson::array();
   for (const VaryInput& v : spec.vary) {
     ojson d = {{"name", v.name}, {"kind", v.is_parameter ? "parameter" : "scenario"}, {"distribution", to_string(v.kind)}};
@@ -80,7 +86,7 @@ std::string manifest_text(const CampaignSpec& spec, const std::vector<ManifestRu
   text += ",\n  \"runs\": [\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const ManifestRun& r = runs[i];
-    ojson j = {{"run_id", r.run_id}, {"sample", r.sample}, {"controller", fw::to_string(r.controller)},
+    ojson j = {{"run_id", r.run_id}, {"sample", r.sample}, {"controller", controller_text(r.controller)},
                {"seed", r.seed},     {"inputs", r.inputs}};
     text += "    " + j.dump() + (i + 1 < runs.size() ? ",\n" : "\n");
   }
@@ -96,12 +102,15 @@ PlanResult plan_campaign(const CampaignSpec& spec, const std::string& campaign_t
   for (const VaryInput& v : spec.vary) names.push_back({v.name, v.is_parameter});
   const std::vector<double> u = unit_samples(spec.runs, spec.vary.size(), spec.seed, spec.sampling);
   std::vector<ManifestRun> runs;
-  runs.reserve(spec.runs * spec.controllers.size());
+  // An experiment without a controller choice runs each sample once.
+  std::vector<std::optional<fw::ControllerKind>> controllers(spec.controllers.begin(), spec.controllers.end());
+  if (controllers.empty()) controllers.emplace_back(std::nullopt);
+  runs.reserve(spec.runs * controllers.size());
   for (std::size_t s = 0; s < spec.runs; ++s) {
     ojson inputs = ojson::object();
     for (std::size_t d = 0; d < spec.vary.size(); ++d)
       inputs[spec.vary[d].name] = value_at(spec.vary[d], u[s * spec.vary.size() + d]);
-    const RunSetup setup = resolve_run_inputs(spec.base, names, inputs);
+    const RunSetup setup = resolve_run_inputs(spec.base, names, inputs, spec.experiment);
     if (!setup.scenario) {
       const VaryInput* at = nullptr;
       for (const VaryInput& v : spec.vary)
@@ -111,7 +120,7 @@ PlanResult plan_campaign(const CampaignSpec& spec, const std::string& campaign_t
                      " (" + inputs.dump() + ") is outside the valid range: " + setup.error;
       return result;
     }
-    for (const auto controller : spec.controllers) {
+    for (const auto& controller : controllers) {
       ManifestRun r;
       r.run_id = runs.size() + 1;
       r.sample = s + 1;
@@ -149,6 +158,10 @@ PlanResult plan_campaign(const CampaignSpec& spec, const std::string& campaign_t
     result.error = error;
     return result;
   }
+  if (!spec.program_text.empty() && !write_file_atomically(dir / kProgramCopyName, spec.program_text, error)) {
+    result.error = error;
+    return result;
+  }
   // The manifest last: a directory with a manifest is a whole plan.
   if (!write_file_atomically(dir / "campaign.toml", campaign_text, error) ||
       !write_file_atomically(manifest_path, text, error)) {
@@ -172,6 +185,7 @@ ManifestResult load_manifest(const fs::path& dir) {
     m.experiment = j.at("experiment").get<std::string>();
     m.scenario = j.at("scenario").get<std::string>();
     m.limit_um = j.at("limit_um").get<double>();
+    if (j.contains("settings")) m.settings = j.at("settings");
     for (const auto& v : j.at("vary")) m.inputs.push_back({v.at("name").get<std::string>(), v.at("kind") == "parameter"});
     for (const auto& r : j.at("runs")) {
       ManifestRun run;
@@ -179,8 +193,8 @@ ManifestResult load_manifest(const fs::path& dir) {
       run.sample = r.at("sample").get<std::uint64_t>();
       const std::string c = r.at("controller").get<std::string>();
       const std::optional<fw::ControllerKind> kind = controller_from_string(c);
-      if (!kind) return {std::nullopt, path.string() + ": unknown controller \"" + c + "\""};
-      run.controller = *kind;
+      if (!kind && c != "none") return {std::nullopt, path.string() + ": unknown controller \"" + c + "\""};
+      run.controller = kind;
       run.seed = r.at("seed").get<int>();
       run.inputs = r.at("inputs");
       if (run.run_id != m.runs.size() + 1) return {std::nullopt, path.string() + ": run ids out of order"};
@@ -189,7 +203,20 @@ ManifestResult load_manifest(const fs::path& dir) {
   } catch (const std::exception& e) {
     return {std::nullopt, path.string() + ": " + emu::one_line(e.what())};
   }
-  if (m.experiment != "circle") return {std::nullopt, path.string() + ": experiment \"" + m.experiment + "\" is not supported"};
+  const Experiment* experiment = find_experiment(m.experiment);
+  if (experiment == nullptr)
+    return {std::nullopt, path.string() + ": experiment \"" + m.experiment + "\" is not one campaigns run"};
+  for (const SettingKey& k : experiment->settings)
+    if (!m.settings.contains(k.name)) return {std::nullopt, path.string() + ": settings." + k.name + " missing"};
+  for (const ManifestRun& run : m.runs)
+    if (run.controller.has_value() != (experiment->controllers != ControllerUse::none))
+      return {std::nullopt, path.string() + ": run " + std::to_string(run.run_id) + ": controller does not fit " +
+                                "experiment \"" + m.experiment + "\""};
+  if (m.settings.contains("program")) {
+    const fs::path program = dir / kProgramCopyName;
+    if (!emu::read_text_file(program.string(), std::size_t{16} << 20, m.program_text, error))
+      return {std::nullopt, emu::one_line(error)};
+  }
   emu::ScenarioResult base = m.scenario == kScenarioCopyName ? emu::load_scenario_file((dir / kScenarioCopyName).string())
                                                              : emu::resolve_scenario(m.scenario);
   if (!base.scenario) return {std::nullopt, base.error};

@@ -21,11 +21,13 @@ namespace tnv::campaign {
 inline constexpr const char* kManifestFormat = "tnv-campaign-manifest 1";
 inline constexpr const char* kManifestName = "manifest.json";
 inline constexpr const char* kScenarioCopyName = "scenario.toml";
+inline constexpr const char* kProgramCopyName = "program.ngc";  // path's program
 
 struct ManifestRun {
   std::uint64_t run_id = 0;  // from 1
   std::uint64_t sample = 0;  // from 1; a sample's runs differ only in the controller
-  fw::ControllerKind controller = fw::ControllerKind::rdvsc;
+  // None for an experiment without axis loops (boring): "none" on disk.
+  std::optional<fw::ControllerKind> controller = fw::ControllerKind::rdvsc;
   int seed = 0;  // the run's seed (tools/hil/seeded_scenario.hpp), from the master seed and the sample
   nlohmann::ordered_json inputs;  // name -> value, in the file's [vary] order
 };
@@ -35,6 +37,8 @@ struct Manifest {
   std::string scenario;  // a built-in name, or kScenarioCopyName
   emu::Scenario base;
   std::vector<InputName> inputs;
+  nlohmann::ordered_json settings = nlohmann::ordered_json::object();  // the experiment's own keys
+  std::string program_text;  // path: the program (DIR/program.ngc)
   double limit_um = 5.0;
   std::vector<ManifestRun> runs;  // by run_id
   std::uint64_t fingerprint = 0;  // FNV-1a 64 of manifest.json's bytes: which campaign a shard belongs to
@@ -62,6 +66,8 @@ struct ManifestResult {
 ManifestResult load_manifest(const std::filesystem::path& dir);
 
 std::optional<fw::ControllerKind> controller_from_string(std::string_view name) noexcept;
+// "pid", "dvsc", "rdvsc", or "none".
+const char* controller_text(const std::optional<fw::ControllerKind>& controller) noexcept;
 
 std::uint64_t fnv1a64(std::string_view bytes) noexcept;
 

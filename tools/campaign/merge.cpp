@@ -122,11 +122,11 @@ MergeResult merge_campaign(const fs::path& dir) {
   {
     SqliteDb db;
     if (sqlite3_open(tmp_path.c_str(), &db.db) != SQLITE_OK) return fail(tmp_path.string() + ": cannot create");
-    const std::vector<std::string>& results = result_keys(m.experiment);
+    const std::vector<ResultKey>& results = result_keys(m.experiment);
     std::string columns = "run_id INTEGER PRIMARY KEY, sample INTEGER NOT NULL, controller TEXT NOT NULL, seed INTEGER NOT NULL, "
                           "status TEXT NOT NULL, reason TEXT NOT NULL";
     for (const InputName& in : m.inputs) columns += ", " + quoted_identifier(in.name);
-    for (const std::string& k : results) columns += ", " + quoted_identifier(k) + " REAL";
+    for (const ResultKey& k : results) columns += ", " + quoted_identifier(k.name) + " " + k.sql_type;
     columns += ", tool_version TEXT NOT NULL, build_id TEXT NOT NULL";
     if (!db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;", error) ||
         !db.exec("CREATE TABLE runs (" + columns + ");", error) ||
@@ -152,12 +152,12 @@ MergeResult merge_campaign(const fs::path& dir) {
         sqlite3_reset(insert.stmt);
         sqlite3_bind_int64(insert.stmt, c++, static_cast<std::int64_t>(run.run_id));
         sqlite3_bind_int64(insert.stmt, c++, static_cast<std::int64_t>(run.sample));
-        bind_json(insert.stmt, c++, fw::to_string(run.controller));
+        bind_json(insert.stmt, c++, controller_text(run.controller));
         sqlite3_bind_int64(insert.stmt, c++, run.seed);
         bind_json(insert.stmt, c++, row.value("status", ""));
         bind_json(insert.stmt, c++, row.value("reason", ""));
         for (const InputName& in : m.inputs) bind_json(insert.stmt, c++, run.inputs.at(in.name));
-        for (const std::string& k : results) bind_json(insert.stmt, c++, row.contains(k) ? row[k] : ojson());
+        for (const ResultKey& k : results) bind_json(insert.stmt, c++, row.contains(k.name) ? row[k.name] : ojson());
         bind_json(insert.stmt, c++, version);
         bind_json(insert.stmt, c++, build);
         if (sqlite3_step(insert.stmt) != SQLITE_DONE) insert_error = std::string("sqlite: ") + sqlite3_errmsg(db.db);
@@ -171,7 +171,9 @@ MergeResult merge_campaign(const fs::path& dir) {
     std::string manifest_text;
     emu::read_text_file((dir / kManifestName).string(), std::size_t{1} << 30, manifest_text, error);
     const ojson head = ojson::parse(manifest_text);
-    for (const char* key : {"source", "experiment", "scenario", "controllers", "samples", "seed", "sampling", "limit_um", "vary"}) {
+    for (const char* key :
+         {"source", "experiment", "scenario", "controllers", "samples", "seed", "sampling", "limit_um", "vary", "settings"}) {
+      if (!head.contains(key)) continue;  // "settings": only an experiment that has some
       sqlite3_reset(meta.stmt);
       bind_json(meta.stmt, 1, key);
       const ojson& v = head.at(key);

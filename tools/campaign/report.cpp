@@ -9,6 +9,7 @@
 
 #include <sqlite3.h>
 
+#include "tools/campaign/experiment.hpp"
 #include "tools/campaign/sqlite_handle.hpp"
 
 namespace tnv::campaign {
@@ -77,7 +78,7 @@ CampaignReport report_campaign(const std::filesystem::path& database, const std:
   std::vector<std::string> inputs;
   {
     SqliteStatement s;
-    if (sqlite3_prepare_v2(db.db, "SELECT key, value FROM campaign WHERE key IN ('limit_um', 'vary');", -1, &s.stmt,
+    if (sqlite3_prepare_v2(db.db, "SELECT key, value FROM campaign WHERE key IN ('limit_um', 'vary', 'experiment');", -1, &s.stmt,
                            nullptr) != SQLITE_OK) {
       report.error = sql_error();
       return report;
@@ -85,6 +86,10 @@ CampaignReport report_campaign(const std::filesystem::path& database, const std:
     while (sqlite3_step(s.stmt) == SQLITE_ROW) {
       const std::string key = reinterpret_cast<const char*>(sqlite3_column_text(s.stmt, 0));
       if (key == "limit_um") report.limit = sqlite3_column_double(s.stmt, 1);
+      if (key == "experiment" && report.metric.empty()) {
+        const Experiment* e = find_experiment(reinterpret_cast<const char*>(sqlite3_column_text(s.stmt, 1)));
+        if (e != nullptr) report.metric = e->default_metric;
+      }
       if (key == "vary") {
         for (const auto& v : ojson::parse(reinterpret_cast<const char*>(sqlite3_column_text(s.stmt, 1))))
           inputs.push_back(v.at("name").get<std::string>());
@@ -92,7 +97,8 @@ CampaignReport report_campaign(const std::filesystem::path& database, const std:
     }
   }
   if (limit) report.limit = *limit;
-  std::string select = "SELECT controller, status, " + quoted_identifier(metric);
+  if (report.metric.empty()) report.metric = "max_um";
+  std::string select = "SELECT controller, status, " + quoted_identifier(report.metric);
   for (const std::string& in : inputs) select += ", " + quoted_identifier(in);
   select += " FROM runs ORDER BY run_id;";
   SqliteStatement s;

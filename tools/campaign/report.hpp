@@ -34,7 +34,8 @@ struct CampaignReport {
   std::vector<ControllerReport> controllers;
 };
 
-// `metric`: a result column (max_um, true_tool_max_um, ...); `limit`:
+// `metric`: a result column (max_um, true_tool_max_um, ...), "" for the
+// experiment's default (experiment.hpp); `limit`:
 // nullopt for the campaign file's limit_um.
 CampaignReport report_campaign(const std::filesystem::path& database, const std::string& metric,
                                std::optional<double> limit);

@@ -1,7 +1,11 @@
 #include "tools/campaign/run_inputs.hpp"
 
+#include <map>
+#include <mutex>
+
 #include "emulator/scenario_file.hpp"
 #include "emulator/scenario_validation.hpp"
+#include "tools/campaign/experiment.hpp"
 #include "tools/can/param_assignments.hpp"
 
 namespace tnv::campaign {
@@ -17,6 +21,22 @@ std::string without_position(const std::string& error) {
     ++at;
   }
   return at < error.size() && error[at] == ' ' ? error.substr(at + 1) : error.substr(at);
+}
+
+// The whole-settings check computes loop margins (about 6 ms): without
+// parameter inputs every run of an experiment has its base settings,
+// checked once per process.
+const can_host::NodeAssignmentsResult& checked_base_settings(std::string_view experiment) {
+  static std::mutex mutex;
+  static std::map<std::string, can_host::NodeAssignmentsResult, std::less<>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(experiment);
+  if (it == cache.end()) {
+    const Experiment* e = find_experiment(experiment);
+    const fw::can::NodeSettings base = e != nullptr ? e->base_settings() : default_base_settings();
+    it = cache.emplace(std::string(experiment), can_host::node_settings_from_assignments({}, base)).first;
+  }
+  return it->second;
 }
 
 }  // namespace
@@ -41,7 +61,7 @@ std::string param_value_text(const nlohmann::ordered_json& value) {
 }
 
 RunSetup resolve_run_inputs(const emu::Scenario& base, const std::vector<InputName>& names,
-                            const nlohmann::ordered_json& values) {
+                            const nlohmann::ordered_json& values, std::string_view experiment) {
   RunSetup setup;
   std::string overlay;
   std::vector<std::string> assignments;
@@ -66,19 +86,22 @@ RunSetup resolve_run_inputs(const emu::Scenario& base, const std::vector<InputNa
       if (!n.is_parameter && setup.error.rfind(n.name + ":", 0) == 0) setup.bad_input = n.name;
     return setup;
   }
-  // The whole-settings check computes loop margins (about 6 ms): without
-  // parameter inputs every run has the default firmware, checked once.
-  static const can_host::AssignmentsResult kDefaults = can_host::firmware_config_from_assignments({});
-  const can_host::AssignmentsResult config =
-      assignments.empty() ? kDefaults : can_host::firmware_config_from_assignments(assignments);
-  if (!config.config) {
+  const can_host::NodeAssignmentsResult& base_settings = checked_base_settings(experiment);
+  if (!base_settings.settings) {
+    setup.error = base_settings.error;
+    return setup;
+  }
+  const can_host::NodeAssignmentsResult config =
+      assignments.empty() ? base_settings : can_host::node_settings_from_assignments(assignments, *base_settings.settings);
+  if (!config.settings) {
     setup.error = config.error;
     for (const InputName& n : names)
       if (n.is_parameter && config.error.find(n.name) != std::string::npos) setup.bad_input = n.name;
     return setup;
   }
   setup.scenario = std::move(scenario.scenario);
-  setup.config = config.config;
+  setup.config = config.settings->firmware;
+  setup.bore = config.settings->bore;
   return setup;
 }
 

@@ -6,8 +6,9 @@
 
 namespace tnv::can_host {
 
-AssignmentsResult firmware_config_from_assignments(const std::vector<std::string>& assignments) {
-  fw::can::NodeSettings settings = fw::can::default_node_settings();
+NodeAssignmentsResult node_settings_from_assignments(const std::vector<std::string>& assignments,
+                                                     const fw::can::NodeSettings& base) {
+  fw::can::NodeSettings settings = base;
   for (const std::string& a : assignments) {
     const auto eq = a.find('=');
     const fw::can::ParamDef* p = eq == std::string::npos ? nullptr : find_param_by_text(a.substr(0, eq));
@@ -20,7 +21,13 @@ AssignmentsResult firmware_config_from_assignments(const std::vector<std::string
   }
   if (const fw::can::SettingsCheck check = fw::can::validate(settings); !check.ok)
     return {std::nullopt, std::string(check.section) + ": " + check.reason};
-  return {settings.firmware, {}};
+  return {settings, {}};
+}
+
+AssignmentsResult firmware_config_from_assignments(const std::vector<std::string>& assignments) {
+  NodeAssignmentsResult r = node_settings_from_assignments(assignments, fw::can::default_node_settings());
+  if (!r.settings) return {std::nullopt, std::move(r.error)};
+  return {r.settings->firmware, {}};
 }
 
 }  // namespace tnv::can_host

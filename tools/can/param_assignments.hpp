@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware/can/node_settings.hpp"
 #include "firmware/tick/firmware_config.hpp"
 
 namespace tnv::can_host {
@@ -17,5 +18,14 @@ struct AssignmentsResult {
 };
 
 AssignmentsResult firmware_config_from_assignments(const std::vector<std::string>& assignments);
+
+// The same on top of `base` (an experiment's own settings, e.g. homing's),
+// giving the whole node settings: the firmware and the boring planner's.
+struct NodeAssignmentsResult {
+  std::optional<fw::can::NodeSettings> settings;
+  std::string error;
+};
+NodeAssignmentsResult node_settings_from_assignments(const std::vector<std::string>& assignments,
+                                                     const fw::can::NodeSettings& base);
 
 }  // namespace tnv::can_host

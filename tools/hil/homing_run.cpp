@@ -98,12 +98,14 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
   while (rig->task.homing() && rig->machine.time_s() - start_s < kTimeoutS) rig->tick();
   out.time_s = rig->machine.time_s() - start_s;
   if (rig->task.fault().active()) {
+    out.faulted = true;
     out.failure = std::string("fault ") + fw::to_string(rig->task.fault().reason) + " (axis " +
                   std::to_string(rig->task.fault().axis) + ")";
     return out;
   }
   for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
     if (!rig->task.homed(axis)) {
+      out.timed_out = rig->task.homing();
       out.failure = std::string(axis == hal::Axis::x ? "x" : "y") + " not homed: " +
                     fw::to_string(rig->task.homing_result(axis));
       return out;

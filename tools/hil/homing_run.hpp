@@ -30,6 +30,8 @@ struct HomingSeedResult {
   double offset_counts_y = 0.0;
   bool homed = false;
   std::string failure;                // why not, when not homed
+  bool faulted = false;               // not homed: the firmware latched a fault
+  bool timed_out = false;             // not homed: still homing when the bench's time ran out
   double home_error_x_um = 0.0;       // the frame's error at the mark, motor side
   double home_error_y_um = 0.0;
   double reading_error_x_um = 0.0;    // the reading at rest after homing, motor side

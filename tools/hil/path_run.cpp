@@ -78,8 +78,10 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   score_options.tick_period_s = kTickPeriodS;
   result.score = score_path(program, samples, task.motion().limits(), score_options);
   if (task.state() == fw::MotionState::faulted) {
+    result.faulted = true;
     result.error = "fault: " + command_status_text(fw::CommandStatus::faulted, task);
   } else if (!feeder.closed() || task.state() != fw::MotionState::holding) {
+    result.timed_out = true;
     result.error = "the program did not finish in three times its programmed time";
   } else {
     result.completed = true;

@@ -24,6 +24,8 @@ struct PathRunOptions {
 struct PathRunResult {
   bool completed = false;
   std::string error;                    // why not: a G-code error (line, column), a refusal, a fault
+  bool faulted = false;                 // not completed: the firmware faulted
+  bool timed_out = false;               // not completed: the program did not finish in its generous time
   PathScore score{};
   std::uint64_t underruns = 0;          // the queue ran dry before the program's end
   std::uint64_t segments = 0;           // segments streamed

@@ -35,7 +35,7 @@ struct CampaignOptions {
   std::optional<int> shards;
   std::uint64_t run_id = 0;
   bool json = false;
-  std::string metric = "max_um";
+  std::string metric;  // "": the experiment's default
   std::optional<double> limit_um;
   std::string plot;
 };
@@ -151,7 +151,7 @@ int replay_command(const CampaignOptions& o) {
   if (o.json) {
     std::cout << line << '\n';
   } else {
-    std::cout << "run " << run.run_id << " (sample " << run.sample << ", " << fw::to_string(run.controller) << ", seed "
+    std::cout << "run " << run.run_id << " (sample " << run.sample << ", " << cmp::controller_text(run.controller) << ", seed "
               << run.seed << ") " << run.inputs.dump() << '\n';
     for (const auto& [key, value] : row.items())
       if (key != "run_id") std::cout << "  " << key << " = " << value.dump() << '\n';
@@ -186,7 +186,7 @@ int report_command(const CampaignOptions& o) {
   if (!o.plot.empty()) {
     char limit[32];
     std::snprintf(limit, sizeof limit, "%.17g", report.limit);
-    if (!plot_files(o.plot, "campaign", {db.string()}, {"--option", "metric=" + o.metric, "--option", std::string("limit=") + limit},
+    if (!plot_files(o.plot, "campaign", {db.string()}, {"--option", "metric=" + report.metric, "--option", std::string("limit=") + limit},
                     "tnv-hil"))
       return kExitFailure;
   }
@@ -223,7 +223,7 @@ void add_campaign_commands(CLI::App& app, Runner& run) {
 
   CLI::App* report = campaign->add_subcommand("report", "yield, quantiles and sensitivity from DIR/campaign.sqlite");
   report->add_option("dir", o->dir, "the campaign directory")->required()->check(CLI::ExistingDirectory);
-  report->add_option("--metric", o->metric, "the result judged (max_um, true_tool_max_um, ...)")->capture_default_str();
+  report->add_option("--metric", o->metric, "the result judged (default: the experiment's, e.g. max_um for circle; true_tool_max_um, ...)");
   report->add_option("--limit-um", o->limit_um, "the yield limit (default: the campaign file's limit_um)");
   report->add_flag("--json", o->json, "print JSON on stdout");
   report->add_option("--plot", o->plot, "write the figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());

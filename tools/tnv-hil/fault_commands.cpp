@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tools/hil/fault_run.hpp"
+#include "tools/hil/fault_verdict.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -26,18 +27,6 @@ std::string ms_text(std::optional<double> s) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", *s * 1e3);
   return buf;
-}
-
-// A case passes when the expected reason was latched with the board's
-// outputs safe right after the latching tick (or nothing latched, outputs
-// live, when the fault is tolerated).
-bool case_ok(const hil::FaultCase& c, const hil::FaultObservation& o, std::uint32_t mid_code) {
-  if (!o.error.empty()) return false;
-  if (c.expected == fw::FaultReason::none) return !o.detected && o.live_before_detection;
-  const bool reason_ok =
-      o.fault.reason == c.expected || (c.also_accepted != fw::FaultReason::none && o.fault.reason == c.also_accepted);
-  return o.detected && reason_ok && o.fault.tick == o.latching_tick &&
-         o.after_latch.safe(mid_code) && o.command_after_mm_s[0] == 0.0 && o.command_after_mm_s[1] == 0.0;
 }
 
 int run_faults_command(const FaultsOptions& o) {
@@ -62,9 +51,9 @@ int run_faults_command(const FaultsOptions& o) {
   int failed = 0;
   for (const hil::FaultCase& c : cases) {
     const hil::FaultObservation obs = hil::run_fault_case(*scenario, c, controller);
-    const bool ok = case_ok(c, obs, mid_code);
+    const bool ok = hil::fault_case_met(c, obs, mid_code);
     if (!ok) ++failed;
-    const char* latched = obs.detected ? fw::to_string(obs.fault.reason) : "none";
+    const char* latched = hil::latched_text(obs);
     const std::string axis = obs.fault.axis < 0 ? "-" : std::string(1, obs.fault.axis == 0 ? 'x' : 'y');
     char line[256];
     std::snprintf(line, sizeof line, "%-18s %-7s %-20s %-20s %-5s %5llu  %15s  %12.1f  %s\n", c.name.c_str(),
@@ -72,30 +61,7 @@ int run_faults_command(const FaultsOptions& o) {
                   static_cast<unsigned long long>(obs.ticks_to_detect()), ms_text(obs.time_to_safe_s()).c_str(),
                   obs.deviation_um, ok ? "ok" : (obs.error.empty() ? "NOT MET" : obs.error.c_str()));
     text += line;
-    nlohmann::json row = {{"name", c.name},
-                          {"motion", hil::to_string(c.motion)},
-                          {"expected", fw::to_string(c.expected)},
-                          {"latched", latched},
-                          {"axis", axis},
-                          {"injected_s", obs.injected_s},
-                          {"ticks_to_detect", obs.ticks_to_detect()},
-                          {"latching_tick", obs.latching_tick},
-                          {"fault_tick", obs.fault.tick},
-                          {"watchdog_tripped", obs.watchdog_tripped},
-                          {"deviation_um", obs.deviation_um},
-                          {"missed_ticks", obs.counters.missed_ticks},
-                          {"late_ticks", obs.counters.late_ticks},
-                          {"note", c.note},
-                          {"ok", ok}};
-    row["time_to_safe_ms"] = obs.time_to_safe_s() ? nlohmann::json(*obs.time_to_safe_s() * 1e3) : nlohmann::json();
-    if (obs.detected) {
-      row["after_latch"] = {{"dac_x", obs.after_latch.dac_register[0]},
-                            {"dac_y", obs.after_latch.dac_register[1]},
-                            {"enable_x", obs.after_latch.enabled[0]},
-                            {"enable_y", obs.after_latch.enabled[1]}};
-    }
-    if (!obs.error.empty()) row["error"] = obs.error;
-    rows.push_back(row);
+    rows.push_back(hil::fault_case_json(c, obs, ok));
   }
   const hil::WatchdogObservation wd = hil::run_watchdog_case(*scenario, 3.0, 10.0, controller);
   const std::optional<double> wd_trip_after_kick_s =

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "tools/hil/homing_json.hpp"
 #include "tools/hil/homing_run.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
@@ -36,18 +37,7 @@ int run_homing_command(const HomingCliOptions& o) {
   if (o.json) {
     nlohmann::json seeds = nlohmann::json::array();
     for (const hil::HomingSeedResult& r : sum.seeds) {
-      seeds.push_back({{"seed", r.seed},
-                       {"power_up_offset_x_mm", r.power_up_offset_x_mm},
-                       {"power_up_offset_y_mm", r.power_up_offset_y_mm},
-                       {"offset_counts_x", r.offset_counts_x},
-                       {"offset_counts_y", r.offset_counts_y},
-                       {"homed", r.homed},
-                       {"failure", r.failure},
-                       {"home_error_x_um", r.home_error_x_um},
-                       {"home_error_y_um", r.home_error_y_um},
-                       {"reading_error_x_um", r.reading_error_x_um},
-                       {"reading_error_y_um", r.reading_error_y_um},
-                       {"time_s", r.time_s}});
+      seeds.push_back(hil::homing_seed_json(r));
     }
     const nlohmann::json out = {{"seeds", o.seeds},
                                 {"scenario", scenario.name},
