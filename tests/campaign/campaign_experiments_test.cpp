@@ -45,15 +45,7 @@ class CampaignExperiments : public ::testing::Test {
     return load_campaign_file((tmp_.path() / "study.toml").string());
   }
 
-  Manifest plan(const std::string& text) {
-    const CampaignResult spec = parse(text);
-    EXPECT_TRUE(spec.spec) << spec.error;
-    const PlanResult p = plan_campaign(*spec.spec, text, dir());
-    EXPECT_TRUE(p.ok) << p.error;
-    ManifestResult m = load_manifest(dir());
-    EXPECT_TRUE(m.manifest) << m.error;
-    return *m.manifest;
-  }
+  Manifest plan(const std::string& text) { return test::plan_text(tmp_.path(), text, dir()); }
 
   // The file is refused by the parser with this text in its one-line error.
   void expect_refused(const std::string& text, const std::string& expected) {

@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include "tools/campaign/campaign_file.hpp"
+#include "tools/campaign/manifest.hpp"
+
 namespace tnv::campaign::test {
 
 inline constexpr const char* kShortScenario =
@@ -71,5 +74,19 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// Writes `text` as work/study.toml, plans it into `out` and loads the
+// manifest back (each step's error reported as a test failure).
+inline Manifest plan_text(const std::filesystem::path& work, const std::string& text, const std::filesystem::path& out) {
+  write_all(work / "study.toml", text);
+  const CampaignResult spec = load_campaign_file((work / "study.toml").string());
+  EXPECT_TRUE(spec.spec) << spec.error;
+  if (!spec.spec) return {};
+  const PlanResult p = plan_campaign(*spec.spec, text, out);
+  EXPECT_TRUE(p.ok) << p.error;
+  ManifestResult m = load_manifest(out);
+  EXPECT_TRUE(m.manifest) << m.error;
+  return m.manifest ? *m.manifest : Manifest{};
+}
 
 }  // namespace tnv::campaign::test

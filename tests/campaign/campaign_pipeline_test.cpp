@@ -30,16 +30,7 @@ class CampaignPipeline : public ::testing::Test {
     write_all(tmp_.path() / "study.toml", kCampaign);
   }
   // Plans kCampaign (or `text`) into DIR and loads the manifest.
-  Manifest plan(const std::string& text = kCampaign) {
-    write_all(tmp_.path() / "study.toml", text);
-    const CampaignResult spec = load_campaign_file((tmp_.path() / "study.toml").string());
-    EXPECT_TRUE(spec.spec) << spec.error;
-    const PlanResult p = plan_campaign(*spec.spec, text, dir());
-    EXPECT_TRUE(p.ok) << p.error;
-    ManifestResult m = load_manifest(dir());
-    EXPECT_TRUE(m.manifest) << m.error;
-    return *m.manifest;
-  }
+  Manifest plan(const std::string& text = kCampaign) { return test::plan_text(tmp_.path(), text, dir()); }
   fs::path dir() const { return tmp_.path() / "camp"; }
   fs::path shard_path(int i, int n) const { return dir() / "shards" / shard_file_name(i, n); }
   test::TempDir tmp_;

@@ -3,11 +3,11 @@
 // each range refused with file, line and key, nothing half-applied.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cmath>
 
 #include "emulator/scenario_file.hpp"
 #include "emulator/scenario_validation.hpp"
+#include "tests/emulator/scenario_error_cases.hpp"
 
 namespace tnv::emu {
 namespace {
@@ -134,87 +134,68 @@ TEST(MachineKeys, DefaultsAreTheReferencePlantAndValid) {
   EXPECT_EQ(s.cutting.spindle_rpm, 900.0);
 }
 
-struct BadKeyCase {
-  const char* what;
-  const char* text;
-  const char* expected;  // the whole line after "m.toml:"
-};
-
-void PrintTo(const BadKeyCase& c, std::ostream* os) { *os << c.what; }
-
-class MachineKeyErrors : public ::testing::TestWithParam<BadKeyCase> {};
-
-TEST_P(MachineKeyErrors, RefusedWithFileLineAndKey) {
-  const BadKeyCase& c = GetParam();
-  const ScenarioResult r = parse_scenario_text(c.text, "m.toml");
-  EXPECT_FALSE(r.scenario) << c.what << ": accepted";
-  EXPECT_EQ(r.error, std::string("m.toml:") + c.expected) << c.what;
-}
+// Refused like every scenario error (scenario_file_test.cpp: one line, file, line, column, key).
+using test::ScenarioErrorCase;
+using test::ScenarioFileErrors;
 
 INSTANTIATE_TEST_SUITE_P(
-    EverySection, MachineKeyErrors,
+    MachineSections, ScenarioFileErrors,
     ::testing::Values(
-        BadKeyCase{"z tau", "[plant.z]\ntau_s = 0\n", "2:1: plant.z.tau_s: must be > 0 and finite (got 0)"},
-        BadKeyCase{"z stiction below coulomb", "[plant.z]\nstiction_mm_s = 1\n",
+        ScenarioErrorCase{"z tau", "[plant.z]\ntau_s = 0\n", "2:1: plant.z.tau_s: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"z stiction below coulomb", "[plant.z]\nstiction_mm_s = 1\n",
                    "2:1: plant.z.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1)"},
-        BadKeyCase{"z has no structural mode", "[plant.z]\nmode_hz = 30\n", "2:1: plant.z.mode_hz: unknown key"},
-        BadKeyCase{"z gravity", "[plant.z]\ngravity_mm_s = -500\n",
+        ScenarioErrorCase{"z has no structural mode", "[plant.z]\nmode_hz = 30\n", "2:1: plant.z.mode_hz: unknown key"},
+        ScenarioErrorCase{"z gravity", "[plant.z]\ngravity_mm_s = -500\n",
                    "2:1: plant.z.gravity_mm_s: must be -100..100: what the counterbalance leaves of the head's weight, "
                    "as a table speed (got -500)"},
-        BadKeyCase{"z travel upside down", "[plant.z]\ntravel_bottom_mm = 10\n",
+        ScenarioErrorCase{"z travel upside down", "[plant.z]\ntravel_bottom_mm = 10\n",
                    "2:1: plant.z.travel_bottom_mm: must be <= travel_top_mm = 0 (got 10)"},
-        BadKeyCase{"z home switch off the travel", "\n[plant.z]\nhome_switch_mm = 50\n",
+        ScenarioErrorCase{"z home switch off the travel", "\n[plant.z]\nhome_switch_mm = 50\n",
                    "3:1: plant.z.home_switch_mm: must be -300..5: a home switch between the bottom of the travel and "
                    "the top hard stop (got 50)"},
-        BadKeyCase{"spindle tau", "[spindle]\ntau_s = -0.2\n",
+        ScenarioErrorCase{"spindle tau", "[spindle]\ntau_s = -0.2\n",
                    "2:1: spindle.tau_s: must be 0.001..10: a spindle drive's speed loop settles in 1 ms to 10 s (got -0.2)"},
-        BadKeyCase{"spindle ramp", "[spindle]\naccel_limit_rpm_s = 0\n",
+        ScenarioErrorCase{"spindle ramp", "[spindle]\naccel_limit_rpm_s = 0\n",
                    "2:1: spindle.accel_limit_rpm_s: must be 1..1e+06: a spindle drive's current-limited acceleration "
                    "(thousands of rpm/s) (got 0)"},
-        BadKeyCase{"spindle droop nan", "[spindle]\ndroop_rpm_per_n = nan\n",
+        ScenarioErrorCase{"spindle droop nan", "[spindle]\ndroop_rpm_per_n = nan\n",
                    "2:1: spindle.droop_rpm_per_n: must be 0..100: speed lost per newton of cutting load (got nan)"},
-        BadKeyCase{"spindle encoder not x4", "[spindle]\nencoder_counts_per_rev = 4097\n",
+        ScenarioErrorCase{"spindle encoder not x4", "[spindle]\nencoder_counts_per_rev = 4097\n",
                    "2:1: spindle.encoder_counts_per_rev: must be a positive multiple of 4 (x4 decoding) (got 4097)"},
-        BadKeyCase{"spindle dac bits", "[spindle]\ndac_bits = 20\n", "2:1: spindle.dac_bits: must be in 8..16 (got 20)"},
-        BadKeyCase{"spindle dac as float", "[spindle]\ndac_bits = 12.5\n",
+        ScenarioErrorCase{"spindle dac bits", "[spindle]\ndac_bits = 20\n", "2:1: spindle.dac_bits: must be in 8..16 (got 20)"},
+        ScenarioErrorCase{"spindle dac as float", "[spindle]\ndac_bits = 12.5\n",
                    "2:1: spindle.dac_bits: expected an integer, got a float"},
-        BadKeyCase{"tool flutes", "[tool]\nflutes = 0\n", "2:1: tool.flutes: must be in 1..20 (got 0)"},
-        BadKeyCase{"tool diameter", "[tool]\ndiameter_mm = 0\n",
+        ScenarioErrorCase{"tool flutes", "[tool]\nflutes = 0\n", "2:1: tool.flutes: must be in 1..20 (got 0)"},
+        ScenarioErrorCase{"tool diameter", "[tool]\ndiameter_mm = 0\n",
                    "2:1: tool.diameter_mm: must be 0.1..100: an end mill's diameter (got 0)"},
-        BadKeyCase{"stock top", "[stock]\ntop_mm = 5000\n", "2:1: stock.top_mm: must be -1000..1000: machine coordinates (got 5000)"},
-        BadKeyCase{"stock side nan", "[stock]\nx_min_mm = nan\n",
+        ScenarioErrorCase{"stock top", "[stock]\ntop_mm = 5000\n", "2:1: stock.top_mm: must be -1000..1000: machine coordinates (got 5000)"},
+        ScenarioErrorCase{"stock side nan", "[stock]\nx_min_mm = nan\n",
                    "2:1: stock.x_min_mm: must be -1000..1000 (machine coordinates) or +-inf (unbounded) (got nan)"},
-        BadKeyCase{"stock rectangle upside down", "[stock]\nx_min_mm = 10\nx_max_mm = -10\n",
+        ScenarioErrorCase{"stock rectangle upside down", "[stock]\nx_min_mm = 10\nx_max_mm = -10\n",
                    "3:1: stock.x_max_mm: must be >= x_min_mm = 10 (got -10)"},
-        BadKeyCase{"stock unknown key", "[stock]\nheight_mm = 10\n", "2:1: stock.height_mm: unknown key"},
-        BadKeyCase{"k_c", "[tool_cut]\nk_c_n_mm2 = -1\n",
+        ScenarioErrorCase{"stock unknown key", "[stock]\nheight_mm = 10\n", "2:1: stock.height_mm: unknown key"},
+        ScenarioErrorCase{"k_c", "[tool_cut]\nk_c_n_mm2 = -1\n",
                    "2:1: tool_cut.k_c_n_mm2: must be 1..20000: a specific cutting force (aluminium ~700, steel ~2000 "
                    "N/mm^2) (got -1)"},
-        BadKeyCase{"crash fraction", "[tool_cut]\ncrash_speed_fraction = 1.5\n",
+        ScenarioErrorCase{"crash fraction", "[tool_cut]\ncrash_speed_fraction = 1.5\n",
                    "2:1: tool_cut.crash_speed_fraction: must be 0..1: a fraction of the commanded spindle speed (got 1.5)"},
-        BadKeyCase{"stiffness", "[tool_cut]\nstiffness_n_per_mm_s = 0\n",
+        ScenarioErrorCase{"stiffness", "[tool_cut]\nstiffness_n_per_mm_s = 0\n",
                    "2:1: tool_cut.stiffness_n_per_mm_s: must be 0.1..1e+06: a drive's stiffness against a load, newtons "
                    "per mm/s (got 0)"},
-        BadKeyCase{"overhang", "[boring]\noverhang_at_top_mm = 0\n",
+        ScenarioErrorCase{"overhang", "[boring]\noverhang_at_top_mm = 0\n",
                    "2:1: boring.overhang_at_top_mm: must be 1..2000: a boring bar's overhang (got 0)"},
-        BadKeyCase{"gauge depths upside down", "[boring]\ngauge_top_depth_mm = 300\n",
+        ScenarioErrorCase{"gauge depths upside down", "[boring]\ngauge_top_depth_mm = 300\n",
                    "2:1: boring.gauge_top_depth_mm: must be <= gauge_bottom_depth_mm = 270 (got 300)"},
-        BadKeyCase{"gauge out of reach", "[boring]\ngauge_bottom_depth_mm = 400\n",
+        ScenarioErrorCase{"gauge out of reach", "[boring]\ngauge_bottom_depth_mm = 400\n",
                    "2:1: boring.gauge_bottom_depth_mm: the bottom gauge depth must be within reach: stock.top_mm - "
                    "boring.gauge_bottom_depth_mm = -550 mm < plant.z.travel_bottom_mm - tool.length_mm = -425 mm"},
-        BadKeyCase{"a longer tool is what cannot reach", "[tool]\nlength_mm = 100\n",
+        ScenarioErrorCase{"a longer tool is what cannot reach", "[tool]\nlength_mm = 100\n",
                    "2:1: tool.length_mm: the bottom gauge depth must be within reach: stock.top_mm - "
                    "boring.gauge_bottom_depth_mm = -420 mm < plant.z.travel_bottom_mm - tool.length_mm = -400 mm"},
-        BadKeyCase{"change part", "[boring]\nchange_at_1 = -3\n", "2:1: boring.change_at_1: must be in 0..1000000 (got -3)"},
-        BadKeyCase{"probe", "[probe]\ntip_radius_mm = -1\n",
+        ScenarioErrorCase{"change part", "[boring]\nchange_at_1 = -3\n", "2:1: boring.change_at_1: must be in 0..1000000 (got -3)"},
+        ScenarioErrorCase{"probe", "[probe]\ntip_radius_mm = -1\n",
                    "2:1: probe.tip_radius_mm: must be 0..10: a touch probe's stylus ball radius (got -1)"}),
-    [](const ::testing::TestParamInfo<BadKeyCase>& param_info) {
-      std::string name = param_info.param.what;
-      for (char& ch : name) {
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      }
-      return name;
-    });
+    test::scenario_error_case_name);
 
 }  // namespace
 }  // namespace tnv::emu

@@ -7,12 +7,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cctype>
 
 #include <filesystem>
 #include <fstream>
 
 #include "emulator/scenario_validation.hpp"
+#include "tests/emulator/scenario_error_cases.hpp"
 
 namespace tnv::emu {
 namespace {
@@ -143,18 +143,11 @@ TEST(ScenarioFile, LoadsFromDisk) {
   EXPECT_TRUE(r.scenario->cutting.enabled);
 }
 
-struct BadScenarioCase {
-  const char* what;
-  const char* text;
-  const char* expected;  // the whole line after "scen.toml:"
-};
-
-void PrintTo(const BadScenarioCase& c, std::ostream* os) { *os << c.what; }
-
-class ScenarioFileErrors : public ::testing::TestWithParam<BadScenarioCase> {};
+using test::ScenarioErrorCase;
+using test::ScenarioFileErrors;
 
 TEST_P(ScenarioFileErrors, OneLineNamingFileLineAndKey) {
-  const BadScenarioCase& c = GetParam();
+  const ScenarioErrorCase& c = GetParam();
   const ScenarioResult r = parse_scenario_text(c.text, "scen.toml");
   EXPECT_FALSE(r.scenario) << c.what << ": accepted";
   EXPECT_EQ(r.error, std::string("scen.toml:") + c.expected) << c.what;
@@ -164,69 +157,63 @@ TEST_P(ScenarioFileErrors, OneLineNamingFileLineAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     EveryErrorClass, ScenarioFileErrors,
     ::testing::Values(
-        BadScenarioCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
-        BadScenarioCase{"unknown section", "[plant.w]\ntau_s = 1\n", "1:8: plant.w: unknown section"},
-        BadScenarioCase{"absurd tau", "[plant.x]\ntau_s = 1e-300\n",
+        ScenarioErrorCase{"out of range", "# comment\n[plant.x]\n\n\n\n\ntau_s = -1\n", "7:1: plant.x.tau_s: must be > 0 and finite (got -1)"},
+        ScenarioErrorCase{"unknown section", "[plant.w]\ntau_s = 1\n", "1:8: plant.w: unknown section"},
+        ScenarioErrorCase{"absurd tau", "[plant.x]\ntau_s = 1e-300\n",
                 "2:1: plant.x.tau_s: must be 1e-04..1: a servo axis' speed loop settles in 0.1 ms to 1 s (got 1e-300)"},
-        BadScenarioCase{"absurd dac volts", "[dac]\nfull_scale_v = 1e-30\n",
+        ScenarioErrorCase{"absurd dac volts", "[dac]\nfull_scale_v = 1e-30\n",
                 "2:1: dac.full_scale_v: must be 0.5..50: a servo's analogue speed reference (10 V class) (got 1e-30)"},
-        BadScenarioCase{"absurd radius", "[circle]\nradius_mm = 1e30\n",
+        ScenarioErrorCase{"absurd radius", "[circle]\nradius_mm = 1e30\n",
                 "2:1: circle.radius_mm: must be 0.001..500: a circle the table's travel can hold (got 1e+30)"},
-        BadScenarioCase{"absurd gain", "[plant.y]\ngain = 1e4\n",
+        ScenarioErrorCase{"absurd gain", "[plant.y]\ngain = 1e4\n",
                 "2:1: plant.y.gain: must be 0.1..10: the drive's speed per commanded speed (got 10000)"},
-        BadScenarioCase{"absurd feed", "[circle]\nfeed_mm_s = 5000\n",
+        ScenarioErrorCase{"absurd feed", "[circle]\nfeed_mm_s = 5000\n",
                 "2:1: circle.feed_mm_s: must be 0.001..1000: a contouring feed up to 60 m/min (got 5000)"},
-        BadScenarioCase{"absurd friction", "[plant.x]\nstiction_mm_s = 5000\ncoulomb_mm_s = 2\n",
+        ScenarioErrorCase{"absurd friction", "[plant.x]\nstiction_mm_s = 5000\ncoulomb_mm_s = 2\n",
                 "2:1: plant.x.stiction_mm_s: must be 0..1000: friction above 1000 mm/s is no moving table (a jam is 200) (got 5000)"},
-        BadScenarioCase{"unknown top section", "[turret]\nrpm = 1\n", "1:2: turret: unknown section"},
-        BadScenarioCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
-        BadScenarioCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
-        BadScenarioCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},
-        BadScenarioCase{"float for integer", "[dac]\nbits = 12.0\n", "2:1: dac.bits: expected an integer, got a float"},
-        BadScenarioCase{"wrong bool type", "[cutting]\nenabled = 1\n", "2:1: cutting.enabled: expected a boolean, got an integer"},
-        BadScenarioCase{"section not a table", "cutting = 3\n", "1:1: cutting: expected a table, got an integer"},
-        BadScenarioCase{"name not a string", "name = 3\n", "1:1: name: expected a string, got an integer"},
-        BadScenarioCase{"nan", "[plant.y]\ngain = nan\n", "2:1: plant.y.gain: must be > 0 and finite (got nan)"},
-        BadScenarioCase{"inf", "[encoder]\noffset_counts_x = -inf\n", "2:1: encoder.offset_counts_x: must be finite (got -inf)"},
-        BadScenarioCase{"stiction below coulomb", "[plant.x]\ncoulomb_mm_s = 2\nstiction_mm_s = 1.5\n",
+        ScenarioErrorCase{"unknown top section", "[turret]\nrpm = 1\n", "1:2: turret: unknown section"},
+        ScenarioErrorCase{"unknown key", "[cutting]\nspindle = 900\n", "2:1: cutting.spindle: unknown key"},
+        ScenarioErrorCase{"unknown top key", "speed = 2\n", "1:1: speed: unknown key"},
+        ScenarioErrorCase{"wrong type", "[circle]\nradius_mm = \"six\"\n", "2:1: circle.radius_mm: expected a number, got a string"},
+        ScenarioErrorCase{"float for integer", "[dac]\nbits = 12.0\n", "2:1: dac.bits: expected an integer, got a float"},
+        ScenarioErrorCase{"wrong bool type", "[cutting]\nenabled = 1\n", "2:1: cutting.enabled: expected a boolean, got an integer"},
+        ScenarioErrorCase{"section not a table", "cutting = 3\n", "1:1: cutting: expected a table, got an integer"},
+        ScenarioErrorCase{"name not a string", "name = 3\n", "1:1: name: expected a string, got an integer"},
+        ScenarioErrorCase{"nan", "[plant.y]\ngain = nan\n", "2:1: plant.y.gain: must be > 0 and finite (got nan)"},
+        ScenarioErrorCase{"inf", "[encoder]\noffset_counts_x = -inf\n", "2:1: encoder.offset_counts_x: must be finite (got -inf)"},
+        ScenarioErrorCase{"stiction below coulomb", "[plant.x]\ncoulomb_mm_s = 2\nstiction_mm_s = 1.5\n",
                 "3:1: plant.x.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1.5)"},
-        BadScenarioCase{"coulomb above default stiction", "[plant.y]\ncoulomb_mm_s = 4\n",
+        ScenarioErrorCase{"coulomb above default stiction", "[plant.y]\ncoulomb_mm_s = 4\n",
                 "2:1: plant.y.coulomb_mm_s: must be <= stiction_mm_s = 3 (got 4)"},
-        BadScenarioCase{"negative friction", "[plant.x]\ncoulomb_mm_s = -0.1\n",
+        ScenarioErrorCase{"negative friction", "[plant.x]\ncoulomb_mm_s = -0.1\n",
                 "2:1: plant.x.coulomb_mm_s: must be >= 0 and finite (got -0.1)"},
-        BadScenarioCase{"stribeck zero", "[plant.x]\nstribeck_mm_s = 0\n", "2:1: plant.x.stribeck_mm_s: must be > 0 and finite (got 0)"},
-        BadScenarioCase{"mode above nyquist", "[plant.x]\nmode_hz = 50000\n",
+        ScenarioErrorCase{"stribeck zero", "[plant.x]\nstribeck_mm_s = 0\n", "2:1: plant.x.stribeck_mm_s: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"mode above nyquist", "[plant.x]\nmode_hz = 50000\n",
                 "2:1: plant.x.mode_hz: must be >= 0 and below the sub-step Nyquist frequency 50000 Hz (got 50000)"},
-        BadScenarioCase{"zeta one", "[plant.y]\nmode_zeta = 1\n", "2:1: plant.y.mode_zeta: must be >= 0 and below 1 (got 1)"},
-        BadScenarioCase{"spindle zero", "[cutting]\nspindle_rpm = 0\n", "2:1: cutting.spindle_rpm: must be > 0 and finite (got 0)"},
-        BadScenarioCase{"no flutes", "[cutting]\nflutes = 0\n", "2:1: cutting.flutes: must be >= 1 (got 0)"},
-        BadScenarioCase{"huge flutes", "[cutting]\nflutes = 9999999999\n", "2:1: cutting.flutes: out of range (got 9999999999)"},
-        BadScenarioCase{"negative amplitude", "[cutting]\namplitude_mm_s = -1\n",
+        ScenarioErrorCase{"zeta one", "[plant.y]\nmode_zeta = 1\n", "2:1: plant.y.mode_zeta: must be >= 0 and below 1 (got 1)"},
+        ScenarioErrorCase{"spindle zero", "[cutting]\nspindle_rpm = 0\n", "2:1: cutting.spindle_rpm: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"no flutes", "[cutting]\nflutes = 0\n", "2:1: cutting.flutes: must be >= 1 (got 0)"},
+        ScenarioErrorCase{"huge flutes", "[cutting]\nflutes = 9999999999\n", "2:1: cutting.flutes: out of range (got 9999999999)"},
+        ScenarioErrorCase{"negative amplitude", "[cutting]\namplitude_mm_s = -1\n",
                 "2:1: cutting.amplitude_mm_s: must be >= 0 and finite (got -1)"},
-        BadScenarioCase{"counts not x4", "[encoder]\ncounts_per_rev = 1001\n",
+        ScenarioErrorCase{"counts not x4", "[encoder]\ncounts_per_rev = 1001\n",
                 "2:1: encoder.counts_per_rev: must be a positive multiple of 4 (x4 decoding) (got 1001)"},
-        BadScenarioCase{"lead zero", "[encoder]\nlead_mm = 0\n", "2:1: encoder.lead_mm: must be > 0 and finite (got 0)"},
-        BadScenarioCase{"dac bits", "[dac]\nbits = 17\n", "2:1: dac.bits: must be in 8..16 (got 17)"},
-        BadScenarioCase{"dac volts", "[dac]\nfull_scale_v = 0\n", "2:1: dac.full_scale_v: must be > 0 and finite (got 0)"},
-        BadScenarioCase{"dac rpm", "[dac]\nrpm_at_full_scale = -5\n", "2:1: dac.rpm_at_full_scale: must be > 0 and finite (got -5)"},
-        BadScenarioCase{"force volts", "[force_sensor]\nvolts_per_mm_s = -1\n",
+        ScenarioErrorCase{"lead zero", "[encoder]\nlead_mm = 0\n", "2:1: encoder.lead_mm: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"dac bits", "[dac]\nbits = 17\n", "2:1: dac.bits: must be in 8..16 (got 17)"},
+        ScenarioErrorCase{"dac volts", "[dac]\nfull_scale_v = 0\n", "2:1: dac.full_scale_v: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"dac rpm", "[dac]\nrpm_at_full_scale = -5\n", "2:1: dac.rpm_at_full_scale: must be > 0 and finite (got -5)"},
+        ScenarioErrorCase{"force volts", "[force_sensor]\nvolts_per_mm_s = -1\n",
                 "2:1: force_sensor.volts_per_mm_s: must be >= 0 and finite (got -1)"},
-        BadScenarioCase{"clock negative", "[board]\nclock_start = -1\n", "2:1: board.clock_start: must be in 0..4294967295 (got -1)"},
-        BadScenarioCase{"clock too big", "[board]\nclock_start = 4294967296\n",
+        ScenarioErrorCase{"clock negative", "[board]\nclock_start = -1\n", "2:1: board.clock_start: must be in 0..4294967295 (got -1)"},
+        ScenarioErrorCase{"clock too big", "[board]\nclock_start = 4294967296\n",
                 "2:1: board.clock_start: must be in 0..4294967295 (got 4294967296)"},
-        BadScenarioCase{"radius", "[circle]\nradius_mm = 0\n", "2:1: circle.radius_mm: must be > 0 and finite (got 0)"},
-        BadScenarioCase{"feed", "[circle]\nfeed_mm_s = -2\n", "2:1: circle.feed_mm_s: must be > 0 and finite (got -2)"},
-        BadScenarioCase{"dwell", "[circle]\ndwell_s = -0.5\n", "2:1: circle.dwell_s: must be >= 0 and finite (got -0.5)"},
-        BadScenarioCase{"ramps too long", "[circle]\nramp_s = 20\n",
+        ScenarioErrorCase{"radius", "[circle]\nradius_mm = 0\n", "2:1: circle.radius_mm: must be > 0 and finite (got 0)"},
+        ScenarioErrorCase{"feed", "[circle]\nfeed_mm_s = -2\n", "2:1: circle.feed_mm_s: must be > 0 and finite (got -2)"},
+        ScenarioErrorCase{"dwell", "[circle]\ndwell_s = -0.5\n", "2:1: circle.dwell_s: must be >= 0 and finite (got -0.5)"},
+        ScenarioErrorCase{"ramps too long", "[circle]\nramp_s = 20\n",
                 "2:1: circle.ramp_s: both ramps must fit in the circle: feed_mm_s * ramp_s = 40 mm > 2 pi radius_mm = "
                 "37.69911184307752 mm"}),
-    [](const ::testing::TestParamInfo<BadScenarioCase>& param_info) {
-      std::string name = param_info.param.what;
-      for (char& ch : name) {
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      }
-      return name;
-    });
+    test::scenario_error_case_name);
 
 TEST(ScenarioFile, SyntaxErrorUsesTheTomlSourceRegion) {
   const ScenarioResult r = parse_scenario_text("[plant.x]\ntau_s = = 1\n", "scen.toml");
