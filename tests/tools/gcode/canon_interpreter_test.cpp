@@ -124,8 +124,8 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   EXPECT_EQ(e.line, 2);
   EXPECT_EQ(e.column, 7);
   EXPECT_NE(e.message.find("word A"), std::string::npos) << e.message;
-  e = error_of("G41 D1\nM2\n");
-  EXPECT_EQ(e.column, 1);
+  e = error_of("G19 G41 D1\nM2\n");  // cutter radius compensation only in G17 (and G18)
+  EXPECT_EQ(e.column, 5);
   EXPECT_NE(e.message.find("G41"), std::string::npos) << e.message;
   e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
   EXPECT_EQ(e.line, 2);
