@@ -192,7 +192,10 @@ void CanonMachine::move_endpoint_and_flush(double x, double y) {
       const double sweep = swept_angle(endpoint_[0], endpoint_[1], q.c1, q.c2, q.turn, x, y);
       if (std::fabs(r1 - r2) > 0.01 * unit_mm_)
         throw NgcError(comp_column_, "cutter radius compensation made an arc whose radii do not match (an interpreter bug)");
-      if (q.sweep != 0.0 && endpoint_valid_ && std::fabs(sweep) > std::fabs(q.sweep) + 0.001)
+      // The margin is an angle, yet rs274 (Debian's 2.9) takes 0.001 in an inch
+      // program and 0.0254 in a millimetre one: the same here, so both refuse alike.
+      const double margin = unit_mm_ == 1.0 ? 0.0254 : 0.001;
+      if (q.sweep != 0.0 && endpoint_valid_ && std::fabs(sweep) > std::fabs(q.sweep) + margin)
         throw NgcError(comp_column_, "arc move in a concave corner cannot be reached by the tool without gouging "
                           "(the tool is too large for the corner)");
       first(q.end) = x;

@@ -36,7 +36,7 @@ std::string g_text(int code) {
 // Modal group of a supported G-code (x 10), or -1.
 int g_group(int code) {
   switch (code) {
-    case 0: case 10: case 20: case 30: case 800: case 730: case 810: case 820: case 830: return 1;
+    case 0: case 10: case 20: case 30: case 331: case 800: case 730: case 810: case 820: case 830: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -334,6 +334,20 @@ CanonMachine::ArcFit CanonMachine::arc_fit(const NgcBlock& block, bool clockwise
   return ArcFit{c1, c2, clockwise ? -turns : turns};
 }
 
+// G33.1: the spindle drives Z to the end and back at K per turn; the
+// position afterwards is where the tap started (LinuxCNC's RIGID_TAP).
+void CanonMachine::rigid_tap(const NgcBlock& block, const Vec3& to, int column) {
+  comp_refuse(comp_side_ != 0, column, "use G33.1 rigid tapping");
+  if (!block.has('k')) throw NgcError(column, "G33.1 needs K (the thread pitch, distance per spindle turn)");
+  if (block.has('f')) throw NgcError(block.column('f'), "F with G33.1: the spindle sets the feed (K per turn)");
+  if (spindle_ != 3 && spindle_ != 4) throw NgcError(column, "spindle not turning in G33.1 (M3 or M4 first)");
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "START_SPEED_FEED_SYNC(%f,0)", block.value('k'));
+  emit(buf);
+  emit("RIGID_TAP(" + num(to[0]) + ", " + num(to[1]) + ", " + num(to[2]) + ")");
+  emit("STOP_SPEED_FEED_SYNCH()");
+}
+
 void CanonMachine::emit_control_mode() {
   if (control_ == 610) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   else if (control_ == 611) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)");
@@ -390,7 +404,7 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
-    if (block.has(c) && !arc)
+    if (block.has(c) && !arc && !(c == 'k' && motion == 331))
       throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
   if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
@@ -669,6 +683,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       else move_feed(to, column);
     }
     else if (motion == 20 || motion == 30) arc(block, motion == 20, to, column);
+    else if (motion == 331) rigid_tap(block, to, column);
     else if (is_cycle(motion)) {
       comp_refuse(comp_side_ != 0, column, "use canned cycles");
       canned_cycle(block, motion, column);

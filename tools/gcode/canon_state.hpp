@@ -55,6 +55,7 @@ class CanonMachine {
   Vec3 machine_to_program(const Vec3& machine) const;
   Vec3 program_to_machine(const Vec3& program) const;
   double length(double value) const { return value * unit_mm_; }
+  void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();
   // G73, G81, G82, G83 in the XY plane (canon_cycles.cpp).
