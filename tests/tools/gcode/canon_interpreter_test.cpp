@@ -167,7 +167,7 @@ TEST(CanonInterpreter, RigidTapAsRs274PrintsIt) {
   EXPECT_EQ(c[6], "STRAIGHT_TRAVERSE(0.0000, 1.0000, 5.0000, 0.0000, 0.0000, 0.0000)");
   EXPECT_NE(error_of("G33.1 Z-5 K1\nM2\n").message.find("spindle not turning"), std::string::npos);
   EXPECT_NE(error_of("S100 M3\nG33.1 Z-5\nM2\n").message.find("needs K"), std::string::npos);
-  EXPECT_EQ(error_of("S100 M3\nG33.1 Z-5 K1 F10\nM2\n").column, 18);
+  EXPECT_EQ(error_of("S100 M3\nG33.1 Z-5 K1 F10\nM2\n").column, 14);  // the F
 }
 
 TEST(CanonInterpreter, DrillingCycleAsRs274RunsIt) {
