@@ -31,7 +31,6 @@ pytestmark = [
 SAMPLES_DIFFERING = {
     "b-index": "a rotary B axis (this machine has X, Y, Z)",
     "daisy": "a rotary A axis (this machine has X, Y, Z)",
-    "mmount": "G33.1 rigid tapping (not yet); its cycles and G41/G42 contours agree up to there",
     "gridprobe": "G38.2 probing (not yet: needs the machine's probe input)",
     "smartprobe": "G38.x probing (not yet: needs the machine's probe input)",
     "x-trim": "a subroutine in another file (touchoff.ngc) with G38.2 probing and M66",
@@ -90,17 +89,6 @@ def test_linuxcnc_samples(tnvctl, tables, name):
         assert why is not None, f"{name} agrees now: move it out of SAMPLES_DIFFERING and docs/gcode.md"
     else:
         assert why is None
-
-
-@pytest.mark.skipif(not (oracle_run.SAMPLE_DIR / "mmount.ngc").is_file(), reason="LinuxCNC's sample programs not installed")
-def test_mmount_agrees_up_to_its_rigid_tapping(tnvctl, tables, tmp_path):
-    """mmount differs only from its first G33.1 on (its reason above): the part before it agrees."""
-    lines = (oracle_run.SAMPLE_DIR / "mmount.ngc").read_text().splitlines()
-    first_tap = next(k for k, line in enumerate(lines) if line.upper().startswith("G33.1"))
-    program = tmp_path / "mmount-before-g33.1.ngc"
-    program.write_text("\n".join(lines[:first_tap] + ["M2"]) + "\n")
-    assert any("G41" in line.upper() or "G42" in line.upper() for line in lines[:first_tap])
-    assert canon_compare.compare(tnvctl, program, tables) is None
 
 
 def test_random_programs_agree(tnvctl, tables, tmp_path):
