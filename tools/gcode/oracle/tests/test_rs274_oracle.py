@@ -91,6 +91,21 @@ def test_linuxcnc_samples(tnvctl, tables, name):
         assert why is None
 
 
+@pytest.mark.parametrize("tool", [1, 2, 3])
+def test_lathe_tool_compensation_agrees(tnvctl, tmp_path, tool):
+    """G41/G42 in G18 with lathe tools: orientations 2 and 6 move the printed
+    point from the nose radius centre to the tool's origin, 9 does not; an
+    entry arc with a lathe tool first moves to its origin."""
+    mm, inch = tmp_path / "lathe-mm.tbl", tmp_path / "lathe-inch.tbl"
+    mm.write_text("T1 P1 D2.54 Q2\nT2 P2 D2.54 Q9\nT3 P3 D2.54 Q6\n")
+    inch.write_text("T1 P1 D0.1 Q2\nT2 P2 D0.1 Q9\nT3 P3 D0.1 Q6\n")
+    program = tmp_path / "lathe.ngc"
+    program.write_text(f"G20 G18 F5\nT{tool} M6\nG0 X-.5 Z.5\nG42\nG1 X0 Z0\nG1 Z-1\nG2 R.25 X-.25 Z-1.25\n"
+                       "G1 X-.5\nG40\nG0 X.2 Z-.2\nG41\nG3 X-.05 Z.05 I-.25 K0\nG1 Z-.5\nG40\nG0 X.5\nM2\n")
+    assert canon_compare.run_rs274(program, inch).ok, "the program must run, not be refused by both"
+    assert canon_compare.compare(tnvctl, program, (mm, inch)) is None
+
+
 def test_random_programs_agree(tnvctl, tables, tmp_path):
     count = int(os.environ.get("GCODE_ORACLE_RANDOM", "100"))
     program = tmp_path / "random.ngc"
