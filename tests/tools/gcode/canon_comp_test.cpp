@@ -155,5 +155,16 @@ TEST(CutterCompensation, IncrementalMovesCountFromTheProgrammedPoint) {
   EXPECT_EQ(c[6], feed("15.0000, 12.5000, 0.0000"));
 }
 
+TEST(CutterCompensation, AProgramEndingAtPercentStillMakesTheWaitingMove) {
+  // rs274 drops the last queued move here (docs/gcode.md, deviations): this
+  // interpreter ends it where the tool is, as G40 or M2 would.
+  const CanonResult r = interpret_canon("%\nF100\nG41 D4\nG1 X10\nG1 X10 Y10\n%\n", tools_setup());
+  ASSERT_FALSE(r.error.has_value());
+  ASSERT_GE(r.calls.size(), 3u);
+  EXPECT_EQ(r.calls[r.calls.size() - 3].text, feed("7.5000, 2.5000, 0.0000"));
+  EXPECT_EQ(r.calls[r.calls.size() - 2].text, feed("7.5000, 10.0000, 0.0000"));
+  EXPECT_EQ(r.calls.back().text, "FINISH()");
+}
+
 }  // namespace cutter_comp_test
 }  // namespace tnv::gcode
