@@ -1,6 +1,6 @@
 // Cutter radius compensation (G40, G41, G42, G41.1, G42.1) in the XY plane
-// (and in XZ, for lathe tools),
-// with LinuxCNC's geometry, so the calls match its rs274 (docs/gcode.md):
+// (and XZ, for lathe tools) with LinuxCNC's geometry, so the calls match its
+// rs274 call by call (docs/gcode.md "Cutter radius compensation"):
 // - the entry move (the first after G41/G42) ends one radius to the side of
 //   its programmed end, square to the move; an entry shorter than the radius
 //   is an error;
