@@ -140,6 +140,7 @@ class CanonMachine {
   bool retract_old_z_ = false;  // G98; rs274 starts in G99 (retract to R)
   double cycle_start_z_ = 0.0;  // Z where the run of canned cycles began (mm)
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;  // sticky words, mm (P seconds)
+  double cycle_r_words_ = 0.0, cycle_z_words_ = 0.0, cycle_q_words_ = 0.0;  // the same, as written (program units)
   bool cycle_has_r_ = false, cycle_has_z_ = false;
   Vec3 canon_pos_{};       // the last point moved to, as the machine knows it (program coordinates)
   int comp_side_ = 0;      // 0 off (G40), 1 left (G41), 2 right (G42)
