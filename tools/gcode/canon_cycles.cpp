@@ -13,9 +13,9 @@ namespace tnv::gcode {
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
   if (block.polar_radius || block.polar_angle) throw NgcError(column, "polar @/^ with a canned cycle is not supported yet");
-  if (block.has('r')) { cycle_r_ = length(block.value('r')); cycle_has_r_ = true; }
-  if (block.has('z')) { cycle_z_ = length(block.value('z')); cycle_has_z_ = true; }
-  if (block.has('q')) cycle_q_ = length(block.value('q'));
+  if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); cycle_has_r_ = true; }
+  if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); cycle_has_z_ = true; }
+  if (block.has('q')) { cycle_q_words_ = block.value('q'); cycle_q_ = length(cycle_q_words_); }
   if (block.has('p')) cycle_p_ = block.value('p');
   if (!cycle_has_r_) throw NgcError(column, "canned cycle needs R (the retract plane)");
   if (!cycle_has_z_) throw NgcError(column, "canned cycle needs Z (the bottom)");
@@ -62,12 +62,15 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
         emit(buf);
       }
     } else {
-      // Pecks while above the bottom (within float noise, so a depth that
-      // is the bottom in the program's decimals counts as the bottom), then
-      // the last feed to the bottom. G83 retracts to R between pecks, G73
-      // backs off by the clearance.
-      constexpr double kSame_mm = 1e-7;
-      for (double depth = r - cycle_q_; depth > bottom + kSame_mm; depth -= cycle_q_) {
+      // Pecks while above the bottom, then the last feed to the bottom. G83
+      // retracts to R between pecks, G73 backs off by the clearance. The
+      // pecks are counted as LinuxCNC counts them, in the program's units
+      // from the words as written: a depth that lands on the bottom within
+      // float noise pecks once more, or not, exactly as in rs274.
+      const double r_words = absolute_ ? cycle_r_words_ : cycle_start_z_ / unit_mm_ + cycle_r_words_;
+      const double bottom_words = absolute_ ? cycle_z_words_ : r_words + cycle_z_words_;
+      for (double depth_words = r_words - cycle_q_words_; depth_words > bottom_words; depth_words -= cycle_q_words_) {
+        const double depth = depth_words * unit_mm_;
         move_feed({x, y, depth}, column);
         if (motion == 830) move_traverse({x, y, r});
         move_traverse({x, y, depth + rapid_delta});

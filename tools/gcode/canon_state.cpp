@@ -36,7 +36,7 @@ std::string g_text(int code) {
 // Modal group of a supported G-code (x 10), or -1.
 int g_group(int code) {
   switch (code) {
-    case 0: case 10: case 20: case 30: case 800: case 730: case 810: case 820: case 830: return 1;
+    case 0: case 10: case 20: case 30: case 331: case 800: case 730: case 810: case 820: case 830: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -44,7 +44,7 @@ int g_group(int code) {
     case 901: case 911: return 4;
     case 940: return 5;
     case 200: case 210: return 6;
-    case 400: return 7;
+    case 400: case 410: case 420: case 411: case 421: return 7;
     case 430: case 431: case 490: return 8;
     case 980: case 990: return 10;
     case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: return 12;
@@ -55,8 +55,7 @@ int g_group(int code) {
 
 std::string unsupported_g(int code) {
   std::string why;
-  if (code == 410 || code == 420 || code == 411 || code == 421) why = " (cutter radius compensation is not supported yet)";
-  else if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
+  if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
   else if (code >= 382 && code <= 385) why = " (probing is not supported yet)";
   else if (code == 930) why = " (inverse-time feed is not supported yet)";
   return "unsupported G-code " + g_text(code) + why;
@@ -77,7 +76,31 @@ int m_group(int code) {
 CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
     : setup_(setup), calls_(calls), params_(setup.parameters) {}
 
-void CanonMachine::emit(const std::string& text) { calls_.push_back({line_, text}); }
+namespace {
+
+// The calls LinuxCNC lets wait behind a compensated move still in its queue
+// (interp_queue.cc); every other call is made at once.
+bool waits_behind_queued_moves(const std::string& text) {
+  static constexpr const char* kWaiting[] = {"SET_FEED_RATE(", "DWELL(", "SET_FEED_MODE(", "MIST_ON(", "MIST_OFF(",
+                                             "FLOOD_ON(", "FLOOD_OFF(", "START_SPINDLE_", "STOP_SPINDLE_TURNING(",
+                                             "SET_SPINDLE_MODE(", "SET_SPINDLE_SPEED(", "COMMENT("};
+  for (const char* prefix : kWaiting)
+    if (text.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+void CanonMachine::emit(const std::string& text) {
+  if (!queue_.empty() && waits_behind_queued_moves(text)) {
+    Queued q;
+    q.line = line_;
+    q.text = text;
+    queue_.push_back(std::move(q));
+    return;
+  }
+  calls_.push_back({line_, text});
+}
 
 std::string CanonMachine::num(double mm) const { return fixed(mm / unit_mm_, 4); }
 
@@ -192,6 +215,7 @@ void CanonMachine::percent(int line, int column) {
   if (!started_ && !percent_started_) {
     percent_started_ = true;
   } else if (percent_started_) {
+    comp_flush_here();
     emit("FINISH()");
     ended_ = true;
   } else {
@@ -205,20 +229,21 @@ void CanonMachine::end_of_file(int line) {
 }
 
 CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) const {
-  Vec3 t = pos_;
+  const Vec3& from = base_point();
+  Vec3 t = from;
   if (block.polar_radius || block.polar_angle) {  // LinuxCNC's @ (radius) and ^ (angle, degrees) in XY
     const int column = block.polar_radius ? block.polar_radius_column : block.polar_angle_column;
     if (block.has('x') || block.has('y')) throw NgcError(column, "polar @/^ with X or Y on one line");
     if (plane_ != 170) throw NgcError(column, "polar @/^ only in the XY plane (G17)");
     if (machine) throw NgcError(column, "polar @/^ with G53");
-    const double r0 = std::hypot(pos_[0], pos_[1]);
-    const double a0 = std::atan2(pos_[1], pos_[0]) * 180.0 / std::numbers::pi;
+    const double r0 = std::hypot(from[0], from[1]);
+    const double a0 = std::atan2(from[1], from[0]) * 180.0 / std::numbers::pi;
     const double r = absolute_ ? (block.polar_radius ? length(*block.polar_radius) : r0)
                                : r0 + length(block.polar_radius.value_or(0.0));
     const double a = absolute_ ? block.polar_angle.value_or(a0) : a0 + block.polar_angle.value_or(0.0);
     t[0] = r * std::cos(a * std::numbers::pi / 180.0);
     t[1] = r * std::sin(a * std::numbers::pi / 180.0);
-    if (block.has('z')) t[2] = absolute_ ? length(block.value('z')) : pos_[2] + length(block.value('z'));
+    if (block.has('z')) t[2] = absolute_ ? length(block.value('z')) : from[2] + length(block.value('z'));
     return t;
   }
   static constexpr char kAxes[3] = {'x', 'y', 'z'};
@@ -226,7 +251,7 @@ CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) con
     if (!block.has(kAxes[a])) continue;
     const double v = length(block.value(kAxes[a]));
     if (machine) t[a] = v - g5x_[a] - g92_[a] - tool_offset_[a];
-    else t[a] = absolute_ ? v : pos_[a] + v;
+    else t[a] = absolute_ ? v : from[a] + v;
   }
   return t;
 }
@@ -243,15 +268,30 @@ void CanonMachine::move_feed(const Vec3& to, int column) {
 }
 
 void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column) {
+  if (arc_not_allowed_)
+    throw NgcError(column, "the move just after turning cutter radius compensation off (G40) must be straight, not an arc");
   if (feed_ <= 0.0) throw NgcError(column, "cannot make an arc with zero feed rate (F)");
-  // (first, second, axis) as LinuxCNC orders them per plane, and the offset letters.
+  // (first, second, axis) as LinuxCNC orders them per plane.
   std::size_t i1 = 0, i2 = 1, ia = 2;
-  char l1 = 'i', l2 = 'j';
-  if (plane_ == 180) { i1 = 2; i2 = 0; ia = 1; l1 = 'k'; l2 = 'i'; }
-  if (plane_ == 190) { i1 = 1; i2 = 2; ia = 0; l1 = 'j'; l2 = 'k'; }
+  if (plane_ == 180) { i1 = 2; i2 = 0; ia = 1; }
+  if (plane_ == 190) { i1 = 1; i2 = 2; ia = 0; }
   const char other = plane_ == 170 ? 'k' : plane_ == 180 ? 'j' : 'i';
   if (block.has(other)) throw NgcError(block.column(other), std::string("word ") + static_cast<char>(std::toupper(other)) + " is not in the arc's plane");
-  const double s1 = pos_[i1], s2 = pos_[i2], e1 = end[i1], e2 = end[i2];
+  if (comp_active()) {  // only ever on in G17 or G18, the plane it was turned on in
+    comp_arc(block, clockwise, end, column);
+    return;
+  }
+  const ArcFit fit = arc_fit(block, clockwise, pos_[i1], pos_[i2], end[i1], end[i2], column);
+  emit("ARC_FEED(" + num(end[i1]) + ", " + num(end[i2]) + ", " + num(fit.c1) + ", " + num(fit.c2) + ", " +
+       std::to_string(fit.turn) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)");
+  pos_ = canon_pos_ = end;
+}
+
+CanonMachine::ArcFit CanonMachine::arc_fit(const NgcBlock& block, bool clockwise, double s1, double s2, double e1,
+                                           double e2, int column) const {
+  char l1 = 'i', l2 = 'j';  // the centre's offset letters in this plane
+  if (plane_ == 180) { l1 = 'k'; l2 = 'i'; }
+  if (plane_ == 190) { l1 = 'j'; l2 = 'k'; }
   double c1 = 0.0, c2 = 0.0;
   const double tolerance_mm = unit_mm_ == 1.0 ? 0.005 : 0.0005 * kMmPerInch;
   if (block.has('r')) {
@@ -291,9 +331,21 @@ void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, i
     if (p < 1.0 || std::floor(p) != p) throw NgcError(block.column('p'), "arc turns P must be a whole number >= 1");
     turns = static_cast<int>(std::fmin(p, 1e6));
   }
-  emit("ARC_FEED(" + num(e1) + ", " + num(e2) + ", " + num(c1) + ", " + num(c2) + ", " +
-       std::to_string(clockwise ? -turns : turns) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)");
-  pos_ = canon_pos_ = end;
+  return ArcFit{c1, c2, clockwise ? -turns : turns};
+}
+
+// G33.1: the spindle drives Z to the end and back at K per turn; the
+// position afterwards is where the tap started (LinuxCNC's RIGID_TAP).
+void CanonMachine::rigid_tap(const NgcBlock& block, const Vec3& to, int column) {
+  comp_refuse(comp_side_ != 0, column, "use G33.1 rigid tapping");
+  if (!block.has('k')) throw NgcError(column, "G33.1 needs K (the thread pitch, distance per spindle turn)");
+  if (block.has('f')) throw NgcError(block.column('f'), "F with G33.1: the spindle sets the feed (K per turn)");
+  if (spindle_ != 3 && spindle_ != 4) throw NgcError(column, "spindle not turning in G33.1 (M3 or M4 first)");
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "START_SPEED_FEED_SYNC(%f,0)", block.value('k'));
+  emit(buf);
+  emit("RIGID_TAP(" + num(to[0]) + ", " + num(to[1]) + ", " + num(to[2]) + ")");
+  emit("STOP_SPEED_FEED_SYNCH()");
 }
 
 void CanonMachine::emit_control_mode() {
@@ -325,6 +377,8 @@ void CanonMachine::program_end(bool m30) {
     emit("SELECT_PLANE(CANON_PLANE_XY)");
   }
   absolute_ = true;
+  comp_side_ = 0;
+  comp_first_ = true;
   emit("SET_FEED_MODE(0, 0)");
   feed_ = 0.0;
   emit("SET_FEED_RATE(0.0000)");
@@ -345,16 +399,17 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
     if (block.has(c))
       throw NgcError(block.column(c), std::string("unsupported word ") + static_cast<char>(std::toupper(c)) +
                                           " (this machine has X, Y and Z)");
-  if (block.has('d')) throw NgcError(block.column('d'), "unsupported word D (cutter radius compensation is not supported yet)");
+  const bool comp_on = has_code(block.g, 410) || has_code(block.g, 420) || has_code(block.g, 411) || has_code(block.g, 421);
+  if (block.has('d') && !comp_on) throw NgcError(block.column('d'), "word D with no G41, G42, G41.1 or G42.1 to use it");
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
-    if (block.has(c) && !arc)
+    if (block.has(c) && !arc && !(c == 'k' && motion == 331))
       throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
   if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
-  if (block.has('l') && non_modal != 100 && !cycle)
-    throw NgcError(block.column('l'), "word L with no G10 or canned cycle to use it");
+  if (block.has('l') && non_modal != 100 && !cycle && !has_code(block.g, 411) && !has_code(block.g, 421))
+    throw NgcError(block.column('l'), "word L with no G10, G41.1, G42.1 or canned cycle to use it");
   if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
   if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
     throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
@@ -427,6 +482,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     emit("SELECT_TOOL(" + std::to_string(t) + ")");
   }
   if (m_by_group[6]) {  // M6
+    comp_refuse(comp_side_ != 0, m_by_group[6]->column, "change tools");
     emit("START_CHANGE()");
     emit("STOP_SPINDLE_TURNING(0)");
     spindle_ = 5;
@@ -449,6 +505,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     emit("DWELL(" + fixed(block.value('p'), 4) + ")");
   }
   if (const NgcCode* g = g_by_group[2]) {
+    comp_refuse(comp_side_ != 0 && g->code != plane_, g->column, "change planes");
     plane_ = g->code;
     emit(g->code == 170 ? "SELECT_PLANE(CANON_PLANE_XY)" : g->code == 180 ? "SELECT_PLANE(CANON_PLANE_XZ)"
                                                                           : "SELECT_PLANE(CANON_PLANE_YZ)");
@@ -457,8 +514,12 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     unit_mm_ = g->code == 200 ? kMmPerInch : 1.0;
     emit(g->code == 200 ? "USE_LENGTH_UNITS(CANON_UNITS_INCHES)" : "USE_LENGTH_UNITS(CANON_UNITS_MM)");
   }
-  if (g_by_group[7]) emit("COMMENT(\"interpreter: cutter radius compensation off\")");  // G40
+  if (const NgcCode* g = g_by_group[7]) {
+    if (g->code == 400) comp_off(g->column);
+    else comp_on(block, *g);
+  }
   if (const NgcCode* g = g_by_group[8]) {
+    comp_refuse(comp_side_ != 0, g->column, "change the tool length offset");
     Vec3 offset{};
     if (g->code == 430) {
       const int tool = block.has('h') ? static_cast<int>(block.value('h')) : tool_in_spindle_;
@@ -479,6 +540,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
          ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)");
   }
   if (const NgcCode* g = g_by_group[12]) {
+    comp_refuse(comp_side_ != 0, g->column, "change coordinate systems");
     const int index = g->code <= 590 ? (g->code - 540) / 10 + 1 : 6 + (g->code - 590);
     if (index == origin_) {
       emit("COMMENT(\"interpreter: continuing to use same coordinate system\")");
@@ -490,6 +552,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     }
   }
   if (const NgcCode* g = g_by_group[13]) {
+    comp_refuse(comp_side_ != 0, g->column, "change the path control mode");
     control_ = g->code;
     if (g->code == 640) {
       control_p_ = block.has('p') ? block.value('p') : 0.0;
@@ -514,6 +577,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     arc_absolute_ = absolute;
   }
   if (const NgcCode* g = g_by_group[10]) {  // G98/G99: the canned cycles' retract
+    comp_refuse(comp_side_ != 0, g->column, "change the retract mode");
     retract_old_z_ = g->code == 980;
     emit(retract_old_z_ ? "COMMENT(\"interpreter: retract mode set to old_z\")"
                         : "COMMENT(\"interpreter: retract mode set to r_plane\")");
@@ -528,6 +592,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     if (pv < 0.0 || pv > 9.0 || std::floor(pv) != pv) throw NgcError(block.column('p'), "G10 P must be 0..9");
     if (block.has('r') && block.value('r') != 0.0) throw NgcError(block.column('r'), "G10 rotation R is not supported yet");
     const int system = pv == 0.0 ? origin_ : static_cast<int>(pv);
+    comp_refuse(comp_side_ != 0 && system == origin_, g_by_group[0]->column, "change the active coordinate system");
     static constexpr char kAxes[3] = {'x', 'y', 'z'};
     for (std::size_t a = 0; a < 3; ++a) {
       if (!block.has(kAxes[a])) continue;
@@ -543,6 +608,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       emit("SET_XY_ROTATION(0.0000)");
     }
   } else if (non_modal == 280 || non_modal == 300) {
+    comp_refuse(comp_side_ != 0, g_by_group[0]->column, "use G28 or G30");
     const Vec3 via = target(block, false);
     move_traverse(via);
     const int base = non_modal == 280 ? kG28Home : kG30Home;
@@ -558,7 +624,10 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     const Vec3 m = program_to_machine(pos_);
     const int base = non_modal == 281 ? kG28Home : kG30Home;
     for (int a = 0; a < 3; ++a) params_.set(base + a, m[static_cast<std::size_t>(a)], 1);
-  } else if (non_modal == 920) {
+  } else if (non_modal >= 920 && non_modal <= 923) {
+    comp_refuse(comp_side_ != 0, g_by_group[0]->column, "change axis offsets (G92)");
+  }
+  if (non_modal == 920) {
     if (!axis_words) throw NgcError(g_by_group[0]->column, "G92 needs at least one axis word");
     static constexpr char kAxes[3] = {'x', 'y', 'z'};
     for (std::size_t a = 0; a < 3; ++a) {
@@ -592,6 +661,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (g_motion) motion_ = g_motion->code;
   const bool machine = non_modal == 530;
   if (machine) {
+    comp_refuse(comp_side_ != 0, g_by_group[0]->column, "use G53");
     if (!(motion == 0 || motion == 10)) throw NgcError(g_by_group[0]->column, "G53 needs G0 or G1");
     if (!absolute_) throw NgcError(g_by_group[0]->column, "G53 cannot be used in incremental distance mode (G91)");
   }
@@ -603,10 +673,21 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
        (block.has('i') || block.has('j') || block.has('k') || block.has('r')))) {
     const Vec3 to = target(block, machine);
     const int column = g_motion ? g_motion->column : 1;
-    if (motion == 0) move_traverse(to);
-    else if (motion == 10) move_feed(to, column);
+    if ((motion == 0 || motion == 10) && comp_active()) {
+      if (motion == 10 && feed_ <= 0.0) throw NgcError(column, "cannot do G1 with zero feed rate (F)");
+      arc_not_allowed_ = false;
+      comp_straight(motion, to, column);
+    } else if (motion == 0 || motion == 10) {
+      arc_not_allowed_ = false;
+      if (motion == 0) move_traverse(to);
+      else move_feed(to, column);
+    }
     else if (motion == 20 || motion == 30) arc(block, motion == 20, to, column);
-    else if (is_cycle(motion)) canned_cycle(block, motion, column);
+    else if (motion == 331) rigid_tap(block, to, column);
+    else if (is_cycle(motion)) {
+      comp_refuse(comp_side_ != 0, column, "use canned cycles");
+      canned_cycle(block, motion, column);
+    }
   }
 
   // After a tool change LinuxCNC takes its position back from the machine
@@ -615,6 +696,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (m_by_group[6]) pos_ = canon_pos_;
 
   if (const NgcCode* m = m_by_group[4]) {
+    comp_column_ = m->column;
+    comp_flush_here();
     if (m->code == 0) emit("PROGRAM_STOP()");
     else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()");
     else program_end(m->code == 30);

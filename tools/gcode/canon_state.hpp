@@ -6,6 +6,7 @@
 // motion, M0/M1/M2/M30). Lengths are kept in millimetres and printed in
 // the program's units, as rs274 prints them.
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -40,16 +41,77 @@ class CanonMachine {
   void move_traverse(const Vec3& to);
   void move_feed(const Vec3& to, int column);
   void arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column);
+  // An arc's centre (plane coordinates, mm) and signed turns from a start
+  // point, with LinuxCNC's checks of the I J K and R forms.
+  struct ArcFit {
+    double c1 = 0.0, c2 = 0.0;
+    int turn = 1;  // > 0 counterclockwise, |turn| = P
+  };
+  ArcFit arc_fit(const NgcBlock& block, bool clockwise, double s1, double s2, double e1, double e2, int column) const;
   Vec3 target(const NgcBlock& block, bool machine) const;
+  // Where incremental and unspecified axes are measured from: the programmed
+  // point once compensation has made its entry move, else the current point.
+  const Vec3& base_point() const { return comp_side_ != 0 && !comp_first_ ? programmed_ : pos_; }
   Vec3 machine_to_program(const Vec3& machine) const;
   Vec3 program_to_machine(const Vec3& program) const;
   double length(double value) const { return value * unit_mm_; }
+  void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();
   // G73, G81, G82, G83 in the XY plane (canon_cycles.cpp).
   static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
   void canned_cycle(const NgcBlock& block, int motion, int column);
   void check_words(const NgcBlock& block, int motion, int non_modal) const;
+
+  // Cutter radius compensation, G40/G41/G42/G41.1/G42.1 in the XY plane
+  // (canon_comp.cpp), as LinuxCNC does it: moves wait in a queue until the
+  // next move shows whether the corner between them is convex (an arc is
+  // inserted) or concave (the waiting move's end is pulled back to the
+  // intersection); non-motion calls made meanwhile wait with them.
+  struct Queued {
+    enum class Kind { text, traverse, feed, arc } kind = Kind::text;
+    int line = 0;
+    std::string text;          // Kind::text: the call as printed
+    double dx = 0.0, dy = 0.0;  // lines: the programmed direction
+    Vec3 end{};                // program coordinates, mm (arcs: end1, end2, end3)
+    double c1 = 0.0, c2 = 0.0;  // arcs: centre, mm
+    int turn = 0;
+    double sweep = 0.0;        // arcs: radians swept as first queued (0: never moved)
+  };
+  bool comp_active() const { return comp_side_ != 0 && comp_radius_ > 0.0; }
+  void comp_on(const NgcBlock& block, const NgcCode& g);
+  void comp_off(int column);
+  void comp_refuse(bool refused, int column, const std::string& what) const;
+  void comp_straight(int motion, const Vec3& to, int column);
+  void comp_arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column);
+  void comp_arc_first(const NgcBlock& block, bool clockwise, const Vec3& end, int column);
+  void comp_line_first(int motion, const Vec3& to);
+  void comp_line_next(int motion, const Vec3& to);
+  void comp_flush_here();  // the queue ends where the tool is (M0/M1/M2/M30, G40)
+  void enqueue_line(int motion, double dx, double dy, const Vec3& end);
+  void enqueue_arc(double sweep, double e1, double e2, double c1, double c2, int turn, double e3);
+  void move_endpoint_and_flush(double x, double y);
+  void dequeue();
+  void set_endpoint(double x, double y) {
+    endpoint_ = {x, y};
+    endpoint_valid_ = true;
+  }
+  void print_queued(const Queued& q);
+  // A point's coordinates in the compensation plane (first, second) and
+  // along its normal (third): X Y Z in G17, Z X Y in G18, as LinuxCNC orders them.
+  double& first(Vec3& v) const { return v[comp_a1_]; }
+  double& second(Vec3& v) const { return v[comp_a2_]; }
+  double first(const Vec3& v) const { return v[comp_a1_]; }
+  double second(const Vec3& v) const { return v[comp_a2_]; }
+  double third(const Vec3& v) const { return v[comp_a3_]; }
+  Vec3 point(double a, double b, double c) const {
+    Vec3 v{};
+    v[comp_a1_] = a;
+    v[comp_a2_] = b;
+    v[comp_a3_] = c;
+    return v;
+  }
+  Vec3 lathe_origin(const Vec3& v) const;
 
   const CanonSetup& setup_;
   std::vector<CanonCall>& calls_;
@@ -78,8 +140,20 @@ class CanonMachine {
   bool retract_old_z_ = false;  // G98; rs274 starts in G99 (retract to R)
   double cycle_start_z_ = 0.0;  // Z where the run of canned cycles began (mm)
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;  // sticky words, mm (P seconds)
+  double cycle_r_words_ = 0.0, cycle_z_words_ = 0.0, cycle_q_words_ = 0.0;  // the same, as written (program units)
   bool cycle_has_r_ = false, cycle_has_z_ = false;
   Vec3 canon_pos_{};       // the last point moved to, as the machine knows it (program coordinates)
+  int comp_side_ = 0;      // 0 off (G40), 1 left (G41), 2 right (G42)
+  double comp_radius_ = 0.0;  // mm, >= 0
+  int comp_orientation_ = 0;  // a lathe tool's orientation (1..8) in G18; 0 or 9: the centre is the tool's origin
+  std::size_t comp_a1_ = 0, comp_a2_ = 1, comp_a3_ = 2;  // see first()
+  bool comp_first_ = true;    // the next move is the entry move
+  bool arc_not_allowed_ = false;  // the move after G40 must be straight
+  Vec3 programmed_{};      // the programmed point while compensating (pos_ is the tool's)
+  std::vector<Queued> queue_;
+  std::array<double, 2> endpoint_{};  // where the first queued move starts
+  bool endpoint_valid_ = false;
+  int comp_column_ = 1;  // the word an error found while compensating is reported at
 };
 
 }  // namespace tnv::gcode

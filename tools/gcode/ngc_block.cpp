@@ -78,7 +78,8 @@ std::string read_comment(const NgcLine& line, std::size_t& pos) {
   return text;
 }
 
-bool integer_letter(char c) { return c == 'd' || c == 'h' || c == 'l' || c == 't'; }
+// D is a real: G41.1/G42.1 take a diameter (G41/G42 check it is a whole tool number).
+bool integer_letter(char c) { return c == 'h' || c == 'l' || c == 't'; }
 
 }  // namespace
 

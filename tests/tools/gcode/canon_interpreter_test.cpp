@@ -124,8 +124,8 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   EXPECT_EQ(e.line, 2);
   EXPECT_EQ(e.column, 7);
   EXPECT_NE(e.message.find("word A"), std::string::npos) << e.message;
-  e = error_of("G41 D1\nM2\n");
-  EXPECT_EQ(e.column, 1);
+  e = error_of("G19 G41 D1\nM2\n");  // cutter radius compensation only in G17 (and G18)
+  EXPECT_EQ(e.column, 5);
   EXPECT_NE(e.message.find("G41"), std::string::npos) << e.message;
   e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
   EXPECT_EQ(e.line, 2);
@@ -154,6 +154,20 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   EXPECT_NE(e.message.find("lines run"), std::string::npos) << "an endless loop is an error, not a hang";
   e = error_of("F10 G2 X10 Y0 I1 J0\nM2\n");
   EXPECT_NE(e.message.find("radius"), std::string::npos) << e.message;
+}
+
+TEST(CanonInterpreter, RigidTapAsRs274PrintsIt) {
+  // The spindle drives Z down and back at K per turn; the tool ends where it
+  // started (the next G0 X0 keeps Y1 Z5).
+  const auto c = calls_of("G0 X1 Y1 Z5\nS200 M4\nG33.1 Z-5 K1.25\nG0 X0\nM2\n");
+  ASSERT_GE(c.size(), 7u);
+  EXPECT_EQ(c[3], "START_SPEED_FEED_SYNC(1.250000,0)");
+  EXPECT_EQ(c[4], "RIGID_TAP(1.0000, 1.0000, -5.0000)");
+  EXPECT_EQ(c[5], "STOP_SPEED_FEED_SYNCH()");
+  EXPECT_EQ(c[6], "STRAIGHT_TRAVERSE(0.0000, 1.0000, 5.0000, 0.0000, 0.0000, 0.0000)");
+  EXPECT_NE(error_of("G33.1 Z-5 K1\nM2\n").message.find("spindle not turning"), std::string::npos);
+  EXPECT_NE(error_of("S100 M3\nG33.1 Z-5\nM2\n").message.find("needs K"), std::string::npos);
+  EXPECT_EQ(error_of("S100 M3\nG33.1 Z-5 K1 F10\nM2\n").column, 14);  // the F
 }
 
 TEST(CanonInterpreter, DrillingCycleAsRs274RunsIt) {

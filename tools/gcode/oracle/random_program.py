@@ -2,8 +2,9 @@
 (docs/gcode.md), for differential testing against LinuxCNC's rs274: moves
 in every plane and unit, centre and R arcs, helices and full circles,
 dwells, spindle, coolant, tools and length offsets, work offsets, G10,
-G92, G28/G30, G53, parameters, expressions, comments and O-word control
-flow. Every program is valid by construction; each seed gives one program.
+G92, G28/G30, G53, cutter radius compensation (G41/G42/G41.1/G42.1
+contours of lines and arcs, G40 and a straight exit), parameters,
+expressions, comments and O-word control flow. Every program is valid by construction; each seed gives one program.
 """
 from __future__ import annotations
 
@@ -164,6 +165,49 @@ class Generator:
             self.lines.append("G94")
             self.lines.append(f"F{self.num(10, 3000)}")
 
+    def xy_move(self) -> None:
+        g = self.r.choice(["G1", "G1", "G1", "G0"])
+        span = 50.0 * self.scale()
+        z = f" Z{self.value(-5 * self.scale(), 5 * self.scale())}" if self.r.random() < 0.15 else ""
+        self.lines.append(f"{g} X{self.value(-span, span)} Y{self.value(-span, span)}{z}")
+
+    def compensated_contour(self) -> None:
+        """G41/G42 (a tool's D, the tool in the spindle, or G41.1/G42.1 with a
+        diameter), an entry move, lines and arcs in XY, then G40 and the
+        straight exit move. Only what LinuxCNC allows while compensating
+        runs in between (no offsets, tools, planes or path modes); a contour
+        the tool cannot follow without gouging is refused by both."""
+        if self.plane != 17:
+            self.plane = 17
+            self.lines.append("G17")
+        s = self.scale()
+        side = self.r.choice(["G41", "G42"])
+        kind = self.r.random()
+        if kind < 0.6:
+            self.lines.append(f"{side} D{self.r.randint(0, 3)}")
+        elif kind < 0.75:
+            self.lines.append(side)
+        else:
+            sign = "-" if self.r.random() < 0.2 else ""
+            self.lines.append(f"{side}.1 D{sign}{self.num(0.2 * s, 4 * s)}")
+        self.arc() if self.r.random() < 0.2 else self.xy_move()  # the entry move
+        for _ in range(self.r.randint(1, 6)):
+            r = self.r.random()
+            if r < 0.45:
+                self.xy_move()
+            elif r < 0.8:
+                self.arc()
+            elif r < 0.85:
+                self.lines.append(f"F{self.num(10, 3000)}")
+            elif r < 0.9:
+                self.lines.append(self.r.choice(["(a comment)", "(MSG, a message)", "G4 P0.5", "M8", "M9",
+                                                 f"S{self.r.randint(0, 12000)} M3"]))
+            else:
+                self.absolute = not self.absolute
+                self.lines.append("G90" if self.absolute else "G91")
+        self.lines.append("G40")
+        self.xy_move()  # the exit move: straight
+
     def cycle(self) -> None:
         """A run of canned cycles (XY plane, G90 or G91), ended by G80."""
         if self.plane != 17:
@@ -234,6 +278,8 @@ class Generator:
             self.set_param()
         elif r < 0.9:
             self.cycle()
+        elif r < 0.95:
+            self.compensated_contour()
         else:
             self.control()
 
@@ -245,6 +291,8 @@ class Generator:
         for _ in range(statements):
             if self.r.random() < 0.05:
                 self.lines.append(f"o<sub1> call [{self.num(-5, 5)}] [{self.num(-5, 5)}]")
+                if not self.absolute:  # the subroutine ends in G90
+                    self.lines.append("G91")
             self.statement()
         self.lines.append(self.r.choice(["M2", "M30"]))
         return "\n".join(self.lines) + "\n"

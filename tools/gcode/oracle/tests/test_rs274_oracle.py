@@ -8,6 +8,7 @@ run).
 from __future__ import annotations
 
 import os
+import random
 import sys
 from pathlib import Path
 
@@ -31,13 +32,6 @@ pytestmark = [
 SAMPLES_DIFFERING = {
     "b-index": "a rotary B axis (this machine has X, Y, Z)",
     "daisy": "a rotary A axis (this machine has X, Y, Z)",
-    "comp-g1": "G41/G42 cutter radius compensation (not yet)",
-    "comp": "G41/G42 cutter radius compensation (not yet)",
-    "comp311": "G41/G42 cutter radius compensation (not yet)",
-    "comp311_2": "G41/G42 cutter radius compensation (not yet)",
-    "gmoccapy_2_tools_with_cutter_radius_compensation": "G41/G42 cutter radius compensation (not yet)",
-    "useful-subroutines": "G41/G42 cutter radius compensation (not yet)",
-    "mmount": "G41/G42 cutter radius compensation (not yet); its G81/G83 cycles agree up to there",
     "gridprobe": "G38.2 probing (not yet: needs the machine's probe input)",
     "smartprobe": "G38.x probing (not yet: needs the machine's probe input)",
     "x-trim": "a subroutine in another file (touchoff.ngc) with G38.2 probing and M66",
@@ -96,6 +90,47 @@ def test_linuxcnc_samples(tnvctl, tables, name):
         assert why is not None, f"{name} agrees now: move it out of SAMPLES_DIFFERING and docs/gcode.md"
     else:
         assert why is None
+
+
+def test_peck_counts_on_the_bottom_agree(tnvctl, tables, tmp_path):
+    """G73/G83 whose depth is a whole number of pecks Q: the last peck lands on
+    the bottom within float noise, and rs274 pecks once more or not by its own
+    arithmetic in the program's units (random seed 7219 found it; before the
+    fix 43 of 150 such cycles differed)."""
+    rng = random.Random(3)
+    program = tmp_path / "pecks.ngc"
+    failures = []
+    for _ in range(40):
+        units, code, q, pecks = rng.choice(["G20", "G21"]), rng.choice(["G73", "G83"]), round(rng.uniform(0.01, 2), 4), rng.randint(1, 8)
+        bottom = round(rng.uniform(-3, 1), 4)
+        r = round(bottom + q * pecks, 4)
+        # G91 only in millimetres: in inches the start Z is kept here in mm,
+        # and converting it back can land one float step off rs274's (not matched yet).
+        if rng.random() < 0.5 or units == "G20":
+            body = f"G90 {code} X1 Y1 Z{bottom} R{r} Q{q}\nG80\n"
+        else:
+            start = round(rng.uniform(0, 3), 4)
+            body = f"G90 G0 Z{start}\nG91 {code} X1 Y1 Z{round(bottom - r, 4)} R{round(r - start, 4)} Q{q}\nG80 G90\n"
+        program.write_text(f"{units} F10\nG0 X0 Y0 Z5\n{body}M2\n")
+        why = canon_compare.compare(tnvctl, program, tables)
+        if why is not None:
+            failures.append(f"{program.read_text()!r}: {why}")
+    assert not failures, "\n".join(failures)
+
+
+@pytest.mark.parametrize("tool", [1, 2, 3])
+def test_lathe_tool_compensation_agrees(tnvctl, tmp_path, tool):
+    """G41/G42 in G18 with lathe tools: orientations 2 and 6 move the printed
+    point from the nose radius centre to the tool's origin, 9 does not; an
+    entry arc with a lathe tool first moves to its origin."""
+    mm, inch = tmp_path / "lathe-mm.tbl", tmp_path / "lathe-inch.tbl"
+    mm.write_text("T1 P1 D2.54 Q2\nT2 P2 D2.54 Q9\nT3 P3 D2.54 Q6\n")
+    inch.write_text("T1 P1 D0.1 Q2\nT2 P2 D0.1 Q9\nT3 P3 D0.1 Q6\n")
+    program = tmp_path / "lathe.ngc"
+    program.write_text(f"G20 G18 F5\nT{tool} M6\nG0 X-.5 Z.5\nG42\nG1 X0 Z0\nG1 Z-1\nG2 R.25 X-.25 Z-1.25\n"
+                       "G1 X-.5\nG40\nG0 X.2 Z-.2\nG41\nG3 X-.05 Z.05 I-.25 K0\nG1 Z-.5\nG40\nG0 X.5\nM2\n")
+    assert canon_compare.run_rs274(program, inch).ok, "the program must run, not be refused by both"
+    assert canon_compare.compare(tnvctl, program, (mm, inch)) is None
 
 
 def test_random_programs_agree(tnvctl, tables, tmp_path):
