@@ -36,12 +36,21 @@ run_stage() {
   report+=("$(printf '%-8s %4d s' "${name}" $((SECONDS - start)))")
 }
 
+# A step of a stage, its time reported with the stage's ("release.build").
+run_step() {
+  local name=$1
+  shift
+  local start=$SECONDS
+  "$@"
+  report+=("$(printf '  %-14s %4d s' "${name}" $((SECONDS - start)))")
+}
+
 build_and_test() {
   local preset=$1
   cmake --preset "${preset}" >/dev/null
-  cmake --build --preset "${preset}" -j "${jobs}"
-  if [[ "${preset}" == release ]]; then scripts/compile-each.py build/release -j "${jobs}"; fi
-  ctest --preset "${preset}" -j "${jobs}" -LE kernel
+  run_step "${preset}.build" cmake --build --preset "${preset}" -j "${jobs}"
+  if [[ "${preset}" == release ]]; then run_step release.each scripts/compile-each.py build/release -j "${jobs}"; fi
+  run_step "${preset}.tests" ctest --preset "${preset}" -j "${jobs}" -LE kernel
 }
 
 scripts/install-deps.sh
