@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "hal/axis.hpp"
+#include "hal/listed_enum.hpp"
 
 namespace tnv::emu {
 
@@ -55,34 +56,13 @@ struct FaultKeys {
   /* the next tick's snapshot is an older one again (sequence goes backwards) */ \
   X(snapshot_replayed)
 
-enum class FaultKind : std::uint8_t {
-#define TNV_ENUMERATOR(name, ...) name,
-  TNV_FAULT_KINDS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-inline constexpr std::array kFaultKinds{
-#define TNV_KIND(name, ...) FaultKind::name,
-    TNV_FAULT_KINDS(TNV_KIND)
-#undef TNV_KIND
-};
-
-inline constexpr std::array kFaultKindNames{
-#define TNV_NAME(name, ...) #name,
-    TNV_FAULT_KINDS(TNV_NAME)
-#undef TNV_NAME
-};
+TNV_LISTED_ENUM(FaultKind, TNV_FAULT_KINDS)
 
 inline constexpr std::array kFaultKindKeys{
 #define TNV_KEYS(name, ...) FaultKeys{__VA_ARGS__},
     TNV_FAULT_KINDS(TNV_KEYS)
 #undef TNV_KEYS
 };
-
-constexpr const char* to_string(FaultKind kind) noexcept {
-  const auto i = static_cast<std::size_t>(kind);
-  return i < kFaultKindNames.size() ? kFaultKindNames[i] : "?";
-}
 
 inline std::optional<FaultKind> fault_kind_from_string(std::string_view name) noexcept {
   for (FaultKind kind : kFaultKinds)

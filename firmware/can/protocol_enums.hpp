@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw::can {
 
@@ -43,24 +44,7 @@ inline constexpr std::uint32_t kProtocolVersion = 3;
   X(outside_workspace)       /* the end point lies outside the soft travel limits */ \
   X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */
 
-enum class ErrorCode : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_ERROR_CODES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-// Its names, by value.
-inline constexpr const char* kErrorCodeNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_ERROR_CODES(TNV_NAME)
-#undef TNV_NAME
-};
-
-constexpr const char* to_string(ErrorCode e) noexcept {
-  const auto i = static_cast<std::size_t>(e);
-  return i < std::size(kErrorCodeNames) ? kErrorCodeNames[i] : "?";
-}
-inline constexpr auto kErrorCodeCount = static_cast<std::uint8_t>(std::size(kErrorCodeNames));
+TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
 
 // COMMAND.code, in wire order: the enum, its names and the protocol's
 // value list (protocol_messages.hpp) all come from this one list.
@@ -88,22 +72,7 @@ inline constexpr auto kErrorCodeCount = static_cast<std::uint8_t>(std::size(kErr
   X(program_status)       /* answer, and send a PROGRAM_STATUS now */ \
   X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */
 
-enum class CommandCode : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_COMMAND_CODES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kCommandCodeNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_COMMAND_CODES(TNV_NAME)
-#undef TNV_NAME
-};
-inline constexpr auto kCommandCodeCount = static_cast<std::uint8_t>(std::size(kCommandCodeNames));
-
-constexpr const char* to_string(CommandCode c) noexcept {
-  const auto i = static_cast<std::size_t>(c);
-  return i < std::size(kCommandCodeNames) ? kCommandCodeNames[i] : "?";
-}
+TNV_LISTED_ENUM(CommandCode, TNV_COMMAND_CODES)
 
 // PARAM_REQUEST.op
 #define TNV_PARAM_OPS(X) \
@@ -113,17 +82,7 @@ constexpr const char* to_string(CommandCode c) noexcept {
   X(commit)   /* validate the pending set with everything else and apply it whole, between ticks */ \
   X(discard)  /* drop the pending set */
 
-enum class ParamOp : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_PARAM_OPS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kParamOpNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_PARAM_OPS(TNV_NAME)
-#undef TNV_NAME
-};
-inline constexpr auto kParamOpCount = static_cast<std::uint8_t>(std::size(kParamOpNames));
+TNV_LISTED_ENUM(ParamOp, TNV_PARAM_OPS)
 
 // CAPTURE_CONTROL.op
 #define TNV_CAPTURE_OPS(X) \
@@ -132,31 +91,12 @@ inline constexpr auto kParamOpCount = static_cast<std::uint8_t>(std::size(kParam
   X(status)  /* reply with CAPTURE_STATUS */ \
   X(upload)  /* send CAPTURE_CONTROL.frames CAPTURE_DATA frames from byte CAPTURE_CONTROL.offset */
 
-enum class CaptureOp : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_CAPTURE_OPS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kCaptureOpNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_CAPTURE_OPS(TNV_NAME)
-#undef TNV_NAME
-};
-inline constexpr auto kCaptureOpCount = static_cast<std::uint8_t>(std::size(kCaptureOpNames));
+TNV_LISTED_ENUM(CaptureOp, TNV_CAPTURE_OPS)
 
 // CAPTURE_STATUS.state
 #define TNV_CAPTURE_STATES(X) X(idle) X(armed) X(recording) X(done)
 
-enum class CaptureState : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_CAPTURE_STATES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kCaptureStateNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_CAPTURE_STATES(TNV_NAME)
-#undef TNV_NAME
-};
+TNV_LISTED_ENUM(CaptureState, TNV_CAPTURE_STATES)
 
 // BORE_GAUGE.op
 #define TNV_BORE_OPS(X) \
@@ -164,22 +104,7 @@ inline constexpr const char* kCaptureStateNames[] = {
   X(query)    /* the infeeds of the part being cut now; nothing changes */ \
   X(restart)  /* learning starts again: the next part is the start-up part, cut at S0 */
 
-enum class BoreOp : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_BORE_OPS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kBoreOpNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_BORE_OPS(TNV_NAME)
-#undef TNV_NAME
-};
-inline constexpr auto kBoreOpCount = static_cast<std::uint8_t>(std::size(kBoreOpNames));
-
-constexpr const char* to_string(BoreOp op) noexcept {
-  const auto i = static_cast<std::size_t>(op);
-  return i < std::size(kBoreOpNames) ? kBoreOpNames[i] : "?";
-}
+TNV_LISTED_ENUM(BoreOp, TNV_BORE_OPS)
 
 // PROGRAM_STATUS.state: the state of the program a host streams (program_tracker.hpp).
 #define TNV_PROGRAM_STATES(X) \
@@ -191,21 +116,7 @@ constexpr const char* to_string(BoreOp op) noexcept {
   X(done)      /* ran its queue dry after end_program */ \
   X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */
 
-enum class ProgramState : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_PROGRAM_STATES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kProgramStateNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_PROGRAM_STATES(TNV_NAME)
-#undef TNV_NAME
-};
-
-constexpr const char* to_string(ProgramState s) noexcept {
-  const auto i = static_cast<std::size_t>(s);
-  return i < std::size(kProgramStateNames) ? kProgramStateNames[i] : "?";
-}
+TNV_LISTED_ENUM(ProgramState, TNV_PROGRAM_STATES)
 
 // BORE_INFEED.flags bits
 enum BoreFlag : std::uint8_t {

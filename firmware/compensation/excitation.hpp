@@ -39,22 +39,14 @@
 
 #include "firmware/compensation/excitation_signal.hpp"
 #include "firmware/control/param_check.hpp"
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw {
 
 // EXCITE.kind, in wire order: the enum and the protocol's value list come from this one list.
 #define TNV_EXCITATION_KINDS(X) X(step) X(ramp) X(sweep) X(multisine) X(multisine_open)
 
-enum class ExcitationKind : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_EXCITATION_KINDS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-inline constexpr const char* kExcitationKindNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_EXCITATION_KINDS(TNV_NAME)
-#undef TNV_NAME
-};
+TNV_LISTED_ENUM(ExcitationKind, TNV_EXCITATION_KINDS)
 
 // Sweep and multisine add to the controller's command; step, ramp and the
 // open-loop multisine replace it.

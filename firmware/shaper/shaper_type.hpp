@@ -6,6 +6,7 @@
 #include <iterator>
 #include <optional>
 #include <string_view>
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw {
 
@@ -18,27 +19,7 @@ namespace tnv::fw {
   X(ei)    /* extra-insensitive, 5 % vibration tolerance: 3 impulses, one period */ \
   X(mzv)   /* modified ZV: 3 impulses spaced 3/8 of a period (0.75 periods) */
 
-enum class ShaperType : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_SHAPER_TYPES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-inline constexpr ShaperType kShaperTypes[] = {
-#define TNV_VALUE(name) ShaperType::name,
-    TNV_SHAPER_TYPES(TNV_VALUE)
-#undef TNV_VALUE
-};
-inline constexpr const char* kShaperTypeNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_SHAPER_TYPES(TNV_NAME)
-#undef TNV_NAME
-};
-
-constexpr const char* to_string(ShaperType t) noexcept {
-  const auto i = static_cast<std::size_t>(t);
-  return i < std::size(kShaperTypeNames) ? kShaperTypeNames[i] : "?";
-}
+TNV_LISTED_ENUM(ShaperType, TNV_SHAPER_TYPES)
 
 constexpr std::optional<ShaperType> parse_shaper_type(std::string_view name) noexcept {
   for (ShaperType t : kShaperTypes)

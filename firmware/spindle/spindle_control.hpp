@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "firmware/spindle/spindle_params.hpp"
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw {
 
@@ -34,27 +35,13 @@ enum class SpindleDirection : std::uint8_t { forward, reverse };  // M3, M4
   X(fault, true)          /* a fault was latched */                         \
   X(estop, true)          /* the e-stop input */
 
-enum class SpindleStopCause : std::uint8_t {
-#define TNV_ENUMERATOR(name, immediate) name,
-  TNV_SPINDLE_STOP_CAUSES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-inline constexpr const char* kSpindleStopCauseNames[] = {
-#define TNV_NAME(name, immediate) #name,
-    TNV_SPINDLE_STOP_CAUSES(TNV_NAME)
-#undef TNV_NAME
-};
+TNV_LISTED_ENUM(SpindleStopCause, TNV_SPINDLE_STOP_CAUSES)
 
 inline constexpr bool kSpindleStopIsImmediate[] = {
 #define TNV_IMMEDIATE(name, immediate) immediate,
     TNV_SPINDLE_STOP_CAUSES(TNV_IMMEDIATE)
 #undef TNV_IMMEDIATE
 };
-
-constexpr const char* to_string(SpindleStopCause c) noexcept {
-  return kSpindleStopCauseNames[static_cast<std::size_t>(c)];
-}
 
 // Answer to a start, a speed change or a parameter change. Nothing changes
 // unless it is ok.

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw {
 
@@ -32,23 +33,7 @@ namespace tnv::fw {
   X(output_write_failed)  /* an output (DAC, enable, servo-enable line) did not take the value written */ \
   X(homing_failed)        /* a homing cycle ran out of travel: no switch, switch stuck on, or no index (value: travel, limit: bound) */
 
-enum class FaultReason : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_FAULT_REASONS(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-// Its names, by value.
-inline constexpr const char* kFaultReasonNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_FAULT_REASONS(TNV_NAME)
-#undef TNV_NAME
-};
-
-constexpr const char* to_string(FaultReason r) noexcept {
-  const auto i = static_cast<std::size_t>(r);
-  return i < std::size(kFaultReasonNames) ? kFaultReasonNames[i] : "unknown";
-}
+TNV_LISTED_ENUM(FaultReason, TNV_FAULT_REASONS)
 
 struct FaultRecord {
   FaultReason reason = FaultReason::none;

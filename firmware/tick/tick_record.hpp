@@ -7,6 +7,7 @@
 
 #include "firmware/supervisor/fault.hpp"
 #include "hal/axis.hpp"
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw {
 
@@ -19,23 +20,7 @@ namespace tnv::fw {
   X(holding)   /* servo on, holding the end point */ \
   X(faulted)   /* outputs safe, fault latched */
 
-enum class MotionState : std::uint8_t {
-#define TNV_ENUMERATOR(name) name,
-  TNV_MOTION_STATES(TNV_ENUMERATOR)
-#undef TNV_ENUMERATOR
-};
-
-// Its names, by value.
-inline constexpr const char* kMotionStateNames[] = {
-#define TNV_NAME(name) #name,
-    TNV_MOTION_STATES(TNV_NAME)
-#undef TNV_NAME
-};
-
-constexpr const char* to_string(MotionState s) noexcept {
-  const auto i = static_cast<std::size_t>(s);
-  return i < std::size(kMotionStateNames) ? kMotionStateNames[i] : "?";
-}
+TNV_LISTED_ENUM(MotionState, TNV_MOTION_STATES)
 
 struct AxisTickRecord {
   double reference_mm = 0.0;

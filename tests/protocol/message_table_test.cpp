@@ -162,7 +162,7 @@ TEST(MessageTable, ValueTablesMatchTheEnums) {
   using tnv::fw::FaultReason;
   using tnv::fw::MotionState;
   int fault_count = 0;
-  while (std::string(tnv::fw::to_string(static_cast<FaultReason>(fault_count))) != "unknown") ++fault_count;
+  while (std::string(tnv::fw::to_string(static_cast<FaultReason>(fault_count))) != "?") ++fault_count;
   expect_value_table<FaultReason>(field(message(MessageId::heartbeat), "fault").values, fault_count, "fault");
   expect_value_table<MotionState>(field(message(MessageId::heartbeat), "state").values, 5, "state");
   expect_value_table<ErrorCode>(field(message(MessageId::param_reply), "result").values, kErrorCodeCount, "result");

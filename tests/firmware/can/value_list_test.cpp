@@ -32,7 +32,7 @@ TEST(ValueList, TheProtocolsEnumListsComeFromTheEnums) {
   const std::size_t last_error = kErrorCodeCount - 1u;
   EXPECT_EQ(last_entry(detail::kErrorValues), entry(last_error, to_string(static_cast<ErrorCode>(last_error))));
   EXPECT_EQ(std::string(detail::kStateValues), "0=disabled 1=dwell 2=moving 3=holding 4=faulted");
-  EXPECT_STREQ(to_string(static_cast<FaultReason>(std::size(kFaultReasonNames))), "unknown");
+  EXPECT_STREQ(to_string(static_cast<FaultReason>(std::size(kFaultReasonNames))), "?");
   EXPECT_STREQ(to_string(static_cast<ErrorCode>(kErrorCodeCount)), "?");
 }
 
