@@ -1,7 +1,8 @@
 // Canned cycles G73, G81, G82, G83 in the XY plane as LinuxCNC runs them:
 // Z up to R if below it, exact path for the cycle, XY above R, down to R,
 // the cycle's own moves, back to the clearance (R in G99, the Z the cycles
-// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats.
+// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats;
+// polar @ ^ place the hole (in G91 once per repeat: a bolt circle).
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -13,10 +14,7 @@ namespace tnv::gcode {
 
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
-  const bool polar = block.polar_radius || block.polar_angle;
-  if (polar && (block.has('x') || block.has('y')))
-    throw NgcError(block.polar_radius ? block.polar_radius_column : block.polar_angle_column,
-                   "polar @/^ with X or Y on one line");
+  const bool polar = block.polar_radius || block.polar_angle;  // never with X or Y (target() refused that)
   if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); cycle_has_r_ = true; }
   if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); cycle_has_z_ = true; }
   if (block.has('q')) { cycle_q_words_ = block.value('q'); cycle_q_ = length(cycle_q_words_); }

@@ -37,7 +37,8 @@ std::string g_text(int code) {
 // Modal group of a supported G-code (x 10), or -1.
 int g_group(int code) {
   switch (code) {
-    case 0: case 10: case 20: case 30: case 51: case 331: case 382: case 383: case 384: case 385: case 800: case 730: case 810: case 820: case 830: return 1;
+    case 0: case 10: case 20: case 30: case 51: case 331: case 382: case 383: case 384: case 385:
+    case 800: case 730: case 810: case 820: case 830: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -200,7 +201,8 @@ void CanonMachine::run_comments(const NgcBlock& block) {
     if (head.rfind("msg,", 0) == 0) emit("MESSAGE(\"" + c.substr(4) + "\")");
     else if (head == "debug,") emit("MESSAGE(\"" + substitute(c.substr(6)) + "\")");
     else if (head == "print,") continue;  // rs274 prints it on its own output, not as a call
-    else if (lower.rfind("logopen,", 0) == 0) emit("LOGOPEN(\"" + c.substr(8) + "\")");  // rs274 prints the call, opens no file
+    // LOG* are calls rs274 prints; no file is opened or written here.
+    else if (lower.rfind("logopen,", 0) == 0) emit("LOGOPEN(\"" + c.substr(8) + "\")");
     else if (lower.rfind("logappend,", 0) == 0) emit("LOGAPPEND(\"" + c.substr(10) + "\")");
     else if (lower == "logclose") emit("LOGCLOSE()");
     else if (lower.rfind("log,", 0) == 0) emit("LOG(\"" + substitute(c.substr(4)) + "\")");
@@ -367,8 +369,8 @@ void CanonMachine::spline(const NgcBlock& block, const Vec3& to, int column) {
 // G38.2-G38.5 as the standalone rs274 models them, with no probe input:
 // the probe never trips and the move reaches its end; the position is then
 // that end backed off 0.010 inch (0.254 mm) toward the start (the last point
-// the canon moved to), #5061-#5063
-// the end in the program's units, #5064-#5069 zero and #5070 (tripped) 0.
+// the canon moved to); #5061-#5063 hold the end in the program's units,
+// #5064-#5069 zero and #5070 (tripped) 0.
 void CanonMachine::probe(int motion, const Vec3& to, int column) {
   comp_refuse(comp_side_ != 0, column, "probe (G38.x)");
   if (feed_ <= 0.0) throw NgcError(column, "cannot probe with zero feed rate (F)");
