@@ -1,7 +1,9 @@
 // Canned cycles G73, G81, G82, G83 in the XY plane as LinuxCNC runs them:
 // Z up to R if below it, exact path for the cycle, XY above R, down to R,
 // the cycle's own moves, back to the clearance (R in G99, the Z the cycles
-// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats.
+// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats;
+// polar @ ^ place the hole (in G91 once per repeat: a bolt circle).
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -12,7 +14,7 @@ namespace tnv::gcode {
 
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
-  if (block.polar_radius || block.polar_angle) throw NgcError(column, "polar @/^ with a canned cycle is not supported yet");
+  const bool polar = block.polar_radius || block.polar_angle;  // never with X or Y (target() refused that)
   if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); cycle_has_r_ = true; }
   if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); cycle_has_z_ = true; }
   if (block.has('q')) { cycle_q_words_ = block.value('q'); cycle_q_ = length(cycle_q_words_); }
@@ -41,6 +43,11 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   const double dy = block.has('y') ? length(block.value('y')) : 0.0;
   double x = absolute_ ? (block.has('x') ? dx : pos_[0]) : pos_[0];
   double y = absolute_ ? (block.has('y') ? dy : pos_[1]) : pos_[1];
+  if (polar && absolute_) {  // G90: one hole at @ ^ (a missing one taken from here)
+    const std::array<double, 2> xy = polar_xy(block, x, y);
+    x = xy[0];
+    y = xy[1];
+  }
   // Up to R first, before the cycle's exact-path mode, when the run of
   // cycles began below it (LinuxCNC judges by that Z, not by Z now).
   if (cycle_start_z_ < r) move_traverse({pos_[0], pos_[1], r});
@@ -48,7 +55,11 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   const bool switch_mode = control_ != 610;  // already exact path (G61): no switch, no switch back
   if (switch_mode) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   for (int k = 0; k < repeats; ++k) {
-    if (!absolute_) {
+    if (!absolute_ && polar) {  // G91: each repeat adds @ and ^ to the last hole's radius and angle
+      const std::array<double, 2> xy = polar_xy(block, x, y);
+      x = xy[0];
+      y = xy[1];
+    } else if (!absolute_) {
       x += dx;
       y += dy;
     }

@@ -46,6 +46,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       const NgcBlock block = read_block(line, machine.parameters());
       if (block.o.keyword != OKeyword::none) {
         flow.execute(block.o, machine.parameters());
+        machine.set_call_depth(flow.depth(), line_number);
         machine.comments(block, line_number);
         continue;
       }

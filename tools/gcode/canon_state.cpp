@@ -17,6 +17,7 @@ constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1): X Y Z A B C U 
 constexpr int kG5xSelected = 5220;
 constexpr int kG92Base = 5211, kG92Enabled = 5210;
 constexpr int kG28Home = 5161, kG30Home = 5181;
+constexpr int kProbeResult = 5061, kProbeTripped = 5070;
 
 std::string fixed(double v, int decimals) {
   char buf[64];
@@ -36,7 +37,8 @@ std::string g_text(int code) {
 // Modal group of a supported G-code (x 10), or -1.
 int g_group(int code) {
   switch (code) {
-    case 0: case 10: case 20: case 30: case 331: case 800: case 730: case 810: case 820: case 830: return 1;
+    case 0: case 10: case 20: case 30: case 51: case 331: case 382: case 383: case 384: case 385:
+    case 800: case 730: case 810: case 820: case 830: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -56,7 +58,6 @@ int g_group(int code) {
 std::string unsupported_g(int code) {
   std::string why;
   if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
-  else if (code >= 382 && code <= 385) why = " (probing is not supported yet)";
   else if (code == 930) why = " (inverse-time feed is not supported yet)";
   return "unsupported G-code " + g_text(code) + why;
 }
@@ -194,11 +195,17 @@ std::string CanonMachine::substitute(const std::string& text) const {
 
 void CanonMachine::run_comments(const NgcBlock& block) {
   for (const std::string& c : block.comments) {
-    std::string head = c.substr(0, 6);
-    std::transform(head.begin(), head.end(), head.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    std::string lower = c;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    const std::string head = lower.substr(0, 6);
     if (head.rfind("msg,", 0) == 0) emit("MESSAGE(\"" + c.substr(4) + "\")");
     else if (head == "debug,") emit("MESSAGE(\"" + substitute(c.substr(6)) + "\")");
     else if (head == "print,") continue;  // rs274 prints it on its own output, not as a call
+    // LOG* are calls rs274 prints; no file is opened or written here.
+    else if (lower.rfind("logopen,", 0) == 0) emit("LOGOPEN(\"" + c.substr(8) + "\")");
+    else if (lower.rfind("logappend,", 0) == 0) emit("LOGAPPEND(\"" + c.substr(10) + "\")");
+    else if (lower == "logclose") emit("LOGCLOSE()");
+    else if (lower.rfind("log,", 0) == 0) emit("LOG(\"" + substitute(c.substr(4)) + "\")");
     else emit("COMMENT(\"" + c.substr(std::min(c.find_first_not_of(" \t"), c.size())) + "\")");
   }
 }
@@ -228,6 +235,15 @@ void CanonMachine::end_of_file(int line) {
   throw NgcError(1, "file ended with no percent sign or program end (M2, M30)");
 }
 
+std::array<double, 2> CanonMachine::polar_xy(const NgcBlock& block, double x0, double y0) const {
+  const double r0 = std::hypot(x0, y0);
+  const double a0 = std::atan2(y0, x0) * 180.0 / std::numbers::pi;
+  const double r = absolute_ ? (block.polar_radius ? length(*block.polar_radius) : r0)
+                             : r0 + length(block.polar_radius.value_or(0.0));
+  const double a = absolute_ ? block.polar_angle.value_or(a0) : a0 + block.polar_angle.value_or(0.0);
+  return {r * std::cos(a * std::numbers::pi / 180.0), r * std::sin(a * std::numbers::pi / 180.0)};
+}
+
 CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) const {
   const Vec3& from = base_point();
   Vec3 t = from;
@@ -236,13 +252,9 @@ CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) con
     if (block.has('x') || block.has('y')) throw NgcError(column, "polar @/^ with X or Y on one line");
     if (plane_ != 170) throw NgcError(column, "polar @/^ only in the XY plane (G17)");
     if (machine) throw NgcError(column, "polar @/^ with G53");
-    const double r0 = std::hypot(from[0], from[1]);
-    const double a0 = std::atan2(from[1], from[0]) * 180.0 / std::numbers::pi;
-    const double r = absolute_ ? (block.polar_radius ? length(*block.polar_radius) : r0)
-                               : r0 + length(block.polar_radius.value_or(0.0));
-    const double a = absolute_ ? block.polar_angle.value_or(a0) : a0 + block.polar_angle.value_or(0.0);
-    t[0] = r * std::cos(a * std::numbers::pi / 180.0);
-    t[1] = r * std::sin(a * std::numbers::pi / 180.0);
+    const std::array<double, 2> xy = polar_xy(block, from[0], from[1]);
+    t[0] = xy[0];
+    t[1] = xy[1];
     if (block.has('z')) t[2] = absolute_ ? length(block.value('z')) : from[2] + length(block.value('z'));
     return t;
   }
@@ -334,6 +346,53 @@ CanonMachine::ArcFit CanonMachine::arc_fit(const NgcBlock& block, bool clockwise
   return ArcFit{c1, c2, clockwise ? -turns : turns};
 }
 
+// G5.1: a quadratic B-spline in XY from here to X Y with the control point
+// at I J from here. rs274 prints it as NURBS_FEED(3, ...) without its
+// points, so only the checks and the end point are compared. Its canon is
+// left at X0 Y0 (Z unchanged) in program coordinates, which is where a
+// later M6 takes the position back from and a probe backs off toward.
+void CanonMachine::spline(const NgcBlock& block, const Vec3& to, int column) {
+  if (plane_ != 170) throw NgcError(column, "G5.1 splines only in the XY plane (G17)");
+  comp_refuse(comp_side_ != 0, column, "use G5.1 splines");
+  if (block.has('z')) throw NgcError(block.column('z'), "G5.1 splines may not move Z");
+  if (!block.has('x') && !block.has('y') && !block.polar_radius && !block.polar_angle)
+    throw NgcError(column, "G5.1 needs an end point (X, Y)");
+  if (!block.has('i') || !block.has('j'))
+    throw NgcError(block.has('i') ? block.column('i') : block.has('j') ? block.column('j') : column,
+                   "G5.1 needs both I and J (the control point)");
+  if (feed_ <= 0.0) throw NgcError(column, "cannot do G5.1 with zero feed rate (F)");
+  emit("NURBS_FEED(3, ...)");
+  pos_ = to;
+  canon_pos_[0] = canon_pos_[1] = 0.0;  // what rs274's canon is left at (a later M6 or probe starts there)
+}
+
+// G38.2-G38.5 as the standalone rs274 models them, with no probe input:
+// the probe never trips and the move reaches its end; the position is then
+// that end backed off 0.010 inch (0.254 mm) toward the start (the last point
+// the canon moved to); #5061-#5063 hold the end in the program's units,
+// #5064-#5069 zero and #5070 (tripped) 0.
+void CanonMachine::probe(int motion, const Vec3& to, int column) {
+  comp_refuse(comp_side_ != 0, column, "probe (G38.x)");
+  if (feed_ <= 0.0) throw NgcError(column, "cannot probe with zero feed rate (F)");
+  // G38.2/G38.4 (an error if the probe does not change) need a move; G38.3/G38.5 may stay put.
+  if ((motion == 382 || motion == 384) && to == pos_)
+    throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
+  emit("TURN_PROBE_ON()");
+  emit("STRAIGHT_PROBE(" + xyz(to) + ")");
+  emit("TURN_PROBE_OFF()");
+  for (int a = 0; a < 9; ++a)
+    params_.set(kProbeResult + a, a < 3 ? to[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
+  params_.set(kProbeTripped, 0.0, column);
+  // Backed off toward where the canon last moved to (X0 Y0 after a G5.1 spline).
+  const Vec3& from = canon_pos_;
+  const double distance = std::hypot(from[0] - to[0], from[1] - to[1], from[2] - to[2]);
+  constexpr double kBackoffMm = 0.010 * kMmPerInch;
+  Vec3 end = to;
+  if (distance > 0.0)
+    for (std::size_t a = 0; a < 3; ++a) end[a] += kBackoffMm * (from[a] - to[a]) / distance;
+  pos_ = canon_pos_ = end;
+}
+
 // G33.1: the spindle drives Z to the end and back at K per turn; the
 // position afterwards is where the tap started (LinuxCNC's RIGID_TAP).
 void CanonMachine::rigid_tap(const NgcBlock& block, const Vec3& to, int column) {
@@ -404,7 +463,7 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
-    if (block.has(c) && !arc && !(c == 'k' && motion == 331))
+    if (block.has(c) && !arc && !(c == 'k' && motion == 331) && !(c != 'k' && motion == 51))
       throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
   if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
@@ -420,6 +479,7 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
 void CanonMachine::execute(const NgcBlock& block, int line) {
   line_ = line;
   started_ = true;
+  if (modal_state_code(block)) return;
   // Modal groups: at most one G-code and M-code of each.
   std::array<const NgcCode*, 16> g_by_group{};
   for (const NgcCode& g : block.g) {
@@ -536,6 +596,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     }
     for (std::size_t a = 0; a < 3; ++a) pos_[a] += tool_offset_[a] - offset[a];
     tool_offset_ = offset;
+    tool_length_ = g->code;
     emit("USE_TOOL_LENGTH_OFFSET(" + num(offset[0]) + " " + num(offset[1]) + " " + num(offset[2]) +
          ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)");
   }
@@ -658,7 +719,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
 
   // Motion.
   if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_)) cycle_start_z_ = pos_[2];
-  if (g_motion) motion_ = g_motion->code;
+  if (g_motion && g_motion->code != 51) motion_ = g_motion->code;  // G5.1 leaves the motion mode as it was (as rs274 does)
   const bool machine = non_modal == 530;
   if (machine) {
     comp_refuse(comp_side_ != 0, g_by_group[0]->column, "use G53");
@@ -668,7 +729,16 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (g_motion && g_motion->code == 800) emit("COMMENT(\"interpreter: motion mode set to none\")");
   // A G0 or G1 without axis words still moves, to where it is (as rs274 does).
   const bool explicit_line = g_motion && (motion == 0 || motion == 10);
-  if ((axis_words && !axis_consumer) || explicit_line ||
+  if (is_probe(motion) && g_motion && !axis_words) throw NgcError(g_motion->column, "G38.x needs an axis word (X, Y, Z)");
+  if (is_probe(motion) && axis_words && !axis_consumer && m_by_group[4])
+    throw NgcError(m_by_group[4]->column, "a probe move (G38.x) and M" + std::to_string(m_by_group[4]->code) +
+                                              " on one line (rs274 drops the M-code): give each its own line");
+  if (motion == 51) {
+    const Vec3 to = target(block, machine);
+    spline(block, to, g_motion->column);
+  } else if (is_probe(motion) && axis_words && !axis_consumer) {
+    probe(motion, target(block, machine), g_motion ? g_motion->column : 1);
+  } else if ((axis_words && !axis_consumer) || explicit_line ||
       (g_motion && (motion == 20 || motion == 30) && !axis_consumer &&
        (block.has('i') || block.has('j') || block.has('k') || block.has('r')))) {
     const Vec3 to = target(block, machine);

@@ -7,6 +7,7 @@
 // the program's units, as rs274 prints them.
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ class CanonMachine {
   void percent(int line, int column);
   bool ended() const { return ended_; }
   NgcParameters& parameters() { return params_; }
+  // The subroutine call depth the next line runs at (0: the top level).
+  // Leaving a level drops what M70/M73 saved there; an M73 state is
+  // restored first, on the endsub/return line (canon_modal_state.cpp).
+  void set_call_depth(std::size_t depth, int line);
 
  private:
   using Vec3 = std::array<double, 3>;  // X Y Z, millimetres
@@ -49,12 +54,18 @@ class CanonMachine {
   };
   ArcFit arc_fit(const NgcBlock& block, bool clockwise, double s1, double s2, double e1, double e2, int column) const;
   Vec3 target(const NgcBlock& block, bool machine) const;
+  // LinuxCNC's polar words: @ (radius) and ^ (angle, degrees) about the XY
+  // origin, absolute in G90, added to the radius and angle of (x0, y0) in G91.
+  std::array<double, 2> polar_xy(const NgcBlock& block, double x0, double y0) const;
   // Where incremental and unspecified axes are measured from: the programmed
   // point once compensation has made its entry move, else the current point.
   const Vec3& base_point() const { return comp_side_ != 0 && !comp_first_ ? programmed_ : pos_; }
   Vec3 machine_to_program(const Vec3& machine) const;
   Vec3 program_to_machine(const Vec3& program) const;
   double length(double value) const { return value * unit_mm_; }
+  void spline(const NgcBlock& block, const Vec3& to, int column);
+  static bool is_probe(int motion) { return motion >= 382 && motion <= 385; }
+  void probe(int motion, const Vec3& to, int column);
   void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();
@@ -62,6 +73,26 @@ class CanonMachine {
   static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
   void canned_cycle(const NgcBlock& block, int motion, int column);
   void check_words(const NgcBlock& block, int motion, int non_modal) const;
+
+  // M70 save, M71 invalidate, M72 restore, M73 save for restore at return
+  // (canon_modal_state.cpp): the modes LinuxCNC saves, per call level.
+  struct SavedModes {
+    double unit_mm = 1.0;
+    bool absolute = true, arc_absolute = false;
+    int plane = 170;
+    double feed = 0.0, speed = 0.0;
+    int spindle = 5;
+    bool mist = false, flood = false;
+    int tool_length = 490;
+    int origin = 1;
+    int control = 640;
+    double control_p = 0.0, control_q = 0.0;
+    bool retract_old_z = false;
+    bool auto_restore = false;  // M73
+  };
+  bool modal_state_code(const NgcBlock& block);  // true: the line was M70..M73 and ran
+  SavedModes current_modes() const;
+  void restore_modes(const SavedModes& saved, int column);
 
   // Cutter radius compensation, G40/G41/G42/G41.1/G42.1 in the XY plane
   // (canon_comp.cpp), as LinuxCNC does it: moves wait in a queue until the
@@ -131,6 +162,7 @@ class CanonMachine {
   bool mist_ = false, flood_ = false;
   int selected_tool_ = 0, tool_in_spindle_ = 0;
   Vec3 tool_offset_{};     // mm
+  int tool_length_ = 490;  // G43 / G43.1 / G49 (x 10)
   int origin_ = 1;         // 1..9 (G54..G59.3)
   Vec3 g5x_{};             // mm
   Vec3 g92_{};             // mm
@@ -154,6 +186,7 @@ class CanonMachine {
   std::array<double, 2> endpoint_{};  // where the first queued move starts
   bool endpoint_valid_ = false;
   int comp_column_ = 1;  // the word an error found while compensating is reported at
+  std::vector<std::optional<SavedModes>> saved_modes_ = std::vector<std::optional<SavedModes>>(1);  // per call level
 };
 
 }  // namespace tnv::gcode

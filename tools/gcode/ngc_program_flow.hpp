@@ -23,6 +23,7 @@ class ProgramFlow {
   // The O-word of the line next_line() returned; throws NgcError.
   void execute(const NgcOWord& o, NgcParameters& params);
   bool in_subroutine() const { return !frames_.empty(); }
+  std::size_t depth() const { return frames_.size(); }  // 0 at the top level
 
  private:
   struct Frame {

@@ -130,7 +130,7 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
   EXPECT_EQ(e.line, 2);
   EXPECT_NE(e.message.find("G85"), std::string::npos) << e.message;
-  e = error_of("F100\nG81 @1 ^30 Z-1 R1\nM2\n");
+  e = error_of("F100\nG81 X1 ^30 Z-1 R1\nM2\n");  // polar and X on one line
   EXPECT_NE(e.message.find("polar"), std::string::npos) << e.message;
   e = error_of("F100\nG18 G81 X1 Y1 Z-1 R1\nM2\n");
   EXPECT_NE(e.message.find("XY plane"), std::string::npos) << e.message;

@@ -32,13 +32,7 @@ pytestmark = [
 SAMPLES_DIFFERING = {
     "b-index": "a rotary B axis (this machine has X, Y, Z)",
     "daisy": "a rotary A axis (this machine has X, Y, Z)",
-    "gridprobe": "G38.2 probing (not yet: needs the machine's probe input)",
-    "smartprobe": "G38.x probing (not yet: needs the machine's probe input)",
-    "x-trim": "a subroutine in another file (touchoff.ngc) with G38.2 probing and M66",
-    "hole-circle": "a canned cycle with polar ^ increments (polar words in cycles not yet)",
-    "polar": "canned cycles with polar @ ^ (not yet)",
-    "systems": "G5.1 quadratic B-splines (not yet)",
-    "toplevel": "M70-M72 modal state save and restore (not yet)",
+    "x-trim": "a subroutine in another file (touchoff.ngc) and M66",
 }
 
 
@@ -115,6 +109,79 @@ def test_peck_counts_on_the_bottom_agree(tnvctl, tables, tmp_path):
         why = canon_compare.compare(tnvctl, program, tables)
         if why is not None:
             failures.append(f"{program.read_text()!r}: {why}")
+    assert not failures, "\n".join(failures)
+
+
+def _modes(rng: random.Random, units: str, offset: bool) -> str:
+    """A random set of the modes M70 saves, as one line and coolant lines."""
+    words = [units, rng.choice(["G17", "G18", "G19"]), rng.choice(["G90", "G91"]),
+             rng.choice(["G90.1", "G91.1"]), rng.choice(["G98", "G99"]), rng.choice(["G54", "G55", "G59.3"]),
+             rng.choice(["G61", "G61.1", "G64", f"G64 P{rng.choice([0.1, 0.2])}", "G64 P0.1 Q0.05"]),
+             rng.choice(["G43", "G49"]) if offset else "G49", f"F{rng.choice([10, 20])}", f"S{rng.choice([100, 200])}",
+             rng.choice(["M3", "M4", "M5"])]
+    rng.shuffle(words)
+    coolant = rng.choice(["M9", "M9\nM7", "M9\nM8", "M9\nM7\nM8"])
+    return " ".join(words) + "\n" + coolant + "\n"
+
+
+def test_modal_state_restores_agree(tnvctl, tables, tmp_path):
+    """M70/M72 (and M73 at a subroutine's end) restore what differs in
+    LinuxCNC's order: units first, the spindle code ending its line, M8 after
+    M7 on a line of its own."""
+    rng = random.Random(5)
+    program = tmp_path / "modal_state.ngc"
+    failures = []
+    for k in range(40):
+        # A tool length offset only where both states share the units: LinuxCNC
+        # does not convert one across G20/G21 (docs/gcode.md, deviations).
+        units = rng.choice([("G20", "G20"), ("G21", "G21"), ("G20", "G21"), ("G21", "G20")])
+        same = units[0] == units[1]
+        first, second = _modes(rng, units[0], same), _modes(rng, units[1], same)
+        if k % 4 == 3:
+            text = f"T1 M6\no1 sub\nM73\n{second}G0 X1\no1 endsub\n{first}o1 call\nG0 X2 Y1\nM2\n"
+        else:
+            text = f"T1 M6\n{first}M70 (saved)\nG0 X1\n{second}G1 X2\nM72\nG0 X0 Y1\nM72\nM71\nM2\n"
+        program.write_text(text)
+        if not canon_compare.run_rs274(program, tables[1]).ok:
+            failures.append(f"{text!r}: rs274 refused it (the test needs programs that run)")
+        why = canon_compare.compare(tnvctl, program, tables)
+        if why is not None:
+            failures.append(f"{text!r}: {why}")
+    assert not failures, "\n".join(failures)
+
+
+def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
+    """Canned cycles with polar @ ^ in G90 and G91 with L repeats, G5.1
+    splines and G38.2-G38.5 probe moves (rs274 models the probe as never
+    tripping: the move ends at its end, backed off 0.010 inch)."""
+    rng = random.Random(7)
+    program = tmp_path / "polar_probe.ngc"
+    failures = []
+    for _ in range(40):
+        units = rng.choice(["G20", "G21"])
+        scale = 1.0 if units == "G20" else 25.0
+        def v(lo, hi):
+            return round(rng.uniform(lo, hi) * scale, 4)
+        polar = rng.choice([f"@{v(0.5, 3)}", f"^{round(rng.uniform(-180, 180), 3)}",
+                            f"@{v(0.5, 3)} ^{round(rng.uniform(-180, 180), 3)}"])
+        cycle = rng.choice(["G81", "G82 P0.5", f"G83 Q{v(0.05, 0.3)}", f"G73 Q{v(0.05, 0.3)}"])
+        lines = [f"{units} F{rng.choice([5, 50])}", f"G0 X{v(-2, 2)} Y{v(-2, 2)} Z{v(0.5, 1)}",
+                 rng.choice(["G98", "G99"]),
+                 f"G90 {cycle} {polar} R{v(0.1, 0.3)} Z{v(-0.5, -0.1)}",
+                 f"^{round(rng.uniform(-90, 90), 2)}",
+                 f"G91 {cycle} {polar} R{v(0.1, 0.3)} Z{v(-0.5, -0.1)} L{rng.randint(1, 4)}", "G80 G90",
+                 f"G5.1 X{v(-2, 2)} Y{v(-2, 2)} I{v(-1, 1)} J{v(-1, 1)}",
+                 f"G91 G5.1 {polar} I{v(-1, 1)} J{v(-1, 1)}", "G90",
+                 f"{rng.choice(['G38.2', 'G38.3', 'G38.4', 'G38.5'])} Z{v(-1, -0.2)}",
+                 f"G38.3 X{v(-2, 2)} Y{v(-2, 2)}", "(DEBUG,#5061 #5062 #5063 #5070)",
+                 f"G91 G38.2 X{v(0.1, 1)} Z{v(-1, -0.1)}", "G90 G0 Z1", "M2"]
+        text = "\n".join(lines) + "\n"
+        program.write_text(text)
+        if not canon_compare.run_rs274(program, tables[1]).ok:
+            failures.append(f"{text!r}: rs274 refused it (the test needs programs that run)")
+        why = canon_compare.compare(tnvctl, program, tables)
+        if why is not None:
+            failures.append(f"{text!r}: {why}")
     assert not failures, "\n".join(failures)
 
 
