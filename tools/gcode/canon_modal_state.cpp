@@ -51,7 +51,7 @@ bool CanonMachine::modal_state_code(const NgcBlock& block) {
   if (block.m.size() > 1 || !block.g.empty() || other_words || block.polar_radius || block.polar_angle ||
       !block.assignments.empty())
     throw NgcError(m->column, "M" + std::to_string(m->code) + " must be on a line of its own (only comments beside it)");
-  comp_refuse(comp_side_ != 0, m->column, "save or restore the modal state (M70-M73)");
+  comp_refuse(comp_side_ != 0 && m->code != 71, m->column, "save or restore the modal state (M70, M72, M73)");
   run_comments(block);
   std::optional<SavedModes>& slot = saved_modes_.back();
   if (m->code == 70 || m->code == 73) {

@@ -194,6 +194,12 @@ TEST(CanonRs274Words, ModalStateSaveAndRestore) {
                 "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 2.5000, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 2.5000, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)"}));
+  // M71 only forgets: allowed while compensating, as in rs274.
+  EXPECT_EQ(moves_of("F10\nG41.1 D1\nG1 X5\nM71\nG40 G1 X10\nM2\n"),
+            (std::vector<std::string>{"SET_FEED_RATE(10.0000)", "COMMENT(\"interpreter: cutter radius compensation on left\")",
+                                      "STRAIGHT_FEED(" + at(5, 0.5, 0) + ")",
+                                      "COMMENT(\"interpreter: cutter radius compensation off\")",
+                                      "STRAIGHT_FEED(" + at(10, 0, 0) + ")"}));
   struct Bad {
     const char* text;
     int line, column;
