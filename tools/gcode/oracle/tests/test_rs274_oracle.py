@@ -112,6 +112,19 @@ def test_peck_counts_on_the_bottom_agree(tnvctl, tables, tmp_path):
     assert not failures, "\n".join(failures)
 
 
+def _runs_and_agrees(tnvctl, tables, program: Path, text: str) -> list[str]:
+    """Writes `text` to `program`; what is wrong with it: rs274 refusing it
+    (the seeded tests need programs that run) or a difference in the calls."""
+    program.write_text(text)
+    failures = []
+    if not canon_compare.run_rs274(program, tables[1]).ok:
+        failures.append(f"{text!r}: rs274 refused it (the test needs programs that run)")
+    why = canon_compare.compare(tnvctl, program, tables)
+    if why is not None:
+        failures.append(f"{text!r}: {why}")
+    return failures
+
+
 def _modes(rng: random.Random, units: str, offset: bool) -> str:
     """A random set of the modes M70 saves, as one line and coolant lines."""
     words = [units, rng.choice(["G17", "G18", "G19"]), rng.choice(["G90", "G91"]),
@@ -141,12 +154,7 @@ def test_modal_state_restores_agree(tnvctl, tables, tmp_path):
             text = f"T1 M6\no1 sub\nM73\n{second}G0 X1\no1 endsub\n{first}o1 call\nG0 X2 Y1\nM2\n"
         else:
             text = f"T1 M6\n{first}M70 (saved)\nG0 X1\n{second}G1 X2\nM72\nG0 X0 Y1\nM72\nM71\nM2\n"
-        program.write_text(text)
-        if not canon_compare.run_rs274(program, tables[1]).ok:
-            failures.append(f"{text!r}: rs274 refused it (the test needs programs that run)")
-        why = canon_compare.compare(tnvctl, program, tables)
-        if why is not None:
-            failures.append(f"{text!r}: {why}")
+        failures += _runs_and_agrees(tnvctl, tables, program, text)
     assert not failures, "\n".join(failures)
 
 
@@ -176,12 +184,7 @@ def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
                  f"G38.3 X{v(-2, 2)} Y{v(-2, 2)}", "(DEBUG,#5061 #5062 #5063 #5070)",
                  f"G91 G38.2 X{v(0.1, 1)} Z{v(-1, -0.1)}", "G90 G0 Z1", "M2"]
         text = "\n".join(lines) + "\n"
-        program.write_text(text)
-        if not canon_compare.run_rs274(program, tables[1]).ok:
-            failures.append(f"{text!r}: rs274 refused it (the test needs programs that run)")
-        why = canon_compare.compare(tnvctl, program, tables)
-        if why is not None:
-            failures.append(f"{text!r}: {why}")
+        failures += _runs_and_agrees(tnvctl, tables, program, text)
     assert not failures, "\n".join(failures)
 
 
