@@ -26,10 +26,13 @@
 
 namespace tnv::emu {
 
+// The cut's disturbance, in the XY plane (kPlaneFirst, kPlaneSecond); 0 on any other axis.
 struct CuttingVector {
   double x_mm_s = 0.0;
   double y_mm_s = 0.0;
-  double component(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? x_mm_s : y_mm_s; }
+  double component(hal::Axis axis) const noexcept {
+    return axis == hal::kPlaneFirst ? x_mm_s : axis == hal::kPlaneSecond ? y_mm_s : 0.0;
+  }
   double magnitude_mm_s() const noexcept { return std::hypot(x_mm_s, y_mm_s); }
 };
 

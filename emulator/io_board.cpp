@@ -1,19 +1,31 @@
 #include "emulator/io_board.hpp"
 
+#include <optional>
+
 namespace tnv::emu {
 
 namespace regs = hal::regs;
 
 namespace {
-constexpr std::uint32_t kEnableBits = regs::kOutputEnableX | regs::kOutputEnableY;
+constexpr std::uint32_t kEnableBits = regs::all_axes(&regs::AxisRegisters::output_enable);
 constexpr std::uint32_t kControlBits = regs::kControlClearWatchdog | regs::kControlClearFaults;
-constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::kInputAlarmX | regs::kInputAlarmY |
-                                          regs::kInputLimitXPos | regs::kInputLimitXNeg | regs::kInputLimitYPos |
-                                          regs::kInputLimitYNeg;
+constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::all_axes(&regs::AxisRegisters::input_alarm) |
+                                          regs::all_axes(&regs::AxisRegisters::input_limit_pos) |
+                                          regs::all_axes(&regs::AxisRegisters::input_limit_neg);
 constexpr std::uint32_t kMinTickDividerClocks = kSubstepClocks;
 
-constexpr std::uint32_t enable_bit(hal::Axis axis) {
-  return axis == hal::Axis::x ? regs::kOutputEnableX : regs::kOutputEnableY;
+constexpr std::uint32_t enable_bit(hal::Axis axis) { return regs::axis_registers(axis).output_enable; }
+
+// The axis whose register `word` is (member: encoder, dac, ...), none for another word.
+constexpr std::optional<std::size_t> axis_of(std::uint16_t word, std::uint16_t regs::AxisRegisters::*member) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (regs::kAxisRegisters[i].*member == word) return i;
+  return std::nullopt;
+}
+
+constexpr bool axis_snapshot_word(std::uint16_t word) {
+  return axis_of(word, &regs::AxisRegisters::encoder) || axis_of(word, &regs::AxisRegisters::adc_accel) ||
+         axis_of(word, &regs::AxisRegisters::index);
 }
 }  // namespace
 
@@ -31,6 +43,14 @@ bool IoBoard::enabled(hal::Axis axis) const noexcept {
 }
 
 bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noexcept {
+  if (axis_snapshot_word(word)) {
+    value = snapshot_[word - regs::kSnapshotFirst];
+    return true;
+  }
+  if (const std::optional<std::size_t> i = axis_of(word, &regs::AxisRegisters::dac)) {
+    value = dac_codes_[*i];
+    return true;
+  }
   switch (word) {
     case regs::kId: value = regs::kIdValue; return true;
     case regs::kVersion: value = regs::kVersionValue; return true;
@@ -38,17 +58,9 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
     case regs::kClockAtRead: value = clock() + read_delay_clocks_; return true;
     case regs::kTickSequence:
     case regs::kTickClock:
-    case regs::kEncoderX:
-    case regs::kEncoderY:
     case regs::kInputs:
     case regs::kAdcForce:
-    case regs::kAdcAccelX:
-    case regs::kAdcAccelY:
-    case regs::kIndexX:
-    case regs::kIndexY:
     case regs::kFaults: value = snapshot_[word - regs::kSnapshotFirst]; return true;
-    case regs::kDacX: value = dac_codes_[0]; return true;
-    case regs::kDacY: value = dac_codes_[1]; return true;
     case regs::kOutputs: value = outputs_; return true;
     case regs::kWatchdogKick: value = last_kick_word_; return true;
     case regs::kTickDivider: value = tick_divider_clocks_; return true;
@@ -59,18 +71,18 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
 }
 
 bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
-  switch (word) {
-    case regs::kDacX:
-    case regs::kDacY:
-      if (value > dac_.max_code()) return false;
-      dac_codes_[word - regs::kDacX] = value;
-      if (outputs_deferred_) {
-        outputs_written_ = true;
-        return true;
-      }
-      drive_dac_codes_[word - regs::kDacX] = value;
-      refresh_commands();
+  if (const std::optional<std::size_t> i = axis_of(word, &regs::AxisRegisters::dac)) {
+    if (value > dac_.max_code()) return false;
+    dac_codes_[*i] = value;
+    if (outputs_deferred_) {
+      outputs_written_ = true;
       return true;
+    }
+    drive_dac_codes_[*i] = value;
+    refresh_commands();
+    return true;
+  }
+  switch (word) {
     case regs::kOutputs:
       if ((value & ~kEnableBits) != 0) return false;
       outputs_ = value;
@@ -121,7 +133,7 @@ void IoBoard::latch_tick(const TickSamples& samples) noexcept {
     // Against the code the DAC was given (the register's, or the last landed one when outputs are deferred).
     const std::uint32_t given = drive_dac_codes_[i];
     const std::uint32_t apart = output > given ? output - given : given - output;
-    if (apart > regs::kDacReadbackToleranceCodes) faults_ |= i == 0 ? regs::kFaultDacX : regs::kFaultDacY;
+    if (apart > regs::kDacReadbackToleranceCodes) faults_ |= regs::kAxisRegisters[i].fault_dac;
   }
   if (!snapshot_frozen_) {
     if (live_snapshot_) {
@@ -149,15 +161,15 @@ void IoBoard::preset_snapshot(const TickSamples& samples) noexcept { fill_snapsh
 
 void IoBoard::fill_snapshot(const TickSamples& samples) noexcept {
   snapshot_[kClk] = clock();
-  snapshot_[regs::kEncoderX - regs::kSnapshotFirst] = samples.encoder_registers[0];
-  snapshot_[regs::kEncoderY - regs::kSnapshotFirst] = samples.encoder_registers[1];
   snapshot_[regs::kInputs - regs::kSnapshotFirst] = live_inputs() | samples.position_inputs;
   snapshot_[regs::kAdcForce - regs::kSnapshotFirst] = samples.adc_force_code;
   snapshot_[regs::kFaults - regs::kSnapshotFirst] = faults_;
-  snapshot_[regs::kAdcAccelX - regs::kSnapshotFirst] = samples.adc_accel_codes[0];
-  snapshot_[regs::kAdcAccelY - regs::kSnapshotFirst] = samples.adc_accel_codes[1];
-  snapshot_[regs::kIndexX - regs::kSnapshotFirst] = samples.index_registers[0];
-  snapshot_[regs::kIndexY - regs::kSnapshotFirst] = samples.index_registers[1];
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const regs::AxisRegisters& r = regs::kAxisRegisters[i];
+    snapshot_[r.encoder - regs::kSnapshotFirst] = samples.encoder_registers[i];
+    snapshot_[r.adc_accel - regs::kSnapshotFirst] = samples.adc_accel_codes[i];
+    snapshot_[r.index - regs::kSnapshotFirst] = samples.index_registers[i];
+  }
 }
 
 void IoBoard::set_input(std::uint32_t bit, bool asserted) noexcept {

@@ -61,7 +61,7 @@ struct TickSamples {
   std::array<std::uint32_t, hal::kAxisCount> encoder_registers{};  // already wrapped to kEncoderBits
   std::uint32_t adc_force_code = 0;
   // Tool-side accelerometers (offset binary; mid-scale = 0 mm/s^2).
-  std::array<std::uint32_t, hal::kAxisCount> adc_accel_codes{1u << (hal::regs::kAdcBits - 1), 1u << (hal::regs::kAdcBits - 1)};
+  std::array<std::uint32_t, hal::kAxisCount> adc_accel_codes = hal::per_axis(1u << (hal::regs::kAdcBits - 1));
   // INDEX_X/Y words (count latched at the last index edge, edge counter).
   std::array<std::uint32_t, hal::kAxisCount> index_registers{};
   // Switches the table actuates (home, and limits when placed in the

@@ -62,6 +62,13 @@ struct Machine::Impl {
   bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
   std::uint32_t input_bit(const FaultSpec& f) const noexcept;
 
+  // The sub-step loop (advance()) steps the XY table's two plants side by
+  // side, with the cutting force in their plane: an axis beyond x and y needs
+  // its own plant stepped there (the Z plant: z_axis_plant.hpp), so the
+  // Machine refuses to build with any other list than the plane's.
+  static_assert(hal::kAxisCount == 2 && hal::index(hal::kPlaneFirst) == 0 && hal::index(hal::kPlaneSecond) == 1,
+                "emu::Machine steps the x and y plants only: wire the new axis' plant into Machine::Impl");
+
   Scenario scenario;
   IoBoard board;
   std::array<AxisPlant, hal::kAxisCount> plants;
@@ -90,7 +97,7 @@ struct Machine::Impl {
   std::vector<bool> fault_on;                            // per scheduled fault
   std::array<std::int64_t, hal::kAxisCount> encoder_slip_counts{};  // counts the decoder lost
   std::array<std::optional<std::int64_t>, hal::kAxisCount> dead_encoder_count{};  // frozen count while dead
-  std::array<double, hal::kAxisCount> drive_sign{1.0, 1.0};  // -1: runaway (gain sign flipped)
+  std::array<double, hal::kAxisCount> drive_sign = hal::per_axis(1.0);  // -1: runaway (gain sign flipped)
 
   // Index marks ([board] index_*_deg): motor-side positions index_mm + k lead.
   std::array<double, hal::kAxisCount> index_mm{};
@@ -114,8 +121,8 @@ Machine::Impl::Impl(const Scenario& s)
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
       cutting(s.cutting, s.circle.feed_mm_s),
       milling(s.milling, kSubstep_s),
-      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm + s.board.power_up_offset_x_mm),
-             ScrewTransmission(s.plant[1], s.board.power_up_offset_y_mm)},
+      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm + s.board.axis[0].power_up_offset_mm),
+             ScrewTransmission(s.plant[1], s.board.axis[1].power_up_offset_mm)},
       any_mode(modes[0].enabled() || modes[1].enabled()),
       any_backlash(screws[0].has_backlash() || screws[1].has_backlash()),
       sample_noise(s.noise.any_sample_noise()),
@@ -129,8 +136,8 @@ Machine::Impl::Impl(const Scenario& s)
       fault_on(s.faults.size(), false) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
   // At rest, held by stiction, at the circle's start point (R, 0) (moved by [board] power_up_offset_*_mm).
-  plants[0].set_state(s.circle.radius_mm + s.board.power_up_offset_x_mm, 0.0, true);
-  plants[1].set_state(s.board.power_up_offset_y_mm, 0.0, true);  // (the screws' lash starts centred there)
+  plants[0].set_state(s.circle.radius_mm + s.board.axis[0].power_up_offset_mm, 0.0, true);
+  plants[1].set_state(s.board.axis[1].power_up_offset_mm, 0.0, true);  // (the screws' lash starts centred there)
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     index_mm[i] = s.encoder.lead_mm * s.board.index_deg(hal::axis_from_index(i)) / 360.0;
   board.preset_snapshot(tick_samples());
@@ -174,13 +181,13 @@ std::uint32_t Machine::Impl::position_inputs() const noexcept {
     const double table = table_mm(i);
     if (b.home_switch(axis)) {
       const double beyond_mm = (table - b.home_mm(axis)) * b.home_side(axis);
-      if (beyond_mm >= 0.0) bits |= axis == Axis::x ? kInputHomeX : kInputHomeY;
+      if (beyond_mm >= 0.0) bits |= axis_registers(axis).input_home;
     }
     if (b.limit_switches) {
-      const double min_mm = axis == Axis::x ? b.limit_x_min_mm : b.limit_y_min_mm;
-      const double max_mm = axis == Axis::x ? b.limit_x_max_mm : b.limit_y_max_mm;
-      if (table <= min_mm) bits |= axis == Axis::x ? kInputLimitXNeg : kInputLimitYNeg;
-      if (table >= max_mm) bits |= axis == Axis::x ? kInputLimitXPos : kInputLimitYPos;
+      const double min_mm = b.axis[i].limit_min_mm;
+      const double max_mm = b.axis[i].limit_max_mm;
+      if (table <= min_mm) bits |= axis_registers(axis).input_limit_neg;
+      if (table >= max_mm) bits |= axis_registers(axis).input_limit_pos;
     }
   }
   return bits;
@@ -278,10 +285,9 @@ std::uint32_t Machine::Impl::input_bit(const FaultSpec& f) const noexcept {
   using namespace hal::regs;
   switch (f.kind) {
     case FaultKind::estop: return kInputEstop;
-    case FaultKind::servo_alarm: return f.axis == Axis::x ? kInputAlarmX : kInputAlarmY;
+    case FaultKind::servo_alarm: return axis_registers(f.axis).input_alarm;
     case FaultKind::limit_switch:
-      return f.axis == Axis::x ? (f.positive_side ? kInputLimitXPos : kInputLimitXNeg)
-                               : (f.positive_side ? kInputLimitYPos : kInputLimitYNeg);
+      return f.positive_side ? axis_registers(f.axis).input_limit_pos : axis_registers(f.axis).input_limit_neg;
     default: return 0;
   }
 }
@@ -309,7 +315,7 @@ void Machine::Impl::apply_fault_edge(const FaultEdge& edge) noexcept {
       // Both channels changed at once: a 180 degree jump the decoder cannot
       // give a direction, so it latches the fault and does not count it.
       // The register then lags the table by 2 counts in the direction of travel.
-      board.raise_faults(f.axis == Axis::x ? hal::regs::kFaultEncoderX : hal::regs::kFaultEncoderY);
+      board.raise_faults(hal::regs::axis_registers(f.axis).fault_encoder);
       const double v_mm_s = plants[i].speed_mm_s();
       encoder_slip_counts[i] -= v_mm_s > 0.0 ? 2 : v_mm_s < 0.0 ? -2 : 0;
       return;
@@ -536,14 +542,12 @@ bool Machine::fault_active(std::size_t i) const noexcept {
 void Machine::set_estop(bool asserted) noexcept { impl_->board.set_input(hal::regs::kInputEstop, asserted); }
 
 void Machine::set_servo_alarm(Axis axis, bool asserted) noexcept {
-  impl_->board.set_input(axis == Axis::x ? hal::regs::kInputAlarmX : hal::regs::kInputAlarmY, asserted);
+  impl_->board.set_input(hal::regs::axis_registers(axis).input_alarm, asserted);
 }
 
 void Machine::set_limit(Axis axis, bool positive_side, bool asserted) noexcept {
-  using namespace hal::regs;
-  const std::uint32_t bit = axis == Axis::x ? (positive_side ? kInputLimitXPos : kInputLimitXNeg)
-                                            : (positive_side ? kInputLimitYPos : kInputLimitYNeg);
-  impl_->board.set_input(bit, asserted);
+  const hal::regs::AxisRegisters& r = hal::regs::axis_registers(axis);
+  impl_->board.set_input(positive_side ? r.input_limit_pos : r.input_limit_neg, asserted);
 }
 
 }  // namespace tnv::emu

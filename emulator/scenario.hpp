@@ -42,11 +42,9 @@ struct CuttingParams {
 struct EncoderParams {
   int counts_per_rev = 24000;  // after x4 decoding
   double lead_mm = 10.0;
-  double offset_counts_x = 0.0;  // count = round(p/q + offset)
-  double offset_counts_y = 0.0;
-  double offset_counts(hal::Axis axis) const noexcept {
-    return axis == hal::Axis::x ? offset_counts_x : offset_counts_y;
-  }
+  // count = round(p/q + offset), per axis ([encoder] offset_counts_<axis>).
+  std::array<double, hal::kAxisCount> axis_offset_counts{};
+  double offset_counts(hal::Axis axis) const noexcept { return axis_offset_counts[hal::index(axis)]; }
   double count_mm() const noexcept { return lead_mm / counts_per_rev; }
 };
 
@@ -78,40 +76,39 @@ struct MillingParams {
   DepthProfile depth{};
 };
 
-struct BoardParams {
-  std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
-  // Home switches (INPUTS bits 8/9), actuated by the table: asserted at and
-  // beyond home_*_mm on the home_*_side (-1: at and below, +1: at and above).
-  // Absent by default (the input reads 0): a homing cycle then finds no switch.
-  bool home_switch_x = false;
-  bool home_switch_y = false;
-  double home_x_mm = -20.0;
-  double home_y_mm = -20.0;
-  int home_x_side = -1;
-  int home_y_side = -1;
+// One axis' switches and marks on the board.
+struct BoardAxisParams {
+  // Home switch (INPUTS), actuated by the table: asserted at and beyond
+  // home_mm on the home_side (-1: at and below, +1: at and above). Absent by
+  // default (the input reads 0): a homing cycle then finds no switch.
+  bool home_switch = false;
+  double home_mm = -20.0;
+  int home_side = -1;
   // Encoder index mark: once per motor revolution at this motor angle; angle
   // 0 is motor-side position 0 (the plant state p modulo the lead). The board
-  // latches the count there (INDEX_X/Y). Always present, like on the encoder.
-  double index_x_deg = 0.0;
-  double index_y_deg = 0.0;
-  // Hardware limit switches at these table positions (INPUTS bits 3..6, ORed
-  // with the bench and the fault schedule); off by default.
-  bool limit_switches = false;
-  double limit_x_min_mm = -200.0;
-  double limit_x_max_mm = 200.0;
-  double limit_y_min_mm = -200.0;
-  double limit_y_max_mm = 200.0;
+  // latches the count there (INDEX_<axis>). Always present, like on the encoder.
+  double index_deg = 0.0;
+  // Hardware limit switches (when BoardParams::limit_switches) at these table positions.
+  double limit_min_mm = -200.0;
+  double limit_max_mm = 200.0;
   // Power-up position: the table starts this far from the circle's start
   // point (circle.radius_mm, 0) (motor side and table together).
-  double power_up_offset_x_mm = 0.0;
-  double power_up_offset_y_mm = 0.0;
-  bool home_switch(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_switch_x : home_switch_y; }
-  double home_mm(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_x_mm : home_y_mm; }
-  int home_side(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? home_x_side : home_y_side; }
-  double index_deg(hal::Axis axis) const noexcept { return axis == hal::Axis::x ? index_x_deg : index_y_deg; }
-  double power_up_offset_mm(hal::Axis axis) const noexcept {
-    return axis == hal::Axis::x ? power_up_offset_x_mm : power_up_offset_y_mm;
-  }
+  double power_up_offset_mm = 0.0;
+};
+
+struct BoardParams {
+  std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
+  // Hardware limit switches at each axis' limit_min_mm / limit_max_mm (INPUTS
+  // bits, ORed with the bench and the fault schedule); off by default.
+  bool limit_switches = false;
+  // Per axis, in TNV_AXES order; the file's keys are <field>_<axis> (home_x_mm,
+  // home_switch_y, ...: scenario_file.cpp).
+  std::array<BoardAxisParams, hal::kAxisCount> axis{};
+  bool home_switch(hal::Axis a) const noexcept { return axis[hal::index(a)].home_switch; }
+  double home_mm(hal::Axis a) const noexcept { return axis[hal::index(a)].home_mm; }
+  int home_side(hal::Axis a) const noexcept { return axis[hal::index(a)].home_side; }
+  double index_deg(hal::Axis a) const noexcept { return axis[hal::index(a)].index_deg; }
+  double power_up_offset_mm(hal::Axis a) const noexcept { return axis[hal::index(a)].power_up_offset_mm; }
 };
 
 // Sensor and actuator imperfections, seeded (noise_stream.hpp); all off by default.

@@ -2,14 +2,17 @@
 
 #include <limits>
 #include <map>
+#include <optional>
 #include <span>
 #include <variant>
+#include <vector>
 
 #include <toml++/toml.h>
 
 #include "emulator/scenario_validation.hpp"
 #include "emulator/text_file.hpp"
 #include "emulator/toml_type_name.hpp"
+#include "hal/axis_choice.hpp"
 
 namespace tnv::emu {
 
@@ -40,9 +43,11 @@ class ScenarioReader {
                                 {"phase_rad", &s.cutting.phase_rad}};
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "encoder") {
-        const Field fields[] = {{"counts_per_rev", &s.encoder.counts_per_rev}, {"lead_mm", &s.encoder.lead_mm},
-                                {"offset_counts_x", &s.encoder.offset_counts_x},
-                                {"offset_counts_y", &s.encoder.offset_counts_y}};
+        std::vector<Field> fields{{"counts_per_rev", &s.encoder.counts_per_rev}, {"lead_mm", &s.encoder.lead_mm}};
+#define TNV_ENCODER_AXIS_FIELDS(n, ...) \
+  fields.push_back({"offset_counts_" #n, &s.encoder.axis_offset_counts[hal::index(hal::Axis::n)]});
+        TNV_AXES(TNV_ENCODER_AXIS_FIELDS)
+#undef TNV_ENCODER_AXIS_FIELDS
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "dac") {
         const Field fields[] = {{"bits", &s.dac.bits}, {"full_scale_v", &s.dac.full_scale_v},
@@ -64,22 +69,21 @@ class ScenarioReader {
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "board") {
         BoardParams& b = s.board;
-        const Field fields[] = {{"clock_start", &b.clock_start},
-                                {"home_switch_x", &b.home_switch_x},
-                                {"home_switch_y", &b.home_switch_y},
-                                {"home_x_mm", &b.home_x_mm},
-                                {"home_y_mm", &b.home_y_mm},
-                                {"home_x_side", &b.home_x_side},
-                                {"home_y_side", &b.home_y_side},
-                                {"index_x_deg", &b.index_x_deg},
-                                {"index_y_deg", &b.index_y_deg},
-                                {"limit_switches", &b.limit_switches},
-                                {"limit_x_min_mm", &b.limit_x_min_mm},
-                                {"limit_x_max_mm", &b.limit_x_max_mm},
-                                {"limit_y_min_mm", &b.limit_y_min_mm},
-                                {"limit_y_max_mm", &b.limit_y_max_mm},
-                                {"power_up_offset_x_mm", &b.power_up_offset_x_mm},
-                                {"power_up_offset_y_mm", &b.power_up_offset_y_mm}};
+        std::vector<Field> fields{{"clock_start", &b.clock_start}, {"limit_switches", &b.limit_switches}};
+        // Per axis: <field>_<axis>, or <field>_<axis>_<unit> where the field has a unit.
+#define TNV_BOARD_AXIS_FIELDS(n, ...)                                                                      \
+  {                                                                                                   \
+    BoardAxisParams& a = b.axis[hal::index(hal::Axis::n)];                                            \
+    fields.insert(fields.end(), {{"home_switch_" #n, &a.home_switch},                                 \
+                                 {"home_" #n "_mm", &a.home_mm},                                      \
+                                 {"home_" #n "_side", &a.home_side},                                  \
+                                 {"index_" #n "_deg", &a.index_deg},                                  \
+                                 {"limit_" #n "_min_mm", &a.limit_min_mm},                            \
+                                 {"limit_" #n "_max_mm", &a.limit_max_mm},                            \
+                                 {"power_up_offset_" #n "_mm", &a.power_up_offset_mm}});              \
+  }
+        TNV_AXES(TNV_BOARD_AXIS_FIELDS)
+#undef TNV_BOARD_AXIS_FIELDS
         if (!read_section(key, name, node, fields)) return false;
       } else if (name == "noise") {
         const Field fields[] = {{"seed", &s.noise.seed},
@@ -239,8 +243,7 @@ class ScenarioReader {
         } else if (name == "duration_s") {
           ok = keys.duration ? assign(field_key, field_path, field_node, &f.duration_s) : not_for_kind();
         } else if (name == "axis") {
-          ok = keys.axis ? read_choice(field_key, field_path, field_node, "x", "y", f.axis, hal::Axis::x, hal::Axis::y)
-                         : not_for_kind();
+          ok = keys.axis ? read_axis(field_key, field_path, field_node, f.axis) : not_for_kind();
           has_axis = true;
         } else if (name == "side") {
           ok = keys.side ? read_choice(field_key, field_path, field_node, "+", "-", f.positive_side, true, false)
@@ -306,6 +309,15 @@ class ScenarioReader {
     } else {
       return fail(key, path, std::string("must be \"") + first + "\" or \"" + second + "\" (got \"" + text + "\")");
     }
+    return true;
+  }
+
+  bool read_axis(const toml::key& key, const std::string& path, const toml::node& node, hal::Axis& target) {
+    std::string text;
+    if (!assign(key, path, node, &text)) return false;
+    const std::optional<hal::Axis> axis = hal::axis_from_name(text);
+    if (!axis) return fail(key, path, "must be " + std::string(hal::kQuotedAxisChoices) + " (got \"" + text + "\")");
+    target = *axis;
     return true;
   }
 

@@ -230,26 +230,38 @@ void check_io(Rules& r, const IoParams& io) {
 constexpr double kSwitchRangeMm = 500.0;
 
 void check_board(Rules& r, const BoardParams& b) {
-  r.plausible("board.home_x_mm", b.home_x_mm, -kSwitchRangeMm, kSwitchRangeMm, "a home switch on the table's travel");
-  r.plausible("board.home_y_mm", b.home_y_mm, -kSwitchRangeMm, kSwitchRangeMm, "a home switch on the table's travel");
-  if (b.home_x_side != -1 && b.home_x_side != 1)
-    r.fail_text("board.home_x_side", "must be -1 (asserted at and below home_x_mm) or 1 (at and above) (got " +
-                                         std::to_string(b.home_x_side) + ")");
-  if (b.home_y_side != -1 && b.home_y_side != 1)
-    r.fail_text("board.home_y_side", "must be -1 (asserted at and below home_y_mm) or 1 (at and above) (got " +
-                                         std::to_string(b.home_y_side) + ")");
-  r.plausible("board.index_x_deg", b.index_x_deg, 0.0, 360.0, "a motor angle in degrees");
-  r.plausible("board.index_y_deg", b.index_y_deg, 0.0, 360.0, "a motor angle in degrees");
-  r.plausible("board.limit_x_min_mm", b.limit_x_min_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
-  r.plausible("board.limit_x_max_mm", b.limit_x_max_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
-  r.plausible("board.limit_y_min_mm", b.limit_y_min_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
-  r.plausible("board.limit_y_max_mm", b.limit_y_max_mm, -kSwitchRangeMm, kSwitchRangeMm, "a limit switch on the table's travel");
-  r.ordered("board.limit_x_min_mm", b.limit_x_min_mm, "board.limit_x_max_mm", b.limit_x_max_mm);
-  r.ordered("board.limit_y_min_mm", b.limit_y_min_mm, "board.limit_y_max_mm", b.limit_y_max_mm);
-  r.plausible("board.power_up_offset_x_mm", b.power_up_offset_x_mm, -kSwitchRangeMm, kSwitchRangeMm,
-              "where the table stands at power-up, on its travel");
-  r.plausible("board.power_up_offset_y_mm", b.power_up_offset_y_mm, -kSwitchRangeMm, kSwitchRangeMm,
-              "where the table stands at power-up, on its travel");
+  // Each check once per axis; the keys are the file's (board.home_x_mm, ...).
+  for (const hal::Axis axis : hal::kAxes)
+    r.plausible("board.home_" + std::string(hal::axis_label(axis)) + "_mm", b.axis[hal::index(axis)].home_mm,
+                -kSwitchRangeMm, kSwitchRangeMm, "a home switch on the table's travel");
+  for (const hal::Axis axis : hal::kAxes) {
+    const BoardAxisParams& a = b.axis[hal::index(axis)];
+    const std::string n = hal::axis_label(axis);
+    if (a.home_side != -1 && a.home_side != 1)
+      r.fail_text("board.home_" + n + "_side", "must be -1 (asserted at and below home_" + n +
+                                                   "_mm) or 1 (at and above) (got " + std::to_string(a.home_side) + ")");
+  }
+  for (const hal::Axis axis : hal::kAxes) {
+    const std::string n = hal::axis_label(axis);
+    r.plausible("board.index_" + n + "_deg", b.axis[hal::index(axis)].index_deg, 0.0, 360.0, "a motor angle in degrees");
+  }
+  for (const hal::Axis axis : hal::kAxes) {
+    const BoardAxisParams& a = b.axis[hal::index(axis)];
+    const std::string n = hal::axis_label(axis);
+    r.plausible("board.limit_" + n + "_min_mm", a.limit_min_mm, -kSwitchRangeMm, kSwitchRangeMm,
+                "a limit switch on the table's travel");
+    r.plausible("board.limit_" + n + "_max_mm", a.limit_max_mm, -kSwitchRangeMm, kSwitchRangeMm,
+                "a limit switch on the table's travel");
+  }
+  for (const hal::Axis axis : hal::kAxes) {
+    const BoardAxisParams& a = b.axis[hal::index(axis)];
+    const std::string n = hal::axis_label(axis);
+    r.ordered("board.limit_" + n + "_min_mm", a.limit_min_mm, "board.limit_" + n + "_max_mm", a.limit_max_mm);
+  }
+  for (const hal::Axis axis : hal::kAxes)
+    r.plausible("board.power_up_offset_" + std::string(hal::axis_label(axis)) + "_mm",
+                b.axis[hal::index(axis)].power_up_offset_mm, -kSwitchRangeMm, kSwitchRangeMm,
+                "where the table stands at power-up, on its travel");
 }
 
 void check_circle(Rules& r, const CircleParams& c) {
@@ -327,8 +339,8 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
   r.positive("encoder.lead_mm", s.encoder.lead_mm);
   r.plausible("encoder.lead_mm", s.encoder.lead_mm, 0.1, 100.0, "a ball screw's lead");
   r.plausible("encoder.counts_per_rev", s.encoder.counts_per_rev, 4.0, 1e8, "a rotary encoder's counts per turn (x4)");
-  r.finite("encoder.offset_counts_x", s.encoder.offset_counts_x);
-  r.finite("encoder.offset_counts_y", s.encoder.offset_counts_y);
+  for (const hal::Axis axis : hal::kAxes)
+    r.finite("encoder.offset_counts_" + std::string(hal::axis_label(axis)), s.encoder.offset_counts(axis));
 
   check_board(r, s.board);
 

@@ -2,7 +2,10 @@
 // Register map of the FPGA I/O board: the single source for the driver
 // (drivers/fpga) and the emulated board (emulator/). Documented in
 // docs/register-map.md. Word addresses, 32-bit registers.
+#include <array>
 #include <cstdint>
+
+#include "hal/axis.hpp"
 
 namespace tnv::hal::regs {
 
@@ -92,5 +95,77 @@ inline constexpr std::uint32_t kDefaultWatchdogTimeout = 30'000;
 // The DAC readback comparator latches kFaultDac* at a tick when the output
 // (through the readback ADC) and the register are more than this many LSB apart.
 inline constexpr std::uint32_t kDacReadbackToleranceCodes = 4;
+
+// One axis' channels on the board: its snapshot and output registers and its
+// bits in kInputs, kFaults and kOutputs.
+struct AxisRegisters {
+  std::uint16_t encoder;
+  std::uint16_t adc_accel;
+  std::uint16_t index;
+  std::uint16_t dac;
+  std::uint32_t input_alarm;
+  std::uint32_t input_limit_pos;
+  std::uint32_t input_limit_neg;
+  std::uint32_t input_home;
+  std::uint32_t fault_encoder;
+  std::uint32_t fault_dac;
+  std::uint32_t output_enable;
+};
+
+// One row per axis of TNV_AXES, in its order. The addresses are the board's
+// wiring (a hardware fact, not derivable from the list): a new axis' row is
+// the new board revision's registers. The checks below fail the build when a
+// row is missing or two axes share a register or a bit.
+inline constexpr std::array<AxisRegisters, kAxisCount> kAxisRegisters{{
+    {kEncoderX, kAdcAccelX, kIndexX, kDacX, kInputAlarmX, kInputLimitXPos, kInputLimitXNeg, kInputHomeX,
+     kFaultEncoderX, kFaultDacX, kOutputEnableX},
+    {kEncoderY, kAdcAccelY, kIndexY, kDacY, kInputAlarmY, kInputLimitYPos, kInputLimitYNeg, kInputHomeY,
+     kFaultEncoderY, kFaultDacY, kOutputEnableY},
+}};
+
+constexpr const AxisRegisters& axis_registers(Axis axis) noexcept { return kAxisRegisters[index(axis)]; }
+
+// The union of one bit field over every axis (e.g. every servo-enable bit).
+constexpr std::uint32_t all_axes(std::uint32_t AxisRegisters::*bit) noexcept {
+  std::uint32_t bits = 0;
+  for (const AxisRegisters& r : kAxisRegisters) bits |= r.*bit;
+  return bits;
+}
+
+namespace detail {
+constexpr bool in_snapshot(std::uint16_t reg) {
+  return reg >= kSnapshotFirst + 2 && reg < kSnapshotFirst + kSnapshotWords && reg != kInputs && reg != kAdcForce &&
+         reg != kFaults && reg != kClockAtRead;
+}
+constexpr bool one_bit(std::uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
+constexpr bool axis_registers_well_formed() {
+  std::uint16_t regs_seen[4 * kAxisCount]{};
+  std::uint32_t inputs = kInputEstop | kInputWatchdogTripped, faults = 0, outputs = 0;
+  std::size_t n = 0;
+  for (const AxisRegisters& r : kAxisRegisters) {
+    if (!in_snapshot(r.encoder) || !in_snapshot(r.adc_accel) || !in_snapshot(r.index)) return false;
+    if (r.dac < kOutputFirst || r.dac >= kOutputFirst + kOutputWords || r.dac == kOutputs || r.dac == kWatchdogKick)
+      return false;
+    for (const std::uint16_t reg : {r.encoder, r.adc_accel, r.index, r.dac}) {
+      for (std::size_t j = 0; j < n; ++j)
+        if (regs_seen[j] == reg) return false;
+      regs_seen[n++] = reg;
+    }
+    for (const std::uint32_t b : {r.input_alarm, r.input_limit_pos, r.input_limit_neg, r.input_home}) {
+      if (!one_bit(b) || (inputs & b) != 0) return false;
+      inputs |= b;
+    }
+    for (const std::uint32_t b : {r.fault_encoder, r.fault_dac}) {
+      if (!one_bit(b) || (faults & b) != 0) return false;
+      faults |= b;
+    }
+    if (!one_bit(r.output_enable) || (outputs & r.output_enable) != 0) return false;
+    outputs |= r.output_enable;
+  }
+  return true;
+}
+}  // namespace detail
+static_assert(detail::axis_registers_well_formed(),
+              "kAxisRegisters: one row per axis, each register and bit its own and inside its window");
 
 }  // namespace tnv::hal::regs

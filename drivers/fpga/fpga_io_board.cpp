@@ -28,7 +28,7 @@ FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
   st = bus_.write_block(regs::kTickDivider, config);
   if (st != hal::HalStatus::ok) return {st, "cannot program the I/O board configuration registers"};
 
-  dac_codes_ = {kMidCode, kMidCode};
+  dac_codes_.fill(kMidCode);
   output_bits_ = 0;
   kick_pending_ = false;
   st = write_outputs();
@@ -39,8 +39,10 @@ FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
 hal::HalStatus FpgaIoBoard::read_inputs() noexcept { return bus_.read_block(regs::kSnapshotFirst, snapshot_); }
 
 hal::HalStatus FpgaIoBoard::write_outputs() noexcept {
-  const std::array<std::uint32_t, regs::kOutputWords> out{
-      dac_codes_[0], dac_codes_[1], output_bits_, kick_pending_ ? regs::kWatchdogKickKey : 0u};
+  std::array<std::uint32_t, regs::kOutputWords> out{};
+  for (const hal::Axis a : hal::kAxes) out[regs::axis_registers(a).dac - regs::kOutputFirst] = dac_codes_[hal::index(a)];
+  out[regs::kOutputs - regs::kOutputFirst] = output_bits_;
+  out[regs::kWatchdogKick - regs::kOutputFirst] = kick_pending_ ? regs::kWatchdogKickKey : 0u;
   kick_pending_ = false;
   return bus_.write_block(regs::kOutputFirst, out);
 }
@@ -51,12 +53,11 @@ hal::TickLatch FpgaIoBoard::latched_tick() const noexcept {
 }
 
 std::uint32_t FpgaIoBoard::latched_count(hal::Axis axis) const noexcept {
-  const std::uint16_t reg = axis == hal::Axis::x ? regs::kEncoderX : regs::kEncoderY;
-  return snapshot_[slot(reg)] & ((1u << regs::kEncoderBits) - 1u);
+  return snapshot_[slot(regs::axis_registers(axis).encoder)] & ((1u << regs::kEncoderBits) - 1u);
 }
 
 hal::IndexLatch FpgaIoBoard::index_latch(hal::Axis axis) const noexcept {
-  const std::uint32_t word = snapshot_[slot(axis == hal::Axis::x ? regs::kIndexX : regs::kIndexY)];
+  const std::uint32_t word = snapshot_[slot(regs::axis_registers(axis).index)];
   return {word & ((1u << regs::kEncoderBits) - 1u),
           static_cast<std::uint8_t>((word >> regs::kIndexEdgesShift) & regs::kIndexEdgesMask)};
 }
@@ -69,19 +70,22 @@ hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
   const std::uint32_t bits = snapshot_[slot(regs::kInputs)];
   hal::DiscreteInputs in;
   in.estop = (bits & regs::kInputEstop) != 0;
-  in.servo_alarm = {(bits & regs::kInputAlarmX) != 0, (bits & regs::kInputAlarmY) != 0};
-  in.limit_positive = {(bits & regs::kInputLimitXPos) != 0, (bits & regs::kInputLimitYPos) != 0};
-  in.limit_negative = {(bits & regs::kInputLimitXNeg) != 0, (bits & regs::kInputLimitYNeg) != 0};
   in.watchdog_tripped = (bits & regs::kInputWatchdogTripped) != 0;
-  in.home_switch = {(bits & regs::kInputHomeX) != 0, (bits & regs::kInputHomeY) != 0};
   const std::uint32_t faults = snapshot_[slot(regs::kFaults)];
-  in.encoder_error = {(faults & regs::kFaultEncoderX) != 0, (faults & regs::kFaultEncoderY) != 0};
-  in.dac_error = {(faults & regs::kFaultDacX) != 0, (faults & regs::kFaultDacY) != 0};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const regs::AxisRegisters& r = regs::kAxisRegisters[i];
+    in.servo_alarm[i] = (bits & r.input_alarm) != 0;
+    in.limit_positive[i] = (bits & r.input_limit_pos) != 0;
+    in.limit_negative[i] = (bits & r.input_limit_neg) != 0;
+    in.home_switch[i] = (bits & r.input_home) != 0;
+    in.encoder_error[i] = (faults & r.fault_encoder) != 0;
+    in.dac_error[i] = (faults & r.fault_dac) != 0;
+  }
   return in;
 }
 
 void FpgaIoBoard::set_servo_enable(hal::Axis axis, bool enabled) noexcept {
-  const std::uint32_t bit = axis == hal::Axis::x ? regs::kOutputEnableX : regs::kOutputEnableY;
+  const std::uint32_t bit = regs::axis_registers(axis).output_enable;
   output_bits_ = enabled ? (output_bits_ | bit) : (output_bits_ & ~bit);
 }
 
@@ -90,8 +94,7 @@ std::uint16_t FpgaIoBoard::latched_force_code() const noexcept {
 }
 
 std::uint16_t FpgaIoBoard::latched_accel_code(hal::Axis axis) const noexcept {
-  const std::uint16_t reg = axis == hal::Axis::x ? regs::kAdcAccelX : regs::kAdcAccelY;
-  return static_cast<std::uint16_t>(snapshot_[slot(reg)] & ((1u << regs::kAdcBits) - 1u));
+  return static_cast<std::uint16_t>(snapshot_[slot(regs::axis_registers(axis).adc_accel)] & ((1u << regs::kAdcBits) - 1u));
 }
 
 std::uint32_t FpgaIoBoard::latched_fault_bits() const noexcept { return snapshot_[slot(regs::kFaults)]; }

@@ -68,7 +68,7 @@ class FpgaIoBoard final : public hal::IoBoard {
 
   hal::RegisterBus& bus_;
   std::array<std::uint32_t, hal::regs::kSnapshotWords> snapshot_{};
-  std::array<std::uint16_t, hal::kAxisCount> dac_codes_{kMidCode, kMidCode};
+  std::array<std::uint16_t, hal::kAxisCount> dac_codes_ = hal::per_axis(kMidCode);
   std::uint32_t output_bits_ = 0;
   bool kick_pending_ = false;
 };

@@ -302,13 +302,11 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
   set(!staged_.empty(), kHbParamsStaged);
-  set(task_.shaper_active(hal::Axis::x), kHbShaperX);
-  set(task_.shaper_active(hal::Axis::y), kHbShaperY);
+  for (const hal::Axis a : hal::kAxes) set(task_.shaper_active(a), static_cast<HeartbeatBit>(kHbShaperBits[hal::index(a)]));
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
   set(commissioning(), kHbCommissioning);
-  set(task_.homed(hal::Axis::x), kHbHomedX);
-  set(task_.homed(hal::Axis::y), kHbHomedY);
+  for (const hal::Axis a : hal::kAxes) set(task_.homed(a), static_cast<HeartbeatBit>(kHbHomedBits[hal::index(a)]));
   return bits;
 }
 
@@ -340,19 +338,18 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
   };
   if ((due & cyclic_bit(Cyclic::position)) != 0) {
     hal::CanFrame f = make_frame(kPositionMsg, node_id_);
-    i32_mm(f, kPosX, r.axis[0].position_mm);
-    i32_mm(f, kPosY, r.axis[1].position_mm);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) i32_mm(f, *kPositionFields[i], r.axis[i].position_mm);
     emit(f);
   }
   if ((due & cyclic_bit(Cyclic::following)) != 0) {
     hal::CanFrame f = make_frame(kFollowingMsg, node_id_);
-    i32_mm(f, kFollowX, r.axis[0].reference_mm - r.axis[0].position_mm);
-    i32_mm(f, kFollowY, r.axis[1].reference_mm - r.axis[1].position_mm);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+      i32_mm(f, *kFollowingFields[i], r.axis[i].reference_mm - r.axis[i].position_mm);
     emit(f);
   }
   if ((due & cyclic_bit(Cyclic::sliding)) != 0) {
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-      hal::CanFrame f = make_frame(i == 0 ? kSlidingXMsg : kSlidingYMsg, node_id_);
+      hal::CanFrame f = make_frame(*kSlidingMsgs[i], node_id_);
       const bool pid = task_.controller(hal::axis_from_index(i)) == ControllerKind::pid;
       write(f, kSlidingS, pid ? 0.0 : r.axis[i].s);
       write(f, kSlidingDHat, pid ? 0.0 : r.axis[i].d_hat_mm_s);
@@ -361,8 +358,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
   }
   if ((due & cyclic_bit(Cyclic::output)) != 0) {
     hal::CanFrame f = make_frame(kOutputMsg, node_id_);
-    write_raw(f, kOutputDacX, r.axis[0].dac_code);
-    write_raw(f, kOutputDacY, r.axis[1].dac_code);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) write_raw(f, *kOutputDacs[i], r.axis[i].dac_code);
     write(f, kOutputForce, force_n(r, settings_));
     emit(f);
   }

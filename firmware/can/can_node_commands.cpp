@@ -20,7 +20,7 @@ namespace {
 constexpr std::uint8_t kAllAxes = 255;
 
 std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
-  return static_cast<std::uint16_t>((axis == 0 ? 0x0100 : 0x0200) + low);
+  return static_cast<std::uint16_t>(axis_param_base(hal::axis_from_index(axis)) + low);
 }
 
 }  // namespace
@@ -108,7 +108,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
 ErrorCode CanNode::command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
   const std::uint32_t axis = read_raw(frame, kCommandAxis);
   const double value_mm = read(frame, kCommandValue);
-  if (axis > 1) {
+  if (axis >= hal::kAxisCount) {
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
@@ -120,15 +120,16 @@ ErrorCode CanNode::command_zero(const hal::CanFrame& frame, std::uint8_t& detail
   return to_error(st);
 }
 
-// COMMAND home: axis 0 (x), 1 (y) or 255 (x, then y).
+// COMMAND home: one axis' index, or 255 (every axis, in hal::kHomingOrder).
 ErrorCode CanNode::command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
   const std::uint32_t axis = read_raw(frame, kCommandAxis);
-  if (axis > 1 && axis != kAllAxes) {
+  if (axis >= hal::kAxisCount && axis != kAllAxes) {
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
   commissioning_ = false;  // asked for motion, even if refused (as enable)
-  const CommandStatus st = task_.home(axis == 0 || axis == kAllAxes, axis == 1 || axis == kAllAxes);
+  const CommandStatus st =
+      task_.home(axis == kAllAxes ? hal::kEveryAxis : hal::axis_bit(hal::axis_from_index(axis)));
   if (st == CommandStatus::ok) motion_accepted();
   return to_error(st);
 }
@@ -136,7 +137,7 @@ ErrorCode CanNode::command_home(const hal::CanFrame& frame, std::uint8_t& detail
 ErrorCode CanNode::command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
   const std::uint32_t axis = read_raw(frame, kCommandAxis);
   const std::uint32_t arg = read_raw(frame, kCommandArg);
-  if (axis > 1 && axis != kAllAxes) {
+  if (axis >= hal::kAxisCount && axis != kAllAxes) {
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
@@ -154,7 +155,7 @@ ErrorCode CanNode::command_select_controller(const hal::CanFrame& frame, std::ui
 ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
   const std::uint32_t axis = read_raw(frame, kCommandAxis);
   const std::uint32_t arg = read_raw(frame, kCommandArg);
-  if (axis > 1 && axis != kAllAxes) {
+  if (axis >= hal::kAxisCount && axis != kAllAxes) {
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
@@ -170,10 +171,10 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
   if (!owns()) return reply_ack(kJogMsg.id, 0, ErrorCode::not_owner, 0);
-  const std::array<double, hal::kAxisCount> speed_mm_s{read(frame, kJogSpeedX), read(frame, kJogSpeedY)};
-  const std::array<const FieldDef*, hal::kAxisCount> field{&kJogSpeedX, &kJogSpeedY};
+  std::array<double, hal::kAxisCount> speed_mm_s{};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const std::uint8_t detail = index_of(kJogMsg, *field[i]);
+    speed_mm_s[i] = read(frame, *kJogSpeeds[i]);
+    const std::uint8_t detail = index_of(kJogMsg, *kJogSpeeds[i]);
     if (!std::isfinite(speed_mm_s[i])) return reply_ack(kJogMsg.id, 0, ErrorCode::not_finite, detail);
     if (std::fabs(speed_mm_s[i]) > task_.config().axis[i].jog.speed_max_mm_s)
       return reply_ack(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
@@ -184,9 +185,9 @@ void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
   } else if ((task_.state() != MotionState::holding && !task_.jogging()) || task_.stopping()) {
     e = ErrorCode::busy;
   } else {
-    // Checked above, so neither call refuses: x may start the jog, y joins it.
-    e = to_error(task_.jog(hal::Axis::x, speed_mm_s[0]));
-    if (e == ErrorCode::ok) e = to_error(task_.jog(hal::Axis::y, speed_mm_s[1]));
+    // Checked above, so no call refuses: the first axis may start the jog, the others join it.
+    for (const hal::Axis a : hal::kAxes)
+      if (e == ErrorCode::ok) e = to_error(task_.jog(a, speed_mm_s[hal::index(a)]));
   }
   if (e == ErrorCode::ok) motion_accepted();
   reply_ack(kJogMsg.id, 0, e, 0);
@@ -197,7 +198,7 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
   const std::uint32_t axis = read_raw(frame, kMoveAxis);
   const double speed_mm_s = read(frame, kMoveSpeed);
   const double distance_mm = read(frame, kMoveDistance);
-  if (axis > 1) return reply_ack(kMoveMsg.id, 0, ErrorCode::bad_axis, index_of(kMoveMsg, kMoveAxis));
+  if (axis >= hal::kAxisCount) return reply_ack(kMoveMsg.id, 0, ErrorCode::bad_axis, index_of(kMoveMsg, kMoveAxis));
   if (!(speed_mm_s > 0.0)) return reply_ack(kMoveMsg.id, 0, ErrorCode::out_of_range, index_of(kMoveMsg, kMoveSpeed));
   const std::uint8_t distance = index_of(kMoveMsg, kMoveDistance);
   if (!std::isfinite(distance_mm)) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_finite, distance);
@@ -232,11 +233,13 @@ void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
   if (!(feed_mm_s > 0.0)) return reply_ack(kCircleMsg.id, 0, ErrorCode::out_of_range, feed);
   const CircleSpec spec{radius_mm, feed_mm_s, settings_.motion.circle_ramp_s, settings_.motion.circle_dwell_s};
   if (validate(spec)[0] != '\0') return reply_ack(kCircleMsg.id, 0, ErrorCode::invalid, radius);
-  const double x_mm = task_.standing_mm(hal::Axis::x);
-  const double y_mm = task_.standing_mm(hal::Axis::y);
+  // The circle lies in the XY plane.
+  const double x_mm = task_.standing_mm(hal::kPlaneFirst);
+  const double y_mm = task_.standing_mm(hal::kPlaneSecond);
   const SupervisorConfig& sup = task_.config().supervisor;
-  const bool on_origin_circle = std::fabs(x_mm - radius_mm) < sup.axis[0].following.floor_mm &&
-                                std::fabs(y_mm) < sup.axis[1].following.floor_mm;
+  const bool on_origin_circle =
+      std::fabs(x_mm - radius_mm) < sup.axis[hal::index(hal::kPlaneFirst)].following.floor_mm &&
+      std::fabs(y_mm) < sup.axis[hal::index(hal::kPlaneSecond)].following.floor_mm;
   const CommandStatus st =
       on_origin_circle ? task_.start_circle(spec) : task_.start_circle(spec, x_mm - radius_mm, y_mm);
   if (st == CommandStatus::ok) motion_accepted();
@@ -250,7 +253,7 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
   const std::uint32_t type = read_raw(frame, kShaperType);
   const double zeta = read(frame, kShaperZeta);
   const double freq_hz = read(frame, kShaperFreq);
-  if (axis > 1) return reply_ack(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
+  if (axis >= hal::kAxisCount) return reply_ack(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
   const std::array<std::pair<const FieldDef*, std::uint16_t>, 3> checks{
       {{&kShaperType, axis_param(axis, 0x40)}, {&kShaperZeta, axis_param(axis, 0x42)}, {&kShaperFreq, axis_param(axis, 0x41)}}};
   const std::array<double, 3> values{static_cast<double>(type), zeta, freq_hz};

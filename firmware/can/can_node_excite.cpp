@@ -29,7 +29,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   const double level_mm_s = read(frame, kExciteLevel);
   const std::uint8_t id = kExciteMsg.id;
   if (!owns()) return reply_ack(id, 0, ErrorCode::not_owner, 0);
-  if (axis > 1) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
+  if (axis >= hal::kAxisCount) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
   if (kind > 4) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
   const std::uint8_t level = index_of(kExciteMsg, kExciteLevel);
   if (!std::isfinite(level_mm_s)) return reply_ack(id, 0, ErrorCode::not_finite, level);

@@ -28,38 +28,27 @@ bool in_motion(const TickRecord& r) noexcept {
 std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSignals& sig) noexcept {
   const ChannelDef* c = find_channel(bit);
   if (c == nullptr) return 0;
-  const AxisTickRecord& x = r.axis[0];
-  const AxisTickRecord& y = r.axis[1];
-  switch (bit) {
-    case 0: return i32_word(x.position_mm, c->scale);
-    case 1: return i32_word(y.position_mm, c->scale);
-    case 2: return i32_word(x.reference_mm, c->scale);
-    case 3: return i32_word(y.reference_mm, c->scale);
-    case 4: return f32_word(x.speed_mm_s);
-    case 5: return f32_word(y.speed_mm_s);
-    case 6: return f32_word(x.command_mm_s);
-    case 7: return f32_word(y.command_mm_s);
-    case 8: return f32_word(x.s);
-    case 9: return f32_word(y.s);
-    case 10: return f32_word(x.d_hat_mm_s);
-    case 11: return f32_word(y.d_hat_mm_s);
-    case 12: return x.dac_code;
-    case 13: return y.dac_code;
-    case 14: return f32_word(sig.force_n);
-    case 15: return f32_word(sig.contour_um);
-    case 16: return i32_word(static_cast<double>(r.motion_tick), 1.0);
-    case 17: return static_cast<std::uint32_t>(r.state);
-    case 18: return i32_word(x.unshaped_reference_mm, c->scale);
-    case 19: return i32_word(y.unshaped_reference_mm, c->scale);
-    case 20: return f32_word(x.accel_mm_s2);
-    case 21: return f32_word(y.accel_mm_s2);
-    case 22: return f32_word(r.feed_override);
-    case 23: return f32_word(r.arsc_force_ref_n);
-    case 24: return f32_word(r.arsc_cutting_gain_n_per_mm_s);
-    case 25: return f32_word(x.excitation_mm_s);
-    case 26: return f32_word(y.excitation_mm_s);
-    default: return 0;
+  const AxisTickRecord& a = r.axis[c->axis];
+  switch (c->kind) {
+    case ChannelKind::position: return i32_word(a.position_mm, c->scale);
+    case ChannelKind::reference: return i32_word(a.reference_mm, c->scale);
+    case ChannelKind::speed: return f32_word(a.speed_mm_s);
+    case ChannelKind::command: return f32_word(a.command_mm_s);
+    case ChannelKind::sliding: return f32_word(a.s);
+    case ChannelKind::d_hat: return f32_word(a.d_hat_mm_s);
+    case ChannelKind::dac: return a.dac_code;
+    case ChannelKind::force: return f32_word(sig.force_n);
+    case ChannelKind::contour: return f32_word(sig.contour_um);
+    case ChannelKind::motion_tick: return i32_word(static_cast<double>(r.motion_tick), 1.0);
+    case ChannelKind::state: return static_cast<std::uint32_t>(r.state);
+    case ChannelKind::unshaped: return i32_word(a.unshaped_reference_mm, c->scale);
+    case ChannelKind::accel: return f32_word(a.accel_mm_s2);
+    case ChannelKind::feed_override: return f32_word(r.feed_override);
+    case ChannelKind::arsc_force_ref: return f32_word(r.arsc_force_ref_n);
+    case ChannelKind::arsc_gain: return f32_word(r.arsc_cutting_gain_n_per_mm_s);
+    case ChannelKind::excitation: return f32_word(a.excitation_mm_s);
   }
+  return 0;
 }
 
 void CaptureRecorder::arm(const CaptureSettings& settings) noexcept {

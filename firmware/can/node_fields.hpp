@@ -1,7 +1,10 @@
 #pragma once
 // The fields the node reads and writes, looked up by name at compile time
 // (a typo is a compile error). Shared by the node and the host tools.
+#include <array>
+
 #include "firmware/can/protocol_messages.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::fw::can::fields {
 
@@ -22,8 +25,12 @@ inline constexpr const MessageDef& kFaultEventMsg = message(MessageId::fault_eve
 inline constexpr const MessageDef& kHeartbeatMsg = message(MessageId::heartbeat);
 inline constexpr const MessageDef& kPositionMsg = message(MessageId::tlm_position);
 inline constexpr const MessageDef& kFollowingMsg = message(MessageId::tlm_following);
-inline constexpr const MessageDef& kSlidingXMsg = message(MessageId::tlm_sliding_x);
-inline constexpr const MessageDef& kSlidingYMsg = message(MessageId::tlm_sliding_y);
+// TLM_SLIDING_<AXIS>, in axis order.
+inline constexpr std::array<const MessageDef*, hal::kAxisCount> kSlidingMsgs{
+#define TNV_SLIDING_MSG(name, ...) &message(MessageId::tlm_sliding_##name),
+    TNV_AXES(TNV_SLIDING_MSG)
+#undef TNV_SLIDING_MSG
+};
 inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
 inline constexpr const MessageDef& kBoreGaugeMsg = message(MessageId::bore_gauge);
@@ -48,8 +55,12 @@ inline constexpr const FieldDef& kAckFault = field(kAckMsg, "fault");
 inline constexpr const FieldDef& kAckDetail = field(kAckMsg, "detail");
 inline constexpr const FieldDef& kAckOwner = field(kAckMsg, "owner");
 
-inline constexpr const FieldDef& kJogSpeedX = field(kJogMsg, "speed_x");
-inline constexpr const FieldDef& kJogSpeedY = field(kJogMsg, "speed_y");
+// JOG speed_<axis>, in axis order.
+inline constexpr std::array<const FieldDef*, hal::kAxisCount> kJogSpeeds{
+#define TNV_JOG_SPEED_FIELD(name, ...) &field(kJogMsg, "speed_" #name),
+    TNV_AXES(TNV_JOG_SPEED_FIELD)
+#undef TNV_JOG_SPEED_FIELD
+};
 
 inline constexpr const FieldDef& kMoveAxis = field(kMoveMsg, "axis");
 inline constexpr const FieldDef& kMoveSpeed = field(kMoveMsg, "speed");
@@ -101,14 +112,24 @@ inline constexpr const FieldDef& kHbFreeSlots = field(kHeartbeatMsg, "free_slots
 inline constexpr const FieldDef& kHbOwner = field(kHeartbeatMsg, "owner");
 inline constexpr const FieldDef& kHbTick = field(kHeartbeatMsg, "tick_low");
 
-inline constexpr const FieldDef& kPosX = field(kPositionMsg, "x");
-inline constexpr const FieldDef& kPosY = field(kPositionMsg, "y");
-inline constexpr const FieldDef& kFollowX = field(kFollowingMsg, "x");
-inline constexpr const FieldDef& kFollowY = field(kFollowingMsg, "y");
-inline constexpr const FieldDef& kSlidingS = field(kSlidingXMsg, "s");
-inline constexpr const FieldDef& kSlidingDHat = field(kSlidingXMsg, "d_hat");
-inline constexpr const FieldDef& kOutputDacX = field(kOutputMsg, "dac_x");
-inline constexpr const FieldDef& kOutputDacY = field(kOutputMsg, "dac_y");
+inline constexpr const FieldDef& kSlidingS = field(*kSlidingMsgs[0], "s");
+inline constexpr const FieldDef& kSlidingDHat = field(*kSlidingMsgs[0], "d_hat");
+// TLM_OUTPUT dac_<axis>, TLM_POSITION and TLM_FOLLOWING <axis>, in axis order.
+inline constexpr std::array<const FieldDef*, hal::kAxisCount> kOutputDacs{
+#define TNV_OUTPUT_DAC_FIELD(name, ...) &field(kOutputMsg, "dac_" #name),
+    TNV_AXES(TNV_OUTPUT_DAC_FIELD)
+#undef TNV_OUTPUT_DAC_FIELD
+};
+inline constexpr std::array<const FieldDef*, hal::kAxisCount> kPositionFields{
+#define TNV_POSITION_FIELD(name, ...) &field(kPositionMsg, #name),
+    TNV_AXES(TNV_POSITION_FIELD)
+#undef TNV_POSITION_FIELD
+};
+inline constexpr std::array<const FieldDef*, hal::kAxisCount> kFollowingFields{
+#define TNV_FOLLOWING_FIELD(name, ...) &field(kFollowingMsg, #name),
+    TNV_AXES(TNV_FOLLOWING_FIELD)
+#undef TNV_FOLLOWING_FIELD
+};
 inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
 inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
 inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");

@@ -421,8 +421,11 @@ constexpr ParamDef kParams[] = {
     {0x006F, "tlm.arsc_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.arsc_ms), "TLM_ARSC period; 0 = off"},
     TNV_BORE_PARAMS,
-    TNV_AXIS_PARAMS(0, 0x0100, "x."),
-    TNV_AXIS_PARAMS(1, 0x0200, "y."),
+// One block of rows per axis of TNV_AXES: ids (index + 1) << 8, names "<axis>.".
+#define TNV_AXIS_PARAM_BLOCK(name, ...) \
+  TNV_AXIS_PARAMS(hal::index(hal::Axis::name), axis_param_base(hal::Axis::name), #name "."),
+    TNV_AXES(TNV_AXIS_PARAM_BLOCK)
+#undef TNV_AXIS_PARAM_BLOCK
 };
 
 #undef TNV_AXIS_PARAMS
@@ -520,6 +523,14 @@ double from_wire(const ParamDef& p, std::uint32_t raw) noexcept {
 
 namespace {
 
+// The sections a per-axis validation error names ("axis x: shaper").
+#define TNV_AXIS_SECTION(name, ...) "axis " #name ": shaper",
+constexpr const char* kAxisShaperSection[] = {TNV_AXES(TNV_AXIS_SECTION)};
+#undef TNV_AXIS_SECTION
+#define TNV_AXIS_SECTION(name, ...) "axis " #name ": limits",
+constexpr const char* kAxisLimitsSection[] = {TNV_AXES(TNV_AXIS_SECTION)};
+#undef TNV_AXIS_SECTION
+
 // The parameter whose member `member` is in `s` (a validation error's
 // offending member); 0 when it is none of them.
 std::uint16_t param_at(const NodeSettings& s, const void* member) noexcept {
@@ -540,12 +551,12 @@ SettingsCheck validate_parts(const NodeSettings& s, const NodeSettings* base) no
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     if (base == nullptr || !same_bytes(s.shaper[i].spec, base->shaper[i].spec))
       if (const ParamCheck c = validate(s.shaper[i].spec); !c.ok)
-        return {false, static_cast<std::uint16_t>(i == 0 ? 0x0141 : 0x0241), i == 0 ? "axis x: shaper" : "axis y: shaper",
-                c.reason};
+        return {false, static_cast<std::uint16_t>(axis_param_base(hal::axis_from_index(i)) + 0x41),
+                kAxisShaperSection[i], c.reason};
     const AxisLimits& lim = s.firmware.supervisor.axis[i];
     if (!(lim.position_min_mm < lim.position_max_mm))
-      return {false, static_cast<std::uint16_t>(i == 0 ? 0x0150 : 0x0250), i == 0 ? "axis x: limits" : "axis y: limits",
-              "position_min_mm must be below position_max_mm"};
+      return {false, static_cast<std::uint16_t>(axis_param_base(hal::axis_from_index(i)) + 0x50),
+              kAxisLimitsSection[i], "position_min_mm must be below position_max_mm"};
   }
   if (!(s.excite.f_min_hz < s.excite.f_max_hz)) return {false, 0x0045, "excite", "f_max_hz must be above f_min_hz"};
   if (s.excite.tones > multisine_tone_capacity(s.excite.f_min_hz, s.excite.f_max_hz, kControlPeriod_s))

@@ -8,8 +8,15 @@
 
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/protocol_enums.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::fw::can {
+
+// Each axis of TNV_AXES has one block of parameter ids, (index + 1) << 8
+// (x 0x01nn, y 0x02nn), its rows named "<axis>." (param_table.cpp).
+constexpr std::uint16_t axis_param_base(hal::Axis axis) noexcept {
+  return static_cast<std::uint16_t>((hal::index(axis) + 1) << 8);
+}
 
 enum class ParamType : std::uint8_t { f32, u32, i32, boolean, enumeration };
 enum class Access : std::uint8_t { read_only, read_write };

@@ -1,10 +1,14 @@
 #pragma once
 // Enumerations carried in protocol fields. Their numbers are wire values:
 // append, never renumber.
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include "hal/listed_enum.hpp"
+
+#include "hal/axis.hpp"
 
 namespace tnv::fw::can {
 
@@ -158,6 +162,15 @@ enum HeartbeatBit : std::uint16_t {
   kHbHomedX = 1u << 14,
   kHbHomedY = 1u << 15,
 };
+
+// The per-axis heartbeat bits, in axis order. HEARTBEAT's errors word is 16
+// bits and all are used: an axis beyond these needs a new heartbeat layout,
+// and a missing entry (0) fails the build.
+inline constexpr std::array<std::uint16_t, hal::kAxisCount> kHbShaperBits{kHbShaperX, kHbShaperY};
+inline constexpr std::array<std::uint16_t, hal::kAxisCount> kHbHomedBits{kHbHomedX, kHbHomedY};
+static_assert(std::ranges::find(kHbShaperBits, std::uint16_t{0}) == kHbShaperBits.end() &&
+                  std::ranges::find(kHbHomedBits, std::uint16_t{0}) == kHbHomedBits.end(),
+              "HEARTBEAT: every axis needs its shaper and homed bits");
 
 struct HeartbeatBitDoc {
   std::uint16_t mask;

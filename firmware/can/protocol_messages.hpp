@@ -13,6 +13,7 @@
 #include "firmware/shaper/shaper_type.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::fw::can {
 
@@ -35,8 +36,10 @@ enum class MessageId : std::uint8_t {
   segment_tail = 0x0F,
   tlm_position = 0x10,
   tlm_following = 0x11,
-  tlm_sliding_x = 0x12,
-  tlm_sliding_y = 0x13,
+// TLM_SLIDING_<AXIS>: one message per axis of TNV_AXES from 0x12.
+#define TNV_TLM_SLIDING_ID(name, ...) tlm_sliding_##name = 0x12 + static_cast<std::uint8_t>(hal::Axis::name),
+  TNV_AXES(TNV_TLM_SLIDING_ID)
+#undef TNV_TLM_SLIDING_ID
   tlm_output = 0x14,
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
@@ -48,11 +51,31 @@ enum class MessageId : std::uint8_t {
 
 namespace detail {
 
+// Byte offset of an axis' field in a frame that carries one per axis.
+constexpr std::uint8_t axis_byte(hal::Axis axis, std::size_t first, std::size_t width) {
+  return static_cast<std::uint8_t>(first + hal::index(axis) * width);
+}
+
+// a + b, at compile time, in a buffer of N (a longer text fails the build).
+template <std::size_t N>
+constexpr std::array<char, N> joined_text(const char* a, const char* b) {
+  std::array<char, N> out{};
+  std::size_t at = 0;
+  for (const char* s : {a, b})
+    for (; *s != '\0'; ++s) out[at++] = *s;
+  out[at] = '\0';
+  return out;
+}
+
 // The enums' value lists, from their own name lists (value_list.hpp).
 inline constexpr const char* kStateValues = kValueList<kMotionStateNames>;
 inline constexpr const char* kFaultValues = kValueList<kFaultReasonNames>;
 inline constexpr const char* kErrorValues = kValueList<kErrorCodeNames>;
-inline constexpr const char* kAxisValues = "0=x 1=y 255=all";
+// The axis fields' value lists, from the axis list (hal/axis.hpp).
+inline constexpr const char* kAxisIndexValues = kValueList<hal::kAxisNames>;
+inline constexpr auto kAxisValuesText = joined_text<64>(kAxisIndexValues, " 255=all");
+inline constexpr auto kAxisOrNoneText = joined_text<64>("-1=none ", kAxisIndexValues);
+inline constexpr const char* kAxisValues = kAxisValuesText.data();
 inline constexpr const char* kTagDoc =
     "request tag: host id (high nibble, 1..15; 0 is refused) and the host's own sequence (low nibble); the reply "
     "echoes it";
@@ -60,7 +83,7 @@ inline constexpr const char* kReplyTagDoc = "the tag of the request answered (ho
 
 inline constexpr FieldDef kFaultEvent[] = {
     {"reason", WireType::u8, 0, 1, "", kFaultValues, "the latched fault"},
-    {"axis", WireType::i8, 1, 1, "", "-1=none 0=x 1=y", "axis it concerns"},
+    {"axis", WireType::i8, 1, 1, "", kAxisOrNoneText.data(), "axis it concerns"},
     {"tick_low", WireType::u16, 2, 1, "tick", "", "low 16 bits of the tick count when it latched"},
     {"value", WireType::f32, 4, 1, "", "", "the offending value (mm, mm/s or ticks, by reason)"},
 };
@@ -89,13 +112,15 @@ inline constexpr FieldDef kCommandAck[] = {
 inline constexpr FieldDef kJog[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"reserved", WireType::u8, 1, 1, "", "", "0"},
-    {"speed_x", WireType::i16, 2, 0.01, "mm/s", "", "target speed, x; repeat within jog.deadman_s"},
-    {"speed_y", WireType::i16, 4, 0.01, "mm/s", "", "target speed, y"},
+#define TNV_JOG_SPEED(name, ...) \
+  {"speed_" #name, WireType::i16, axis_byte(hal::Axis::name, 2, 2), 0.01, "mm/s", "", "target speed, " #name " (repeat within jog.deadman_s)"},
+    TNV_AXES(TNV_JOG_SPEED)
+#undef TNV_JOG_SPEED
     {"reserved2", WireType::u16, 6, 1, "", "", "0"},
 };
 inline constexpr FieldDef kMove[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to move; the other holds"},
+    {"axis", WireType::u8, 1, 1, "", kAxisIndexValues, "axis to move; the others hold"},
     {"speed", WireType::u16, 2, 0.01, "mm/s", "", "cruise speed"},
     {"distance", WireType::f32, 4, 1, "mm", "", "signed distance from where the axis stands"},
 };
@@ -107,7 +132,7 @@ inline constexpr FieldDef kCircle[] = {
 };
 inline constexpr FieldDef kShaper[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis"},
+    {"axis", WireType::u8, 1, 1, "", kAxisIndexValues, "axis"},
     {"type", WireType::u8, 2, 1, "", kValueList<kShaperTypeNames>, "shaper family"},
     {"reserved", WireType::u8, 3, 1, "", "", "0"},
     {"zeta", WireType::u16, 4, 0.0001, "", "", "damping ratio of the mode"},
@@ -115,7 +140,7 @@ inline constexpr FieldDef kShaper[] = {
 };
 inline constexpr FieldDef kExcite[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"axis", WireType::u8, 1, 1, "", "0=x 1=y", "axis to excite; the other holds"},
+    {"axis", WireType::u8, 1, 1, "", kAxisIndexValues, "axis to excite; the others hold"},
     {"kind", WireType::u8, 2, 1, "", kValueList<kExcitationKindNames>,
      "step: u = level for duration; ramp: u = +-2 mm/s^2 t up to |level|; sweep / multisine: added to the holding "
      "controller's command, the reference moving at excite.carrier_mm_s meanwhile; multisine_open: the command "
@@ -198,20 +223,25 @@ inline constexpr FieldDef kProgramStatus[] = {
     {"feed_override", WireType::u8, 7, 1, "%", "", "feed override in percent of the programmed feeds"},
 };
 inline constexpr FieldDef kTlmPosition[] = {
-    {"x", WireType::i32, 0, 1e-6, "mm", "", "encoder position, x"},
-    {"y", WireType::i32, 4, 1e-6, "mm", "", "encoder position, y"},
+#define TNV_TLM_POSITION(name, ...) {#name, WireType::i32, axis_byte(hal::Axis::name, 0, 4), 1e-6, "mm", "", "encoder position, " #name},
+    TNV_AXES(TNV_TLM_POSITION)
+#undef TNV_TLM_POSITION
 };
 inline constexpr FieldDef kTlmFollowing[] = {
-    {"x", WireType::i32, 0, 1e-6, "mm", "", "reference - position, x"},
-    {"y", WireType::i32, 4, 1e-6, "mm", "", "reference - position, y"},
+#define TNV_TLM_FOLLOWING(name, ...) \
+  {#name, WireType::i32, axis_byte(hal::Axis::name, 0, 4), 1e-6, "mm", "", "reference - position, " #name},
+    TNV_AXES(TNV_TLM_FOLLOWING)
+#undef TNV_TLM_FOLLOWING
 };
 inline constexpr FieldDef kTlmSliding[] = {
     {"s", WireType::f32, 0, 1, "mm/s", "", "sliding variable s_k (S1 eq. 5)"},
     {"d_hat", WireType::f32, 4, 1, "mm/s", "", "disturbance estimate d^_k (S1 eq. 7)"},
 };
 inline constexpr FieldDef kTlmOutput[] = {
-    {"dac_x", WireType::u16, 0, 1, "", "", "DAC code, x (offset binary)"},
-    {"dac_y", WireType::u16, 2, 1, "", "", "DAC code, y"},
+#define TNV_TLM_DAC(name, ...) \
+  {"dac_" #name, WireType::u16, axis_byte(hal::Axis::name, 0, 2), 1, "", "", "DAC code, " #name " (offset binary)"},
+    TNV_AXES(TNV_TLM_DAC)
+#undef TNV_TLM_DAC
     {"force", WireType::f32, 4, 1, "N", "", "force sensor (force.n_per_volt x ADC volts)"},
 };
 inline constexpr FieldDef kTlmContour[] = {
@@ -257,7 +287,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 27> kMessages{{
+inline constexpr std::array<MessageDef, 25 + hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -312,10 +342,11 @@ inline constexpr std::array<MessageDef, 27> kMessages{{
      "Telemetry every tlm.position_ms (0 = off)."},
     {0x11, "tlm_following", Direction::from_node, 8, detail::kTlmFollowing,
      "Telemetry every tlm.following_ms (0 = off)."},
-    {0x12, "tlm_sliding_x", Direction::from_node, 8, detail::kTlmSliding,
-     "Telemetry every tlm.sliding_ms (0 = off): x controller internals (0 for PID)."},
-    {0x13, "tlm_sliding_y", Direction::from_node, 8, detail::kTlmSliding,
-     "Telemetry every tlm.sliding_ms (0 = off): y controller internals (0 for PID)."},
+#define TNV_TLM_SLIDING(name, ...)                                                                                \
+  {static_cast<std::uint8_t>(MessageId::tlm_sliding_##name), "tlm_sliding_" #name, Direction::from_node, 8,  \
+   detail::kTlmSliding, "Telemetry every tlm.sliding_ms (0 = off): " #name " controller internals (0 for PID)."},
+    TNV_AXES(TNV_TLM_SLIDING)
+#undef TNV_TLM_SLIDING
     {0x14, "tlm_output", Direction::from_node, 8, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
@@ -339,6 +370,31 @@ inline constexpr std::array<MessageDef, 27> kMessages{{
      "part. The parts counted, the resets and the estimates are the read-only parameters bore.parts, bore.resets, "
      "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
 }};
+
+namespace detail {
+// Every message: ids unique and sorted, its fields inside its length and
+// apart. A per-axis field or message that no longer fits (a frame full of
+// axes, an id taken) fails the build here, not on the bus.
+consteval bool messages_well_formed() {
+  for (std::size_t i = 0; i < kMessages.size(); ++i) {
+    const MessageDef& m = kMessages[i];
+    if (m.id > 0x1F || (i > 0 && m.id <= kMessages[i - 1].id)) return false;
+    std::uint32_t used = 0;
+    for (const FieldDef& f : m.fields) {
+      const std::size_t bytes = wire_size(f.type);
+      if (f.byte_offset + bytes > m.dlc) return false;
+      for (std::size_t b = f.byte_offset; b < f.byte_offset + bytes; ++b) {
+        if ((used & (1u << b)) != 0) return false;
+        used |= 1u << b;
+      }
+    }
+  }
+  return true;
+}
+}  // namespace detail
+static_assert(detail::messages_well_formed(),
+              "protocol table: message ids sorted and unique, fields inside the frame and apart (a per-axis field "
+              "that no longer fits needs a new frame layout: docs/architecture.md, an axis)");
 
 constexpr const MessageDef* find_message(std::uint8_t id) noexcept {
   for (const MessageDef& m : kMessages)

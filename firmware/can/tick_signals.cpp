@@ -8,10 +8,11 @@ namespace tnv::fw::can {
 
 double contour_um(const TickTask& task, const TickRecord& r) noexcept {
   if (r.motion_tick < 0 || !task.circle_motion()) return 0.0;
-  const double cx = task.circle_centre_mm(hal::Axis::x);
-  const double cy = task.circle_centre_mm(hal::Axis::y);
-  const AxisTickRecord& x = r.axis[0];
-  const AxisTickRecord& y = r.axis[1];
+  // The circle lies in the XY plane.
+  const double cx = task.circle_centre_mm(hal::kPlaneFirst);
+  const double cy = task.circle_centre_mm(hal::kPlaneSecond);
+  const AxisTickRecord& x = r.axis[hal::index(hal::kPlaneFirst)];
+  const AxisTickRecord& y = r.axis[hal::index(hal::kPlaneSecond)];
   // S1 eq. (33); with the centre at the origin exactly tnv-hil's contour_error_mm().
   const double e_mm = std::fabs(std::hypot(x.reference_mm - cx, y.reference_mm - cy) -
                                 std::hypot(x.position_mm - cx, y.position_mm - cy));

@@ -7,13 +7,17 @@ namespace tnv::fw {
 
 AxisModel paper_axis_model(hal::Axis axis) noexcept {
   AxisModel m;
-  // S1 eq. (31)
-  if (axis == hal::Axis::x) {
-    m.A << 1.0, 0.0009, 0.0, 0.8298;
-    m.B << 0.0001, 0.1702;
-  } else {
-    m.A << 1.0, 0.0009, 0.0, 0.8690;
-    m.B << 0.0001, 0.1310;
+  // S1 eq. (31). One case per axis and no default: a new axis of TNV_AXES
+  // fails the build (-Wswitch) until it has its model here.
+  switch (axis) {
+    case hal::Axis::x:
+      m.A << 1.0, 0.0009, 0.0, 0.8298;
+      m.B << 0.0001, 0.1702;
+      break;
+    case hal::Axis::y:
+      m.A << 1.0, 0.0009, 0.0, 0.8690;
+      m.B << 0.0001, 0.1310;
+      break;
   }
   m.period_s = kControlPeriod_s;
   return m;

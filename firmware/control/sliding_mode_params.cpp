@@ -7,7 +7,10 @@ namespace tnv::fw {
 
 SlidingModeParams paper_rdvsc_params(hal::Axis axis) noexcept {
   SlidingModeParams p;
-  if (axis == hal::Axis::x) {  // Table 1/2, X axis
+  // One case per axis and no default: a new axis of TNV_AXES fails the
+  // build (-Wswitch) until it has its own values here.
+  switch (axis) {
+    case hal::Axis::x:  // Table 1/2, X axis
     p.G_position_1_s = 287.0;
     p.G_speed = 1.0;
     p.eta_mm_s = 0.1971;
@@ -15,7 +18,8 @@ SlidingModeParams paper_rdvsc_params(hal::Axis axis) noexcept {
     p.q = 0.9;
     p.g = 0.1498;
     p.gamma = 0.4155;
-  } else {  // Table 1/2, Y axis
+      break;
+    case hal::Axis::y:  // Table 1/2, Y axis
     p.G_position_1_s = 203.0;
     p.G_speed = 1.0;
     p.eta_mm_s = 0.1014;
@@ -23,6 +27,7 @@ SlidingModeParams paper_rdvsc_params(hal::Axis axis) noexcept {
     p.q = 0.98;
     p.g = 0.3104;
     p.gamma = 0.3040;
+      break;
   }
   p.u_max_mm_s = kDacFullScaleSpeed_mm_s;
   return p;

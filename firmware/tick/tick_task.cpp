@@ -1,8 +1,10 @@
 #include "firmware/tick/tick_task.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "firmware/io/accel_code.hpp"
 #include "firmware/io/dac_code.hpp"
@@ -15,6 +17,12 @@ namespace {
 constexpr std::uint32_t kNominalPeriodClocks = 10'000;
 constexpr std::uint32_t kLateToleranceClocks = 500;  // 5% of a period
 }  // namespace
+
+std::array<TickTask::AxisLoop, hal::kAxisCount> TickTask::make_axis_loops(const FirmwareConfig& config) noexcept {
+  return [&config]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array<AxisLoop, hal::kAxisCount>{AxisLoop(config.axis[I])...};
+  }(std::make_index_sequence<hal::kAxisCount>{});
+}
 
 std::int64_t TickTask::ticks_for(double seconds) noexcept {
   return static_cast<std::int64_t>(std::llround(seconds / kTickPeriodS));
@@ -38,7 +46,7 @@ AxisController& TickTask::AxisLoop::active() noexcept {
 }
 
 TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
-    : board_(board), config_(config), axis_{AxisLoop(config.axis[0]), AxisLoop(config.axis[1])} {
+    : board_(board), config_(config), axis_(make_axis_loops(config)) {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     axis_[i].encoder = EncoderPosition(board_.counter_bits());
     hold_[i] = {config_.axis[i].home_position_mm, 0.0};

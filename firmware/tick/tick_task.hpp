@@ -187,15 +187,17 @@ class TickTask {
   // Software e-stop: latches FaultReason::remote_estop (outputs safe from
   // the next tick on). Always ok; the first latched reason wins.
   CommandStatus estop() noexcept;
-  // Homing cycle (homing/homing_cycle.hpp) of X, Y or both (X first, then
-  // Y), from holding or disabled (servo on where the table stands). The
-  // other axis holds. At the index edge the axis' frame moves so the
-  // latched count reads config axis.homing.position_mm; the axis then
+  // Homing cycle (homing/homing_cycle.hpp) of the axes in `axes` (one
+  // after the other in hal::kHomingOrder: X first, then Y), from holding or
+  // disabled (servo on where the table stands). The other axes hold. At
+  // the index edge the axis' frame moves so the latched count reads config
+  // axis.homing.position_mm; the axis then
   // brakes to rest and is homed. Soft limits are off for the homing axis
   // while it homes. A cycle that runs out of travel brakes to rest and
   // latches FaultReason::homing_failed; stop() ends it (not homed). busy
-  // while moving, faulted when faulted, invalid when no axis is named.
-  CommandStatus home(bool x, bool y) noexcept;
+  // while moving, faulted when faulted, invalid when no axis (or no
+  // axis of the machine) is named.
+  CommandStatus home(hal::AxisSet axes) noexcept;
   bool homed(hal::Axis axis) const noexcept { return homed_[hal::index(axis)]; }
   HomingResult homing_result(hal::Axis axis) const noexcept { return home_result_[hal::index(axis)]; }
   bool homing() const noexcept { return moving() && source_ == Source::homing; }
@@ -274,6 +276,7 @@ class TickTask {
   void moving_reference() noexcept;
   void homing_reference() noexcept;            // tick_task_homing.cpp
   void start_homing_axis(std::size_t a) noexcept;
+  std::size_t next_homing_axis(std::size_t after) const noexcept;
   void end_homing() noexcept;                  // a cycle that did not finish: not homed
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
@@ -297,6 +300,8 @@ class TickTask {
   hal::IoBoard& board_;
   FirmwareConfig config_;
   bool config_validated_ = false;  // config_ passed validate() (apply_config): a change re-checks only what differs
+  // One loop per axis, each from its own config.
+  static std::array<AxisLoop, hal::kAxisCount> make_axis_loops(const FirmwareConfig& config) noexcept;
   std::array<AxisLoop, hal::kAxisCount> axis_;
   motion::MotionInterpolator motion_{};
   motion::JogProducer jog_{};

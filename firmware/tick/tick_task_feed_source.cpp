@@ -10,7 +10,10 @@ namespace tnv::fw {
 void TickTask::run_feed_source() noexcept {
   const bool program = state_ == MotionState::moving && source_ == Source::program;
   if (program && arsc_.enabled()) {
-    if (!arsc_.running()) arsc_.start({record_.axis[0].position_mm, record_.axis[1].position_mm});
+    // The cut runs in the XY plane.
+    if (!arsc_.running())
+      arsc_.start({record_.axis[hal::index(hal::kPlaneFirst)].position_mm,
+                   record_.axis[hal::index(hal::kPlaneSecond)].position_mm});
     arsc::ArscFeedInput in;
     in.force_n = force_code_to_n(record_.force_code, config_.force_sensor.n_per_volt);
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) {

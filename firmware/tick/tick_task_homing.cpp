@@ -7,24 +7,36 @@
 
 namespace tnv::fw {
 
-CommandStatus TickTask::home(bool x, bool y) noexcept {
+// The queued axis that homes after `after` (hal::kHomingOrder); kAxisCount
+// for none. after = kAxisCount: the first.
+std::size_t TickTask::next_homing_axis(std::size_t after) const noexcept {
+  bool past = after >= hal::kAxisCount;
+  for (const hal::Axis a : hal::kHomingOrder) {
+    const std::size_t i = hal::index(a);
+    if (past && homing_queued_[i]) return i;
+    if (i == after) past = true;
+  }
+  return hal::kAxisCount;
+}
+
+CommandStatus TickTask::home(hal::AxisSet axes) noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (moving()) return CommandStatus::busy;
-  if (!x && !y) return CommandStatus::invalid;
+  if ((axes & hal::kEveryAxis) == 0 || (axes & ~hal::kEveryAxis) != 0) return CommandStatus::invalid;
   const bool was_on = state_ == MotionState::holding;
   if (!was_on) {
     // Servo on where the table stands (bumpless), as hold_position().
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
     reset_controllers();
   }
-  homing_queued_ = {x, y};
+  for (const hal::Axis a : hal::kAxes) homing_queued_[hal::index(a)] = hal::contains(axes, a);
   source_ = Source::homing;
   stop_requested_ = false;
   phase_tick_ = 0;
   motion_ticks_ = 0;
   centred_ = false;
   state_ = MotionState::moving;
-  start_homing_axis(x ? 0 : 1);
+  start_homing_axis(next_homing_axis(hal::kAxisCount));
   return CommandStatus::ok;
 }
 
@@ -83,8 +95,8 @@ void TickTask::homing_reference() noexcept {
   if (homing_.phase() == HomingPhase::done) {
     homed_[a] = true;
     homing_queued_[a] = false;
-    if (a == 0 && homing_queued_[1]) {
-      start_homing_axis(1);
+    if (const std::size_t next = next_homing_axis(a); next < hal::kAxisCount) {
+      start_homing_axis(next);
       return;
     }
   }

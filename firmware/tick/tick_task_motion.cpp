@@ -102,9 +102,14 @@ CommandStatus TickTask::jog(hal::Axis axis, double speed_mm_s) noexcept {
     // Validate before starting anything: nothing is half-applied.
     const JogLimits& lim = config_.axis[a].jog;
     if (!std::isfinite(speed_mm_s) || std::fabs(speed_mm_s) > lim.speed_max_mm_s) return CommandStatus::invalid;
-    const double accel_cap = std::min(config_.axis[0].jog.accel_mm_s2, config_.axis[1].jog.accel_mm_s2);
+    std::array<JogLimits, hal::kAxisCount> jog_limits{};
+    double accel_cap = config_.axis[0].jog.accel_mm_s2;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      jog_limits[i] = config_.axis[i].jog;
+      accel_cap = std::min(accel_cap, jog_limits[i].accel_mm_s2);
+    }
     motion_.reset_at(held_point(), accel_cap);
-    jog_.start({config_.axis[0].jog, config_.axis[1].jog});
+    jog_.start(jog_limits);
     source_ = Source::jog;
     stop_requested_ = false;
     phase_tick_ = 0;

@@ -3,7 +3,7 @@
 namespace tnv::fw {
 
 const char* validate(const MoveSpec& spec) noexcept {
-  if (spec.axis != hal::Axis::x && spec.axis != hal::Axis::y) return "axis must be x or y";
+  if (hal::index(spec.axis) >= hal::kAxisCount) return "axis must be one of the machine's axes";
   if (!std::isfinite(spec.distance_mm) || spec.distance_mm == 0.0) return "distance_mm must be finite and non-zero";
   if (!std::isfinite(spec.speed_mm_s) || spec.speed_mm_s <= 0.0) return "speed_mm_s must be > 0 and finite";
   if (!std::isfinite(spec.ramp_s) || spec.ramp_s < 0.0) return "ramp_s must be >= 0 and finite";

@@ -33,10 +33,10 @@ std::uint32_t index_edges(std::uint32_t word) { return (word >> regs::kIndexEdge
 
 TEST(IndexLatch, LatchesTheCountAtTheMarkOncePerRevolutionInEitherDirection) {
   Scenario s;
-  s.board.index_x_deg = 90.0;  // marks at 2.5 + k 10 mm of motor travel
-  s.encoder.offset_counts_x = 1234.4;
+  s.board.axis[0].index_deg = 90.0;  // marks at 2.5 + k 10 mm of motor travel
+  s.encoder.axis_offset_counts[0] = 1234.4;
   Machine m(s);
-  const QuadratureEncoder encoder(kCountMm, s.encoder.offset_counts_x);
+  const QuadratureEncoder encoder(kCountMm, s.encoder.axis_offset_counts[0]);
   EXPECT_EQ(m.index_mark_mm(Axis::x), 2.5);
   EXPECT_EQ(read(m, regs::kIndexX), 0u) << "no edge before the axis moved";
 
@@ -67,9 +67,9 @@ TEST(IndexLatch, LatchesTheCountAtTheMarkOncePerRevolutionInEitherDirection) {
 
 TEST(HomeSwitch, AssertsAtItsTablePositionOnItsSide) {
   Scenario s;
-  s.board.home_switch_x = true;
-  s.board.home_x_mm = 3.0;
-  s.board.home_x_side = -1;
+  s.board.axis[0].home_switch = true;
+  s.board.axis[0].home_mm = 3.0;
+  s.board.axis[0].home_side = -1;
   Machine m(s);
   m.advance_to_next_tick();
   EXPECT_EQ(read(m, regs::kInputs) & regs::kInputHomeX, 0u) << "released at 6 mm";
@@ -90,8 +90,8 @@ TEST(HomeSwitch, AssertsAtItsTablePositionOnItsSide) {
 TEST(LimitSwitchPositions, AssertTheLimitInputsBeyondThem) {
   Scenario s;
   s.board.limit_switches = true;
-  s.board.limit_x_min_mm = 5.0;
-  s.board.limit_y_max_mm = -1.0;  // Y stands at 0: beyond its max
+  s.board.axis[0].limit_min_mm = 5.0;
+  s.board.axis[1].limit_max_mm = -1.0;  // Y stands at 0: beyond its max
   Machine m(s);
   m.advance_to_next_tick();
   EXPECT_EQ(read(m, regs::kInputs) & (regs::kInputLimitXNeg | regs::kInputLimitXPos), 0u);
@@ -104,17 +104,17 @@ TEST(LimitSwitchPositions, AssertTheLimitInputsBeyondThem) {
 
 TEST(BoardKeys, PowerUpOffsetMovesTheStartAndDefaultsChangeNothing) {
   Scenario s;
-  s.board.power_up_offset_x_mm = -3.25;
-  s.board.power_up_offset_y_mm = 1.5;
+  s.board.axis[0].power_up_offset_mm = -3.25;
+  s.board.axis[1].power_up_offset_mm = 1.5;
   Machine moved(s);
   EXPECT_EQ(moved.truth(Axis::x).motor_position_mm, s.circle.radius_mm - 3.25);
   EXPECT_EQ(moved.truth(Axis::y).position_mm, 1.5);
 
   const Scenario defaults;
-  EXPECT_FALSE(defaults.board.home_switch_x);
-  EXPECT_FALSE(defaults.board.home_switch_y);
+  EXPECT_FALSE(defaults.board.axis[0].home_switch);
+  EXPECT_FALSE(defaults.board.axis[1].home_switch);
   EXPECT_FALSE(defaults.board.limit_switches);
-  EXPECT_EQ(defaults.board.power_up_offset_x_mm, 0.0);
+  EXPECT_EQ(defaults.board.axis[0].power_up_offset_mm, 0.0);
   Machine m(defaults);
   m.advance_to_next_tick();
   EXPECT_EQ(read(m, regs::kInputs), 0u) << "no switch asserts by default";
@@ -142,19 +142,19 @@ power_up_offset_y_mm = -8
                                                "b.toml");
   ASSERT_TRUE(r.scenario) << r.error;
   const BoardParams& b = r.scenario->board;
-  EXPECT_TRUE(b.home_switch_x && b.home_switch_y && b.limit_switches);
-  EXPECT_EQ(b.home_x_mm, -12.5);
-  EXPECT_EQ(b.home_y_mm, 30.0);
-  EXPECT_EQ(b.home_x_side, 1);
-  EXPECT_EQ(b.home_y_side, -1);
-  EXPECT_EQ(b.index_x_deg, 45.0);
-  EXPECT_EQ(b.index_y_deg, 359.5);
-  EXPECT_EQ(b.limit_x_min_mm, -100.0);
-  EXPECT_EQ(b.limit_x_max_mm, 110.0);
-  EXPECT_EQ(b.limit_y_min_mm, -90.0);
-  EXPECT_EQ(b.limit_y_max_mm, 95.0);
-  EXPECT_EQ(b.power_up_offset_x_mm, 7.0);
-  EXPECT_EQ(b.power_up_offset_y_mm, -8.0);
+  EXPECT_TRUE(b.axis[0].home_switch && b.axis[1].home_switch && b.limit_switches);
+  EXPECT_EQ(b.axis[0].home_mm, -12.5);
+  EXPECT_EQ(b.axis[1].home_mm, 30.0);
+  EXPECT_EQ(b.axis[0].home_side, 1);
+  EXPECT_EQ(b.axis[1].home_side, -1);
+  EXPECT_EQ(b.axis[0].index_deg, 45.0);
+  EXPECT_EQ(b.axis[1].index_deg, 359.5);
+  EXPECT_EQ(b.axis[0].limit_min_mm, -100.0);
+  EXPECT_EQ(b.axis[0].limit_max_mm, 110.0);
+  EXPECT_EQ(b.axis[1].limit_min_mm, -90.0);
+  EXPECT_EQ(b.axis[1].limit_max_mm, 95.0);
+  EXPECT_EQ(b.axis[0].power_up_offset_mm, 7.0);
+  EXPECT_EQ(b.axis[1].power_up_offset_mm, -8.0);
 }
 
 TEST(BoardKeys, OutOfRangeRefusedWithItsReason) {

@@ -101,8 +101,8 @@ TEST(ScenarioFile, EveryKeyIsParsed) {
   EXPECT_EQ(s.cutting.phase_rad, 1.25);
   EXPECT_EQ(s.encoder.counts_per_rev, 8000);
   EXPECT_EQ(s.encoder.lead_mm, 5.0);
-  EXPECT_EQ(s.encoder.offset_counts_x, 0.25);
-  EXPECT_EQ(s.encoder.offset_counts_y, -0.5);
+  EXPECT_EQ(s.encoder.axis_offset_counts[0], 0.25);
+  EXPECT_EQ(s.encoder.axis_offset_counts[1], -0.5);
   EXPECT_EQ(s.dac.bits, 16);
   EXPECT_EQ(s.dac.full_scale_v, 5.0);
   EXPECT_EQ(s.dac.rpm_at_full_scale, 2000.0);

@@ -10,16 +10,16 @@ namespace {
 
 TEST(CounterWrap, ClockAndEncoderWrapsMidCircleLeaveTheContourErrorUnchanged) {
   emu::Scenario base = *emu::builtin_scenario("cut-1200");
-  base.encoder.offset_counts_x = 0.3;
-  base.encoder.offset_counts_y = 0.7;
+  base.encoder.axis_offset_counts[0] = 0.3;
+  base.encoder.axis_offset_counts[1] = 0.7;
   const CircleRunResult plain = run_circle(base, fw::default_firmware_config(), fw::ControllerKind::rdvsc);
 
   emu::Scenario wrapped = base;
   wrapped.board.clock_start = 0xFFFFFFFFu - 50'000'000u;  // wraps 5 s in, mid-circle
   // x spans -14400..14400 counts: the 16-bit register wraps at x = 3 mm;
   // y wraps at about y = 2.3 mm.
-  wrapped.encoder.offset_counts_x += 65536.0 - 7200.0;
-  wrapped.encoder.offset_counts_y += 60000.0;
+  wrapped.encoder.axis_offset_counts[0] += 65536.0 - 7200.0;
+  wrapped.encoder.axis_offset_counts[1] += 60000.0;
   const CircleRunResult shifted = run_circle(wrapped, fw::default_firmware_config(), fw::ControllerKind::rdvsc);
 
   ASSERT_TRUE(plain.completed) << plain.error;

@@ -43,7 +43,7 @@ TEST(HomingCycle, MotionRefusedBeforeHomingAndSoftLimitsAreRelativeToHome) {
   ASSERT_EQ(rig.task.hold_position(), fw::CommandStatus::ok);
   EXPECT_EQ(rig.task.start_move({hal::Axis::x, 1.0, 5.0, 0.02, 0.0}), fw::CommandStatus::not_homed);
   EXPECT_EQ(rig.task.start_circle(circle_spec_for(rig.scenario)), fw::CommandStatus::not_homed);
-  ASSERT_EQ(rig.task.home(true, false), fw::CommandStatus::ok);
+  ASSERT_EQ(rig.task.home(hal::axis_bit(hal::Axis::x)), fw::CommandStatus::ok);
   for (int k = 0; k < 30'000 && rig.task.homing(); ++k) rig.tick();
   ASSERT_TRUE(rig.task.homed(hal::Axis::x)) << fw::to_string(rig.task.homing_result(hal::Axis::x));
   const double x_mm = rig.task.standing_mm(hal::Axis::x);
@@ -67,7 +67,7 @@ Bounded home_until_fault(const emu::Scenario& s, const fw::FirmwareConfig& confi
   for (int i = 0; i < 3; ++i) rig.tick();
   const double start_mm = rig.machine.truth(hal::Axis::x).position_mm;
   const double start_s = rig.machine.time_s();
-  EXPECT_EQ(rig.task.home(true, false), fw::CommandStatus::ok);
+  EXPECT_EQ(rig.task.home(hal::axis_bit(hal::Axis::x)), fw::CommandStatus::ok);
   for (int k = 0; k < 120'000 && rig.task.homing(); ++k) rig.tick();
   for (int k = 0; k < 100; ++k) rig.tick();
   return {rig.task.fault(), std::fabs(rig.machine.truth(hal::Axis::x).position_mm - start_mm),
@@ -76,7 +76,7 @@ Bounded home_until_fault(const emu::Scenario& s, const fw::FirmwareConfig& confi
 
 TEST(HomingCycle, AMissingSwitchEndsInAFaultWithinTheSearchTravel) {
   emu::Scenario s = homing_scenario();
-  s.board.home_switch_x = false;  // no switch: the search runs its whole travel
+  s.board.axis[0].home_switch = false;  // no switch: the search runs its whole travel
   fw::FirmwareConfig config = homing_firmware_config();
   config.axis[0].homing.search_max_mm = 30.0;
   const Bounded b = home_until_fault(s, config);

@@ -20,8 +20,8 @@ constexpr double kCountMm = 10.0 / 24000.0;
 // only through the emulated encoder register and its own counter extension.
 ContourStats perfect_tracking(const emu::Scenario& scenario) {
   const fw::CircleTrajectory circle(fw::CircleSpec{});
-  const emu::QuadratureEncoder enc_x(kCountMm, scenario.encoder.offset_counts_x);
-  const emu::QuadratureEncoder enc_y(kCountMm, scenario.encoder.offset_counts_y);
+  const emu::QuadratureEncoder enc_x(kCountMm, scenario.encoder.axis_offset_counts[0]);
+  const emu::QuadratureEncoder enc_y(kCountMm, scenario.encoder.axis_offset_counts[1]);
   const fw::PlaneSample start = circle.start();
   // Homed as the HIL rig homes the firmware.
   const double home_x = homed_position_mm(scenario, hal::Axis::x, start.axis[0].position_mm);

@@ -64,11 +64,11 @@ std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
   s.faults = c.faults;
   if (c.home_switches) {
     // x stands at 6 mm, y at 0: switches 2 mm below, marks 0.5 mm past their release.
-    s.board.home_switch_x = s.board.home_switch_y = true;
-    s.board.home_x_mm = 4.0;
-    s.board.home_y_mm = -2.0;
-    s.board.index_x_deg = 162.0;  // marks at 4.5 + 10 k mm
-    s.board.index_y_deg = 306.0;  // marks at -1.5 + 10 k mm
+    s.board.axis[0].home_switch = s.board.axis[1].home_switch = true;
+    s.board.axis[0].home_mm = 4.0;
+    s.board.axis[1].home_mm = -2.0;
+    s.board.axis[0].index_deg = 162.0;  // marks at 4.5 + 10 k mm
+    s.board.axis[1].index_deg = 306.0;  // marks at -1.5 + 10 k mm
   }
   if (c.force_loop) s.milling = {.enabled = true, .depth = {0.2, 1.0, 1.0, 1.0}};
   auto rig = std::make_unique<test::HilRig>(s, source_config(c));
@@ -149,7 +149,7 @@ std::vector<SourceCase> source_cases() {
     SourceCase c;  // homing cycle of both axes: switch, back-off, index, frame moved at the index
     c.name = "home_all";
     c.home_switches = true;
-    c.start = [](test::HilRig& rig) { return rig.task.home(true, true); };
+    c.start = [](test::HilRig& rig) { return rig.task.home(hal::kEveryAxis); };
     c.ticks = 4000;
     c.end_state = fw::MotionState::holding;
     out.push_back(c);
@@ -158,7 +158,7 @@ std::vector<SourceCase> source_cases() {
     SourceCase c;  // homing without a switch: the search runs out of travel and faults
     c.name = "home_missing_switch";
     c.home_search_max_mm = 3.0;
-    c.start = [](test::HilRig& rig) { return rig.task.home(true, false); };
+    c.start = [](test::HilRig& rig) { return rig.task.home(hal::axis_bit(hal::Axis::x)); };
     c.ticks = 1000;
     c.fault = fw::FaultReason::homing_failed;
     out.push_back(c);

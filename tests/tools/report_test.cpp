@@ -56,15 +56,15 @@ TEST(Report, PidGainsArePrintedWithTheRule) {
 
 TEST(SeededScenario, SeedZeroIsTheScenarioAndOthersSpreadTheEncoderPhase) {
   const emu::Scenario base;
-  EXPECT_EQ(seeded(base, 0).encoder.offset_counts_x, base.encoder.offset_counts_x);
+  EXPECT_EQ(seeded(base, 0).encoder.axis_offset_counts[0], base.encoder.axis_offset_counts[0]);
   std::vector<double> fx;
   for (int k = 1; k <= 8; ++k) {
     const emu::Scenario s = seeded(base, k);
-    EXPECT_GE(s.encoder.offset_counts_x, 0.0);
-    EXPECT_LT(s.encoder.offset_counts_x, 1.0);
+    EXPECT_GE(s.encoder.axis_offset_counts[0], 0.0);
+    EXPECT_LT(s.encoder.axis_offset_counts[0], 1.0);
     EXPECT_GE(s.cutting.phase_rad, 0.0);
     EXPECT_LT(s.cutting.phase_rad, 2.0 * 3.14159265358979);
-    fx.push_back(s.encoder.offset_counts_x);
+    fx.push_back(s.encoder.axis_offset_counts[0]);
   }
   std::sort(fx.begin(), fx.end());
   double widest_gap = 1.0 - fx.back() + fx.front();  // circular

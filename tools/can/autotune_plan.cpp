@@ -14,7 +14,7 @@ namespace tnv::can_host {
 namespace {
 
 const can::ParamDef& axis_param(hal::Axis axis, const char* suffix) {
-  std::string name = axis == hal::Axis::x ? "x." : "y.";
+  std::string name = std::string(hal::axis_label(axis)) + ".";
   name += suffix;
   const can::ParamDef* p = can::find_param(name.c_str());
   if (p == nullptr) throw std::logic_error("no parameter " + name);
@@ -197,7 +197,7 @@ nlohmann::json plan_json(const AxisPlan& plan) {
   for (const ParamChange& c : plan.changes)
     changes.push_back({{"name", c.param->name}, {"old", c.old_value}, {"new", c.new_value}});
   const AxisPrediction& p = plan.prediction;
-  return {{"axis", plan.axis == hal::Axis::x ? "x" : "y"},
+  return {{"axis", hal::axis_label(plan.axis)},
           {"identified", identification_json(plan.id)},
           {"design", design_json(plan.design)},
           {"changes", changes},

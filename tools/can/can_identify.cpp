@@ -15,7 +15,7 @@ namespace {
 constexpr double kIdentifyPeriodS = 1e-3;  // decimation 1: one sample per tick
 constexpr Micros kHoldBetween{300'000};    // at rest between excitations, as on the rig
 
-const char* excite_axis_name(hal::Axis axis) { return axis == hal::Axis::x ? "x" : "y"; }
+const char* excite_axis_name(hal::Axis axis) { return hal::axis_label(axis); }
 
 const can::ParamDef& identify_param(const std::string& name) {
   const can::ParamDef* p = can::find_param(name.c_str());

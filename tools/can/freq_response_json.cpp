@@ -35,7 +35,7 @@ nlohmann::json freq_response_json(const FreqResponseResult& r) {
                       {"coherence", p.coherence},
                       {"model_gain_db", tune::gain_db(p.model)},
                       {"model_phase_deg", tune::phase_deg(p.model)}});
-  return {{"axis", r.axis == hal::Axis::x ? "x" : "y"},
+  return {{"axis", hal::axis_label(r.axis)},
           {"loop", tune::to_string(r.loop)},
           {"excitation", freq_excitation_name(r.kind)},
           {"controller", r.controller},

@@ -23,7 +23,7 @@ constexpr std::uint32_t kFreqChannels = 4;  // pos, command, dac, excite of the 
 constexpr double kFreqSettleS = 0.2;        // EXCITE's fixed settle (ExcitationSpec's default)
 constexpr double kFreqReturnSpeedMmS = 10.0;  // the move back after a carrier
 
-const char* freq_axis_name(hal::Axis axis) { return axis == hal::Axis::x ? "x" : "y"; }
+const char* freq_axis_name(hal::Axis axis) { return hal::axis_label(axis); }
 
 const can::ParamDef& freq_param(const std::string& name) {
   const can::ParamDef* p = can::find_param(name.c_str());

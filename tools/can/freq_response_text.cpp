@@ -30,7 +30,7 @@ std::string freq_response_text(const FreqResponseResult& r) {
   std::string out;
   char buf[200];
   std::snprintf(buf, sizeof buf, "axis %s, %s loop, %s excitation, controller %s; model: %s\n",
-                r.axis == hal::Axis::x ? "x" : "y", tune::to_string(r.loop),
+                hal::axis_label(r.axis), tune::to_string(r.loop),
                 r.kind == fw::ExcitationKind::multisine        ? "multisine"
                 : r.kind == fw::ExcitationKind::multisine_open ? "open-loop multisine"
                                                                : "sweep",

@@ -24,15 +24,22 @@ double circle_expected_s(NodeClient& client, double radius_mm, double feed_mm_s)
          2.0 * std::numbers::pi * radius_mm / feed_mm_s;
 }
 
-double homing_bound_s(NodeClient& client, bool x, bool y) {
+double homing_bound_s(NodeClient& client, std::uint8_t axis) {
   double bound_s = 0.0;
-  for (const char* a : {"x", "y"}) {
-    if ((a[0] == 'x' && !x) || (a[0] == 'y' && !y)) continue;
-    const std::string p = std::string(a) + ".homing.";
+  for (const hal::Axis a : hal::kAxes) {
+    if (axis != kAllAxes && axis != hal::index(a)) continue;
+    const std::string p = std::string(hal::axis_label(a)) + ".homing.";
     bound_s += node_param(client, p + "search_max_mm") / node_param(client, p + "search_mm_s") +
                2.0 * node_param(client, p + "latch_max_mm") / node_param(client, p + "latch_mm_s") + 1.0;
   }
   return bound_s;
+}
+
+std::optional<std::string> not_homed_message(const Heartbeat& hb, std::uint8_t axis) {
+  for (const hal::Axis a : hal::kAxes)
+    if ((axis == kAllAxes || axis == hal::index(a)) && (hb.errors & fw::can::kHbHomedBits[hal::index(a)]) == 0)
+      return std::string(hal::axis_label(a)) + " is not homed (the cycle was stopped?)";
+  return std::nullopt;
 }
 
 std::optional<std::string> fault_message(const Heartbeat& hb, NodeClient& client, const std::string& what) {
@@ -40,7 +47,8 @@ std::optional<std::string> fault_message(const Heartbeat& hb, NodeClient& client
   std::string message = what;
   message.append(" ended in a fault: ").append(fw::to_string(hb.fault));
   if (const auto& ev = client.last_fault_event(); ev && ev->reason == hb.fault) {
-    if (ev->axis >= 0) message.append(" on axis ").append(ev->axis == 0 ? "x" : "y");
+    if (ev->axis >= 0 && static_cast<std::size_t>(ev->axis) < hal::kAxisCount)
+      message.append(" on axis ").append(hal::kAxisNames[static_cast<std::size_t>(ev->axis)]);
     char buf[64];
     std::snprintf(buf, sizeof buf, " (value %g, tick ...%u)", ev->value, static_cast<unsigned>(ev->tick_low));
     message += buf;

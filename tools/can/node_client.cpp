@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "hal/axis_choice.hpp"
 #include "firmware/can/can_id.hpp"
 #include "firmware/can/request_tag.hpp"
 #include "tools/can/param_text.hpp"
@@ -196,7 +197,7 @@ CommandAck NodeClient::checked(const hal::CanFrame& request, std::uint8_t tag, s
       message.append(", fault ").append(fw::to_string(a.fault));
       // The ack carries no axis; the node's FAULT_EVENT for the same reason does.
       if (fault_event_ && fault_event_->reason == a.fault && fault_event_->axis >= 0 && fault_event_->axis < 2)
-        message.append(", axis ").append(fault_event_->axis == 0 ? "x" : "y");
+        message.append(", axis ").append(hal::axis_label_or(fault_event_->axis, "?"));
     }
     if (a.detail != 0) message.append(", field ").append(std::to_string(a.detail));
     if (a.result == can::ErrorCode::not_owner) {
@@ -221,7 +222,7 @@ CommandAck NodeClient::command(can::CommandCode code, std::uint8_t axis, std::ui
 
 CommandAck NodeClient::move(std::uint8_t axis, double distance_mm, double speed_mm_s) {
   char what[96];
-  std::snprintf(what, sizeof what, "move %s by %g mm at %g mm/s", axis == 0 ? "x" : "y", distance_mm, speed_mm_s);
+  std::snprintf(what, sizeof what, "move %s by %g mm at %g mm/s", hal::axis_label_or(axis, "?"), distance_mm, speed_mm_s);
   need_ownership();
   const std::uint8_t tag = next_tag();
   return checked(move_request(node_, tag, axis, distance_mm, speed_mm_s), tag, 0, what);
@@ -245,7 +246,7 @@ CommandAck NodeClient::jog(double speed_x_mm_s, double speed_y_mm_s) {
 
 CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {
   char what[96];
-  std::snprintf(what, sizeof what, "shaper %s type %u at %g Hz, zeta %g", axis == 0 ? "x" : "y", type, freq_hz, zeta);
+  std::snprintf(what, sizeof what, "shaper %s type %u at %g Hz, zeta %g", hal::axis_label_or(axis, "?"), type, freq_hz, zeta);
   need_ownership();
   const std::uint8_t tag = next_tag();
   return checked(shaper_request(node_, tag, axis, type, freq_hz, zeta), tag, 0, what);
@@ -253,7 +254,7 @@ CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_
 
 CommandAck NodeClient::excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s) {
   char what[96];
-  std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", axis == 0 ? "x" : "y",
+  std::snprintf(what, sizeof what, "excite %s: %s %g mm/s for %g s", hal::axis_label_or(axis, "?"),
                 kind == 0 ? "step" : kind == 1 ? "ramp" : kind == 2 ? "sweep" : kind == 3 ? "multisine" : "kind?",
                 level_mm_s, duration_s);
   need_ownership();

@@ -44,9 +44,8 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
 
 fw::motion::MotionLimits node_motion_limits(NodeClient& client) {
   fw::motion::MotionLimits m;
-  const char* axis[] = {"x.", "y."};
-  for (std::size_t i = 0; i < 2; ++i) {
-    const std::string p = axis[i];
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const std::string p = std::string(hal::kAxisNames[i]) + ".";
     m.axis[i].speed_mm_s = client.get(param((p + "path.speed_mm_s").c_str()));
     m.axis[i].accel_mm_s2 = client.get(param((p + "path.accel_mm_s2").c_str()));
     m.axis[i].jerk_mm_s3 = client.get(param((p + "path.jerk_mm_s3").c_str()));

@@ -1,6 +1,9 @@
 #include "tools/can/telemetry_json.hpp"
 
+#include <string>
+
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::can_host {
 
@@ -20,11 +23,17 @@ nlohmann::json telemetry_json(const TelemetryView& l, double t_s, double load) {
   nlohmann::json j = {{"t_s", t_s}, {"frames", l.frames}, {"bus_load", load}};
   if (l.heartbeat) j["status"] = heartbeat_json(*l.heartbeat);
   if (l.position_mm) j["position_mm"] = *l.position_mm;
-  if (l.following_mm) j["following_um"] = {(*l.following_mm)[0] * 1e3, (*l.following_mm)[1] * 1e3};
+  if (l.following_mm) {
+    j["following_um"] = nlohmann::json::array();
+    for (const double mm : *l.following_mm) j["following_um"].push_back(mm * 1e3);
+  }
   if (l.s_mm_s) j["s_mm_s"] = *l.s_mm_s;
   if (l.d_hat_mm_s) j["d_hat_mm_s"] = *l.d_hat_mm_s;
-  if (l.output)
-    j["output"] = {{"dac_x", l.output->dac_code[0]}, {"dac_y", l.output->dac_code[1]}, {"force_n", l.output->force_n}};
+  if (l.output) {
+    j["output"] = {{"force_n", l.output->force_n}};
+    for (const hal::Axis a : hal::kAxes)
+      j["output"][std::string("dac_") + hal::axis_label(a)] = l.output->dac_code[hal::index(a)];
+  }
   if (l.contour) j["contour"] = {{"um", l.contour->contour_um}, {"motion_tick", l.contour->motion_tick}};
   if (l.arsc)
     j["arsc"] = {{"force_n", l.arsc->force_n},

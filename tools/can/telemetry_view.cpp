@@ -12,15 +12,21 @@ using can::MessageId;
 
 using can::fields::kPositionMsg;
 using can::fields::kFollowingMsg;
-using can::fields::kSlidingXMsg;
-using can::fields::kSlidingYMsg;
 using can::fields::kOutputMsg;
 using can::fields::kContourMsg;
 using can::fields::kArscMsg;
 
-void set_axis(std::optional<std::array<double, 2>>& slot, std::size_t axis, double v) {
-  if (!slot) slot = std::array<double, 2>{0.0, 0.0};
+void set_axis(std::optional<std::array<double, hal::kAxisCount>>& slot, std::size_t axis, double v) {
+  if (!slot) slot = std::array<double, hal::kAxisCount>{};
   (*slot)[axis] = v;
+}
+
+// One value per axis from a frame's per-axis fields.
+std::array<double, hal::kAxisCount> per_axis(const hal::CanFrame& f,
+                                             const std::array<const can::FieldDef*, hal::kAxisCount>& fields) {
+  std::array<double, hal::kAxisCount> out{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) out[i] = can::read(f, *fields[i]);
+  return out;
 }
 
 }  // namespace
@@ -30,23 +36,10 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
   bits += VirtualCanBus::frame_bits(f);
   switch (id) {
     case MessageId::heartbeat: heartbeat = read_heartbeat(f); break;
-    case MessageId::tlm_position:
-      position_mm = {can::read(f, field(kPositionMsg, "x")), can::read(f, field(kPositionMsg, "y"))};
-      break;
-    case MessageId::tlm_following:
-      following_mm = {can::read(f, field(kFollowingMsg, "x")), can::read(f, field(kFollowingMsg, "y"))};
-      break;
-    case MessageId::tlm_sliding_x:
-      set_axis(s_mm_s, 0, can::read(f, field(kSlidingXMsg, "s")));
-      set_axis(d_hat_mm_s, 0, can::read(f, field(kSlidingXMsg, "d_hat")));
-      break;
-    case MessageId::tlm_sliding_y:
-      set_axis(s_mm_s, 1, can::read(f, field(kSlidingYMsg, "s")));
-      set_axis(d_hat_mm_s, 1, can::read(f, field(kSlidingYMsg, "d_hat")));
-      break;
+    case MessageId::tlm_position: position_mm = per_axis(f, can::fields::kPositionFields); break;
+    case MessageId::tlm_following: following_mm = per_axis(f, can::fields::kFollowingFields); break;
     case MessageId::tlm_output:
-      output = OutputTelemetry{{can::read(f, field(kOutputMsg, "dac_x")), can::read(f, field(kOutputMsg, "dac_y"))},
-                               can::read(f, field(kOutputMsg, "force"))};
+      output = OutputTelemetry{per_axis(f, can::fields::kOutputDacs), can::read(f, field(kOutputMsg, "force"))};
       break;
     case MessageId::tlm_contour:
       contour = ContourTelemetry{can::read(f, field(kContourMsg, "contour")), can::read(f, field(kContourMsg, "motion_tick"))};
@@ -56,7 +49,14 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
                            can::read(f, field(kArscMsg, "feed_override")),
                            can::read(f, field(kArscMsg, "cutting_gain"))};
       break;
-    default: break;
+    default:
+      // TLM_SLIDING_<axis>: one message per axis.
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        if (static_cast<std::uint8_t>(id) != can::fields::kSlidingMsgs[i]->id) continue;
+        set_axis(s_mm_s, i, can::read(f, can::fields::kSlidingS));
+        set_axis(d_hat_mm_s, i, can::read(f, can::fields::kSlidingDHat));
+      }
+      break;
   }
 }
 

@@ -6,12 +6,13 @@
 #include <cstdint>
 #include <optional>
 
+#include "hal/axis.hpp"
 #include "tools/can/node_messages.hpp"
 
 namespace tnv::can_host {
 
 struct OutputTelemetry {
-  std::array<double, 2> dac_code{};
+  std::array<double, hal::kAxisCount> dac_code{};
   double force_n = 0.0;
 };
 
@@ -30,10 +31,11 @@ struct ArscTelemetry {
 
 struct TelemetryView {
   std::optional<Heartbeat> heartbeat;
-  std::optional<std::array<double, 2>> position_mm;   // x, y
-  std::optional<std::array<double, 2>> following_mm;  // reference - position, x, y
-  std::optional<std::array<double, 2>> s_mm_s;        // sliding variable, x, y (0 for PID)
-  std::optional<std::array<double, 2>> d_hat_mm_s;    // disturbance estimate, x, y
+  // Per axis, in axis order.
+  std::optional<std::array<double, hal::kAxisCount>> position_mm;
+  std::optional<std::array<double, hal::kAxisCount>> following_mm;  // reference - position
+  std::optional<std::array<double, hal::kAxisCount>> s_mm_s;        // sliding variable (0 for PID)
+  std::optional<std::array<double, hal::kAxisCount>> d_hat_mm_s;    // disturbance estimate
   std::optional<OutputTelemetry> output;
   std::optional<ContourTelemetry> contour;
   std::optional<ArscTelemetry> arsc;

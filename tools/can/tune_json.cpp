@@ -13,7 +13,7 @@ nlohmann::json identification_json(const tune::AxisIdentification& id) {
                      {"rms_residual_um", id.steps[i].rms_residual_mm * 1000.0}});
   nlohmann::json ramps = nlohmann::json::array();
   for (const tune::RampRecord& r : id.ramps) ramps.push_back({{"broke_away", r.broke_away}, {"breakaway_mm_s", r.breakaway_mm_s}});
-  return {{"axis", id.axis == hal::Axis::x ? "x" : "y"},
+  return {{"axis", hal::axis_label(id.axis)},
           {"ok", id.ok},
           {"error", id.error},
           {"tau_s", id.tau_s},

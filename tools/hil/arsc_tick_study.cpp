@@ -180,7 +180,7 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     judge.true_force(t_s, rig->machine.milling_force_n());  // held by the ADC at this record's latch
     if (k % 10 == 0) {
       const double depth = rig->machine.milling_depth_mm();
-      const double vx = rig->machine.truth(Axis::x).speed_mm_s, vy = rig->machine.truth(Axis::y).speed_mm_s;
+      const double vx = rig->machine.truth(hal::kPlaneFirst).speed_mm_s, vy = rig->machine.truth(hal::kPlaneSecond).speed_mm_s;
       const double speed = std::hypot(vx, vy);
       const double share = speed > 1e-6 ? std::max(vx, 0.0) / speed : 1.0;
       const double gain = c.outer_loop ? task.feed_source().status().cutting_gain_n_per_mm_s
@@ -197,8 +197,8 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     const fw::motion::PlanePoint here{now.axis[0].position_mm, now.axis[1].position_mm};
     r.travel_mm += std::hypot(here[0] - last[0], here[1] - last[1]);
     last = here;
-    r.max_feed_mm_s = std::max(r.max_feed_mm_s, std::hypot(rig->machine.truth(Axis::x).speed_mm_s,
-                                                           rig->machine.truth(Axis::y).speed_mm_s));
+    r.max_feed_mm_s = std::max(r.max_feed_mm_s, std::hypot(rig->machine.truth(hal::kPlaneFirst).speed_mm_s,
+                                                           rig->machine.truth(hal::kPlaneSecond).speed_mm_s));
     if (task.program_running()) {
       r.override_min_seen = std::min(r.override_min_seen, now.feed_override);
       r.override_max_seen = std::max(r.override_max_seen, now.feed_override);

@@ -50,7 +50,7 @@ BestConfigDesign design_best_config(const emu::Scenario& table, const BestConfig
   idle.cutting.enabled = false;
   idle.milling.enabled = false;
   for (std::size_t i = 0; i < 2; ++i) {
-    const char* axis_name = i == 0 ? "x" : "y";
+    const char* axis_name = hal::kAxisNames[i];
     const tune::AxisIdentification& id = out.identified[i] = identify_axis_on_emulator(idle, hal::axis_from_index(i));
     tune::AxisDesign& d = out.designs[i] = tune::design_axis(id);
     if (!d.ok) {

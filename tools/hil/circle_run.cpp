@@ -36,7 +36,7 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
       const auto& ay = rec.axis[1];
       const double e_mm = contour_error_mm(ax.reference_mm, ay.reference_mm, ax.position_mm, ay.position_mm);
       contour.add(e_mm);
-      const emu::AxisTruth tx = machine.truth(hal::Axis::x), ty = machine.truth(hal::Axis::y);
+      const emu::AxisTruth tx = machine.truth(hal::kPlaneFirst), ty = machine.truth(hal::kPlaneSecond);
       true_table.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.position_mm, ty.position_mm));
       true_tool.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.tool_position_mm, ty.tool_position_mm));
       if (options.keep_trace) {

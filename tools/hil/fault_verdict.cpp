@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "hal/axis_choice.hpp"
+
 namespace tnv::hil {
 
 bool fault_case_met(const FaultCase& c, const FaultObservation& o, std::uint32_t mid_code) {
@@ -16,7 +18,7 @@ bool fault_case_met(const FaultCase& c, const FaultObservation& o, std::uint32_t
 const char* latched_text(const FaultObservation& o) noexcept { return o.detected ? fw::to_string(o.fault.reason) : "none"; }
 
 nlohmann::json fault_case_json(const FaultCase& c, const FaultObservation& obs, bool met) {
-  const std::string axis = obs.fault.axis < 0 ? "-" : std::string(1, obs.fault.axis == 0 ? 'x' : 'y');
+  const std::string axis = obs.fault.axis < 0 ? "-" : std::string(hal::axis_label_or(obs.fault.axis, "?"));
   nlohmann::json row = {{"name", c.name},
                         {"motion", to_string(c.motion)},
                         {"expected", fw::to_string(c.expected)},

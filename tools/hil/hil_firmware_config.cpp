@@ -14,10 +14,13 @@ fw::FirmwareConfig firmware_config_for(const emu::Scenario& scenario, const fw::
     axis.dac.bits = static_cast<unsigned>(scenario.dac.bits);
     axis.dac.full_scale_mm_s = speed_at_full_scale_mm_s;
   }
-  // The emulated table powers up at rest at the circle's start point (R, 0), moved by [board] power_up_offset_*.
-  cfg.axis[0].home_position_mm =
-      homed_position_mm(scenario, hal::Axis::x, scenario.circle.radius_mm + scenario.board.power_up_offset_x_mm);
-  cfg.axis[1].home_position_mm = homed_position_mm(scenario, hal::Axis::y, scenario.board.power_up_offset_y_mm);
+  // The emulated table powers up at rest at the circle's start point (R, 0) of the XY plane, moved by
+  // [board] power_up_offset_*.
+  for (const hal::Axis a : hal::kAxes) {
+    const double start_mm = a == hal::kPlaneFirst ? scenario.circle.radius_mm : 0.0;
+    cfg.axis[hal::index(a)].home_position_mm =
+        homed_position_mm(scenario, a, start_mm + scenario.board.power_up_offset_mm(a));
+  }
   return cfg;
 }
 

@@ -49,8 +49,7 @@ std::unique_ptr<HilRig> HilRig::create(const emu::Scenario& scenario, const fw::
     error += init.message;
     return nullptr;
   }
-  rig->task.select_controller(hal::Axis::x, controller);
-  rig->task.select_controller(hal::Axis::y, controller);
+  for (const hal::Axis a : hal::kAxes) rig->task.select_controller(a, controller);
   return rig;
 }
 

@@ -32,25 +32,25 @@ double expected_mark_mm(const emu::Scenario& s, const emu::Machine& m, hal::Axis
 emu::Scenario homing_scenario() {
   emu::Scenario s;
   s.name = "homing";
-  s.board.home_switch_x = true;
-  s.board.home_switch_y = true;
-  s.board.home_x_mm = -25.0;
-  s.board.home_y_mm = -25.0;
+  s.board.axis[0].home_switch = true;
+  s.board.axis[1].home_switch = true;
+  s.board.axis[0].home_mm = -25.0;
+  s.board.axis[1].home_mm = -25.0;
   // Marks 4.5 mm (x) and 6 mm (y) past the releases: far from them, whatever the phase of the count.
-  s.board.index_x_deg = 342.0;  // x marks at ... -20.5, -10.5 mm
-  s.board.index_y_deg = 36.0;   // y marks at ... -19, -9 mm
+  s.board.axis[0].index_deg = 342.0;  // x marks at ... -20.5, -10.5 mm
+  s.board.axis[1].index_deg = 36.0;   // y marks at ... -19, -9 mm
   return s;
 }
 
 emu::Scenario with_homing_board(emu::Scenario table) {
-  if (table.board.home_switch_x || table.board.home_switch_y) return table;
+  if (table.board.axis[0].home_switch || table.board.axis[1].home_switch) return table;
   const emu::Scenario board = homing_scenario();
-  table.board.home_switch_x = board.board.home_switch_x;
-  table.board.home_switch_y = board.board.home_switch_y;
-  table.board.home_x_mm = board.board.home_x_mm;
-  table.board.home_y_mm = board.board.home_y_mm;
-  table.board.index_x_deg = board.board.index_x_deg;
-  table.board.index_y_deg = board.board.index_y_deg;
+  table.board.axis[0].home_switch = board.board.axis[0].home_switch;
+  table.board.axis[1].home_switch = board.board.axis[1].home_switch;
+  table.board.axis[0].home_mm = board.board.axis[0].home_mm;
+  table.board.axis[1].home_mm = board.board.axis[1].home_mm;
+  table.board.axis[0].index_deg = board.board.axis[0].index_deg;
+  table.board.axis[1].index_deg = board.board.axis[1].index_deg;
   return table;
 }
 
@@ -74,14 +74,14 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
   out.seed = seed;
   std::mt19937_64 g(seed);
   emu::Scenario s = base_scenario;
-  s.board.power_up_offset_x_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
-  s.board.power_up_offset_y_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
-  s.encoder.offset_counts_x = unit_interval(g) * 65536.0;
-  s.encoder.offset_counts_y = unit_interval(g) * 65536.0;
-  out.power_up_offset_x_mm = s.board.power_up_offset_x_mm;
-  out.power_up_offset_y_mm = s.board.power_up_offset_y_mm;
-  out.offset_counts_x = s.encoder.offset_counts_x;
-  out.offset_counts_y = s.encoder.offset_counts_y;
+  s.board.axis[0].power_up_offset_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
+  s.board.axis[1].power_up_offset_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
+  s.encoder.axis_offset_counts[0] = unit_interval(g) * 65536.0;
+  s.encoder.axis_offset_counts[1] = unit_interval(g) * 65536.0;
+  out.power_up_offset_x_mm = s.board.axis[0].power_up_offset_mm;
+  out.power_up_offset_y_mm = s.board.axis[1].power_up_offset_mm;
+  out.offset_counts_x = s.encoder.axis_offset_counts[0];
+  out.offset_counts_y = s.encoder.axis_offset_counts[1];
 
   std::string error;
   const std::unique_ptr<HilRig> rig = HilRig::create(s, config, config.axis[0].controller, error);
@@ -90,7 +90,7 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
     return out;
   }
   rig->home();  // the firmware's first reading
-  if (const fw::CommandStatus st = rig->task.home(true, true); st != fw::CommandStatus::ok) {
+  if (const fw::CommandStatus st = rig->task.home(hal::kEveryAxis); st != fw::CommandStatus::ok) {
     out.failure = std::string("home refused: ") + fw::to_string(st);
     return out;
   }
@@ -103,17 +103,17 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
                   std::to_string(rig->task.fault().axis) + ")";
     return out;
   }
-  for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+  for (const hal::Axis axis : hal::kAxes) {
     if (!rig->task.homed(axis)) {
       out.timed_out = rig->task.homing();
-      out.failure = std::string(axis == hal::Axis::x ? "x" : "y") + " not homed: " +
+      out.failure = std::string(hal::axis_label(axis)) + " not homed: " +
                     fw::to_string(rig->task.homing_result(axis));
       return out;
     }
   }
   const int settle_ticks = static_cast<int>(kSettleS / kTickPeriodS);
   for (int k = 0; k < settle_ticks; ++k) rig->tick();
-  for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+  for (const hal::Axis axis : hal::kAxes) {
     const std::size_t i = hal::index(axis);
     const double firmware_mm = rig->task.last_record().axis[i].position_mm - config.axis[i].homing.position_mm;
     const double motor_mm = rig->machine.truth(axis).motor_position_mm;

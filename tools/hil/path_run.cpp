@@ -36,7 +36,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   rig->tick();
   // The program starts where the table holds, with the planner's own limits.
   gcode::GcodeOptions parse;
-  parse.start_mm = {task.standing_mm(hal::Axis::x), task.standing_mm(hal::Axis::y)};
+  parse.start_mm = {task.standing_mm(hal::kPlaneFirst), task.standing_mm(hal::kPlaneSecond)};
   parse.rapid_feed_mm_s = options.rapid_feed_mm_s;
   parse.limits = task.motion().limits();
   const gcode::GcodeResult parsed = gcode::parse_gcode(gcode_text, parse);

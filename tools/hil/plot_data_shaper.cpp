@@ -181,7 +181,7 @@ json jog_plot_data(const std::string& title, const JogRunResult& u, const JogRun
       if (q.t_s >= u.stop_s) teu.push_back(q.t_s), eu.push_back((q.tool_mm[i] - u.axis[i].end_mm) * 1e3);
     for (const JogTraceSample& q : s.trace)
       if (q.t_s >= s.stop_s) tes.push_back(q.t_s), es.push_back((q.tool_mm[i] - s.axis[i].end_mm) * 1e3);
-    const std::string axis = i == 0 ? "x" : "y";
+    const std::string axis = hal::kAxisNames[i];
     panels.push_back({{"y_label", axis + " position (mm)"},
                       {"series", {plot_series("operator stream (unshaped)", t, cmd, "reference", "#999999"),
                                   plot_series("shaped reference", t, ref, "line", "#1f77b4")}}});

@@ -59,7 +59,7 @@ nlohmann::json pid_gains_json(const fw::FirmwareConfig& config) {
   for (std::size_t i = 0; i < 2; ++i) {
     const fw::PidParams& p = config.axis[i].pid;
     const fw::PidTuningReport t = fw::paper_pid_tuning(hal::axis_from_index(i));
-    out[i == 0 ? "x" : "y"] = {{"kp_per_s", p.kp},
+    out[hal::kAxisNames[i]] = {{"kp_per_s", p.kp},
                                {"ki_per_s2", p.ki},
                                {"kd", p.kd},
                                {"derivative_filter_s", p.derivative_filter_tf_s},
@@ -82,7 +82,7 @@ std::string pid_gains_text(const fw::FirmwareConfig& config) {
     const fw::PidTuningReport t = fw::paper_pid_tuning(hal::axis_from_index(i));
     out += line("  %c: Kp = %.4g 1/s  Ki = %.4g 1/s^2  Kd = %.4g  (crossover %.2f Hz, PM %.1f deg;"
                 " DVSC+DDC: %.2f Hz, PM %.1f deg)\n",
-                i == 0 ? 'X' : 'Y', p.kp, p.ki, p.kd, t.pid_crossover_hz, t.pid_phase_margin_deg,
+                hal::axis_upper_name(hal::axis_from_index(i)), p.kp, p.ki, p.kd, t.pid_crossover_hz, t.pid_phase_margin_deg,
                 t.dvsc_crossover_hz, t.dvsc_phase_margin_deg);
   }
   return out;
@@ -182,7 +182,7 @@ nlohmann::json plant_check_json(const std::array<PlantCheckAxis, 2>& axes) {
     a["exact"] = model_json(axes[i].exact);
     a["paper"] = model_json(axes[i].paper);
     a["max_abs_diff_exact"] = axes[i].max_abs_diff_exact;
-    out[i == 0 ? "x" : "y"] = std::move(a);
+    out[hal::kAxisNames[i]] = std::move(a);
   }
   return out;
 }
@@ -191,7 +191,7 @@ std::string plant_check_text(const std::array<PlantCheckAxis, 2>& axes) {
   std::string out = "1 ms ZOH model of the emulated axes (friction and cutting off)\n";
   out += "axis  entry     identified         exact   paper (31)\n";
   for (std::size_t i = 0; i < 2; ++i) {
-    const char axis = i == 0 ? 'X' : 'Y';
+    const char axis = hal::axis_upper_name(hal::axis_from_index(i));
     const PlantCheckAxis& a = axes[i];
     const char* names[] = {"A11", "A12", "A21", "A22"};
     for (int k = 0; k < 4; ++k) {

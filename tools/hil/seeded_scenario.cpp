@@ -21,8 +21,8 @@ emu::Scenario seeded(const emu::Scenario& base, int seed) noexcept {
   emu::Scenario s = base;
   if (seed == 0) return s;
   const double k = static_cast<double>(seed);
-  s.encoder.offset_counts_x = base.encoder.offset_counts_x + frac(k * kA1);
-  s.encoder.offset_counts_y = base.encoder.offset_counts_y + frac(k * kA2);
+  s.encoder.axis_offset_counts[0] = base.encoder.axis_offset_counts[0] + frac(k * kA1);
+  s.encoder.axis_offset_counts[1] = base.encoder.axis_offset_counts[1] + frac(k * kA2);
   s.cutting.phase_rad = base.cutting.phase_rad + 2.0 * std::numbers::pi * frac(k * kA3);
   // A new noise and jitter realisation per seed (inert while [noise] and [io] are off).
   s.noise.seed = base.noise.seed + static_cast<std::uint32_t>(seed);

@@ -127,7 +127,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     }
     rig->settle_charge();  // charged time (hil_rig.hpp)
     machine.advance_to_next_tick();
-    const emu::AxisTruth tx = machine.truth(hal::Axis::x), ty = machine.truth(hal::Axis::y);
+    const emu::AxisTruth tx = machine.truth(hal::kPlaneFirst), ty = machine.truth(hal::kPlaneSecond);
     rig->charged_call([&task]() noexcept { task.tick(); });
     if (task.state() == fw::MotionState::faulted) break;
     const fw::TickRecord& rec = task.last_record();

@@ -1,9 +1,11 @@
 #include "tools/hil/soak_run.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <utility>
 
 #include "emulator/quadrature_encoder.hpp"
 #include "hal/io_board_registers.hpp"
@@ -28,7 +30,7 @@ class SoakBench {
       : rig_(rig),
         request_(request),
         result_(result),
-        encoders_{make_encoder(hal::Axis::x), make_encoder(hal::Axis::y)} {}
+        encoders_{make_encoders()} {}
 
   bool cycle() {
     SoakCycle c;
@@ -45,6 +47,12 @@ class SoakBench {
   }
 
  private:
+  std::array<emu::QuadratureEncoder, hal::kAxisCount> make_encoders() const {
+    return [this]<std::size_t... I>(std::index_sequence<I...>) {
+      return std::array<emu::QuadratureEncoder, hal::kAxisCount>{make_encoder(hal::kAxes[I])...};
+    }(std::make_index_sequence<hal::kAxisCount>{});
+  }
+
   emu::QuadratureEncoder make_encoder(hal::Axis axis) const {
     const emu::Scenario& s = request_.scenario;
     return emu::QuadratureEncoder(s.encoder.count_mm(), s.encoder.offset_counts(axis));

@@ -237,14 +237,10 @@ class Connection {
   }
   py::object home(int axis) {
     return motion([&](host::NodeClient& c) {
-      const bool all = axis == 255;
-      const double bound_s = host::homing_bound_s(c, all || axis == 0, all || axis == 1);
+      const double bound_s = host::homing_bound_s(c, static_cast<std::uint8_t>(axis));
       c.command(can::CommandCode::home, static_cast<std::uint8_t>(axis));
       const host::Heartbeat hb = host::wait_motion_done(c, "home", bound_s);
-      if ((all || axis == 0) && (hb.errors & can::kHbHomedX) == 0)
-        throw host::MotionFailed("x is not homed (the cycle was stopped?)");
-      if ((all || axis == 1) && (hb.errors & can::kHbHomedY) == 0)
-        throw host::MotionFailed("y is not homed (the cycle was stopped?)");
+      if (const auto why = host::not_homed_message(hb, static_cast<std::uint8_t>(axis))) throw host::MotionFailed(*why);
       return std::optional(hb);
     });
   }

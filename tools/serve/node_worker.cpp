@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "hal/axis_choice.hpp"
 #include "tools/can/telemetry_json.hpp"
 #include "tools/serve/api_error.hpp"
 
@@ -16,7 +17,7 @@ constexpr can_host::Micros kReceiveSlice{5'000};
 
 nlohmann::json fault_json(const can_host::FaultEvent& ev) {
   return {{"reason", fw::to_string(ev.reason)},
-          {"axis", ev.axis < 0 ? nlohmann::json(nullptr) : nlohmann::json(ev.axis == 0 ? "x" : "y")},
+          {"axis", ev.axis < 0 ? nlohmann::json(nullptr) : nlohmann::json(hal::axis_label_or(ev.axis, "?"))},
           {"value", ev.value},
           {"tick_low", ev.tick_low}};
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "hal/axis_choice.hpp"
 #include "tools/can/motion_run.hpp"
 #include "tools/serve/api_error.hpp"
 #include "tools/serve/node_refusal.hpp"
@@ -35,7 +36,7 @@ MotionRequest parse_motion_request(const nlohmann::json& body, const can_host::E
     if (r.radius_mm <= 0.0 || r.feed_mm_s <= 0.0) throw ApiError(kHttpBadRequest, "radius_mm and feed_mm_s must be > 0");
   } else if (r.kind == "move") {
     const std::string axis = body.value("axis", std::string("x"));
-    if (axis != "x" && axis != "y") throw ApiError(kHttpBadRequest, "axis must be \"x\" or \"y\"");
+    if (!hal::axis_from_name(axis)) throw ApiError(kHttpBadRequest, "axis must be " + std::string(hal::kQuotedAxisChoices));
     r.axis = axis == "x" ? 0 : 1;
     r.distance_mm = number(body, "distance_mm", 0.0, 10000.0);
     r.speed_mm_s = number(body, "speed_mm_s", 0.0, 655.35);  // the MOVE frame's range

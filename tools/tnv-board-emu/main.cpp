@@ -24,9 +24,10 @@ namespace {
 using namespace tnv;
 
 void report(const emu::Machine& machine, std::uint64_t ticks, const char* why) {
-  std::printf("tnv-board-emu: %s after %llu ticks (t = %.3f s, x = %.4f mm, y = %.4f mm)\n", why,
-              static_cast<unsigned long long>(ticks), machine.time_s(), machine.truth(hal::Axis::x).position_mm,
-              machine.truth(hal::Axis::y).position_mm);
+  std::printf("tnv-board-emu: %s after %llu ticks (t = %.3f s", why, static_cast<unsigned long long>(ticks),
+              machine.time_s());
+  for (const hal::Axis a : hal::kAxes) std::printf(", %s = %.4f mm", hal::axis_label(a), machine.truth(a).position_mm);
+  std::printf(")\n");
   std::fflush(stdout);
 }
 

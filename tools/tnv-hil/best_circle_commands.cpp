@@ -154,7 +154,7 @@ int run_best_circle_on_tables(const BestCircleOptions& o) {
         std::snprintf(line, sizeof line,
                       "  identified %s: tau %.3f ms, K %.5f, f_c %.4f mm/s, f_s %.4f mm/s (true %.3f ms, %.5f, %.4f, "
                       "%.4f)\n",
-                      i == 0 ? "x" : "y", 1e3 * id.tau_s, id.gain, id.coulomb_mm_s, id.stiction_mm_s,
+                      hal::kAxisNames[i], 1e3 * id.tau_s, id.gain, id.coulomb_mm_s, id.stiction_mm_s,
                       1e3 * tables[t].plant[i].tau_s, tables[t].plant[i].gain, tables[t].plant[i].coulomb_mm_s,
                       tables[t].plant[i].stiction_mm_s);
         out += line;
@@ -263,8 +263,8 @@ int run_identify_command(const IdentifyOptions& o) {
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!scenario) return kExitBadInput;
   std::vector<hal::Axis> axes;
-  if (o.axis == "x" || o.axis == "both") axes.push_back(hal::Axis::x);
-  if (o.axis == "y" || o.axis == "both") axes.push_back(hal::Axis::y);
+  for (const hal::Axis a : hal::kAxes)
+    if (o.axis == hal::axis_label(a) || o.axis == "both") axes.push_back(a);
   nlohmann::json j = nlohmann::json::array();
   std::string text;
   bool ok = true;
@@ -276,7 +276,7 @@ int run_identify_command(const IdentifyOptions& o) {
     const emu::AxisPlantParams& truth = scenario->plant[i];
     char line[512];
     if (!id.ok) {
-      std::snprintf(line, sizeof line, "axis %s: identification failed: %s\n", i == 0 ? "x" : "y", id.error.c_str());
+      std::snprintf(line, sizeof line, "axis %s: identification failed: %s\n", hal::kAxisNames[i], id.error.c_str());
     } else {
       std::snprintf(line, sizeof line,
                     "axis %s (scenario %s)      identified    scenario's true   error\n"
@@ -285,7 +285,7 @@ int run_identify_command(const IdentifyOptions& o) {
                     "  coulomb f_c (mm/s)    %10.4f    %10.4f       %+6.2f %%\n"
                     "  stiction f_s (mm/s)   %10.4f    %10.4f       %+6.2f %%\n"
                     "  A = [1 %.7f; 0 %.5f]   B = [%.7f; %.5f]   (1 ms zero-order hold)\n",
-                    i == 0 ? "x" : "y", scenario->name.c_str(), id.tau_s, truth.tau_s,
+                    hal::kAxisNames[i], scenario->name.c_str(), id.tau_s, truth.tau_s,
                     100.0 * (id.tau_s / truth.tau_s - 1.0), id.gain, truth.gain, 100.0 * (id.gain / truth.gain - 1.0),
                     id.coulomb_mm_s, truth.coulomb_mm_s, 100.0 * (id.coulomb_mm_s / truth.coulomb_mm_s - 1.0),
                     id.stiction_mm_s, truth.stiction_mm_s, 100.0 * (id.stiction_mm_s / truth.stiction_mm_s - 1.0),

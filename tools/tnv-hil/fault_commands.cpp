@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "hal/axis_choice.hpp"
 #include "tools/hil/fault_run.hpp"
 #include "tools/hil/fault_verdict.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
@@ -54,7 +55,7 @@ int run_faults_command(const FaultsOptions& o) {
     const bool ok = hil::fault_case_met(c, obs, mid_code);
     if (!ok) ++failed;
     const char* latched = hil::latched_text(obs);
-    const std::string axis = obs.fault.axis < 0 ? "-" : std::string(1, obs.fault.axis == 0 ? 'x' : 'y');
+    const std::string axis = obs.fault.axis < 0 ? "-" : std::string(hal::axis_label_or(obs.fault.axis, "?"));
     char line[256];
     std::snprintf(line, sizeof line, "%-18s %-7s %-20s %-20s %-5s %5llu  %15s  %12.1f  %s\n", c.name.c_str(),
                   hil::to_string(c.motion), fw::to_string(c.expected), latched, axis.c_str(),

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "hal/axis_choice.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
 #include "tools/can/freq_response_cli.hpp"
 #include "tools/can/freq_response_json.hpp"
@@ -46,7 +47,7 @@ int run_freq_command(const FreqCli& c) {
     std::fprintf(stderr, "tnv-hil: freq-response: %s\n", error.c_str());
     return kExitBadInput;
   }
-  const hal::Axis axis = c.axis == "y" ? hal::Axis::y : hal::Axis::x;
+  const hal::Axis axis = hal::axis_from_name(c.axis).value_or(hal::Axis::x);
   const emu::AxisPlantParams& p = bus->scenario().plant[hal::index(axis)];
   o.plant_model = fw::zoh_axis_model(p.tau_s, p.gain, fw::kControlPeriod_s);
   int code = kExitOk;
@@ -85,7 +86,8 @@ void add_freq_response_commands(CLI::App& app, Runner& run) {
       "open-loop multisine, the open / closed loop from a multisine or sweep added to the holding controller's "
       "command (on a slow carrier motion, --carrier), coherence, margins measured vs the model; the closed-loop "
       "experiment's level, tones and duration default by the active controller (docs/frequency-response.md)");
-  cmd->add_option("--axis", o->axis, "x or y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+  cmd->add_option("--axis", o->axis, hal::kAxisChoices)
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())))->capture_default_str();
   cmd->add_option("--scenario", o->scenario, "built-in scenario name or TOML file")->capture_default_str();
   can_host::add_freq_response_options(*cmd, o->run);
   cmd->add_option("--plot", o->plot, "write the Bode plot (.svg, .png or .pdf)")->check(PlotFile());

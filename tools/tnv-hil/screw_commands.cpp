@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "hal/axis_choice.hpp"
 #include "emulator/text_file.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "tools/can/param_file.hpp"
@@ -112,7 +113,7 @@ int run_screw_map(ScrewMapCliOptions o) {
   if (!scenario) return kExitBadInput;
   const std::optional<fw::FirmwareConfig> config = firmware_config_or_report(o.params_files, o.sets);
   if (!config) return kExitBadInput;
-  o.map.axis = o.fit.axis == "x" ? hal::Axis::x : hal::Axis::y;
+  o.map.axis = hal::axis_from_name(o.fit.axis).value_or(hal::Axis::y);
   if (const std::string why = hil::validate(o.map); !why.empty()) {
     std::fprintf(stderr, "tnv-hil: screw-map: %s\n", why.c_str());
     return kExitBadInput;
@@ -153,7 +154,8 @@ int run_screw_fit(const ScrewFitCliOptions& o) {
 }
 
 void add_fit_outputs(CLI::App* cmd, FitOutputs& o) {
-  cmd->add_option("--axis", o.axis, "x | y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+  cmd->add_option("--axis", o.axis, hal::kAxisChoices)
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())))->capture_default_str();
   cmd->add_option("--period-mm", o.period_mm, "the per-turn table's period: the screw's lead")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "hal/axis_choice.hpp"
 #include "emulator/text_file.hpp"
 #include "firmware/shaper/grid_taps.hpp"
 #include "firmware/shaper/residual_vibration.hpp"
@@ -99,7 +100,7 @@ nlohmann::json run_json(const hil::MoveRunResult& r) {
 int run_move_command(const MoveOptions& o) {
   const auto scenario = resolve_scenario_or_report(o.scenario);
   if (!scenario) return kExitBadInput;
-  const hal::Axis axis = o.axis == "y" ? hal::Axis::y : hal::Axis::x;
+  const hal::Axis axis = hal::axis_from_name(o.axis).value_or(hal::Axis::x);
   const emu::AxisPlantParams& plant = scenario->plant[hal::index(axis)];
   if (!o.freq_hz && plant.mode_hz <= 0.0) {
     std::fprintf(stderr, "tnv-hil: scenario %s has no structural mode on axis %s: give --freq-hz\n",
@@ -282,7 +283,7 @@ int run_jog_command(const JogOptions& o) {
       if (request.shaper[i])
         ax["shaper"] = {
             {"type", o.shaper}, {"freq_hz", request.shaper[i]->mode.freq_hz}, {"zeta", request.shaper[i]->mode.zeta}};
-      axes[i == 0 ? "x" : "y"] = ax;
+      axes[hal::kAxisNames[i]] = ax;
     }
     nlohmann::json j = {{"scenario", scenario->name},
                         {"commands", commands->size()},
@@ -304,7 +305,7 @@ int run_jog_command(const JogOptions& o) {
           buf, sizeof buf,
           "axis %c: travel %.4f mm (shaped %.4f mm, end difference %.3g um); shaper %s\n"
           "        tool residual p-p after the stop %.3f um unshaped, %.3f um shaped; settling +-1 um %s s / %s s\n",
-          i == 0 ? 'x' : 'y', a.end_mm - a.start_mm, b.end_mm - b.start_mm, (b.end_mm - a.end_mm) * 1e3,
+          hal::axis_name(hal::axis_from_index(i)), a.end_mm - a.start_mm, b.end_mm - b.start_mm, (b.end_mm - a.end_mm) * 1e3,
           request.shaper[i]
               ? (o.shaper + " at " + std::to_string(request.shaper[i]->mode.freq_hz).substr(0, 5) + " Hz").c_str()
               : "off",
@@ -407,7 +408,8 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
   CLI::App* move =
       shaper->add_subcommand("move", "HIL point-to-point move, unshaped and shaped, scored at the tool point");
   move->add_option("--scenario", m->scenario, "built-in name (flex-30, flex-100, ...) or TOML file")->required();
-  move->add_option("--axis", m->axis, "x | y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+  move->add_option("--axis", m->axis, hal::kAxisChoices)
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())))->capture_default_str();
   move->add_option("--distance-mm", m->distance_mm, "signed move distance")->required();
   move->add_option("--shaper", m->shaper, kTypes)->required()->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}));
   move->add_option("--freq-hz", m->freq_hz, "shaper frequency (default: the scenario's mode on that axis)");

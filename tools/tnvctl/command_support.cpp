@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
+#include "hal/axis_choice.hpp"
 #include "tools/can/motion_run.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/cli/cli_frame.hpp"
@@ -116,9 +118,8 @@ int run_action(const Action& action, Session& session) {
 }
 
 std::uint8_t parse_axis(const std::string& name) {
-  if (name == "x") return 0;
-  if (name == "y") return 1;
-  std::string message = "axis must be x or y, not '";
+  if (const std::optional<hal::Axis> a = hal::axis_from_name(name)) return static_cast<std::uint8_t>(hal::index(*a));
+  std::string message = "axis must be " + std::string(hal::kAxisChoices) + ", not '";
   message.append(name).append("'");
   throw BadInput(message);
 }

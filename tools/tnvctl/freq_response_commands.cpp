@@ -5,6 +5,7 @@
 #include <string>
 
 #include "firmware/can/protocol_enums.hpp"
+#include "hal/axis_choice.hpp"
 #include "tools/can/freq_response_cli.hpp"
 #include "tools/can/freq_response_json.hpp"
 #include "tools/can/freq_response_run.hpp"
@@ -31,7 +32,7 @@ can_host::FreqResponseOptions checked_options(const FreqOptions& o) {
 
 int run_freq(const FreqOptions& o, Session& session, Report& report) {
   can_host::FreqResponseOptions run = checked_options(o);
-  const hal::Axis axis = o.axis == "y" ? hal::Axis::y : hal::Axis::x;
+  const hal::Axis axis = hal::axis_from_name(o.axis).value_or(hal::Axis::x);
   can_host::NodeClient& client = session.client();
   if (const can_host::EmulatedBus* emu = session.emulated()) {
     // The emulated table's own plant for the model side, and servo on (a
@@ -68,7 +69,8 @@ void add_freq_response_commands(CLI::App& app, ActionSlot& slot) {
       "with coherence and the model's, and the margins measured vs the model (docs/frequency-response.md); the "
       "closed-loop experiment rides on a slow carrier motion (--carrier) and its level, tones and duration "
       "default by the active controller; the node must be enabled and holding (--emu: enabled here)");
-  cmd->add_option("--axis", o->axis, "x or y")->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+  cmd->add_option("--axis", o->axis, hal::kAxisChoices)
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())))->capture_default_str();
   can_host::add_freq_response_options(*cmd, o->run);
   cmd->add_option("--plot", o->plot, "write the Bode plot (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->callback([&slot, o] {

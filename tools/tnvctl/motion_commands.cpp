@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "firmware/can/param_table.hpp"
+#include "hal/axis_choice.hpp"
 #include "tools/can/motion_run.hpp"
 #include "tools/can/node_identity.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -222,14 +223,13 @@ int run_home(const std::string& axis_name, Session& session, Report& report) {
   const bool all = axis_name == "all";
   const std::uint8_t axis = all ? 255 : parse_axis(axis_name);
   can_host::NodeClient& client = session.client();
-  const double bound_s = can_host::homing_bound_s(client, all || axis == 0, all || axis == 1);
+  const double bound_s = can_host::homing_bound_s(client, axis);
   client.command(can::CommandCode::home, axis);
   const can_host::Heartbeat hb = finish(client, "home " + axis_name, bound_s, report);
-  const bool x_homed = (hb.errors & can::kHbHomedX) != 0;
-  const bool y_homed = (hb.errors & can::kHbHomedY) != 0;
-  report.data["homed"] = {{"x", x_homed}, {"y", y_homed}};
-  if ((all || axis == 0) && !x_homed) throw RunFailed("x is not homed (the cycle was stopped?)");
-  if ((all || axis == 1) && !y_homed) throw RunFailed("y is not homed (the cycle was stopped?)");
+  report.data["homed"] = nlohmann::json::object();
+  for (const hal::Axis a : hal::kAxes)
+    report.data["homed"][hal::axis_label(a)] = (hb.errors & can::kHbHomedBits[hal::index(a)]) != 0;
+  if (const auto why = can_host::not_homed_message(hb, axis)) throw RunFailed(*why);
   return kExitOk;
 }
 
@@ -278,7 +278,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
 
   auto move = std::make_shared<MoveOptions>();
   CLI::App* move_cmd = app.add_subcommand("move", "point-to-point move of one axis; waits until it is done");
-  move_cmd->add_option("--axis", move->axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
+  move_cmd->add_option("--axis", move->axis, hal::kAxisChoices)->required()
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())));
   move_cmd->add_option("--distance-mm", move->distance_mm, "signed distance, mm")->required();
   move_cmd->add_option("--speed-mm-s", move->speed_mm_s, "cruise speed, mm/s")->required();
   move_cmd->add_flag("--no-wait", move->no_wait, "return once the node accepted it");
@@ -289,7 +290,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
 
   auto jog = std::make_shared<JogOptions>();
   CLI::App* jog_cmd = app.add_subcommand("jog", "stream JOG frames (a held pendant key), then stop");
-  jog_cmd->add_option("--axis", jog->axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
+  jog_cmd->add_option("--axis", jog->axis, hal::kAxisChoices)->required()
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())));
   jog_cmd->add_option("--speed-mm-s", jog->speed_mm_s, "signed target speed, mm/s")->required();
   jog_cmd->add_option("--duration-s", jog->duration_s, "seconds to keep streaming")->capture_default_str();
   jog_cmd->add_option("--period-ms", jog->period_ms, "JOG frame period (default: half of jog.deadman_s, <= 50 ms)")
@@ -334,7 +336,8 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto zero_axis = std::make_shared<std::string>();
   auto zero_position = std::make_shared<double>(0.0);
   CLI::App* zero_cmd = app.add_subcommand("zero", "assign a position to an axis at rest");
-  zero_cmd->add_option("--axis", *zero_axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
+  zero_cmd->add_option("--axis", *zero_axis, hal::kAxisChoices)->required()
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())));
   zero_cmd->add_option("--position", *zero_position, "mm")->capture_default_str();
   zero_cmd->callback([&slot, zero_axis, zero_position] {
     slot = Action{"zero", true,

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "firmware/can/param_table.hpp"
+#include "hal/axis_choice.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -71,7 +72,8 @@ int run_shaper(const ShaperOptions& o, Session& session, Report& report) {
 void add_shaper_commands(CLI::App& app, ActionSlot& slot) {
   auto o = std::make_shared<ShaperOptions>();
   CLI::App* cmd = app.add_subcommand("shaper", "design one axis' input shaper and/or switch it on or off");
-  cmd->add_option("--axis", o->axis, "x or y")->required()->check(CLI::IsMember({"x", "y"}));
+  cmd->add_option("--axis", o->axis, hal::kAxisChoices)->required()
+      ->check(CLI::IsMember(std::vector<std::string>(hal::kAxisNames.begin(), hal::kAxisNames.end())));
   cmd->add_option("--type", o->type, "zv | zvd | zvdd | ei | mzv")
       ->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}))
       ->capture_default_str();

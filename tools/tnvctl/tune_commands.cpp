@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "tools/can/autotune_plan.hpp"
 #include "tools/can/can_identify.hpp"
@@ -26,14 +27,13 @@ struct TuneOptions {
 };
 
 std::vector<hal::Axis> axes_of(const std::string& name) {
-  if (name == "x") return {hal::Axis::x};
-  if (name == "y") return {hal::Axis::y};
-  if (name == "both") return {hal::Axis::x, hal::Axis::y};
-  std::string message = "--axis must be x, y or both, not '";
+  if (const std::optional<hal::Axis> a = hal::axis_from_name(name)) return {*a};
+  if (name == "both") return {hal::kAxes.begin(), hal::kAxes.end()};
+  std::string message = "--axis must be an axis (x, y) or both, not '";
   throw BadInput(message.append(name).append("'"));
 }
 
-const char* tune_axis_name(hal::Axis a) { return a == hal::Axis::x ? "x" : "y"; }
+const char* tune_axis_name(hal::Axis a) { return hal::axis_label(a); }
 
 // Progress on stderr once the run has taken a second of wall time.
 class IdentifyProgressLine {
