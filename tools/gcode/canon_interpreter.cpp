@@ -43,6 +43,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
         machine.percent(line_number, line.column_at(0));
         continue;
       }
+      machine.begin_line(line_number);
       const NgcBlock block = read_block(line, machine.parameters());
       if (block.o.keyword != OKeyword::none) {
         flow.execute(block.o, machine.parameters());

@@ -75,7 +75,9 @@ int m_group(int code) {
 }  // namespace
 
 CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
-    : setup_(setup), calls_(calls), params_(setup.parameters) {}
+    : setup_(setup), calls_(calls), params_(setup.parameters) {
+  params_.set_machine(this);
+}
 
 namespace {
 
@@ -166,8 +168,8 @@ std::string CanonMachine::substitute(const std::string& text) const {
       std::string name;
       for (std::size_t k = i + 2; k < close; ++k)
         if (text[k] != ' ' && text[k] != '\t') name.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(text[k]))));
-      if (params_.exists(name) || name[0] == '_') {  // an unset global reads 0 here
-        std::snprintf(buf, sizeof buf, "%f", params_.exists(name) ? params_.get(name, 1) : 0.0);
+      if (params_.exists(name)) {
+        std::snprintf(buf, sizeof buf, "%f", params_.get(name, 1));
         out.append(buf);
       } else {
         out.append("######");
@@ -213,7 +215,7 @@ void CanonMachine::run_comments(const NgcBlock& block) {
 void CanonMachine::apply_assignments(const NgcBlock& block) {
   for (const NgcAssignment& a : block.assignments) {
     if (a.name.empty()) params_.set(a.number, a.value, a.column);
-    else params_.set(a.name, a.value);
+    else params_.assign(a.name, a.value, a.column);
   }
 }
 

@@ -16,10 +16,14 @@
 
 namespace tnv::gcode {
 
-class CanonMachine {
+class CanonMachine : private NgcMachineValues {
  public:
   CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls);
+  CanonMachine(const CanonMachine&) = delete;  // its parameters point back at it
+  CanonMachine& operator=(const CanonMachine&) = delete;
   void start();                                  // the start-up calls
+  // The source line about to be read: #<_line> while its words are read.
+  void begin_line(int line) { source_line_ = line; }
   void execute(const NgcBlock& block, int line);  // throws NgcError
   void comments(const NgcBlock& block, int line);
   void end_of_file(int line);                    // throws unless ended
@@ -34,6 +38,9 @@ class CanonMachine {
 
  private:
   using Vec3 = std::array<double, 3>;  // X Y Z, millimetres
+  // LinuxCNC's predefined parameters (canon_predefined.cpp).
+  std::optional<double> predefined(const std::string& name) const override;
+  double read_only_number(int number) const override;
   void emit(const std::string& text);
   std::string num(double mm) const;  // a length in program units, %.4f
   std::string xyz(const Vec3& program_mm) const;
@@ -147,7 +154,8 @@ class CanonMachine {
   const CanonSetup& setup_;
   std::vector<CanonCall>& calls_;
   NgcParameters params_;
-  int line_ = 0;
+  int line_ = 0;            // the line the calls made now are tagged with
+  int source_line_ = 0;      // the line being read and run (#<_line>)
   bool ended_ = false;
   bool percent_started_ = false;
   bool started_ = false;  // a line with words or comments ran

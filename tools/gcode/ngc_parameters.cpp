@@ -8,22 +8,27 @@
 
 namespace tnv::gcode {
 
-NgcParameters::NgcParameters() : locals_(1) {}
+// A subroutine's return value and its flag read 0 before any return, as in LinuxCNC.
+NgcParameters::NgcParameters() : globals_{{"_value", 0.0}, {"_value_returned", 0.0}}, locals_(1) {}
 
 double NgcParameters::get(int number, int column) const {
   if (number < 0 || number >= kCount)
     throw NgcError(column, "parameter #" + std::to_string(number) + " out of range (1.." + std::to_string(kCount - 1) + ")");
+  if (read_only(number)) return machine_ ? machine_->read_only_number(number) : 0.0;
   return numbered_[static_cast<std::size_t>(number)];
 }
 
 void NgcParameters::set(int number, double value, int column) {
   if (number < 1 || number >= kCount)
     throw NgcError(column, "parameter #" + std::to_string(number) + " out of range (1.." + std::to_string(kCount - 1) + ")");
+  if (read_only(number)) throw NgcError(column, "parameter #" + std::to_string(number) + " is read-only");
   numbered_[static_cast<std::size_t>(number)] = value;
 }
 
 double NgcParameters::get(const std::string& name, int column) const {
   if (!name.empty() && name[0] == '_') {
+    if (machine_)
+      if (const std::optional<double> v = machine_->predefined(name)) return *v;
     const auto it = globals_.find(name);
     if (it != globals_.end()) return it->second;
   } else {
@@ -34,13 +39,20 @@ double NgcParameters::get(const std::string& name, int column) const {
 }
 
 bool NgcParameters::exists(const std::string& name) const {
-  if (!name.empty() && name[0] == '_') return globals_.count(name) != 0;
+  if (!name.empty() && name[0] == '_') return globals_.count(name) != 0 || (machine_ && machine_->predefined(name));
   return locals_.back().count(name) != 0;
 }
 
 void NgcParameters::set(const std::string& name, double value) {
   if (!name.empty() && name[0] == '_') globals_[name] = value;
   else locals_.back()[name] = value;
+}
+
+void NgcParameters::assign(const std::string& name, double value, int column) {
+  const bool interpreters_own = name == "_value" || name == "_value_returned";
+  if (interpreters_own || (!name.empty() && name[0] == '_' && machine_ && machine_->predefined(name)))
+    throw NgcError(column, "cannot assign to read-only parameter #<" + name + ">");
+  set(name, value);
 }
 
 void NgcParameters::push_scope() { locals_.emplace_back(); }

@@ -3,7 +3,10 @@
 // set), named locals #<name> (one scope per subroutine call) and globals
 // #<_name>; reading a named parameter never set is an error. The persistent
 // set (work offsets, G28/G30 homes, G92) is read from and written to a
-// LinuxCNC-format .var file ("NUMBER VALUE" lines).
+// LinuxCNC-format .var file ("NUMBER VALUE" lines). LinuxCNC's predefined
+// read-only parameters (#<_x>, #<_motion_mode>, ..., #5400-#5413 the tool,
+// #5420-#5428 the position) are answered by the machine state
+// (NgcMachineValues); a program that assigns one is refused.
 #include <array>
 #include <map>
 #include <optional>
@@ -12,18 +15,39 @@
 
 namespace tnv::gcode {
 
+// The interpreter's state as LinuxCNC's predefined parameters show it.
+class NgcMachineValues {
+ public:
+  virtual ~NgcMachineValues() = default;
+  // `name` ("_x", lower case): its value, or none when it is not predefined.
+  virtual std::optional<double> predefined(const std::string& name) const = 0;
+  // A read-only number (NgcParameters::read_only(number)).
+  virtual double read_only_number(int number) const = 0;
+};
+
 class NgcParameters {
  public:
   static constexpr int kCount = 5602;  // LinuxCNC's RS274NGC_MAX_PARAMETERS
 
   NgcParameters();
-  // Numbered: throws NgcError(column) outside 1..5601 (#0 reads as 0 and is read-only).
+  // Where the predefined read-only values come from (none: they read as 0
+  // and the names are undefined). The machine outlives this object's use.
+  void set_machine(const NgcMachineValues* machine) { machine_ = machine; }
+  // #5400-#5413 (the tool in the spindle) and #5420-#5428 (the position).
+  static constexpr bool read_only(int number) {
+    return (number >= 5400 && number <= 5413) || (number >= 5420 && number <= 5428);
+  }
+  // Numbered: throws NgcError(column) outside 1..5601 (#0 reads as 0 and is
+  // read-only) and, for set, on a read-only number.
   double get(int number, int column) const;
   void set(int number, double value, int column);
   // Named: `name` lower-case without the brackets; a leading '_' is global.
   double get(const std::string& name, int column) const;
   bool exists(const std::string& name) const;
+  // The interpreter's own writes (a subroutine's #<_value>).
   void set(const std::string& name, double value);
+  // A program's assignment: throws NgcError(column) for a predefined name.
+  void assign(const std::string& name, double value, int column);
 
   void push_scope();  // a subroutine call
   void pop_scope();   // its return
@@ -35,6 +59,7 @@ class NgcParameters {
   std::array<double, kCount> numbered_{};
   std::map<std::string, double> globals_;
   std::vector<std::map<std::string, double>> locals_;
+  const NgcMachineValues* machine_ = nullptr;
 };
 
 }  // namespace tnv::gcode

@@ -7,37 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/gcode/canon_test_support.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 
 namespace tnv::gcode {
 namespace cutter_comp_test {
 
-CanonSetup tools_setup() {
-  CanonSetup setup;
-  std::string error;
-  // Diameters in millimetres: T2 2.5, T3 3.75, T4 5, T8 10.
-  EXPECT_TRUE(setup.tools.load_text("T2 P2 D2.5\nT3 P3 D3.75\nT4 P4 D5\nT8 P8 D10\n", error)) << error;
-  return setup;
-}
+// Diameters in millimetres: T2 2.5, T3 3.75, T4 5, T8 10.
+CanonSetup tools_setup() { return test::setup_with_tools("T2 P2 D2.5\nT3 P3 D3.75\nT4 P4 D5\nT8 P8 D10\n"); }
 
-// The calls after the start-up calls and before the program end's resets.
 std::vector<std::string> moves_of(const std::string& text) {
-  const CanonResult r = interpret_canon(text, tools_setup());
-  EXPECT_FALSE(r.error.has_value()) << (r.error ? to_string(*r.error) : "");
-  std::vector<std::string> out;
-  for (std::size_t k = 6; k < r.calls.size(); ++k) {
-    if (r.calls[k].text.rfind("SET_G5X_OFFSET", 0) == 0) break;  // M2's resets
-    out.push_back(r.calls[k].text);
-  }
-  return out;
+  return test::calls_between_start_and_end(text, tools_setup());
 }
 
-GcodeError error_of(const std::string& text) {
-  const CanonResult r = interpret_canon(text, tools_setup());
-  EXPECT_TRUE(r.error.has_value()) << "accepted: " << text;
-  EXPECT_TRUE(r.calls.empty()) << "a refused program returns no call";
-  return r.error.value_or(GcodeError{});
-}
+GcodeError error_of(const std::string& text) { return test::refusal_of(text, tools_setup()); }
 
 std::string feed(const std::string& xyz) { return "STRAIGHT_FEED(" + xyz + ", 0.0000, 0.0000, 0.0000)"; }
 

@@ -10,39 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/gcode/canon_test_support.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 
 namespace tnv::gcode {
 namespace rs274_words_test {
 
-CanonSetup tools_setup() {
-  CanonSetup setup;
-  std::string error;
-  EXPECT_TRUE(setup.tools.load_text("T1 P1 Z2.5 D1.25\n", error)) << error;
-  return setup;
-}
+CanonSetup tools_setup() { return test::setup_with_tools("T1 P1 Z2.5 D1.25\n"); }
 
-// The calls after the start-up calls and before the program end's resets.
 std::vector<std::string> moves_of(const std::string& text) {
-  const CanonResult r = interpret_canon(text, tools_setup());
-  EXPECT_FALSE(r.error.has_value()) << (r.error ? to_string(*r.error) : "");
-  std::vector<std::string> out;
-  for (std::size_t k = 6; k < r.calls.size(); ++k) {
-    if (r.calls[k].text.rfind("SET_G5X_OFFSET(1,", 0) == 0 && k + 1 < r.calls.size() &&
-        r.calls[k + 1].text == "SET_XY_ROTATION(0.0000)" && k + 2 < r.calls.size() &&
-        r.calls[k + 2].text == "SET_FEED_MODE(0, 0)")
-      break;  // M2's resets
-    out.push_back(r.calls[k].text);
-  }
-  return out;
+  return test::calls_between_start_and_end(text, tools_setup());
 }
 
-GcodeError error_of(const std::string& text) {
-  const CanonResult r = interpret_canon(text, tools_setup());
-  EXPECT_TRUE(r.error.has_value()) << "accepted: " << text;
-  EXPECT_TRUE(r.calls.empty()) << "a refused program returns no call";
-  return r.error.value_or(GcodeError{});
-}
+GcodeError error_of(const std::string& text) { return test::refusal_of(text, tools_setup()); }
 
 std::string at(double x, double y, double z) {
   char buf[96];

@@ -213,3 +213,64 @@ def test_random_programs_agree(tnvctl, tables, tmp_path):
         if why is not None:
             failures.append(f"seed {seed}: {why}")
     assert not failures, f"{len(failures)} of {count} differ:\n" + "\n".join(failures[:10])
+
+
+# LinuxCNC's predefined read-only parameters this interpreter answers
+# (tools/gcode/canon_predefined.cpp), printed by (DEBUG,...) lines.
+PREDEFINED = ["_x", "_y", "_z", "_a", "_w", "_line", "_motion_mode", "_plane", "_ccomp", "_metric", "_imperial",
+              "_absolute", "_incremental", "_inverse_time", "_units_per_minute", "_units_per_rev", "_coord_system",
+              "_tool_offset", "_retract_old_z", "_spindle_rpm_mode", "_spindle_css_mode", "_ijk_absolute_mode",
+              "_lathe_diameter_mode", "_lathe_radius_mode", "_spindle_on", "_spindle_cw", "_mist", "_flood",
+              "_speed_override", "_feed_override", "_adaptive_feed", "_feed_hold", "_feed", "_rpm",
+              "_current_tool", "_selected_tool", "_call_level", "_remap_level", "_value", "_value_returned"]
+
+
+def _debug_lines(rng: random.Random) -> str:
+    """Every predefined name and #5400, #5420-#5428, a few to a line, in random order."""
+    names = [f"#<{n}>" for n in PREDEFINED] + ["#5400"] + [f"#{n}" for n in range(5420, 5429)]
+    rng.shuffle(names)
+    return "".join(f"(DEBUG,{' '.join(names[k:k + 6])})\n" for k in range(0, len(names), 6))
+
+
+def test_predefined_parameters_agree(tnvctl, tables, tmp_path):
+    """#<_x>, #<_motion_mode>, #<_coord_system>, ... and #5400, #5420-#5428
+    read as rs274 reads them after random modes, offsets, tool changes,
+    compensated and canned moves, inside and after a subroutine, and in
+    expressions (the value the block is read with)."""
+    rng = random.Random(11)
+    program = tmp_path / "predefined.ngc"
+    failures = []
+    for _ in range(30):
+        units = rng.choice(["G20", "G21"])
+        s = 1.0 if units == "G20" else 25.0
+        def v(lo, hi):
+            return round(rng.uniform(lo, hi) * s, 4)
+        lines = [f"{units} F{rng.choice([5, 40])} S{rng.choice([0, 800])} {rng.choice(['M3', 'M4', 'M5'])}",
+                 rng.choice(["M7", "M8", "M9", "M7\nM8"]),
+                 f"G10 L2 P{rng.randint(1, 9)} X{v(-1, 1)} Y{v(-1, 1)} Z{v(-1, 1)}",
+                 rng.choice(["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]),
+                 rng.choice(["", f"G92 X{v(-1, 1)}"]), f"T{rng.randint(1, 5)} M6", rng.choice(["G43", "G49"]),
+                 f"T{rng.randint(1, 5)}", rng.choice(["G90.1", "G91.1"]), rng.choice(["G98", "G99"]),
+                 rng.choice(["G17", "G18", "G19"]),
+                 rng.choice(["G90", "G91"]) + f" G1 X{v(-1, 1)} Y{v(-1, 1)} Z{v(-1, 1)}", _debug_lines(rng),
+                 "G17 G90", f"G41 D{rng.randint(1, 3)}" if rng.random() < 0.5 else "G40",
+                 f"G1 X{v(2, 3)} Y{v(-1, 1)}", f"G1 X{v(2, 3)} Y{v(2, 3)}", _debug_lines(rng),
+                 "G40 G0 X0 Y0", f"G81 R{v(0.1, 0.2)} Z{v(-0.3, -0.1)} X{v(0, 1)}", _debug_lines(rng), "G80",
+                 "o10 sub", _debug_lines(rng), f"o10 return [{rng.randint(1, 9)}]", "o10 endsub", "o10 call",
+                 _debug_lines(rng), "#1 = [#<_x> + #<_line> * 2 + #5421]", "(DEBUG,#1 #<_line>)", "M2"]
+        text = "\n".join(l for l in lines if l) + "\n"
+        failures += _runs_and_agrees(tnvctl, tables, program, text)
+    assert not failures, "\n".join(failures[:10])
+
+
+def test_reading_and_assigning_predefined_parameters_is_refused_as_rs274_refuses(tnvctl, tables, tmp_path):
+    """Assigning a predefined name or a read-only number, and reading a
+    global never set: both interpreters refuse the same programs; DEBUG of
+    an unset global prints ###### in both."""
+    program = tmp_path / "readonly.ngc"
+    for text in ["G21\n#<_x> = 1\nM2\n", "G21\n#<_value> = 1\nM2\n", "G21\n#5420 = 1\nM2\n", "G21\n#5400 = 3\nM2\n",
+                 "G21\n#1 = [#<_never_set> + 1]\nM2\n"]:
+        program.write_text(text)
+        assert not canon_compare.run_rs274(program, tables[1]).ok, text
+        assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, text
+    assert not _runs_and_agrees(tnvctl, tables, program, "G21\n(DEBUG,[#<_never_set>] #5419)\nM2\n")
