@@ -111,10 +111,11 @@ def first_difference(ours: list[str], theirs: list[str]) -> str | None:
     return None
 
 
-def compare(tnvctl: str, program: Path, tables: tuple[Path, Path], var_files: tuple[Path, Path] | None = None) -> str | None:
+def compare(tnvctl: str, program: Path, tables: tuple[Path, Path], var_files: tuple[Path, Path] | None = None,
+            timeout: float = 60.0) -> str | None:
     """None when both agree (both run with the same calls, or both refuse), else why not."""
-    theirs = run_rs274(program, tables[1], var_files[1] if var_files else None)
-    ours = run_tnvctl(tnvctl, program, tables[0], var_files[0] if var_files else None)
+    theirs = run_rs274(program, tables[1], var_files[1] if var_files else None, timeout)
+    ours = run_tnvctl(tnvctl, program, tables[0], var_files[0] if var_files else None, timeout)
     if not theirs.ok and not ours.ok:
         return None
     if theirs.ok != ours.ok:
