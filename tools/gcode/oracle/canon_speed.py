@@ -60,6 +60,7 @@ def main() -> int:
     ap.add_argument("--lines", type=int, default=1_000_000)
     ap.add_argument("--runs", type=int, default=5)
     opts = ap.parse_args()
+    opts.tnvctl = str(Path(opts.tnvctl).resolve())  # the runs start in a temporary directory
     if canon_compare.rs274_path() is None:
         print("rs274 not found: apt-get install linuxcnc-uspace", file=sys.stderr)
         return 2

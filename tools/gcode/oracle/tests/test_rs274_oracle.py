@@ -274,3 +274,15 @@ def test_reading_and_assigning_predefined_parameters_is_refused_as_rs274_refuses
         assert not canon_compare.run_rs274(program, tables[1]).ok, text
         assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, text
     assert not _runs_and_agrees(tnvctl, tables, program, "G21\n(DEBUG,[#<_never_set>] #5419)\nM2\n")
+
+
+def test_the_speed_comparison_runs_both_on_a_program_they_agree_on(tnvctl):
+    """canon_speed.py on a small surfacing program: it checks agreement
+    first and prints both interpreters' CPU seconds and their ratio (the
+    figure itself is machine-dependent and documented, not asserted)."""
+    import subprocess
+    p = subprocess.run([sys.executable, str(ORACLE / "canon_speed.py"), "--tnvctl", tnvctl, "--lines", "2000",
+                        "--runs", "1"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "the two disagree" not in p.stdout
+    assert "rs274 / tnvctl: median" in p.stdout and "lines/s" in p.stdout, p.stdout
