@@ -1,30 +1,60 @@
-// Canned cycles G73, G81, G82, G83 in the XY plane as LinuxCNC runs them:
+// Canned cycles G73, G81-G86 and G89 in the XY plane as LinuxCNC runs them:
 // Z up to R if below it, exact path for the cycle, XY above R, down to R,
 // the cycle's own moves, back to the clearance (R in G99, the Z the cycles
-// began at in G98); R, Z, P and Q stay from the last cycle line; L repeats;
-// polar @ ^ place the hole (in G91 once per repeat: a bolt circle).
+// began at in G98); R, Z, P and Q stay from the last line of the same
+// cycle; L repeats; polar @ ^ place the hole (in G91 once per repeat: a
+// bolt circle). The drilling cycles: G81 (feed in), G82 (and dwell), G83
+// (pecks, out to R between), G73 (pecks, a small back-off between); the
+// tapping cycle G84; the boring cycles G85 (feed out), G86 (spindle
+// stopped, rapid out), G89 (dwell, feed out).
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "tools/gcode/canon_state.hpp"
 #include "tools/gcode/ngc_error.hpp"
 
 namespace tnv::gcode {
 
+void CanonMachine::cycle_dwell() {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "DWELL(%.4f)", cycle_p_);
+  emit(buf);
+}
+
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
   const bool polar = block.polar_radius || block.polar_angle;  // never with X or Y (target() refused that)
-  if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); cycle_has_r_ = true; }
-  if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); cycle_has_z_ = true; }
+  // R, Z, Q and the dwell P of G82/G86/G89 carry over from the line before
+  // only while the same cycle goes on: a new cycle, or one after G80 or
+  // another motion, names them again (an R or Z left from an earlier cycle
+  // would be a guess at where the stock is). G84's P is kept whatever came between.
+  const std::string cycle = "G" + std::to_string(motion / 10);  // the cycles are whole codes
+  const auto needed = [&](char word, const char* what) {
+    if (!block.has(word) && !cycle_continues_)
+      throw NgcError(column, cycle + " needs " + static_cast<char>(std::toupper(static_cast<unsigned char>(word))) +
+                                 " (" + what + "): a cycle's words carry over only while the same cycle goes on");
+  };
+  needed('r', "the retract plane");
+  needed('z', "the bottom");
+  if (motion == 730 || motion == 830) needed('q', "the peck depth");
+  if (motion == 820 || motion == 860 || motion == 890) needed('p', "the dwell at the bottom, seconds");
+  if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); }
+  if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); }
   if (block.has('q')) { cycle_q_words_ = block.value('q'); cycle_q_ = length(cycle_q_words_); }
   if (block.has('p')) cycle_p_ = block.value('p');
-  if (!cycle_has_r_) throw NgcError(column, "canned cycle needs R (the retract plane)");
-  if (!cycle_has_z_) throw NgcError(column, "canned cycle needs Z (the bottom)");
   if ((motion == 730 || motion == 830) && !(cycle_q_ > 0.0))
     throw NgcError(block.has('q') ? block.column('q') : column, "G73/G83 need a peck depth Q > 0");
-  if (motion == 820 && cycle_p_ < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
+  if (block.has('p') && cycle_p_ < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
   if (feed_ <= 0.0) throw NgcError(column, "cannot run a canned cycle with zero feed rate (F)");
+  // G84 taps right-hand: the spindle must turn clockwise. G86 stops and
+  // restarts the spindle: it must turn.
+  if (motion == 840 && spindle_ != 3)
+    throw NgcError(column, spindle_ == 4 ? "G84 with the spindle turning counterclockwise (it taps right-hand: M3)"
+                                         : "G84 with the spindle stopped (it taps right-hand: M3)");
+  if (motion == 860 && spindle_ == 5) throw NgcError(column, "G86 with the spindle stopped (M3 or M4 first)");
   // G91: R from the Z the run of cycles began at, the bottom from R.
   const double r = absolute_ ? cycle_r_ : cycle_start_z_ + cycle_r_;
   const double bottom = absolute_ ? cycle_z_ : r + cycle_z_;
@@ -67,11 +97,33 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
     if (old_z != r) move_traverse({x, y, r});
     if (motion == 810 || motion == 820) {
       move_feed({x, y, bottom}, column);
-      if (motion == 820) {
-        char buf[48];
-        std::snprintf(buf, sizeof buf, "DWELL(%.4f)", cycle_p_);
-        emit(buf);
-      }
+      if (motion == 820) cycle_dwell();
+    } else if (motion == 840) {  // tap: in at feed, reverse, dwell, out at feed, forward again
+      emit("DISABLE_FEED_OVERRIDE()");
+      emit("DISABLE_SPEED_OVERRIDE(0)");
+      move_feed({x, y, bottom}, column);
+      emit("STOP_SPINDLE_TURNING(0)");
+      emit("START_SPINDLE_COUNTERCLOCKWISE(0)");
+      cycle_dwell();
+      move_feed({x, y, clear}, column);
+      emit("STOP_SPINDLE_TURNING(0)");
+      emit("START_SPINDLE_CLOCKWISE(0)");
+      emit("ENABLE_FEED_OVERRIDE()");
+      emit("ENABLE_SPEED_OVERRIDE(0)");
+    } else if (motion == 850) {  // bore: in and out to R at feed, then up to the clearance
+      move_feed({x, y, bottom}, column);
+      move_feed({x, y, r}, column);
+      move_traverse({x, y, clear});
+    } else if (motion == 860) {  // bore: in at feed, dwell, spindle stopped out at rapid, restarted
+      move_feed({x, y, bottom}, column);
+      cycle_dwell();
+      emit("STOP_SPINDLE_TURNING(0)");
+      move_traverse({x, y, clear});
+      emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)");
+    } else if (motion == 890) {  // bore: in at feed, dwell, out at feed
+      move_feed({x, y, bottom}, column);
+      cycle_dwell();
+      move_feed({x, y, clear}, column);
     } else {
       // Pecks while above the bottom, then the last feed to the bottom. G83
       // retracts to R between pecks, G73 backs off by the clearance. The
@@ -88,7 +140,7 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       }
       move_feed({x, y, bottom}, column);
     }
-    move_traverse({x, y, clear});
+    if (motion != 840 && motion != 850 && motion != 860 && motion != 890) move_traverse({x, y, clear});
     old_z = clear;
   }
   // Back to the program's path mode: the same call G61/G61.1/G64 makes,

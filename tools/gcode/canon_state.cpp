@@ -38,7 +38,7 @@ std::string g_text(int code) {
 int g_group(int code) {
   switch (code) {
     case 0: case 10: case 20: case 30: case 51: case 331: case 382: case 383: case 384: case 385:
-    case 800: case 730: case 810: case 820: case 830: return 1;
+    case 800: case 730: case 810: case 820: case 830: case 840: case 850: case 860: case 890: return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -57,7 +57,7 @@ int g_group(int code) {
 
 std::string unsupported_g(int code) {
   std::string why;
-  if (code >= 840 && code <= 890) why = " (canned cycles other than G73, G81, G82, G83 are not supported yet)";
+  if (code == 870 || code == 880) why = " (back boring G87 and manual-retract boring G88 are not supported)";
   else if (code == 930) why = " (inverse-time feed is not supported yet)";
   return "unsupported G-code " + g_text(code) + why;
 }
@@ -474,8 +474,9 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
   if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
     throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
-  if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || motion == 820 || has_code(block.g, 640)))
-    throw NgcError(block.column('p'), "word P with no G4, G10, G64 or arc to use it");
+  const bool cycle_dwell = motion == 820 || motion == 840 || motion == 860 || motion == 890;
+  if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || cycle_dwell || has_code(block.g, 640)))
+    throw NgcError(block.column('p'), "word P with no G4, G10, G64, arc or G82/G84/G86/G89 to use it");
 }
 
 void CanonMachine::execute(const NgcBlock& block, int line) {
@@ -721,6 +722,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
 
   // Motion.
   if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_)) cycle_start_z_ = pos_[2];
+  // A cycle's R, Z, P and Q carry over only while the same cycle goes on.
+  cycle_continues_ = !g_motion || g_motion->code == motion_;
   if (g_motion && g_motion->code != 51) motion_ = g_motion->code;  // G5.1 leaves the motion mode as it was (as rs274 does)
   const bool machine = non_modal == 530;
   if (machine) {

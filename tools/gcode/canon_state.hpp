@@ -76,9 +76,10 @@ class CanonMachine : private NgcMachineValues {
   void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();
-  // G73, G81, G82, G83 in the XY plane (canon_cycles.cpp).
+  // G73, G81-G86, G89 in the XY plane (canon_cycles.cpp).
   static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
   void canned_cycle(const NgcBlock& block, int motion, int column);
+  void cycle_dwell();  // DWELL(P) at the bottom of G82, G84, G86, G89
   void check_words(const NgcBlock& block, int motion, int non_modal) const;
 
   // M70 save, M71 invalidate, M72 restore, M73 save for restore at return
@@ -181,7 +182,7 @@ class CanonMachine : private NgcMachineValues {
   double cycle_start_z_ = 0.0;  // Z where the run of canned cycles began (mm)
   double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;  // sticky words, mm (P seconds)
   double cycle_r_words_ = 0.0, cycle_z_words_ = 0.0, cycle_q_words_ = 0.0;  // the same, as written (program units)
-  bool cycle_has_r_ = false, cycle_has_z_ = false;
+  bool cycle_continues_ = false;  // this line's motion mode is the one before it
   Vec3 canon_pos_{};       // the last point moved to, as the machine knows it (program coordinates)
   int comp_side_ = 0;      // 0 off (G40), 1 left (G41), 2 right (G42)
   double comp_radius_ = 0.0;  // mm, >= 0

@@ -127,9 +127,9 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   e = error_of("G19 G41 D1\nM2\n");  // cutter radius compensation only in G17 (and G18)
   EXPECT_EQ(e.column, 5);
   EXPECT_NE(e.message.find("G41"), std::string::npos) << e.message;
-  e = error_of("F100\nG85 X1 Y1 Z-1 R1\nM2\n");
+  e = error_of("F100\nG87 X1 Y1 Z-1 R1\nM2\n");  // back boring: not supported
   EXPECT_EQ(e.line, 2);
-  EXPECT_NE(e.message.find("G85"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("G87"), std::string::npos) << e.message;
   e = error_of("F100\nG81 X1 ^30 Z-1 R1\nM2\n");  // polar and X on one line
   EXPECT_NE(e.message.find("polar"), std::string::npos) << e.message;
   e = error_of("F100\nG18 G81 X1 Y1 Z-1 R1\nM2\n");

@@ -217,9 +217,13 @@ class Generator:
         bottom = r - self.r.uniform(0.5, 15) * s
         if not self.absolute:  # G91: R from the start Z, Z from R
             bottom = bottom - r
-        code = self.r.choice(["G81", "G82", "G83", "G73"])
+        code = self.r.choice(["G81", "G82", "G83", "G73", "G84", "G85", "G86", "G89"])
         extra = {"G81": "", "G82": f" P{self.num(0, 1)}", "G83": f" Q{self.r.uniform(0.3, 4) * s:.4f}",
-                 "G73": f" Q{self.r.uniform(0.3, 4) * s:.4f}"}[code]
+                 "G73": f" Q{self.r.uniform(0.3, 4) * s:.4f}", "G85": "", "G86": f" P{self.num(0, 1)}",
+                 "G89": f" P{self.num(0, 1)}",
+                 "G84": self.r.choice(["", f" P{self.num(0, 1)}"])}[code]
+        if code in ("G84", "G86"):  # tapping needs the spindle clockwise, G86 turning
+            self.lines.append(f"S{self.r.randint(100, 3000)} M3")
         repeat = f" L{self.r.randint(1, 3)}" if self.r.random() < 0.2 else ""
         retract = self.r.choice(["G98 ", "G99 ", ""])
         span = 40.0 * s

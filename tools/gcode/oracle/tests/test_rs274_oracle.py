@@ -188,6 +188,54 @@ def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
     assert not failures, "\n".join(failures)
 
 
+def test_tapping_and_boring_cycles_agree(tnvctl, tables, tmp_path):
+    """G84, G85, G86, G89 (and G81-G83, G73 beside them) in G90 and G91,
+    G98 and G99, with L repeats, lines that go on with the same cycle, a
+    change of cycle that names its words again, and G86 restarting a
+    counterclockwise spindle."""
+    rng = random.Random(13)
+    program = tmp_path / "cycles.ngc"
+    failures = []
+    for _ in range(40):
+        units = rng.choice(["G20", "G21"])
+        s = 1.0 if units == "G20" else 25.0
+        def v(lo, hi):
+            return round(rng.uniform(lo, hi) * s, 4)
+        lines = [f"{units} F{rng.choice([5, 50])} S{rng.choice([300, 1200])} M3", f"G0 X0 Y0 Z{v(0.5, 1)}"]
+        for _ in range(rng.randint(1, 3)):
+            code = rng.choice(["G84", "G85", "G86", "G89", "G81", "G82", "G83", "G73"])
+            words = {"G84": rng.choice(["", f" P{v(0, 0.04)}"]), "G86": f" P{rng.choice([0, 0.5])}",
+                     "G89": f" P{rng.choice([0.2, 1])}", "G82": f" P{rng.choice([0.2, 1])}",
+                     "G83": f" Q{v(0.05, 0.3)}", "G73": f" Q{v(0.05, 0.3)}"}.get(code, "")
+            if code == "G86" and rng.random() < 0.3:
+                lines.append("M4")
+            elif code in ("G84", "G86"):
+                lines.append("M3")
+            absolute = rng.random() < 0.6
+            r, bottom = (v(0.1, 0.3), v(-0.5, -0.1)) if absolute else (v(0.1, 0.3), v(-0.6, -0.2))
+            repeat = f" L{rng.randint(1, 3)}" if not absolute and rng.random() < 0.5 else ""
+            lines.append(f"{'G90' if absolute else 'G91'} {rng.choice(['G98', 'G99'])} {code} X{v(-1, 1)} "
+                         f"Y{v(-1, 1)} R{r} Z{bottom}{words}{repeat}")
+            for _ in range(rng.randint(0, 2)):
+                lines.append(f"X{v(-1, 1)}" + (f" Y{v(-1, 1)}" if rng.random() < 0.5 else ""))
+            lines.append(rng.choice(["G80", "G80 G90", "G90 G0 Z1"]))
+        lines.append("M2")
+        failures += _runs_and_agrees(tnvctl, tables, program, "\n".join(lines) + "\n")
+    assert not failures, "\n".join(failures[:10])
+
+
+def test_a_cycle_after_another_names_its_words_again_as_rs274_requires(tnvctl, tables, tmp_path):
+    """R, Z, P and Q are not taken from an earlier, different cycle, nor
+    across G80 or another motion: both interpreters refuse these."""
+    program = tmp_path / "sticky.ngc"
+    for body in ["G81 R2 Z-3 X1\nG82 R2 Z-3 X2", "G81 R2 Z-3 X1\nG82 R2 P1 X2", "G83 R2 Z-3 X1 Q1\nG73 R2 Z-3 X2",
+                 "G81 R2 Z-3 X1\nG80\nG81 X2", "G81 R2 Z-3 X1\nG0 X0\nG81 X2", "G86 R2 Z-3 X1 P1\nG89 R2 Z-3 X2",
+                 "M4\nG84 R2 Z-3 X1", "M5\nG86 R2 Z-3 X1 P1", "G85 R2 Z-3 X1 P1"]:
+        program.write_text(f"G21 F100 S500 M3\nG0 X0 Y0 Z5\n{body}\nM2\n")
+        assert not canon_compare.run_rs274(program, tables[1]).ok, body
+        assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, body
+
+
 @pytest.mark.parametrize("tool", [1, 2, 3])
 def test_lathe_tool_compensation_agrees(tnvctl, tmp_path, tool):
     """G41/G42 in G18 with lathe tools: orientations 2 and 6 move the printed
