@@ -81,7 +81,10 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   // Up to R first, before the cycle's exact-path mode, when the run of
   // cycles began below it (LinuxCNC judges by that Z, not by Z now).
   if (cycle_start_z_ < r) move_traverse({pos_[0], pos_[1], r});
-  double old_z = std::fmax(pos_[2], r);
+  // The first hole is reached at the clearance when the tool is below it
+  // (a G98 line after G99 ones in the same run rises to the Z the run began
+  // at on the way, as rs274 does), else where it is.
+  double old_z = std::fmax(pos_[2], clear);
   const bool switch_mode = control_ != 610;  // already exact path (G61): no switch, no switch back
   if (switch_mode) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   for (int k = 0; k < repeats; ++k) {

@@ -190,8 +190,9 @@ def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
 
 def test_tapping_and_boring_cycles_agree(tnvctl, tables, tmp_path):
     """G84, G85, G86, G89 (and G81-G83, G73 beside them) in G90 and G91,
-    G98 and G99, with L repeats, lines that go on with the same cycle, a
-    change of cycle that names its words again, and G86 restarting a
+    G98 and G99, with L repeats, lines that go on with the same cycle (a
+    G98 line after G99 ones rises to where the run began), a change of
+    cycle that names its words again, and G86 restarting a
     counterclockwise spindle."""
     rng = random.Random(13)
     program = tmp_path / "cycles.ngc"
@@ -216,8 +217,9 @@ def test_tapping_and_boring_cycles_agree(tnvctl, tables, tmp_path):
             repeat = f" L{rng.randint(1, 3)}" if not absolute and rng.random() < 0.5 else ""
             lines.append(f"{'G90' if absolute else 'G91'} {rng.choice(['G98', 'G99'])} {code} X{v(-1, 1)} "
                          f"Y{v(-1, 1)} R{r} Z{bottom}{words}{repeat}")
-            for _ in range(rng.randint(0, 2)):
-                lines.append(f"X{v(-1, 1)}" + (f" Y{v(-1, 1)}" if rng.random() < 0.5 else ""))
+            for _ in range(rng.randint(0, 2)):  # the same cycle goes on, its retract mode sometimes switched
+                lines.append(rng.choice(["", "G98 ", "G99 "]) + f"X{v(-1, 1)}" +
+                             (f" Y{v(-1, 1)}" if rng.random() < 0.5 else ""))
             lines.append(rng.choice(["G80", "G80 G90", "G90 G0 Z1"]))
         lines.append("M2")
         failures += _runs_and_agrees(tnvctl, tables, program, "\n".join(lines) + "\n")
