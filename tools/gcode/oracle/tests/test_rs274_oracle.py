@@ -158,6 +158,17 @@ def test_modal_state_restores_agree(tnvctl, tables, tmp_path):
     assert not failures, "\n".join(failures)
 
 
+def _random_units(rng: random.Random):
+    """G20 or G21, and a random length in that unit: v(lo, hi) draws lo..hi
+    inches, written in the program's unit to 4 decimals."""
+    units = rng.choice(["G20", "G21"])
+    scale = 1.0 if units == "G20" else 25.0
+
+    def v(lo: float, hi: float) -> float:
+        return round(rng.uniform(lo, hi) * scale, 4)
+    return units, v
+
+
 def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
     """Canned cycles with polar @ ^ in G90 and G91 with L repeats, G5.1
     splines and G38.2-G38.5 probe moves (rs274 models the probe as never
@@ -166,10 +177,7 @@ def test_polar_cycles_splines_and_probes_agree(tnvctl, tables, tmp_path):
     program = tmp_path / "polar_probe.ngc"
     failures = []
     for _ in range(40):
-        units = rng.choice(["G20", "G21"])
-        scale = 1.0 if units == "G20" else 25.0
-        def v(lo, hi):
-            return round(rng.uniform(lo, hi) * scale, 4)
+        units, v = _random_units(rng)
         polar = rng.choice([f"@{v(0.5, 3)}", f"^{round(rng.uniform(-180, 180), 3)}",
                             f"@{v(0.5, 3)} ^{round(rng.uniform(-180, 180), 3)}"])
         cycle = rng.choice(["G81", "G82 P0.5", f"G83 Q{v(0.05, 0.3)}", f"G73 Q{v(0.05, 0.3)}"])
@@ -198,10 +206,7 @@ def test_tapping_and_boring_cycles_agree(tnvctl, tables, tmp_path):
     program = tmp_path / "cycles.ngc"
     failures = []
     for _ in range(40):
-        units = rng.choice(["G20", "G21"])
-        s = 1.0 if units == "G20" else 25.0
-        def v(lo, hi):
-            return round(rng.uniform(lo, hi) * s, 4)
+        units, v = _random_units(rng)
         lines = [f"{units} F{rng.choice([5, 50])} S{rng.choice([300, 1200])} M3", f"G0 X0 Y0 Z{v(0.5, 1)}"]
         for _ in range(rng.randint(1, 3)):
             code = rng.choice(["G84", "G85", "G86", "G89", "G81", "G82", "G83", "G73"])
@@ -291,10 +296,7 @@ def test_predefined_parameters_agree(tnvctl, tables, tmp_path):
     program = tmp_path / "predefined.ngc"
     failures = []
     for _ in range(30):
-        units = rng.choice(["G20", "G21"])
-        s = 1.0 if units == "G20" else 25.0
-        def v(lo, hi):
-            return round(rng.uniform(lo, hi) * s, 4)
+        units, v = _random_units(rng)
         lines = [f"{units} F{rng.choice([5, 40])} S{rng.choice([0, 800])} {rng.choice(['M3', 'M4', 'M5'])}",
                  rng.choice(["M7", "M8", "M9", "M7\nM8"]),
                  f"G10 L2 P{rng.randint(1, 9)} X{v(-1, 1)} Y{v(-1, 1)} Z{v(-1, 1)}",
