@@ -27,7 +27,7 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   const std::string at = "cannot run from line " + std::to_string(line) + ": ";
   if (comp_side_ != 0)
     throw NgcError(1, at + "cutter radius compensation (line " + std::to_string(comp_line_) +
-                          ") is in force there; start before that G41/G42 or after its G40 (LinuxCNC refuses it too)");
+                          ") is in force there and would need an entry move; start at that G41/G42 or after its G40");
   if (muted_probe_line_ != 0)
     throw NgcError(1, at + "line " + std::to_string(muted_probe_line_) +
                           " probes (G38.x) before it, and a skipped probe's result (#5061-#5070) is unknown; start at "
@@ -84,9 +84,8 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   emit("SET_FEED_RATE(" + four_decimals(feed_) + ")");
 
   // 4. XY at the clearance, then down: at rapid to approach_mm above the
-  // start, the rest at the feed rate in force. With no feed rate in force
-  // every move before was a rapid, so the start point is one the program
-  // itself reaches at rapid: so does the approach.
+  // start, the rest at the feed rate in force. With none in force (no F
+  // yet: every move before was a rapid; or a G94 since) all at rapid.
   emit("STRAIGHT_TRAVERSE(" + xyz({start[0], start[1], travel_z}) + ")");
   if (start[2] < travel_z) {
     const double above = start[2] + from.approach_mm;
