@@ -3,14 +3,50 @@
 // and .var parameters. Invariants: a refused program returns no call and
 // names a line within the text (or 1 for the whole program) and a column
 // >= 1; an accepted one starts with the start-up calls, ends (M2,
-// M30 or '%') and prints no call with a non-finite number.
+// M30 or '%') and prints no call with a non-finite number; run from a line
+// the input picks, it is refused on that line or ends as the full run.
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "tests/fuzz/fuzz_entries.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 
 namespace tnv::fuzz {
+
+namespace {
+
+std::size_t lines_of(std::string_view text) {
+  std::size_t lines = 1;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+// Run from a line the input picks (docs/gcode.md "Run from line"): refused
+// with no call and the error on that line, or the run ends as the full run
+// does, after the start-up calls and the comment that marks the start.
+std::string run_from_a_line(std::string_view text, const std::vector<gcode::CanonCall>& full, std::size_t lines) {
+  gcode::CanonSetup setup;
+  std::string error;
+  setup.tools.load_text("T1 P1 Z10 D6\nT2 P2 Z-2.5 D3\nT3 P3 Z0.5\n", error);
+  setup.parameters.load_var_text("5221 1\n5242 -2\n5161 5\n5183 -10\n", error);
+  setup.max_lines_run = 20'000;
+  setup.from_line = gcode::RunFromLine{};
+  setup.from_line->line = static_cast<int>(1 + text.size() % lines);
+  const gcode::CanonResult r = gcode::interpret_canon(text, setup);
+  if (r.error) {
+    if (!r.calls.empty()) return "a refused start returned calls";
+    if (r.error->line != setup.from_line->line) return "a refused start names another line";
+    return "";
+  }
+  if (r.calls.size() < 8 || r.calls[6].text.rfind("COMMENT(\"interpreter: run from line", 0) != 0)
+    return "a start without the start-up calls and its comment";
+  if (r.calls.back().text != full.back().text || r.calls.size() > full.size() + 40)
+    return "a start that does not end as the full run";
+  return "";
+}
+
+}  // namespace
 
 std::string gcode_canon(const std::uint8_t* data, std::size_t size) {
   static const gcode::CanonSetup setup = [] {
@@ -25,8 +61,7 @@ std::string gcode_canon(const std::uint8_t* data, std::size_t size) {
   const gcode::CanonResult r = gcode::interpret_canon(text, setup);
   if (r.error) {
     if (!r.calls.empty()) return "a refused program returned calls";
-    std::size_t lines = 1;
-    for (char c : text) lines += c == '\n';
+    const std::size_t lines = lines_of(text);
     if (r.error->line < 1 || static_cast<std::size_t>(r.error->line) > lines) return "error line outside the text";
     if (r.error->column < 1) return "error column < 1";
     if (r.error->message.empty()) return "error without a message";
@@ -41,7 +76,7 @@ std::string gcode_canon(const std::uint8_t* data, std::size_t size) {
     if (c.text.find("nan") != std::string::npos || c.text.find("inf") != std::string::npos)
       return "a call with a non-finite number: " + c.text;
   }
-  return "";
+  return run_from_a_line(text, r.calls, lines_of(text));
 }
 
 }  // namespace tnv::fuzz

@@ -90,6 +90,7 @@ void CanonMachine::comp_on(const NgcBlock& block, const NgcCode& g) {
   emit(side == kCompRight ? "COMMENT(\"interpreter: cutter radius compensation on right\")"
                       : "COMMENT(\"interpreter: cutter radius compensation on left\")");
   comp_side_ = side;
+  comp_line_ = line_;
   comp_radius_ = radius;
   comp_orientation_ = orientation;
   comp_first_ = true;
@@ -121,6 +122,7 @@ void CanonMachine::comp_off(int column) {
   if (comp_active()) {
     comp_flush_here();
     canon_pos_ = pos_;
+    tool_after_g40_machine_ = program_to_machine(pos_);
     pos_ = programmed_;
     arc_not_allowed_ = true;
   }
@@ -134,6 +136,8 @@ void CanonMachine::comp_flush_here() {
 }
 
 void CanonMachine::print_queued(const Queued& q) {
+  if (q.kind != Queued::Kind::text) tool_after_g40_machine_.reset();
+  if (muted_) return;
   const int line = line_;
   line_ = q.line;
   switch (q.kind) {

@@ -13,6 +13,33 @@
 
 namespace tnv::gcode {
 
+namespace {
+
+std::string label(const std::string& name) {
+  const bool number = !name.empty() && name.find_first_not_of("0123456789") == std::string::npos;
+  return number ? "o" + name : "o<" + name + ">";
+}
+
+// Refusals known before anything runs; `line_number` is where the error is reported.
+void check_start_line(const RunFromLine& from, std::size_t line_count, const ProgramFlow& flow, int& line_number) {
+  line_number = from.line;
+  const std::string at = "cannot run from line " + std::to_string(from.line) + ": ";
+  if (from.line < 1 || static_cast<std::size_t>(from.line) > line_count)
+    throw NgcError(1, at + "the program has lines 1 to " + std::to_string(line_count));
+  if (from.pass < 1) throw NgcError(1, at + "the pass must be 1 or more");
+  if (!std::isfinite(from.clearance_z_mm) || !std::isfinite(from.approach_mm) || from.approach_mm < 0.0)
+    throw NgcError(1, at + "the clearance must be a number and the approach height a number >= 0");
+  for (double v : from.machine_position_mm)
+    if (!std::isfinite(v)) throw NgcError(1, at + "the machine position must be numbers");
+  if (from.tool_in_spindle < 0) throw NgcError(1, at + "negative tool number in the spindle");
+  if (const auto def = flow.definition_holding(static_cast<std::size_t>(from.line - 1)))
+    throw NgcError(1, at + "it is in the definition of subroutine " + label(def->name) + " (lines " +
+                          std::to_string(def->sub + 1) + " to " + std::to_string(def->endsub + 1) +
+                          "), which runs only when called; start at the line that calls it");
+}
+
+}  // namespace
+
 CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
   CanonResult result;
   CanonMachine machine(setup, result.calls);
@@ -29,11 +56,19 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       pos = eol + 1;
     }
     ProgramFlow flow(lines, setup.max_lines_run);
+    long passes_left = 0;
+    if (setup.from_line) {
+      check_start_line(*setup.from_line, lines.size(), flow, line_number);
+      passes_left = setup.from_line->pass;
+    }
     machine.start();
+    if (setup.from_line) machine.mute();
     while (!machine.ended()) {
       const std::optional<std::size_t> next = flow.next_line();
       if (!next) break;
       line_number = static_cast<int>(*next) + 1;
+      if (machine.muted() && line_number == setup.from_line->line && --passes_left == 0)
+        machine.resume(*setup.from_line, line_number);
       const NgcLine& line = lines[*next];
       if (line.text.empty()) continue;
       if (setup.block_delete && line.text[0] == '/') continue;
@@ -54,6 +89,16 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       machine.execute(block, line_number);
     }
     if (!machine.ended()) machine.end_of_file(line_number);
+    if (machine.muted()) {
+      const RunFromLine& from = *setup.from_line;
+      const long runs = from.pass - passes_left;
+      line_number = from.line;
+      throw NgcError(1, "cannot run from line " + std::to_string(from.line) + ": " +
+                            (runs == 0 ? std::string("the program never runs it (it ends first, or the line is in a "
+                                                     "branch or loop that does not run)")
+                                       : "it runs only " + std::to_string(runs) + " time" + (runs == 1 ? "" : "s") +
+                                             ", not " + std::to_string(from.pass)));
+    }
   } catch (const NgcError& e) {
     result.calls.clear();
     result.error = GcodeError{line_number, e.column(), e.what()};

@@ -95,6 +95,10 @@ bool waits_behind_queued_moves(const std::string& text) {
 }  // namespace
 
 void CanonMachine::emit(const std::string& text) {
+  if (text.rfind("STRAIGHT_", 0) == 0 || text.rfind("ARC_FEED(", 0) == 0 || text.rfind("NURBS_FEED(", 0) == 0 ||
+      text.rfind("RIGID_TAP(", 0) == 0)
+    tool_after_g40_machine_.reset();  // the tool moved on
+  if (muted_) return;
   if (!queue_.empty() && waits_behind_queued_moves(text)) {
     Queued q;
     q.line = line_;
@@ -204,9 +208,9 @@ void CanonMachine::run_comments(const NgcBlock& block) {
     else if (head == "debug,") emit("MESSAGE(\"" + substitute(c.substr(6)) + "\")");
     else if (head == "print,") continue;  // rs274 prints it on its own output, not as a call
     // LOG* are calls rs274 prints; no file is opened or written here.
-    else if (lower.rfind("logopen,", 0) == 0) emit("LOGOPEN(\"" + c.substr(8) + "\")");
-    else if (lower.rfind("logappend,", 0) == 0) emit("LOGAPPEND(\"" + c.substr(10) + "\")");
-    else if (lower == "logclose") emit("LOGCLOSE()");
+    else if (lower.rfind("logopen,", 0) == 0) emit("LOGOPEN(\"" + (log_file_ = c.substr(8)) + "\")");
+    else if (lower.rfind("logappend,", 0) == 0) emit("LOGAPPEND(\"" + (log_file_ = c.substr(10)) + "\")");
+    else if (lower == "logclose") { log_file_.clear(); emit("LOGCLOSE()"); }
     else if (lower.rfind("log,", 0) == 0) emit("LOG(\"" + substitute(c.substr(4)) + "\")");
     else emit("COMMENT(\"" + c.substr(std::min(c.find_first_not_of(" \t"), c.size())) + "\")");
   }
@@ -379,6 +383,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   // G38.2/G38.4 (an error if the probe does not change) need a move; G38.3/G38.5 may stay put.
   if ((motion == 382 || motion == 384) && to == pos_)
     throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
+  if (muted_) muted_probe_line_ = line_;
   emit("TURN_PROBE_ON()");
   emit("STRAIGHT_PROBE(" + xyz(to) + ")");
   emit("TURN_PROBE_OFF()");

@@ -35,6 +35,12 @@ class CanonMachine : private NgcMachineValues {
   // Leaving a level drops what M70/M73 saved there; an M73 state is
   // restored first, on the endsub/return line (canon_modal_state.cpp).
   void set_call_depth(std::size_t depth, int line);
+  // Run from line (canon_run_from_line.cpp): a muted machine keeps its
+  // state but makes no call; resume() refuses an unsafe start, makes the
+  // modal state again and the approach to the start point, and unmutes.
+  void mute() { muted_ = true; }
+  bool muted() const { return muted_; }
+  void resume(const RunFromLine& from, int line);  // throws NgcError
 
  private:
   using Vec3 = std::array<double, 3>;  // X Y Z, millimetres
@@ -195,6 +201,13 @@ class CanonMachine : private NgcMachineValues {
   std::array<double, 2> endpoint_{};  // where the first queued move starts
   bool endpoint_valid_ = false;
   int comp_column_ = 1;  // the word an error found while compensating is reported at
+  bool muted_ = false;      // run from line: before the start line
+  int muted_probe_line_ = 0;  // the last line that probed while muted
+  int comp_line_ = 0;      // the line compensation was turned on
+  // After G40 and until the next move the tool stands beside the programmed
+  // point (machine coordinates, so no offset change moves it).
+  std::optional<Vec3> tool_after_g40_machine_;
+  std::string log_file_;   // the file LOGOPEN/LOGAPPEND opened, until LOGCLOSE
   std::vector<std::optional<SavedModes>> saved_modes_ = std::vector<std::optional<SavedModes>>(1);  // per call level
 };
 

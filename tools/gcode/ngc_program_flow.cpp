@@ -1,5 +1,6 @@
 #include "tools/gcode/ngc_program_flow.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tools/gcode/ngc_error.hpp"
@@ -37,6 +38,17 @@ std::optional<std::size_t> ProgramFlow::next_line() {
     throw NgcError(1, "more than " + std::to_string(max_lines_run_) + " lines run: a loop that does not end?");
   current_ = pc_++;
   return current_;
+}
+
+std::optional<ProgramFlow::Definition> ProgramFlow::definition_holding(std::size_t line) const {
+  for (std::size_t i = 0; i < o_.size() && i <= line; ++i) {
+    if (o_[i].keyword != OKeyword::sub) continue;
+    std::size_t end = i + 1;
+    while (end < o_.size() && !(o_[end].keyword == OKeyword::endsub && o_[end].name == o_[i].name)) ++end;
+    if (line <= end) return Definition{o_[i].name, i, std::min(end, o_.size() - 1)};
+    i = end;
+  }
+  return std::nullopt;
 }
 
 std::size_t ProgramFlow::find_forward(std::size_t from, const std::string& name,

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "tools/gcode/ngc_block.hpp"
@@ -24,6 +25,13 @@ class ProgramFlow {
   void execute(const NgcOWord& o, NgcParameters& params);
   bool in_subroutine() const { return !frames_.empty(); }
   std::size_t depth() const { return frames_.size(); }  // 0 at the top level
+  // The subroutine definition (o<name> sub .. endsub, both lines included)
+  // that holds `line` (0-based), if one does.
+  struct Definition {
+    std::string name;
+    std::size_t sub = 0, endsub = 0;
+  };
+  std::optional<Definition> definition_holding(std::size_t line) const;
 
  private:
   struct Frame {

@@ -2,6 +2,8 @@
 // rs274 prints them (tools/gcode/canon_interpreter.hpp; no device needed).
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "tools/gcode/canon_interpreter.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -14,6 +16,9 @@ struct CanonOptions {
   std::string program;
   std::string tool_table;
   std::string var_file;
+  int from_line = 0;  // 0: the whole program
+  gcode::RunFromLine run_from;
+  std::vector<double> machine_position;  // X Y Z, or empty
 };
 
 gcode::CanonSetup load_setup(const CanonOptions& o) {
@@ -21,6 +26,12 @@ gcode::CanonSetup load_setup(const CanonOptions& o) {
   std::string error;
   if (!o.tool_table.empty() && !gcode::load_tool_table_file(o.tool_table, setup, error)) throw BadInput(error);
   if (!o.var_file.empty() && !gcode::load_var_file(o.var_file, setup, error)) throw BadInput(error);
+  if (o.from_line != 0) {
+    setup.from_line = o.run_from;
+    setup.from_line->line = o.from_line;
+    for (std::size_t a = 0; a < o.machine_position.size() && a < 3; ++a)
+      setup.from_line->machine_position_mm[a] = o.machine_position[a];
+  }
   return setup;
 }
 
@@ -52,6 +63,28 @@ void add_gcode_commands(CLI::App& app, ActionSlot& slot) {
   canon->add_option("FILE", o->program, "the program (.ngc)")->required();
   canon->add_option("--tool-table", o->tool_table, "a LinuxCNC tool table (.tbl), lengths in millimetres");
   canon->add_option("--var-file", o->var_file, "a LinuxCNC parameter file (.var): work offsets, G28/G30, G92");
+  CLI::Option* from_line = canon->add_option("--from-line", o->from_line,
+                    "run from this line (1-based): the lines before run silently, the modal state is made again and "
+                    "the tool approaches the start (docs/gcode.md \"Run from line\")")
+      ->check(CLI::PositiveNumber);
+  canon->add_option("--from-pass", o->run_from.pass, "with --from-line: start the Nth time the line runs (in a loop)")
+      ->check(CLI::PositiveNumber)
+      ->needs(from_line);
+  canon->add_option("--clearance-z", o->run_from.clearance_z_mm,
+                    "with --from-line: machine Z (mm) of the first retract (default 0: the top of Z's travel)")
+      ->needs(from_line);
+  canon->add_option("--approach-height", o->run_from.approach_mm,
+                    "with --from-line: the last mm above the start point go at the feed rate (default 5)")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(from_line);
+  canon->add_option("--machine-position", o->machine_position,
+                    "with --from-line: where the machine is, X Y Z in machine coordinates, mm (default 0 0 0)")
+      ->expected(3)
+      ->needs(from_line);
+  canon->add_option("--tool-in-spindle", o->run_from.tool_in_spindle,
+                    "with --from-line: the tool the machine holds (default 0: none); another is changed at the start")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(from_line);
   canon->callback([&slot, o] {
     slot = Action{"gcode canon", false, [o](Session& s, Report& r) { return run_canon(*o, s, r); },
                   [o] { (void)load_setup(*o); }};
