@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/tools/gcode/canon_test_support.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 
 // A namespace of its own: the unity build joins this file with the other
@@ -25,13 +26,11 @@ namespace {
 constexpr std::size_t kStartUpCalls = 6;  // USE_LENGTH_UNITS .. ON_RESET
 
 CanonSetup with_tools() {
-  CanonSetup setup;
-  std::string text, error;
+  std::string text;
   for (int t = 1; t <= 20; ++t)  // as the oracle's table: length 2.5 t, diameter 1.25 t
     text += "T" + std::to_string(t) + " P" + std::to_string(t) + " Z" + std::to_string(2.5 * t) + " D" +
             std::to_string(1.25 * t) + "\n";
-  EXPECT_TRUE(setup.tools.load_text(text, error)) << error;
-  return setup;
+  return test::setup_with_tools(text);
 }
 
 CanonSetup from(int line, CanonSetup setup = with_tools()) {
@@ -52,12 +51,7 @@ std::vector<std::string> run(const std::string& program, const CanonSetup& setup
   return texts(r.calls);
 }
 
-GcodeError refusal(const std::string& program, const CanonSetup& setup) {
-  const CanonResult r = interpret_canon(program, setup);
-  EXPECT_TRUE(r.error.has_value()) << "accepted:\n" << canon_text(r.calls);
-  EXPECT_TRUE(r.calls.empty()) << "a refused start makes no call";
-  return r.error.value_or(GcodeError{});
-}
+GcodeError refusal(const std::string& program, const CanonSetup& setup) { return test::refusal_of(program, setup); }
 
 std::string traverse(double x, double y, double z) {
   char buf[128];
