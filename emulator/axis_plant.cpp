@@ -15,7 +15,9 @@ AxisPlant::AxisPlant(const AxisPlantParams& params) noexcept
       accel_limit_mm_s2_(params.accel_limit_mm_s2),
       accel_limited_(params.accel_limit_mm_s2 > 0.0),
       substep_(decay_for(kSubstep_s)) {
-  for (std::size_t k = 0; k < kMaxBlock; ++k) decay_powers_[k] = std::exp(-static_cast<double>(k) * kSubstep_s / tau_s_);
+  decay_sums_[0] = 0.0;
+  for (std::size_t k = 0; k < kMaxBlock; ++k)
+    decay_sums_[k + 1] = decay_sums_[k] + std::exp(-static_cast<double>(k) * kSubstep_s / tau_s_);
 }
 
 AxisPlant::Decay AxisPlant::decay_for(double duration_s) const noexcept {
@@ -53,44 +55,76 @@ double AxisPlant::travel_to_zero_crossing_mm(double v0_mm_s, double w_mm_s) cons
   return w_mm_s * std::max(crossing_s, 0.0) + v0_mm_s * tau_s_;
 }
 
-// With w_j = K u + d_j - f (f constant) held over sub-step j, the exact
-// solution telescopes (sum_j e^{-(n-1-j)h/tau} (1 - e^{-h/tau}) = 1 - e^{-nh/tau}):
-//   Q   = sum_j e^{-(n-1-j)h/tau} (v0 - w_j)
+// With w = K u + d - f (f constant) held over n sub-steps, the exact
+// solution telescopes (sum_{k<n} e^{-kh/tau} (1 - e^{-h/tau}) = 1 - e^{-nh/tau}):
+//   Q   = (v0 - w) sum_{k<n} e^{-kh/tau}
 //   v_n = v0 - (1 - e^{-h/tau}) Q
-//   p_n = p0 + h sum_j w_j + tau (1 - e^{-h/tau}) Q
+//   p_n = p0 + n h w + tau (1 - e^{-h/tau}) Q
 // Q is zero at steady state, so nothing cancels when the speed is steady.
-bool AxisPlant::advance_block(AxisState& s, double command_mm_s, const double* disturbance_mm_s,
-                              std::size_t count) const noexcept {
+bool AxisPlant::advance_held_block(AxisState& s, double command_mm_s, double disturbance_mm_s,
+                                   std::size_t count) const noexcept {
   if (count == 0 || count > kMaxBlock) return false;
   const double v0_mm_s = s.speed_mm_s;
+  const double drive_mm_s = gain_ * command_mm_s + disturbance_mm_s;
   double friction_mm_s = 0.0;
   if (friction_enabled_) {
-    if (v0_mm_s == 0.0 || !friction_.coulomb_only_beyond(v0_mm_s)) return false;
+    if (v0_mm_s == 0.0) {
+      // Karnopp, every sub-step alike: at rest within stiction, it stays at rest.
+      if (std::abs(drive_mm_s) > friction_.stiction_mm_s()) return false;
+      s.stuck = true;
+      return true;
+    }
+    if (!friction_.coulomb_only_beyond(v0_mm_s)) return false;
     friction_mm_s = std::copysign(friction_.coulomb_mm_s(), v0_mm_s);
   }
-  const double drive_mm_s = gain_ * command_mm_s;
-  double lowest_w_mm_s = v0_mm_s, highest_w_mm_s = v0_mm_s, sum_w_mm_s = 0.0, q_mm_s = 0.0;
-  const double* power = decay_powers_.data() + (count - 1);  // e^{-(n-1-j)h/tau} for j = 0
-  for (std::size_t j = 0; j < count; ++j) {
-    const double w_mm_s = drive_mm_s + disturbance_mm_s[j] - friction_mm_s;
-    lowest_w_mm_s = std::min(lowest_w_mm_s, w_mm_s);
-    highest_w_mm_s = std::max(highest_w_mm_s, w_mm_s);
-    sum_w_mm_s += w_mm_s;
-    q_mm_s += *(power - j) * (v0_mm_s - w_mm_s);
+  const double w_mm_s = drive_mm_s - friction_mm_s;
+  // Under an acceleration limit, the closed form holds while |w - v| <= A tau
+  // throughout; v runs from v0 toward w, so |w - v0| bounds it.
+  if (accel_limited_ && std::abs(w_mm_s - v0_mm_s) > accel_limit_mm_s2_ * tau_s_) return false;
+  const double q_mm_s = (v0_mm_s - w_mm_s) * decay_sums_[count];
+  const double v_n_mm_s = v0_mm_s - substep_.rise * q_mm_s;
+  // v is monotonic from v0 to v_n: both beyond the cutoff on v0's side? (The
+  // cutoff's margin covers the rounding between this v_n and the stepped one.)
+  if (friction_enabled_ && ((v_n_mm_s > 0.0) != (v0_mm_s > 0.0) || !friction_.coulomb_only_beyond(v_n_mm_s))) {
+    return false;
   }
-  // Under an acceleration limit, the closed form holds while |w_j - v| <= A tau
-  // throughout; v stays within [min, max] of {v0, w_j}, so that span bounds it.
-  if (accel_limited_ && highest_w_mm_s - lowest_w_mm_s > accel_limit_mm_s2_ * tau_s_) return false;
-  if (friction_enabled_) {
-    // v stays between min and max of {v0, w_j}: all beyond the cutoff on v0's side?
-    const double nearest_zero_mm_s = v0_mm_s > 0.0 ? lowest_w_mm_s : highest_w_mm_s;
-    if ((nearest_zero_mm_s > 0.0) != (v0_mm_s > 0.0) || !friction_.coulomb_only_beyond(nearest_zero_mm_s)) {
-      return false;
-    }
-  }
-  s.position_mm += kSubstep_s * sum_w_mm_s + substep_.tau_rise_s * q_mm_s;
-  s.speed_mm_s = v0_mm_s - substep_.rise * q_mm_s;
+  s.position_mm += kSubstep_s * static_cast<double>(count) * w_mm_s + substep_.tau_rise_s * q_mm_s;
+  s.speed_mm_s = v_n_mm_s;
   return true;
+}
+
+// The closed form is tried where it can newly hold: at the start of the
+// block, after a stop (the law changes) and on leaving the Stribeck zone.
+// Held inputs make v_n the same from any start in the block (to rounding),
+// so a block declined outside the zone stays declined until a stop.
+void AxisPlant::advance_held(AxisState& s, double command_mm_s, double disturbance_mm_s,
+                             std::size_t count) const noexcept {
+  if (!friction_enabled_ || accel_limited_) {  // rare: tried at every sub-step
+    for (std::size_t left = count; left > 0; --left) {
+      if (advance_held_block(s, command_mm_s, disturbance_mm_s, left)) return;
+      advance(s, command_mm_s, disturbance_mm_s);
+    }
+    return;
+  }
+  // The common case: the Karnopp law as advance() calls it (the same bits),
+  // the drive computed once, the state a local that stays in registers.
+  const double drive_mm_s = gain_ * command_mm_s + disturbance_mm_s;
+  AxisState x = s;
+  bool try_closed_form = true;
+  for (std::size_t left = count; left > 0; --left) {
+    if (try_closed_form) {
+      AxisState block = x;
+      if (advance_held_block(block, command_mm_s, disturbance_mm_s, left)) {
+        s = block;
+        return;
+      }
+    }
+    const double v0_mm_s = x.speed_mm_s;
+    karnopp(x, drive_mm_s, substep_, LinearLaw{*this});
+    try_closed_form = x.speed_mm_s == 0.0 ||
+                      (!friction_.coulomb_only_beyond(v0_mm_s) && friction_.coulomb_only_beyond(x.speed_mm_s));
+  }
+  s = x;
 }
 
 // The Karnopp switching with the clamped law between switches.

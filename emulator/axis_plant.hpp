@@ -26,7 +26,7 @@ struct AxisState {
 
 class AxisPlant {
  public:
-  static constexpr std::size_t kMaxBlock = 100;  // longest advance_block
+  static constexpr std::size_t kMaxBlock = 100;  // longest advance_held_block
 
   explicit AxisPlant(const AxisPlantParams& params) noexcept;
 
@@ -40,14 +40,18 @@ class AxisPlant {
     advance_with(state, command_mm_s, disturbance_mm_s, substep_);
   }
 
-  // `count` (<= kMaxBlock) sub-steps with command u and disturbances d[i] in
-  // one closed form, when that is provably the same as stepping: friction
-  // off, or the speed stays beyond the Stribeck cutoff on one side for the
-  // whole block (it moves between v0 and the w_i, so min/max of those bound
-  // it), where friction is exactly +-f_c at every sub-step start. Returns
-  // false and leaves `state` alone otherwise (step them one by one).
-  bool advance_block(AxisState& state, double command_mm_s, const double* disturbance_mm_s,
-                     std::size_t count) const noexcept;
+  // `count` (<= kMaxBlock) sub-steps with command u and disturbance d held,
+  // in one closed form, when that is provably the same as stepping: friction
+  // off; or the speed stays beyond the Stribeck cutoff on one side for the
+  // whole block, where friction is exactly +-f_c at every sub-step start
+  // (v runs monotonically from v0 to v_n, so checking both ends suffices);
+  // or the axis rests, stuck, with |K u + d| <= f_s (Karnopp: it stays so).
+  // Returns false and leaves `state` alone otherwise.
+  bool advance_held_block(AxisState& state, double command_mm_s, double disturbance_mm_s,
+                          std::size_t count) const noexcept;
+  // `count` (<= kMaxBlock) sub-steps with u and d held: single sub-steps
+  // until the rest of the block has the closed form above, then that.
+  void advance_held(AxisState& state, double command_mm_s, double disturbance_mm_s, std::size_t count) const noexcept;
 
   double position_mm() const noexcept { return state_.position_mm; }
   double speed_mm_s() const noexcept { return state_.speed_mm_s; }
@@ -140,7 +144,7 @@ class AxisPlant {
   double accel_limit_mm_s2_;
   bool accel_limited_;
   Decay substep_;
-  std::array<double, kMaxBlock> decay_powers_;  // e^{-k h/tau}, k = 0..kMaxBlock-1
+  std::array<double, kMaxBlock + 1> decay_sums_;  // sum_{k<n} e^{-k h/tau}, n = 0..kMaxBlock
   AxisState state_{};
 };
 

@@ -397,21 +397,10 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
     step_substeps(x, y, u_x, u_y, n);
   } else {
-    // Closed form for the block where it is provably the same as stepping
-    // (AxisPlant::advance_block); sub-step by sub-step otherwise.
-    static constexpr std::array<double, kMaxBlock> kNoDisturbance{};
-    const bool x_done = plants[0].advance_block(x, u_x, kNoDisturbance.data(), n);
-    const bool y_done = plants[1].advance_block(y, u_y, kNoDisturbance.data(), n);
-    if (!x_done && !y_done) {
-      for (std::size_t i = 0; i < n; ++i) {  // both in one loop: their chains overlap
-        plants[0].advance(x, u_x, 0.0);
-        plants[1].advance(y, u_y, 0.0);
-      }
-    } else if (!x_done) {
-      for (std::size_t i = 0; i < n; ++i) plants[0].advance(x, u_x, 0.0);
-    } else if (!y_done) {
-      for (std::size_t i = 0; i < n; ++i) plants[1].advance(y, u_y, 0.0);
-    }
+    // Held inputs: the closed form where it is provably the same as
+    // stepping, sub-steps elsewhere (AxisPlant::advance_held).
+    plants[0].advance_held(x, u_x, 0.0, n);
+    plants[1].advance_held(y, u_y, 0.0, n);
   }
   plants[0].set_state(x);
   plants[1].set_state(y);

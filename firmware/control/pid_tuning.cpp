@@ -157,4 +157,20 @@ PidTuningReport paper_pid_tuning(hal::Axis axis) noexcept {
   return tune_pid_equal_crossover(paper_axis_model(axis), paper_dvsc_params(axis));
 }
 
+PidParams paper_pid_params(hal::Axis axis, double u_max_mm_s) noexcept {
+  // paper_pid_tuning(axis): kp, ki, kd, derivative filter (printed to round-trip).
+  PidTuningReport r;
+  if (axis == hal::Axis::x) {
+    r.kp = 560.8273280856934;
+    r.ki = 33695.64484971097;
+    r.kd = 2.333590092507429;
+  } else {
+    r.kp = 662.7543577500362;
+    r.ki = 40766.365494139354;
+    r.kd = 2.693662614955271;
+  }
+  r.derivative_filter_tf_s = 0.0;
+  return pid_params_from(r, u_max_mm_s);
+}
+
 }  // namespace tnv::fw

@@ -80,4 +80,10 @@ PidParams pid_params_from(const PidTuningReport& report, double u_max_mm_s = kDa
 // tune_pid_equal_crossover(paper_axis_model(axis), paper_dvsc_params(axis)).
 PidTuningReport paper_pid_tuning(hal::Axis axis) noexcept;
 
+// pid_params_from(paper_pid_tuning(axis), u_max): the papers' default gains,
+// as that tuning computes them (bit for bit on x86-64; a test recomputes
+// them), without its ~17,000 loop-gain evaluations, which were a seventh of
+// the instructions of a whole-process HIL circle (docs/performance.md).
+PidParams paper_pid_params(hal::Axis axis, double u_max_mm_s = kDacFullScaleSpeed_mm_s) noexcept;
+
 }  // namespace tnv::fw

@@ -14,8 +14,7 @@ FirmwareConfig default_firmware_config() noexcept {
     AxisConfig& a = config.axis[i];
     a.model = paper_axis_model(axis);
     a.sliding = paper_rdvsc_params(axis);
-    const PidTuningReport tuning = paper_pid_tuning(axis);
-    if (tuning.ok) a.pid = pid_params_from(tuning, a.sliding.u_max_mm_s);
+    a.pid = paper_pid_params(axis, a.sliding.u_max_mm_s);
   }
   return config;
 }

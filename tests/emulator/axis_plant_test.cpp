@@ -194,46 +194,102 @@ TEST(AxisPlantFriction, SlidingAboveCoulombReachesSteadySpeed) {
   EXPECT_NEAR(plant.speed_mm_s(), 5.0 - 1.5, 1e-9) << "steady speed = K u - f_c when v >> v_s";
 }
 
-// advance_block is a shortcut, never a different model.
+// advance_held_block is a shortcut, never a different model.
 struct BlockCase {
   const char* what;
   AxisPlantParams params;
-  double v0_mm_s, command_mm_s, ripple_mm_s;
+  double v0_mm_s, command_mm_s, disturbance_mm_s;
+  bool stuck;
   bool closed_form_expected;
 };
+
+AxisPlantParams accel_limited(double accel_limit_mm_s2) {
+  AxisPlantParams p;
+  p.accel_limit_mm_s2 = accel_limit_mm_s2;
+  return p;
+}
 
 class AxisPlantBlock : public ::testing::TestWithParam<BlockCase> {};
 
 TEST_P(AxisPlantBlock, ClosedFormEqualsSteppingOrDeclines) {
   const BlockCase& c = GetParam();
   const AxisPlant plant(c.params);
-  double disturbance_mm_s[100];
-  for (int i = 0; i < 100; ++i) disturbance_mm_s[i] = c.ripple_mm_s * std::sin(0.3 * i);
-  AxisState stepped{1.0, c.v0_mm_s, false};
-  for (int i = 0; i < 100; ++i) plant.advance(stepped, c.command_mm_s, disturbance_mm_s[i]);
-  AxisState block{1.0, c.v0_mm_s, false};
-  const bool done = plant.advance_block(block, c.command_mm_s, disturbance_mm_s, 100);
+  AxisState stepped{1.0, c.v0_mm_s, c.stuck};
+  for (int i = 0; i < 100; ++i) plant.advance(stepped, c.command_mm_s, c.disturbance_mm_s);
+  AxisState block{1.0, c.v0_mm_s, c.stuck};
+  const bool done = plant.advance_held_block(block, c.command_mm_s, c.disturbance_mm_s, 100);
   ASSERT_EQ(done, c.closed_form_expected) << c.what;
   if (!done) {
     EXPECT_EQ(block.position_mm, 1.0) << c.what << ": a declined block changed the state";
     EXPECT_EQ(block.speed_mm_s, c.v0_mm_s);
+    EXPECT_EQ(block.stuck, c.stuck);
     return;
   }
   EXPECT_NEAR(block.position_mm, stepped.position_mm, 1e-14) << c.what << ": position, mm";
   EXPECT_NEAR(block.speed_mm_s, stepped.speed_mm_s, 1e-13) << c.what << ": speed, mm/s";
-  EXPECT_FALSE(block.stuck);
+  EXPECT_EQ(block.stuck, stepped.stuck) << c.what;
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, AxisPlantBlock,
-    ::testing::Values(BlockCase{"cruising forward", AxisPlantParams{}, 2.0, 3.6, 0.5, true},
-                      BlockCase{"cruising backward", AxisPlantParams{}, -2.0, -3.4, 0.3, true},
-                      BlockCase{"decelerating, stays clear of the Stribeck zone", AxisPlantParams{}, 3.0, 2.5, 0.0, true},
-                      BlockCase{"friction off, through zero", frictionless(0.007122), 1.0, -1.0, 0.2, true},
-                      BlockCase{"heading into the Stribeck zone", AxisPlantParams{}, 2.0, 1.8, 0.0, false},
-                      BlockCase{"starting inside the Stribeck zone", AxisPlantParams{}, 0.3, 3.0, 0.0, false},
-                      BlockCase{"at rest", AxisPlantParams{}, 0.0, 5.0, 0.0, false}),
+    ::testing::Values(
+        BlockCase{"cruising forward", AxisPlantParams{}, 2.0, 3.6, 0.5, false, true},
+        BlockCase{"cruising backward", AxisPlantParams{}, -2.0, -3.4, -0.3, false, true},
+        BlockCase{"decelerating, stays clear of the Stribeck zone", AxisPlantParams{}, 3.0, 2.5, 0.0, false, true},
+        BlockCase{"heading for the Stribeck zone, still clear of it after 1 ms", AxisPlantParams{}, 2.0, 1.8, 0.0,
+                  false, true},
+        BlockCase{"heading for zero, clear of the zone after 1 ms", AxisPlantParams{}, 2.0, -3.0, 0.0, false, true},
+        BlockCase{"friction off, through zero", frictionless(0.007122), 1.0, -1.0, 0.2, false, true},
+        BlockCase{"stuck, drive within stiction", AxisPlantParams{}, 0.0, 2.9, -0.4, true, true},
+        BlockCase{"at rest, drive within stiction: sticks", AxisPlantParams{}, 0.0, -3.0, 0.0, false, true},
+        BlockCase{"under the acceleration limit, small step", accel_limited(1000.0), 2.0, 4.0, 0.0, false, true},
+        BlockCase{"reaching the Stribeck zone within 1 ms", AxisPlantParams{}, 0.8, 0.5, 0.0, false, false},
+        BlockCase{"through zero within 1 ms", AxisPlantParams{}, 0.9, -8.0, 0.0, false, false},
+        BlockCase{"starting inside the Stribeck zone", AxisPlantParams{}, 0.3, 3.0, 0.0, false, false},
+        BlockCase{"at rest, breaking away", AxisPlantParams{}, 0.0, 5.0, 0.0, true, false},
+        BlockCase{"on the acceleration limit's ramp", accel_limited(1000.0), 2.0, 20.0, 0.0, false, false}),
     [](const ::testing::TestParamInfo<BlockCase>& param_info) { return std::to_string(param_info.index); });
+
+// advance_held, the closed form where it holds and sub-steps elsewhere,
+// follows the sub-steps through every switch: into and out of the Stribeck
+// zone, through zero, sticking, breaking away.
+struct HeldCase {
+  const char* what;
+  AxisPlantParams params;
+  double v0_mm_s, command_mm_s;
+  bool stuck;
+};
+
+class AxisPlantHeld : public ::testing::TestWithParam<HeldCase> {};
+
+TEST_P(AxisPlantHeld, EqualsSteppingForAnyBlockLength) {
+  const HeldCase& c = GetParam();
+  const AxisPlant plant(c.params);
+  for (const std::size_t count : {std::size_t{1}, std::size_t{7}, std::size_t{50}, std::size_t{100}}) {
+    AxisState stepped{1.0, c.v0_mm_s, c.stuck};
+    AxisState held = stepped;
+    // Ten blocks in a row, so each starts where the last one left the axis.
+    for (int block = 0; block < 10; ++block) {
+      for (std::size_t i = 0; i < count; ++i) plant.advance(stepped, c.command_mm_s, 0.25);
+      plant.advance_held(held, c.command_mm_s, 0.25, count);
+      ASSERT_NEAR(held.position_mm, stepped.position_mm, 1e-13) << c.what << ", blocks of " << count;
+      ASSERT_NEAR(held.speed_mm_s, stepped.speed_mm_s, 1e-12) << c.what << ", blocks of " << count;
+      ASSERT_EQ(held.stuck, stepped.stuck) << c.what << ", blocks of " << count;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, AxisPlantHeld,
+    ::testing::Values(HeldCase{"cruising", AxisPlantParams{}, 2.0, 3.6, false},
+                      HeldCase{"decelerating into the zone and sticking", AxisPlantParams{}, 1.5, 1.0, false},
+                      HeldCase{"reversing through zero", AxisPlantParams{}, 1.5, -6.0, false},
+                      HeldCase{"breaking away and leaving the zone", AxisPlantParams{}, 0.0, 6.0, true},
+                      HeldCase{"stuck, held by stiction", AxisPlantParams{}, 0.0, -3.2, true},
+                      HeldCase{"creeping inside the zone", AxisPlantParams{}, 0.05, 1.6, false},
+                      HeldCase{"acceleration limit, reversing", accel_limited(1000.0), 2.0, -20.0, false},
+                      HeldCase{"friction off", frictionless(0.005360), -1.0, 2.0, false}),
+    [](const ::testing::TestParamInfo<HeldCase>& param_info) { return std::to_string(param_info.index); });
 
 }  // namespace
 }  // namespace tnv::emu

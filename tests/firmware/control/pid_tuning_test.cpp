@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <iomanip>
 #include <numbers>
 #include <vector>
 
@@ -64,6 +65,31 @@ TEST(PidTuning, DefaultPidParamsAreTheTunedXAxisGains) {
   EXPECT_NEAR(def.kd, r.kd, 1e-4 * r.kd) << "update the PidParams defaults: kd = " << r.kd;
   EXPECT_EQ(def.derivative_filter_tf_s, r.derivative_filter_tf_s);
   EXPECT_TRUE(def.feedforward);
+}
+
+// default_firmware_config() takes the papers' gains precomputed; they must be
+// the tuner's, to the last bit where the tuner's arithmetic is the one they
+// were printed from (x86-64, no FMA contraction; elsewhere the contraction
+// moves its last bits).
+TEST(PidTuning, PrecomputedPaperGainsAreTheTunersGains) {
+  for (hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+    const char name = hal::axis_name(axis);
+    const PidTuningReport r = paper_pid_tuning(axis);
+    ASSERT_TRUE(r.ok) << name << ": " << r.note;
+    const PidParams tuned = pid_params_from(r, 123.0);
+    const PidParams precomputed = paper_pid_params(axis, 123.0);
+#if defined(__x86_64__)
+    EXPECT_EQ(precomputed, tuned) << name << ": update paper_pid_params: kp = " << std::setprecision(17) << r.kp
+                                  << ", ki = " << r.ki << ", kd = " << r.kd;
+#else
+    EXPECT_NEAR(precomputed.kp, tuned.kp, 1e-9 * tuned.kp) << name;
+    EXPECT_NEAR(precomputed.ki, tuned.ki, 1e-9 * tuned.ki) << name;
+    EXPECT_NEAR(precomputed.kd, tuned.kd, 1e-9 * tuned.kd) << name;
+    EXPECT_EQ(precomputed.derivative_filter_tf_s, tuned.derivative_filter_tf_s) << name;
+    EXPECT_EQ(precomputed.u_max_mm_s, 123.0);
+    EXPECT_TRUE(precomputed.feedforward);
+#endif
+  }
 }
 
 // Linearised DVSC+DDC closed-loop poles: r = q - eta/phi (S1 eq. (14)),
