@@ -258,7 +258,7 @@ void visit_values(T& value, const std::string& path, Leaf& leaf) {
     // [[fault]]: read beside the table (fault_schedule_file_test.cpp covers every kind's keys)
   } else if constexpr (std::is_class_v<T> && std::is_aggregate_v<T>) {
     std::size_t i = 0;
-    test::for_each_member(value, [&](auto& member) { visit_values(member, path + "." + std::to_string(i++), leaf); });
+    ::tnv::test::for_each_member(value, [&](auto& member) { visit_values(member, path + "." + std::to_string(i++), leaf); });
   } else {
     static_assert(kNoKeyType<T>, "a Scenario member of a type no scenario key holds: give the reader that type");
   }
