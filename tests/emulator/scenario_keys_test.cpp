@@ -257,8 +257,6 @@ template <class T>
 struct IsStdArray : std::false_type {};
 template <class T, std::size_t N>
 struct IsStdArray<std::array<T, N>> : std::true_type {};
-template <class>
-inline constexpr bool kNoKeyType = false;
 
 // leaf(address, path) for every value a key could set, walking structs and arrays.
 template <class T, class Leaf>
@@ -274,7 +272,7 @@ void visit_values(T& value, const std::string& path, Leaf& leaf) {
     std::size_t i = 0;
     ::tnv::test::for_each_member(value, [&](auto& member) { visit_values(member, path + "." + std::to_string(i++), leaf); });
   } else {
-    static_assert(kNoKeyType<T>, "a Scenario member of a type no scenario key holds: give the reader that type");
+    static_assert(sizeof(T) == 0, "a Scenario member of a type no scenario key holds: give the reader that type");
   }
 }
 
