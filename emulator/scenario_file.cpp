@@ -3,12 +3,12 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <span>
 #include <variant>
 #include <vector>
 
 #include <toml++/toml.h>
 
+#include "emulator/scenario_keys.hpp"
 #include "emulator/scenario_validation.hpp"
 #include "emulator/text_file.hpp"
 #include "emulator/toml_type_name.hpp"
@@ -18,140 +18,13 @@ namespace tnv::emu {
 
 namespace {
 
-using FieldTarget = std::variant<double*, int*, bool*, std::uint32_t*, std::string*>;
-struct Field {
-  std::string_view name;
-  FieldTarget target;
-};
-
 // Walks the parsed document into a Scenario, remembering where each key was.
 class ScenarioReader {
  public:
   explicit ScenarioReader(std::string_view source_name) : source_(source_name) {}
 
-  bool read(const toml::table& root, Scenario& s) {
-    for (auto&& [key, node] : root) {
-      const std::string name(key.str());
-      if (name == "name") {
-        if (!assign(key, name, node, &s.name)) return false;
-      } else if (name == "plant") {
-        if (!read_plant(key, node, s)) return false;
-      } else if (name == "cutting") {
-        const Field fields[] = {{"enabled", &s.cutting.enabled},     {"spindle_rpm", &s.cutting.spindle_rpm},
-                                {"flutes", &s.cutting.flutes},       {"mean_mm_s", &s.cutting.mean_mm_s},
-                                {"amplitude_mm_s", &s.cutting.amplitude_mm_s}, {"exponent", &s.cutting.exponent},
-                                {"phase_rad", &s.cutting.phase_rad}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "encoder") {
-        std::vector<Field> fields{{"counts_per_rev", &s.encoder.counts_per_rev}, {"lead_mm", &s.encoder.lead_mm}};
-#define TNV_ENCODER_AXIS_FIELDS(n, ...) \
-  fields.push_back({"offset_counts_" #n, &s.encoder.axis_offset_counts[hal::index(hal::Axis::n)]});
-        TNV_AXES(TNV_ENCODER_AXIS_FIELDS)
-#undef TNV_ENCODER_AXIS_FIELDS
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "dac") {
-        const Field fields[] = {{"bits", &s.dac.bits}, {"full_scale_v", &s.dac.full_scale_v},
-                                {"rpm_at_full_scale", &s.dac.rpm_at_full_scale}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "force_sensor") {
-        const Field fields[] = {{"volts_per_mm_s", &s.force_sensor.volts_per_mm_s},
-                                {"volts_per_n", &s.force_sensor.volts_per_n}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "milling") {
-        const Field fields[] = {{"enabled", &s.milling.enabled},
-                                {"time_constant_s", &s.milling.time_constant_s},
-                                {"force_n_per_mm_mm_s", &s.milling.force_n_per_mm_mm_s},
-                                {"feed_load_mm_s_per_n", &s.milling.feed_load_mm_s_per_n},
-                                {"depth_start_mm", &s.milling.depth.start_mm},
-                                {"depth_peak_mm", &s.milling.depth.peak_mm},
-                                {"rise_s", &s.milling.depth.rise_s},
-                                {"fall_s", &s.milling.depth.fall_s}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "board") {
-        BoardParams& b = s.board;
-        std::vector<Field> fields{{"clock_start", &b.clock_start}, {"limit_switches", &b.limit_switches}};
-        // Per axis: <field>_<axis>, or <field>_<axis>_<unit> where the field has a unit.
-#define TNV_BOARD_AXIS_FIELDS(n, ...)                                                                      \
-  {                                                                                                   \
-    BoardAxisParams& a = b.axis[hal::index(hal::Axis::n)];                                            \
-    fields.insert(fields.end(), {{"home_switch_" #n, &a.home_switch},                                 \
-                                 {"home_" #n "_mm", &a.home_mm},                                      \
-                                 {"home_" #n "_side", &a.home_side},                                  \
-                                 {"index_" #n "_deg", &a.index_deg},                                  \
-                                 {"limit_" #n "_min_mm", &a.limit_min_mm},                            \
-                                 {"limit_" #n "_max_mm", &a.limit_max_mm},                            \
-                                 {"power_up_offset_" #n "_mm", &a.power_up_offset_mm}});              \
-  }
-        TNV_AXES(TNV_BOARD_AXIS_FIELDS)
-#undef TNV_BOARD_AXIS_FIELDS
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "noise") {
-        const Field fields[] = {{"seed", &s.noise.seed},
-                                {"force_adc_v_rms", &s.noise.force_adc_v_rms},
-                                {"accel_g_rms", &s.noise.accel_g_rms},
-                                {"accel_bias_g", &s.noise.accel_bias_g},
-                                {"dac_offset_v", &s.noise.dac_offset_v},
-                                {"dac_gain_error", &s.noise.dac_gain_error},
-                                {"encoder_glitch_per_s", &s.noise.encoder_glitch_per_s},
-                                {"encoder_glitch_counts", &s.noise.encoder_glitch_counts},
-                                {"bore_gauge_um_rms", &s.noise.bore_gauge_um_rms},
-                                {"bore_gauge_resolution_um", &s.noise.bore_gauge_resolution_um}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "io") {
-        const Field fields[] = {{"read_latency_us", &s.io.read_latency_us},
-                                {"write_latency_us", &s.io.write_latency_us},
-                                {"jitter_us", &s.io.jitter_us}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "fault") {
-        if (!read_faults(key, node, s)) return false;
-      } else if (name == "spindle") {
-        SpindleParams& sp = s.spindle;
-        const Field fields[] = {{"tau_s", &sp.tau_s},
-                                {"dac_bits", &sp.dac_bits},
-                                {"full_scale_v", &sp.full_scale_v},
-                                {"rpm_at_full_scale", &sp.rpm_at_full_scale},
-                                {"accel_limit_rpm_s", &sp.accel_limit_rpm_s},
-                                {"droop_rpm_per_n", &sp.droop_rpm_per_n},
-                                {"encoder_counts_per_rev", &sp.encoder_counts_per_rev},
-                                {"index_deg", &sp.index_deg}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "tool") {
-        const Field fields[] = {{"diameter_mm", &s.tool.diameter_mm}, {"flutes", &s.tool.flutes},
-                                {"flute_length_mm", &s.tool.flute_length_mm}, {"length_mm", &s.tool.length_mm}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "stock") {
-        const Field fields[] = {{"top_mm", &s.stock.top_mm},     {"x_min_mm", &s.stock.x_min_mm},
-                                {"x_max_mm", &s.stock.x_max_mm}, {"y_min_mm", &s.stock.y_min_mm},
-                                {"y_max_mm", &s.stock.y_max_mm}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "tool_cut") {
-        const Field fields[] = {{"k_c_n_mm2", &s.tool_cut.k_c_n_mm2},
-                                {"time_constant_s", &s.tool_cut.time_constant_s},
-                                {"stiffness_n_per_mm_s", &s.tool_cut.stiffness_n_per_mm_s},
-                                {"crash_speed_fraction", &s.tool_cut.crash_speed_fraction},
-                                {"max_feed_per_tooth_mm", &s.tool_cut.max_feed_per_tooth_mm}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "boring") {
-        const Field fields[] = {{"overhang_at_top_mm", &s.boring.overhang_at_top_mm},
-                                {"gauge_top_depth_mm", &s.boring.gauge_top_depth_mm},
-                                {"gauge_bottom_depth_mm", &s.boring.gauge_bottom_depth_mm},
-                                {"sigma_d_um", &s.boring.sigma_d_um},
-                                {"change_at_1", &s.boring.change_at_1},
-                                {"change_at_2", &s.boring.change_at_2}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "probe") {
-        const Field fields[] = {{"tip_radius_mm", &s.probe.tip_radius_mm}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else if (name == "circle") {
-        const Field fields[] = {{"radius_mm", &s.circle.radius_mm}, {"feed_mm_s", &s.circle.feed_mm_s},
-                                {"ramp_s", &s.circle.ramp_s}, {"dwell_s", &s.circle.dwell_s}};
-        if (!read_section(key, name, node, fields)) return false;
-      } else {
-        return unknown(key, name, node);
-      }
-    }
-    return true;
-  }
+  // The sections and keys of the table (scenario_keys.hpp), [[fault]] beside them.
+  bool read(const toml::table& root, Scenario& s) { return read_table(root, "", s); }
 
   bool check(const Scenario& s) {
     const auto violation = find_scenario_violation(s, [this](std::string_view k) { return given(k); });
@@ -170,44 +43,24 @@ class ScenarioReader {
   const std::string& error() const { return error_; }
 
  private:
-  bool read_plant(const toml::key& key, const toml::node& node, Scenario& s) {
-    const toml::table* table = node.as_table();
-    if (table == nullptr) return fail(key, "plant", std::string("expected a table, got ") + toml_type_name(node));
-    for (auto&& [axis_key, axis_node] : *table) {
-      const std::string path = "plant." + std::string(axis_key.str());
-      if (axis_key.str() == "z") {
-        // The vertical axis: the axis law's keys (no structural mode or screw
-        // model on Z yet) and its own (z_axis_plant.hpp).
-        ZAxisParams& z = s.z_axis;
-        const Field z_fields[] = {{"tau_s", &z.plant.tau_s},
-                                  {"gain", &z.plant.gain},
-                                  {"coulomb_mm_s", &z.plant.coulomb_mm_s},
-                                  {"stiction_mm_s", &z.plant.stiction_mm_s},
-                                  {"stribeck_mm_s", &z.plant.stribeck_mm_s},
-                                  {"accel_limit_mm_s2", &z.plant.accel_limit_mm_s2},
-                                  {"gravity_mm_s", &z.gravity_mm_s},
-                                  {"travel_top_mm", &z.travel_top_mm},
-                                  {"travel_bottom_mm", &z.travel_bottom_mm},
-                                  {"overtravel_mm", &z.overtravel_mm},
-                                  {"home_switch_mm", &z.home_switch_mm}};
-        if (!read_section(axis_key, path, axis_node, z_fields)) return false;
-        continue;
+  bool read_table(const toml::table& table, const std::string& section, Scenario& s) {
+    for (auto&& entry : table) {  // not a structured binding: clang 14 cannot capture one in a lambda
+      const toml::key& key = entry.first;
+      const toml::node& node = entry.second;
+      const std::string_view name = key.str();
+      const std::string path = section.empty() ? std::string(name) : section + "." + std::string(name);
+      if (section.empty() && name == "fault") {
+        if (!read_faults(key, node, s)) return false;
+      } else if (const ScenarioKey* row = find_scenario_key(section, name)) {
+        const bool ok = std::visit([&](auto* target) { return assign(key, path, node, target); }, row->target(s));
+        if (!ok) return false;
+      } else if (is_scenario_section(path)) {
+        const toml::table* inner = node.as_table();
+        if (inner == nullptr) return fail(key, path, std::string("expected a table, got ") + toml_type_name(node));
+        if (!read_table(*inner, path, s)) return false;
+      } else {
+        return unknown(key, path, node);
       }
-      AxisPlantParams* p = axis_key.str() == "x" ? &s.plant[0] : axis_key.str() == "y" ? &s.plant[1] : nullptr;
-      if (p == nullptr) return unknown(axis_key, path, axis_node);
-      const Field fields[] = {{"tau_s", &p->tau_s},
-                              {"gain", &p->gain},
-                              {"coulomb_mm_s", &p->coulomb_mm_s},
-                              {"stiction_mm_s", &p->stiction_mm_s},
-                              {"stribeck_mm_s", &p->stribeck_mm_s},
-                              {"mode_hz", &p->mode_hz},
-                              {"mode_zeta", &p->mode_zeta},
-                              {"backlash_um", &p->backlash_um},
-                              {"lead_error_um_per_m", &p->lead_error_um_per_m},
-                              {"pitch_error_um", &p->pitch_error_um},
-                              {"pitch_period_mm", &p->pitch_period_mm},
-                              {"accel_limit_mm_s2", &p->accel_limit_mm_s2}};
-      if (!read_section(axis_key, path, axis_node, fields)) return false;
     }
     return true;
   }
@@ -318,26 +171,6 @@ class ScenarioReader {
     const std::optional<hal::Axis> axis = hal::axis_from_name(text);
     if (!axis) return fail(key, path, "must be " + std::string(hal::kQuotedAxisChoices) + " (got \"" + text + "\")");
     target = *axis;
-    return true;
-  }
-
-  bool read_section(const toml::key& key, const std::string& path, const toml::node& node,
-                    std::span<const Field> fields) {
-    const toml::table* table = node.as_table();
-    if (table == nullptr) return fail(key, path, std::string("expected a table, got ") + toml_type_name(node));
-    for (auto&& entry : *table) {  // not a structured binding: clang 14 cannot capture one in a lambda
-      const toml::key& field_key = entry.first;
-      const toml::node& field_node = entry.second;
-      const std::string field_path = path + "." + std::string(field_key.str());
-      const Field* field = nullptr;
-      for (const Field& f : fields) {
-        if (f.name == field_key.str()) field = &f;
-      }
-      if (field == nullptr) return unknown(field_key, field_path, field_node);
-      const bool ok = std::visit([&](auto* target) { return assign(field_key, field_path, field_node, target); },
-                                 field->target);
-      if (!ok) return false;
-    }
     return true;
   }
 

@@ -4,9 +4,9 @@
 //   "scen.toml:7:1: plant.x.tau_s: must be > 0 and finite (got -1)"
 // and on error no Scenario is returned (nothing half-applied).
 //
-// The keys, their ranges and defaults: docs/scenarios.md; the reader's
-// table of them is in scenario_file.cpp, their checks in
-// scenario_validation.cpp. Errors name "fault[i].key" for the i-th
+// The keys, their ranges and defaults: docs/scenarios.md; their table
+// (section, name, member, range) is scenario_keys.cpp, read here and
+// checked by scenario_validation.cpp. Errors name "fault[i].key" for the i-th
 // [[fault]] (from 0). Integers are accepted where numbers are expected,
 // not the other way round.
 #include <cstddef>
