@@ -20,6 +20,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
                  hal::StorageWorker* storage_worker) noexcept
     : task_(task),
       can_(can),
+      tx_(can),
       storage_(storage),
       previous_storage_(previous_storage),
       storage_worker_(storage_worker),
@@ -47,7 +48,16 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
 
 const NodeSettings& CanNode::settings() const noexcept { return settings_; }
 std::uint8_t CanNode::node_id() const noexcept { return node_id_; }
-const NodeCounters& CanNode::counters() const noexcept { return counters_; }
+NodeCounters CanNode::counters() const noexcept {
+  NodeCounters c = counters_;
+  const TxCounters& t = tx_.counters();
+  c.rx_malformed += t.unknown_commands;  // answered unknown_command: malformed too
+  c.tx_frames = t.tx_frames;
+  c.tx_dropped = t.tx_dropped;
+  c.telemetry_dropped = t.telemetry_dropped;
+  c.requests_refused = t.requests_refused;
+  return c;
+}
 CaptureState CanNode::capture_state() const noexcept { return capture_.state(); }
 std::uint32_t CanNode::capture_samples() const noexcept { return capture_.samples(); }
 std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.channel_mask(); }
@@ -58,16 +68,16 @@ std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
   return s != nullptr ? s->size() : 0;
 }
 std::uint8_t CanNode::owner() const noexcept { return owner_; }
-std::size_t CanNode::tx_pending() const noexcept { return tx_.size(); }
+std::size_t CanNode::tx_pending() const noexcept { return tx_.pending(); }
 bool CanNode::storage_fault() const noexcept { return storage_fault_; }
 bool CanNode::params_unsaved() const noexcept { return unsaved_; }
 bool CanNode::storage_in_flight() const noexcept { return storage_pending_; }
-std::uint16_t CanNode::reply_sequence() const noexcept { return sequence_; }
+std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
 
 void CanNode::service() noexcept {
-  tx_budget_ = kMaxTxPerService;
+  tx_.begin_service();
   std::uint32_t due = 0;
   const std::uint64_t tick = task_.last_record().tick;
   if (tick != last_tick_) {
@@ -75,14 +85,14 @@ void CanNode::service() noexcept {
     last_tick_ = tick;
     due = on_new_tick(ticks);
   }
-  flush();
+  tx_.flush();
   check_commissioning();
   collect_worker();
   receive();
   check_fault();
   check_commissioning();
   send_telemetry(due);
-  flush();
+  tx_.flush();
   send_upload();
 }
 
@@ -128,7 +138,7 @@ void CanNode::check_fault() noexcept {
   write(frame, kFaultAxis, f.axis);
   write_raw(frame, kFaultTick, static_cast<std::uint32_t>(f.tick & 0xFFFFu));
   write(frame, kFaultValue, f.value);
-  send_reply(frame);
+  tx_.queue(frame, false);
 }
 
 // --- receive
@@ -212,15 +222,7 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
 
 // --- replies
 
-void CanNode::count_result(ErrorCode result) noexcept {
-  ++sequence_;  // every answer passes here
-  if (result == ErrorCode::ok) return;
-  ++counters_.requests_refused;
-  if (result == ErrorCode::unknown_command) ++counters_.rx_malformed;
-}
-
 void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kAckMsg, node_id_);
   write_raw(frame, kAckTag, tag_);
   write_raw(frame, kAckRequest, request);
@@ -230,21 +232,19 @@ void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode resul
   write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
   write_raw(frame, kAckDetail, detail);
   write_raw(frame, kAckOwner, owner_);
-  send_reply(frame);
+  tx_.answer(frame, result);
 }
 
 void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
   write_raw(frame, kReplyTag, tag_);
   write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kReplyParam, param);
   write_raw(frame, kReplyValue, value);
-  send_reply(frame);
+  tx_.answer(frame, result);
 }
 
 void CanNode::reply_capture(ErrorCode result) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
   write_raw(frame, kStatusTag, tag_);
   write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
@@ -252,37 +252,7 @@ void CanNode::reply_capture(ErrorCode result) noexcept {
   write_raw(frame, kStatusChannels, capture_.channel_count());
   write_raw(frame, kStatusDecimation, std::min<std::uint32_t>(capture_.decimation(), 255u));
   write_raw(frame, kStatusSamples, std::min<std::uint32_t>(capture_.samples(), 0xFFFFFFu));
-  send_reply(frame);
-}
-
-bool CanNode::send_now(const hal::CanFrame& frame) noexcept {
-  if (tx_budget_ <= 0 || can_.try_send(frame) != hal::HalStatus::ok) return false;
-  --tx_budget_;
-  ++counters_.tx_frames;
-  return true;
-}
-
-void CanNode::dropped() noexcept {
-  ++counters_.tx_dropped;
-  tx_dropped_since_heartbeat_ = true;
-}
-
-void CanNode::queue(const hal::CanFrame& frame, bool droppable) noexcept {
-  switch (tx_.push(frame, droppable)) {
-    case TxPriorityQueue::Push::queued: return;
-    case TxPriorityQueue::Push::evicted_other:  // only telemetry is ever evicted
-      ++counters_.telemetry_dropped;
-      dropped();
-      return;
-    case TxPriorityQueue::Push::dropped:
-      if (droppable) ++counters_.telemetry_dropped;
-      dropped();
-      return;
-  }
-}
-
-void CanNode::flush() noexcept {
-  while (!tx_.empty() && send_now(tx_.top())) tx_.pop();
+  tx_.answer(frame, result);
 }
 
 // --- heartbeat and telemetry
@@ -295,7 +265,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   const TickCounters& c = task_.counters();
   set(storage_fault_, kHbStorageFault);
   set(unsaved_, kHbParamsUnsaved);
-  set(tx_dropped_since_heartbeat_, kHbTxDropped);
+  set(tx_.dropped_since_heartbeat(), kHbTxDropped);
   set(jog_deadman_, kHbJogDeadman);
   set(capture_.state() == CaptureState::recording, kHbCaptureRecording);
   set(capture_.state() == CaptureState::done, kHbCaptureDone);
@@ -313,7 +283,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
 void CanNode::send_telemetry(std::uint32_t due) noexcept {
   if (due == 0) return;
   const TickRecord& r = task_.last_record();
-  const auto emit = [this](const hal::CanFrame& frame) noexcept { queue(frame, true); };
+  const auto emit = [this](const hal::CanFrame& frame) noexcept { tx_.queue(frame, true); };
   if ((due & cyclic_bit(Cyclic::heartbeat)) != 0) {
     hal::CanFrame f = make_frame(kHeartbeatMsg, node_id_);
     const TickCounters& c = task_.counters();
@@ -324,11 +294,11 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbFreeSlots, free_slots());
     write_raw(f, kHbOwner, owner_);
     write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
-    tx_dropped_since_heartbeat_ = false;
+    tx_.heartbeat_sent();
     bus_errors_at_heartbeat_ = c.bus_errors;
     late_ticks_at_heartbeat_ = c.late_ticks;
     can_errors_at_heartbeat_ = can_.error_frames();
-    queue(f, false);  // never dropped for telemetry's sake
+    tx_.queue(f, false);  // never dropped for telemetry's sake
     if (active(program_.state())) send_program_status();
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {

@@ -44,6 +44,7 @@
 
 #include "firmware/can/capture_recorder.hpp"
 #include "firmware/can/node_settings.hpp"
+#include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/program_tracker.hpp"
 #include "firmware/can/protocol_messages.hpp"
@@ -53,7 +54,6 @@
 #include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
-#include "firmware/can/tx_priority_queue.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 #include "hal/param_storage.hpp"
@@ -65,12 +65,13 @@ namespace tnv::fw::can {
 // reading more than that per tick keeps the receive FIFO from overflowing
 // (an e-stop could be among the frames lost; docs/safety.md "Bus flood").
 inline constexpr int kMaxRxPerService = 24;
-inline constexpr int kMaxTxPerService = 32;
+// kMaxTxPerService: node_transmit.hpp.
 
 struct NodeCounters {
   std::uint64_t rx_frames = 0;       // frames addressed to this node (or broadcast) and handled
   std::uint64_t rx_ignored = 0;      // frames for other nodes, from other nodes, or not ours
   std::uint64_t rx_malformed = 0;    // answered with an error code (bad length, unknown op, ...)
+  // The transmit side's (NodeTransmit::counters()):
   std::uint64_t tx_frames = 0;
   std::uint64_t tx_dropped = 0;      // the transmit queue was full (telemetry_dropped included)
   std::uint64_t telemetry_dropped = 0;  // telemetry frames dropped to make room (or for want of it)
@@ -109,7 +110,7 @@ class CanNode {
   // The id this node answers to: settings().can.node_id at construction
   // (a changed node id applies at the next start).
   std::uint8_t node_id() const noexcept;
-  const NodeCounters& counters() const noexcept;
+  NodeCounters counters() const noexcept;  // the receive side's and the transmit side's
 
   // --- inspection (tests and the in-process emulated controller)
   std::uint16_t heartbeat_errors() const noexcept;  // HEARTBEAT.errors if one were sent now
@@ -206,15 +207,10 @@ class CanNode {
   void reply_capture(ErrorCode result) noexcept;
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
   void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
-  void count_result(ErrorCode result) noexcept;
-  void queue(const hal::CanFrame& frame, bool droppable) noexcept;  // into the priority queue
-  void send_reply(const hal::CanFrame& frame) noexcept { queue(frame, false); }
-  bool send_now(const hal::CanFrame& frame) noexcept;    // false: not sent
-  void flush() noexcept;                                 // the queue into the port, in priority order
-  void dropped() noexcept;
 
   TickTask& task_;
   hal::CanPort& can_;
+  NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
   hal::ParamStorage& storage_;
   hal::ParamStorage* previous_storage_ = nullptr;
   hal::StorageWorker* storage_worker_ = nullptr;
@@ -238,10 +234,9 @@ class CanNode {
   ShaperDesignJob design_job_{};
   ShaperDesignCache designs_{};
   std::uint8_t node_id_;
-  NodeCounters counters_{};
+  NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
   HostStagedSets staged_{};
   TelemetryScheduler telemetry_{};
-  TxPriorityQueue tx_{};
   Upload upload_{};
   struct PendingSegment {
     bool active = false;
@@ -252,9 +247,7 @@ class CanNode {
   ProgramTracker program_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
-  int tx_budget_ = 0;                   // frames this service() may still send
   std::uint8_t tag_ = 0;                // tag of the request being handled (echoed by its reply)
-  std::uint16_t sequence_ = 0;          // requests answered, mod 65536 (tests and the fuzz invariant)
   std::uint8_t owner_ = 0;              // host holding command ownership, 0 none
   bool broadcast_ = false;              // the request being handled came on node 0
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
@@ -265,7 +258,6 @@ class CanNode {
   bool fault_reported_ = false;
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request
-  bool tx_dropped_since_heartbeat_ = false;
   bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
   bool commissioning_ = false;          // safety parameters writable (entered while disabled)
   bool commissioning_allowed_ = true;   // the local permission to enter it

@@ -87,7 +87,6 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
 }
 
 void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
   if (settings_.bore_state.planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
   write_raw(frame, kBoreReplyTag, tag_);
@@ -98,7 +97,7 @@ void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t fla
       current_infeeds_mm_rev(settings_.bore, settings_.bore_state, kBoreInfeedTop.scale);
   write(frame, kBoreInfeedTop, infeeds[kBoringTop]);
   write(frame, kBoreInfeedBottom, infeeds[kBoringBottom]);
-  send_reply(frame);
+  tx_.answer(frame, result);
 }
 
 }  // namespace tnv::fw::can

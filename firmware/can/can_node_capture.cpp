@@ -46,14 +46,14 @@ void CanNode::handle_capture(const hal::CanFrame& frame) noexcept {
 // Lowest priority of all: a data frame goes out only when nothing else waits,
 // and waits (is not lost) while the port is full.
 void CanNode::send_upload() noexcept {
-  while (upload_.active && tx_.empty()) {
+  while (upload_.active && tx_.idle()) {
     hal::CanFrame frame = make_frame(kCaptureDataMsg, node_id_);
     write_raw(frame, kDataSequence, upload_.next);
     std::array<std::uint8_t, kDataBytesPerFrame> bytes{};
     const std::uint32_t first = upload_.offset_bytes + upload_.next * kDataBytesPerFrame;
     for (std::uint32_t i = 0; i < kDataBytesPerFrame; ++i) bytes[i] = capture_.image_byte(first + i);  // 0 past the end
     write_bytes(frame, kDataBytes, bytes);
-    if (!send_now(frame)) return;  // the queue is full: the rest goes next service()
+    if (!tx_.send_now(frame)) return;  // the queue is full: the rest goes next service()
     if (++upload_.next == upload_.frames) upload_ = {};
   }
 }

@@ -151,7 +151,7 @@ void CanNode::send_program_status() noexcept {
   write_raw(f, kProgramSegment, std::min<std::uint32_t>(program_.element(task_), 0xFFFFFFu));
   write_raw(f, kProgramOverride,
             static_cast<std::uint32_t>(std::clamp(task_.motion().feed_override() * 100.0 + 0.5, 0.0, 255.0)));
-  queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
+  tx_.queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
 }
 
 }  // namespace tnv::fw::can
