@@ -20,6 +20,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
                  hal::StorageWorker* storage_worker) noexcept
     : task_(task),
       can_(can),
+      commissioning_(task),
       tx_(can),
       storage_(storage),
       previous_storage_(previous_storage),
@@ -67,7 +68,9 @@ std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
   const StagedParams* s = staged_.find(host);
   return s != nullptr ? s->size() : 0;
 }
-std::uint8_t CanNode::owner() const noexcept { return owner_; }
+std::uint8_t CanNode::owner() const noexcept { return access_.owner(); }
+void CanNode::allow_commissioning(bool allowed) noexcept { commissioning_.allow(allowed); }
+bool CanNode::commissioning() const noexcept { return commissioning_.active(); }
 std::size_t CanNode::tx_pending() const noexcept { return tx_.pending(); }
 bool CanNode::storage_fault() const noexcept { return storage_fault_; }
 bool CanNode::params_unsaved() const noexcept { return unsaved_; }
@@ -86,11 +89,11 @@ void CanNode::service() noexcept {
     due = on_new_tick(ticks);
   }
   tx_.flush();
-  check_commissioning();
+  commissioning_.refresh();
   collect_worker();
   receive();
   check_fault();
-  check_commissioning();
+  commissioning_.refresh();
   send_telemetry(due);
   tx_.flush();
   send_upload();
@@ -111,10 +114,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   }
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
-  silent_ticks_ += ticks;
-  const std::uint32_t timeout = settings_.can.host_timeout_ms;
-  if (timeout > 0 && silent_ticks_ >= timeout) {
-    owner_ = kAnonymousHost;
+  if (access_.owner_timed_out(ticks, settings_.can.host_timeout_ms)) {
     pending_.active = false;
     if (task_.moving() && !task_.stopping()) {
       program_stopping();
@@ -176,8 +176,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   }
   // Every other to-node message starts with its tag (byte 0); a frame too
   // short to hold one is answered with tag 0.
-  tag_ = frame.dlc > 0 ? frame.data[0] : 0;
-  broadcast_ = node_of(frame.id) == kBroadcastNode;
+  access_.begin_request(frame.dlc > 0 ? frame.data[0] : 0, node_of(frame.id) == kBroadcastNode);
   const auto refuse = [&](ErrorCode e) noexcept {
     switch (id) {
       case MessageId::param_request: reply_param(e, 0, 0); return;
@@ -190,13 +189,13 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     ++counters_.rx_malformed;
     return refuse(ErrorCode::bad_length);
   }
-  const std::uint8_t host = host_of_tag(tag_);
+  const std::uint8_t host = access_.host();
   // Host 0 is anonymous: only the broadcast stop (checked in receive()) may come from it.
-  if (host == kAnonymousHost && !broadcast_) {
+  if (host == kAnonymousHost && !access_.broadcast()) {
     ++counters_.rx_malformed;
     return refuse(ErrorCode::no_host);
   }
-  if (host != kAnonymousHost && host == owner_) silent_ticks_ = 0;  // a valid frame from the owner
+  access_.heard_from(host);  // a valid frame: from the owner, its silence ends
   dispatch(frame, id);
 }
 
@@ -224,20 +223,20 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
 
 void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
   hal::CanFrame frame = make_frame(kAckMsg, node_id_);
-  write_raw(frame, kAckTag, tag_);
+  write_raw(frame, kAckTag, access_.tag());
   write_raw(frame, kAckRequest, request);
   write_raw(frame, kAckCode, code);
   write_raw(frame, kAckResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kAckState, static_cast<std::uint32_t>(task_.state()));
   write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
   write_raw(frame, kAckDetail, detail);
-  write_raw(frame, kAckOwner, owner_);
+  write_raw(frame, kAckOwner, access_.owner());
   tx_.answer(frame, result);
 }
 
 void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
   hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
-  write_raw(frame, kReplyTag, tag_);
+  write_raw(frame, kReplyTag, access_.tag());
   write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kReplyParam, param);
   write_raw(frame, kReplyValue, value);
@@ -246,7 +245,7 @@ void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t v
 
 void CanNode::reply_capture(ErrorCode result) noexcept {
   hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
-  write_raw(frame, kStatusTag, tag_);
+  write_raw(frame, kStatusTag, access_.tag());
   write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
   write_raw(frame, kStatusResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kStatusChannels, capture_.channel_count());
@@ -292,7 +291,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbErrors, heartbeat_errors());
     write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
     write_raw(f, kHbFreeSlots, free_slots());
-    write_raw(f, kHbOwner, owner_);
+    write_raw(f, kHbOwner, access_.owner());
     write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
     tx_.heartbeat_sent();
     bus_errors_at_heartbeat_ = c.bus_errors;

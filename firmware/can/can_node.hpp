@@ -43,6 +43,8 @@
 #include <span>
 
 #include "firmware/can/capture_recorder.hpp"
+#include "firmware/can/commissioning_mode.hpp"
+#include "firmware/can/host_access.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
@@ -184,15 +186,6 @@ class CanNode {
   ErrorCode finish_save() noexcept;
   ErrorCode finish_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
-  ErrorCode command_enter_commissioning() noexcept;
-  // A set / stage writing `raw` into `p` (now `current`): commissioning_required
-  // for a safety parameter that would change outside commissioning mode, else ok.
-  ErrorCode commissioning_check(const ParamDef& p, std::uint32_t raw, std::uint32_t current) noexcept;
-  // Leaves commissioning mode when the machine no longer allows it (not
-  // disabled, or a fault latched); called each service() and before a change.
-  void check_commissioning() noexcept;
-  ErrorCode command_ownership(CommandCode code) noexcept;  // take / release
-  bool owns() const noexcept;  // the current request's host holds command ownership
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole.
   // `may_defer`: with a worker, a shaper design the cache lacks defers the
@@ -210,6 +203,8 @@ class CanNode {
 
   TickTask& task_;
   hal::CanPort& can_;
+  HostAccess access_{};                 // the request's tag and host, command ownership
+  CommissioningMode commissioning_;     // safety parameters writable
   NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
   hal::ParamStorage& storage_;
   hal::ParamStorage* previous_storage_ = nullptr;
@@ -247,11 +242,7 @@ class CanNode {
   ProgramTracker program_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
-  std::uint8_t tag_ = 0;                // tag of the request being handled (echoed by its reply)
-  std::uint8_t owner_ = 0;              // host holding command ownership, 0 none
-  bool broadcast_ = false;              // the request being handled came on node 0
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
-  std::uint64_t silent_ticks_ = 0;      // ticks since the last valid frame from the owner
   std::uint32_t deadman_stops_seen_ = 0;
   bool storage_fault_ = false;
   bool unsaved_ = false;
@@ -259,8 +250,6 @@ class CanNode {
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request
   bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
-  bool commissioning_ = false;          // safety parameters writable (entered while disabled)
-  bool commissioning_allowed_ = true;   // the local permission to enter it
   std::uint64_t bus_errors_at_heartbeat_ = 0;
   std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;

@@ -50,7 +50,7 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
   if (op_raw >= kBoreOpCount) return reply_bore(ErrorCode::unknown_command, index_of(kBoreGaugeMsg, kBoreOp));
   const auto op = static_cast<BoreOp>(op_raw);
   if (op != BoreOp::query) {
-    if (!owns()) return reply_bore(ErrorCode::not_owner, 0);
+    if (!access_.owns()) return reply_bore(ErrorCode::not_owner, 0);
     // A save or load works on the set (the learned state included) as it was at the request.
     if (storage_pending_) return reply_bore(ErrorCode::busy, 0);
   }
@@ -89,7 +89,7 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
 void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
   hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
   if (settings_.bore_state.planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
-  write_raw(frame, kBoreReplyTag, tag_);
+  write_raw(frame, kBoreReplyTag, access_.tag());
   write_raw(frame, kBoreResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kBoreDetail, detail);
   write_raw(frame, kBoreFlags, flags);

@@ -25,30 +25,8 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 
 }  // namespace
 
-bool CanNode::owns() const noexcept {
-  const std::uint8_t host = host_of_tag(tag_);
-  return host != kAnonymousHost && host == owner_;
-}
-
-// take: granted when nobody holds ownership or the host already does
-// (taking it again is harmless); release: only by the owner.
-ErrorCode CanNode::command_ownership(CommandCode code) noexcept {
-  const std::uint8_t host = host_of_tag(tag_);
-  if (host == kAnonymousHost) return ErrorCode::no_host;
-  if (code == CommandCode::take_ownership) {
-    if (owner_ != kAnonymousHost && owner_ != host) return ErrorCode::not_owner;
-    owner_ = host;
-    silent_ticks_ = 0;
-    return ErrorCode::ok;
-  }
-  if (owner_ != host) return ErrorCode::not_owner;
-  owner_ = kAnonymousHost;
-  pending_.active = false;  // a half-received element of the host that let go
-  return ErrorCode::ok;
-}
-
 void CanNode::motion_accepted() noexcept {
-  commissioning_ = false;
+  commissioning_.leave();
   jog_deadman_ = false;
   host_timeout_ = false;
 }
@@ -60,10 +38,10 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     return;
   }
   const auto code = static_cast<CommandCode>(code_raw);
-  const bool broadcast_stop = code == CommandCode::stop && broadcast_;
+  const bool broadcast_stop = code == CommandCode::stop && access_.broadcast();
   const bool open_to_all = code == CommandCode::take_ownership || code == CommandCode::release_ownership ||
                            code == CommandCode::program_status || broadcast_stop;
-  if (!open_to_all && !owns()) {
+  if (!open_to_all && !access_.owns()) {
     reply_ack(kCommandMsg.id, code_raw, ErrorCode::not_owner, 0);
     return;
   }
@@ -71,7 +49,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
   ErrorCode e = ErrorCode::ok;
   switch (code) {
     case CommandCode::enable:
-      commissioning_ = false;  // asked for, even if refused
+      commissioning_.leave();  // asked for, even if refused
       e = to_error(task_.hold_position());
       break;
     case CommandCode::disable: e = to_error(task_.disable()); break;
@@ -91,9 +69,13 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       break;
     case CommandCode::restore_defaults: e = command_restore_defaults(); break;
     case CommandCode::take_ownership:
-    case CommandCode::release_ownership: e = command_ownership(code); break;
-    case CommandCode::enter_commissioning: e = command_enter_commissioning(); break;
-    case CommandCode::leave_commissioning: commissioning_ = false; break;
+    case CommandCode::release_ownership:
+      e = access_.ownership(code);
+      if (e == ErrorCode::ok && code == CommandCode::release_ownership)
+        pending_.active = false;  // a half-received element of the host that let go
+      break;
+    case CommandCode::enter_commissioning: e = commissioning_.enter(); break;
+    case CommandCode::leave_commissioning: commissioning_.leave(); break;
     case CommandCode::feed_hold:
     case CommandCode::feed_resume:
     case CommandCode::feed_override:
@@ -127,7 +109,7 @@ ErrorCode CanNode::command_home(const hal::CanFrame& frame, std::uint8_t& detail
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
-  commissioning_ = false;  // asked for motion, even if refused (as enable)
+  commissioning_.leave();  // asked for motion, even if refused (as enable)
   const CommandStatus st =
       task_.home(axis == kAllAxes ? hal::kEveryAxis : hal::axis_bit(hal::axis_from_index(axis)));
   if (st == CommandStatus::ok) motion_accepted();
@@ -170,7 +152,7 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
 }
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kJogMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(kJogMsg.id, 0, ErrorCode::not_owner, 0);
   std::array<double, hal::kAxisCount> speed_mm_s{};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     speed_mm_s[i] = read(frame, *kJogSpeeds[i]);
@@ -194,7 +176,7 @@ void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
 }
 
 void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kMoveAxis);
   const double speed_mm_s = read(frame, kMoveSpeed);
   const double distance_mm = read(frame, kMoveDistance);
@@ -222,7 +204,7 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
 // about the origin itself, exactly as tnv-hil runs it; anywhere else about
 // (standing - (r, 0)).
 void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_owner, 0);
   const double radius_mm = read(frame, kCircleRadius);
   const double feed_mm_s = read(frame, kCircleFeed);
   const std::uint8_t radius = index_of(kCircleMsg, kCircleRadius);
@@ -248,7 +230,7 @@ void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
 
 // Same as staging x|y.shaper.type/freq_hz/zeta and committing.
 void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kShaperAxis);
   const std::uint32_t type = read_raw(frame, kShaperType);
   const double zeta = read(frame, kShaperZeta);

@@ -26,8 +26,7 @@ void CanNode::finish_design() noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     if (design_job_.designed(i)) designs_.insert(design_job_.spec(i), design_job_.design(i));
   // The request as it came: its tag names the host (ownership is checked again).
-  tag_ = design_request_.data[0];
-  broadcast_ = false;
+  access_.begin_request(design_request_.data[0], false);
   dispatch(design_request_, design_request_id_);
   // Handled again it finds its designs; should it defer once more (a host
   // changed its staged set meanwhile), it is answered after that job.

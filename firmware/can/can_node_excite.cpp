@@ -28,7 +28,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   const double duration_s = read(frame, kExciteDuration);
   const double level_mm_s = read(frame, kExciteLevel);
   const std::uint8_t id = kExciteMsg.id;
-  if (!owns()) return reply_ack(id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(id, 0, ErrorCode::not_owner, 0);
   if (axis >= hal::kAxisCount) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
   if (kind > 4) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
   const std::uint8_t level = index_of(kExciteMsg, kExciteLevel);

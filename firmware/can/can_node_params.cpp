@@ -37,8 +37,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
     return ErrorCode::invalid;
   }
   // Safety parameters change only in commissioning mode (docs/safety.md).
-  check_commissioning();
-  if (!commissioning_)
+  if (!commissioning_.refresh())
     if (const std::uint16_t id = first_safety_change(settings_, next); id != 0) {
       blamed_param_ = id;
       return ErrorCode::commissioning_required;
@@ -84,8 +83,8 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     return;
   }
   const auto op = static_cast<ParamOp>(op_raw);
-  const std::uint8_t host = host_of_tag(tag_);
-  if ((op == ParamOp::set || op == ParamOp::commit) && !owns()) {
+  const std::uint8_t host = access_.host();
+  if ((op == ParamOp::set || op == ParamOp::commit) && !access_.owns()) {
     reply_param(ErrorCode::not_owner, id, 0);
     return;
   }
@@ -126,7 +125,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     return;
   }
   // set / stage of a safety parameter: authorised before anything else is checked.
-  if (const ErrorCode e = commissioning_check(*p, raw, current); e != ErrorCode::ok) {
+  if (const ErrorCode e = commissioning_.check_change(*p, raw, current); e != ErrorCode::ok) {
     reply_param(e, id, current);
     return;
   }
@@ -173,8 +172,7 @@ ErrorCode CanNode::command_restore_defaults() noexcept {
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
   // What the boring planner learned is no setting: BORE_GAUGE restart clears it.
   next.bore_state = settings_.bore_state;
-  check_commissioning();
-  if (!commissioning_) keep_safety_params(settings_, next);
+  if (!commissioning_.refresh()) keep_safety_params(settings_, next);
   return apply_settings(next, true);
 }
 

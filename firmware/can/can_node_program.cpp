@@ -54,25 +54,25 @@ std::uint8_t CanNode::free_slots() const noexcept {
 void CanNode::refuse_pending() noexcept {
   if (!pending_.active) return;
   pending_.active = false;
-  const std::uint8_t tag = tag_;
-  tag_ = pending_.tag;
+  const std::uint8_t tag = access_.tag();
+  access_.answer_as(pending_.tag);
   reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_ready, 0);
-  tag_ = tag;
+  access_.answer_as(tag);
 }
 
 void CanNode::handle_segment(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_owner, 0);
+  if (!access_.owns()) return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_owner, 0);
   refuse_pending();  // the owner moved on without sending the last one's tail
   SegmentHead head;
   if (!decode_head(frame, head))
     return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::out_of_range, index_of(kSegmentMsg, kSegmentKind));
   if (!wire_kind_has_tail(head.kind)) return push_element(head, nullptr, kSegmentMsg.id);
-  pending_ = {true, tag_, head};  // answered when the tail comes
+  pending_ = {true, access_.tag(), head};  // answered when the tail comes
 }
 
 void CanNode::handle_segment_tail(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_owner, 0);
-  if (!pending_.active || pending_.tag != tag_) {
+  if (!access_.owns()) return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_owner, 0);
+  if (!pending_.active || pending_.tag != access_.tag()) {
     refuse_pending();  // its tail was lost, or this one belongs to a lost head: both are answered
     return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentTailMsg, kTailTag));
   }

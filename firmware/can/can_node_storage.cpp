@@ -47,7 +47,7 @@ void CanNode::finish_storage() noexcept {
   storage_pending_ = false;
   const ErrorCode e = storage_code_ == CommandCode::save_params ? finish_save() : finish_load();
   // The reply answers the request kept in storage_request_, echoing its tag.
-  tag_ = storage_request_.dlc > 0 ? storage_request_.data[0] : 0;
+  access_.answer_as(storage_request_.dlc > 0 ? storage_request_.data[0] : 0);
   reply_ack(kCommandMsg.id, static_cast<std::uint8_t>(storage_code_), e, 0);
 }
 
