@@ -22,13 +22,11 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       can_(can),
       commissioning_(task),
       tx_(can),
-      storage_(storage),
-      previous_storage_(previous_storage),
+      storage_(storage, previous_storage, storage_worker, storage_fault),
       storage_worker_(storage_worker),
       settings_(settings),
       defaults_(cached_default_node_settings()),
-      node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
-      storage_fault_(storage_fault) {
+      node_id_(static_cast<std::uint8_t>(settings.can.node_id)) {
   // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
   (void)cached_default_shaper_designs();
   // The task at rest takes the whole firmware part (controller per axis
@@ -72,9 +70,9 @@ std::uint8_t CanNode::owner() const noexcept { return access_.owner(); }
 void CanNode::allow_commissioning(bool allowed) noexcept { commissioning_.allow(allowed); }
 bool CanNode::commissioning() const noexcept { return commissioning_.active(); }
 std::size_t CanNode::tx_pending() const noexcept { return tx_.pending(); }
-bool CanNode::storage_fault() const noexcept { return storage_fault_; }
-bool CanNode::params_unsaved() const noexcept { return unsaved_; }
-bool CanNode::storage_in_flight() const noexcept { return storage_pending_; }
+bool CanNode::storage_fault() const noexcept { return storage_.fault(); }
+bool CanNode::params_unsaved() const noexcept { return storage_.unsaved(); }
+bool CanNode::storage_in_flight() const noexcept { return storage_.pending(); }
 std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
@@ -262,8 +260,8 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
     if (on) bits = static_cast<std::uint16_t>(bits | b);
   };
   const TickCounters& c = task_.counters();
-  set(storage_fault_, kHbStorageFault);
-  set(unsaved_, kHbParamsUnsaved);
+  set(storage_.fault(), kHbStorageFault);
+  set(storage_.unsaved(), kHbParamsUnsaved);
   set(tx_.dropped_since_heartbeat(), kHbTxDropped);
   set(jog_deadman_, kHbJogDeadman);
   set(capture_.state() == CaptureState::recording, kHbCaptureRecording);

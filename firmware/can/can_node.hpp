@@ -46,6 +46,7 @@
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
 #include "firmware/can/node_settings.hpp"
+#include "firmware/can/node_storage.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/program_tracker.hpp"
@@ -174,7 +175,7 @@ class CanNode {
   ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  // save / load: ok when posted (answered later by finish_storage()), else the refusal to answer now
+  // save / load (NodeStorage): ok when posted (answered later by finish_storage()), else the refusal to answer now
   ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
   void collect_worker() noexcept;  // service() step: finishes a job the worker has finished
   void finish_storage() noexcept;
@@ -183,15 +184,13 @@ class CanNode {
   // it arrived then, when they are done (can_node_design.cpp).
   ErrorCode defer_for_designs(const std::array<bool, hal::kAxisCount>& needed, const NodeSettings& next) noexcept;
   void finish_design() noexcept;
-  ErrorCode finish_save() noexcept;
-  ErrorCode finish_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole.
   // `may_defer`: with a worker, a shaper design the cache lacks defers the
   // request (ok returned, design_deferred_ set: the caller must not answer).
   ErrorCode apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer = true) noexcept;
-  bool worker_busy() const noexcept { return storage_pending_ || design_pending_; }
+  bool worker_busy() const noexcept { return storage_.pending() || design_pending_; }
   bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
@@ -206,18 +205,10 @@ class CanNode {
   HostAccess access_{};                 // the request's tag and host, command ownership
   CommissioningMode commissioning_;     // safety parameters writable
   NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
-  hal::ParamStorage& storage_;
-  hal::ParamStorage* previous_storage_ = nullptr;
+  NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
   hal::StorageWorker* storage_worker_ = nullptr;
   NodeSettings settings_;
   const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
-  // The storage request in flight: the frame as it came (the deferred
-  // COMMAND_ACK answers it), and the job the worker runs.
-  CommandCode storage_code_ = CommandCode::save_params;
-  bool storage_pending_ = false;
-  hal::CanFrame storage_request_{};
-  SaveJob save_job_{};
-  LoadJob load_job_{};
   // The request being handled (kept so a deferred one can be handled again),
   // and the one waiting for its shaper designs.
   hal::CanFrame request_{};
@@ -244,8 +235,6 @@ class CanNode {
   std::uint64_t last_tick_ = 0;
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
   std::uint32_t deadman_stops_seen_ = 0;
-  bool storage_fault_ = false;
-  bool unsaved_ = false;
   bool fault_reported_ = false;
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request

@@ -52,14 +52,14 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
   if (op != BoreOp::query) {
     if (!access_.owns()) return reply_bore(ErrorCode::not_owner, 0);
     // A save or load works on the set (the learned state included) as it was at the request.
-    if (storage_pending_) return reply_bore(ErrorCode::busy, 0);
+    if (storage_.pending()) return reply_bore(ErrorCode::busy, 0);
   }
   if (!settings_.bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
   if (op == BoreOp::query) return reply_bore(ErrorCode::ok, 0);
   if (op == BoreOp::restart) {
     const BoringStationState was = settings_.bore_state;
     restart(settings_.bore_state);
-    if (!(settings_.bore_state == was)) unsaved_ = true;
+    if (!(settings_.bore_state == was)) storage_.changed();
     return reply_bore(ErrorCode::ok, 0);
   }
 
@@ -82,7 +82,7 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
     const std::uint8_t detail = a.position >= 0 ? index_of(kBoreGaugeMsg, *reading_fields[a.position]) : 0;
     return reply_bore(ErrorCode::invalid, detail);
   }
-  unsaved_ = true;  // learned, not saved yet
+  storage_.changed();  // learned, not saved yet
   reply_bore(ErrorCode::ok, 0, part_flags(a));
 }
 

@@ -69,7 +69,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
                                                    : task_.configure_shaper(axis, now.spec)) == CommandStatus::ok;
     if (settings_.shaper[i].enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
   }
-  if (differing_params(settings_, next, 1) != 0) unsaved_ = true;
+  if (differing_params(settings_, next, 1) != 0) storage_.changed();
   settings_ = next;
   return ErrorCode::ok;
 }
