@@ -23,7 +23,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       commissioning_(task),
       tx_(can),
       storage_(storage, previous_storage, storage_worker, storage_fault),
-      storage_worker_(storage_worker),
+      design_(storage_worker),
       settings_(settings),
       defaults_(cached_default_node_settings()),
       node_id_(static_cast<std::uint8_t>(settings.can.node_id)) {
@@ -198,9 +198,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
 }
 
 void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
-  request_ = frame;
-  request_id_ = id;
-  design_deferred_ = false;
+  design_.begin_request(frame, id);
   switch (id) {
     case MessageId::command: handle_command(frame); return;
     case MessageId::jog: handle_jog(frame); return;

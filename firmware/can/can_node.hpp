@@ -54,6 +54,7 @@
 #include "firmware/can/segment_wire.hpp"
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/shaper_design_cache.hpp"
+#include "firmware/can/shaper_design_deferral.hpp"
 #include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
@@ -130,7 +131,7 @@ class CanNode {
   bool storage_fault() const noexcept;
   bool params_unsaved() const noexcept;
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
-  bool design_in_flight() const noexcept { return design_pending_; }  // a request waits for shaper designs
+  bool design_in_flight() const noexcept { return design_.pending(); }  // a request waits for shaper designs
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
   const ProgramTracker& program() const noexcept { return program_; }
   bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
@@ -179,18 +180,15 @@ class CanNode {
   ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
   void collect_worker() noexcept;  // service() step: finishes a job the worker has finished
   void finish_storage() noexcept;
-  // A parameter change needing shaper designs the node does not have: the
-  // designs are made on the worker and the request is handled again, as if
-  // it arrived then, when they are done (can_node_design.cpp).
-  ErrorCode defer_for_designs(const std::array<bool, hal::kAxisCount>& needed, const NodeSettings& next) noexcept;
+  // A request deferred for its shaper designs (ShaperDesignDeferral), handled again now they are made.
   void finish_design() noexcept;
   ErrorCode command_restore_defaults() noexcept;
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole.
   // `may_defer`: with a worker, a shaper design the cache lacks defers the
-  // request (ok returned, design_deferred_ set: the caller must not answer).
+  // request (ok returned, design_.deferred() set: the caller must not answer).
   ErrorCode apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer = true) noexcept;
-  bool worker_busy() const noexcept { return storage_.pending() || design_pending_; }
+  bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
   bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
@@ -206,18 +204,9 @@ class CanNode {
   CommissioningMode commissioning_;     // safety parameters writable
   NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
   NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
-  hal::StorageWorker* storage_worker_ = nullptr;
+  ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
   NodeSettings settings_;
   const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
-  // The request being handled (kept so a deferred one can be handled again),
-  // and the one waiting for its shaper designs.
-  hal::CanFrame request_{};
-  MessageId request_id_ = MessageId::command;
-  hal::CanFrame design_request_{};
-  MessageId design_request_id_ = MessageId::command;
-  bool design_pending_ = false;   // design_job_ posted, its request not yet handled again
-  bool design_deferred_ = false;  // the request being handled was deferred: no answer now
-  ShaperDesignJob design_job_{};
   ShaperDesignCache designs_{};
   std::uint8_t node_id_;
   NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)

@@ -83,7 +83,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::abort_program:
     case CommandCode::program_status: e = command_program(code, frame, detail); break;
   }
-  if (design_deferred_) return;  // handled again, and answered, when the shaper designs are made
+  if (design_.deferred()) return;  // handled again, and answered, when the shaper designs are made
   reply_ack(kCommandMsg.id, code_raw, e, detail);
 }
 
@@ -248,7 +248,7 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
     p->set(next, values[k]);
   }
   const ErrorCode e = apply_settings(next, false);
-  if (design_deferred_) return;  // handled again, and answered, when the design is made
+  if (design_.deferred()) return;  // handled again, and answered, when the design is made
   reply_ack(kShaperMsg.id, 0, e, 0);
 }
 

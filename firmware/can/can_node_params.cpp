@@ -26,7 +26,7 @@ bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
 // The one way a parameter change reaches the task: the whole next set is
 // validated, refused busy where it must wait for rest, then applied between
 // two ticks (this runs in service()), all of it or none of it. A shaper
-// design the node lacks is made on the worker first (defer_for_designs), so
+// design the node lacks is made on the worker first (ShaperDesignDeferral), so
 // no request designs one here.
 ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer) noexcept {
   // A save, load or design in flight works on the set as it was: no change until it is answered.
@@ -56,7 +56,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
     missing[i] = redesign[i] && ready[i] == nullptr;
     any_missing = any_missing || missing[i];
   }
-  if (any_missing && may_defer && storage_worker_ != nullptr) return defer_for_designs(missing, next);
+  if (any_missing && may_defer && design_.can_defer()) return design_.defer(missing, next);
   // Gains, limits, controller selection: the task checks again and applies whole.
   if (const CommandStatus st = task_.apply_config(next.firmware); st != CommandStatus::ok) return to_error(st);
   // Shapers: validated with the set above, so the designs fit; they apply at the next quiet reference.
@@ -104,7 +104,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     }
     blamed_param_ = 0;
     const ErrorCode e = apply_settings(next, idle);
-    if (design_deferred_) return;  // handled again, and answered, when the designs are made
+    if (design_.deferred()) return;  // handled again, and answered, when the designs are made
     if (e == ErrorCode::ok) staged_.clear(host);  // refused: the pending set stays for a fix or a discard
     const bool blamed = e == ErrorCode::invalid || e == ErrorCode::commissioning_required;
     reply_param(e, n, blamed ? blamed_param_ : 0u);
@@ -144,11 +144,11 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   NodeSettings next = settings_;
   p->set(next, value);
   const ErrorCode e = apply_settings(next, p->apply == Apply::idle);
-  if (design_deferred_) return;  // handled again, and answered, when the designs are made
+  if (design_.deferred()) return;  // handled again, and answered, when the designs are made
   reply_param(e, id, to_wire(*p, p->get(settings_)));
 }
 
-// --- restore_defaults (idle only; save and load: can_node_storage.cpp)
+// --- restore_defaults (idle only; save and load: can_node_worker.cpp)
 
 // The papers' defaults, except what describes this machine and this node:
 // the encoder count, DAC scale and tick period (commissioning and board facts), the bus

@@ -1,8 +1,10 @@
-// CanNode: save_params and load_params, carried out off the real-time
+// CanNode: the worker's jobs. save_params and load_params, carried out off the real-time
 // thread by NodeStorage (node_storage.hpp) and answered by one COMMAND_ACK
 // in the service() that finds the job done. While a job is in flight a
 // second save/load, restore_defaults and every parameter change are busy:
 // the job works on the set as it was, and the live set is never half-loaded.
+// And a request deferred for its shaper designs (shaper_design_deferral.hpp),
+// handled again when the worker has made them.
 #include "firmware/can/can_node.hpp"
 #include "firmware/can/node_fields.hpp"
 
@@ -23,7 +25,7 @@ void CanNode::collect_worker() noexcept {
     if (storage_.job_done()) finish_storage();
     return;
   }
-  if (design_pending_ && storage_worker_ != nullptr && storage_worker_->done()) finish_design();
+  if (design_.job_done()) finish_design();
 }
 
 void CanNode::finish_storage() noexcept {
@@ -41,6 +43,15 @@ void CanNode::finish_storage() noexcept {
   // The reply answers the request as it came, echoing its tag.
   access_.answer_as(done.tag);
   reply_ack(kCommandMsg.id, static_cast<std::uint8_t>(done.code), e, 0);
+}
+
+void CanNode::finish_design() noexcept {
+  const ShaperDesignDeferral::Replay replay = design_.finish(designs_);
+  // The request as it came: its tag names the host (ownership is checked again).
+  access_.begin_request(replay.frame.data[0], false);
+  dispatch(replay.frame, replay.id);
+  // Handled again it finds its designs; should it defer once more (a host
+  // changed its staged set meanwhile), it is answered after that job.
 }
 
 }  // namespace tnv::fw::can
