@@ -22,6 +22,8 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       can_(can),
       commissioning_(task),
       tx_(can),
+      ack_(static_cast<std::uint8_t>(settings.can.node_id), task, access_, tx_),
+      programs_(static_cast<std::uint8_t>(settings.can.node_id), task, access_, ack_, tx_),
       storage_(storage, previous_storage, storage_worker, storage_fault),
       design_(storage_worker),
       settings_(settings),
@@ -105,7 +107,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
     capture_.abort();
   }
   check_fault();
-  if (program_.update(task_)) send_program_status();
+  programs_.on_tick();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
     deadman_stops_seen_ = stops;
     jog_deadman_ = true;
@@ -113,9 +115,9 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
   if (access_.owner_timed_out(ticks, settings_.can.host_timeout_ms)) {
-    pending_.active = false;
+    programs_.drop_pending();
     if (task_.moving() && !task_.stopping()) {
-      program_stopping();
+      programs_.stopping();
       task_.stop();
       host_timeout_ = true;
     }
@@ -180,7 +182,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
       case MessageId::param_request: reply_param(e, 0, 0); return;
       case MessageId::capture_control: reply_capture(e); return;
       case MessageId::bore_gauge: reply_bore(e, 0); return;
-      default: reply_ack(m.id, 0, e, 0); return;
+      default: ack_.send(m.id, 0, e, 0); return;
     }
   };
   if (frame.dlc != m.dlc) {
@@ -209,26 +211,17 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::param_request: handle_param(frame); return;
     case MessageId::capture_control: handle_capture(frame); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
-    case MessageId::segment: handle_segment(frame); return;
-    case MessageId::segment_tail: handle_segment_tail(frame); return;
+    case MessageId::segment:
+      if (programs_.segment(frame)) motion_accepted();
+      return;
+    case MessageId::segment_tail:
+      if (programs_.segment_tail(frame)) motion_accepted();
+      return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }
 
 // --- replies
-
-void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
-  hal::CanFrame frame = make_frame(kAckMsg, node_id_);
-  write_raw(frame, kAckTag, access_.tag());
-  write_raw(frame, kAckRequest, request);
-  write_raw(frame, kAckCode, code);
-  write_raw(frame, kAckResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kAckState, static_cast<std::uint32_t>(task_.state()));
-  write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
-  write_raw(frame, kAckDetail, detail);
-  write_raw(frame, kAckOwner, access_.owner());
-  tx_.answer(frame, result);
-}
 
 void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
   hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
@@ -286,7 +279,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
     write_raw(f, kHbErrors, heartbeat_errors());
     write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
-    write_raw(f, kHbFreeSlots, free_slots());
+    write_raw(f, kHbFreeSlots, programs_.free_slots());
     write_raw(f, kHbOwner, access_.owner());
     write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
     tx_.heartbeat_sent();
@@ -294,7 +287,7 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     late_ticks_at_heartbeat_ = c.late_ticks;
     can_errors_at_heartbeat_ = can_.error_frames();
     tx_.queue(f, false);  // never dropped for telemetry's sake
-    if (active(program_.state())) send_program_status();
+    programs_.on_heartbeat();
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
     // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.

@@ -33,7 +33,7 @@
 // the tick task's motion queue; each complete or refused element is
 // answered with the queue's free slots (flow control, also in every
 // HEARTBEAT); PROGRAM_STATUS reports progress and underruns
-// (can_node_program.cpp, docs/motion.md "Streaming").
+// (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
 // Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
 // words, 512 KiB): give it static storage or build it on the heap.
@@ -43,15 +43,15 @@
 #include <span>
 
 #include "firmware/can/capture_recorder.hpp"
+#include "firmware/can/command_ack.hpp"
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/node_storage.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
-#include "firmware/can/program_tracker.hpp"
+#include "firmware/can/program_stream.hpp"
 #include "firmware/can/protocol_messages.hpp"
-#include "firmware/can/segment_wire.hpp"
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/shaper_design_cache.hpp"
 #include "firmware/can/shaper_design_deferral.hpp"
@@ -133,8 +133,8 @@ class CanNode {
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
   bool design_in_flight() const noexcept { return design_.pending(); }  // a request waits for shaper designs
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
-  const ProgramTracker& program() const noexcept { return program_; }
-  bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
+  const ProgramTracker& program() const noexcept { return programs_.tracker(); }
+  bool segment_pending() const noexcept { return programs_.segment_pending(); }  // a SEGMENT waits for its tail
 
  private:
   struct Upload {
@@ -162,15 +162,6 @@ class CanNode {
   void handle_param(const hal::CanFrame& frame) noexcept;
   void handle_capture(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
-  void handle_segment(const hal::CanFrame& frame) noexcept;
-  void handle_segment_tail(const hal::CanFrame& frame) noexcept;
-  // programs (can_node_program.cpp)
-  void push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
-  void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
-  ErrorCode command_program(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  void program_stopping() noexcept;  // a stop of the running program was asked for
-  void send_program_status() noexcept;
-  std::uint8_t free_slots() const noexcept;
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
@@ -192,7 +183,6 @@ class CanNode {
   bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
-  void reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept;
   void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
   void reply_capture(ErrorCode result) noexcept;
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
@@ -203,6 +193,8 @@ class CanNode {
   HostAccess access_{};                 // the request's tag and host, command ownership
   CommissioningMode commissioning_;     // safety parameters writable
   NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
+  CommandAck ack_;                      // COMMAND_ACK, the answer of most requests
+  ProgramStream programs_;              // SEGMENT streaming and PROGRAM_STATUS
   NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
   ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
   NodeSettings settings_;
@@ -213,13 +205,6 @@ class CanNode {
   HostStagedSets staged_{};
   TelemetryScheduler telemetry_{};
   Upload upload_{};
-  struct PendingSegment {
-    bool active = false;
-    std::uint8_t tag = 0;
-    SegmentHead head{};
-  };
-  PendingSegment pending_{};            // the owner's SEGMENT waiting for its SEGMENT_TAIL
-  ProgramTracker program_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for

@@ -42,7 +42,7 @@ void CanNode::finish_storage() noexcept {
   }
   // The reply answers the request as it came, echoing its tag.
   access_.answer_as(done.tag);
-  reply_ack(kCommandMsg.id, static_cast<std::uint8_t>(done.code), e, 0);
+  ack_.send(kCommandMsg.id, static_cast<std::uint8_t>(done.code), e, 0);
 }
 
 void CanNode::finish_design() noexcept {
