@@ -1,6 +1,7 @@
-// CanNode: construction, the service() loop, receive routing, replies,
-// heartbeat and telemetry. Requests are handled in can_node_commands.cpp,
-// can_node_params.cpp, can_node_capture.cpp and can_node_boring.cpp.
+// CanNode: construction, the service() loop, receive routing, the replies
+// of PARAM_REQUEST, heartbeat and telemetry. Requests are handled in
+// can_node_commands.cpp, can_node_excite.cpp, can_node_params.cpp,
+// can_node_boring.cpp and by the parts (ProgramStream, NodeCapture).
 #include "firmware/can/can_node.hpp"
 
 #include <algorithm>
@@ -20,15 +21,16 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
                  hal::StorageWorker* storage_worker) noexcept
     : task_(task),
       can_(can),
+      node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
       commissioning_(task),
       tx_(can),
-      ack_(static_cast<std::uint8_t>(settings.can.node_id), task, access_, tx_),
-      programs_(static_cast<std::uint8_t>(settings.can.node_id), task, access_, ack_, tx_),
+      ack_(node_id_, task, access_, tx_),
+      programs_(node_id_, task, access_, ack_, tx_),
       storage_(storage, previous_storage, storage_worker, storage_fault),
       design_(storage_worker),
       settings_(settings),
       defaults_(cached_default_node_settings()),
-      node_id_(static_cast<std::uint8_t>(settings.can.node_id)) {
+      capture_(node_id_, task, access_, tx_) {
   // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
   (void)cached_default_shaper_designs();
   // The task at rest takes the whole firmware part (controller per axis
@@ -59,10 +61,10 @@ NodeCounters CanNode::counters() const noexcept {
   c.requests_refused = t.requests_refused;
   return c;
 }
-CaptureState CanNode::capture_state() const noexcept { return capture_.state(); }
-std::uint32_t CanNode::capture_samples() const noexcept { return capture_.samples(); }
-std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.channel_mask(); }
-std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.words(); }
+CaptureState CanNode::capture_state() const noexcept { return capture_.recorder().state(); }
+std::uint32_t CanNode::capture_samples() const noexcept { return capture_.recorder().samples(); }
+std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
+std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.recorder().words(); }
 std::size_t CanNode::staged_count() const noexcept { return staged_.total(); }
 std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
   const StagedParams* s = staged_.find(host);
@@ -96,16 +98,11 @@ void CanNode::service() noexcept {
   commissioning_.refresh();
   send_telemetry(due);
   tx_.flush();
-  send_upload();
+  capture_.send_upload();
 }
 
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
-  capture_.on_tick(task_.last_record(), tick_signals(task_, settings_));
-  if (excite_capture_ && !task_.exciting()) {
-    // The excitation's last tick (or the one that cancelled it) is recorded: the capture is done.
-    excite_capture_ = false;
-    capture_.abort();
-  }
+  capture_.on_tick(settings_);
   check_fault();
   programs_.on_tick();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
@@ -180,7 +177,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   const auto refuse = [&](ErrorCode e) noexcept {
     switch (id) {
       case MessageId::param_request: reply_param(e, 0, 0); return;
-      case MessageId::capture_control: reply_capture(e); return;
+      case MessageId::capture_control: capture_.reply(e); return;
       case MessageId::bore_gauge: reply_bore(e, 0); return;
       default: ack_.send(m.id, 0, e, 0); return;
     }
@@ -209,7 +206,7 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::shaper: handle_shaper(frame); return;
     case MessageId::excite: handle_excite(frame); return;
     case MessageId::param_request: handle_param(frame); return;
-    case MessageId::capture_control: handle_capture(frame); return;
+    case MessageId::capture_control: capture_.control(frame, settings_.capture); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
     case MessageId::segment:
       if (programs_.segment(frame)) motion_accepted();
@@ -232,17 +229,6 @@ void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t v
   tx_.answer(frame, result);
 }
 
-void CanNode::reply_capture(ErrorCode result) noexcept {
-  hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
-  write_raw(frame, kStatusTag, access_.tag());
-  write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
-  write_raw(frame, kStatusResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kStatusChannels, capture_.channel_count());
-  write_raw(frame, kStatusDecimation, std::min<std::uint32_t>(capture_.decimation(), 255u));
-  write_raw(frame, kStatusSamples, std::min<std::uint32_t>(capture_.samples(), 0xFFFFFFu));
-  tx_.answer(frame, result);
-}
-
 // --- heartbeat and telemetry
 
 std::uint16_t CanNode::heartbeat_errors() const noexcept {
@@ -255,8 +241,9 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(storage_.unsaved(), kHbParamsUnsaved);
   set(tx_.dropped_since_heartbeat(), kHbTxDropped);
   set(jog_deadman_, kHbJogDeadman);
-  set(capture_.state() == CaptureState::recording, kHbCaptureRecording);
-  set(capture_.state() == CaptureState::done, kHbCaptureDone);
+  const CaptureState capture = capture_.recorder().state();
+  set(capture == CaptureState::recording, kHbCaptureRecording);
+  set(capture == CaptureState::done, kHbCaptureDone);
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
   set(!staged_.empty(), kHbParamsStaged);

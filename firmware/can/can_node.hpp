@@ -22,10 +22,10 @@
 // parameter set (host_staged_sets.hpp). Commands that move or change the
 // machine need command ownership, taken and released explicitly
 // (COMMAND take_ownership / release_ownership) and lost when its host is
-// silent for can.host_timeout_ms; reads are open to every host.
+// silent for can.host_timeout_ms; reads are open to every host (HostAccess).
 //
 // Transmit order: every frame goes through a priority queue
-// (tx_priority_queue.hpp) and leaves in CAN-id order; telemetry is dropped
+// (NodeTransmit, tx_priority_queue.hpp) and leaves in CAN-id order; telemetry is dropped
 // first when it is full, a capture upload only goes out when nothing else
 // waits.
 //
@@ -35,17 +35,27 @@
 // HEARTBEAT); PROGRAM_STATUS reports progress and underruns
 // (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
-// Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
-// words, 512 KiB): give it static storage or build it on the heap.
+// Parts (docs/architecture.md "CAN service"): CanNode is the dispatcher.
+// It reads and routes the frames, keeps the live parameter set and its one
+// path of change (apply_settings), heartbeat and telemetry, and owns the
+// parts, each a class with its own state that gets what it uses from the
+// others as references: NodeTransmit (every frame out), HostAccess (tag,
+// host, ownership), CommissioningMode, CommandAck, NodeStorage (save /
+// load), ShaperDesignDeferral, ProgramStream (programs) and NodeCapture.
+// Every rule above holds for every part.
+//
+// Size: the node holds the capture buffer (NodeCapture's recorder,
+// kCaptureCapacityWords 32-bit words, 512 KiB), its last member: give the
+// node static storage or build it on the heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
-#include "firmware/can/capture_recorder.hpp"
 #include "firmware/can/command_ack.hpp"
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
+#include "firmware/can/node_capture.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/node_storage.hpp"
 #include "firmware/can/node_transmit.hpp"
@@ -137,19 +147,11 @@ class CanNode {
   bool segment_pending() const noexcept { return programs_.segment_pending(); }  // a SEGMENT waits for its tail
 
  private:
-  struct Upload {
-    bool active = false;
-    std::uint32_t offset_bytes = 0;
-    std::uint16_t frames = 0;
-    std::uint16_t next = 0;
-  };
-
   // service() steps
   std::uint32_t on_new_tick(std::uint64_t ticks) noexcept;  // returns the telemetry due
   void check_fault() noexcept;                               // FAULT_EVENT once per latch
   void receive() noexcept;
   void send_telemetry(std::uint32_t due) noexcept;
-  void send_upload() noexcept;
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
   void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
@@ -160,7 +162,6 @@ class CanNode {
   void handle_shaper(const hal::CanFrame& frame) noexcept;
   void handle_excite(const hal::CanFrame& frame) noexcept;
   void handle_param(const hal::CanFrame& frame) noexcept;
-  void handle_capture(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
@@ -184,12 +185,12 @@ class CanNode {
   bool moving() const noexcept;
   // replies and frames
   void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
-  void reply_capture(ErrorCode result) noexcept;
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
   void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
 
   TickTask& task_;
   hal::CanPort& can_;
+  std::uint8_t node_id_;                // settings.can.node_id at construction
   HostAccess access_{};                 // the request's tag and host, command ownership
   CommissioningMode commissioning_;     // safety parameters writable
   NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
@@ -200,11 +201,9 @@ class CanNode {
   NodeSettings settings_;
   const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
   ShaperDesignCache designs_{};
-  std::uint8_t node_id_;
   NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
   HostStagedSets staged_{};
   TelemetryScheduler telemetry_{};
-  Upload upload_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
@@ -212,11 +211,10 @@ class CanNode {
   bool fault_reported_ = false;
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request
-  bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
   std::uint64_t bus_errors_at_heartbeat_ = 0;
   std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;
-  CaptureRecorder capture_{};           // last: the big buffer
+  NodeCapture capture_;                 // last: it holds the big buffer
 };
 
 }  // namespace tnv::fw::can

@@ -57,12 +57,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   if (st != CommandStatus::ok) return ack_.send(id, 0, to_error(st), 0);
   motion_accepted();
   // A capture waiting for a motion records the excitation, first tick to last.
-  if (capture_.state() == CaptureState::armed && settings_.capture.trigger == CaptureTrigger::motion) {
-    CaptureSettings now = settings_.capture;
-    now.trigger = CaptureTrigger::immediate;
-    capture_.arm(now);
-    excite_capture_ = true;
-  }
+  capture_.excitation_started(settings_.capture);
   ack_.send(id, 0, ErrorCode::ok, 0);
 }
 

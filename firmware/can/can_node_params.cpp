@@ -16,8 +16,7 @@ namespace tnv::fw::can {
 using namespace fields;
 
 bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
-  const CaptureState st = capture_.state();
-  if (st != CaptureState::armed && st != CaptureState::recording) return false;
+  if (!capture_.settings_locked()) return false;
   const CaptureSettings& a = settings_.capture;
   const CaptureSettings& b = next.capture;
   return a.channels != b.channels || a.trigger != b.trigger || a.decimation != b.decimation;
