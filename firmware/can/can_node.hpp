@@ -35,7 +35,7 @@
 // HEARTBEAT); PROGRAM_STATUS reports progress and underruns
 // (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
-// Parts (docs/architecture.md "CAN service"): CanNode is the dispatcher.
+// Parts (docs/architecture.md "CAN node"): CanNode is the dispatcher.
 // It reads and routes the frames, keeps the live parameter set and its one
 // path of change (apply_settings), heartbeat and telemetry, and owns the
 // parts, each a class with its own state that gets what it uses from the
