@@ -1,6 +1,7 @@
-// CanNode: construction, the service() loop, receive routing, replies,
-// heartbeat and telemetry. Requests are handled in can_node_commands.cpp,
-// can_node_params.cpp, can_node_capture.cpp and can_node_boring.cpp.
+// CanNode: construction, the service() loop, receive routing, the replies
+// of PARAM_REQUEST, heartbeat and telemetry. Requests are handled in
+// can_node_commands.cpp, can_node_excite.cpp, can_node_params.cpp,
+// can_node_boring.cpp and by the parts (ProgramStream, NodeCapture).
 #include "firmware/can/can_node.hpp"
 
 #include <algorithm>
@@ -20,13 +21,16 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
                  hal::StorageWorker* storage_worker) noexcept
     : task_(task),
       can_(can),
-      storage_(storage),
-      previous_storage_(previous_storage),
-      storage_worker_(storage_worker),
+      node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
+      commissioning_(task),
+      tx_(can),
+      ack_(node_id_, task, access_, tx_),
+      programs_(node_id_, task, access_, ack_, tx_),
+      storage_(storage, previous_storage, storage_worker, storage_fault),
+      design_(storage_worker),
       settings_(settings),
       defaults_(cached_default_node_settings()),
-      node_id_(static_cast<std::uint8_t>(settings.can.node_id)),
-      storage_fault_(storage_fault) {
+      capture_(node_id_, task, access_, tx_) {
   // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
   (void)cached_default_shaper_designs();
   // The task at rest takes the whole firmware part (controller per axis
@@ -47,27 +51,38 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
 
 const NodeSettings& CanNode::settings() const noexcept { return settings_; }
 std::uint8_t CanNode::node_id() const noexcept { return node_id_; }
-const NodeCounters& CanNode::counters() const noexcept { return counters_; }
-CaptureState CanNode::capture_state() const noexcept { return capture_.state(); }
-std::uint32_t CanNode::capture_samples() const noexcept { return capture_.samples(); }
-std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.channel_mask(); }
-std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.words(); }
+NodeCounters CanNode::counters() const noexcept {
+  NodeCounters c = counters_;
+  const TxCounters& t = tx_.counters();
+  c.rx_malformed += t.unknown_commands;  // answered unknown_command: malformed too
+  c.tx_frames = t.tx_frames;
+  c.tx_dropped = t.tx_dropped;
+  c.telemetry_dropped = t.telemetry_dropped;
+  c.requests_refused = t.requests_refused;
+  return c;
+}
+CaptureState CanNode::capture_state() const noexcept { return capture_.recorder().state(); }
+std::uint32_t CanNode::capture_samples() const noexcept { return capture_.recorder().samples(); }
+std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
+std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.recorder().words(); }
 std::size_t CanNode::staged_count() const noexcept { return staged_.total(); }
 std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
   const StagedParams* s = staged_.find(host);
   return s != nullptr ? s->size() : 0;
 }
-std::uint8_t CanNode::owner() const noexcept { return owner_; }
-std::size_t CanNode::tx_pending() const noexcept { return tx_.size(); }
-bool CanNode::storage_fault() const noexcept { return storage_fault_; }
-bool CanNode::params_unsaved() const noexcept { return unsaved_; }
-bool CanNode::storage_in_flight() const noexcept { return storage_pending_; }
-std::uint16_t CanNode::reply_sequence() const noexcept { return sequence_; }
+std::uint8_t CanNode::owner() const noexcept { return access_.owner(); }
+void CanNode::allow_commissioning(bool allowed) noexcept { commissioning_.allow(allowed); }
+bool CanNode::commissioning() const noexcept { return commissioning_.active(); }
+std::size_t CanNode::tx_pending() const noexcept { return tx_.pending(); }
+bool CanNode::storage_fault() const noexcept { return storage_.fault(); }
+bool CanNode::params_unsaved() const noexcept { return storage_.unsaved(); }
+bool CanNode::storage_in_flight() const noexcept { return storage_.pending(); }
+std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
 
 void CanNode::service() noexcept {
-  tx_budget_ = kMaxTxPerService;
+  tx_.begin_service();
   std::uint32_t due = 0;
   const std::uint64_t tick = task_.last_record().tick;
   if (tick != last_tick_) {
@@ -75,39 +90,31 @@ void CanNode::service() noexcept {
     last_tick_ = tick;
     due = on_new_tick(ticks);
   }
-  flush();
-  check_commissioning();
+  tx_.flush();
+  commissioning_.refresh();
   collect_worker();
   receive();
   check_fault();
-  check_commissioning();
+  commissioning_.refresh();
   send_telemetry(due);
-  flush();
-  send_upload();
+  tx_.flush();
+  capture_.send_upload();
 }
 
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
-  capture_.on_tick(task_.last_record(), tick_signals(task_, settings_));
-  if (excite_capture_ && !task_.exciting()) {
-    // The excitation's last tick (or the one that cancelled it) is recorded: the capture is done.
-    excite_capture_ = false;
-    capture_.abort();
-  }
+  capture_.on_tick(settings_);
   check_fault();
-  if (program_.update(task_)) send_program_status();
+  programs_.on_tick();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
     deadman_stops_seen_ = stops;
     jog_deadman_ = true;
   }
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
-  silent_ticks_ += ticks;
-  const std::uint32_t timeout = settings_.can.host_timeout_ms;
-  if (timeout > 0 && silent_ticks_ >= timeout) {
-    owner_ = kAnonymousHost;
-    pending_.active = false;
+  if (access_.owner_timed_out(ticks, settings_.can.host_timeout_ms)) {
+    programs_.drop_pending();
     if (task_.moving() && !task_.stopping()) {
-      program_stopping();
+      programs_.stopping();
       task_.stop();
       host_timeout_ = true;
     }
@@ -128,7 +135,7 @@ void CanNode::check_fault() noexcept {
   write(frame, kFaultAxis, f.axis);
   write_raw(frame, kFaultTick, static_cast<std::uint32_t>(f.tick & 0xFFFFu));
   write(frame, kFaultValue, f.value);
-  send_reply(frame);
+  tx_.queue(frame, false);
 }
 
 // --- receive
@@ -166,34 +173,31 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   }
   // Every other to-node message starts with its tag (byte 0); a frame too
   // short to hold one is answered with tag 0.
-  tag_ = frame.dlc > 0 ? frame.data[0] : 0;
-  broadcast_ = node_of(frame.id) == kBroadcastNode;
+  access_.begin_request(frame.dlc > 0 ? frame.data[0] : 0, node_of(frame.id) == kBroadcastNode);
   const auto refuse = [&](ErrorCode e) noexcept {
     switch (id) {
       case MessageId::param_request: reply_param(e, 0, 0); return;
-      case MessageId::capture_control: reply_capture(e); return;
+      case MessageId::capture_control: capture_.reply(e); return;
       case MessageId::bore_gauge: reply_bore(e, 0); return;
-      default: reply_ack(m.id, 0, e, 0); return;
+      default: ack_.send(m.id, 0, e, 0); return;
     }
   };
   if (frame.dlc != m.dlc) {
     ++counters_.rx_malformed;
     return refuse(ErrorCode::bad_length);
   }
-  const std::uint8_t host = host_of_tag(tag_);
+  const std::uint8_t host = access_.host();
   // Host 0 is anonymous: only the broadcast stop (checked in receive()) may come from it.
-  if (host == kAnonymousHost && !broadcast_) {
+  if (host == kAnonymousHost && !access_.broadcast()) {
     ++counters_.rx_malformed;
     return refuse(ErrorCode::no_host);
   }
-  if (host != kAnonymousHost && host == owner_) silent_ticks_ = 0;  // a valid frame from the owner
+  access_.heard_from(host);  // a valid frame: from the owner, its silence ends
   dispatch(frame, id);
 }
 
 void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
-  request_ = frame;
-  request_id_ = id;
-  design_deferred_ = false;
+  design_.begin_request(frame, id);
   switch (id) {
     case MessageId::command: handle_command(frame); return;
     case MessageId::jog: handle_jog(frame); return;
@@ -202,87 +206,27 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::shaper: handle_shaper(frame); return;
     case MessageId::excite: handle_excite(frame); return;
     case MessageId::param_request: handle_param(frame); return;
-    case MessageId::capture_control: handle_capture(frame); return;
+    case MessageId::capture_control: capture_.control(frame, settings_.capture); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
-    case MessageId::segment: handle_segment(frame); return;
-    case MessageId::segment_tail: handle_segment_tail(frame); return;
+    case MessageId::segment:
+      if (programs_.segment(frame)) motion_accepted();
+      return;
+    case MessageId::segment_tail:
+      if (programs_.segment_tail(frame)) motion_accepted();
+      return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }
 
 // --- replies
 
-void CanNode::count_result(ErrorCode result) noexcept {
-  ++sequence_;  // every answer passes here
-  if (result == ErrorCode::ok) return;
-  ++counters_.requests_refused;
-  if (result == ErrorCode::unknown_command) ++counters_.rx_malformed;
-}
-
-void CanNode::reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept {
-  count_result(result);
-  hal::CanFrame frame = make_frame(kAckMsg, node_id_);
-  write_raw(frame, kAckTag, tag_);
-  write_raw(frame, kAckRequest, request);
-  write_raw(frame, kAckCode, code);
-  write_raw(frame, kAckResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kAckState, static_cast<std::uint32_t>(task_.state()));
-  write_raw(frame, kAckFault, static_cast<std::uint32_t>(task_.fault().reason));
-  write_raw(frame, kAckDetail, detail);
-  write_raw(frame, kAckOwner, owner_);
-  send_reply(frame);
-}
-
 void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
-  write_raw(frame, kReplyTag, tag_);
+  write_raw(frame, kReplyTag, access_.tag());
   write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kReplyParam, param);
   write_raw(frame, kReplyValue, value);
-  send_reply(frame);
-}
-
-void CanNode::reply_capture(ErrorCode result) noexcept {
-  count_result(result);
-  hal::CanFrame frame = make_frame(kCaptureStatusMsg, node_id_);
-  write_raw(frame, kStatusTag, tag_);
-  write_raw(frame, kStatusState, static_cast<std::uint32_t>(capture_.state()));
-  write_raw(frame, kStatusResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kStatusChannels, capture_.channel_count());
-  write_raw(frame, kStatusDecimation, std::min<std::uint32_t>(capture_.decimation(), 255u));
-  write_raw(frame, kStatusSamples, std::min<std::uint32_t>(capture_.samples(), 0xFFFFFFu));
-  send_reply(frame);
-}
-
-bool CanNode::send_now(const hal::CanFrame& frame) noexcept {
-  if (tx_budget_ <= 0 || can_.try_send(frame) != hal::HalStatus::ok) return false;
-  --tx_budget_;
-  ++counters_.tx_frames;
-  return true;
-}
-
-void CanNode::dropped() noexcept {
-  ++counters_.tx_dropped;
-  tx_dropped_since_heartbeat_ = true;
-}
-
-void CanNode::queue(const hal::CanFrame& frame, bool droppable) noexcept {
-  switch (tx_.push(frame, droppable)) {
-    case TxPriorityQueue::Push::queued: return;
-    case TxPriorityQueue::Push::evicted_other:  // only telemetry is ever evicted
-      ++counters_.telemetry_dropped;
-      dropped();
-      return;
-    case TxPriorityQueue::Push::dropped:
-      if (droppable) ++counters_.telemetry_dropped;
-      dropped();
-      return;
-  }
-}
-
-void CanNode::flush() noexcept {
-  while (!tx_.empty() && send_now(tx_.top())) tx_.pop();
+  tx_.answer(frame, result);
 }
 
 // --- heartbeat and telemetry
@@ -293,12 +237,13 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
     if (on) bits = static_cast<std::uint16_t>(bits | b);
   };
   const TickCounters& c = task_.counters();
-  set(storage_fault_, kHbStorageFault);
-  set(unsaved_, kHbParamsUnsaved);
-  set(tx_dropped_since_heartbeat_, kHbTxDropped);
+  set(storage_.fault(), kHbStorageFault);
+  set(storage_.unsaved(), kHbParamsUnsaved);
+  set(tx_.dropped_since_heartbeat(), kHbTxDropped);
   set(jog_deadman_, kHbJogDeadman);
-  set(capture_.state() == CaptureState::recording, kHbCaptureRecording);
-  set(capture_.state() == CaptureState::done, kHbCaptureDone);
+  const CaptureState capture = capture_.recorder().state();
+  set(capture == CaptureState::recording, kHbCaptureRecording);
+  set(capture == CaptureState::done, kHbCaptureDone);
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
   set(!staged_.empty(), kHbParamsStaged);
@@ -313,7 +258,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
 void CanNode::send_telemetry(std::uint32_t due) noexcept {
   if (due == 0) return;
   const TickRecord& r = task_.last_record();
-  const auto emit = [this](const hal::CanFrame& frame) noexcept { queue(frame, true); };
+  const auto emit = [this](const hal::CanFrame& frame) noexcept { tx_.queue(frame, true); };
   if ((due & cyclic_bit(Cyclic::heartbeat)) != 0) {
     hal::CanFrame f = make_frame(kHeartbeatMsg, node_id_);
     const TickCounters& c = task_.counters();
@@ -321,15 +266,15 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
     write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
     write_raw(f, kHbErrors, heartbeat_errors());
     write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
-    write_raw(f, kHbFreeSlots, free_slots());
-    write_raw(f, kHbOwner, owner_);
+    write_raw(f, kHbFreeSlots, programs_.free_slots());
+    write_raw(f, kHbOwner, access_.owner());
     write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
-    tx_dropped_since_heartbeat_ = false;
+    tx_.heartbeat_sent();
     bus_errors_at_heartbeat_ = c.bus_errors;
     late_ticks_at_heartbeat_ = c.late_ticks;
     can_errors_at_heartbeat_ = can_.error_frames();
-    queue(f, false);  // never dropped for telemetry's sake
-    if (active(program_.state())) send_program_status();
+    tx_.queue(f, false);  // never dropped for telemetry's sake
+    programs_.on_heartbeat();
   }
   const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
     // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.

@@ -22,10 +22,10 @@
 // parameter set (host_staged_sets.hpp). Commands that move or change the
 // machine need command ownership, taken and released explicitly
 // (COMMAND take_ownership / release_ownership) and lost when its host is
-// silent for can.host_timeout_ms; reads are open to every host.
+// silent for can.host_timeout_ms; reads are open to every host (HostAccess).
 //
 // Transmit order: every frame goes through a priority queue
-// (tx_priority_queue.hpp) and leaves in CAN-id order; telemetry is dropped
+// (NodeTransmit, tx_priority_queue.hpp) and leaves in CAN-id order; telemetry is dropped
 // first when it is full, a capture upload only goes out when nothing else
 // waits.
 //
@@ -33,27 +33,41 @@
 // the tick task's motion queue; each complete or refused element is
 // answered with the queue's free slots (flow control, also in every
 // HEARTBEAT); PROGRAM_STATUS reports progress and underruns
-// (can_node_program.cpp, docs/motion.md "Streaming").
+// (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
-// Size: the node holds the capture buffer (kCaptureCapacityWords 32-bit
-// words, 512 KiB): give it static storage or build it on the heap.
+// Parts (docs/architecture.md "CAN node"): CanNode is the dispatcher.
+// It reads and routes the frames, keeps the live parameter set and its one
+// path of change (apply_settings), heartbeat and telemetry, and owns the
+// parts, each a class with its own state that gets what it uses from the
+// others as references: NodeTransmit (every frame out), HostAccess (tag,
+// host, ownership), CommissioningMode, CommandAck, NodeStorage (save /
+// load), ShaperDesignDeferral, ProgramStream (programs) and NodeCapture.
+// Every rule above holds for every part.
+//
+// Size: the node holds the capture buffer (NodeCapture's recorder,
+// kCaptureCapacityWords 32-bit words, 512 KiB), its last member: give the
+// node static storage or build it on the heap.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
-#include "firmware/can/capture_recorder.hpp"
+#include "firmware/can/command_ack.hpp"
+#include "firmware/can/commissioning_mode.hpp"
+#include "firmware/can/host_access.hpp"
+#include "firmware/can/node_capture.hpp"
 #include "firmware/can/node_settings.hpp"
+#include "firmware/can/node_storage.hpp"
+#include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
-#include "firmware/can/program_tracker.hpp"
+#include "firmware/can/program_stream.hpp"
 #include "firmware/can/protocol_messages.hpp"
-#include "firmware/can/segment_wire.hpp"
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/shaper_design_cache.hpp"
+#include "firmware/can/shaper_design_deferral.hpp"
 #include "firmware/can/storage_jobs.hpp"
 #include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
-#include "firmware/can/tx_priority_queue.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 #include "hal/param_storage.hpp"
@@ -65,12 +79,13 @@ namespace tnv::fw::can {
 // reading more than that per tick keeps the receive FIFO from overflowing
 // (an e-stop could be among the frames lost; docs/safety.md "Bus flood").
 inline constexpr int kMaxRxPerService = 24;
-inline constexpr int kMaxTxPerService = 32;
+// kMaxTxPerService: node_transmit.hpp.
 
 struct NodeCounters {
   std::uint64_t rx_frames = 0;       // frames addressed to this node (or broadcast) and handled
   std::uint64_t rx_ignored = 0;      // frames for other nodes, from other nodes, or not ours
   std::uint64_t rx_malformed = 0;    // answered with an error code (bad length, unknown op, ...)
+  // The transmit side's (NodeTransmit::counters()):
   std::uint64_t tx_frames = 0;
   std::uint64_t tx_dropped = 0;      // the transmit queue was full (telemetry_dropped included)
   std::uint64_t telemetry_dropped = 0;  // telemetry frames dropped to make room (or for want of it)
@@ -109,7 +124,7 @@ class CanNode {
   // The id this node answers to: settings().can.node_id at construction
   // (a changed node id applies at the next start).
   std::uint8_t node_id() const noexcept;
-  const NodeCounters& counters() const noexcept;
+  NodeCounters counters() const noexcept;  // the receive side's and the transmit side's
 
   // --- inspection (tests and the in-process emulated controller)
   std::uint16_t heartbeat_errors() const noexcept;  // HEARTBEAT.errors if one were sent now
@@ -126,25 +141,17 @@ class CanNode {
   bool storage_fault() const noexcept;
   bool params_unsaved() const noexcept;
   bool storage_in_flight() const noexcept;  // a save or load posted to the worker, not answered yet
-  bool design_in_flight() const noexcept { return design_pending_; }  // a request waits for shaper designs
+  bool design_in_flight() const noexcept { return design_.pending(); }  // a request waits for shaper designs
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
-  const ProgramTracker& program() const noexcept { return program_; }
-  bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
+  const ProgramTracker& program() const noexcept { return programs_.tracker(); }
+  bool segment_pending() const noexcept { return programs_.segment_pending(); }  // a SEGMENT waits for its tail
 
  private:
-  struct Upload {
-    bool active = false;
-    std::uint32_t offset_bytes = 0;
-    std::uint16_t frames = 0;
-    std::uint16_t next = 0;
-  };
-
   // service() steps
   std::uint32_t on_new_tick(std::uint64_t ticks) noexcept;  // returns the telemetry due
   void check_fault() noexcept;                               // FAULT_EVENT once per latch
   void receive() noexcept;
   void send_telemetry(std::uint32_t due) noexcept;
-  void send_upload() noexcept;
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
   void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
@@ -155,124 +162,59 @@ class CanNode {
   void handle_shaper(const hal::CanFrame& frame) noexcept;
   void handle_excite(const hal::CanFrame& frame) noexcept;
   void handle_param(const hal::CanFrame& frame) noexcept;
-  void handle_capture(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
-  void handle_segment(const hal::CanFrame& frame) noexcept;
-  void handle_segment_tail(const hal::CanFrame& frame) noexcept;
-  // programs (can_node_program.cpp)
-  void push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
-  void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
-  ErrorCode command_program(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  void program_stopping() noexcept;  // a stop of the running program was asked for
-  void send_program_status() noexcept;
-  std::uint8_t free_slots() const noexcept;
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  // save / load: ok when posted (answered later by finish_storage()), else the refusal to answer now
+  // save / load (NodeStorage): ok when posted (answered later by finish_storage()), else the refusal to answer now
   ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
   void collect_worker() noexcept;  // service() step: finishes a job the worker has finished
   void finish_storage() noexcept;
-  // A parameter change needing shaper designs the node does not have: the
-  // designs are made on the worker and the request is handled again, as if
-  // it arrived then, when they are done (can_node_design.cpp).
-  ErrorCode defer_for_designs(const std::array<bool, hal::kAxisCount>& needed, const NodeSettings& next) noexcept;
+  // A request deferred for its shaper designs (ShaperDesignDeferral), handled again now they are made.
   void finish_design() noexcept;
-  ErrorCode finish_save() noexcept;
-  ErrorCode finish_load() noexcept;
   ErrorCode command_restore_defaults() noexcept;
-  ErrorCode command_enter_commissioning() noexcept;
-  // A set / stage writing `raw` into `p` (now `current`): commissioning_required
-  // for a safety parameter that would change outside commissioning mode, else ok.
-  ErrorCode commissioning_check(const ParamDef& p, std::uint32_t raw, std::uint32_t current) noexcept;
-  // Leaves commissioning mode when the machine no longer allows it (not
-  // disabled, or a fault latched); called each service() and before a change.
-  void check_commissioning() noexcept;
-  ErrorCode command_ownership(CommandCode code) noexcept;  // take / release
-  bool owns() const noexcept;  // the current request's host holds command ownership
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
   // parameters: validate the whole next set, refuse busy, apply whole.
   // `may_defer`: with a worker, a shaper design the cache lacks defers the
-  // request (ok returned, design_deferred_ set: the caller must not answer).
+  // request (ok returned, design_.deferred() set: the caller must not answer).
   ErrorCode apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer = true) noexcept;
-  bool worker_busy() const noexcept { return storage_pending_ || design_pending_; }
+  bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
   bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
-  void reply_ack(std::uint8_t request, std::uint8_t code, ErrorCode result, std::uint8_t detail) noexcept;
   void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
-  void reply_capture(ErrorCode result) noexcept;
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
   void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
-  void count_result(ErrorCode result) noexcept;
-  void queue(const hal::CanFrame& frame, bool droppable) noexcept;  // into the priority queue
-  void send_reply(const hal::CanFrame& frame) noexcept { queue(frame, false); }
-  bool send_now(const hal::CanFrame& frame) noexcept;    // false: not sent
-  void flush() noexcept;                                 // the queue into the port, in priority order
-  void dropped() noexcept;
 
   TickTask& task_;
   hal::CanPort& can_;
-  hal::ParamStorage& storage_;
-  hal::ParamStorage* previous_storage_ = nullptr;
-  hal::StorageWorker* storage_worker_ = nullptr;
+  std::uint8_t node_id_;                // settings.can.node_id at construction
+  HostAccess access_{};                 // the request's tag and host, command ownership
+  CommissioningMode commissioning_;     // safety parameters writable
+  NodeTransmit tx_;                     // the priority queue, the budget, the answers' count
+  CommandAck ack_;                      // COMMAND_ACK, the answer of most requests
+  ProgramStream programs_;              // SEGMENT streaming and PROGRAM_STATUS
+  NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
+  ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
   NodeSettings settings_;
   const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
-  // The storage request in flight: the frame as it came (the deferred
-  // COMMAND_ACK answers it), and the job the worker runs.
-  CommandCode storage_code_ = CommandCode::save_params;
-  bool storage_pending_ = false;
-  hal::CanFrame storage_request_{};
-  SaveJob save_job_{};
-  LoadJob load_job_{};
-  // The request being handled (kept so a deferred one can be handled again),
-  // and the one waiting for its shaper designs.
-  hal::CanFrame request_{};
-  MessageId request_id_ = MessageId::command;
-  hal::CanFrame design_request_{};
-  MessageId design_request_id_ = MessageId::command;
-  bool design_pending_ = false;   // design_job_ posted, its request not yet handled again
-  bool design_deferred_ = false;  // the request being handled was deferred: no answer now
-  ShaperDesignJob design_job_{};
   ShaperDesignCache designs_{};
-  std::uint8_t node_id_;
-  NodeCounters counters_{};
+  NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
   HostStagedSets staged_{};
   TelemetryScheduler telemetry_{};
-  TxPriorityQueue tx_{};
-  Upload upload_{};
-  struct PendingSegment {
-    bool active = false;
-    std::uint8_t tag = 0;
-    SegmentHead head{};
-  };
-  PendingSegment pending_{};            // the owner's SEGMENT waiting for its SEGMENT_TAIL
-  ProgramTracker program_{};
   std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
-  int tx_budget_ = 0;                   // frames this service() may still send
-  std::uint8_t tag_ = 0;                // tag of the request being handled (echoed by its reply)
-  std::uint16_t sequence_ = 0;          // requests answered, mod 65536 (tests and the fuzz invariant)
-  std::uint8_t owner_ = 0;              // host holding command ownership, 0 none
-  bool broadcast_ = false;              // the request being handled came on node 0
   std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
-  std::uint64_t silent_ticks_ = 0;      // ticks since the last valid frame from the owner
   std::uint32_t deadman_stops_seen_ = 0;
-  bool storage_fault_ = false;
-  bool unsaved_ = false;
   bool fault_reported_ = false;
   bool jog_deadman_ = false;            // sticky until the next accepted motion request
   bool host_timeout_ = false;           // sticky until the next accepted motion request
-  bool tx_dropped_since_heartbeat_ = false;
-  bool excite_capture_ = false;         // the capture records a running EXCITE: stop it when that ends
-  bool commissioning_ = false;          // safety parameters writable (entered while disabled)
-  bool commissioning_allowed_ = true;   // the local permission to enter it
   std::uint64_t bus_errors_at_heartbeat_ = 0;
   std::uint64_t can_errors_at_heartbeat_ = 0;
   std::uint64_t late_ticks_at_heartbeat_ = 0;
-  CaptureRecorder capture_{};           // last: the big buffer
+  NodeCapture capture_;                 // last: it holds the big buffer
 };
 
 }  // namespace tnv::fw::can

@@ -50,16 +50,16 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
   if (op_raw >= kBoreOpCount) return reply_bore(ErrorCode::unknown_command, index_of(kBoreGaugeMsg, kBoreOp));
   const auto op = static_cast<BoreOp>(op_raw);
   if (op != BoreOp::query) {
-    if (!owns()) return reply_bore(ErrorCode::not_owner, 0);
+    if (!access_.owns()) return reply_bore(ErrorCode::not_owner, 0);
     // A save or load works on the set (the learned state included) as it was at the request.
-    if (storage_pending_) return reply_bore(ErrorCode::busy, 0);
+    if (storage_.pending()) return reply_bore(ErrorCode::busy, 0);
   }
   if (!settings_.bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
   if (op == BoreOp::query) return reply_bore(ErrorCode::ok, 0);
   if (op == BoreOp::restart) {
     const BoringStationState was = settings_.bore_state;
     restart(settings_.bore_state);
-    if (!(settings_.bore_state == was)) unsaved_ = true;
+    if (!(settings_.bore_state == was)) storage_.changed();
     return reply_bore(ErrorCode::ok, 0);
   }
 
@@ -82,15 +82,14 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
     const std::uint8_t detail = a.position >= 0 ? index_of(kBoreGaugeMsg, *reading_fields[a.position]) : 0;
     return reply_bore(ErrorCode::invalid, detail);
   }
-  unsaved_ = true;  // learned, not saved yet
+  storage_.changed();  // learned, not saved yet
   reply_bore(ErrorCode::ok, 0, part_flags(a));
 }
 
 void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
-  count_result(result);
   hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
   if (settings_.bore_state.planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
-  write_raw(frame, kBoreReplyTag, tag_);
+  write_raw(frame, kBoreReplyTag, access_.tag());
   write_raw(frame, kBoreResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kBoreDetail, detail);
   write_raw(frame, kBoreFlags, flags);
@@ -98,7 +97,7 @@ void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t fla
       current_infeeds_mm_rev(settings_.bore, settings_.bore_state, kBoreInfeedTop.scale);
   write(frame, kBoreInfeedTop, infeeds[kBoringTop]);
   write(frame, kBoreInfeedBottom, infeeds[kBoringBottom]);
-  send_reply(frame);
+  tx_.answer(frame, result);
 }
 
 }  // namespace tnv::fw::can

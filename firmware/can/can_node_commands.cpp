@@ -25,30 +25,8 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 
 }  // namespace
 
-bool CanNode::owns() const noexcept {
-  const std::uint8_t host = host_of_tag(tag_);
-  return host != kAnonymousHost && host == owner_;
-}
-
-// take: granted when nobody holds ownership or the host already does
-// (taking it again is harmless); release: only by the owner.
-ErrorCode CanNode::command_ownership(CommandCode code) noexcept {
-  const std::uint8_t host = host_of_tag(tag_);
-  if (host == kAnonymousHost) return ErrorCode::no_host;
-  if (code == CommandCode::take_ownership) {
-    if (owner_ != kAnonymousHost && owner_ != host) return ErrorCode::not_owner;
-    owner_ = host;
-    silent_ticks_ = 0;
-    return ErrorCode::ok;
-  }
-  if (owner_ != host) return ErrorCode::not_owner;
-  owner_ = kAnonymousHost;
-  pending_.active = false;  // a half-received element of the host that let go
-  return ErrorCode::ok;
-}
-
 void CanNode::motion_accepted() noexcept {
-  commissioning_ = false;
+  commissioning_.leave();
   jog_deadman_ = false;
   host_timeout_ = false;
 }
@@ -56,27 +34,27 @@ void CanNode::motion_accepted() noexcept {
 void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
   const auto code_raw = static_cast<std::uint8_t>(read_raw(frame, kCommandCode));
   if (code_raw >= kCommandCodeCount) {
-    reply_ack(kCommandMsg.id, code_raw, ErrorCode::unknown_command, index_of(kCommandMsg, kCommandCode));
+    ack_.send(kCommandMsg.id, code_raw, ErrorCode::unknown_command, index_of(kCommandMsg, kCommandCode));
     return;
   }
   const auto code = static_cast<CommandCode>(code_raw);
-  const bool broadcast_stop = code == CommandCode::stop && broadcast_;
+  const bool broadcast_stop = code == CommandCode::stop && access_.broadcast();
   const bool open_to_all = code == CommandCode::take_ownership || code == CommandCode::release_ownership ||
                            code == CommandCode::program_status || broadcast_stop;
-  if (!open_to_all && !owns()) {
-    reply_ack(kCommandMsg.id, code_raw, ErrorCode::not_owner, 0);
+  if (!open_to_all && !access_.owns()) {
+    ack_.send(kCommandMsg.id, code_raw, ErrorCode::not_owner, 0);
     return;
   }
   std::uint8_t detail = 0;
   ErrorCode e = ErrorCode::ok;
   switch (code) {
     case CommandCode::enable:
-      commissioning_ = false;  // asked for, even if refused
+      commissioning_.leave();  // asked for, even if refused
       e = to_error(task_.hold_position());
       break;
     case CommandCode::disable: e = to_error(task_.disable()); break;
     case CommandCode::stop:
-      if (task_.program_running()) program_stopping();
+      if (task_.program_running()) programs_.stopping();
       e = to_error(task_.stop());
       break;
     case CommandCode::clear_faults: e = to_error(task_.clear_fault()); break;
@@ -91,18 +69,22 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       break;
     case CommandCode::restore_defaults: e = command_restore_defaults(); break;
     case CommandCode::take_ownership:
-    case CommandCode::release_ownership: e = command_ownership(code); break;
-    case CommandCode::enter_commissioning: e = command_enter_commissioning(); break;
-    case CommandCode::leave_commissioning: commissioning_ = false; break;
+    case CommandCode::release_ownership:
+      e = access_.ownership(code);
+      if (e == ErrorCode::ok && code == CommandCode::release_ownership)
+        programs_.drop_pending();  // a half-received element of the host that let go
+      break;
+    case CommandCode::enter_commissioning: e = commissioning_.enter(); break;
+    case CommandCode::leave_commissioning: commissioning_.leave(); break;
     case CommandCode::feed_hold:
     case CommandCode::feed_resume:
     case CommandCode::feed_override:
     case CommandCode::end_program:
     case CommandCode::abort_program:
-    case CommandCode::program_status: e = command_program(code, frame, detail); break;
+    case CommandCode::program_status: e = programs_.command(code, frame, detail); break;
   }
-  if (design_deferred_) return;  // handled again, and answered, when the shaper designs are made
-  reply_ack(kCommandMsg.id, code_raw, e, detail);
+  if (design_.deferred()) return;  // handled again, and answered, when the shaper designs are made
+  ack_.send(kCommandMsg.id, code_raw, e, detail);
 }
 
 ErrorCode CanNode::command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
@@ -127,7 +109,7 @@ ErrorCode CanNode::command_home(const hal::CanFrame& frame, std::uint8_t& detail
     detail = index_of(kCommandMsg, kCommandAxis);
     return ErrorCode::bad_axis;
   }
-  commissioning_ = false;  // asked for motion, even if refused (as enable)
+  commissioning_.leave();  // asked for motion, even if refused (as enable)
   const CommandStatus st =
       task_.home(axis == kAllAxes ? hal::kEveryAxis : hal::axis_bit(hal::axis_from_index(axis)));
   if (st == CommandStatus::ok) motion_accepted();
@@ -170,14 +152,14 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
 }
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kJogMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return ack_.send(kJogMsg.id, 0, ErrorCode::not_owner, 0);
   std::array<double, hal::kAxisCount> speed_mm_s{};
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     speed_mm_s[i] = read(frame, *kJogSpeeds[i]);
     const std::uint8_t detail = index_of(kJogMsg, *kJogSpeeds[i]);
-    if (!std::isfinite(speed_mm_s[i])) return reply_ack(kJogMsg.id, 0, ErrorCode::not_finite, detail);
+    if (!std::isfinite(speed_mm_s[i])) return ack_.send(kJogMsg.id, 0, ErrorCode::not_finite, detail);
     if (std::fabs(speed_mm_s[i]) > task_.config().axis[i].jog.speed_max_mm_s)
-      return reply_ack(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
+      return ack_.send(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
   }
   ErrorCode e = ErrorCode::ok;
   if (task_.state() == MotionState::faulted) {
@@ -190,18 +172,18 @@ void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
       if (e == ErrorCode::ok) e = to_error(task_.jog(a, speed_mm_s[hal::index(a)]));
   }
   if (e == ErrorCode::ok) motion_accepted();
-  reply_ack(kJogMsg.id, 0, e, 0);
+  ack_.send(kJogMsg.id, 0, e, 0);
 }
 
 void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return ack_.send(kMoveMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kMoveAxis);
   const double speed_mm_s = read(frame, kMoveSpeed);
   const double distance_mm = read(frame, kMoveDistance);
-  if (axis >= hal::kAxisCount) return reply_ack(kMoveMsg.id, 0, ErrorCode::bad_axis, index_of(kMoveMsg, kMoveAxis));
-  if (!(speed_mm_s > 0.0)) return reply_ack(kMoveMsg.id, 0, ErrorCode::out_of_range, index_of(kMoveMsg, kMoveSpeed));
+  if (axis >= hal::kAxisCount) return ack_.send(kMoveMsg.id, 0, ErrorCode::bad_axis, index_of(kMoveMsg, kMoveAxis));
+  if (!(speed_mm_s > 0.0)) return ack_.send(kMoveMsg.id, 0, ErrorCode::out_of_range, index_of(kMoveMsg, kMoveSpeed));
   const std::uint8_t distance = index_of(kMoveMsg, kMoveDistance);
-  if (!std::isfinite(distance_mm)) return reply_ack(kMoveMsg.id, 0, ErrorCode::not_finite, distance);
+  if (!std::isfinite(distance_mm)) return ack_.send(kMoveMsg.id, 0, ErrorCode::not_finite, distance);
   MoveSpec spec;
   spec.axis = hal::axis_from_index(axis);
   spec.distance_mm = distance_mm;
@@ -209,11 +191,11 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
   spec.ramp_s = settings_.motion.move_ramp_s;
   spec.dwell_s = settings_.motion.move_dwell_s;
   // A zero distance, or one too short for the two ramps at this speed.
-  if (validate(spec)[0] != '\0') return reply_ack(kMoveMsg.id, 0, ErrorCode::invalid, distance);
+  if (validate(spec)[0] != '\0') return ack_.send(kMoveMsg.id, 0, ErrorCode::invalid, distance);
   const CommandStatus st = task_.start_move(spec);
-  if (st == CommandStatus::invalid) return reply_ack(kMoveMsg.id, 0, ErrorCode::out_of_range, distance);  // soft limits
+  if (st == CommandStatus::invalid) return ack_.send(kMoveMsg.id, 0, ErrorCode::out_of_range, distance);  // soft limits
   if (st == CommandStatus::ok) motion_accepted();
-  reply_ack(kMoveMsg.id, 0, to_error(st), 0);
+  ack_.send(kMoveMsg.id, 0, to_error(st), 0);
 }
 
 // The circle starts where the table stands, which is on the circle at
@@ -222,17 +204,17 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
 // about the origin itself, exactly as tnv-hil runs it; anywhere else about
 // (standing - (r, 0)).
 void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return ack_.send(kCircleMsg.id, 0, ErrorCode::not_owner, 0);
   const double radius_mm = read(frame, kCircleRadius);
   const double feed_mm_s = read(frame, kCircleFeed);
   const std::uint8_t radius = index_of(kCircleMsg, kCircleRadius);
   const std::uint8_t feed = index_of(kCircleMsg, kCircleFeed);
-  if (!std::isfinite(radius_mm)) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_finite, radius);
-  if (!std::isfinite(feed_mm_s)) return reply_ack(kCircleMsg.id, 0, ErrorCode::not_finite, feed);
-  if (!(radius_mm > 0.0)) return reply_ack(kCircleMsg.id, 0, ErrorCode::out_of_range, radius);
-  if (!(feed_mm_s > 0.0)) return reply_ack(kCircleMsg.id, 0, ErrorCode::out_of_range, feed);
+  if (!std::isfinite(radius_mm)) return ack_.send(kCircleMsg.id, 0, ErrorCode::not_finite, radius);
+  if (!std::isfinite(feed_mm_s)) return ack_.send(kCircleMsg.id, 0, ErrorCode::not_finite, feed);
+  if (!(radius_mm > 0.0)) return ack_.send(kCircleMsg.id, 0, ErrorCode::out_of_range, radius);
+  if (!(feed_mm_s > 0.0)) return ack_.send(kCircleMsg.id, 0, ErrorCode::out_of_range, feed);
   const CircleSpec spec{radius_mm, feed_mm_s, settings_.motion.circle_ramp_s, settings_.motion.circle_dwell_s};
-  if (validate(spec)[0] != '\0') return reply_ack(kCircleMsg.id, 0, ErrorCode::invalid, radius);
+  if (validate(spec)[0] != '\0') return ack_.send(kCircleMsg.id, 0, ErrorCode::invalid, radius);
   // The circle lies in the XY plane.
   const double x_mm = task_.standing_mm(hal::kPlaneFirst);
   const double y_mm = task_.standing_mm(hal::kPlaneSecond);
@@ -243,17 +225,17 @@ void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
   const CommandStatus st =
       on_origin_circle ? task_.start_circle(spec) : task_.start_circle(spec, x_mm - radius_mm, y_mm);
   if (st == CommandStatus::ok) motion_accepted();
-  reply_ack(kCircleMsg.id, 0, to_error(st), 0);
+  ack_.send(kCircleMsg.id, 0, to_error(st), 0);
 }
 
 // Same as staging x|y.shaper.type/freq_hz/zeta and committing.
 void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
+  if (!access_.owns()) return ack_.send(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
   const std::uint32_t axis = read_raw(frame, kShaperAxis);
   const std::uint32_t type = read_raw(frame, kShaperType);
   const double zeta = read(frame, kShaperZeta);
   const double freq_hz = read(frame, kShaperFreq);
-  if (axis >= hal::kAxisCount) return reply_ack(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
+  if (axis >= hal::kAxisCount) return ack_.send(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
   const std::array<std::pair<const FieldDef*, std::uint16_t>, 3> checks{
       {{&kShaperType, axis_param(axis, 0x40)}, {&kShaperZeta, axis_param(axis, 0x42)}, {&kShaperFreq, axis_param(axis, 0x41)}}};
   const std::array<double, 3> values{static_cast<double>(type), zeta, freq_hz};
@@ -261,13 +243,13 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
   for (std::size_t k = 0; k < checks.size(); ++k) {
     const ParamDef* p = find_param(checks[k].second);
     const std::uint8_t detail = index_of(kShaperMsg, *checks[k].first);
-    if (p == nullptr) return reply_ack(kShaperMsg.id, 0, ErrorCode::unknown_id, detail);
-    if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return reply_ack(kShaperMsg.id, 0, e, detail);
+    if (p == nullptr) return ack_.send(kShaperMsg.id, 0, ErrorCode::unknown_id, detail);
+    if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return ack_.send(kShaperMsg.id, 0, e, detail);
     p->set(next, values[k]);
   }
   const ErrorCode e = apply_settings(next, false);
-  if (design_deferred_) return;  // handled again, and answered, when the design is made
-  reply_ack(kShaperMsg.id, 0, e, 0);
+  if (design_.deferred()) return;  // handled again, and answered, when the design is made
+  ack_.send(kShaperMsg.id, 0, e, 0);
 }
 
 }  // namespace tnv::fw::can

@@ -28,19 +28,19 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   const double duration_s = read(frame, kExciteDuration);
   const double level_mm_s = read(frame, kExciteLevel);
   const std::uint8_t id = kExciteMsg.id;
-  if (!owns()) return reply_ack(id, 0, ErrorCode::not_owner, 0);
-  if (axis >= hal::kAxisCount) return reply_ack(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
-  if (kind > 4) return reply_ack(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
+  if (!access_.owns()) return ack_.send(id, 0, ErrorCode::not_owner, 0);
+  if (axis >= hal::kAxisCount) return ack_.send(id, 0, ErrorCode::bad_axis, index_of(kExciteMsg, kExciteAxis));
+  if (kind > 4) return ack_.send(id, 0, ErrorCode::out_of_range, index_of(kExciteMsg, kExciteKind));
   const std::uint8_t level = index_of(kExciteMsg, kExciteLevel);
-  if (!std::isfinite(level_mm_s)) return reply_ack(id, 0, ErrorCode::not_finite, level);
+  if (!std::isfinite(level_mm_s)) return ack_.send(id, 0, ErrorCode::not_finite, level);
   if (!(std::fabs(level_mm_s) > 0.0) || std::fabs(level_mm_s) > 100.0)
-    return reply_ack(id, 0, ErrorCode::out_of_range, level);
+    return ack_.send(id, 0, ErrorCode::out_of_range, level);
   const std::uint8_t duration = index_of(kExciteMsg, kExciteDuration);
   const auto excitation_kind = static_cast<ExcitationKind>(kind);
   const bool with_band = banded(excitation_kind);
   const double longest_s = with_band ? kExcitationMaxRecordS : 10.0;
   const double shortest_s = with_band ? 0.1 : 0.001;
-  if (duration_s < shortest_s || duration_s > longest_s) return reply_ack(id, 0, ErrorCode::out_of_range, duration);
+  if (duration_s < shortest_s || duration_s > longest_s) return ack_.send(id, 0, ErrorCode::out_of_range, duration);
   ExcitationSpec spec;  // rate, settle and breakaway: the defaults (see the top of this file)
   spec.kind = excitation_kind;
   spec.level_mm_s = level_mm_s;
@@ -50,20 +50,15 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   spec.tones = settings_.excite.tones;
   spec.carrier_mm_s = closed_loop(excitation_kind) ? settings_.excite.carrier_mm_s : 0.0;
   // The band was checked when it was set; what is left is the duration (a multisine's 2 periods).
-  if (!validate(spec).ok) return reply_ack(id, 0, ErrorCode::invalid, duration);
+  if (!validate(spec).ok) return ack_.send(id, 0, ErrorCode::invalid, duration);
   if (!task_.carrier_travel_fits(hal::axis_from_index(axis), spec))
-    return reply_ack(id, 0, ErrorCode::out_of_range, duration);
+    return ack_.send(id, 0, ErrorCode::out_of_range, duration);
   const CommandStatus st = task_.start_excitation(hal::axis_from_index(axis), spec);
-  if (st != CommandStatus::ok) return reply_ack(id, 0, to_error(st), 0);
+  if (st != CommandStatus::ok) return ack_.send(id, 0, to_error(st), 0);
   motion_accepted();
   // A capture waiting for a motion records the excitation, first tick to last.
-  if (capture_.state() == CaptureState::armed && settings_.capture.trigger == CaptureTrigger::motion) {
-    CaptureSettings now = settings_.capture;
-    now.trigger = CaptureTrigger::immediate;
-    capture_.arm(now);
-    excite_capture_ = true;
-  }
-  reply_ack(id, 0, ErrorCode::ok, 0);
+  capture_.excitation_started(settings_.capture);
+  ack_.send(id, 0, ErrorCode::ok, 0);
 }
 
 }  // namespace tnv::fw::can

@@ -16,8 +16,7 @@ namespace tnv::fw::can {
 using namespace fields;
 
 bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
-  const CaptureState st = capture_.state();
-  if (st != CaptureState::armed && st != CaptureState::recording) return false;
+  if (!capture_.settings_locked()) return false;
   const CaptureSettings& a = settings_.capture;
   const CaptureSettings& b = next.capture;
   return a.channels != b.channels || a.trigger != b.trigger || a.decimation != b.decimation;
@@ -26,7 +25,7 @@ bool CanNode::capture_change_refused(const NodeSettings& next) const noexcept {
 // The one way a parameter change reaches the task: the whole next set is
 // validated, refused busy where it must wait for rest, then applied between
 // two ticks (this runs in service()), all of it or none of it. A shaper
-// design the node lacks is made on the worker first (defer_for_designs), so
+// design the node lacks is made on the worker first (ShaperDesignDeferral), so
 // no request designs one here.
 ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer) noexcept {
   // A save, load or design in flight works on the set as it was: no change until it is answered.
@@ -37,8 +36,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
     return ErrorCode::invalid;
   }
   // Safety parameters change only in commissioning mode (docs/safety.md).
-  check_commissioning();
-  if (!commissioning_)
+  if (!commissioning_.refresh())
     if (const std::uint16_t id = first_safety_change(settings_, next); id != 0) {
       blamed_param_ = id;
       return ErrorCode::commissioning_required;
@@ -57,7 +55,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
     missing[i] = redesign[i] && ready[i] == nullptr;
     any_missing = any_missing || missing[i];
   }
-  if (any_missing && may_defer && storage_worker_ != nullptr) return defer_for_designs(missing, next);
+  if (any_missing && may_defer && design_.can_defer()) return design_.defer(missing, next);
   // Gains, limits, controller selection: the task checks again and applies whole.
   if (const CommandStatus st = task_.apply_config(next.firmware); st != CommandStatus::ok) return to_error(st);
   // Shapers: validated with the set above, so the designs fit; they apply at the next quiet reference.
@@ -70,7 +68,7 @@ ErrorCode CanNode::apply_settings(const NodeSettings& next, bool idle_touched, b
                                                    : task_.configure_shaper(axis, now.spec)) == CommandStatus::ok;
     if (settings_.shaper[i].enabled != now.enabled) task_.enable_shaper(axis, now.enabled && shaper_configured_[i]);
   }
-  if (differing_params(settings_, next, 1) != 0) unsaved_ = true;
+  if (differing_params(settings_, next, 1) != 0) storage_.changed();
   settings_ = next;
   return ErrorCode::ok;
 }
@@ -84,8 +82,8 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     return;
   }
   const auto op = static_cast<ParamOp>(op_raw);
-  const std::uint8_t host = host_of_tag(tag_);
-  if ((op == ParamOp::set || op == ParamOp::commit) && !owns()) {
+  const std::uint8_t host = access_.host();
+  if ((op == ParamOp::set || op == ParamOp::commit) && !access_.owns()) {
     reply_param(ErrorCode::not_owner, id, 0);
     return;
   }
@@ -105,7 +103,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     }
     blamed_param_ = 0;
     const ErrorCode e = apply_settings(next, idle);
-    if (design_deferred_) return;  // handled again, and answered, when the designs are made
+    if (design_.deferred()) return;  // handled again, and answered, when the designs are made
     if (e == ErrorCode::ok) staged_.clear(host);  // refused: the pending set stays for a fix or a discard
     const bool blamed = e == ErrorCode::invalid || e == ErrorCode::commissioning_required;
     reply_param(e, n, blamed ? blamed_param_ : 0u);
@@ -126,7 +124,7 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
     return;
   }
   // set / stage of a safety parameter: authorised before anything else is checked.
-  if (const ErrorCode e = commissioning_check(*p, raw, current); e != ErrorCode::ok) {
+  if (const ErrorCode e = commissioning_.check_change(*p, raw, current); e != ErrorCode::ok) {
     reply_param(e, id, current);
     return;
   }
@@ -145,11 +143,11 @@ void CanNode::handle_param(const hal::CanFrame& frame) noexcept {
   NodeSettings next = settings_;
   p->set(next, value);
   const ErrorCode e = apply_settings(next, p->apply == Apply::idle);
-  if (design_deferred_) return;  // handled again, and answered, when the designs are made
+  if (design_.deferred()) return;  // handled again, and answered, when the designs are made
   reply_param(e, id, to_wire(*p, p->get(settings_)));
 }
 
-// --- restore_defaults (idle only; save and load: can_node_storage.cpp)
+// --- restore_defaults (idle only; save and load: can_node_worker.cpp)
 
 // The papers' defaults, except what describes this machine and this node:
 // the encoder count, DAC scale and tick period (commissioning and board facts), the bus
@@ -173,8 +171,7 @@ ErrorCode CanNode::command_restore_defaults() noexcept {
   next.can.bitrate_kbit = settings_.can.bitrate_kbit;
   // What the boring planner learned is no setting: BORE_GAUGE restart clears it.
   next.bore_state = settings_.bore_state;
-  check_commissioning();
-  if (!commissioning_) keep_safety_params(settings_, next);
+  if (!commissioning_.refresh()) keep_safety_params(settings_, next);
   return apply_settings(next, true);
 }
 

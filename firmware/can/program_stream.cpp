@@ -1,12 +1,9 @@
-// CanNode: programs streamed by the command owner. A SEGMENT is a dwell by
-// itself or waits for its SEGMENT_TAIL (same tag, same host); the complete
-// element goes to the tick task's motion queue. Every element is answered by
-// one COMMAND_ACK whose code is the queue's free slots after it (flow
-// control); a refusal names the field at fault and leaves the queue as it
-// was. PROGRAM_STATUS carries state, progress and underruns.
+// ProgramStream: SEGMENT / SEGMENT_TAIL into the motion queue, the program
+// commands and PROGRAM_STATUS.
+#include "firmware/can/program_stream.hpp"
+
 #include <algorithm>
 
-#include "firmware/can/can_node.hpp"
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
@@ -47,73 +44,95 @@ Refusal refusal(motion::SegmentRefusal why) noexcept {
 
 }  // namespace
 
-std::uint8_t CanNode::free_slots() const noexcept {
+std::uint8_t ProgramStream::free_slots() const noexcept {
   return static_cast<std::uint8_t>(std::min<std::size_t>(task_.motion().free_slots(), 255));
 }
 
-void CanNode::refuse_pending() noexcept {
+void ProgramStream::refuse_pending() noexcept {
   if (!pending_.active) return;
   pending_.active = false;
-  const std::uint8_t tag = tag_;
-  tag_ = pending_.tag;
-  reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_ready, 0);
-  tag_ = tag;
+  ack_.send_tagged(pending_.tag, kSegmentMsg.id, free_slots(), ErrorCode::not_ready, 0);
 }
 
-void CanNode::handle_segment(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::not_owner, 0);
+bool ProgramStream::segment(const hal::CanFrame& frame) noexcept {
+  if (!access_.owns()) {
+    ack_.send(kSegmentMsg.id, free_slots(), ErrorCode::not_owner, 0);
+    return false;
+  }
   refuse_pending();  // the owner moved on without sending the last one's tail
   SegmentHead head;
-  if (!decode_head(frame, head))
-    return reply_ack(kSegmentMsg.id, free_slots(), ErrorCode::out_of_range, index_of(kSegmentMsg, kSegmentKind));
+  if (!decode_head(frame, head)) {
+    ack_.send(kSegmentMsg.id, free_slots(), ErrorCode::out_of_range, index_of(kSegmentMsg, kSegmentKind));
+    return false;
+  }
   if (!wire_kind_has_tail(head.kind)) return push_element(head, nullptr, kSegmentMsg.id);
-  pending_ = {true, tag_, head};  // answered when the tail comes
+  pending_ = {true, access_.tag(), head};  // answered when the tail comes
+  return false;
 }
 
-void CanNode::handle_segment_tail(const hal::CanFrame& frame) noexcept {
-  if (!owns()) return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_owner, 0);
-  if (!pending_.active || pending_.tag != tag_) {
+bool ProgramStream::segment_tail(const hal::CanFrame& frame) noexcept {
+  if (!access_.owns()) {
+    ack_.send(kSegmentTailMsg.id, free_slots(), ErrorCode::not_owner, 0);
+    return false;
+  }
+  if (!pending_.active || pending_.tag != access_.tag()) {
     refuse_pending();  // its tail was lost, or this one belongs to a lost head: both are answered
-    return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentTailMsg, kTailTag));
+    ack_.send(kSegmentTailMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentTailMsg, kTailTag));
+    return false;
   }
   pending_.active = false;
-  push_element(pending_.head, &frame, kSegmentTailMsg.id);
+  return push_element(pending_.head, &frame, kSegmentTailMsg.id);
 }
 
-void CanNode::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
+bool ProgramStream::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
   const bool starting = !task_.program_running();
   motion::Segment segment;
-  if (!decode_segment(head, tail, task_.next_segment_start_mm(), segment))
-    return reply_ack(kSegmentTailMsg.id, free_slots(), ErrorCode::bad_arc,
-                     index_of(kSegmentTailMsg, kTailCentreNormal));
+  if (!decode_segment(head, tail, task_.next_segment_start_mm(), segment)) {
+    ack_.send(kSegmentTailMsg.id, free_slots(), ErrorCode::bad_arc, index_of(kSegmentTailMsg, kTailCentreNormal));
+    return false;
+  }
   segment.tag = starting ? 1 : program_.next_element();
   motion::SegmentRefusal why = motion::SegmentRefusal::none;
   const CommandStatus st = task_.push_segment(segment, why);
   if (st == CommandStatus::ok) {
     if (starting) program_.started(task_);
     program_.accepted();
-    motion_accepted();
-    reply_ack(request, free_slots(), ErrorCode::ok, 0);
-    if (program_.update(task_) || starting) send_program_status();
-    return;
+    ack_.send(request, free_slots(), ErrorCode::ok, 0);
+    if (program_.update(task_) || starting) send_status();
+    return true;
   }
-  if (st != CommandStatus::invalid) return reply_ack(request, free_slots(), to_error(st), 0);
+  if (st != CommandStatus::invalid) {
+    ack_.send(request, free_slots(), to_error(st), 0);
+    return false;
+  }
   // The answer names the frame holding the field at fault (SEGMENT: kind, end point, dwell;
   // SEGMENT_TAIL: feed, centre), or the frame just handled when no field is (queue_full).
   const Refusal r = refusal(why);
   const bool in_tail = r.message == &kSegmentTailMsg && tail != nullptr;
   const bool in_head = r.message == &kSegmentMsg;
-  if (r.field == nullptr || (!in_tail && !in_head)) return reply_ack(request, free_slots(), r.code, 0);
+  if (r.field == nullptr || (!in_tail && !in_head)) {
+    ack_.send(request, free_slots(), r.code, 0);
+    return false;
+  }
   const MessageDef& m = in_tail ? kSegmentTailMsg : kSegmentMsg;
-  reply_ack(m.id, free_slots(), r.code, index_of(m, *r.field));
+  ack_.send(m.id, free_slots(), r.code, index_of(m, *r.field));
+  return false;
 }
 
-void CanNode::program_stopping() noexcept {
+void ProgramStream::stopping() noexcept {
   program_.aborting();
   pending_.active = false;
 }
 
-ErrorCode CanNode::command_program(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
+void ProgramStream::on_tick() noexcept {
+  if (program_.update(task_)) send_status();
+}
+
+void ProgramStream::on_heartbeat() noexcept {
+  if (active(program_.state())) send_status();
+}
+
+ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
   switch (code) {
     case CommandCode::feed_hold: return to_error(task_.feed_hold(true));
     case CommandCode::feed_resume: return to_error(task_.feed_hold(false));
@@ -135,15 +154,15 @@ ErrorCode CanNode::command_program(CommandCode code, const hal::CanFrame& frame,
         pending_.active = false;
         return task_.moving() ? ErrorCode::busy : ErrorCode::ok;  // another motion is not ours to abort
       }
-      program_stopping();
+      stopping();
       return to_error(task_.stop());
-    case CommandCode::program_status: send_program_status(); return ErrorCode::ok;
+    case CommandCode::program_status: send_status(); return ErrorCode::ok;
     default: break;
   }
   return ErrorCode::unknown_command;
 }
 
-void CanNode::send_program_status() noexcept {
+void ProgramStream::send_status() noexcept {
   hal::CanFrame f = make_frame(kProgramStatusMsg, node_id_);
   write_raw(f, kProgramState, static_cast<std::uint32_t>(program_.state()));
   write_raw(f, kProgramFreeSlots, free_slots());
@@ -151,7 +170,7 @@ void CanNode::send_program_status() noexcept {
   write_raw(f, kProgramSegment, std::min<std::uint32_t>(program_.element(task_), 0xFFFFFFu));
   write_raw(f, kProgramOverride,
             static_cast<std::uint32_t>(std::clamp(task_.motion().feed_override() * 100.0 + 0.5, 0.0, 255.0)));
-  queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
+  tx_.queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
 }
 
 }  // namespace tnv::fw::can

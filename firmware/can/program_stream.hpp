@@ -1,0 +1,75 @@
+#pragma once
+// Programs streamed by the command owner over CAN. A SEGMENT is a dwell by
+// itself or waits for its SEGMENT_TAIL (same tag, same host); the complete
+// element goes to the tick task's motion queue. Every element is answered
+// by one COMMAND_ACK whose code is the queue's free slots after it (flow
+// control, also in every HEARTBEAT); a refusal names the field at fault and
+// leaves the queue as it was. PROGRAM_STATUS carries state, progress and
+// underruns (ProgramTracker; docs/motion.md "Streaming").
+//
+// Bounded work, no allocation, exceptions, locks or logging: it runs in
+// CanNode::service().
+#include <cstdint>
+
+#include "firmware/can/command_ack.hpp"
+#include "firmware/can/host_access.hpp"
+#include "firmware/can/node_transmit.hpp"
+#include "firmware/can/program_tracker.hpp"
+#include "firmware/can/protocol_enums.hpp"
+#include "firmware/can/segment_wire.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "hal/can_port.hpp"
+
+namespace tnv::fw::can {
+
+class ProgramStream {
+ public:
+  ProgramStream(std::uint8_t node_id, TickTask& task, const HostAccess& access, CommandAck& ack,
+                NodeTransmit& tx) noexcept
+      : node_id_(node_id), task_(task), access_(access), ack_(ack), tx_(tx) {}
+  ProgramStream(const ProgramStream&) = delete;
+  ProgramStream& operator=(const ProgramStream&) = delete;
+
+  // SEGMENT / SEGMENT_TAIL of the request being handled, answered here.
+  // True when an element was accepted (motion asked for and accepted).
+  bool segment(const hal::CanFrame& frame) noexcept;
+  bool segment_tail(const hal::CanFrame& frame) noexcept;
+  // COMMAND feed_hold, feed_resume, feed_override, end_program,
+  // abort_program and program_status (the caller answers; `detail` = index
+  // of the offending field).
+  ErrorCode command(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
+
+  // A stop of the running program was asked for (stop, host timeout).
+  void stopping() noexcept;
+  // The owner let go (release, timeout): its half-received element is dropped.
+  void drop_pending() noexcept { pending_.active = false; }
+  // A new tick: PROGRAM_STATUS when the program's state changed.
+  void on_tick() noexcept;
+  // A heartbeat went out: PROGRAM_STATUS with it while a program is active.
+  void on_heartbeat() noexcept;
+
+  std::uint8_t free_slots() const noexcept;  // the motion queue's, at most 255
+  const ProgramTracker& tracker() const noexcept { return program_; }
+  bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
+
+ private:
+  bool push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
+  void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
+  void send_status() noexcept;
+
+  struct PendingSegment {
+    bool active = false;
+    std::uint8_t tag = 0;
+    SegmentHead head{};
+  };
+
+  std::uint8_t node_id_;
+  TickTask& task_;
+  const HostAccess& access_;
+  CommandAck& ack_;
+  NodeTransmit& tx_;
+  PendingSegment pending_{};  // the owner's SEGMENT waiting for its SEGMENT_TAIL
+  ProgramTracker program_{};
+};
+
+}  // namespace tnv::fw::can

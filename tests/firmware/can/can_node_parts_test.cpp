@@ -1,0 +1,174 @@
+// The CAN node's parts on their own (firmware/can: NodeTransmit, HostAccess,
+// CommissioningMode, NodeStorage), through their narrow interfaces; the
+// node as a whole is tested by the can_node_*_test files.
+#include <gtest/gtest.h>
+
+#include "firmware/can/commissioning_mode.hpp"
+#include "firmware/can/host_access.hpp"
+#include "firmware/can/node_fields.hpp"
+#include "firmware/can/node_storage.hpp"
+#include "firmware/can/node_transmit.hpp"
+#include "firmware/can/request_tag.hpp"
+#include "firmware/tick/tick_task.hpp"
+#include "tests/firmware/can/can_test_doubles.hpp"
+#include "tests/firmware/can/node_bench.hpp"
+#include "tests/firmware/fake_io_board.hpp"
+
+namespace tnv::test {
+namespace {
+
+using fw::can::CommandCode;
+using fw::can::ErrorCode;
+
+hal::CanFrame frame_with_id(std::uint32_t id) {
+  hal::CanFrame f{};
+  f.id = id;
+  f.dlc = 8;
+  return f;
+}
+
+TEST(NodeTransmit, SendsAtMostTheBudgetPerServiceInIdOrderAndKeepsTheRest) {
+  FakeCanPort port;
+  fw::can::NodeTransmit tx(port);
+  tx.begin_service();
+  for (int i = 0; i < fw::can::kMaxTxPerService + 8; ++i) tx.queue(frame_with_id(0x700u - static_cast<std::uint32_t>(i)), false);
+  tx.flush();
+  const std::vector<hal::CanFrame> sent = port.drain();
+  ASSERT_EQ(sent.size(), static_cast<std::size_t>(fw::can::kMaxTxPerService));
+  EXPECT_EQ(tx.pending(), 8u);
+  for (std::size_t i = 1; i < sent.size(); ++i) EXPECT_LT(sent[i - 1].id, sent[i].id) << "lowest id first";
+  EXPECT_FALSE(tx.send_now(frame_with_id(0x100))) << "the budget is spent";
+  tx.begin_service();
+  tx.flush();
+  EXPECT_EQ(port.drain().size(), 8u);
+  EXPECT_TRUE(tx.idle());
+  EXPECT_EQ(tx.counters().tx_frames, static_cast<std::uint64_t>(fw::can::kMaxTxPerService + 8));
+}
+
+TEST(NodeTransmit, AnswersAreCountedAndAFullQueueDropsTelemetryFirst) {
+  FakeCanPort port;
+  fw::can::NodeTransmit tx(port);
+  tx.answer(frame_with_id(0x200), ErrorCode::ok);
+  tx.answer(frame_with_id(0x200), ErrorCode::busy);
+  tx.answer(frame_with_id(0x200), ErrorCode::unknown_command);
+  EXPECT_EQ(tx.sequence(), 3u);
+  EXPECT_EQ(tx.counters().requests_refused, 2u);
+  EXPECT_EQ(tx.counters().unknown_commands, 1u);
+  EXPECT_FALSE(tx.dropped_since_heartbeat());
+  // Fill the rest of the queue with telemetry, then one more reply: a telemetry frame makes room.
+  while (tx.pending() < fw::can::TxPriorityQueue::kCapacity) tx.queue(frame_with_id(0x600), true);
+  tx.answer(frame_with_id(0x200), ErrorCode::ok);
+  EXPECT_EQ(tx.counters().telemetry_dropped, 1u);
+  EXPECT_EQ(tx.counters().tx_dropped, 1u);
+  EXPECT_TRUE(tx.dropped_since_heartbeat());
+  tx.heartbeat_sent();
+  EXPECT_FALSE(tx.dropped_since_heartbeat());
+  tx.begin_service();
+  tx.flush();
+  const std::vector<hal::CanFrame> sent = port.drain();
+  ASSERT_GE(sent.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(sent[i].id, 0x200u) << "the answers leave first";
+}
+
+TEST(HostAccess, OwnershipIsTakenReleasedAndLostBySilence) {
+  fw::can::HostAccess access;
+  const std::uint8_t host1 = fw::can::make_tag(1, 3);
+  const std::uint8_t host2 = fw::can::make_tag(2, 5);
+  access.begin_request(host1, false);
+  EXPECT_FALSE(access.owns());
+  EXPECT_EQ(access.ownership(CommandCode::take_ownership), ErrorCode::ok);
+  EXPECT_TRUE(access.owns());
+  EXPECT_EQ(access.owner(), 1u);
+  access.begin_request(host2, false);
+  EXPECT_FALSE(access.owns());
+  EXPECT_EQ(access.ownership(CommandCode::take_ownership), ErrorCode::not_owner);
+  EXPECT_EQ(access.ownership(CommandCode::release_ownership), ErrorCode::not_owner);
+  access.begin_request(0x00, true);
+  EXPECT_TRUE(access.broadcast());
+  EXPECT_EQ(access.ownership(CommandCode::take_ownership), ErrorCode::no_host);
+  EXPECT_EQ(access.owner(), 1u) << "refusals change nothing";
+
+  EXPECT_FALSE(access.owner_timed_out(99, 100));
+  access.heard_from(2);  // not the owner: its silence goes on
+  EXPECT_TRUE(access.owner_timed_out(1, 100));
+  EXPECT_EQ(access.owner(), fw::can::kAnonymousHost);
+
+  access.begin_request(host2, false);
+  EXPECT_EQ(access.ownership(CommandCode::take_ownership), ErrorCode::ok);
+  EXPECT_FALSE(access.owner_timed_out(99, 100));
+  access.heard_from(2);
+  EXPECT_FALSE(access.owner_timed_out(99, 100)) << "a frame from the owner restarts the count";
+  EXPECT_FALSE(access.owner_timed_out(1000000, 0)) << "0: no timeout";
+  EXPECT_EQ(access.ownership(CommandCode::release_ownership), ErrorCode::ok);
+  EXPECT_EQ(access.owner(), fw::can::kAnonymousHost);
+  access.answer_as(host1);
+  EXPECT_EQ(access.tag(), host1);
+  EXPECT_EQ(access.host(), 1u);
+}
+
+TEST(CommissioningMode, EnteredOnlyWhenAllowedAndLeftWhenAsked) {
+  FakeIoBoard board;
+  fw::TickTask task(board, quiet_settings().firmware);  // disabled, no fault: the mode may be entered
+  fw::can::CommissioningMode mode(task);
+  EXPECT_FALSE(mode.active());
+  EXPECT_EQ(mode.enter(), ErrorCode::ok);
+  EXPECT_TRUE(mode.active());
+  EXPECT_TRUE(mode.refresh());
+  mode.leave();
+  EXPECT_FALSE(mode.active());
+  mode.allow(false);
+  EXPECT_EQ(mode.enter(), ErrorCode::not_permitted);
+  EXPECT_FALSE(mode.active());
+  mode.allow(true);
+  EXPECT_EQ(mode.enter(), ErrorCode::ok);
+  mode.allow(false);
+  EXPECT_FALSE(mode.active()) << "withdrawing the permission leaves the mode";
+}
+
+TEST(NodeStorage, SaveThenLoadWithoutAWorkerAnswersWithTheRequestsTag) {
+  MemoryStorage current;
+  fw::can::NodeStorage storage(current, nullptr, nullptr, true);
+  EXPECT_TRUE(storage.fault());
+  hal::CanFrame request{};
+  request.dlc = 8;
+  request.data[0] = 0x27;
+
+  // Nothing stored yet: a load is not_ready and changes nothing.
+  ASSERT_EQ(storage.begin(request, CommandCode::load_params, quiet_settings()), ErrorCode::ok);
+  EXPECT_TRUE(storage.pending());
+  fw::can::NodeStorage::Finished done = storage.finish();
+  EXPECT_FALSE(storage.pending());
+  EXPECT_EQ(done.result, ErrorCode::not_ready);
+  EXPECT_EQ(done.loaded, nullptr);
+  EXPECT_TRUE(storage.fault());
+
+  fw::can::NodeSettings saved = quiet_settings();
+  saved.can.host_timeout_ms = 777;
+  storage.changed();
+  ASSERT_EQ(storage.begin(request, CommandCode::save_params, saved), ErrorCode::ok);
+  done = storage.finish();
+  EXPECT_EQ(done.code, CommandCode::save_params);
+  EXPECT_EQ(done.tag, 0x27);
+  EXPECT_EQ(done.result, ErrorCode::ok);
+  EXPECT_FALSE(storage.fault()) << "a good save clears the fault";
+  EXPECT_FALSE(storage.unsaved());
+  EXPECT_EQ(current.writes, 1);
+
+  ASSERT_EQ(storage.begin(request, CommandCode::load_params, quiet_settings()), ErrorCode::ok);
+  done = storage.finish();
+  EXPECT_EQ(done.code, CommandCode::load_params);
+  ASSERT_NE(done.loaded, nullptr);
+  EXPECT_EQ(done.loaded->settings().can.host_timeout_ms, 777u);
+  storage.changed();
+  storage.loaded_applied();
+  EXPECT_FALSE(storage.unsaved()) << "the current generation loaded: what is saved";
+
+  current.fail_write = true;
+  ASSERT_EQ(storage.begin(request, CommandCode::save_params, saved), ErrorCode::ok);
+  done = storage.finish();
+  EXPECT_NE(done.result, ErrorCode::ok);
+  EXPECT_TRUE(storage.fault());
+}
+
+}  // namespace
+}  // namespace tnv::test
