@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <numbers>
 
@@ -10,6 +11,7 @@
 #include "tools/gcode/ngc_block.hpp"
 #include "tools/gcode/ngc_error.hpp"
 #include "tools/gcode/ngc_program_flow.hpp"
+#include "tools/gcode/ngc_subroutine_files.hpp"
 
 namespace tnv::gcode {
 
@@ -46,6 +48,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
   std::string why;
   std::vector<NgcLine> lines;
   int line_number = 0;
+  std::string line_file;  // set while a line of a subroutine file runs
   try {
     std::size_t pos = 0;
     while (pos <= text.size()) {
@@ -55,10 +58,30 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       lines.push_back(normalize_line(text.substr(pos, eol - pos)));
       pos = eol + 1;
     }
+    const std::size_t program_lines = lines.size();
+    std::size_t calling_line = 0;
+    SubroutineFiles files;
+    try {
+      files = append_subroutine_files(lines, setup.subroutine_path, calling_line);
+    } catch (const NgcError&) {
+      line_number = static_cast<int>(calling_line);  // the program's line (files load before anything runs)
+      throw;
+    }
+    // Where line `index` (0-based, in `lines`) comes from: the program, or a subroutine file.
+    const auto locate = [&](std::size_t index) {
+      if (index < program_lines) {
+        line_file.clear();
+        line_number = static_cast<int>(index) + 1;
+      } else {
+        const SubroutineFiles::Origin& o = files.origins[index - program_lines];
+        line_file = files.files[o.file];
+        line_number = o.line;
+      }
+    };
     ProgramFlow flow(lines, setup.max_lines_run);
     long passes_left = 0;
     if (setup.from_line) {
-      check_start_line(*setup.from_line, lines.size(), flow, line_number);
+      check_start_line(*setup.from_line, program_lines, flow, line_number);
       passes_left = setup.from_line->pass;
     }
     machine.start();
@@ -66,8 +89,8 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
     while (!machine.ended()) {
       const std::optional<std::size_t> next = flow.next_line();
       if (!next) break;
-      line_number = static_cast<int>(*next) + 1;
-      if (machine.muted() && line_number == setup.from_line->line && --passes_left == 0)
+      locate(*next);
+      if (machine.muted() && line_file.empty() && line_number == setup.from_line->line && --passes_left == 0)
         machine.resume(*setup.from_line, line_number);
       const NgcLine& line = lines[*next];
       if (line.text.empty()) continue;
@@ -88,7 +111,10 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       }
       machine.execute(block, line_number);
     }
-    if (!machine.ended()) machine.end_of_file(line_number);
+    if (!machine.ended()) {
+      locate(program_lines - 1);  // the program's own end, not a file's
+      machine.end_of_file(line_number);
+    }
     if (machine.muted()) {
       const RunFromLine& from = *setup.from_line;
       const long runs = from.pass - passes_left;
@@ -101,7 +127,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
     }
   } catch (const NgcError& e) {
     result.calls.clear();
-    result.error = GcodeError{line_number, e.column(), e.what()};
+    result.error = GcodeError{line_number, e.column(), e.what(), line_file};
   }
   return result;
 }
@@ -120,7 +146,12 @@ CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setu
     r.error = GcodeError{0, 0, error};
     return r;
   }
-  return interpret_canon(text, setup);
+  // Subroutine files are looked for beside the program first.
+  CanonSetup with_own_directory = setup;
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  with_own_directory.subroutine_path.insert(with_own_directory.subroutine_path.begin(),
+                                            dir.empty() ? std::string(".") : dir.string());
+  return interpret_canon(text, with_own_directory);
 }
 
 namespace {

@@ -45,6 +45,10 @@ struct CanonSetup {
   ToolTable tools;           // lengths in millimetres (this machine's units)
   NgcParameters parameters;  // from a .var file: work offsets, G28/G30 homes, G92
   bool block_delete = true;  // '/' lines skipped (LinuxCNC's default: the switch on)
+  // Where a call of o<name> that the program does not define finds name.ngc,
+  // in order (ngc_subroutine_files.hpp); interpret_canon_file puts the
+  // program's own directory first.
+  std::vector<std::string> subroutine_path;
   // A loop that never ends is an error after this many lines run, not a hang.
   std::size_t max_lines_run = 20'000'000;
   std::optional<RunFromLine> from_line;  // unset: run the whole program

@@ -301,7 +301,8 @@ GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& option
 }
 
 std::string to_string(const GcodeError& error) {
-  return "line " + std::to_string(error.line) + ", column " + std::to_string(error.column) + ": " + error.message;
+  return (error.file.empty() ? "" : error.file + ", ") + "line " + std::to_string(error.line) + ", column " +
+         std::to_string(error.column) + ": " + error.message;
 }
 
 }  // namespace tnv::gcode

@@ -29,6 +29,7 @@ struct GcodeError {
   int line = 0;    // 1-based
   int column = 0;  // 1-based, the word (or character) at fault
   std::string message;
+  std::string file{};  // set: the line is in this subroutine file, not in the program
 };
 
 struct GcodeProgram {

@@ -133,7 +133,12 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
           sub = i;
           break;
         }
-      if (sub == o_.size()) throw NgcError(o.column, "o" + o.name + " call: no subroutine o" + o.name + " sub in the program");
+      if (sub == o_.size()) {
+        const bool named = o.name.find_first_not_of("0123456789") != std::string::npos;
+        throw NgcError(o.column, named ? "o<" + o.name + "> call: no o<" + o.name + "> sub in the program, nor a file " +
+                                             o.name + ".ngc on the subroutine path"
+                                       : "o" + o.name + " call: no subroutine o" + o.name + " sub in the program");
+      }
       if (frames_.size() >= kMaxCallDepth) throw NgcError(o.column, "subroutine calls nested too deeply");
       if (o.args.size() > 30) throw NgcError(o.column, "more than 30 subroutine arguments");
       Frame f;

@@ -32,7 +32,7 @@ pytestmark = [
 SAMPLES_DIFFERING = {
     "b-index": "a rotary B axis (this machine has X, Y, Z)",
     "daisy": "a rotary A axis (this machine has X, Y, Z)",
-    "x-trim": "a subroutine in another file (touchoff.ngc) and M66",
+    "x-trim": "M66 (wait for an input) in its subroutine file touchoff.ngc: this machine has no such input",
 }
 
 
@@ -241,6 +241,24 @@ def test_a_cycle_after_another_names_its_words_again_as_rs274_requires(tnvctl, t
         program.write_text(f"G21 F100 S500 M3\nG0 X0 Y0 Z5\n{body}\nM2\n")
         assert not canon_compare.run_rs274(program, tables[1]).ok, body
         assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, body
+
+
+def test_subroutine_files_agree(tnvctl, tables, tmp_path):
+    """o<name> call of a subroutine in name.ngc beside the program (rs274
+    finds it in its working directory, tnvctl beside the program), a file
+    calling another, arguments and a return value, and a name the program
+    defines itself taking precedence over a file of that name."""
+    (tmp_path / "pocket.ngc").write_text(
+        "(a pocket, as a CAM library file holds it)\no<pocket> sub\nG0 X#1 Y#2\nG1 Z#3\n"
+        "o<side> call [#1] [#2] [#4]\nG0 Z1\no<pocket> return [#4 * 2]\no<pocket> endsub\nM2\n")
+    (tmp_path / "side.ngc").write_text("o<side> sub\nG1 X[#1 + #3]\nG1 Y[#2 + #3]\nG1 X#1\nG1 Y#2\n"
+                                       "o<side> endsub\n")
+    (tmp_path / "local.ngc").write_text("o<local> sub\nG1 X99\no<local> endsub\n")
+    program = tmp_path / "main.ngc"
+    program.write_text("G21 G90 F200\nG0 Z5\no<pocket> call [10] [20] [-2] [5]\n(DEBUG,#<_value>)\n"
+                       "o<local> sub\nG1 X1\no<local> endsub\no<local> call\no<pocket> call [30] [5] [-1] [2.5]\nM2\n")
+    assert canon_compare.run_rs274(program, tables[1]).ok, "the program must run in rs274"
+    assert canon_compare.compare(tnvctl, program, tables) is None
 
 
 @pytest.mark.parametrize("tool", [1, 2, 3])
