@@ -50,14 +50,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
   int line_number = 0;
   std::string line_file;  // set while a line of a subroutine file runs
   try {
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-      std::size_t eol = text.find('\n', pos);
-      if (eol == std::string_view::npos) eol = text.size();
-      ++line_number;
-      lines.push_back(normalize_line(text.substr(pos, eol - pos)));
-      pos = eol + 1;
-    }
+    lines = normalize_lines(text, line_number);
     const std::size_t program_lines = lines.size();
     std::size_t calling_line = 0;
     SubroutineFiles files;

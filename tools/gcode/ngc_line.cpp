@@ -34,4 +34,18 @@ NgcLine normalize_line(std::string_view raw) {
   return out;
 }
 
+std::vector<NgcLine> normalize_lines(std::string_view text, int& line_number) {
+  std::vector<NgcLine> lines;
+  line_number = 0;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    ++line_number;
+    lines.push_back(normalize_line(text.substr(pos, eol - pos)));
+    pos = eol + 1;
+  }
+  return lines;
+}
+
 }  // namespace tnv::gcode

@@ -20,4 +20,9 @@ struct NgcLine {
 // (a control character other than tab and carriage return).
 NgcLine normalize_line(std::string_view raw);
 
+// A whole text, one NgcLine per '\n'-separated line (the last one after the
+// final newline too). `line_number` is the 1-based line being normalized,
+// so a thrown NgcError can be reported at it.
+std::vector<NgcLine> normalize_lines(std::string_view text, int& line_number);
+
 }  // namespace tnv::gcode

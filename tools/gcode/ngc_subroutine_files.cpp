@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <optional>
 #include <set>
-#include <string_view>
 
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/gcode/ngc_block.hpp"
@@ -26,18 +25,6 @@ std::optional<NgcOWord> o_word(const NgcLine& line) {
 bool file_name_safe(const std::string& name) {
   if (name.empty() || name.find_first_not_of("0123456789") == std::string::npos) return false;  // o100: no file
   return name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos;
-}
-
-std::vector<NgcLine> split_lines(std::string_view text) {
-  std::vector<NgcLine> out;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    out.push_back(normalize_line(text.substr(pos, eol - pos)));
-    pos = eol + 1;
-  }
-  return out;
 }
 
 }  // namespace
@@ -75,7 +62,8 @@ SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::
                               " subroutine files for one program");
       std::string text, why;
       if (!read_program_file(path, text, why)) throw NgcError(1, "o<" + name + "> call: " + why);
-      const std::vector<NgcLine> file_lines = split_lines(text);
+      int file_line = 0;  // a line LinuxCNC refuses throws at the calling line, as a read error does
+      const std::vector<NgcLine> file_lines = normalize_lines(text, file_line);
       std::optional<std::size_t> sub, endsub;
       for (std::size_t k = 0; k < file_lines.size() && !endsub; ++k) {
         const auto o = o_word(file_lines[k]);
