@@ -1,7 +1,7 @@
-// CanNode: construction, the service() loop, receive routing, the replies
-// of PARAM_REQUEST, heartbeat and telemetry. Requests are handled in
-// can_node_commands.cpp, can_node_excite.cpp, can_node_params.cpp,
-// can_node_boring.cpp and by the parts (ProgramStream, NodeCapture).
+// CanNode: construction, the service() loop, receive routing, heartbeat
+// and telemetry. Requests are handled in can_node_commands.cpp,
+// can_node_excite.cpp, can_node_boring.cpp and by the parts
+// (NodeParameters, ProgramStream, NodeCapture).
 #include "firmware/can/can_node.hpp"
 
 #include <algorithm>
@@ -28,20 +28,8 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       programs_(node_id_, task, access_, ack_, tx_),
       storage_(storage, previous_storage, storage_worker, storage_fault),
       design_(storage_worker),
-      settings_(settings),
-      defaults_(cached_default_node_settings()),
+      params_(node_id_, task, access_, commissioning_, tx_, storage_, design_, capture_, settings),
       capture_(node_id_, task, access_, tx_) {
-  // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
-  (void)cached_default_shaper_designs();
-  // The task at rest takes the whole firmware part (controller per axis
-  // included); if it refuses, the settings say what the task really runs.
-  if (task_.apply_config(settings_.firmware) != CommandStatus::ok) settings_.firmware = task_.config();
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    if (!settings_.shaper[i].enabled) continue;
-    const hal::Axis axis = hal::axis_from_index(i);
-    shaper_configured_[i] = task_.configure_shaper(axis, settings_.shaper[i].spec) == CommandStatus::ok;
-    if (!shaper_configured_[i] || task_.enable_shaper(axis, true) != CommandStatus::ok) settings_.shaper[i].enabled = false;
-  }
   last_tick_ = task_.last_record().tick;
   deadman_stops_seen_ = task_.jog_deadman_stops();
   bus_errors_at_heartbeat_ = task_.counters().bus_errors;
@@ -49,7 +37,7 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
   can_errors_at_heartbeat_ = can_.error_frames();
 }
 
-const NodeSettings& CanNode::settings() const noexcept { return settings_; }
+const NodeSettings& CanNode::settings() const noexcept { return params_.settings(); }
 std::uint8_t CanNode::node_id() const noexcept { return node_id_; }
 NodeCounters CanNode::counters() const noexcept {
   NodeCounters c = counters_;
@@ -65,11 +53,8 @@ CaptureState CanNode::capture_state() const noexcept { return capture_.recorder(
 std::uint32_t CanNode::capture_samples() const noexcept { return capture_.recorder().samples(); }
 std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
 std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.recorder().words(); }
-std::size_t CanNode::staged_count() const noexcept { return staged_.total(); }
-std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
-  const StagedParams* s = staged_.find(host);
-  return s != nullptr ? s->size() : 0;
-}
+std::size_t CanNode::staged_count() const noexcept { return params_.staged_count(); }
+std::size_t CanNode::staged_count(std::uint8_t host) const noexcept { return params_.staged_count(host); }
 std::uint8_t CanNode::owner() const noexcept { return access_.owner(); }
 void CanNode::allow_commissioning(bool allowed) noexcept { commissioning_.allow(allowed); }
 bool CanNode::commissioning() const noexcept { return commissioning_.active(); }
@@ -102,7 +87,7 @@ void CanNode::service() noexcept {
 }
 
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
-  capture_.on_tick(settings_);
+  capture_.on_tick(params_.settings());
   check_fault();
   programs_.on_tick();
   if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
@@ -111,7 +96,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   }
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
-  if (access_.owner_timed_out(ticks, settings_.can.host_timeout_ms)) {
+  if (access_.owner_timed_out(ticks, params_.settings().can.host_timeout_ms)) {
     programs_.drop_pending();
     if (task_.moving() && !task_.stopping()) {
       programs_.stopping();
@@ -119,7 +104,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
       host_timeout_ = true;
     }
   }
-  return telemetry_.advance(settings_.telemetry, ticks);
+  return telemetry_.advance(params_.settings().telemetry, ticks);
 }
 
 void CanNode::check_fault() noexcept {
@@ -176,7 +161,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   access_.begin_request(frame.dlc > 0 ? frame.data[0] : 0, node_of(frame.id) == kBroadcastNode);
   const auto refuse = [&](ErrorCode e) noexcept {
     switch (id) {
-      case MessageId::param_request: reply_param(e, 0, 0); return;
+      case MessageId::param_request: params_.reply(e, 0, 0); return;
       case MessageId::capture_control: capture_.reply(e); return;
       case MessageId::bore_gauge: reply_bore(e, 0); return;
       default: ack_.send(m.id, 0, e, 0); return;
@@ -205,8 +190,8 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::circle: handle_circle(frame); return;
     case MessageId::shaper: handle_shaper(frame); return;
     case MessageId::excite: handle_excite(frame); return;
-    case MessageId::param_request: handle_param(frame); return;
-    case MessageId::capture_control: capture_.control(frame, settings_.capture); return;
+    case MessageId::param_request: params_.handle(frame); return;
+    case MessageId::capture_control: capture_.control(frame, params_.settings().capture); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
     case MessageId::segment:
       if (programs_.segment(frame)) motion_accepted();
@@ -216,17 +201,6 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
       return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
-}
-
-// --- replies
-
-void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
-  hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
-  write_raw(frame, kReplyTag, access_.tag());
-  write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kReplyParam, param);
-  write_raw(frame, kReplyValue, value);
-  tx_.answer(frame, result);
 }
 
 // --- heartbeat and telemetry
@@ -246,7 +220,7 @@ std::uint16_t CanNode::heartbeat_errors() const noexcept {
   set(capture == CaptureState::done, kHbCaptureDone);
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
-  set(!staged_.empty(), kHbParamsStaged);
+  set(params_.staged_count() != 0, kHbParamsStaged);
   for (const hal::Axis a : hal::kAxes) set(task_.shaper_active(a), static_cast<HeartbeatBit>(kHbShaperBits[hal::index(a)]));
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
@@ -304,12 +278,12 @@ void CanNode::send_telemetry(std::uint32_t due) noexcept {
   if ((due & cyclic_bit(Cyclic::output)) != 0) {
     hal::CanFrame f = make_frame(kOutputMsg, node_id_);
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) write_raw(f, *kOutputDacs[i], r.axis[i].dac_code);
-    write(f, kOutputForce, force_n(r, settings_));
+    write(f, kOutputForce, force_n(r, params_.settings()));
     emit(f);
   }
   if ((due & cyclic_bit(Cyclic::arsc)) != 0) {
     hal::CanFrame f = make_frame(kArscMsg, node_id_);
-    write_saturated(f, kArscForce, force_n(r, settings_));
+    write_saturated(f, kArscForce, force_n(r, params_.settings()));
     write_saturated(f, kArscForceRef, r.arsc_force_ref_n);
     write_saturated(f, kArscOverride, r.feed_override);
     write_saturated(f, kArscGain, r.arsc_cutting_gain_n_per_mm_s);
