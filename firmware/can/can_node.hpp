@@ -36,12 +36,13 @@
 // (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
 // Parts (docs/architecture.md "CAN node"): CanNode is the dispatcher.
-// It reads and routes the frames, keeps heartbeat and telemetry, and owns
-// the parts, each a class with its own state that gets what it uses from
-// the others as references: NodeTransmit (every frame out), HostAccess
-// (tag, host, ownership), CommissioningMode, CommandAck, NodeStorage (save
-// / load), ShaperDesignDeferral, NodeParameters (the live set, its one
-// path of change, PARAM_REQUEST), ProgramStream (programs) and NodeCapture.
+// It reads and routes the frames and owns the parts, each a class with its
+// own state that gets what it uses from the others as references:
+// NodeTransmit (every frame out), HostAccess (tag, host, ownership),
+// CommissioningMode, CommandAck, NodeStorage (save / load),
+// ShaperDesignDeferral, NodeParameters (the live set, its one path of
+// change, PARAM_REQUEST), NodeTelemetry (heartbeat, telemetry,
+// FAULT_EVENT), ProgramStream (programs) and NodeCapture.
 // Every rule above holds for every part.
 //
 // Size: the node holds the capture buffer (NodeCapture's recorder,
@@ -59,6 +60,7 @@
 #include "firmware/can/node_parameters.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/node_storage.hpp"
+#include "firmware/can/node_telemetry.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/program_stream.hpp"
@@ -150,9 +152,7 @@ class CanNode {
  private:
   // service() steps
   std::uint32_t on_new_tick(std::uint64_t ticks) noexcept;  // returns the telemetry due
-  void check_fault() noexcept;                               // FAULT_EVENT once per latch
   void receive() noexcept;
-  void send_telemetry(std::uint32_t due) noexcept;
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
   void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
@@ -192,16 +192,9 @@ class CanNode {
   NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
   ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
   NodeParameters params_;               // the live set, its one path of change, PARAM_REQUEST
+  NodeTelemetry telemetry_;             // HEARTBEAT, the cyclic telemetry, FAULT_EVENT
   NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
-  TelemetryScheduler telemetry_{};
   std::uint64_t last_tick_ = 0;
-  std::uint32_t deadman_stops_seen_ = 0;
-  bool fault_reported_ = false;
-  bool jog_deadman_ = false;            // sticky until the next accepted motion request
-  bool host_timeout_ = false;           // sticky until the next accepted motion request
-  std::uint64_t bus_errors_at_heartbeat_ = 0;
-  std::uint64_t can_errors_at_heartbeat_ = 0;
-  std::uint64_t late_ticks_at_heartbeat_ = 0;
   NodeCapture capture_;                 // last: it holds the big buffer
 };
 

@@ -27,8 +27,7 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 
 void CanNode::motion_accepted() noexcept {
   commissioning_.leave();
-  jog_deadman_ = false;
-  host_timeout_ = false;
+  telemetry_.motion_accepted();
 }
 
 void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
