@@ -1,16 +1,12 @@
-// CanNode: construction, the service() loop, receive routing, the replies
-// of PARAM_REQUEST, heartbeat and telemetry. Requests are handled in
-// can_node_commands.cpp, can_node_excite.cpp, can_node_params.cpp,
-// can_node_boring.cpp and by the parts (ProgramStream, NodeCapture).
+// CanNode: construction, the service() loop and receive routing. Requests
+// are handled in can_node_commands.cpp, can_node_excite.cpp,
+// can_node_boring.cpp and by the parts (NodeParameters, ProgramStream,
+// NodeCapture); what the node sends unasked by NodeTelemetry.
 #include "firmware/can/can_node.hpp"
-
-#include <algorithm>
-#include <cmath>
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/request_tag.hpp"
-#include "firmware/can/tick_signals.hpp"
 
 namespace tnv::fw::can {
 
@@ -28,28 +24,13 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       programs_(node_id_, task, access_, ack_, tx_),
       storage_(storage, previous_storage, storage_worker, storage_fault),
       design_(storage_worker),
-      settings_(settings),
-      defaults_(cached_default_node_settings()),
+      params_(node_id_, task, access_, commissioning_, tx_, storage_, design_, capture_, settings),
+      telemetry_(node_id_, task, can, tx_, access_, commissioning_, storage_, params_, programs_, capture_),
       capture_(node_id_, task, access_, tx_) {
-  // The defaults' shaper designs, made here once per process: restore_defaults then copies them.
-  (void)cached_default_shaper_designs();
-  // The task at rest takes the whole firmware part (controller per axis
-  // included); if it refuses, the settings say what the task really runs.
-  if (task_.apply_config(settings_.firmware) != CommandStatus::ok) settings_.firmware = task_.config();
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    if (!settings_.shaper[i].enabled) continue;
-    const hal::Axis axis = hal::axis_from_index(i);
-    shaper_configured_[i] = task_.configure_shaper(axis, settings_.shaper[i].spec) == CommandStatus::ok;
-    if (!shaper_configured_[i] || task_.enable_shaper(axis, true) != CommandStatus::ok) settings_.shaper[i].enabled = false;
-  }
   last_tick_ = task_.last_record().tick;
-  deadman_stops_seen_ = task_.jog_deadman_stops();
-  bus_errors_at_heartbeat_ = task_.counters().bus_errors;
-  late_ticks_at_heartbeat_ = task_.counters().late_ticks;
-  can_errors_at_heartbeat_ = can_.error_frames();
 }
 
-const NodeSettings& CanNode::settings() const noexcept { return settings_; }
+const NodeSettings& CanNode::settings() const noexcept { return params_.settings(); }
 std::uint8_t CanNode::node_id() const noexcept { return node_id_; }
 NodeCounters CanNode::counters() const noexcept {
   NodeCounters c = counters_;
@@ -65,11 +46,8 @@ CaptureState CanNode::capture_state() const noexcept { return capture_.recorder(
 std::uint32_t CanNode::capture_samples() const noexcept { return capture_.recorder().samples(); }
 std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
 std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.recorder().words(); }
-std::size_t CanNode::staged_count() const noexcept { return staged_.total(); }
-std::size_t CanNode::staged_count(std::uint8_t host) const noexcept {
-  const StagedParams* s = staged_.find(host);
-  return s != nullptr ? s->size() : 0;
-}
+std::size_t CanNode::staged_count() const noexcept { return params_.staged_count(); }
+std::size_t CanNode::staged_count(std::uint8_t host) const noexcept { return params_.staged_count(host); }
 std::uint8_t CanNode::owner() const noexcept { return access_.owner(); }
 void CanNode::allow_commissioning(bool allowed) noexcept { commissioning_.allow(allowed); }
 bool CanNode::commissioning() const noexcept { return commissioning_.active(); }
@@ -78,6 +56,7 @@ bool CanNode::storage_fault() const noexcept { return storage_.fault(); }
 bool CanNode::params_unsaved() const noexcept { return storage_.unsaved(); }
 bool CanNode::storage_in_flight() const noexcept { return storage_.pending(); }
 std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
+std::uint16_t CanNode::heartbeat_errors() const noexcept { return telemetry_.heartbeat_errors(); }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
 
@@ -94,48 +73,28 @@ void CanNode::service() noexcept {
   commissioning_.refresh();
   collect_worker();
   receive();
-  check_fault();
+  telemetry_.check_fault();
   commissioning_.refresh();
-  send_telemetry(due);
+  telemetry_.send(due);
   tx_.flush();
   capture_.send_upload();
 }
 
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
-  capture_.on_tick(settings_);
-  check_fault();
+  capture_.on_tick(params_.settings());
+  telemetry_.check_fault();
   programs_.on_tick();
-  if (const std::uint32_t stops = task_.jog_deadman_stops(); stops != deadman_stops_seen_) {
-    deadman_stops_seen_ = stops;
-    jog_deadman_ = true;
-  }
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
-  if (access_.owner_timed_out(ticks, settings_.can.host_timeout_ms)) {
+  if (access_.owner_timed_out(ticks, params_.settings().can.host_timeout_ms)) {
     programs_.drop_pending();
     if (task_.moving() && !task_.stopping()) {
       programs_.stopping();
       task_.stop();
-      host_timeout_ = true;
+      telemetry_.host_timed_out();
     }
   }
-  return telemetry_.advance(settings_.telemetry, ticks);
-}
-
-void CanNode::check_fault() noexcept {
-  const FaultRecord& f = task_.fault();
-  if (!f.active()) {
-    fault_reported_ = false;
-    return;
-  }
-  if (fault_reported_) return;
-  fault_reported_ = true;
-  hal::CanFrame frame = make_frame(kFaultEventMsg, node_id_);
-  write_raw(frame, kFaultReason, static_cast<std::uint32_t>(f.reason));
-  write(frame, kFaultAxis, f.axis);
-  write_raw(frame, kFaultTick, static_cast<std::uint32_t>(f.tick & 0xFFFFu));
-  write(frame, kFaultValue, f.value);
-  tx_.queue(frame, false);
+  return telemetry_.on_tick(ticks);
 }
 
 // --- receive
@@ -176,7 +135,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
   access_.begin_request(frame.dlc > 0 ? frame.data[0] : 0, node_of(frame.id) == kBroadcastNode);
   const auto refuse = [&](ErrorCode e) noexcept {
     switch (id) {
-      case MessageId::param_request: reply_param(e, 0, 0); return;
+      case MessageId::param_request: params_.reply(e, 0, 0); return;
       case MessageId::capture_control: capture_.reply(e); return;
       case MessageId::bore_gauge: reply_bore(e, 0); return;
       default: ack_.send(m.id, 0, e, 0); return;
@@ -205,8 +164,8 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::circle: handle_circle(frame); return;
     case MessageId::shaper: handle_shaper(frame); return;
     case MessageId::excite: handle_excite(frame); return;
-    case MessageId::param_request: handle_param(frame); return;
-    case MessageId::capture_control: capture_.control(frame, settings_.capture); return;
+    case MessageId::param_request: params_.handle(frame); return;
+    case MessageId::capture_control: capture_.control(frame, params_.settings().capture); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
     case MessageId::segment:
       if (programs_.segment(frame)) motion_accepted();
@@ -215,111 +174,6 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
       if (programs_.segment_tail(frame)) motion_accepted();
       return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
-  }
-}
-
-// --- replies
-
-void CanNode::reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept {
-  hal::CanFrame frame = make_frame(kParamReplyMsg, node_id_);
-  write_raw(frame, kReplyTag, access_.tag());
-  write_raw(frame, kReplyResult, static_cast<std::uint32_t>(result));
-  write_raw(frame, kReplyParam, param);
-  write_raw(frame, kReplyValue, value);
-  tx_.answer(frame, result);
-}
-
-// --- heartbeat and telemetry
-
-std::uint16_t CanNode::heartbeat_errors() const noexcept {
-  std::uint16_t bits = 0;
-  const auto set = [&bits](bool on, HeartbeatBit b) noexcept {
-    if (on) bits = static_cast<std::uint16_t>(bits | b);
-  };
-  const TickCounters& c = task_.counters();
-  set(storage_.fault(), kHbStorageFault);
-  set(storage_.unsaved(), kHbParamsUnsaved);
-  set(tx_.dropped_since_heartbeat(), kHbTxDropped);
-  set(jog_deadman_, kHbJogDeadman);
-  const CaptureState capture = capture_.recorder().state();
-  set(capture == CaptureState::recording, kHbCaptureRecording);
-  set(capture == CaptureState::done, kHbCaptureDone);
-  set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
-  set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
-  set(!staged_.empty(), kHbParamsStaged);
-  for (const hal::Axis a : hal::kAxes) set(task_.shaper_active(a), static_cast<HeartbeatBit>(kHbShaperBits[hal::index(a)]));
-  set(host_timeout_, kHbHostTimeout);
-  set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
-  set(commissioning(), kHbCommissioning);
-  for (const hal::Axis a : hal::kAxes) set(task_.homed(a), static_cast<HeartbeatBit>(kHbHomedBits[hal::index(a)]));
-  return bits;
-}
-
-void CanNode::send_telemetry(std::uint32_t due) noexcept {
-  if (due == 0) return;
-  const TickRecord& r = task_.last_record();
-  const auto emit = [this](const hal::CanFrame& frame) noexcept { tx_.queue(frame, true); };
-  if ((due & cyclic_bit(Cyclic::heartbeat)) != 0) {
-    hal::CanFrame f = make_frame(kHeartbeatMsg, node_id_);
-    const TickCounters& c = task_.counters();
-    write_raw(f, kHbState, static_cast<std::uint32_t>(task_.state()));
-    write_raw(f, kHbFault, static_cast<std::uint32_t>(task_.fault().reason));
-    write_raw(f, kHbErrors, heartbeat_errors());
-    write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
-    write_raw(f, kHbFreeSlots, programs_.free_slots());
-    write_raw(f, kHbOwner, access_.owner());
-    write_raw(f, kHbTick, static_cast<std::uint32_t>(r.tick & 0xFFu));
-    tx_.heartbeat_sent();
-    bus_errors_at_heartbeat_ = c.bus_errors;
-    late_ticks_at_heartbeat_ = c.late_ticks;
-    can_errors_at_heartbeat_ = can_.error_frames();
-    tx_.queue(f, false);  // never dropped for telemetry's sake
-    programs_.on_heartbeat();
-  }
-  const auto i32_mm = [](hal::CanFrame& f, const FieldDef& field, double mm) noexcept {
-    // Saturate rather than send nothing: a reading beyond +-2.1 m is off the table anyway.
-    const double lim_mm = 2147483647.0 * field.scale;
-    write(f, field, std::clamp(std::isfinite(mm) ? mm : 0.0, -lim_mm, lim_mm));
-  };
-  if ((due & cyclic_bit(Cyclic::position)) != 0) {
-    hal::CanFrame f = make_frame(kPositionMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) i32_mm(f, *kPositionFields[i], r.axis[i].position_mm);
-    emit(f);
-  }
-  if ((due & cyclic_bit(Cyclic::following)) != 0) {
-    hal::CanFrame f = make_frame(kFollowingMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-      i32_mm(f, *kFollowingFields[i], r.axis[i].reference_mm - r.axis[i].position_mm);
-    emit(f);
-  }
-  if ((due & cyclic_bit(Cyclic::sliding)) != 0) {
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-      hal::CanFrame f = make_frame(*kSlidingMsgs[i], node_id_);
-      const bool pid = task_.controller(hal::axis_from_index(i)) == ControllerKind::pid;
-      write(f, kSlidingS, pid ? 0.0 : r.axis[i].s);
-      write(f, kSlidingDHat, pid ? 0.0 : r.axis[i].d_hat_mm_s);
-      emit(f);
-    }
-  }
-  if ((due & cyclic_bit(Cyclic::output)) != 0) {
-    hal::CanFrame f = make_frame(kOutputMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) write_raw(f, *kOutputDacs[i], r.axis[i].dac_code);
-    write(f, kOutputForce, force_n(r, settings_));
-    emit(f);
-  }
-  if ((due & cyclic_bit(Cyclic::arsc)) != 0) {
-    hal::CanFrame f = make_frame(kArscMsg, node_id_);
-    write_saturated(f, kArscForce, force_n(r, settings_));
-    write_saturated(f, kArscForceRef, r.arsc_force_ref_n);
-    write_saturated(f, kArscOverride, r.feed_override);
-    write_saturated(f, kArscGain, r.arsc_cutting_gain_n_per_mm_s);
-    emit(f);
-  }
-  if ((due & cyclic_bit(Cyclic::contour)) != 0) {
-    hal::CanFrame f = make_frame(kContourMsg, node_id_);
-    write(f, kContour, contour_um(task_, r));
-    write(f, kContourTick, static_cast<double>(std::clamp<std::int64_t>(r.motion_tick, -1, 2147483647)));
-    emit(f);
   }
 }
 

@@ -36,12 +36,13 @@
 // (ProgramStream, program_stream.hpp; docs/motion.md "Streaming").
 //
 // Parts (docs/architecture.md "CAN node"): CanNode is the dispatcher.
-// It reads and routes the frames, keeps the live parameter set and its one
-// path of change (apply_settings), heartbeat and telemetry, and owns the
-// parts, each a class with its own state that gets what it uses from the
-// others as references: NodeTransmit (every frame out), HostAccess (tag,
-// host, ownership), CommissioningMode, CommandAck, NodeStorage (save /
-// load), ShaperDesignDeferral, ProgramStream (programs) and NodeCapture.
+// It reads and routes the frames and owns the parts, each a class with its
+// own state that gets what it uses from the others as references:
+// NodeTransmit (every frame out), HostAccess (tag, host, ownership),
+// CommissioningMode, CommandAck, NodeStorage (save / load),
+// ShaperDesignDeferral, NodeParameters (the live set, its one path of
+// change, PARAM_REQUEST), NodeTelemetry (heartbeat, telemetry,
+// FAULT_EVENT), ProgramStream (programs) and NodeCapture.
 // Every rule above holds for every part.
 //
 // Size: the node holds the capture buffer (NodeCapture's recorder,
@@ -56,8 +57,10 @@
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
 #include "firmware/can/node_capture.hpp"
+#include "firmware/can/node_parameters.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/node_storage.hpp"
+#include "firmware/can/node_telemetry.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/program_stream.hpp"
@@ -149,9 +152,7 @@ class CanNode {
  private:
   // service() steps
   std::uint32_t on_new_tick(std::uint64_t ticks) noexcept;  // returns the telemetry due
-  void check_fault() noexcept;                               // FAULT_EVENT once per latch
   void receive() noexcept;
-  void send_telemetry(std::uint32_t due) noexcept;
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
   void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
@@ -161,7 +162,6 @@ class CanNode {
   void handle_circle(const hal::CanFrame& frame) noexcept;
   void handle_shaper(const hal::CanFrame& frame) noexcept;
   void handle_excite(const hal::CanFrame& frame) noexcept;
-  void handle_param(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
@@ -174,17 +174,10 @@ class CanNode {
   void finish_storage() noexcept;
   // A request deferred for its shaper designs (ShaperDesignDeferral), handled again now they are made.
   void finish_design() noexcept;
-  ErrorCode command_restore_defaults() noexcept;
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
-  // parameters: validate the whole next set, refuse busy, apply whole.
-  // `may_defer`: with a worker, a shaper design the cache lacks defers the
-  // request (ok returned, design_.deferred() set: the caller must not answer).
-  ErrorCode apply_settings(const NodeSettings& next, bool idle_touched, bool may_defer = true) noexcept;
   bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
-  bool capture_change_refused(const NodeSettings& next) const noexcept;
   bool moving() const noexcept;
   // replies and frames
-  void reply_param(ErrorCode result, std::uint16_t param, std::uint32_t value) noexcept;
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
   void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
 
@@ -198,22 +191,10 @@ class CanNode {
   ProgramStream programs_;              // SEGMENT streaming and PROGRAM_STATUS
   NodeStorage storage_;                 // save / load on the worker, storage fault, unsaved
   ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
-  NodeSettings settings_;
-  const NodeSettings& defaults_;        // restore_defaults' base, computed once (cached_default_node_settings)
-  ShaperDesignCache designs_{};
+  NodeParameters params_;               // the live set, its one path of change, PARAM_REQUEST
+  NodeTelemetry telemetry_;             // HEARTBEAT, the cyclic telemetry, FAULT_EVENT
   NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
-  HostStagedSets staged_{};
-  TelemetryScheduler telemetry_{};
-  std::array<bool, hal::kAxisCount> shaper_configured_{};
   std::uint64_t last_tick_ = 0;
-  std::uint16_t blamed_param_ = 0;      // the parameter the last invalid set was refused for
-  std::uint32_t deadman_stops_seen_ = 0;
-  bool fault_reported_ = false;
-  bool jog_deadman_ = false;            // sticky until the next accepted motion request
-  bool host_timeout_ = false;           // sticky until the next accepted motion request
-  std::uint64_t bus_errors_at_heartbeat_ = 0;
-  std::uint64_t can_errors_at_heartbeat_ = 0;
-  std::uint64_t late_ticks_at_heartbeat_ = 0;
   NodeCapture capture_;                 // last: it holds the big buffer
 };
 

@@ -54,12 +54,12 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
     // A save or load works on the set (the learned state included) as it was at the request.
     if (storage_.pending()) return reply_bore(ErrorCode::busy, 0);
   }
-  if (!settings_.bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
+  if (!params_.settings().bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
   if (op == BoreOp::query) return reply_bore(ErrorCode::ok, 0);
   if (op == BoreOp::restart) {
-    const BoringStationState was = settings_.bore_state;
-    restart(settings_.bore_state);
-    if (!(settings_.bore_state == was)) storage_.changed();
+    const BoringStationState was = params_.bore_state();
+    restart(params_.bore_state());
+    if (!(params_.bore_state() == was)) storage_.changed();
     return reply_bore(ErrorCode::ok, 0);
   }
 
@@ -72,11 +72,11 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
     bore_error_mm[i] = read(frame, *reading_fields[i]);
   }
   // The part must be the next one: a repeated frame (its reply lost) or a skipped part is refused.
-  const auto expected = static_cast<std::uint32_t>(settings_.bore_state.planner.parts + 1) & 0xFFFFu;
+  const auto expected = static_cast<std::uint32_t>(params_.bore_state().planner.parts + 1) & 0xFFFFu;
   if (read_raw(frame, kBorePart) != expected) return reply_bore(ErrorCode::out_of_range, index_of(kBoreGaugeMsg, kBorePart));
 
   const BoringStationAnswer a =
-      record_bored_part(settings_.bore, settings_.bore_state, bore_error_mm, kBoreInfeedTop.scale);
+      record_bored_part(params_.settings().bore, params_.bore_state(), bore_error_mm, kBoreInfeedTop.scale);
   if (!a.check.ok) {
     // A start-up deflection <= 0 (no logarithm for eq. (10)): the reading is named when known.
     const std::uint8_t detail = a.position >= 0 ? index_of(kBoreGaugeMsg, *reading_fields[a.position]) : 0;
@@ -88,13 +88,13 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
 
 void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
   hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
-  if (settings_.bore_state.planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
+  if (params_.bore_state().planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
   write_raw(frame, kBoreReplyTag, access_.tag());
   write_raw(frame, kBoreResult, static_cast<std::uint32_t>(result));
   write_raw(frame, kBoreDetail, detail);
   write_raw(frame, kBoreFlags, flags);
   const std::array<double, kBoringStationPositions> infeeds =
-      current_infeeds_mm_rev(settings_.bore, settings_.bore_state, kBoreInfeedTop.scale);
+      current_infeeds_mm_rev(params_.settings().bore, params_.bore_state(), kBoreInfeedTop.scale);
   write(frame, kBoreInfeedTop, infeeds[kBoringTop]);
   write(frame, kBoreInfeedBottom, infeeds[kBoringBottom]);
   tx_.answer(frame, result);

@@ -27,8 +27,7 @@ std::uint16_t axis_param(std::size_t axis, std::uint16_t low) noexcept {
 
 void CanNode::motion_accepted() noexcept {
   commissioning_.leave();
-  jog_deadman_ = false;
-  host_timeout_ = false;
+  telemetry_.motion_accepted();
 }
 
 void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
@@ -67,7 +66,7 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       e = begin_storage(frame, static_cast<CommandCode>(code_raw));
       if (e == ErrorCode::ok) return;  // answered when the storage job is done
       break;
-    case CommandCode::restore_defaults: e = command_restore_defaults(); break;
+    case CommandCode::restore_defaults: e = params_.restore_defaults(); break;
     case CommandCode::take_ownership:
     case CommandCode::release_ownership:
       e = access_.ownership(code);
@@ -127,11 +126,11 @@ ErrorCode CanNode::command_select_controller(const hal::CanFrame& frame, std::ui
     detail = index_of(kCommandMsg, kCommandArg);
     return ErrorCode::out_of_range;
   }
-  NodeSettings next = settings_;
+  NodeSettings next = params_.settings();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     if (axis == kAllAxes || axis == i) next.firmware.axis[i].controller = static_cast<ControllerKind>(arg);
   const ParamDef* p = find_param(axis_param(0, 0x00));
-  return apply_settings(next, p == nullptr || p->apply == Apply::idle);
+  return params_.apply(next, p == nullptr || p->apply == Apply::idle);
 }
 
 ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept {
@@ -145,10 +144,10 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
     detail = index_of(kCommandMsg, kCommandArg);
     return ErrorCode::out_of_range;
   }
-  NodeSettings next = settings_;
+  NodeSettings next = params_.settings();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     if (axis == kAllAxes || axis == i) next.shaper[i].enabled = arg == 1;
-  return apply_settings(next, false);
+  return params_.apply(next, false);
 }
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
@@ -188,8 +187,8 @@ void CanNode::handle_move(const hal::CanFrame& frame) noexcept {
   spec.axis = hal::axis_from_index(axis);
   spec.distance_mm = distance_mm;
   spec.speed_mm_s = speed_mm_s;
-  spec.ramp_s = settings_.motion.move_ramp_s;
-  spec.dwell_s = settings_.motion.move_dwell_s;
+  spec.ramp_s = params_.settings().motion.move_ramp_s;
+  spec.dwell_s = params_.settings().motion.move_dwell_s;
   // A zero distance, or one too short for the two ramps at this speed.
   if (validate(spec)[0] != '\0') return ack_.send(kMoveMsg.id, 0, ErrorCode::invalid, distance);
   const CommandStatus st = task_.start_move(spec);
@@ -213,7 +212,8 @@ void CanNode::handle_circle(const hal::CanFrame& frame) noexcept {
   if (!std::isfinite(feed_mm_s)) return ack_.send(kCircleMsg.id, 0, ErrorCode::not_finite, feed);
   if (!(radius_mm > 0.0)) return ack_.send(kCircleMsg.id, 0, ErrorCode::out_of_range, radius);
   if (!(feed_mm_s > 0.0)) return ack_.send(kCircleMsg.id, 0, ErrorCode::out_of_range, feed);
-  const CircleSpec spec{radius_mm, feed_mm_s, settings_.motion.circle_ramp_s, settings_.motion.circle_dwell_s};
+  const MotionDefaults& defaults = params_.settings().motion;
+  const CircleSpec spec{radius_mm, feed_mm_s, defaults.circle_ramp_s, defaults.circle_dwell_s};
   if (validate(spec)[0] != '\0') return ack_.send(kCircleMsg.id, 0, ErrorCode::invalid, radius);
   // The circle lies in the XY plane.
   const double x_mm = task_.standing_mm(hal::kPlaneFirst);
@@ -239,7 +239,7 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
   const std::array<std::pair<const FieldDef*, std::uint16_t>, 3> checks{
       {{&kShaperType, axis_param(axis, 0x40)}, {&kShaperZeta, axis_param(axis, 0x42)}, {&kShaperFreq, axis_param(axis, 0x41)}}};
   const std::array<double, 3> values{static_cast<double>(type), zeta, freq_hz};
-  NodeSettings next = settings_;
+  NodeSettings next = params_.settings();
   for (std::size_t k = 0; k < checks.size(); ++k) {
     const ParamDef* p = find_param(checks[k].second);
     const std::uint8_t detail = index_of(kShaperMsg, *checks[k].first);
@@ -247,7 +247,7 @@ void CanNode::handle_shaper(const hal::CanFrame& frame) noexcept {
     if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return ack_.send(kShaperMsg.id, 0, e, detail);
     p->set(next, values[k]);
   }
-  const ErrorCode e = apply_settings(next, false);
+  const ErrorCode e = params_.apply(next, false);
   if (design_.deferred()) return;  // handled again, and answered, when the design is made
   ack_.send(kShaperMsg.id, 0, e, 0);
 }

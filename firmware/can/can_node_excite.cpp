@@ -45,10 +45,10 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   spec.kind = excitation_kind;
   spec.level_mm_s = level_mm_s;
   spec.duration_s = duration_s;
-  spec.f_min_hz = settings_.excite.f_min_hz;
-  spec.f_max_hz = settings_.excite.f_max_hz;
-  spec.tones = settings_.excite.tones;
-  spec.carrier_mm_s = closed_loop(excitation_kind) ? settings_.excite.carrier_mm_s : 0.0;
+  spec.f_min_hz = params_.settings().excite.f_min_hz;
+  spec.f_max_hz = params_.settings().excite.f_max_hz;
+  spec.tones = params_.settings().excite.tones;
+  spec.carrier_mm_s = closed_loop(excitation_kind) ? params_.settings().excite.carrier_mm_s : 0.0;
   // The band was checked when it was set; what is left is the duration (a multisine's 2 periods).
   if (!validate(spec).ok) return ack_.send(id, 0, ErrorCode::invalid, duration);
   if (!task_.carrier_travel_fits(hal::axis_from_index(axis), spec))
@@ -57,7 +57,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   if (st != CommandStatus::ok) return ack_.send(id, 0, to_error(st), 0);
   motion_accepted();
   // A capture waiting for a motion records the excitation, first tick to last.
-  capture_.excitation_started(settings_.capture);
+  capture_.excitation_started(params_.settings().capture);
   ack_.send(id, 0, ErrorCode::ok, 0);
 }
 

@@ -14,7 +14,7 @@ using namespace fields;
 
 ErrorCode CanNode::begin_storage(const hal::CanFrame& request, CommandCode code) noexcept {
   if (moving() || worker_busy()) return ErrorCode::busy;
-  const ErrorCode e = storage_.begin(request, code, settings_);
+  const ErrorCode e = storage_.begin(request, code, params_.settings());
   if (e == ErrorCode::ok && !storage_.has_worker()) finish_storage();  // run in this service(): answered now
   return e;
 }
@@ -35,9 +35,9 @@ void CanNode::finish_storage() noexcept {
     // The job designed the loaded shapers: applying them costs a copy.
     const ShaperDesignJob& made = done.loaded->designs();
     for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-      if (made.designed(i)) designs_.insert(made.spec(i), made.design(i));
+      if (made.designed(i)) params_.designs().insert(made.spec(i), made.design(i));
     // The machine may have started moving since the request: then busy, nothing applied.
-    e = apply_settings(done.loaded->settings(), true, false);
+    e = params_.apply(done.loaded->settings(), true, false);
     if (e == ErrorCode::ok) storage_.loaded_applied();
   }
   // The reply answers the request as it came, echoing its tag.
@@ -46,7 +46,7 @@ void CanNode::finish_storage() noexcept {
 }
 
 void CanNode::finish_design() noexcept {
-  const ShaperDesignDeferral::Replay replay = design_.finish(designs_);
+  const ShaperDesignDeferral::Replay replay = design_.finish(params_.designs());
   // The request as it came: its tag names the host (ownership is checked again).
   access_.begin_request(replay.frame.data[0], false);
   dispatch(replay.frame, replay.id);

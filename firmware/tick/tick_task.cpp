@@ -54,7 +54,7 @@ TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
     origin_mm_[i] = config_.axis[i].home_position_mm;
   }
   (void)motion_.configure(path_limits(config_), held_point());  // validate(config) checked the limits
-  (void)arsc_.configure(config_.arsc);                            // and the force loop's parameters
+  feed_.configure(config_.arsc);                                  // and the force loop's parameters
 }
 
 bool TickTask::servo_on() const noexcept {
@@ -66,8 +66,8 @@ void TickTask::latch_fault(const FaultRecord& f) noexcept {
   // A count that cannot be trusted loses home with it.
   if (f.reason == FaultReason::encoder_error || f.reason == FaultReason::encoder_implausible ||
       f.reason == FaultReason::encoder_stall) {
-    if (f.axis >= 0 && static_cast<std::size_t>(f.axis) < hal::kAxisCount) homed_[static_cast<std::size_t>(f.axis)] = false;
-    else homed_ = {};
+    if (f.axis >= 0 && static_cast<std::size_t>(f.axis) < hal::kAxisCount) homing_.unhome(static_cast<std::size_t>(f.axis));
+    else homing_.unhome_all();
   }
   fault_ = f;
   state_ = MotionState::faulted;
@@ -122,26 +122,8 @@ void TickTask::set_reference(std::size_t i, const AxisSample& now, const AxisSam
 // get y_k (the shaper's previous output) and y_{k+1} = shaper(x_{k+1}).
 void TickTask::shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept {
   record_.axis[i].unshaped_reference_mm = now.position_mm;
-  StreamShaper& shaper = shaping_[i].shaper;
-  if (!shaper.shaping() && !shaper.change_pending()) {
-    shaper.step(next);            // the identity; it only notes whether the stream rests
-    set_reference(i, now, next);  // off: the unshaped path, bit for bit
-    return;
-  }
-  const bool was_shaping = shaper.shaping();
-  const AxisSample shaped_now = shaper.output();
-  const AxisSample shaped_next = shaper.step(next);
-  if (!was_shaping && !shaper.shaping()) {
-    set_reference(i, now, next);  // off: the unshaped path, bit for bit
-  } else {
-    set_reference(i, shaped_now, shaped_next);
-  }
-}
-
-bool TickTask::shapers_settled() const noexcept {
-  for (const AxisShaping& s : shaping_)
-    if (s.shaper.shaping() && !s.shaper.quiet()) return false;
-  return true;
+  const PathShapers::Pair shaped = shapers_.shape(i, now, next);
+  set_reference(i, shaped.now, shaped.next);
 }
 
 // Every producer's reference comes from the motion core: x_ref,k and
@@ -160,7 +142,7 @@ void TickTask::moving_reference() noexcept {
     shape_reference(i, {a.position_mm, a.speed_mm_s}, {a.next_position_mm, a.next_speed_mm_s});
   }
   const bool done = motion_.state() == motion::MotionState::idle && (source_ != Source::jog || jog_.idle());
-  if (done && shapers_settled()) {
+  if (done && shapers_.settled()) {
     state_ = MotionState::holding;
     stop_requested_ = false;
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {r.axis[i].next_position_mm, 0.0};
@@ -170,12 +152,7 @@ void TickTask::moving_reference() noexcept {
 void TickTask::update_reference() noexcept {
   record_.motion_tick = -1;
   // A new path shaper goes to every axis in the same tick, once all are quiet.
-  if (path_change_pending_) {
-    bool all_quiet = true;
-    for (const AxisShaping& s : shaping_) all_quiet = all_quiet && s.shaper.quiet();
-    const bool servo_off = state_ == MotionState::disabled || state_ == MotionState::faulted;
-    if (all_quiet || servo_off) forward_path_shaper();
-  }
+  shapers_.forward_when_quiet(state_ == MotionState::disabled || state_ == MotionState::faulted);
   switch (state_) {
     case MotionState::dwell:
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);
@@ -188,19 +165,19 @@ void TickTask::update_reference() noexcept {
       moving_reference();
       return;
     case MotionState::holding:
-      if (homing_.running()) end_homing();  // a stop from dwell never reaches here mid-cycle; defensive
+      if (homing_.running()) homing_.cancel();  // a stop from dwell never reaches here mid-cycle; defensive
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) shape_reference(i, hold_[i], hold_[i]);
       return;
     case MotionState::disabled:
     case MotionState::faulted:
-      if (homing_.running()) end_homing();  // disabled or faulted mid-cycle: not homed
+      if (homing_.running()) homing_.cancel();  // disabled or faulted mid-cycle: not homed
       // Servo off: the reference follows the table so the next servo-on is
       // bumpless, and the shapers rest there (a pending change applies now).
       // The screw compensation's last offset is taken off the measured
       // (motor-side) position: compensated, the reference is where the axis is.
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
         hold_[i] = {record_.axis[i].position_mm - screw_[i].next_offset_mm(), 0.0};
-        shaping_[i].shaper.reset(hold_[i]);
+        shapers_.reset(i, hold_[i]);
         record_.axis[i].unshaped_reference_mm = hold_[i].position_mm;
         set_reference(i, hold_[i], hold_[i]);
       }
@@ -251,7 +228,8 @@ void TickTask::tick() noexcept {
 
   // 3. feed override of a running program (the force loop, when on), then
   // the reference x_ref,k and x_ref,k+1
-  run_feed_source();
+  feed_.tick(state_ == MotionState::moving && source_ == Source::program, config_.force_sensor.n_per_volt, motion_,
+             record_);
   update_reference();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     if (!excite_[i].active()) continue;
@@ -270,7 +248,7 @@ void TickTask::tick() noexcept {
         record_.axis[i].unshaped_reference_mm = now.position_mm;
         set_reference(i, now, next);
         hold_[i] = {next.position_mm, 0.0};
-        shaping_[i].shaper.reset(hold_[i]);
+        shapers_.reset(i, hold_[i]);
       }
       continue;
     }
@@ -300,7 +278,7 @@ void TickTask::tick() noexcept {
       if (!excite_[i].active()) {
         // Holding resumes from where the axis came to rest, bumpless.
         ctl.reset();
-        shaping_[i].shaper.reset(hold_[i]);
+        shapers_.reset(i, hold_[i]);
       }
     } else if (on) {
       AxisState x{r.position_mm, r.speed_mm_s};
@@ -328,7 +306,7 @@ void TickTask::tick() noexcept {
     check_in.axis[i] = {r.position_mm,      r.speed_mm_s, r.reference_mm, r.reference_speed_mm_s,
                         u_mm_s,             stall_[i].stalled_ticks(), stall_[i].applied_command_mm_s(),
                         plausibility_[i]};
-    check_in.axis[i].soft_limits = !(homing_.running() && homing_axis_ == i);
+    check_in.axis[i].soft_limits = !homing_.soft_limits_off(i);
   }
 
   // 5. supervisor: a fault makes this very tick's outputs safe

@@ -21,6 +21,13 @@
 // limit needs no delay term. (Measured against the unshaped command the
 // error would grow by delay x speed.) With the shaper disabled (default)
 // the unshaped reference is passed through untouched, bit for bit.
+//
+// Parts (docs/architecture.md "One tick"): the task sequences and owns its
+// parts, each a class with its own state and a small interface, stepped in
+// the tick: HomingSequence (the HOME command's axes, their cycles, homed and
+// the results), PathShapers (each axis' shaper design and on/off, the
+// path's series and its hand-over once quiet) and ProgramFeedOverride (the
+// operator's override and the S3 force loop). The tick's rules hold for each.
 #include <array>
 #include <cstdint>
 
@@ -34,6 +41,9 @@
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "firmware/tick/homing_sequence.hpp"
+#include "firmware/tick/path_shapers.hpp"
+#include "firmware/tick/program_feed_override.hpp"
 #include "firmware/motion/jog_producer.hpp"
 #include "firmware/motion/motion_interpolator.hpp"
 #include "firmware/tick/tick_record.hpp"
@@ -101,10 +111,10 @@ class TickTask {
   // scales the loop's range (arsc_feed_source.hpp); each program starts at 1.
   CommandStatus feed_hold(bool hold) noexcept;
   CommandStatus set_feed_override(double ratio) noexcept;
-  double operator_feed_override() const noexcept { return operator_override_; }
+  double operator_feed_override() const noexcept { return feed_.operator_override(); }
   // The S3 force loop as the programs' feed-override source (config arsc):
   // it runs inside the tick, between the snapshot and the motion core.
-  const arsc::ArscFeedSource& feed_source() const noexcept { return arsc_; }
+  const arsc::ArscFeedSource& feed_source() const noexcept { return feed_.force_loop(); }
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
@@ -198,8 +208,8 @@ class TickTask {
   // while moving, faulted when faulted, invalid when no axis (or no
   // axis of the machine) is named.
   CommandStatus home(hal::AxisSet axes) noexcept;
-  bool homed(hal::Axis axis) const noexcept { return homed_[hal::index(axis)]; }
-  HomingResult homing_result(hal::Axis axis) const noexcept { return home_result_[hal::index(axis)]; }
+  bool homed(hal::Axis axis) const noexcept { return homing_.homed(hal::index(axis)); }
+  HomingResult homing_result(hal::Axis axis) const noexcept { return homing_.result(hal::index(axis)); }
   bool homing() const noexcept { return moving() && source_ == Source::homing; }
 
   // --- status
@@ -215,12 +225,10 @@ class TickTask {
   // The active shaper's delay (centroid of its taps), 0 when it is off:
   // what multi-axis synchronisation and host-side comparisons shift by.
   double shaper_delay_s(hal::Axis axis) const noexcept;
-  const StreamShaper& shaper(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].shaper; }
+  const StreamShaper& shaper(hal::Axis axis) const noexcept { return shapers_.shaper(hal::index(axis)); }
   // This axis' own shaper is on and the path shaper that includes it is active.
-  bool shaper_active(hal::Axis axis) const noexcept {
-    return shaping_[hal::index(axis)].enabled && shaping_[hal::index(axis)].shaper.shaping();
-  }
-  const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return shaping_[hal::index(axis)].design; }
+  bool shaper_active(hal::Axis axis) const noexcept { return shapers_.active(hal::index(axis)); }
+  const ShaperDesign& shaper_design(hal::Axis axis) const noexcept { return shapers_.design(hal::index(axis)); }
   std::uint32_t jog_deadman_stops() const noexcept;
   // Servo on and the reference in motion: dwell or moving (jog and
   // controlled stop included).
@@ -257,38 +265,21 @@ class TickTask {
     AxisController& active() noexcept;
   };
 
-  // Per axis; kept after the hot per-tick state (the ring buffers are large).
-  struct AxisShaping {
-    StreamShaper shaper{};
-    ShaperDesign design{};
-    bool configured = false;
-    bool enabled = false;  // this axis' own shaper is on (the path runs all of them, path_taps.hpp)
-  };
-
   enum class Source : std::uint8_t { circle, move, jog, program, homing };
   static std::int64_t ticks_for(double seconds) noexcept;
 
   void read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& advanced) noexcept;
   void update_reference() noexcept;
-  void run_feed_source() noexcept;  // tick_task_feed_source.cpp
   void set_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void moving_reference() noexcept;
   void homing_reference() noexcept;            // tick_task_homing.cpp
-  void start_homing_axis(std::size_t a) noexcept;
-  std::size_t next_homing_axis(std::size_t after) const noexcept;
-  void end_homing() noexcept;                  // a cycle that did not finish: not homed
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
   // config homing_required and one of the axes is not homed.
   bool homing_missing(bool x, bool y) const noexcept {
-    return config_.homing_required && ((x && !homed_[0]) || (y && !homed_[1]));
+    return config_.homing_required && ((x && !homing_.homed(0)) || (y && !homing_.homed(1)));
   }
-  bool shapers_settled() const noexcept;
-  // Shaped axes stay in step (shaper/path_taps.hpp): a new series for every
-  // axis, handed to the axes' shapers together once all of them are quiet.
-  CommandStatus plan_path_shaper(const std::array<AxisShaperChoice, hal::kAxisCount>& axes) noexcept;
-  void forward_path_shaper() noexcept;
   void reset_controllers() noexcept;
   bool servo_on() const noexcept;
   void latch_fault(const FaultRecord& f) noexcept;
@@ -305,8 +296,7 @@ class TickTask {
   std::array<AxisLoop, hal::kAxisCount> axis_;
   motion::MotionInterpolator motion_{};
   motion::JogProducer jog_{};
-  arsc::ArscFeedSource arsc_{};
-  double operator_override_ = 1.0;  // set_feed_override(): the program's override, or the force loop's cap
+  ProgramFeedOverride feed_{};  // the operator's override and the force loop (program_feed_override.hpp)
   Source source_ = Source::circle;
   std::int64_t dwell_ticks_ = 0;
   std::int64_t motion_ticks_ = 0;
@@ -325,10 +315,8 @@ class TickTask {
   bool centred_ = false;                             // circle about centre_mm_, not the origin
   std::array<double, hal::kAxisCount> centre_mm_{};  // circle centre
   std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
-  std::array<AxisShaping, hal::kAxisCount> shaping_{};
-  TapSet path_taps_ = TapSet::identity();
-  bool path_shaping_ = false;
-  bool path_change_pending_ = false;
+  // Kept after the hot per-tick state (the shapers' ring buffers are large).
+  PathShapers shapers_{};
   std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
   std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
   std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
@@ -337,11 +325,7 @@ class TickTask {
   std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
   bool one_nominal_period_ = false;
   bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)
-  HomingCycle homing_{};
-  std::size_t homing_axis_ = 0;
-  std::array<bool, hal::kAxisCount> homing_queued_{};  // axes still to home in this command
-  std::array<bool, hal::kAxisCount> homed_{};
-  std::array<HomingResult, hal::kAxisCount> home_result_{};
+  HomingSequence homing_{};  // the HOME command's axes, their cycles, homed and the results
 };
 
 }  // namespace tnv::fw

@@ -1,25 +1,9 @@
-// TickTask's commands that are not motion: shapers, controller
-// selection, disable, fault clearing and the software e-stop.
+// TickTask's commands that are not motion: shapers (their state is
+// PathShapers', path_shapers.hpp), controller selection, disable, fault
+// clearing and the software e-stop.
 #include "firmware/tick/tick_task.hpp"
 
 namespace tnv::fw {
-
-CommandStatus TickTask::plan_path_shaper(const std::array<AxisShaperChoice, hal::kAxisCount>& axes) noexcept {
-  TapSet series;
-  if (!path_taps(axes, static_cast<std::uint32_t>(StreamShaper::kRingCapacity), series)) return CommandStatus::invalid;
-  path_taps_ = series;
-  path_shaping_ = !series.is_identity();
-  path_change_pending_ = true;
-  return CommandStatus::ok;
-}
-
-void TickTask::forward_path_shaper() noexcept {
-  for (AxisShaping& s : shaping_) {
-    if (path_shaping_) (void)s.shaper.request_taps(path_taps_);  // fits: checked by plan_path_shaper()
-    s.shaper.request_enabled(path_shaping_);
-  }
-  path_change_pending_ = false;
-}
 
 CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec) noexcept {
   if (hal::index(axis) >= hal::kAxisCount || !validate(spec).ok) return CommandStatus::invalid;
@@ -29,30 +13,17 @@ CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec)
 CommandStatus TickTask::configure_shaper(hal::Axis axis, const ShaperSpec& spec, const ShaperDesign& design) noexcept {
   const std::size_t a = hal::index(axis);
   if (a >= hal::kAxisCount || !validate(spec).ok || design.period_s != kTickPeriodS) return CommandStatus::invalid;
-  std::array<AxisShaperChoice, hal::kAxisCount> axes{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    axes[i] = {i == a ? &design.taps : (shaping_[i].configured ? &shaping_[i].design.taps : nullptr),
-               shaping_[i].enabled};
-  if (const CommandStatus st = plan_path_shaper(axes); st != CommandStatus::ok) return st;
-  shaping_[a].design = design;
-  shaping_[a].configured = true;
-  return CommandStatus::ok;
+  return shapers_.configure(a, design) ? CommandStatus::ok : CommandStatus::invalid;
 }
 
 CommandStatus TickTask::enable_shaper(hal::Axis axis, bool on) noexcept {
   const std::size_t a = hal::index(axis);
   if (a >= hal::kAxisCount) return CommandStatus::invalid;
-  if (on && !shaping_[a].configured) return CommandStatus::invalid;
-  std::array<AxisShaperChoice, hal::kAxisCount> axes{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    axes[i] = {shaping_[i].configured ? &shaping_[i].design.taps : nullptr, i == a ? on : shaping_[i].enabled};
-  if (const CommandStatus st = plan_path_shaper(axes); st != CommandStatus::ok) return st;
-  shaping_[a].enabled = on;
-  return CommandStatus::ok;
+  return shapers_.enable(a, on) ? CommandStatus::ok : CommandStatus::invalid;
 }
 
 double TickTask::shaper_delay_s(hal::Axis axis) const noexcept {
-  return shaping_[hal::index(axis)].shaper.delay_samples() * kTickPeriodS;
+  return shapers_.shaper(hal::index(axis)).delay_samples() * kTickPeriodS;
 }
 
 CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) noexcept {

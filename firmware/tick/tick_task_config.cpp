@@ -94,8 +94,8 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
                    next.supervisor.axis[i].position_min_mm != config_.supervisor.axis[i].position_min_mm ||
                    next.supervisor.axis[i].position_max_mm != config_.supervisor.axis[i].position_max_mm;
   // The force loop: a new loop at rest (validated with the config), f* on line.
-  if (!same_but_force_ref(next.arsc, config_.arsc)) (void)arsc_.configure(next.arsc);
-  else if (next.arsc.force_ref_n != config_.arsc.force_ref_n) (void)arsc_.set_force_ref_n(next.arsc.force_ref_n);
+  if (!same_but_force_ref(next.arsc, config_.arsc)) feed_.configure(next.arsc);
+  else if (next.arsc.force_ref_n != config_.arsc.force_ref_n) feed_.set_force_ref_n(next.arsc.force_ref_n);
   config_ = next;
   config_validated_ = true;
   if (path_changed) (void)motion_.configure(path_limits(config_), held_point());  // validated with the config

@@ -1,23 +1,13 @@
-// TickTask's homing: the HOME command and the per-tick step of the cycle
-// (homing/homing_cycle.hpp). Bounded work per tick: one cycle step, and at
-// the index edge one frame shift.
+// TickTask's homing: the HOME command and the per-tick reference of the
+// homing axis. The axes' sequence, their cycles and what homing left are
+// HomingSequence's (homing_sequence.hpp); the frame shift at the index and
+// the end of the motion are the task's. Bounded work per tick: one cycle
+// step, and at the index edge one frame shift.
 #include <cstdint>
 
 #include "firmware/tick/tick_task.hpp"
 
 namespace tnv::fw {
-
-// The queued axis that homes after `after` (hal::kHomingOrder); kAxisCount
-// for none. after = kAxisCount: the first.
-std::size_t TickTask::next_homing_axis(std::size_t after) const noexcept {
-  bool past = after >= hal::kAxisCount;
-  for (const hal::Axis a : hal::kHomingOrder) {
-    const std::size_t i = hal::index(a);
-    if (past && homing_queued_[i]) return i;
-    if (i == after) past = true;
-  }
-  return hal::kAxisCount;
-}
 
 CommandStatus TickTask::home(hal::AxisSet axes) noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
@@ -29,28 +19,14 @@ CommandStatus TickTask::home(hal::AxisSet axes) noexcept {
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) hold_[i] = {record_.axis[i].position_mm, 0.0};
     reset_controllers();
   }
-  for (const hal::Axis a : hal::kAxes) homing_queued_[hal::index(a)] = hal::contains(axes, a);
   source_ = Source::homing;
   stop_requested_ = false;
   phase_tick_ = 0;
   motion_ticks_ = 0;
   centred_ = false;
   state_ = MotionState::moving;
-  start_homing_axis(next_homing_axis(hal::kAxisCount));
+  homing_.begin(axes, config_, hold_, kTickPeriodS);
   return CommandStatus::ok;
-}
-
-void TickTask::start_homing_axis(std::size_t a) noexcept {
-  homing_axis_ = a;
-  homed_[a] = false;
-  home_result_[a] = HomingResult::running;
-  homing_.start(config_.axis[a].homing, config_.axis[a].jog.accel_mm_s2, hold_[a].position_mm, kTickPeriodS);
-}
-
-void TickTask::end_homing() noexcept {
-  if (homing_.running()) home_result_[homing_axis_] = HomingResult::aborted;
-  homing_ = HomingCycle{};
-  homing_queued_ = {};
 }
 
 void TickTask::shift_frame(std::size_t a, double delta_mm) noexcept {
@@ -69,7 +45,7 @@ void TickTask::shift_frame(std::size_t a, double delta_mm) noexcept {
 void TickTask::homing_reference() noexcept {
   record_.motion_tick = phase_tick_;
   ++phase_tick_;
-  const std::size_t a = homing_axis_;
+  const std::size_t a = homing_.axis();
   const hal::Axis axis = hal::axis_from_index(a);
   const hal::IndexLatch index = board_.index_latch(axis);
   HomingStep step = homing_.step(last_inputs_.home_switch[a], index.edges);
@@ -91,21 +67,11 @@ void TickTask::homing_reference() noexcept {
   }
   if (homing_.running()) return;
   hold_[a] = {step.next.position_mm, 0.0};
-  home_result_[a] = homing_.result();
-  if (homing_.phase() == HomingPhase::done) {
-    homed_[a] = true;
-    homing_queued_[a] = false;
-    if (const std::size_t next = next_homing_axis(a); next < hal::kAxisCount) {
-      start_homing_axis(next);
-      return;
-    }
-  }
-  const HomingCycle ended = homing_;
-  homing_queued_ = {};
-  homing_ = HomingCycle{};
+  if (homing_.next_axis(config_, hold_, kTickPeriodS)) return;  // homed: the next queued axis starts
+  const HomingCycle ended = homing_.finish();
   state_ = MotionState::holding;
   stop_requested_ = false;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) shaping_[i].shaper.reset(hold_[i]);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) shapers_.reset(i, hold_[i]);
   if (ended.phase() == HomingPhase::failed && ended.result() != HomingResult::aborted) {
     latch_fault({FaultReason::homing_failed, static_cast<std::int8_t>(a), counters_.ticks, ended.failed_travel_mm(),
                  ended.failed_limit_mm()});

@@ -135,7 +135,7 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
   if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
   if (!running) {
     source_ = Source::program;
-    operator_override_ = 1.0;  // reset_at() put the motion core's override at 1
+    feed_.program_started();  // reset_at() put the motion core's override at 1
     stop_requested_ = false;
     phase_tick_ = 0;
     motion_ticks_ = 0;
@@ -164,10 +164,7 @@ CommandStatus TickTask::set_feed_override(double ratio) noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (!std::isfinite(ratio) || ratio < 0.0 || ratio > motion::kMaxFeedOverride) return CommandStatus::invalid;
   if (!program_running()) return CommandStatus::busy;
-  operator_override_ = ratio;
-  // The force loop combines it with its own at the next tick (it scales the loop's range).
-  if (arsc_.running()) return CommandStatus::ok;
-  return motion_.set_feed_override(ratio) ? CommandStatus::ok : CommandStatus::invalid;
+  return feed_.set_operator_override(ratio, motion_) ? CommandStatus::ok : CommandStatus::invalid;
 }
 
 std::uint32_t TickTask::jog_deadman_stops() const noexcept { return jog_.deadman_stops(); }
@@ -200,8 +197,8 @@ CommandStatus TickTask::zero(hal::Axis axis, double position_mm) noexcept {
   if (!(position_mm >= lim.position_min_mm && position_mm <= lim.position_max_mm)) return CommandStatus::invalid;
   // Measurement and reference shift together: the following error is unchanged.
   shift_frame(a, position_mm - record_.axis[a].position_mm);
-  shaping_[a].shaper.reset(hold_[a]);  // at rest: its history is the old frame's rest point
-  homed_[a] = false;                   // the frame is the operator's now, not the index's
+  shapers_.reset(a, hold_[a]);  // at rest: its history is the old frame's rest point
+  homing_.unhome(a);            // the frame is the operator's now, not the index's
   return CommandStatus::ok;
 }
 

@@ -1,12 +1,23 @@
 // The CAN node's parts on their own (firmware/can: NodeTransmit, HostAccess,
-// CommissioningMode, NodeStorage), through their narrow interfaces; the
-// node as a whole is tested by the can_node_*_test files.
+// CommissioningMode, NodeStorage, NodeParameters, NodeTelemetry), through
+// their narrow interfaces; the node as a whole is tested by the
+// can_node_*_test files.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
 
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/node_capture.hpp"
+#include "firmware/can/node_parameters.hpp"
 #include "firmware/can/node_storage.hpp"
+#include "firmware/can/node_telemetry.hpp"
+#include "firmware/can/program_stream.hpp"
+#include "firmware/can/shaper_design_deferral.hpp"
+#include "firmware/can/telemetry_scheduler.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/request_tag.hpp"
 #include "firmware/tick/tick_task.hpp"
@@ -168,6 +179,110 @@ TEST(NodeStorage, SaveThenLoadWithoutAWorkerAnswersWithTheRequestsTag) {
   done = storage.finish();
   EXPECT_NE(done.result, ErrorCode::ok);
   EXPECT_TRUE(storage.fault());
+}
+
+// The node's parts as CanNode wires them, without the node (the capture
+// part holds its 512 KiB buffer: on the heap).
+struct PartsBench {
+  explicit PartsBench(const fw::can::NodeSettings& s = quiet_settings())
+      : task(board, s.firmware),
+        mode(task),
+        tx(port),
+        ack(kNode, task, access, tx),
+        programs(kNode, task, access, ack, tx),
+        storage(current, nullptr, nullptr, false),
+        capture(std::make_unique<fw::can::NodeCapture>(kNode, task, access, tx)),
+        params(kNode, task, access, mode, tx, storage, design, *capture, s),
+        telemetry(kNode, task, port, tx, access, mode, storage, params, programs, *capture) {}
+  // What the parts queued, sent.
+  std::vector<hal::CanFrame> sent() {
+    tx.begin_service();
+    tx.flush();
+    return port.drain();
+  }
+
+  FakeIoBoard board;
+  FakeCanPort port;
+  MemoryStorage current;
+  fw::TickTask task;
+  fw::can::HostAccess access;
+  fw::can::CommissioningMode mode;
+  fw::can::NodeTransmit tx;
+  fw::can::CommandAck ack;
+  fw::can::ProgramStream programs;
+  fw::can::NodeStorage storage;
+  fw::can::ShaperDesignDeferral design{nullptr};
+  std::unique_ptr<fw::can::NodeCapture> capture;
+  fw::can::NodeParameters params;
+  fw::can::NodeTelemetry telemetry;
+};
+
+TEST(NodeParameters, AChangeAppliesWholeOrNotAtAllAndRequestsAreAnswered) {
+  PartsBench b;
+  using fw::can::MessageId;
+  using fw::can::ParamOp;
+  // A set refused by validate() changes nothing and names no unsaved change.
+  fw::can::NodeSettings bad = b.params.settings();
+  bad.telemetry.position_ms = 20;
+  bad.motion.circle_ramp_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(b.params.apply(bad, false), ErrorCode::invalid);
+  EXPECT_EQ(b.params.settings().telemetry.position_ms, 0u);
+  EXPECT_FALSE(b.storage.unsaved());
+  fw::can::NodeSettings good = b.params.settings();
+  good.telemetry.position_ms = 20;
+  EXPECT_EQ(b.params.apply(good, false), ErrorCode::ok);
+  EXPECT_EQ(b.params.settings().telemetry.position_ms, 20u);
+  EXPECT_TRUE(b.storage.unsaved());
+
+  // get is open to every host; set needs ownership; stage goes to the host's own set.
+  const std::uint16_t id = id_of("tlm.position_ms");
+  b.access.begin_request(fw::can::make_tag(2, 1), false);
+  b.params.handle(param_request(kNode, ParamOp::get, id));
+  std::vector<hal::CanFrame> out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "result"), static_cast<std::uint32_t>(ErrorCode::ok));
+  EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "value"), 20u);
+  b.params.handle(param_request(kNode, ParamOp::set, id, 50));
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "result"), static_cast<std::uint32_t>(ErrorCode::not_owner));
+  EXPECT_EQ(b.params.settings().telemetry.position_ms, 20u);
+  b.params.handle(param_request(kNode, ParamOp::stage, id, 50));
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(raw_of(out[0], MessageId::param_reply, "result"), static_cast<std::uint32_t>(ErrorCode::ok));
+  EXPECT_EQ(b.params.staged_count(2), 1u);
+  EXPECT_EQ(b.params.staged_count(1), 0u);
+  EXPECT_EQ(b.params.staged_count(), 1u);
+  EXPECT_EQ(b.params.settings().telemetry.position_ms, 20u) << "staged, not applied";
+}
+
+TEST(NodeTelemetry, SendsWhatIsDueAndTheHeartbeatsStickyBitsClearOnAcceptedMotion) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.telemetry.heartbeat_ms = 2;
+  s.telemetry.position_ms = 1;
+  PartsBench b(s);
+  using fw::can::MessageId;
+  EXPECT_EQ(b.telemetry.on_tick(1), fw::can::cyclic_bit(fw::can::Cyclic::position));
+  const std::uint32_t due = b.telemetry.on_tick(1);
+  EXPECT_EQ(due, fw::can::cyclic_bit(fw::can::Cyclic::position) | fw::can::cyclic_bit(fw::can::Cyclic::heartbeat));
+  b.telemetry.host_timed_out();
+  const std::uint16_t bits = b.telemetry.heartbeat_errors();
+  EXPECT_NE(bits & fw::can::kHbHostTimeout, 0);
+  b.telemetry.send(due);
+  const std::vector<hal::CanFrame> out = b.sent();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(only(out, MessageId::heartbeat).size(), 1u);
+  EXPECT_EQ(only(out, MessageId::tlm_position).size(), 1u);
+  EXPECT_EQ(raw_of(only(out, MessageId::heartbeat)[0], MessageId::heartbeat, "errors"), bits);
+  b.telemetry.motion_accepted();
+  EXPECT_EQ(b.telemetry.heartbeat_errors() & fw::can::kHbHostTimeout, 0);
+  b.telemetry.check_fault();
+  EXPECT_TRUE(b.sent().empty()) << "no fault latched: no FAULT_EVENT";
+  b.task.estop();
+  b.telemetry.check_fault();
+  b.telemetry.check_fault();
+  EXPECT_EQ(only(b.sent(), MessageId::fault_event).size(), 1u) << "once per latch";
 }
 
 }  // namespace
