@@ -175,7 +175,7 @@ class CanNode {
   // A request deferred for its shaper designs (ShaperDesignDeferral), handled again now they are made.
   void finish_design() noexcept;
   void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
-  bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
+  bool worker_busy() const noexcept { return params_.worker_busy(); }
   bool moving() const noexcept;
   // replies and frames
   // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.

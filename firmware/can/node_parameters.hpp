@@ -66,10 +66,11 @@ class NodeParameters {
 
   std::size_t staged_count() const noexcept { return staged_.total(); }  // all hosts
   std::size_t staged_count(std::uint8_t host) const noexcept;            // the host's own pending set
+  // A save, load or shaper design in flight: the worker takes one job at a time.
+  bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
 
  private:
   bool capture_change_refused(const NodeSettings& next) const noexcept;
-  bool worker_busy() const noexcept { return storage_.pending() || design_.pending(); }
 
   std::uint8_t node_id_;
   TickTask& task_;

@@ -37,7 +37,6 @@
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/control/speed_observer.hpp"
 #include "firmware/homing/homing_cycle.hpp"
-#include "firmware/shaper/path_taps.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/tick/firmware_config.hpp"
