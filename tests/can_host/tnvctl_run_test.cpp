@@ -107,17 +107,23 @@ TEST(TnvctlRun, EmulatedRunScoresWithinTenPercentOfAnInProcessRunWithNoUnderrun)
 
 TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
   const auto state = test::state_dir("run_bad");
-  const auto bad = test::write_file(state / "bad.ngc", "G21 G90\nG1 X1 F100\n  G18 G1 X2\n");
+  const auto bad = test::write_file(state / "bad.ngc", "G21 G90\nG1 X1 F100\n  G93 G1 X2\n");
   // An interface that does not exist: reaching for the bus would fail with exit 1, not 2.
   ToolRun r = test::tnvctl(state, "--iface tnv_none0 run " + bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("line 3, column 3: unsupported G-code G18"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3, column 3: unsupported G-code G93"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("nothing was sent"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
   const auto z = test::write_file(state / "z.ngc", "G1 X1 Z2 F100\n");
   r = test::tnvctl(state, "--iface tnv_none0 run " + z.string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("unsupported word Z"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 1: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("this machine has X and Y only"), std::string::npos) << r.err;
+  // A tool the program asks for must be in the tool table given.
+  const auto tool = test::write_file(state / "tool.ngc", "T3 M6\nG1 X1 F100\nM2\n");
+  r = test::tnvctl(state, "--iface tnv_none0 run " + tool.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("requested tool 3 not found in the tool table"), std::string::npos) << r.err;
   r = test::tnvctl(state, "--iface tnv_none0 run " + (state / "missing.ngc").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("cannot open: No such file"), std::string::npos) << r.err;
@@ -127,6 +133,38 @@ TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
   r = test::tnvctl(state, "--iface tnv_none0 run " + fifo);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+  std::filesystem::remove_all(state);
+}
+
+// The dialect on the emulated node: a work offset from --var-file, a tool
+// from --tool-table, a subroutine in a file beside the program, spindle
+// and coolant counted and not sent; the report has lines, segments, tool
+// changes and the programmed cycle time.
+TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
+  const auto state = test::state_dir("run_dialect");
+  const auto tbl = test::write_file(state / "tools.tbl", "T2 P2 Z30 D6\n");
+  const auto var = test::write_file(state / "offsets.var", "5221 2\n5222 1\n");
+  test::write_file(state / "side.ngc", "o<side> sub\n  G91 G1 X#1 F600\n  G90\no<side> endsub\nM2\n");
+  const auto prog = test::write_file(state / "part.ngc",
+                                     "T2 M6\nM3 S1000 M8\nG0 X0 Y0\no<side> call [3]\nG4 P0.2\nG0 X0\nM2\n");
+  ToolRun r = test::tnvctl(state, "--emu --json run " + prog.string() + " --no-score --tool-table " + tbl.string() +
+                                      " --var-file " + var.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["tool_changes"], 1);
+  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["coolant_starts_not_sent"], 1);
+  EXPECT_EQ(j["lines_run"], 7 + 3) << "the program's seven lines, and the subroutine's two lines and endsub once";
+  // To G54's X2 Y1 (unless the table stands there), 3 mm at 10 mm/s, the dwell, 3 mm back at the rapid feed.
+  const int segments = j["segments"].get<int>();
+  EXPECT_TRUE(segments == 3 || segments == 4) << segments;
+  const double tail_s = 3.0 / 10.0 + 0.2 + 3.0 / 50.0;
+  EXPECT_GE(j["programmed_time_s"].get<double>(), tail_s - 1e-9);
+  EXPECT_EQ(j["elements_accepted"].get<int>(), segments);
+  // Without the tool table T2 is not known: refused before anything is sent.
+  r = test::tnvctl(state, "--iface tnv_none0 run " + prog.string() + " --var-file " + var.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("requested tool 2 not found"), std::string::npos) << r.err;
   std::filesystem::remove_all(state);
 }
 
@@ -166,7 +204,8 @@ TEST(TnvctlRun, CtrlCStopsOnThePathAndExitsOne) {
 TEST(TnvctlRun, HelpReadsLikeAManualPage) {
   const ToolRun r = test::run_tool(std::string(TNVCTL_EXE) + " run --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* section : {"G-CODE SUBSET", "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override"})
+  for (const char* section : {"G-CODE", "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
+                              "--tool-table", "--var-file", "--subroutine-path"})
     EXPECT_NE(r.out.find(section), std::string::npos) << section;
 }
 

@@ -3,14 +3,19 @@
 // and .var parameters. Invariants: a refused program returns no call and
 // names a line within the text (or 1 for the whole program) and a column
 // >= 1; an accepted one starts with the start-up calls, ends (M2,
-// M30 or '%') and prints no call with a non-finite number; run from a line
-// the input picks, it is refused on that line or ends as the full run.
+// M30 or '%') and prints no call with a non-finite number, in its text or
+// its structured form; this XY table's segments of it (canon_segments.hpp)
+// are either refused with a message and none returned, or one geometry per
+// segment; run from a line the input picks, it is refused on that line or
+// ends as the full run.
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "tests/fuzz/fuzz_entries.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
+#include "tools/gcode/canon_segments.hpp"
 
 namespace tnv::fuzz {
 
@@ -76,6 +81,16 @@ std::string gcode_canon(const std::uint8_t* data, std::size_t size) {
     if (c.text.find("nan") != std::string::npos || c.text.find("inf") != std::string::npos)
       return "a call with a non-finite number: " + c.text;
   }
+  for (const gcode::CanonCall& c : r.calls) {
+    const gcode::CanonMotion& m = c.motion;
+    bool finite = std::isfinite(m.value);
+    for (std::size_t a = 0; a < 3; ++a) finite = finite && std::isfinite(m.end_mm[a]) && std::isfinite(m.centre_mm[a]);
+    if (!finite) return "a call with a non-finite number in its structured form: " + c.text;
+  }
+  const gcode::GcodeResult machine = gcode::canon_segments(r, setup.start_machine_mm, gcode::GcodeOptions{});
+  if (machine.error && (machine.error->message.empty() || !machine.program.segments.empty()))
+    return "a refusal of the segments without a message, or with segments";
+  if (machine.program.segments.size() != machine.program.geometry.size()) return "a segment without its geometry";
   return run_from_a_line(text, r.calls, lines_of(text));
 }
 

@@ -60,6 +60,36 @@ TEST(PathCli, AProgramErrorNamesLineAndColumnAndRunsNothing) {
   std::filesystem::remove(file);
 }
 
+// The dialect with a tool table and a parameter file: G55's offset from
+// the .var file, tool 4 from the .tbl, spindle and coolant counted and not
+// sent; the report has lines run, segments, tool changes and the
+// programmed cycle time.
+TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCycleTime) {
+  const std::string tbl = temp_program("tools", "T4 P4 Z20 D3\n");
+  const std::string var = temp_program("offsets", "5241 1\n5242 2\n");  // G55 at X1 Y2
+  const std::string file = temp_program(
+      "dialect", "G55\nT4 M6\nM4 S500 M7\nG0 X0 Y0\n#1 = 0\no1 while [#1 LT 2]\n  G91 G1 X4 F600\n  G90\n"
+                 "  #1 = [#1 + 1]\no1 endwhile\nG4 P0.1\nM2\n");
+  const CliRun r = run_tnv_hil("path " + file + " --tool-table " + tbl + " --var-file " + var + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["tool_changes"], 1);
+  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["coolant_starts_not_sent"], 1);
+  // Five lines, two passes of the loop's five lines, the while line once more (false), G4 and M2.
+  EXPECT_EQ(j["lines_run"], 5 + 2 * 5 + 1 + 2);
+  const int segments = j["segments"].get<int>();
+  // The rapid to G55's origin (none if the table stands there), two 4 mm feeds at 10 mm/s, the dwell.
+  EXPECT_TRUE(segments == 3 || segments == 4) << segments;
+  EXPECT_GE(j["programmed_time_s"].get<double>(), 8.0 / 10.0 + 0.1 - 1e-9);
+  EXPECT_EQ(j["cycle_time_s"].is_number(), true);
+  // Without the tool table, tool 4 is unknown: a program error, nothing run.
+  const CliRun no_tools = run_tnv_hil("path " + file + " --var-file " + var);
+  EXPECT_EQ(no_tools.exit_code, 2);
+  EXPECT_NE(no_tools.err.find("requested tool 4 not found"), std::string::npos) << no_tools.err;
+  for (const std::string& f : {tbl, var, file}) std::filesystem::remove(f);
+}
+
 TEST(PathCli, RefusesAMissingFileAndAPlotIntoAMissingDirectory) {
   EXPECT_EQ(run_tnv_hil("path /nonexistent/piece.ngc").exit_code, 2);
   const std::string file = temp_program("plotdir", kSmallPiece);

@@ -31,6 +31,7 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
   g.start_mm = start_mm;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
   g.limits = limits;
+  g.canon = o.canon;
   gcode::GcodeResult parsed = gcode::parse_gcode(text, g);
   if (parsed.error) throw ProgramInputError(gcode::to_string(*parsed.error));
   if (parsed.program.segments.empty()) throw ProgramInputError("the program has no motion and no dwell");

@@ -20,6 +20,7 @@
 
 #include "tools/can/node_client.hpp"
 #include "tools/can/program_stream.hpp"
+#include "tools/gcode/gcode_program.hpp"
 #include "tools/score/path_score.hpp"
 
 namespace tnv::can_host {
@@ -34,6 +35,7 @@ class ProgramInputError : public std::runtime_error {
 
 struct ProgramRunOptions {
   double rapid_feed_mm_s = 50.0;        // G0
+  gcode::CanonSetup canon{};            // tool table, parameters, subroutine path (gcode_program.hpp)
   std::optional<double> feed_override;  // 0..1.5
   int telemetry_ms = 1;                 // 1: sample every tick and score; 0: no score
   std::size_t window = 12;

@@ -141,15 +141,27 @@ void CanonMachine::print_queued(const Queued& q) {
   const int line = line_;
   line_ = q.line;
   switch (q.kind) {
-    case Queued::Kind::text: calls_.push_back({line_, q.text}); break;
-    case Queued::Kind::traverse: calls_.push_back({line_, "STRAIGHT_TRAVERSE(" + xyz(lathe_origin(q.end)) + ")"}); break;
-    case Queued::Kind::feed: calls_.push_back({line_, "STRAIGHT_FEED(" + xyz(lathe_origin(q.end)) + ")"}); break;
+    case Queued::Kind::text: calls_.push_back({line_, q.text, q.motion, q.file}); break;
+    case Queued::Kind::traverse: {
+      const Vec3 end = lathe_origin(q.end);
+      calls_.push_back({line_, "STRAIGHT_TRAVERSE(" + xyz(end) + ")", move_to(CanonMotion::Kind::traverse, end), q.file});
+      break;
+    }
+    case Queued::Kind::feed: {
+      const Vec3 end = lathe_origin(q.end);
+      calls_.push_back({line_, "STRAIGHT_FEED(" + xyz(end) + ")", move_to(CanonMotion::Kind::feed, end), q.file});
+      break;
+    }
     case Queued::Kind::arc: {
       const Vec3 end = lathe_origin(q.end);
       const Vec3 centre = lathe_origin(point(q.c1, q.c2, 0.0));
+      CanonMotion m = move_to(CanonMotion::Kind::arc, end);
+      m.centre_mm = program_to_machine(point(first(centre), second(centre), third(end)));
+      m.plane = plane_ / 10;
+      m.turn = q.turn;
       calls_.push_back({line_, "ARC_FEED(" + num(first(end)) + ", " + num(second(end)) + ", " + num(first(centre)) + ", " +
                                    num(second(centre)) + ", " + std::to_string(q.turn) + ", " + num(third(end)) +
-                                   ", 0.0000, 0.0000, 0.0000)"});
+                                   ", 0.0000, 0.0000, 0.0000)", m, q.file});
       break;
     }
   }
@@ -166,6 +178,7 @@ void CanonMachine::enqueue_line(int motion, double dx, double dy, const Vec3& en
   Queued q;
   q.kind = motion == 0 ? Queued::Kind::traverse : Queued::Kind::feed;
   q.line = line_;
+  q.file = file_;
   q.dx = dx;
   q.dy = dy;
   q.end = end;
@@ -176,6 +189,7 @@ void CanonMachine::enqueue_arc(double sweep, double e1, double e2, double c1, do
   Queued q;
   q.kind = Queued::Kind::arc;
   q.line = line_;
+  q.file = file_;
   q.end = point(e1, e2, e3);
   q.c1 = c1;
   q.c2 = c2;

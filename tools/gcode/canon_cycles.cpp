@@ -21,7 +21,7 @@ namespace tnv::gcode {
 void CanonMachine::cycle_dwell() {
   char buf[48];
   std::snprintf(buf, sizeof buf, "DWELL(%.4f)", cycle_p_);
-  emit(buf);
+  emit(buf, valued(CanonMotion::Kind::dwell, cycle_p_));
 }
 
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
@@ -106,11 +106,11 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       emit("DISABLE_SPEED_OVERRIDE(0)");
       move_feed({x, y, bottom}, column);
       emit("STOP_SPINDLE_TURNING(0)");
-      emit("START_SPINDLE_COUNTERCLOCKWISE(0)");
+      emit("START_SPINDLE_COUNTERCLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
       cycle_dwell();
       move_feed({x, y, clear}, column);
       emit("STOP_SPINDLE_TURNING(0)");
-      emit("START_SPINDLE_CLOCKWISE(0)");
+      emit("START_SPINDLE_CLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
       emit("ENABLE_FEED_OVERRIDE()");
       emit("ENABLE_SPEED_OVERRIDE(0)");
     } else if (motion == 850) {  // bore: in and out to R at feed, then up to the clearance
@@ -122,7 +122,7 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       cycle_dwell();
       emit("STOP_SPINDLE_TURNING(0)");
       move_traverse({x, y, clear});
-      emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)");
+      emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
     } else if (motion == 890) {  // bore: in at feed, dwell, out at feed
       move_feed({x, y, bottom}, column);
       cycle_dwell();

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -12,6 +13,7 @@
 #include "tools/gcode/ngc_error.hpp"
 #include "tools/gcode/ngc_program_flow.hpp"
 #include "tools/gcode/ngc_subroutine_files.hpp"
+#include "tools/gcode/program_file.hpp"
 
 namespace tnv::gcode {
 
@@ -65,10 +67,12 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       if (index < program_lines) {
         line_file.clear();
         line_number = static_cast<int>(index) + 1;
+        machine.set_file(0);
       } else {
         const SubroutineFiles::Origin& o = files.origins[index - program_lines];
         line_file = files.files[o.file];
         line_number = o.line;
+        machine.set_file(static_cast<std::uint32_t>(o.file) + 1);
       }
     };
     ProgramFlow flow(lines, setup.max_lines_run);
@@ -77,6 +81,8 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       check_start_line(*setup.from_line, program_lines, flow, line_number);
       passes_left = setup.from_line->pass;
     }
+    for (double v : setup.start_machine_mm)
+      if (!std::isfinite(v)) throw NgcError(1, "the start position must be numbers");
     machine.start();
     if (setup.from_line) machine.mute();
     while (!machine.ended()) {
@@ -85,6 +91,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       locate(*next);
       if (machine.muted() && line_file.empty() && line_number == setup.from_line->line && --passes_left == 0)
         machine.resume(*setup.from_line, line_number);
+      if (!machine.muted()) ++result.lines_run;
       const NgcLine& line = lines[*next];
       if (line.text.empty()) continue;
       if (setup.block_delete && line.text[0] == '/') continue;
@@ -106,8 +113,10 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
     }
     if (!machine.ended()) {
       locate(program_lines - 1);  // the program's own end, not a file's
-      machine.end_of_file(line_number);
+      if (setup.end_of_file_ends) machine.end_at_end_of_file(line_number);
+      else machine.end_of_file(line_number);
     }
+    result.files = files.files;
     if (machine.muted()) {
       const RunFromLine& from = *setup.from_line;
       const long runs = from.pass - passes_left;
@@ -120,6 +129,8 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
     }
   } catch (const NgcError& e) {
     result.calls.clear();
+    result.files.clear();
+    result.lines_run = 0;
     result.error = GcodeError{line_number, e.column(), e.what(), line_file};
   }
   return result;
@@ -139,12 +150,14 @@ CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setu
     r.error = GcodeError{0, 0, error};
     return r;
   }
-  // Subroutine files are looked for beside the program first.
   CanonSetup with_own_directory = setup;
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  with_own_directory.subroutine_path.insert(with_own_directory.subroutine_path.begin(),
-                                            dir.empty() ? std::string(".") : dir.string());
+  add_program_directory(with_own_directory, path);
   return interpret_canon(text, with_own_directory);
+}
+
+void add_program_directory(CanonSetup& setup, const std::string& program_path) {
+  const std::filesystem::path dir = std::filesystem::path(program_path).parent_path();
+  setup.subroutine_path.insert(setup.subroutine_path.begin(), dir.empty() ? std::string(".") : dir.string());
 }
 
 namespace {

@@ -6,20 +6,52 @@
 // spindle, coolant, tools and offsets even where this machine cannot move
 // them yet. An error names line and column, and no call is returned.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "tools/gcode/gcode_program.hpp"
+#include "tools/gcode/gcode_error.hpp"
 #include "tools/gcode/ngc_parameters.hpp"
 #include "tools/gcode/tool_table.hpp"
 
 namespace tnv::gcode {
 
+// What a call does, for a machine to run it (canon_segments.hpp): filled
+// where the call's text is made. Machine coordinates (offsets and tool
+// length applied) in millimetres whatever the program's units; the text
+// keeps rs274's form (program coordinates, program units).
+struct CanonMotion {
+  enum class Kind : std::uint8_t {
+    other,        // no motion and nothing a machine run counts (modes, offsets, comments, ...)
+    traverse,     // STRAIGHT_TRAVERSE: end_mm
+    feed,         // STRAIGHT_FEED: end_mm
+    arc,          // ARC_FEED: end_mm, centre_mm, plane, turn
+    probe,        // STRAIGHT_PROBE: end_mm
+    spline,       // NURBS_FEED (G5.1): end_mm
+    rigid_tap,    // RIGID_TAP (G33.1): end_mm, the bottom (the tap returns to its start)
+    dwell,        // DWELL: value = seconds
+    feed_rate,    // SET_FEED_RATE: value = mm per minute
+    tool_change,  // CHANGE_TOOL: value = the tool now in the spindle
+    spindle_on,   // START_SPINDLE_CLOCKWISE / _COUNTERCLOCKWISE
+    coolant_on,   // MIST_ON / FLOOD_ON
+    pause,        // PROGRAM_STOP (M0) / OPTIONAL_PROGRAM_STOP (M1)
+    end,          // PROGRAM_END (M2, M30) / FINISH (the closing %)
+  };
+  Kind kind = Kind::other;
+  std::array<double, 3> end_mm{};     // X Y Z
+  std::array<double, 3> centre_mm{};  // arc: X Y Z, the coordinate along the arc's axis that of its end
+  int plane = 17;                     // arc: 17 XY, 18 XZ, 19 YZ
+  int turn = 0;                       // arc: > 0 counterclockwise; |turn| - 1 full turns before the end
+  double value = 0.0;
+};
+
 struct CanonCall {
   int line = 0;      // source line (1-based); 0 for the start-up calls
   std::string text;  // e.g. STRAIGHT_FEED(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+  CanonMotion motion{};
+  std::uint32_t file = 0;  // 0: the program's line; k: a line of CanonResult::files[k - 1]
 };
 
 // Run from line N (docs/gcode.md "Run from line"): the lines before the
@@ -52,18 +84,29 @@ struct CanonSetup {
   // A loop that never ends is an error after this many lines run, not a hang.
   std::size_t max_lines_run = 20'000'000;
   std::optional<RunFromLine> from_line;  // unset: run the whole program
+  // Where the machine is when a full run starts (machine coordinates, mm).
+  std::array<double, 3> start_machine_mm{};
+  // A machine run ends at the end of the file as LinuxCNC's task does; rs274
+  // (and so the canon text compared with it) refuses a file with no M2, M30
+  // or closing %.
+  bool end_of_file_ends = false;
 };
 
 struct CanonResult {
   std::vector<CanonCall> calls;
+  std::vector<std::string> files;  // the subroutine files read, as CanonCall::file names them
+  std::size_t lines_run = 0;  // lines read and run (a loop's lines once per pass), from the start line
   std::optional<GcodeError> error;  // set: calls is empty
 };
 
 CanonResult interpret_canon(std::string_view text, const CanonSetup& setup = {});
 // The calls as text, one NAME(args) a line.
 std::string canon_text(const std::vector<CanonCall>& calls);
-// The file as a program (read_program_file), or an error at line 0.
+// The file as a program (read_program_file), or an error at line 0;
+// subroutine files are looked for beside it first (add_program_directory).
 CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setup = {});
+// Puts the program's own directory first on setup.subroutine_path.
+void add_program_directory(CanonSetup& setup, const std::string& program_path);
 // Loads a .tbl / .var file into `setup`; false with `error` ("<path>: line N: why").
 bool load_tool_table_file(const std::string& path, CanonSetup& setup, std::string& error);
 bool load_var_file(const std::string& path, CanonSetup& setup, std::string& error);

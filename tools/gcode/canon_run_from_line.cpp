@@ -56,7 +56,8 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   Vec3 clearance_machine = from.machine_position_mm;
   clearance_machine[2] = from.clearance_z_mm;
   const double travel_z = std::max({machine_to_program(clearance_machine)[2], here[2], start[2]});
-  emit("STRAIGHT_TRAVERSE(" + xyz({here[0], here[1], travel_z}) + ")");
+  emit("STRAIGHT_TRAVERSE(" + xyz({here[0], here[1], travel_z}) + ")",
+       move_to(CanonMotion::Kind::traverse, {here[0], here[1], travel_z}));
 
   // 2. At the clearance: the tool the line needs (a manual change: the
   // program pauses until the operator confirms), then the next one selected.
@@ -64,7 +65,7 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
     emit("SELECT_TOOL(" + std::to_string(tool_in_spindle_) + ")");
     emit("START_CHANGE()");
     emit("STOP_SPINDLE_TURNING(0)");
-    emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")");
+    emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")", valued(CanonMotion::Kind::tool_change, tool_in_spindle_));
   }
   if (selected_tool_ != tool_in_spindle_) emit("SELECT_TOOL(" + std::to_string(selected_tool_) + ")");
 
@@ -72,28 +73,32 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   // before anything moves on.
   emit("SET_SPINDLE_SPEED(0, " + four_decimals(speed_) + ")");
   if (spindle_ == 3 || spindle_ == 4) {
-    emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)");
+    emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)",
+         kind_only(CanonMotion::Kind::spindle_on));
     emit("WAIT_SPINDLE_AT_SPEED(0)");
   } else {
     emit("STOP_SPINDLE_TURNING(0)");
   }
-  emit(mist_ ? "MIST_ON()" : "MIST_OFF()");
-  emit(flood_ ? "FLOOD_ON()" : "FLOOD_OFF()");
+  emit(mist_ ? "MIST_ON()" : "MIST_OFF()", kind_only(mist_ ? CanonMotion::Kind::coolant_on : CanonMotion::Kind::other));
+  emit(flood_ ? "FLOOD_ON()" : "FLOOD_OFF()", kind_only(flood_ ? CanonMotion::Kind::coolant_on : CanonMotion::Kind::other));
   emit_control_mode();
   emit("SET_FEED_MODE(0, 0)");
-  emit("SET_FEED_RATE(" + four_decimals(feed_) + ")");
+  emit("SET_FEED_RATE(" + four_decimals(feed_) + ")", valued(CanonMotion::Kind::feed_rate, feed_ * unit_mm_));
 
   // 4. XY at the clearance, then down: at rapid to approach_mm above the
   // start, the rest at the feed rate in force. With none in force (no F
   // yet: every move before was a rapid; or a G94 since) all at rapid.
-  emit("STRAIGHT_TRAVERSE(" + xyz({start[0], start[1], travel_z}) + ")");
+  emit("STRAIGHT_TRAVERSE(" + xyz({start[0], start[1], travel_z}) + ")",
+       move_to(CanonMotion::Kind::traverse, {start[0], start[1], travel_z}));
   if (start[2] < travel_z) {
     const double above = start[2] + from.approach_mm;
     if (feed_ > 0.0 && from.approach_mm > 0.0) {
-      if (above < travel_z) emit("STRAIGHT_TRAVERSE(" + xyz({start[0], start[1], above}) + ")");
-      emit("STRAIGHT_FEED(" + xyz(start) + ")");
+      if (above < travel_z)
+        emit("STRAIGHT_TRAVERSE(" + xyz({start[0], start[1], above}) + ")",
+             move_to(CanonMotion::Kind::traverse, {start[0], start[1], above}));
+      emit("STRAIGHT_FEED(" + xyz(start) + ")", move_to(CanonMotion::Kind::feed, start));
     } else {
-      emit("STRAIGHT_TRAVERSE(" + xyz(start) + ")");
+      emit("STRAIGHT_TRAVERSE(" + xyz(start) + ")", move_to(CanonMotion::Kind::traverse, start));
     }
   }
 }

@@ -94,7 +94,7 @@ bool waits_behind_queued_moves(const std::string& text) {
 
 }  // namespace
 
-void CanonMachine::emit(const std::string& text) {
+void CanonMachine::emit(const std::string& text, const CanonMotion& motion) {
   if (text.rfind("STRAIGHT_", 0) == 0 || text.rfind("ARC_FEED(", 0) == 0 || text.rfind("NURBS_FEED(", 0) == 0 ||
       text.rfind("RIGID_TAP(", 0) == 0)
     tool_after_g40_machine_.reset();  // the tool moved on
@@ -102,11 +102,20 @@ void CanonMachine::emit(const std::string& text) {
   if (!queue_.empty() && waits_behind_queued_moves(text)) {
     Queued q;
     q.line = line_;
+    q.file = file_;
     q.text = text;
+    q.motion = motion;
     queue_.push_back(std::move(q));
     return;
   }
-  calls_.push_back({line_, text});
+  calls_.push_back({line_, text, motion, file_});
+}
+
+CanonMotion CanonMachine::move_to(CanonMotion::Kind kind, const Vec3& program_mm) const {
+  CanonMotion m;
+  m.kind = kind;
+  m.end_mm = program_to_machine(program_mm);
+  return m;
 }
 
 std::string CanonMachine::num(double mm) const { return fixed(mm / unit_mm_, 4); }
@@ -126,7 +135,7 @@ void CanonMachine::start() {
     g92_[static_cast<std::size_t>(a)] = params_.get(kG92Enabled, 1) != 0.0 ? params_.get(kG92Base + a, 1) : 0.0;
   }
   params_.set(kG5xSelected, origin_, 1);
-  pos_ = canon_pos_ = machine_to_program({0.0, 0.0, 0.0});
+  pos_ = canon_pos_ = machine_to_program(setup_.start_machine_mm);
   emit("USE_LENGTH_UNITS(CANON_UNITS_MM)");
   emit_g5x();
   emit_g92();
@@ -229,7 +238,7 @@ void CanonMachine::percent(int line, int column) {
     percent_started_ = true;
   } else if (percent_started_) {
     comp_flush_here();
-    emit("FINISH()");
+    emit("FINISH()", kind_only(CanonMotion::Kind::end));
     ended_ = true;
   } else {
     throw NgcError(column, "'%' after the program started (only as its first and last line)");
@@ -239,6 +248,11 @@ void CanonMachine::percent(int line, int column) {
 void CanonMachine::end_of_file(int line) {
   line_ = line;
   throw NgcError(1, "file ended with no percent sign or program end (M2, M30)");
+}
+
+void CanonMachine::end_at_end_of_file(int line) {
+  line_ = line;
+  comp_flush_here();
 }
 
 std::array<double, 2> CanonMachine::polar_xy(const NgcBlock& block, double x0, double y0) const {
@@ -275,13 +289,13 @@ CanonMachine::Vec3 CanonMachine::target(const NgcBlock& block, bool machine) con
 }
 
 void CanonMachine::move_traverse(const Vec3& to) {
-  emit("STRAIGHT_TRAVERSE(" + xyz(to) + ")");
+  emit("STRAIGHT_TRAVERSE(" + xyz(to) + ")", move_to(CanonMotion::Kind::traverse, to));
   pos_ = canon_pos_ = to;
 }
 
 void CanonMachine::move_feed(const Vec3& to, int column) {
   if (feed_ <= 0.0) throw NgcError(column, "cannot do G1 with zero feed rate (F)");
-  emit("STRAIGHT_FEED(" + xyz(to) + ")");
+  emit("STRAIGHT_FEED(" + xyz(to) + ")", move_to(CanonMotion::Kind::feed, to));
   pos_ = canon_pos_ = to;
 }
 
@@ -300,8 +314,15 @@ void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, i
     return;
   }
   const ArcFit fit = arc_fit(block, clockwise, pos_[i1], pos_[i2], end[i1], end[i2], column);
+  CanonMotion m = move_to(CanonMotion::Kind::arc, end);
+  Vec3 centre = end;
+  centre[i1] = fit.c1;
+  centre[i2] = fit.c2;
+  m.centre_mm = program_to_machine(centre);
+  m.plane = plane_ / 10;
+  m.turn = fit.turn;
   emit("ARC_FEED(" + num(end[i1]) + ", " + num(end[i2]) + ", " + num(fit.c1) + ", " + num(fit.c2) + ", " +
-       std::to_string(fit.turn) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)");
+       std::to_string(fit.turn) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)", m);
   pos_ = canon_pos_ = end;
 }
 
@@ -367,7 +388,7 @@ void CanonMachine::spline(const NgcBlock& block, const Vec3& to, int column) {
     throw NgcError(block.has('i') ? block.column('i') : block.has('j') ? block.column('j') : column,
                    "G5.1 needs both I and J (the control point)");
   if (feed_ <= 0.0) throw NgcError(column, "cannot do G5.1 with zero feed rate (F)");
-  emit("NURBS_FEED(3, ...)");
+  emit("NURBS_FEED(3, ...)", move_to(CanonMotion::Kind::spline, to));
   pos_ = to;
   canon_pos_[0] = canon_pos_[1] = 0.0;  // what rs274's canon is left at (a later M6 or probe starts there)
 }
@@ -385,7 +406,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
     throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
   if (muted_) muted_probe_line_ = line_;
   emit("TURN_PROBE_ON()");
-  emit("STRAIGHT_PROBE(" + xyz(to) + ")");
+  emit("STRAIGHT_PROBE(" + xyz(to) + ")", move_to(CanonMotion::Kind::probe, to));
   emit("TURN_PROBE_OFF()");
   for (int a = 0; a < 9; ++a)
     params_.set(kProbeResult + a, a < 3 ? to[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
@@ -410,7 +431,7 @@ void CanonMachine::rigid_tap(const NgcBlock& block, const Vec3& to, int column) 
   char buf[64];
   std::snprintf(buf, sizeof buf, "START_SPEED_FEED_SYNC(%f,0)", block.value('k'));
   emit(buf);
-  emit("RIGID_TAP(" + num(to[0]) + ", " + num(to[1]) + ", " + num(to[2]) + ")");
+  emit("RIGID_TAP(" + num(to[0]) + ", " + num(to[1]) + ", " + num(to[2]) + ")", move_to(CanonMotion::Kind::rigid_tap, to));
   emit("STOP_SPEED_FEED_SYNCH()");
 }
 
@@ -447,7 +468,7 @@ void CanonMachine::program_end(bool m30) {
   comp_first_ = true;
   emit("SET_FEED_MODE(0, 0)");
   feed_ = 0.0;
-  emit("SET_FEED_RATE(0.0000)");
+  emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
   spindle_ = 5;
   emit("STOP_SPINDLE_TURNING(0)");
   emit("SET_SPINDLE_MODE(0 0.0000)");
@@ -456,7 +477,7 @@ void CanonMachine::program_end(bool m30) {
   mist_ = flood_ = false;
   motion_ = 10;
   if (m30) emit("PALLET_SHUTTLE()");
-  emit("PROGRAM_END()");
+  emit("PROGRAM_END()", kind_only(CanonMotion::Kind::end));
   ended_ = true;
 }
 
@@ -529,12 +550,12 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     emit("COMMENT(\"interpreter: feed mode set to units per minute\")");
     emit("SET_FEED_MODE(0, 0)");
     feed_ = 0.0;
-    emit("SET_FEED_RATE(0.0000)");
+    emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
   }
   if (block.has('f')) {
     if (block.value('f') < 0.0) throw NgcError(block.column('f'), "negative feed rate F");
     feed_ = block.value('f');
-    emit("SET_FEED_RATE(" + fixed(feed_, 4) + ")");
+    emit("SET_FEED_RATE(" + fixed(feed_, 4) + ")", valued(CanonMotion::Kind::feed_rate, feed_ * unit_mm_));
   }
   if (block.has('s')) {
     if (block.value('s') < 0.0) throw NgcError(block.column('s'), "negative spindle speed S");
@@ -555,22 +576,23 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     emit("STOP_SPINDLE_TURNING(0)");
     spindle_ = 5;
     tool_in_spindle_ = selected_tool_;
-    emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")");
+    emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")", valued(CanonMotion::Kind::tool_change, tool_in_spindle_));
   }
   if (const NgcCode* m = m_by_group[7]) {
     spindle_ = m->code;
     emit(m->code == 3 ? "START_SPINDLE_CLOCKWISE(0)" : m->code == 4 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
-                                                                    : "STOP_SPINDLE_TURNING(0)");
+                                                                    : "STOP_SPINDLE_TURNING(0)",
+         kind_only(m->code == 5 ? CanonMotion::Kind::other : CanonMotion::Kind::spindle_on));
   }
   if (const NgcCode* m = m_by_group[8]) {
-    if (m->code == 7) { mist_ = true; emit("MIST_ON()"); }
-    if (m->code == 8) { flood_ = true; emit("FLOOD_ON()"); }
+    if (m->code == 7) { mist_ = true; emit("MIST_ON()", kind_only(CanonMotion::Kind::coolant_on)); }
+    if (m->code == 8) { flood_ = true; emit("FLOOD_ON()", kind_only(CanonMotion::Kind::coolant_on)); }
     if (m->code == 9) { mist_ = flood_ = false; emit("MIST_OFF()"); emit("FLOOD_OFF()"); }
   }
   if (non_modal == 40) {
     if (!block.has('p')) throw NgcError(g_by_group[0]->column, "G4 needs P (seconds)");
     if (block.value('p') < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
-    emit("DWELL(" + fixed(block.value('p'), 4) + ")");
+    emit("DWELL(" + fixed(block.value('p'), 4) + ")", valued(CanonMotion::Kind::dwell, block.value('p')));
   }
   if (const NgcCode* g = g_by_group[2]) {
     comp_refuse(comp_side_ != 0 && g->code != plane_, g->column, "change planes");
@@ -778,8 +800,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (const NgcCode* m = m_by_group[4]) {
     comp_column_ = m->column;
     comp_flush_here();
-    if (m->code == 0) emit("PROGRAM_STOP()");
-    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()");
+    if (m->code == 0) emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
+    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
     else program_end(m->code == 30);
   }
 }

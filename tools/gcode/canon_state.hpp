@@ -7,6 +7,7 @@
 // the program's units, as rs274 prints them.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,9 +25,14 @@ class CanonMachine : private NgcMachineValues {
   void start();                                  // the start-up calls
   // The source line about to be read: #<_line> while its words are read.
   void begin_line(int line) { source_line_ = line; }
+  // The file the next calls' line is in (CanonCall::file).
+  void set_file(std::uint32_t file) { file_ = file; }
   void execute(const NgcBlock& block, int line);  // throws NgcError
   void comments(const NgcBlock& block, int line);
   void end_of_file(int line);                    // throws unless ended
+  // CanonSetup::end_of_file_ends: the file ended without a program end;
+  // moves compensation still holds back are made.
+  void end_at_end_of_file(int line);
   // A '%' line: the first starts the program, the second ends it (FINISH()).
   void percent(int line, int column);
   bool ended() const { return ended_; }
@@ -47,7 +53,16 @@ class CanonMachine : private NgcMachineValues {
   // LinuxCNC's predefined parameters (canon_predefined.cpp).
   std::optional<double> predefined(const std::string& name) const override;
   double read_only_number(int number) const override;
-  void emit(const std::string& text);
+  void emit(const std::string& text, const CanonMotion& motion = {});
+  // A move's structured form: its end (program coordinates) in machine coordinates.
+  CanonMotion move_to(CanonMotion::Kind kind, const Vec3& program_mm) const;
+  static CanonMotion valued(CanonMotion::Kind kind, double value) {
+    CanonMotion m;
+    m.kind = kind;
+    m.value = value;
+    return m;
+  }
+  static CanonMotion kind_only(CanonMotion::Kind kind) { return valued(kind, 0.0); }
   std::string num(double mm) const;  // a length in program units, %.4f
   std::string xyz(const Vec3& program_mm) const;
   void apply_assignments(const NgcBlock& block);
@@ -116,7 +131,9 @@ class CanonMachine : private NgcMachineValues {
   struct Queued {
     enum class Kind { text, traverse, feed, arc } kind = Kind::text;
     int line = 0;
+    std::uint32_t file = 0;
     std::string text;          // Kind::text: the call as printed
+    CanonMotion motion{};      // Kind::text: the call's structured form
     double dx = 0.0, dy = 0.0;  // lines: the programmed direction
     Vec3 end{};                // program coordinates, mm (arcs: end1, end2, end3)
     double c1 = 0.0, c2 = 0.0;  // arcs: centre, mm
@@ -163,6 +180,7 @@ class CanonMachine : private NgcMachineValues {
   NgcParameters params_;
   int line_ = 0;            // the line the calls made now are tagged with
   int source_line_ = 0;      // the line being read and run (#<_line>)
+  std::uint32_t file_ = 0;   // the file line_ is in (CanonCall::file)
   bool ended_ = false;
   bool percent_started_ = false;
   bool started_ = false;  // a line with words or comments ran

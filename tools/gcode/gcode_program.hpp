@@ -1,11 +1,12 @@
 #pragma once
-// RS274/NGC subset reader for the motion queue (host side): G0 G1 G2 G3
-// (I/J and R forms) G4 G17 G20 G21 G90 G91, F, M2 M30, comments ( ) and ;,
-// line numbers N and modal state. Every segment is checked against the
-// firmware's limits exactly as the queue will check it, so a program that
-// parses is a program the queue accepts; an error names line and column and
-// no segment is returned.
-#include <cstdint>
+// A G-code program for this XY table's motion queue (host side): the
+// LinuxCNC dialect (canon_interpreter.hpp) run to its canonical calls, and
+// the calls made segments (canon_segments.hpp). Every segment is checked
+// against the firmware's limits exactly as the queue will check it, so a
+// program that parses is a program the queue accepts; an error names the
+// line (and the column where the interpreter found it) and no segment is
+// returned.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,30 +15,36 @@
 #include "firmware/motion/motion_limits.hpp"
 #include "firmware/motion/segment.hpp"
 #include "firmware/motion/segment_geometry.hpp"
+#include "tools/gcode/canon_interpreter.hpp"
+#include "tools/gcode/gcode_error.hpp"
+#include "tools/gcode/program_file.hpp"
 
 namespace tnv::gcode {
 
 using fw::motion::PlanePoint;
 
 struct GcodeOptions {
-  PlanePoint start_mm{0.0, 0.0};   // where the table is when the program starts
+  PlanePoint start_mm{0.0, 0.0};   // where the table is when the program starts (machine X Y)
   double rapid_feed_mm_s = 50.0;   // G0 path speed
   fw::motion::MotionLimits limits{};
-};
-
-struct GcodeError {
-  int line = 0;    // 1-based
-  int column = 0;  // 1-based, the word (or character) at fault
-  std::string message;
-  std::string file{};  // set: the line is in this subroutine file, not in the program
+  // The tool table, parameters (.var: work offsets, G28/G30, G92) and
+  // subroutine path. A program ends at the end of its file too here (no
+  // M2 needed, as LinuxCNC's task runs it); Z starts at start_machine_mm[2].
+  CanonSetup canon{};
 };
 
 struct GcodeProgram {
   std::vector<fw::motion::Segment> segments;           // tag = source line
   std::vector<fw::motion::SegmentGeometry> geometry;   // one per segment, with its start point
-  bool ended = false;                                  // M2 or M30 seen
+  bool ended = false;                                  // M2, M30 or the closing % seen
+  std::size_t lines_run = 0;                           // CanonResult::lines_run
+  std::size_t tool_changes = 0;                        // M6 (its length may apply to Z while Z does not move)
+  // Calls this machine has nothing to do with (no spindle, no coolant):
+  // counted and reported, not sent.
+  std::size_t spindle_starts = 0;  // M3, M4
+  std::size_t coolant_starts = 0;  // M7, M8
   double programmed_length_mm() const noexcept;
-  // Sum of length / feed over the feed moves (G1 G2 G3); dwells add their time.
+  // Sum of length / feed over the moves (rapids at the rapid feed); dwells add their time.
   double programmed_time_s() const noexcept;
 };
 
@@ -46,17 +53,13 @@ struct GcodeResult {
   std::optional<GcodeError> error;  // set: program is empty
 };
 
-GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options = {});
-// A program file: a regular file of at most kMaxProgramBytes (a FIFO,
-// device or directory is refused, never waited on). False with `error`
-// set ("<path>: <why>").
-// 64 MiB: a CAM post's 3-D surfacing program runs to millions of lines (a
-// million moves is about 30 MB). The whole program and its calls are held
-// in memory, about 16 times the file's size for `tnvctl gcode canon`.
-inline constexpr std::size_t kMaxProgramBytes = std::size_t{64} << 20;
-bool read_program_file(const std::string& path, std::string& text, std::string& error);
-GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options = {});
+// "L lines run, S segments, T tool changes, programmed cycle time X s",
+// and what was not sent, if anything: the report line of tnvctl run and tnv-hil path.
+std::string summary_text(const GcodeProgram& program);
 
-std::string to_string(const GcodeError& error);
+GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options = {});
+// The file (read_program_file) as a program; subroutine files are looked
+// for beside it first.
+GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options = {});
 
 }  // namespace tnv::gcode

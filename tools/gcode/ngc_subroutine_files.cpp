@@ -4,9 +4,9 @@
 #include <optional>
 #include <set>
 
-#include "tools/gcode/gcode_program.hpp"
 #include "tools/gcode/ngc_block.hpp"
 #include "tools/gcode/ngc_error.hpp"
+#include "tools/gcode/program_file.hpp"
 
 namespace tnv::gcode {
 

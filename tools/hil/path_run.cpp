@@ -39,6 +39,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   parse.start_mm = {task.standing_mm(hal::kPlaneFirst), task.standing_mm(hal::kPlaneSecond)};
   parse.rapid_feed_mm_s = options.rapid_feed_mm_s;
   parse.limits = task.motion().limits();
+  parse.canon = options.canon;
   const gcode::GcodeResult parsed = gcode::parse_gcode(gcode_text, parse);
   if (parsed.error) {
     result.error = gcode::to_string(*parsed.error);

@@ -12,12 +12,14 @@
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "tools/gcode/gcode_program.hpp"
 #include "tools/score/path_score.hpp"
 
 namespace tnv::hil {
 
 struct PathRunOptions {
   double rapid_feed_mm_s = 50.0;  // G0 path speed
+  gcode::CanonSetup canon{};      // tool table, parameters, subroutine path (gcode_program.hpp)
   bool keep_samples = false;      // every tick's reference and position (plots, CSV)
 };
 

@@ -13,4 +13,14 @@ nlohmann::json path_score_json(const PathScore& s) {
           {"feed_ratio", s.feed_ratio},                     {"cycle_time_s", s.cycle_time_s}};
 }
 
+nlohmann::json program_summary_json(const gcode::GcodeProgram& p) {
+  return {{"lines_run", p.lines_run},
+          {"segments", p.segments.size()},
+          {"tool_changes", p.tool_changes},
+          {"programmed_time_s", p.programmed_time_s()},
+          {"programmed_length_mm", p.programmed_length_mm()},
+          {"spindle_starts_not_sent", p.spindle_starts},
+          {"coolant_starts_not_sent", p.coolant_starts}};
+}
+
 }  // namespace tnv::hil

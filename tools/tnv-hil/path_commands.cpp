@@ -7,13 +7,15 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "tools/cli/gcode_setup_options.hpp"
 #include "tools/cli/output_path.hpp"
+#include "tools/cli/run_plotter.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/hil/best_circle.hpp"
-#include "tools/cli/run_plotter.hpp"
 #include "tools/hil/path_csv.hpp"
 #include "tools/hil/path_run.hpp"
 #include "tools/hil/report.hpp"
+#include "tools/score/score_json.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -21,9 +23,9 @@ namespace tnv::cli {
 
 namespace {
 
-
 struct PathOptions {
   std::string file;
+  GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
   std::string controller = "rdvsc";
   std::string scenario = "no-cut";
   int seeds = 1;
@@ -55,6 +57,11 @@ int run_path_command(const PathOptions& o) {
     config = d.config;
   }
   hil::PathRunOptions options;
+  if (!load_gcode_setup(o.files, options.canon, error)) {
+    std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
+    return kExitBadInput;
+  }
+  gcode::add_program_directory(options.canon, o.file);
   options.rapid_feed_mm_s = o.rapid_feed_mm_s;
   options.keep_samples = !o.plot.empty() || !o.csv.empty();
   Progress progress("path");
@@ -69,6 +76,7 @@ int run_path_command(const PathOptions& o) {
   }
   if (o.json) {
     nlohmann::json j = hil::path_score_json(r.mean);
+    j.update(hil::program_summary_json(seed0.program));
     j["file"] = o.file;
     j["controller"] = o.controller;
     j["scenario"] = scenario->name;
@@ -95,6 +103,7 @@ int run_path_command(const PathOptions& o) {
                 m.jerk_ratio_max);
     std::printf("feed ratio %.4f  cycle time %.3f s  underruns %llu\n", m.feed_ratio, m.cycle_time_s,
                 static_cast<unsigned long long>(r.underruns));
+    std::printf("program: %s\n", gcode::summary_text(seed0.program).c_str());
   }
   bool ok = r.error.empty();
   if (!ok) std::fprintf(stderr, "tnv-hil path: %s\n", r.error.c_str());
@@ -121,8 +130,10 @@ int run_path_command(const PathOptions& o) {
 void add_path_commands(CLI::App& app, Runner& run) {
   auto o = std::make_shared<PathOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "path", "run a G-code program (RS274/NGC subset) on the emulated table and score it against its geometry");
+      "path", "run a G-code program (LinuxCNC's RS274/NGC dialect, X and Y) on the emulated table and score it against "
+              "its geometry");
   cmd->add_option("file", o->file, "the program (.ngc)")->required();
+  add_gcode_setup_options(*cmd, o->files);
   cmd->add_option("--controller", o->controller, "pid | dvsc | rdvsc")
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/cli/gcode_setup_options.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -14,9 +15,7 @@ namespace {
 
 struct CanonOptions {
   std::string program;
-  std::string tool_table;
-  std::string var_file;
-  std::vector<std::string> subroutine_path;
+  cli::GcodeSetupOptions files;
   int from_line = 0;  // 0: the whole program
   gcode::RunFromLine run_from;
   std::vector<double> machine_position;  // X Y Z, or empty
@@ -25,9 +24,7 @@ struct CanonOptions {
 gcode::CanonSetup load_setup(const CanonOptions& o) {
   gcode::CanonSetup setup;
   std::string error;
-  if (!o.tool_table.empty() && !gcode::load_tool_table_file(o.tool_table, setup, error)) throw BadInput(error);
-  if (!o.var_file.empty() && !gcode::load_var_file(o.var_file, setup, error)) throw BadInput(error);
-  setup.subroutine_path = o.subroutine_path;
+  if (!cli::load_gcode_setup(o.files, setup, error)) throw BadInput(error);
   if (o.from_line != 0) {
     setup.from_line = o.run_from;
     setup.from_line->line = o.from_line;
@@ -63,13 +60,7 @@ void add_gcode_commands(CLI::App& app, ActionSlot& slot) {
   CLI::App* canon = gcode->add_subcommand(
       "canon", "print a program's canonical machine calls, one per line, as LinuxCNC's rs274 -g prints them");
   canon->add_option("FILE", o->program, "the program (.ngc)")->required();
-  canon->add_option("--tool-table", o->tool_table, "a LinuxCNC tool table (.tbl), lengths in millimetres");
-  canon->add_option("--var-file", o->var_file, "a LinuxCNC parameter file (.var): work offsets, G28/G30, G92");
-  canon->add_option("--subroutine-path", o->subroutine_path,
-                    "a directory where o<name> call finds name.ngc, after the program's own directory (repeatable)")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::ExistingDirectory);
+  cli::add_gcode_setup_options(*canon, o->files);
   CLI::Option* from_line = canon->add_option("--from-line", o->from_line,
                     "run from this line (1-based): the lines before run silently, the modal state is made again and "
                     "the tool approaches the start (docs/gcode.md \"Run from line\")")

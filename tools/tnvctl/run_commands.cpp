@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "tools/can/program_run.hpp"
+#include "tools/cli/gcode_setup_options.hpp"
 #include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -26,6 +27,7 @@ extern "C" void on_run_interrupt(int) { g_run_interrupted = true; }
 
 struct RunOptions {
   std::string file;
+  cli::GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
   std::optional<double> feed_override;
   double rapid_feed_mm_s = 50.0;
   bool no_score = false;
@@ -39,6 +41,16 @@ std::string read_file(const std::string& path) {
   return text;
 }
 
+// The tool table, parameters and subroutine path the program runs with;
+// subroutine files are looked for beside the program first.
+gcode::CanonSetup run_setup(const RunOptions& o) {
+  gcode::CanonSetup setup;
+  std::string error;
+  if (!cli::load_gcode_setup(o.files, setup, error)) throw BadInput(error);
+  gcode::add_program_directory(setup, o.file);
+  return setup;
+}
+
 // Before anything is sent: the options, and the program's syntax. The limits
 // here are wide open (the node's own come with the run), so only what is
 // wrong from any start point and on any table is reported now.
@@ -48,6 +60,7 @@ void check_run(const RunOptions& o) {
   if (!(o.rapid_feed_mm_s > 0.0 && o.rapid_feed_mm_s <= 655.35)) throw BadInput("--rapid-feed must be in (0, 655.35] mm/s");
   gcode::GcodeOptions g;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
+  g.canon = run_setup(o);
   for (fw::motion::AxisLimits& a : g.limits.axis) {
     a.speed_mm_s = 1e9;
     a.position_min_mm = -1e9;
@@ -114,6 +127,7 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   can_host::NodeClient& client = session.client();
   can_host::ProgramRunOptions ro;
   ro.rapid_feed_mm_s = o.rapid_feed_mm_s;
+  ro.canon = run_setup(o);
   ro.feed_override = o.feed_override;
   ro.telemetry_ms = o.no_score ? 0 : 1;
   ro.window = static_cast<std::size_t>(o.window);
@@ -137,6 +151,8 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   printer.end();
 
   const can_host::StreamResult& st = r.stream;
+  report.line(o.file + ": " + gcode::summary_text(r.program));
+  report.data.update(hil::program_summary_json(r.program));
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "%s: %zu elements (%zu on the wire) from (%.4f, %.4f) mm: %zu accepted, streamed at %.0f elements/s "
@@ -177,17 +193,22 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
 constexpr const char* kRunHelp =
     "Stream an RS274/NGC program to the node and score the run.\n\n"
     "WHAT IT DOES\n"
-    "  1. Parses FILE (nothing is sent if it does not parse: the error names line and column).\n"
+    "  1. Parses FILE (nothing is sent if it does not parse: the error names the line, and the column\n"
+    "     where the interpreter found it).\n"
     "  2. Reads the node's planner limits (x/y.path.*, path.tolerance_mm, soft travel limits) and where the table\n"
     "     stands, and parses FILE again from there with those limits.\n"
     "  3. Takes command ownership, sets tlm.position_ms and tlm.following_ms to 1 (restored at the end), enables\n"
     "     the servo if it is off, and streams the program as SEGMENT / SEGMENT_TAIL frames with flow control\n"
     "     (never more elements on their way than the node's motion queue has free slots).\n"
     "  4. Ends the program, waits for the node to run it to its end, and prints the score.\n\n"
-    "G-CODE SUBSET\n"
-    "  G0 G1 G2 G3 (I/J or R; R < 0 for more than 180 degrees) G4 P<seconds> G17 G20 G21 G90 G91, F (units per\n"
-    "  minute), M2 M30, comments ( ) and ;, N line numbers, % delimiters, modal state. X and Y only; any other\n"
-    "  word or code is refused by name (unsupported word Z, unsupported G-code G18, unsupported M-code M3).\n\n"
+    "G-CODE\n"
+    "  LinuxCNC's RS274/NGC dialect, as `tnvctl gcode canon` reads it (docs/gcode.md): work offsets, tools,\n"
+    "  parameters, O-word subroutines and flow, cutter compensation. --tool-table, --var-file and\n"
+    "  --subroutine-path as for `tnvctl gcode canon`. This table has X and Y only: a move that changes machine Z\n"
+    "  (a Z word, where G43's tool length counts; a canned cycle), an arc outside G17, a probe move, a G5.1 spline\n"
+    "  and M0/M1 are refused with their line. M6 counts as a tool change; spindle (M3/M4) and coolant (M7/M8)\n"
+    "  are counted and not sent. The program ends at M2, M30, the closing % or the end of the file.\n"
+    "  Before the run: lines run, segments, tool changes and the programmed cycle time.\n\n"
     "PROGRESS\n"
     "  On stderr: the G-code line being run, the share of the program's length done, the element and the\n"
     "  underruns (the queue ran dry: the table waits at rest on the path and goes on when elements arrive).\n\n"
@@ -217,6 +238,7 @@ void add_run_commands(CLI::App& app, ActionSlot& slot) {
   CLI::App* cmd = app.add_subcommand("run", "stream a G-code program (FILE.ngc) to the node, show progress, score it");
   cmd->footer(kRunHelp);
   cmd->add_option("file", o->file, "RS274/NGC program")->required();
+  cli::add_gcode_setup_options(*cmd, o->files);
   cmd->add_option("--feed-override", o->feed_override, "path speed ratio 0..1.5, applied once the program runs");
   cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")->capture_default_str();
   cmd->add_flag("--no-score", o->no_score, "leave telemetry as it is and print no score");

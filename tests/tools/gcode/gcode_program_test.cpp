@@ -63,11 +63,13 @@ TEST(GcodeProgram, LinesArcsDwellAndModalStateBecomeSegments) {
 }
 
 TEST(GcodeProgram, InchesScaleLengthsAndFeed) {
-  const GcodeProgram p = parse_ok("G20 G1 X1 F60\nG21 X50.8\n");
+  // F is read before G20 on its own line (LinuxCNC's order), so G20 goes first.
+  const GcodeProgram p = parse_ok("G20\nG1 X1 F60\nG21 X50.8\n");
   ASSERT_EQ(p.segments.size(), 2u);
   EXPECT_DOUBLE_EQ(p.segments[0].end_mm[0], 25.4);
   EXPECT_DOUBLE_EQ(p.segments[0].feed_mm_s, 25.4);
   EXPECT_DOUBLE_EQ(p.segments[1].end_mm[0], 50.8);
+  EXPECT_DOUBLE_EQ(p.segments[1].feed_mm_s, 25.4) << "the feed stays what it was set to";
 }
 
 TEST(GcodeProgram, NegativeRPicksTheArcOverHalfACircle) {
@@ -79,39 +81,44 @@ TEST(GcodeProgram, NegativeRPicksTheArcOverHalfACircle) {
 TEST(GcodeProgram, ErrorsNameLineAndColumnAndUnsupportedWordsByName) {
   GcodeError e = parse_error("G1 X1 F100\nG1 X2 Z5\n");
   EXPECT_EQ(e.line, 2);
-  EXPECT_EQ(e.column, 7);
-  EXPECT_NE(e.message.find("unsupported word Z"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("X and Y only"), std::string::npos) << e.message;
 
-  e = parse_error("G18\n");
+  e = parse_error("G93\n");
   EXPECT_EQ(e.column, 1);
-  EXPECT_NE(e.message.find("G18"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("G93"), std::string::npos) << e.message;
 
-  e = parse_error("G1 X1 F100\n  M3\n");
+  e = parse_error("G1 X1 F100\n  M62 P1\n");
   EXPECT_EQ(e.line, 2);
   EXPECT_EQ(e.column, 3);
-  EXPECT_NE(e.message.find("M3"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("M62"), std::string::npos) << e.message;
 
   e = parse_error("G1 X1 F100 (open comment\n");
   EXPECT_NE(e.message.find("comment"), std::string::npos);
   EXPECT_EQ(e.column, 12);
 
   e = parse_error("X10\n");
-  EXPECT_NE(e.message.find("motion code"), std::string::npos);
+  EXPECT_NE(e.message.find("without a G-code that uses them"), std::string::npos) << e.message;
   e = parse_error("G1 X10\n");
   EXPECT_NE(e.message.find("feed"), std::string::npos);
   e = parse_error("G1 X1 X2 F10\n");
   EXPECT_NE(e.message.find("twice"), std::string::npos);
   e = parse_error("G1 X F10\n");
-  EXPECT_NE(e.message.find("needs a number"), std::string::npos);
+  EXPECT_EQ(e.column, 6) << e.message;
   e = parse_error("G1 X10 F60\nG2 X21 Y0 I5 J1\n");  // end radius differs from start radius
   EXPECT_EQ(e.line, 2);
-  EXPECT_NE(e.message.find("arc_radius_mismatch"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("radius to the end of the arc differs"), std::string::npos) << e.message;
   e = parse_error("G1 X300 F60\n");
   EXPECT_NE(e.message.find("outside_workspace"), std::string::npos) << e.message;
   e = parse_error("G1 X10 F60\nG3 X40 Y0 R5\n");
   EXPECT_NE(e.message.find("R too small"), std::string::npos) << e.message;
-  e = parse_error("G1 X10 F60\nM2\nG1 X20\n");
-  EXPECT_EQ(e.line, 3);
+}
+
+// As in LinuxCNC, nothing after M2 is read.
+TEST(GcodeProgram, LinesAfterTheProgramEndAreNotRun) {
+  const GcodeProgram p = parse_ok("G1 X10 F60\nM2\nG1 X20\n");
+  EXPECT_TRUE(p.ended);
+  ASSERT_EQ(p.segments.size(), 1u);
+  EXPECT_EQ(p.lines_run, 2u);
 }
 
 TEST(GcodeProgram, TheRepositoryTestPiecesParse) {

@@ -1,0 +1,199 @@
+// The interpreter's calls in structured form and their conversion to this
+// XY table's segments (canon_segments.hpp).
+#include "tools/gcode/canon_segments.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <tuple>
+
+#include "tools/gcode/gcode_program.hpp"
+
+namespace tnv::gcode {
+namespace {
+
+using fw::motion::SegmentKind;
+using Kind = CanonMotion::Kind;
+
+// G54 at X10 Y5 (machine coordinates), tool 1 of length 25 mm.
+GcodeOptions offsets_and_tools() {
+  GcodeOptions o;
+  std::string error;
+  EXPECT_TRUE(o.canon.parameters.load_var_text("5221 10\n5222 5\n", error)) << error;
+  EXPECT_TRUE(o.canon.tools.load_text("T1 P1 Z25 D6\n", error)) << error;
+  return o;
+}
+
+const CanonCall& first_of(const CanonResult& r, Kind kind) {
+  for (const CanonCall& c : r.calls)
+    if (c.motion.kind == kind) return c;
+  ADD_FAILURE() << "no call of that kind";
+  return r.calls.front();
+}
+
+TEST(CanonMotion, MovesAreInMachineMillimetresWhileTheTextStaysInProgramUnits) {
+  CanonSetup setup = offsets_and_tools().canon;
+  const CanonResult r = interpret_canon("G20\nG0 X1 Y2\nF10\nG2 X2 Y1 I1 J0\nG4 P1.5\nT1 M6\nM2\n", setup);
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  const CanonCall& rapid = first_of(r, Kind::traverse);
+  EXPECT_EQ(rapid.text, "STRAIGHT_TRAVERSE(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
+  EXPECT_EQ(rapid.line, 2);
+  EXPECT_NEAR(rapid.motion.end_mm[0], 10.0 + 25.4, 1e-9);
+  EXPECT_NEAR(rapid.motion.end_mm[1], 5.0 + 50.8, 1e-9);
+  EXPECT_NEAR(first_of(r, Kind::feed_rate).motion.value, 254.0, 1e-9) << "F10 in G20: inches per minute";
+  const CanonMotion& arc = first_of(r, Kind::arc).motion;
+  EXPECT_EQ(arc.plane, 17);
+  EXPECT_EQ(arc.turn, -1) << "G2: clockwise";
+  EXPECT_NEAR(arc.centre_mm[0], 10.0 + 50.8, 1e-9);
+  EXPECT_NEAR(arc.centre_mm[1], 5.0 + 50.8, 1e-9);
+  EXPECT_NEAR(arc.end_mm[0], 10.0 + 50.8, 1e-9);
+  EXPECT_NEAR(arc.end_mm[1], 5.0 + 25.4, 1e-9);
+  EXPECT_DOUBLE_EQ(first_of(r, Kind::dwell).motion.value, 1.5) << "seconds, whatever the units";
+  EXPECT_DOUBLE_EQ(first_of(r, Kind::tool_change).motion.value, 1.0);
+  EXPECT_EQ(r.calls.back().motion.kind, Kind::end);
+}
+
+// G43 shifts program Z by the tool's length: a move without Z stays at the
+// machine Z it is at, a move to Z0 goes to the tool's length above it.
+TEST(CanonMotion, TheToolLengthOffsetIsInMachineZ) {
+  const CanonResult r = interpret_canon("T1 M6\nG43\nG0 X0\nG0 Z0\nM2\n", offsets_and_tools().canon);
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  const CanonCall& rapid = first_of(r, Kind::traverse);
+  EXPECT_EQ(rapid.text, "STRAIGHT_TRAVERSE(0.0000, -5.0000, -25.0000, 0.0000, 0.0000, 0.0000)");
+  EXPECT_NEAR(rapid.motion.end_mm[0], 10.0, 1e-9);
+  EXPECT_NEAR(rapid.motion.end_mm[1], 0.0, 1e-9);
+  EXPECT_NEAR(rapid.motion.end_mm[2], 0.0, 1e-9) << "machine Z stays";
+  const CanonCall& down = r.calls[static_cast<std::size_t>(&rapid - r.calls.data()) + 1];
+  EXPECT_EQ(down.text, "STRAIGHT_TRAVERSE(0.0000, -5.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
+  EXPECT_NEAR(down.motion.end_mm[2], 25.0, 1e-9) << "program Z0 is the tool's length from machine Z0";
+}
+
+TEST(CanonSegments, ADialectProgramWithOffsetsASubroutineAnArcAndADwell) {
+  GcodeOptions o = offsets_and_tools();
+  o.start_mm = {10.0, 5.0};
+  const GcodeResult r = parse_gcode(
+      "o<square> sub\n"                // 1
+      "  G91 G1 X#1 F600\n"             // 2
+      "  Y#1\n"                         // 3
+      "  G90\n"                         // 4
+      "o<square> endsub\n"              // 5
+      "T1 M6 M3 M8\n"                   // 6
+      "G0 X0 Y0\n"                      // 7
+      "o<square> call [4]\n"            // 8
+      "G2 X8 Y0 I0 J-4\n"               // 9: from (4, 4) about (4, 0), a quarter circle
+      "G4 P0.5\n"                       // 10
+      "G10 L2 P1 X20\n"                 // 11
+      "G0 X0\n"                         // 12
+      "M30\n",
+      o);
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  const GcodeProgram& p = r.program;
+  ASSERT_EQ(p.segments.size(), 5u);
+  EXPECT_EQ(p.segments[0].end_mm, (PlanePoint{14.0, 5.0})) << "G0 X0 Y0 was the table's start: no segment";
+  EXPECT_EQ(p.segments[0].tag, 2u) << "the subroutine's line";
+  EXPECT_DOUBLE_EQ(p.segments[0].feed_mm_s, 10.0);
+  EXPECT_EQ(p.segments[1].end_mm, (PlanePoint{14.0, 9.0}));
+  EXPECT_EQ(p.segments[2].kind, SegmentKind::arc_cw);
+  EXPECT_EQ(p.segments[2].centre_mm, (PlanePoint{14.0, 5.0}));
+  EXPECT_EQ(p.segments[2].end_mm, (PlanePoint{18.0, 5.0}));
+  EXPECT_EQ(p.segments[2].tag, 9u);
+  EXPECT_EQ(p.segments[3].kind, SegmentKind::dwell);
+  EXPECT_DOUBLE_EQ(p.segments[3].dwell_s, 0.5);
+  EXPECT_EQ(p.segments[4].end_mm, (PlanePoint{20.0, 5.0})) << "G10 L2 moved G54's X to 20";
+  EXPECT_DOUBLE_EQ(p.segments[4].feed_mm_s, o.rapid_feed_mm_s);
+  EXPECT_TRUE(p.ended);
+  EXPECT_EQ(p.tool_changes, 1u);
+  EXPECT_EQ(p.spindle_starts, 1u);
+  EXPECT_EQ(p.coolant_starts, 1u);
+  // The definition is read once where it stands (and skipped), its other four lines run at the call.
+  EXPECT_EQ(p.lines_run, 13u);
+  const double arc_mm = 2.0 * std::numbers::pi;
+  EXPECT_NEAR(p.programmed_length_mm(), 4.0 + 4.0 + arc_mm + 2.0, 1e-9);
+  EXPECT_NEAR(p.programmed_time_s(), (8.0 + arc_mm) / 10.0 + 0.5 + 2.0 / o.rapid_feed_mm_s, 1e-9);
+}
+
+TEST(CanonSegments, AZMoveIsRefusedWithItsLine) {
+  const GcodeResult r = parse_gcode("G0 X1\nG1 X2 Z-1 F100\nM2\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_TRUE(r.program.segments.empty());
+  EXPECT_EQ(r.error->line, 2);
+  EXPECT_NE(r.error->message.find("X and Y only"), std::string::npos) << r.error->message;
+  EXPECT_EQ(to_string(*r.error).rfind("line 2: ", 0), 0u) << to_string(*r.error);
+}
+
+TEST(CanonSegments, AToolChangeAndItsLengthAreFineWhileZDoesNotMove) {
+  const GcodeOptions o = offsets_and_tools();
+  const GcodeResult ok = parse_gcode("T1 M6\nG43\nG0 X1\nM2\n", o);
+  ASSERT_FALSE(ok.error) << to_string(*ok.error);
+  EXPECT_EQ(ok.program.tool_changes, 1u);
+  const GcodeResult r = parse_gcode("T1 M6\nG43\nG0 X1 Z0\nM2\n", o);
+  ASSERT_TRUE(r.error);
+  EXPECT_EQ(r.error->line, 3);
+  EXPECT_NE(r.error->message.find("machine Z from 0.0000 to 25.0000"), std::string::npos) << r.error->message;
+}
+
+TEST(CanonSegments, ARefusalInASubroutineFileNamesTheFile) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tnv_canon_segments_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "plunge.ngc") << "(a subroutine file)\no<plunge> sub\n  G1 Z-1 F100\no<plunge> endsub\nM2\n";
+  std::ofstream(dir / "main.ngc") << "G0 X1\no<plunge> call\nM2\n";
+  const GcodeResult r = parse_gcode_file((dir / "main.ngc").string());
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(r.error);
+  EXPECT_EQ(r.error->line, 3) << "the line in the file";
+  EXPECT_NE(r.error->file.find("plunge.ngc"), std::string::npos) << to_string(*r.error);
+}
+
+TEST(CanonSegments, ArcsOutsideG17AreRefusedNotThePlaneCode) {
+  EXPECT_FALSE(parse_gcode("G18\nG17 G1 X5 F60\nM2\n").error);
+  const GcodeResult r = parse_gcode("G1 X5 F60\nG18 G2 X10 I2.5 K0\nM2\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_EQ(r.error->line, 2);
+  EXPECT_NE(r.error->message.find("XZ plane (G18)"), std::string::npos) << r.error->message;
+  EXPECT_NE(r.error->message.find("X and Y only"), std::string::npos) << r.error->message;
+}
+
+TEST(CanonSegments, ArcTurnsPBecomeFullCirclesThenTheArc) {
+  const GcodeResult r = parse_gcode("G1 X10 F600\nG3 X0 Y10 I-10 P3\nM2\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.segments.size(), 4u);
+  EXPECT_NEAR(r.program.programmed_length_mm(), 10.0 + (2.0 + 0.25) * 2.0 * std::numbers::pi * 10.0, 1e-6);
+}
+
+TEST(CanonSegments, WhatTheTableCannotDoIsRefusedWithItsLine) {
+  for (const auto& [text, line, what] : {std::tuple{"G1 X1 F60\nM0\nM2\n", 2, "M0/M1"},
+                                         std::tuple{"F60\nG38.2 X5\nM2\n", 2, "probe"},
+                                         std::tuple{"F60\nG5.1 X5 I1 J1\nM2\n", 2, "spline"},
+                                         std::tuple{"G1 X300 F60\nM2\n", 1, "outside_workspace"}}) {
+    const GcodeResult r = parse_gcode(text);
+    ASSERT_TRUE(r.error) << text;
+    EXPECT_EQ(r.error->line, line) << text;
+    EXPECT_NE(r.error->message.find(what), std::string::npos) << r.error->message;
+    EXPECT_TRUE(r.program.segments.empty());
+  }
+}
+
+TEST(CanonSegments, AProgramMayEndAtTheEndOfItsFileWhileTheCanonTextStillRefusesThat) {
+  const GcodeResult r = parse_gcode("G1 X10 F600\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  EXPECT_EQ(r.program.segments.size(), 1u);
+  EXPECT_FALSE(r.program.ended);
+  EXPECT_TRUE(interpret_canon("G1 X10 F600\n").error) << "rs274 refuses it, and so does the text compared with it";
+}
+
+TEST(CanonSegments, TheInterpretersErrorIsTheResultsWithItsColumn) {
+  const GcodeResult r = parse_gcode("G1 X1 F100\nG1 X2 Q5\nM2\n");
+  ASSERT_TRUE(r.error);
+  EXPECT_EQ(r.error->line, 2);
+  EXPECT_EQ(r.error->column, 7);
+}
+
+}  // namespace
+}  // namespace tnv::gcode

@@ -1,0 +1,30 @@
+#pragma once
+// The options every command that runs a G-code program takes, as `tnvctl
+// gcode canon` takes them: --tool-table, --var-file, --subroutine-path
+// (tnvctl gcode canon, tnvctl run, tnv-hil path). Built as tnv_gcode_cli
+// (tools/CMakeLists.txt): the G-code library itself needs no CLI11.
+#include <string>
+#include <vector>
+
+#include "tools/gcode/canon_interpreter.hpp"
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace tnv::cli {
+
+struct GcodeSetupOptions {
+  std::string tool_table;  // .tbl
+  std::string var_file;    // .var
+  std::vector<std::string> subroutine_path;
+};
+
+// `options` must outlive the parse.
+void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options);
+
+// The files loaded into a setup (load_tool_table_file, load_var_file) and
+// the subroutine path set; false with `error` ("<path>: line N: why").
+bool load_gcode_setup(const GcodeSetupOptions& options, gcode::CanonSetup& setup, std::string& error);
+
+}  // namespace tnv::cli

@@ -1,0 +1,25 @@
+#pragma once
+// The canonical calls of a program (canon_interpreter.hpp) as this XY
+// table's motion queue takes them: rapids, feeds and G17 arcs become line
+// and arc segments, dwells dwell segments, each checked against the
+// firmware's limits (fw::motion::prepare) as the queue will check it.
+// Refused, with the line: a move that changes machine Z (a Z word, with a
+// tool length offset in force or not; a canned cycle; rigid tapping), an
+// arc outside G17 (the
+// machine has X and Y only), a probe move (no probe input), a G5.1 spline,
+// and M0/M1 (a stream does not pause). Counted and not sent: tool changes
+// (the tool's length applies to Z, fine while Z does not move), spindle
+// starts and coolant (the table has neither).
+#include <array>
+
+#include "tools/gcode/canon_interpreter.hpp"
+#include "tools/gcode/gcode_program.hpp"
+
+namespace tnv::gcode {
+
+// `canon` ran from `start_machine_mm` (CanonSetup::start_machine_mm); its
+// error, if any, is the result's. Uses the options' rapid feed and limits.
+GcodeResult canon_segments(const CanonResult& canon, const std::array<double, 3>& start_machine_mm,
+                           const GcodeOptions& options);
+
+}  // namespace tnv::gcode
