@@ -83,7 +83,9 @@ struct Machine::Impl {
   bool any_mode;
   bool any_backlash;
   SpindleDrive spindle;             // on DAC_SPINDLE and the OUTPUTS spindle bits
-  SpindleEncoder spindle_encoder;   // SPINDLE_ENCODER, SPINDLE_INDEX
+  SpindleEncoder spindle_encoder;
+  std::uint32_t spindle_encoder_register = 0;  // SPINDLE_ENCODER and SPINDLE_INDEX as the encoder stands
+  std::uint32_t spindle_index_register = 0;    // (updated when it moves)
 
   // [noise] and [io] (seeded; untouched while off).
   bool sample_noise;
@@ -204,10 +206,8 @@ TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept
   TickSamples samples;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) samples.encoder_registers[i] = QuadratureEncoder::wrap(encoder_count(i));
   samples.index_registers = index_register;
-  samples.spindle_encoder_register = QuadratureEncoder::wrap(spindle_encoder.count());
-  const auto spindle_edges = static_cast<std::uint32_t>(spindle_encoder.index_edges() & hal::regs::kIndexEdgesMask);
-  samples.spindle_index_register =
-      QuadratureEncoder::wrap(spindle_encoder.latched_count()) | (spindle_edges << hal::regs::kIndexEdgesShift);
+  samples.spindle_encoder_register = spindle_encoder_register;
+  samples.spindle_index_register = spindle_index_register;
   samples.position_inputs = position_inputs();
   // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
   // (sqrt rather than hypot: no overflow risk at these magnitudes, and cheaper)
@@ -426,14 +426,20 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   return true;
 }
 
-// The spindle over a block, its inputs held like the axes'. Idle and at
-// rest it costs a compare (the circle experiment's case).
+// The spindle over a block, its inputs held like the axes'. Disabled and
+// at rest it costs two compares (the circle experiment's case).
 void Machine::Impl::step_spindle(std::size_t n) noexcept {
-  spindle.set_inputs(board.spindle_dac_output_code(), board.spindle_enabled(), board.spindle_reverse());
+  const bool enabled = board.spindle_enabled();
+  if (!enabled && spindle.at_rest()) return;  // disabled, its command is 0 whatever the DAC holds
+  spindle.set_inputs(board.spindle_dac_output_code(), enabled, board.spindle_reverse());
   if (spindle.at_rest()) return;
   spindle.advance_unloaded(n);
   // A block is at most one tick: 0.2 rev at 12,000 rpm, so at most one index mark.
   spindle_encoder.follow(spindle.revolutions());
+  spindle_encoder_register = QuadratureEncoder::wrap(spindle_encoder.count());
+  const auto edges = static_cast<std::uint32_t>(spindle_encoder.index_edges() & hal::regs::kIndexEdgesMask);
+  spindle_index_register =
+      QuadratureEncoder::wrap(spindle_encoder.latched_count()) | (edges << hal::regs::kIndexEdgesShift);
 }
 
 // The cutting and milling forces depend on the table's speed at the start

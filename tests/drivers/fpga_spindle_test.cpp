@@ -150,7 +150,7 @@ TEST(FpgaSpindle, DisablingBringsItToRestUnderTheSameLawAndItIsThenNotIntegrated
   const std::uint32_t raw = b.raw();
   EXPECT_EQ(b.rpm_over(200), 0.0);
   EXPECT_EQ(b.raw(), raw);
-  EXPECT_EQ(b.machine.spindle_truth().revolutions, rest.revolutions) << "at rest it is not stepped";
+  EXPECT_EQ(b.machine.spindle_truth().revolutions, rest.revolutions) << "and stays there";
 }
 
 TEST(FpgaSpindle, TheIndexLatchesOncePerRevolutionInEitherDirection) {
