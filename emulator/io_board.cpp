@@ -8,6 +8,7 @@ namespace regs = hal::regs;
 
 namespace {
 constexpr std::uint32_t kEnableBits = regs::all_axes(&regs::AxisRegisters::output_enable);
+constexpr std::uint32_t kOutputBits = kEnableBits | regs::kOutputSpindleBits;  // every defined OUTPUTS bit
 constexpr std::uint32_t kControlBits = regs::kControlClearWatchdog | regs::kControlClearFaults;
 constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::all_axes(&regs::AxisRegisters::input_alarm) |
                                           regs::all_axes(&regs::AxisRegisters::input_limit_pos) |
@@ -25,12 +26,18 @@ constexpr std::optional<std::size_t> axis_of(std::uint16_t word, std::uint16_t r
 
 constexpr bool axis_snapshot_word(std::uint16_t word) {
   return axis_of(word, &regs::AxisRegisters::encoder) || axis_of(word, &regs::AxisRegisters::adc_accel) ||
-         axis_of(word, &regs::AxisRegisters::index);
+         axis_of(word, &regs::AxisRegisters::index) || word == regs::kSpindleEncoder || word == regs::kSpindleIndex;
 }
 }  // namespace
 
-IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise) noexcept
-    : dac_(dac, lead_mm, noise.dac_offset_v, noise.dac_gain_error), clock_start_(board.clock_start) {
+IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise,
+                 const SpindleParams& spindle) noexcept
+    : dac_(dac, lead_mm, noise.dac_offset_v, noise.dac_gain_error),
+      clock_start_(board.clock_start),
+      spindle_dac_mid_code_(std::uint32_t{1} << (spindle.dac_bits - 1)),
+      spindle_dac_max_code_((std::uint32_t{1} << spindle.dac_bits) - 1),
+      spindle_dac_code_(spindle_dac_mid_code_),
+      drive_spindle_dac_code_(spindle_dac_mid_code_) {
   dac_codes_.fill(dac_.mid_code());
   drive_dac_codes_ = dac_codes_;
   snapshot_[kSeq] = 0xFFFF'FFFFu;  // the first tick reads 0
@@ -40,6 +47,10 @@ IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm,
 
 bool IoBoard::enabled(hal::Axis axis) const noexcept {
   return !watchdog_tripped_ && (drive_outputs_ & enable_bit(axis)) != 0;
+}
+
+bool IoBoard::spindle_enabled() const noexcept {
+  return !watchdog_tripped_ && (drive_outputs_ & regs::kOutputSpindleEnable) != 0;
 }
 
 bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noexcept {
@@ -63,6 +74,7 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
     case regs::kFaults: value = snapshot_[word - regs::kSnapshotFirst]; return true;
     case regs::kOutputs: value = outputs_; return true;
     case regs::kWatchdogKick: value = last_kick_word_; return true;
+    case regs::kDacSpindle: value = spindle_dac_code_; return true;
     case regs::kTickDivider: value = tick_divider_clocks_; return true;
     case regs::kWatchdogTimeout: value = watchdog_timeout_clocks_; return true;
     case regs::kControl: value = 0; return true;  // write-one-to-act
@@ -83,8 +95,17 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
     return true;
   }
   switch (word) {
+    case regs::kDacSpindle:
+      if (value > spindle_dac_max_code_) return false;
+      spindle_dac_code_ = value;
+      if (outputs_deferred_) {
+        outputs_written_ = true;
+      } else {
+        drive_spindle_dac_code_ = value;
+      }
+      return true;
     case regs::kOutputs:
-      if ((value & ~kEnableBits) != 0) return false;
+      if ((value & ~kOutputBits) != 0) return false;
       outputs_ = value;
       if (outputs_deferred_) {
         outputs_written_ = true;
@@ -170,6 +191,8 @@ void IoBoard::fill_snapshot(const TickSamples& samples) noexcept {
     snapshot_[r.adc_accel - regs::kSnapshotFirst] = samples.adc_accel_codes[i];
     snapshot_[r.index - regs::kSnapshotFirst] = samples.index_registers[i];
   }
+  snapshot_[regs::kSpindleEncoder - regs::kSnapshotFirst] = samples.spindle_encoder_register;
+  snapshot_[regs::kSpindleIndex - regs::kSnapshotFirst] = samples.spindle_index_register;
 }
 
 void IoBoard::set_input(std::uint32_t bit, bool asserted) noexcept {
@@ -185,15 +208,17 @@ void IoBoard::trip_watchdog() noexcept {
   watchdog_tripped_ = true;
   last_trip_clocks_ = elapsed_clocks_;
   dac_codes_.fill(dac_.mid_code());
-  outputs_ &= ~kEnableBits;
+  spindle_dac_code_ = spindle_dac_mid_code_;
+  outputs_ &= ~kOutputBits;
   drive_dac_codes_ = dac_codes_;
-  drive_outputs_ &= ~kEnableBits;
+  drive_spindle_dac_code_ = spindle_dac_code_;
+  drive_outputs_ &= ~kOutputBits;
   refresh_commands();
 }
 
 std::optional<OutputWords> IoBoard::take_written_outputs() noexcept {
   if (!outputs_written_) return std::nullopt;
-  const OutputWords words{dac_codes_, outputs_, kick_written_};
+  const OutputWords words{dac_codes_, outputs_, kick_written_, spindle_dac_code_};
   outputs_written_ = false;
   kick_written_ = false;
   return words;
@@ -204,8 +229,10 @@ void IoBoard::land_outputs(const OutputWords& words) noexcept {
   // between had reset them; a later write still in flight lands after this).
   dac_codes_ = words.dac_codes;
   outputs_ = words.outputs;
+  spindle_dac_code_ = words.spindle_dac_code;
   drive_dac_codes_ = words.dac_codes;
   drive_outputs_ = words.outputs;
+  drive_spindle_dac_code_ = words.spindle_dac_code;
   if (words.kick && !watchdog_tripped_) {
     watchdog_armed_ = true;
     last_kick_clocks_ = elapsed_clocks_;

@@ -18,19 +18,24 @@
 //   undefined bits are refused too.
 // - Watchdog: armed by the first kick, checked at each sub-step boundary; it
 //   trips at the first boundary more than WATCHDOG_TIMEOUT clocks after the
-//   last kick. A trip resets both DAC registers to mid-scale and clears the
-//   enable bits; while tripped, DAC/OUTPUTS writes are stored but the outputs
+//   last kick. A trip resets the DAC registers (the spindle's too) to
+//   mid-scale and clears every OUTPUTS bit; while tripped, DAC/OUTPUTS writes are stored but the outputs
 //   stay forced off (u = 0) and kicks are ignored, until CONTROL
 //   kControlClearWatchdog (which also disarms until the next kick).
 // - INPUTS (with the board's own watchdog-tripped bit), ADC_FORCE, ADC_ACCEL_X/Y and FAULTS
 //   are snapshot words like the rest: they change only at ticks.
 // - The WATCHDOG_KICK word reads back the last value written; CONTROL reads 0.
+// - The spindle: DAC_SPINDLE (the scenario's [spindle] dac_bits wide,
+//   refused above) and the OUTPUTS spindle bits go to the spindle drive
+//   (spindle_drive.hpp), which the machine steps; SPINDLE_ENCODER and
+//   SPINDLE_INDEX are snapshot words the machine samples at the latch.
+//   No readback comparator and no fault injection on the spindle's channels.
 // - The DAC output is the register's code unless a fault sticks it. At each
 //   tick latch a readback comparator checks output against register and
 //   latches kFaultDac* when they are more than kDacReadbackToleranceCodes
 //   apart (the emulated readback is exact).
 // - Deferred outputs ([io] on, output_transport.hpp): writes to the output
-//   window (DAC_X/Y, OUTPUTS, WATCHDOG_KICK) set the registers at once (a
+//   window (DAC_X/Y, OUTPUTS, WATCHDOG_KICK, DAC_SPINDLE) set the registers at once (a
 //   read issued after a write sees it: the transport keeps order) but reach
 //   the DACs, the enables and the watchdog only when the machine lands
 //   them (land_outputs). Configuration and CONTROL writes act at once.
@@ -54,6 +59,7 @@ struct OutputWords {
   std::array<std::uint32_t, hal::kAxisCount> dac_codes{};
   std::uint32_t outputs = 0;
   bool kick = false;  // the watchdog key was written
+  std::uint32_t spindle_dac_code = 0;
 };
 
 // What the machine hands the board at a tick latch.
@@ -67,11 +73,15 @@ struct TickSamples {
   // Switches the table actuates (home, and limits when placed in the
   // scenario): kInput* bits ORed into INPUTS with the bench's.
   std::uint32_t position_inputs = 0;
+  // SPINDLE_ENCODER (wrapped) and SPINDLE_INDEX (as INDEX_X/Y).
+  std::uint32_t spindle_encoder_register = 0;
+  std::uint32_t spindle_index_register = 0;
 };
 
 class IoBoard {
  public:
-  IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise = {}) noexcept;
+  IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise = {},
+          const SpindleParams& spindle = {}) noexcept;
 
   // --- bus side; false = unmapped address, or a refused write
   bool read_register(std::uint16_t word, std::uint32_t& value) const noexcept;
@@ -82,6 +92,11 @@ class IoBoard {
   // disabled or the watchdog has tripped.
   double command_mm_s(hal::Axis axis) const noexcept { return command_mm_s_[hal::index(axis)]; }
   bool enabled(hal::Axis axis) const noexcept;  // enable bit and watchdog not tripped
+  // The spindle drive's inputs: DAC_SPINDLE's output code and the OUTPUTS
+  // spindle bits as they reach the drive (the enable gated by the watchdog).
+  std::uint32_t spindle_dac_output_code() const noexcept { return drive_spindle_dac_code_; }
+  bool spindle_enabled() const noexcept;
+  bool spindle_reverse() const noexcept { return (drive_outputs_ & hal::regs::kOutputSpindleReverse) != 0; }
 
   // Whole sub-steps until the next event (tick latch or watchdog trip), >= 1.
   // Between events the outputs cannot change unless the bus writes.
@@ -120,6 +135,8 @@ class IoBoard {
   // Counter (elapsed clocks) at the most recent watchdog trip, if any.
   std::optional<std::uint64_t> last_watchdog_trip_clocks() const noexcept { return last_trip_clocks_; }
   std::uint32_t dac_register(hal::Axis axis) const noexcept { return dac_codes_[hal::index(axis)]; }
+  std::uint32_t spindle_dac_register() const noexcept { return spindle_dac_code_; }
+  std::uint32_t spindle_dac_mid_code() const noexcept { return spindle_dac_mid_code_; }
   const DacSpeedMap& dac() const noexcept { return dac_; }
 
   // --- test-bench inputs (kInput* bits except kInputWatchdogTripped)
@@ -174,6 +191,10 @@ class IoBoard {
   // What the DACs and enables act on: the registers, or with deferred outputs the last landed transfer.
   std::array<std::uint32_t, hal::kAxisCount> drive_dac_codes_{};
   std::uint32_t drive_outputs_ = 0;
+  std::uint32_t spindle_dac_mid_code_;
+  std::uint32_t spindle_dac_max_code_;
+  std::uint32_t spindle_dac_code_;        // DAC_SPINDLE as written
+  std::uint32_t drive_spindle_dac_code_;  // what the spindle drive gets (deferred like the axes')
   bool outputs_deferred_ = false;
   bool outputs_written_ = false;  // output window written since take_written_outputs
   bool kick_written_ = false;

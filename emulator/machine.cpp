@@ -18,6 +18,8 @@
 #include "emulator/quadrature_encoder.hpp"
 #include "emulator/scenario_validation.hpp"
 #include "emulator/screw_transmission.hpp"
+#include "emulator/spindle_drive.hpp"
+#include "emulator/spindle_encoder.hpp"
 #include "emulator/structural_mode.hpp"
 #include "emulator/substep_timing.hpp"
 #include "emulator/tool_accelerometer.hpp"
@@ -44,6 +46,7 @@ struct Machine::Impl {
   bool run_block(std::uint64_t max_substeps) noexcept;
   void step_substeps(AxisState& x, AxisState& y, double u_x, double u_y, std::size_t n) noexcept;
   TickSamples tick_samples(const SampleNoise* noise = nullptr) const noexcept;
+  void step_spindle(std::size_t n) noexcept;
   SampleNoise draw_sample_noise() noexcept;
   void apply_encoder_glitches() noexcept;
   void move_outputs() noexcept;
@@ -79,6 +82,10 @@ struct Machine::Impl {
   std::array<ScrewTransmission, hal::kAxisCount> screws;  // motor side -> table ([plant] backlash, lead error)
   bool any_mode;
   bool any_backlash;
+  SpindleDrive spindle;             // on DAC_SPINDLE and the OUTPUTS spindle bits
+  SpindleEncoder spindle_encoder;
+  std::uint32_t spindle_encoder_register = 0;  // SPINDLE_ENCODER and SPINDLE_INDEX as the encoder stands
+  std::uint32_t spindle_index_register = 0;    // (updated when it moves)
 
   // [noise] and [io] (seeded; untouched while off).
   bool sample_noise;
@@ -115,7 +122,7 @@ QuadratureEncoder make_encoder(const EncoderParams& e, Axis axis) {
 
 Machine::Impl::Impl(const Scenario& s)
     : scenario(s),
-      board(s.board, s.dac, s.encoder.lead_mm, s.noise),
+      board(s.board, s.dac, s.encoder.lead_mm, s.noise, s.spindle),
       plants{AxisPlant(s.plant[0]), AxisPlant(s.plant[1])},
       modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
       encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
@@ -125,6 +132,8 @@ Machine::Impl::Impl(const Scenario& s)
              ScrewTransmission(s.plant[1], s.board.axis[1].power_up_offset_mm)},
       any_mode(modes[0].enabled() || modes[1].enabled()),
       any_backlash(screws[0].has_backlash() || screws[1].has_backlash()),
+      spindle(s.spindle),
+      spindle_encoder(s.spindle),
       sample_noise(s.noise.any_sample_noise()),
       force_noise(make_noise_stream(s.noise.seed, NoiseStreamId::force_adc)),
       accel_noise{make_noise_stream(s.noise.seed, NoiseStreamId::accel_x),
@@ -197,6 +206,8 @@ TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept
   TickSamples samples;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) samples.encoder_registers[i] = QuadratureEncoder::wrap(encoder_count(i));
   samples.index_registers = index_register;
+  samples.spindle_encoder_register = spindle_encoder_register;
+  samples.spindle_index_register = spindle_index_register;
   samples.position_inputs = position_inputs();
   // ADC sample-and-hold: the force held over the sub-step that ends at the tick.
   // (sqrt rather than hypot: no overflow risk at these magnitudes, and cheaper)
@@ -406,12 +417,29 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
   plants[1].set_state(y);
   watch_index(0, x_from_mm, x.position_mm);
   watch_index(1, y_from_mm, y.position_mm);
+  step_spindle(n);
   substep += n;
   const bool tick_due = board.advance_substeps(n);
   if (transport.enabled()) land_due_outputs();  // landing at a latch: before it samples
   if (!tick_due) return false;
   latch_tick();
   return true;
+}
+
+// The spindle over a block, its inputs held like the axes'. Disabled and
+// at rest it costs two compares (the circle experiment's case).
+void Machine::Impl::step_spindle(std::size_t n) noexcept {
+  const bool enabled = board.spindle_enabled();
+  if (!enabled && spindle.at_rest()) return;  // disabled, its command is 0 whatever the DAC holds
+  spindle.set_inputs(board.spindle_dac_output_code(), enabled, board.spindle_reverse());
+  if (spindle.at_rest()) return;
+  spindle.advance_unloaded(n);
+  // A block is at most one tick: 0.2 rev at 12,000 rpm, so at most one index mark.
+  spindle_encoder.follow(spindle.revolutions());
+  spindle_encoder_register = QuadratureEncoder::wrap(spindle_encoder.count());
+  const auto edges = static_cast<std::uint32_t>(spindle_encoder.index_edges() & hal::regs::kIndexEdgesMask);
+  spindle_index_register =
+      QuadratureEncoder::wrap(spindle_encoder.latched_count()) | (edges << hal::regs::kIndexEdgesShift);
 }
 
 // The cutting and milling forces depend on the table's speed at the start
@@ -498,6 +526,14 @@ AxisTruth Machine::truth(Axis axis) const noexcept {
                    .dac_output_code = impl_->board.dac_output_code(axis)};
 }
 
+SpindleTruth Machine::spindle_truth() const noexcept {
+  const SpindleDrive& drive = impl_->spindle;
+  return SpindleTruth{.speed_rpm = drive.speed_rpm(),
+                      .revolutions = drive.revolutions(),
+                      .command_rpm = drive.commanded_rpm(),
+                      .at_rest = drive.at_rest()};
+}
+
 BoardOutputs Machine::board_outputs() const noexcept {
   const IoBoard& board = impl_->board;
   BoardOutputs out;
@@ -508,6 +544,9 @@ BoardOutputs Machine::board_outputs() const noexcept {
     out.enabled[i] = board.enabled(axis);
   }
   out.watchdog_tripped = board.watchdog_tripped();
+  out.spindle_dac_register = board.spindle_dac_register();
+  out.spindle_dac_mid_code = board.spindle_dac_mid_code();
+  out.spindle_enabled = board.spindle_enabled();
   if (const auto trip = board.last_watchdog_trip_clocks()) {
     out.watchdog_trip_s = static_cast<double>(*trip) / static_cast<double>(kClockHz);
   }

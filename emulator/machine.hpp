@@ -1,6 +1,6 @@
 #pragma once
 // The emulated TNV-40: the FPGA I/O board at register level driving two
-// table axes. The only door for firmware is read_register/write_register
+// table axes and the spindle. The only door for firmware is read_register/write_register
 // (through an emulated RegisterBus); truth() and the set_* inputs are the
 // test bench's side of the machine. The scenario's fault schedule
 // (fault_schedule.hpp) is injected as simulated time passes: a read during
@@ -28,6 +28,14 @@ struct AxisTruth {
   std::uint32_t dac_output_code = 0;  // what the DAC outputs (its register's code unless a fault sticks it)
 };
 
+// What the spindle really does (judge side).
+struct SpindleTruth {
+  double speed_rpm = 0.0;         // signed: negative is reverse
+  double revolutions = 0.0;       // turned since power-up, signed
+  double command_rpm = 0.0;       // what the drive follows (0 when disabled or the direction input disagrees)
+  bool at_rest = true;            // no command and stopped: not integrated
+};
+
 // The board's output side now (judge side: readable whatever the bus does).
 struct BoardOutputs {
   std::array<std::uint32_t, hal::kAxisCount> dac_register{};  // DAC_X / DAC_Y as last written
@@ -35,9 +43,13 @@ struct BoardOutputs {
   std::array<bool, hal::kAxisCount> enabled{};                // servo enable reaching the drive (watchdog gated)
   bool watchdog_tripped = false;
   std::optional<double> watchdog_trip_s;                      // machine time of the most recent trip
-  // DAC registers at mid-scale and both enables off.
+  std::uint32_t spindle_dac_register = 0;                     // DAC_SPINDLE as last written
+  std::uint32_t spindle_dac_mid_code = 0;                     // its 0 V ([spindle] dac_bits)
+  bool spindle_enabled = false;                               // its enable reaching the drive (watchdog gated)
+  // DAC registers at mid-scale and every enable off, the spindle's too.
   bool safe(std::uint32_t mid_code) const noexcept {
-    return !enabled[0] && !enabled[1] && dac_register[0] == mid_code && dac_register[1] == mid_code;
+    return !enabled[0] && !enabled[1] && dac_register[0] == mid_code && dac_register[1] == mid_code &&
+           !spindle_enabled && spindle_dac_register == spindle_dac_mid_code;
   }
 };
 
@@ -66,6 +78,7 @@ class Machine {
 
   // --- judge side
   AxisTruth truth(hal::Axis axis) const noexcept;
+  SpindleTruth spindle_truth() const noexcept;
   BoardOutputs board_outputs() const noexcept;
   std::uint32_t dac_mid_code() const noexcept;
   // Motor-side position of an encoder index mark (marks repeat every lead):

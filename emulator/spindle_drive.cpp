@@ -34,6 +34,12 @@ void SpindleDrive::set_command_code(std::uint32_t code) noexcept {
   commanded_rpm_ = (static_cast<double>(code) - static_cast<double>(mid_code_)) * rpm_per_code_;
 }
 
+void SpindleDrive::set_inputs(std::uint32_t code, bool enabled, bool reverse) noexcept {
+  set_command_code(code);
+  const bool agrees = commanded_rpm_ == 0.0 || (commanded_rpm_ < 0.0) == reverse;
+  if (!enabled || !agrees) commanded_rpm_ = 0.0;
+}
+
 std::uint32_t SpindleDrive::code_for_rpm(double rpm) const noexcept {
   const double code = std::round(rpm / rpm_per_code_) + static_cast<double>(mid_code_);
   return static_cast<std::uint32_t>(std::clamp(code, 0.0, static_cast<double>(max_code_)));
@@ -43,6 +49,19 @@ void SpindleDrive::step(double cutting_force_n) noexcept {
   const double n = motor_.speed_mm_s();
   const double direction = n != 0.0 ? std::copysign(1.0, n) : commanded_rpm_ != 0.0 ? std::copysign(1.0, commanded_rpm_) : 0.0;
   motor_.step(commanded_rpm_, -direction * params_.droop_rpm_per_n * std::max(cutting_force_n, 0.0));
+}
+
+void SpindleDrive::advance_unloaded(std::size_t count) noexcept {
+  if (at_rest()) return;
+  AxisState s = motor_.state();
+  motor_.advance_held(s, commanded_rpm_, 0.0, count);
+  // Below the limit's knee (A tau) the law is v' = -v / tau: the rest of the
+  // way to zero is v tau exactly.
+  if (commanded_rpm_ == 0.0 && std::abs(s.speed_mm_s) < kRestRpm) {
+    s.position_mm += s.speed_mm_s * params_.tau_s;
+    s.speed_mm_s = 0.0;
+  }
+  motor_.set_state(s);
 }
 
 }  // namespace tnv::emu

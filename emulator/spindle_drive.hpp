@@ -8,6 +8,7 @@
 // binary like the axes' DACs; +full scale = +rpm_at_full_scale, the sign
 // is the direction). The load opposes the rotation: the droop is
 // k_d F_cut toward zero speed (the spec's -k_d F_cut for n > 0).
+#include <cstddef>
 #include <cstdint>
 
 #include "emulator/axis_plant.hpp"
@@ -27,9 +28,22 @@ class SpindleDrive {
   // The nearest code to a speed, saturated (what a controller would write).
   std::uint32_t code_for_rpm(double rpm) const noexcept;
   double commanded_rpm() const noexcept { return commanded_rpm_; }
+  // The drive's inputs as the board's outputs give them: the DAC's code, the
+  // enable and the direction input. Enabled, it follows the code when the
+  // direction input agrees with the code's sign (0 V agrees with both);
+  // disabled or disagreeing, its command is 0 rpm and the spec's law brings
+  // it to rest (as a disabled axis' servopack gets 0 V).
+  void set_inputs(std::uint32_t code, bool enabled, bool reverse) noexcept;
 
   // One 10 us sub-step under cutting load cutting_force_n (newtons, >= 0).
   void step(double cutting_force_n = 0.0) noexcept;
+  // `count` (<= AxisPlant::kMaxBlock) sub-steps with the command held and no
+  // load: the machine's block. Nothing to do at rest; with no command, a
+  // speed below kRestRpm ends at rest with the exponential's remaining
+  // travel (n tau_sp) added, so an idle spindle stops being integrated.
+  void advance_unloaded(std::size_t count) noexcept;
+  bool at_rest() const noexcept { return commanded_rpm_ == 0.0 && motor_.speed_mm_s() == 0.0; }
+  static constexpr double kRestRpm = 1e-3;  // its remaining travel: 3e-6 rev, 0.014 counts
 
   double speed_rpm() const noexcept { return motor_.speed_mm_s(); }
   double revolutions() const noexcept { return motor_.position_mm() / 60.0; }

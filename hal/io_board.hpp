@@ -6,6 +6,7 @@
 #include "hal/discrete_io.hpp"
 #include "hal/encoder_counter.hpp"
 #include "hal/speed_dac.hpp"
+#include "hal/spindle_io.hpp"
 #include "hal/status.hpp"
 #include "hal/timebase.hpp"
 #include "hal/watchdog.hpp"
@@ -25,6 +26,7 @@ class IoBoard : public IoCycle,
                 public SpeedDacs,
                 public DiscreteIo,
                 public AnalogInput,
-                public Watchdog {};
+                public Watchdog,
+                public SpindleIo {};
 
 }  // namespace tnv::hal

@@ -15,7 +15,11 @@ inline constexpr std::uint16_t kVersion = 0x001;     // major << 16 | minor
 inline constexpr std::uint16_t kClockLive = 0x002;   // free-running 10 MHz counter, now
 
 inline constexpr std::uint32_t kIdValue = 0x544E5634;  // "TNV4"
-inline constexpr std::uint32_t kVersionValue = 0x00010003;  // 1.3: home switches, index latches (1.2: tool-side accelerometers, 1.1: DAC readback fault bits)
+// A minor version adds registers and bits and moves none: a driver for 1.n
+// runs a board 1.m, m >= n. Its history: 1.4 the spindle (SPINDLE_ENCODER,
+// SPINDLE_INDEX, DAC_SPINDLE, OUTPUTS bits 8/9), 1.3 home switches and index
+// latches, 1.2 tool-side accelerometers, 1.1 DAC readback fault bits.
+inline constexpr std::uint32_t kVersionValue = 0x00010004;  // 1.4
 
 // --- snapshot window (read-only, latched at each tick, read in one block)
 inline constexpr std::uint16_t kSnapshotFirst = 0x010;
@@ -31,7 +35,9 @@ inline constexpr std::uint16_t kAdcAccelX = 0x018;     // tool-side acceleromete
 inline constexpr std::uint16_t kAdcAccelY = 0x019;     // same for y
 inline constexpr std::uint16_t kIndexX = 0x01A;        // count latched at the last index edge | edges << 16 (kIndex* fields)
 inline constexpr std::uint16_t kIndexY = 0x01B;        // same for y
-inline constexpr std::uint16_t kSnapshotWords = 12;
+inline constexpr std::uint16_t kSpindleEncoder = 0x01C;  // spindle quadrature count (kEncoderBits wide)
+inline constexpr std::uint16_t kSpindleIndex = 0x01D;    // as kIndexX, for the spindle's index (once per revolution)
+inline constexpr std::uint16_t kSnapshotWords = 14;
 
 // --- output window (read/write, written in one block each tick)
 inline constexpr std::uint16_t kOutputFirst = 0x020;
@@ -39,7 +45,8 @@ inline constexpr std::uint16_t kDacX = 0x020;          // offset binary, kDacBit
 inline constexpr std::uint16_t kDacY = 0x021;
 inline constexpr std::uint16_t kOutputs = 0x022;       // kOutput* bits
 inline constexpr std::uint16_t kWatchdogKick = 0x023;  // write kWatchdogKickKey to reload
-inline constexpr std::uint16_t kOutputWords = 4;
+inline constexpr std::uint16_t kDacSpindle = 0x024;    // spindle speed command, offset binary, kDacBits wide
+inline constexpr std::uint16_t kOutputWords = 5;
 
 // --- configuration (read/write, set at start-up)
 inline constexpr std::uint16_t kTickDivider = 0x030;     // clocks per tick (reset: 10,000)
@@ -72,9 +79,12 @@ inline constexpr std::uint32_t kFaultEncoderY = 1u << 1;
 inline constexpr std::uint32_t kFaultDacX = 1u << 2;      // DAC output readback differs from DAC_X
 inline constexpr std::uint32_t kFaultDacY = 1u << 3;
 
-// kOutputs bits
+// kOutputs bits (bits 0..7: the axes' servo enables; 8..: the spindle)
 inline constexpr std::uint32_t kOutputEnableX = 1u << 0;
 inline constexpr std::uint32_t kOutputEnableY = 1u << 1;
+inline constexpr std::uint32_t kOutputSpindleEnable = 1u << 8;   // the spindle drive's enable (run)
+inline constexpr std::uint32_t kOutputSpindleReverse = 1u << 9;  // the drive's direction input: 1 = reverse (M4)
+inline constexpr std::uint32_t kOutputSpindleBits = kOutputSpindleEnable | kOutputSpindleReverse;
 
 // kControl bits
 inline constexpr std::uint32_t kControlClearWatchdog = 1u << 0;
@@ -167,5 +177,22 @@ constexpr bool axis_registers_well_formed() {
 }  // namespace detail
 static_assert(detail::axis_registers_well_formed(),
               "kAxisRegisters: one row per axis, each register and bit its own and inside its window");
+
+namespace detail {
+constexpr bool spindle_registers_well_formed() {
+  for (const AxisRegisters& r : kAxisRegisters)
+    for (const std::uint16_t reg : {r.encoder, r.adc_accel, r.index, r.dac})
+      if (reg == kSpindleEncoder || reg == kSpindleIndex || reg == kDacSpindle) return false;
+  if (!in_snapshot(kSpindleEncoder) || !in_snapshot(kSpindleIndex) || kSpindleEncoder == kSpindleIndex) return false;
+  if (kDacSpindle < kOutputFirst || kDacSpindle >= kOutputFirst + kOutputWords || kDacSpindle == kOutputs ||
+      kDacSpindle == kWatchdogKick)
+    return false;
+  return one_bit(kOutputSpindleEnable) && one_bit(kOutputSpindleReverse) &&
+         (kOutputSpindleEnable & kOutputSpindleReverse) == 0 &&
+         (kOutputSpindleBits & all_axes(&AxisRegisters::output_enable)) == 0;
+}
+}  // namespace detail
+static_assert(detail::spindle_registers_well_formed(),
+              "the spindle's registers and bits: their own, inside their windows, apart from every axis'");
 
 }  // namespace tnv::hal::regs

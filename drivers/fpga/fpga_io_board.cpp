@@ -9,6 +9,13 @@ constexpr std::size_t slot(std::uint16_t snapshot_register) noexcept {
   return static_cast<std::size_t>(snapshot_register - regs::kSnapshotFirst);
 }
 constexpr std::uint32_t dac_mask = (1u << regs::kDacBits) - 1u;
+constexpr std::uint32_t encoder_mask = (1u << regs::kEncoderBits) - 1u;
+
+hal::IndexLatch decode_index(std::uint32_t word) noexcept {
+  return {word & encoder_mask, static_cast<std::uint8_t>((word >> regs::kIndexEdgesShift) & regs::kIndexEdgesMask)};
+}
+
+void set_bit(std::uint32_t& bits, std::uint32_t bit, bool on) noexcept { bits = on ? (bits | bit) : (bits & ~bit); }
 }  // namespace
 
 FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
@@ -22,6 +29,9 @@ FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
   if (ident[0] != regs::kIdValue) return {hal::HalStatus::not_present, "no TNV I/O board at this address (bad id)"};
   if ((ident[1] >> 16) != (regs::kVersionValue >> 16))
     return {hal::HalStatus::not_present, "unsupported I/O board major version"};
+  // An older minor lacks registers this driver reads or writes each tick.
+  if ((ident[1] & 0xFFFFu) < (regs::kVersionValue & 0xFFFFu))
+    return {hal::HalStatus::not_present, "I/O board too old: a lower minor version than this driver's register map (docs/register-map.md)"};
 
   const std::array<std::uint32_t, 3> config{settings.tick_divider_clocks, settings.watchdog_timeout_clocks,
                                             regs::kControlClearWatchdog | regs::kControlClearFaults};
@@ -29,6 +39,7 @@ FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
   if (st != hal::HalStatus::ok) return {st, "cannot program the I/O board configuration registers"};
 
   dac_codes_.fill(kMidCode);
+  spindle_code_ = kMidCode;
   output_bits_ = 0;
   kick_pending_ = false;
   st = write_outputs();
@@ -43,6 +54,7 @@ hal::HalStatus FpgaIoBoard::write_outputs() noexcept {
   for (const hal::Axis a : hal::kAxes) out[regs::axis_registers(a).dac - regs::kOutputFirst] = dac_codes_[hal::index(a)];
   out[regs::kOutputs - regs::kOutputFirst] = output_bits_;
   out[regs::kWatchdogKick - regs::kOutputFirst] = kick_pending_ ? regs::kWatchdogKickKey : 0u;
+  out[regs::kDacSpindle - regs::kOutputFirst] = spindle_code_;
   kick_pending_ = false;
   return bus_.write_block(regs::kOutputFirst, out);
 }
@@ -53,13 +65,11 @@ hal::TickLatch FpgaIoBoard::latched_tick() const noexcept {
 }
 
 std::uint32_t FpgaIoBoard::latched_count(hal::Axis axis) const noexcept {
-  return snapshot_[slot(regs::axis_registers(axis).encoder)] & ((1u << regs::kEncoderBits) - 1u);
+  return snapshot_[slot(regs::axis_registers(axis).encoder)] & encoder_mask;
 }
 
 hal::IndexLatch FpgaIoBoard::index_latch(hal::Axis axis) const noexcept {
-  const std::uint32_t word = snapshot_[slot(regs::axis_registers(axis).index)];
-  return {word & ((1u << regs::kEncoderBits) - 1u),
-          static_cast<std::uint8_t>((word >> regs::kIndexEdgesShift) & regs::kIndexEdgesMask)};
+  return decode_index(snapshot_[slot(regs::axis_registers(axis).index)]);
 }
 
 void FpgaIoBoard::set_code(hal::Axis axis, std::uint16_t code) noexcept {
@@ -85,8 +95,27 @@ hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
 }
 
 void FpgaIoBoard::set_servo_enable(hal::Axis axis, bool enabled) noexcept {
-  const std::uint32_t bit = regs::axis_registers(axis).output_enable;
-  output_bits_ = enabled ? (output_bits_ | bit) : (output_bits_ & ~bit);
+  set_bit(output_bits_, regs::axis_registers(axis).output_enable, enabled);
+}
+
+void FpgaIoBoard::set_spindle_code(std::uint16_t code) noexcept {
+  spindle_code_ = static_cast<std::uint16_t>(code & dac_mask);
+}
+
+void FpgaIoBoard::set_spindle_enable(bool enabled) noexcept {
+  set_bit(output_bits_, regs::kOutputSpindleEnable, enabled);
+}
+
+void FpgaIoBoard::set_spindle_reverse(bool reverse) noexcept {
+  set_bit(output_bits_, regs::kOutputSpindleReverse, reverse);
+}
+
+std::uint32_t FpgaIoBoard::spindle_latched_count() const noexcept {
+  return snapshot_[slot(regs::kSpindleEncoder)] & encoder_mask;
+}
+
+hal::IndexLatch FpgaIoBoard::spindle_index_latch() const noexcept {
+  return decode_index(snapshot_[slot(regs::kSpindleIndex)]);
 }
 
 std::uint16_t FpgaIoBoard::latched_force_code() const noexcept {

@@ -28,8 +28,9 @@ class FpgaIoBoard final : public hal::IoBoard {
  public:
   explicit FpgaIoBoard(hal::RegisterBus& bus) noexcept : bus_(bus) {}
 
-  // Checks the board id, programs the tick divider and watchdog, clears
-  // latched trips, and writes safe outputs (DACs mid-scale, enables off).
+  // Checks the board id and version (major equal, minor at least the map's),
+  // programs the tick divider and watchdog, clears latched trips, and writes
+  // safe outputs (DACs mid-scale, enables off, the spindle's too).
   FpgaInitResult init(const FpgaBoardSettings& settings) noexcept;
 
   // hal::IoCycle
@@ -53,6 +54,12 @@ class FpgaIoBoard final : public hal::IoBoard {
   std::uint16_t latched_accel_code(hal::Axis axis) const noexcept override;
   // hal::Watchdog
   void kick() noexcept override { kick_pending_ = true; }
+  // hal::SpindleIo
+  void set_spindle_code(std::uint16_t code) noexcept override;
+  void set_spindle_enable(bool enabled) noexcept override;
+  void set_spindle_reverse(bool reverse) noexcept override;
+  std::uint32_t spindle_latched_count() const noexcept override;
+  hal::IndexLatch spindle_index_latch() const noexcept override;
 
   // The FAULTS word of the last snapshot (also mapped into inputs():
   // encoder_error, dac_error).
@@ -69,7 +76,8 @@ class FpgaIoBoard final : public hal::IoBoard {
   hal::RegisterBus& bus_;
   std::array<std::uint32_t, hal::regs::kSnapshotWords> snapshot_{};
   std::array<std::uint16_t, hal::kAxisCount> dac_codes_ = hal::per_axis(kMidCode);
-  std::uint32_t output_bits_ = 0;
+  std::uint16_t spindle_code_ = kMidCode;
+  std::uint32_t output_bits_ = 0;  // axis enables and the spindle's bits (OUTPUTS)
   bool kick_pending_ = false;
 };
 

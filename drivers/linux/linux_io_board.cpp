@@ -50,6 +50,9 @@ hal::HalStatus LinuxIoBoard::force_safe_outputs() noexcept {
     set_code(axis, mid);
     set_servo_enable(axis, false);
   }
+  set_spindle_code(mid);
+  set_spindle_enable(false);
+  set_spindle_reverse(false);
   return write_outputs();
 }
 

@@ -36,9 +36,15 @@ class LinuxIoBoard final : public hal::IoBoard {
   unsigned adc_bits() const noexcept override { return board_.adc_bits(); }
   std::uint16_t latched_accel_code(hal::Axis axis) const noexcept override { return board_.latched_accel_code(axis); }
   void kick() noexcept override { board_.kick(); }
+  void set_spindle_code(std::uint16_t code) noexcept override { board_.set_spindle_code(code); }
+  void set_spindle_enable(bool enabled) noexcept override { board_.set_spindle_enable(enabled); }
+  void set_spindle_reverse(bool reverse) noexcept override { board_.set_spindle_reverse(reverse); }
+  std::uint32_t spindle_latched_count() const noexcept override { return board_.spindle_latched_count(); }
+  hal::IndexLatch spindle_index_latch() const noexcept override { return board_.spindle_index_latch(); }
 
-  // Outputs safe now, outside the tick: DACs mid-scale, enables off, one
-  // write to the board and the GPIO enables. The shutdown path.
+  // Outputs safe now, outside the tick: DACs mid-scale, enables off (the
+  // spindle's too), one write to the board and the GPIO enables. The
+  // shutdown path.
   hal::HalStatus force_safe_outputs() noexcept;
 
   std::uint64_t gpio_read_failures() const noexcept { return gpio_read_failures_.load(std::memory_order_relaxed); }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <string>
 #include <vector>
 
 #include "drivers/emulated/emulated_register_bus.hpp"
@@ -45,7 +46,51 @@ TEST(FpgaIoBoard, InitChecksTheIdAndProgramsDividerWatchdogAndSafeOutputs) {
   EXPECT_EQ(bus.regs_file[regs::kWatchdogTimeout], 30'000u);
   EXPECT_EQ(bus.regs_file[regs::kDacX], 2048u);
   EXPECT_EQ(bus.regs_file[regs::kDacY], 2048u);
+  EXPECT_EQ(bus.regs_file[regs::kDacSpindle], 2048u) << "the spindle's 0 V";
   EXPECT_EQ(bus.regs_file[regs::kOutputs], 0u);
+}
+
+TEST(FpgaIoBoard, InitRefusesABoardOlderThanItsRegisterMap) {
+  RecordingBus bus;
+  bus.regs_file[regs::kVersion] = 0x00010003;  // 1.3: no spindle registers
+  FpgaIoBoard board(bus);
+  const FpgaInitResult r = board.init({});
+  EXPECT_EQ(r.status, hal::HalStatus::not_present);
+  EXPECT_NE(std::string(r.message).find("too old"), std::string::npos) << r.message;
+  EXPECT_EQ(bus.regs_file.count(regs::kTickDivider), 0u) << "nothing written to it";
+  bus.regs_file[regs::kVersion] = regs::kVersionValue + 1;  // a newer minor only adds registers
+  EXPECT_TRUE(FpgaIoBoard(bus).init({}).ok());
+  bus.regs_file[regs::kVersion] = 0x00020000;
+  EXPECT_FALSE(FpgaIoBoard(bus).init({}).ok());
+}
+
+TEST(FpgaIoBoard, TheSpindleOutputsGoInTheTicksOneWriteAndItsChannelsComeInItsOneRead) {
+  RecordingBus bus;
+  FpgaIoBoard board(bus);
+  ASSERT_TRUE(board.init({}).ok());
+  board.set_servo_enable(hal::Axis::x, true);
+  board.set_spindle_code(0x1000 | 1536);  // bits above the DAC width dropped
+  board.set_spindle_reverse(true);
+  board.set_spindle_enable(true);
+  bus.log.clear();
+  ASSERT_EQ(board.write_outputs(), hal::HalStatus::ok);
+  ASSERT_EQ(bus.log.size(), 1u);
+  EXPECT_EQ(bus.regs_file[regs::kDacSpindle], 1536u);
+  EXPECT_EQ(bus.regs_file[regs::kOutputs],
+            regs::kOutputEnableX | regs::kOutputSpindleEnable | regs::kOutputSpindleReverse);
+  board.set_spindle_enable(false);
+  board.set_spindle_reverse(false);
+  ASSERT_EQ(board.write_outputs(), hal::HalStatus::ok);
+  EXPECT_EQ(bus.regs_file[regs::kOutputs], regs::kOutputEnableX) << "the axis' enable untouched";
+
+  bus.regs_file[regs::kSpindleEncoder] = 0x1'ABCD;  // bits above the counter width ignored
+  bus.regs_file[regs::kSpindleIndex] = 0x1000 | (7u << regs::kIndexEdgesShift);
+  bus.log.clear();
+  ASSERT_EQ(board.read_inputs(), hal::HalStatus::ok);
+  ASSERT_EQ(bus.log.size(), 1u);
+  EXPECT_EQ(board.spindle_latched_count(), 0xABCDu);
+  EXPECT_EQ(board.spindle_index_latch().count, 0x1000u);
+  EXPECT_EQ(board.spindle_index_latch().edges, 7u);
 }
 
 TEST(FpgaIoBoard, InitRefusesAMissingOrForeignBoard) {

@@ -130,12 +130,45 @@ TEST(IoBoard, DisabledAxisGetsZeroCommand) {
   EXPECT_FALSE(board.write_register(regs::kOutputs, 1u << 5)) << "undefined output bit";
 }
 
+TEST(IoBoard, TheSpindleDacAndBitsReachItsDriveOnlyEnabled) {
+  IoBoard board = make_board();
+  EXPECT_EQ(read(board, regs::kDacSpindle), 2048u) << "reset: 0 V";
+  EXPECT_EQ(board.spindle_dac_output_code(), 2048u);
+  ASSERT_TRUE(board.write_register(regs::kDacSpindle, 1000));
+  EXPECT_FALSE(board.write_register(regs::kDacSpindle, 4096)) << "above the DAC: refused";
+  EXPECT_EQ(read(board, regs::kDacSpindle), 1000u) << "and nothing changed";
+  EXPECT_EQ(board.spindle_dac_output_code(), 1000u);
+  EXPECT_FALSE(board.spindle_enabled());
+  ASSERT_TRUE(board.write_register(regs::kOutputs, regs::kOutputSpindleEnable | regs::kOutputSpindleReverse));
+  EXPECT_TRUE(board.spindle_enabled());
+  EXPECT_TRUE(board.spindle_reverse());
+  EXPECT_FALSE(board.enabled(Axis::x)) << "the spindle's bits are not an axis'";
+  EXPECT_FALSE(board.write_register(regs::kOutputs, 1u << 10)) << "undefined output bit";
+  EXPECT_EQ(read(board, regs::kOutputs), regs::kOutputSpindleEnable | regs::kOutputSpindleReverse);
+}
+
+TEST(IoBoard, TheSpindleChannelsAreSnapshotWords) {
+  IoBoard board = make_board();
+  TickSamples samples;
+  samples.spindle_encoder_register = 0xBEEF;
+  samples.spindle_index_register = 0x1000 | (3u << regs::kIndexEdgesShift);
+  for (int i = 0; i < 99; ++i) ASSERT_FALSE(board.advance_substep());
+  EXPECT_EQ(read(board, regs::kSpindleEncoder), 0u);
+  ASSERT_TRUE(board.advance_substep());
+  board.latch_tick(samples);
+  EXPECT_EQ(read(board, regs::kSpindleEncoder), 0xBEEFu);
+  EXPECT_EQ(read(board, regs::kSpindleIndex), 0x1000u | (3u << regs::kIndexEdgesShift));
+}
+
 class Watchdog : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(board.write_register(regs::kOutputs, regs::kOutputEnableX | regs::kOutputEnableY));
     ASSERT_TRUE(board.write_register(regs::kDacX, 3000));
     ASSERT_TRUE(board.write_register(regs::kDacY, 1000));
+    ASSERT_TRUE(board.write_register(regs::kDacSpindle, 3000));
+    ASSERT_TRUE(board.write_register(regs::kOutputs, regs::kOutputEnableX | regs::kOutputEnableY |
+                                                         regs::kOutputSpindleEnable));
   }
   void kick() { ASSERT_TRUE(board.write_register(regs::kWatchdogKick, regs::kWatchdogKickKey)); }
   IoBoard board = make_board();
@@ -158,7 +191,10 @@ TEST_F(Watchdog, TripsAfterTimeoutAndZeroesOutputs) {
   EXPECT_FALSE(board.enabled(Axis::x));
   EXPECT_EQ(read(board, regs::kDacX), 2048u);
   EXPECT_EQ(read(board, regs::kDacY), 2048u);
-  EXPECT_EQ(read(board, regs::kOutputs) & (regs::kOutputEnableX | regs::kOutputEnableY), 0u);
+  EXPECT_EQ(read(board, regs::kOutputs), 0u) << "every enable, the spindle's too";
+  EXPECT_EQ(read(board, regs::kDacSpindle), 2048u);
+  EXPECT_EQ(board.spindle_dac_output_code(), 2048u);
+  EXPECT_FALSE(board.spindle_enabled());
   run(board, 100);
   EXPECT_NE(read(board, regs::kInputs) & regs::kInputWatchdogTripped, 0u) << "trip visible in the next snapshot";
 }
@@ -223,14 +259,15 @@ TEST(IoBoard, FaultsAreStickyUntilCleared) {
 TEST(IoBoard, UnmappedAndReadOnlyAccessIsRefused) {
   IoBoard board = make_board();
   std::uint32_t value = 0;
-  for (int address : {0x003, 0x00F, 0x01C, 0x01F, 0x024, 0x02F, 0x033, 0x100, 0xFFFF}) {
+  for (int address : {0x003, 0x00F, 0x01E, 0x01F, 0x025, 0x02F, 0x033, 0x100, 0xFFFF}) {
     const auto word = static_cast<std::uint16_t>(address);
     EXPECT_FALSE(board.read_register(word, value)) << "read of unmapped 0x" << std::hex << word;
     EXPECT_FALSE(board.write_register(word, 1)) << "write to unmapped 0x" << std::hex << word;
   }
   for (std::uint16_t word : {regs::kId, regs::kVersion, regs::kClockLive, regs::kTickSequence, regs::kTickClock,
                              regs::kEncoderX, regs::kEncoderY, regs::kInputs, regs::kAdcForce, regs::kFaults,
-                             regs::kClockAtRead, regs::kAdcAccelX, regs::kAdcAccelY}) {
+                             regs::kClockAtRead, regs::kAdcAccelX, regs::kAdcAccelY, regs::kIndexX, regs::kIndexY,
+                             regs::kSpindleEncoder, regs::kSpindleIndex}) {
     const std::uint32_t before = read(board, word);
     EXPECT_FALSE(board.write_register(word, 0x5A5A)) << "write to read-only 0x" << std::hex << word;
     if (word != regs::kClockLive && word != regs::kClockAtRead) {

@@ -130,5 +130,53 @@ TEST(SpindleEncoder, IndexAngleShiftsTheMarkAndReversalCountsEdgesBothWays) {
   EXPECT_EQ(encoder.latched_count(), 4096 + 1024) << "the last edge crossed is the mark at 1.25 turns";
 }
 
+TEST(SpindleDrive, TheBoardsInputsCommandItOnlyEnabledAndWithTheDirectionAgreeing) {
+  SpindleDrive drive(SpindleParams{});
+  const std::uint32_t forward = drive.code_for_rpm(3000.0), reverse = drive.code_for_rpm(-3000.0);
+  drive.set_inputs(forward, true, false);
+  EXPECT_EQ(drive.commanded_rpm(), 3000.0);
+  drive.set_inputs(reverse, true, true);
+  EXPECT_EQ(drive.commanded_rpm(), -3000.0);
+  drive.set_inputs(forward, false, false);
+  EXPECT_EQ(drive.commanded_rpm(), 0.0) << "disabled";
+  drive.set_inputs(forward, true, true);
+  EXPECT_EQ(drive.commanded_rpm(), 0.0) << "direction input against the sign";
+  drive.set_inputs(reverse, true, false);
+  EXPECT_EQ(drive.commanded_rpm(), 0.0) << "direction input against the sign";
+  drive.set_inputs(drive.mid_code(), true, true);
+  EXPECT_EQ(drive.commanded_rpm(), 0.0);
+}
+
+TEST(SpindleDrive, ABlockIsItsSubStepsAndAStoppingSpindleEndsExactlyAtRest) {
+  SpindleDrive stepped(SpindleParams{}), blocked(SpindleParams{});
+  for (SpindleDrive* d : {&stepped, &blocked}) d->set_command_code(d->code_for_rpm(2000.0));
+  for (int block = 0; block < 500; ++block) {  // 0.5 s: the ramp, the knee and the approach
+    for (int i = 0; i < 100; ++i) stepped.step();
+    blocked.advance_unloaded(100);
+  }
+  EXPECT_NEAR(blocked.speed_rpm(), stepped.speed_rpm(), 1e-7);
+  EXPECT_NEAR(blocked.revolutions(), stepped.revolutions(), 1e-7);
+
+  // Coming to rest from v0 under the linear law (v0 < a_sp tau_sp): it
+  // turns v0 tau_sp more, in rpm*s, and then sits at exactly 0.
+  SpindleDrive drive(SpindleParams{});
+  drive.set_command_code(drive.code_for_rpm(600.0));
+  for (int i = 0; i < 3000; ++i) drive.advance_unloaded(100);  // 3 s: settled
+  const double v0_rpm = drive.speed_rpm(), rev0 = drive.revolutions();
+  drive.set_command_code(drive.mid_code());
+  int blocks = 0;
+  while (!drive.at_rest() && blocks < 10'000) {
+    drive.advance_unloaded(100);
+    ++blocks;
+  }
+  ASSERT_TRUE(drive.at_rest());
+  EXPECT_EQ(drive.speed_rpm(), 0.0);
+  EXPECT_NEAR(blocks, 0.2 * std::log(v0_rpm / SpindleDrive::kRestRpm) * 1000.0, 2.0) << "tau_sp ln(v0 / rest)";
+  EXPECT_NEAR((drive.revolutions() - rev0) * 60.0, v0_rpm * 0.2, 1e-8);
+  const double rest_rev = drive.revolutions();
+  drive.advance_unloaded(100);
+  EXPECT_EQ(drive.revolutions(), rest_rev);
+}
+
 }  // namespace
 }  // namespace tnv::emu

@@ -71,6 +71,18 @@ class FakeIoBoard final : public hal::IoBoard {
   std::array<std::uint16_t, 2> accel_code{2048, 2048};  // offset binary: 2048 = 0 mm/s^2
   std::uint16_t latched_accel_code(hal::Axis a) const noexcept override { return accel_code[hal::index(a)]; }
   void kick() noexcept override { kick_staged = true; }
+
+  // The spindle: what the next snapshot holds, and what the tick staged.
+  std::uint32_t spindle_count = 0;
+  hal::IndexLatch spindle_index{};
+  std::uint16_t spindle_code = 2048;
+  bool spindle_enable = false;
+  bool spindle_reverse = false;
+  void set_spindle_code(std::uint16_t code) noexcept override { spindle_code = code; }
+  void set_spindle_enable(bool e) noexcept override { spindle_enable = e; }
+  void set_spindle_reverse(bool r) noexcept override { spindle_reverse = r; }
+  std::uint32_t spindle_latched_count() const noexcept override { return spindle_count; }
+  hal::IndexLatch spindle_index_latch() const noexcept override { return spindle_index; }
 };
 
 }  // namespace tnv::test

@@ -21,8 +21,8 @@ constexpr std::uint32_t kClocksPerUs = hal::kTimebaseHz / 1'000'000;
 std::string SafeStateReport::one_line() const {
   if (!read_back) return "outputs: safe state written, but the board did not answer the read-back";
   char line[160];
-  std::snprintf(line, sizeof line, "outputs %s: DAC x %u, DAC y %u (mid-scale %u), enables 0x%x",
-                safe ? "safe" : "NOT SAFE", dac_x, dac_y, 1u << (hal::regs::kDacBits - 1), outputs);
+  std::snprintf(line, sizeof line, "outputs %s: DAC x %u, DAC y %u, DAC spindle %u (mid-scale %u), enables 0x%x",
+                safe ? "safe" : "NOT SAFE", dac_x, dac_y, dac_spindle, 1u << (hal::regs::kDacBits - 1), outputs);
   return line;
 }
 
@@ -144,10 +144,12 @@ SafeStateReport Daemon::stop() {
   safe_.read_back = bus_->read_block(hal::regs::kOutputFirst, out) == hal::HalStatus::ok;
   safe_.dac_x = out[hal::regs::kDacX - hal::regs::kOutputFirst];
   safe_.dac_y = out[hal::regs::kDacY - hal::regs::kOutputFirst];
+  safe_.dac_spindle = out[hal::regs::kDacSpindle - hal::regs::kOutputFirst];
   safe_.outputs = out[hal::regs::kOutputs - hal::regs::kOutputFirst];
   const std::uint32_t mid = 1u << (hal::regs::kDacBits - 1);
-  safe_.safe = safe_.read_back && safe_.dac_x == mid && safe_.dac_y == mid &&
-               (safe_.outputs & (hal::regs::kOutputEnableX | hal::regs::kOutputEnableY)) == 0;
+  // Every OUTPUTS bit is an enable or the spindle's direction: all off.
+  safe_.safe = safe_.read_back && safe_.dac_x == mid && safe_.dac_y == mid && safe_.dac_spindle == mid &&
+               safe_.outputs == 0;
   return safe_;
 }
 

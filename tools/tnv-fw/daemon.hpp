@@ -31,8 +31,8 @@ struct DaemonOptions {
 
 struct SafeStateReport {
   bool read_back = false;  // the output window could be read after the safe write
-  std::uint32_t dac_x = 0, dac_y = 0, outputs = 0;
-  bool safe = false;       // both DACs mid-scale, both enables off
+  std::uint32_t dac_x = 0, dac_y = 0, dac_spindle = 0, outputs = 0;
+  bool safe = false;       // every DAC mid-scale (the spindle's too), every OUTPUTS bit off
   std::string one_line() const;
 };
 
