@@ -4,6 +4,7 @@
 // program (line and column) or a missing file.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +89,26 @@ TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCyc
   EXPECT_EQ(no_tools.exit_code, 2);
   EXPECT_NE(no_tools.err.find("requested tool 4 not found"), std::string::npos) << no_tools.err;
   for (const std::string& f : {tbl, var, file}) std::filesystem::remove(f);
+}
+
+// The block delete switch reaches the interpreter: on (the default) the
+// slashed feed is skipped, off it runs; a value other than on/off is refused.
+TEST(PathCli, BlockDeleteSwitchDecidesWhetherTheSlashedLineRuns) {
+  const std::string file = temp_program("blockdelete", "G21 G90 F600\nG1 X2\n/G1 X2 Y2\nG1 X0 Y0\nM2\n");
+  const CliRun on = run_tnv_hil("path " + file + " --json");
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  const CliRun off = run_tnv_hil("path " + file + " --block-delete off --json");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  const auto j_on = nlohmann::json::parse(on.out);
+  const auto j_off = nlohmann::json::parse(off.out);
+  EXPECT_EQ(j_off["segments"].get<int>(), j_on["segments"].get<int>() + 1);
+  // From X2 back to the origin: straight (2 mm), or up to X2 Y2 and down the diagonal (2 + 2.83 mm).
+  EXPECT_NEAR(j_off["programmed_length_mm"].get<double>() - j_on["programmed_length_mm"].get<double>(),
+              std::sqrt(8.0), 1e-9);
+  const CliRun bad = run_tnv_hil("path " + file + " --block-delete maybe");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--block-delete"), std::string::npos) << bad.err;
+  std::filesystem::remove(file);
 }
 
 TEST(PathCli, RefusesAMissingFileAndAPlotIntoAMissingDirectory) {

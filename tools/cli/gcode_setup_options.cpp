@@ -13,12 +13,18 @@ void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options) {
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->check(CLI::ExistingDirectory);
+  command
+      .add_option("--block-delete", options.block_delete,
+                  "the block delete switch: on skips the lines that start with '/' (LinuxCNC's default), off runs them")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
 }
 
 bool load_gcode_setup(const GcodeSetupOptions& options, gcode::CanonSetup& setup, std::string& error) {
   if (!options.tool_table.empty() && !gcode::load_tool_table_file(options.tool_table, setup, error)) return false;
   if (!options.var_file.empty() && !gcode::load_var_file(options.var_file, setup, error)) return false;
   setup.subroutine_path = options.subroutine_path;
+  setup.block_delete = options.block_delete != "off";
   return true;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The options every command that runs a G-code program takes, as `tnvctl
-// gcode canon` takes them: --tool-table, --var-file, --subroutine-path
-// (tnvctl gcode canon, tnvctl run, tnv-hil path). Built as tnv_gcode_cli
+// gcode canon` takes them: --tool-table, --var-file, --subroutine-path,
+// --block-delete (tnvctl gcode canon, tnvctl run, tnv-hil path). Built as tnv_gcode_cli
 // (tools/CMakeLists.txt): the G-code library itself needs no CLI11.
 #include <string>
 #include <vector>
@@ -18,13 +18,16 @@ struct GcodeSetupOptions {
   std::string tool_table;  // .tbl
   std::string var_file;    // .var
   std::vector<std::string> subroutine_path;
+  // The operator's block delete switch: "on" skips the lines that start
+  // with '/', as LinuxCNC does by default; "off" runs them.
+  std::string block_delete = "on";
 };
 
 // `options` must outlive the parse.
 void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options);
 
 // The files loaded into a setup (load_tool_table_file, load_var_file) and
-// the subroutine path set; false with `error` ("<path>: line N: why").
+// the subroutine path and block delete switch set; false with `error` ("<path>: line N: why").
 bool load_gcode_setup(const GcodeSetupOptions& options, gcode::CanonSetup& setup, std::string& error);
 
 }  // namespace tnv::cli

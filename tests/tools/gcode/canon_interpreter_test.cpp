@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,21 @@ TEST(CanonInterpreter, MovesArcsAndHelixInEachPlane) {
   const auto xz = calls_of("F10\nG18 G2 X0 Z0 I1 K0 Y2 P2\nM2\n");
   ASSERT_GE(xz.size(), 3u);
   EXPECT_EQ(xz[2], "ARC_FEED(0.0000, 0.0000, 0.0000, 1.0000, -2, 2.0000, 0.0000, 0.0000, 0.0000)");
+}
+
+// The operator's block delete switch: on (LinuxCNC's default) skips a line
+// that starts with '/', off runs it; a '/' elsewhere is no switch at all.
+TEST(CanonInterpreter, BlockDeleteSwitchSkipsOrRunsTheSlashedLines) {
+  const std::string program = "G0 X1\n/G0 X2\nG0 X3 (/ not at the start)\nM2\n";
+  const std::string x2 = "STRAIGHT_TRAVERSE(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)";
+  const std::vector<std::string> on = calls_of(program);
+  EXPECT_EQ(std::count(on.begin(), on.end(), x2), 0) << "switch on: the slashed line ran";
+  EXPECT_EQ(on.size(), 3 + kEnd.size());  // X1, the comment, X3
+  CanonSetup off;
+  off.block_delete = false;
+  const std::vector<std::string> run = calls_of(program, off);
+  EXPECT_EQ(std::count(run.begin(), run.end(), x2), 1) << "switch off: the slashed line did not run";
+  EXPECT_EQ(run.size(), 4 + kEnd.size());
 }
 
 TEST(CanonInterpreter, InchesArePrintedInTheProgramsUnits) {
