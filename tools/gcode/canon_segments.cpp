@@ -1,8 +1,9 @@
 #include "tools/gcode/canon_segments.hpp"
 
+#include "tools/gcode/canon_state.hpp"
+
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 
 namespace tnv::gcode {
@@ -26,12 +27,6 @@ class Refusal {
  private:
   std::string message_;
 };
-
-std::string mm(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.4f", std::fabs(v) < 5e-5 ? 0.0 : v);
-  return buf;
-}
 
 class Converter {
  public:
@@ -86,7 +81,7 @@ class Converter {
  private:
   void check_z(const std::array<double, 3>& end) const {
     if (std::fabs(end[2] - at_[2]) > kSameZ_mm)
-      throw Refusal("this move takes machine Z from " + mm(at_[2]) + " to " + mm(end[2]) +
+      throw Refusal("this move takes machine Z from " + fixed(at_[2], 4) + " to " + fixed(end[2], 4) +
                     " mm: this machine has X and Y only");
   }
 

@@ -19,13 +19,6 @@ constexpr int kG92Base = 5211, kG92Enabled = 5210;
 constexpr int kG28Home = 5161, kG30Home = 5181;
 constexpr int kProbeResult = 5061, kProbeTripped = 5070;
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  if (std::fabs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;  // no "-0.0000"
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 bool has_code(const std::vector<NgcCode>& codes, int code) {
   return std::any_of(codes.begin(), codes.end(), [code](const NgcCode& c) { return c.code == code; });
 }
@@ -73,6 +66,14 @@ int m_group(int code) {
 }
 
 }  // namespace
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  if (std::fabs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;  // no "-0.0000"
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
 
 CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
     : setup_(setup), calls_(calls), params_(setup.parameters) {

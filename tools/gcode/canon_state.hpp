@@ -17,6 +17,9 @@
 
 namespace tnv::gcode {
 
+// v with `decimals` places as rs274 prints numbers (never "-0.0000").
+std::string fixed(double v, int decimals);
+
 class CanonMachine : private NgcMachineValues {
  public:
   CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls);
