@@ -31,7 +31,11 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   // only while the same cycle goes on: a new cycle, or one after G80 or
   // another motion, names them again (an R or Z left from an earlier cycle
   // would be a guess at where the stock is). G84's P is kept whatever came between.
-  const std::string cycle = "G" + std::to_string(motion / 10);  // the cycles are whole codes
+  // The cycles are whole codes. Appended, not "G" + std::to_string(...):
+  // GCC 12 warns a false -Wrestrict on that operator+ when this file is
+  // compiled on its own at -O2 (the plain, non-unity build).
+  std::string cycle = "G";
+  cycle += std::to_string(motion / 10);
   const auto needed = [&](char word, const char* what) {
     if (!block.has(word) && !cycle_continues_)
       throw NgcError(column, cycle + " needs " + static_cast<char>(std::toupper(static_cast<unsigned char>(word))) +
