@@ -82,9 +82,28 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
   }
 }
 
+bool IoBoard::accepts_write(std::uint16_t word, std::uint32_t value) const noexcept {
+  if (axis_of(word, &regs::AxisRegisters::dac)) return value <= dac_.max_code();
+  switch (word) {
+    case regs::kDacSpindle:
+      return value <= spindle_dac_max_code_;
+    case regs::kOutputs:
+      return (value & ~kOutputBits) == 0;
+    case regs::kWatchdogKick:
+    case regs::kWatchdogTimeout:
+      return true;
+    case regs::kTickDivider:
+      return value >= kMinTickDividerClocks;
+    case regs::kControl:
+      return (value & ~kControlBits) == 0;
+    default:
+      return false;  // read-only or unmapped
+  }
+}
+
 bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
+  if (!accepts_write(word, value)) return false;
   if (const std::optional<std::size_t> i = axis_of(word, &regs::AxisRegisters::dac)) {
-    if (value > dac_.max_code()) return false;
     dac_codes_[*i] = value;
     if (outputs_deferred_) {
       outputs_written_ = true;
@@ -96,7 +115,6 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
   }
   switch (word) {
     case regs::kDacSpindle:
-      if (value > spindle_dac_max_code_) return false;
       spindle_dac_code_ = value;
       if (outputs_deferred_) {
         outputs_written_ = true;
@@ -105,7 +123,6 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
       }
       return true;
     case regs::kOutputs:
-      if ((value & ~kOutputBits) != 0) return false;
       outputs_ = value;
       if (outputs_deferred_) {
         outputs_written_ = true;
@@ -127,7 +144,6 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
       }
       return true;
     case regs::kTickDivider:
-      if (value < kMinTickDividerClocks) return false;
       tick_divider_clocks_ = value;
       next_tick_clocks_ = last_nominal_tick_clocks_ + value;
       return true;
@@ -135,7 +151,6 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
       watchdog_timeout_clocks_ = value;
       return true;
     case regs::kControl:
-      if ((value & ~kControlBits) != 0) return false;
       if ((value & regs::kControlClearWatchdog) != 0) {
         watchdog_tripped_ = false;
         watchdog_armed_ = false;
@@ -144,7 +159,7 @@ bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
       if ((value & regs::kControlClearFaults) != 0) faults_ = 0;
       return true;
     default:
-      return false;  // read-only or unmapped
+      return false;  // unreachable: accepts_write() refused it
   }
 }
 

@@ -86,6 +86,9 @@ class IoBoard {
   // --- bus side; false = unmapped address, or a refused write
   bool read_register(std::uint16_t word, std::uint32_t& value) const noexcept;
   bool write_register(std::uint16_t word, std::uint32_t value) noexcept;
+  // Whether write_register() would take this value at this address, with
+  // no effect: a block write checks every word before it writes any.
+  bool accepts_write(std::uint16_t word, std::uint32_t value) const noexcept;
 
   // --- machine side
   // Speed command the servopack gets: DAC value, or 0 when the axis is

@@ -492,6 +492,17 @@ bool Machine::write_register(std::uint16_t word, std::uint32_t value) noexcept {
   return impl_->board.write_register(word, value);
 }
 
+bool Machine::write_registers(std::uint16_t first_word, std::span<const std::uint32_t> values) noexcept {
+  if (values.size() > 0x10000u - first_word) return false;  // would wrap past the last word
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!impl_->board.accepts_write(static_cast<std::uint16_t>(first_word + i), values[i])) return false;
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    impl_->board.write_register(static_cast<std::uint16_t>(first_word + i), values[i]);
+  }
+  return true;
+}
+
 void Machine::advance_to_next_tick() noexcept {
   for (;;) {
     while (!impl_->run_block(std::numeric_limits<std::uint64_t>::max())) {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "emulator/scenario.hpp"
 #include "hal/axis.hpp"
@@ -64,6 +65,10 @@ class Machine {
   // or any read while an injected bus_read_error is active
   bool read_register(std::uint16_t word, std::uint32_t& value) noexcept;
   bool write_register(std::uint16_t word, std::uint32_t value) noexcept;
+  // Consecutive registers from first_word, all or nothing: false (and no
+  // register changed) when any word is unmapped, read-only or refuses its
+  // value, as a bad request must change nothing.
+  bool write_registers(std::uint16_t first_word, std::span<const std::uint32_t> values) noexcept;
 
   // --- simulated time (sub-steps of 100 clocks = 10 us)
   void advance_to_next_tick() noexcept;               // returns right after the next tick latch the firmware wakes for

@@ -12,10 +12,7 @@ hal::HalStatus EmulatedRegisterBus::read_block(std::uint16_t first_word, std::sp
 
 hal::HalStatus EmulatedRegisterBus::write_block(std::uint16_t first_word, std::span<const std::uint32_t> in) noexcept {
   ++writes_;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    if (!machine_.write_register(static_cast<std::uint16_t>(first_word + i), in[i])) return hal::HalStatus::bad_address;
-  }
-  return hal::HalStatus::ok;
+  return machine_.write_registers(first_word, in) ? hal::HalStatus::ok : hal::HalStatus::bad_address;
 }
 
 }  // namespace tnv::drivers

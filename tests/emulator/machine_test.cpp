@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "emulator/axis_plant.hpp"
@@ -175,6 +176,30 @@ TEST(Machine, BenchInputsReachTheSnapshot) {
   m.set_limit(Axis::x, false, true);
   m.advance_to_next_tick();
   EXPECT_EQ(read(m, regs::kInputs), regs::kInputEstop | regs::kInputAlarmY | regs::kInputLimitXNeg);
+}
+
+// A refused word refuses the whole block: a bad request (e.g. from a client
+// of tnv-board-emu's socket) changes no register, not only those after it.
+TEST(Machine, ABlockWriteIsAllOrNothing) {
+  Machine m(Scenario{});
+  servo_on(m, 2100, 2000);
+  const std::array<std::uint32_t, 3> bad_outputs{2500, 1500, 0x8000'0000u};  // OUTPUTS: a bit the board lacks
+  EXPECT_FALSE(m.write_registers(regs::kDacX, bad_outputs));
+  const std::array<std::uint32_t, 2> past_the_map{1u, 0u};  // CONTROL, then the word after the last register
+  EXPECT_FALSE(m.write_registers(regs::kLastRegister, past_the_map));
+  const std::array<std::uint32_t, 2> wrapping{1u, 2u};
+  EXPECT_FALSE(m.write_registers(0xFFFF, wrapping));
+  m.advance_to_next_tick();
+  EXPECT_EQ(m.board_outputs().dac_register[0], 2100u) << "DAC_X before the refused OUTPUTS word stayed";
+  EXPECT_EQ(m.board_outputs().dac_register[1], 2000u);
+  EXPECT_TRUE(m.board_outputs().enabled[0]);
+
+  const std::array<std::uint32_t, 3> good{2500, 1500, regs::kOutputEnableX};
+  ASSERT_TRUE(m.write_registers(regs::kDacX, good));
+  m.advance_to_next_tick();
+  EXPECT_EQ(m.board_outputs().dac_register[0], 2500u);
+  EXPECT_EQ(m.board_outputs().dac_register[1], 1500u);
+  EXPECT_FALSE(m.board_outputs().enabled[1]);
 }
 
 }  // namespace
