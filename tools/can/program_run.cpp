@@ -25,14 +25,27 @@ struct Prepared {
   WireProgram wire;
 };
 
-Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm, const fw::motion::MotionLimits& limits,
-                 const ProgramRunOptions& o, std::uint8_t node) {
+gcode::GcodeResult parse(const std::string& text, const fw::motion::PlanePoint& start_mm,
+                         const fw::motion::MotionLimits& limits, const ProgramRunOptions& o) {
   gcode::GcodeOptions g;
   g.start_mm = start_mm;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
   g.limits = limits;
   g.canon = o.canon;
-  gcode::GcodeResult parsed = gcode::parse_gcode(text, g);
+  return gcode::parse_gcode(text, g);
+}
+
+// The run's telemetry, and every frame to the caller's listener too.
+FrameListener both(PathTelemetry& telemetry, const FrameListener& also) {
+  return [&telemetry, also](const hal::CanFrame& f, can::MessageId id) {
+    telemetry.take(f, id);
+    if (also) also(f, id);
+  };
+}
+
+Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm, const fw::motion::MotionLimits& limits,
+                 const ProgramRunOptions& o, std::uint8_t node) {
+  gcode::GcodeResult parsed = parse(text, start_mm, limits, o);
   if (parsed.error) throw ProgramInputError(gcode::to_string(*parsed.error));
   if (parsed.program.segments.empty()) throw ProgramInputError("the program has no motion and no dwell");
   std::string error;
@@ -42,6 +55,24 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
 }
 
 }  // namespace
+
+ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& o) {
+  ProgramPlan plan;
+  plan.limits = node_motion_limits(client);
+  PathTelemetry telemetry;
+  client.set_listener(both(telemetry, o.on_frame));
+  try {
+    plan.start_mm = standing_reference(client, telemetry);
+  } catch (...) {
+    client.set_listener(o.on_frame);
+    throw;
+  }
+  client.set_listener(o.on_frame);
+  plan.parsed = parse(gcode_text, plan.start_mm, plan.limits, o);
+  if (!plan.parsed.error && !wire_program(plan.parsed.program, plan.start_mm, client.node(), plan.wire_error))
+    if (plan.wire_error.empty()) plan.wire_error = "the program cannot be sent";
+  return plan;
+}
 
 fw::motion::MotionLimits node_motion_limits(NodeClient& client) {
   fw::motion::MotionLimits m;
@@ -69,7 +100,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     throw RequestError(RequestError::Kind::refused, node + " is moving (state " + fw::to_string(hb.state) + ")");
 
   PathTelemetry telemetry;
-  const auto listen = [&] { client.set_listener([&](const hal::CanFrame& f, can::MessageId id) { telemetry.take(f, id); }); };
+  const auto listen = [&] { client.set_listener(both(telemetry, o.on_frame)); };
   const can::ParamDef& position = param("tlm.position_ms");
   const can::ParamDef& following = param("tlm.following_ms");
   const double old_position_ms = client.get(position);
@@ -131,18 +162,18 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     so.interrupted = o.interrupted;
     so.progress = o.progress;
     so.before_send = o.before_send;
-    so.on_frame = [&](const hal::CanFrame& f, can::MessageId id) { telemetry.take(f, id); };
+    so.on_frame = both(telemetry, o.on_frame);
     r.stream = stream_program(client, r.wire, so);
     listen();
     client.pump(Micros{20'000});  // the reference at rest after the end closes the motion window
-    client.set_listener({});
+    client.set_listener(o.on_frame);
     try {
       restore();
     } catch (const std::exception& e) {
       r.stream.message.append(r.stream.message.empty() ? "" : "; ").append("telemetry periods not restored: ").append(e.what());
     }
   } catch (...) {
-    client.set_listener({});
+    client.set_listener(o.on_frame);
     try {
       restore();
     } catch (...) {

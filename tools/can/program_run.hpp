@@ -42,6 +42,7 @@ struct ProgramRunOptions {
   std::function<bool()> interrupted;
   std::function<void(const StreamProgress&)> progress;
   std::function<void(std::size_t)> before_send;  // tests: called before element k is sent
+  FrameListener on_frame;  // every frame from the node too, besides the run's own telemetry (a live page's scope)
 };
 
 struct ProgramRunResult {
@@ -56,6 +57,20 @@ struct ProgramRunResult {
   bool telemetry_complete = false;
   std::optional<hil::PathScore> score;  // when sampled (telemetry_ms 1) and the program ran to its end
 };
+
+// What run_gcode would run now, changing nothing on the node: the node's
+// limits, where the table stands (from its telemetry, which must be on) and
+// the program parsed from there (a refusal in parsed.error, or, for a
+// program the wire cannot carry, in wire_error).
+struct ProgramPlan {
+  gcode::GcodeResult parsed;
+  std::string wire_error;
+  fw::motion::MotionLimits limits;
+  fw::motion::PlanePoint start_mm{};
+};
+
+// Throws RequestError when the node sends no TLM_POSITION / TLM_FOLLOWING pair within 500 ms.
+ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options);
 
 // The planner's limits the node runs with (x/y.path.*, path.tolerance_mm, the soft travel limits).
 fw::motion::MotionLimits node_motion_limits(NodeClient& client);

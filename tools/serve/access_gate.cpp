@@ -174,6 +174,10 @@ bool AccessGate::host_allowed(const std::string& host) const {
   return bind != "0.0.0.0" && bind != "::" && host == bind;
 }
 
+std::size_t AccessGate::body_limit(const std::string& path) const {
+  return path.rfind("/api/program/", 0) == 0 ? options_.max_program_bytes : options_.max_body_bytes;
+}
+
 std::string AccessGate::origin() const {
   return std::string(options_.tls ? "https" : "http") + "://127.0.0.1:" + std::to_string(options_.port);
 }
@@ -244,9 +248,8 @@ GateVerdict AccessGate::check(const httplib::Request& req) const {
   // The server checks before it reads the body: its size and presence are the headers' word
   // (cpp-httplib then reads at most Content-Length, and refuses more than the cap itself).
   const std::size_t length = std::max(req.body.size(), declared_length(req));
-  if (length > options_.max_body_bytes)
-    return refuse(kHttpPayloadTooLarge, "the request body is over " + std::to_string(options_.max_body_bytes) + " bytes",
-                  session);
+  if (const std::size_t limit = body_limit(req.path); length > limit)
+    return refuse(kHttpPayloadTooLarge, "the request body is over " + std::to_string(limit) + " bytes", session);
   if (length > 0 || req.has_header("Transfer-Encoding")) {
     const std::string type = lower(trimmed(req.get_header_value("Content-Type")));
     if (trimmed(type.substr(0, type.find(';'))) != "application/json")

@@ -49,6 +49,7 @@ struct GateOptions {
   bool tls = false;
   bool read_only = false;
   std::size_t max_body_bytes = 64 * 1024;
+  std::size_t max_program_bytes = 4 * 1024 * 1024;  // the body limit of /api/program/* (a whole program)
   std::size_t max_sessions = 32;  // the oldest cookie session is forgotten past this
 };
 
@@ -77,6 +78,8 @@ class AccessGate {
   std::string origin() const;  // scheme://127.0.0.1:port as the page is opened
   bool read_only() const { return options_.read_only; }
   std::size_t max_body_bytes() const { return options_.max_body_bytes; }
+  // The body limit of a request to `path`: max_program_bytes for /api/program/*, else max_body_bytes.
+  std::size_t body_limit(const std::string& path) const;
 
  private:
   // "cookie#N" for a known session id in the Cookie header, else "".

@@ -1,18 +1,24 @@
 #pragma once
 // A request the server answers with an HTTP error: the status and the
 // text the page shows (a refusal names its reason).
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace tnv::serve {
 
 class ApiError : public std::runtime_error {
  public:
-  ApiError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  ApiError(int status, const std::string& message, nlohmann::json detail = nullptr)
+      : std::runtime_error(message), status_(status), detail_(std::move(detail)) {}
   int status() const noexcept { return status_; }
+  // More fields of the answer beside "error" (a G-code refusal's line and column), or null.
+  const nlohmann::json& detail() const noexcept { return detail_; }
 
  private:
   int status_;
+  nlohmann::json detail_;
 };
 
 inline constexpr int kHttpBadRequest = 400;   // bad input: nothing was sent to the node

@@ -79,13 +79,18 @@ std::size_t AuditLog::lines() const {
 }
 
 void AuditLog::request(const httplib::Request& req, const httplib::Response& res, const std::string& session) {
+  request(req, res, session, logged_body(req.body));
+}
+
+void AuditLog::request(const httplib::Request& req, const httplib::Response& res, const std::string& session,
+                       const nlohmann::json& body) {
   nlohmann::json line = {{"time", utc_now()},
                          {"peer", req.remote_addr + ":" + std::to_string(req.remote_port)},
                          {"session", session.empty() ? nlohmann::json(nullptr) : nlohmann::json(session)},
                          {"tab", req.get_header_value(kTokenHeader).substr(0, 64)},
                          {"method", req.method},
                          {"path", req.path.substr(0, 256)},
-                         {"body", logged_body(req.body)},
+                         {"body", body},
                          {"status", res.status}};
   nlohmann::json answer = logged_body(res.body);
   line["answer"] = std::move(answer);

@@ -6,6 +6,7 @@
 // journal, under systemd).
 #include <cstdio>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace httplib {
@@ -26,6 +27,9 @@ class AuditLog {
 
   // One request and its answer; `session` as the gate named it.
   void request(const httplib::Request& req, const httplib::Response& res, const std::string& session);
+  // The same with `body` logged in place of the request's own (a program's summary, not its text).
+  void request(const httplib::Request& req, const httplib::Response& res, const std::string& session,
+               const nlohmann::json& body);
   // An event of the server's own (the dead-man rule's stop).
   void event(const std::string& what, const std::string& detail);
   std::size_t lines() const;

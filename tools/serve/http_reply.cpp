@@ -28,7 +28,9 @@ void answer(httplib::Response& res, const std::function<nlohmann::json()>& f) {
   try {
     reply(res, 200, f());
   } catch (const ApiError& e) {
-    reply(res, e.status(), {{"error", e.what()}});
+    nlohmann::json body = {{"error", e.what()}};
+    if (e.detail().is_object()) body.update(e.detail());
+    reply(res, e.status(), body);
   } catch (const can_host::RequestError& e) {
     reply(res, e.kind() == can_host::RequestError::Kind::refused ? kHttpConflict : kHttpBadGateway, {{"error", e.what()}});
   } catch (const can_host::MotionFailed& e) {

@@ -73,7 +73,22 @@ void TuningServer::node_routes() {
   post("/api/motion", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       const MotionRequest motion = parse_motion_request(body, emulated_);
-      return worker_.run([motion](can_host::NodeClient& c) { return start_motion(c, motion); });
+      const bool halt = motion.kind == "stop" || motion.kind == "estop";
+      // A stop reaches a running program at once (its stream's interrupt flag); the command
+      // itself follows on the node thread as soon as the program's job has stopped the table.
+      const bool interrupted = halt && program_.interrupt();
+      if (!halt && program_.active()) throw ApiError(kHttpConflict, "a program is running: Stop it first");
+      nlohmann::json done = worker_.run([motion, interrupted](can_host::NodeClient& c) {
+        try {
+          return start_motion(c, motion);
+        } catch (const ApiError& e) {
+          // Stopped on its path the table already holds: the node's refusal of a second stop is no failure.
+          if (!interrupted || e.status() != kHttpConflict) throw;
+          return nlohmann::json{{"kind", motion.kind}, {"refused", e.what()}};
+        }
+      });
+      if (interrupted) done["program"] = "interrupted";
+      return done;
     });
   });
 

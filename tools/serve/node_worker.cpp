@@ -34,7 +34,7 @@ NodeWorker::~NodeWorker() { stop(); }
 
 void NodeWorker::start() {
   started_ = client_.bus().now();
-  client_.set_listener([this](const hal::CanFrame& f, fw::can::MessageId id) { take_frame(f, id); });
+  client_.set_listener(scope_listener());
   if (emulated_ != nullptr) emulated_->set_realtime(true);  // simulated time at wall-clock pace: it looks live
   thread_ = std::thread([this] { loop(); });
 }
@@ -55,7 +55,13 @@ void NodeWorker::stop() {
   jobs_.clear();
 }
 
-nlohmann::json NodeWorker::run(Job job) {
+can_host::FrameListener NodeWorker::scope_listener() {
+  return [this](const hal::CanFrame& f, fw::can::MessageId id) { take_frame(f, id); };
+}
+
+nlohmann::json NodeWorker::run(Job job) { return submit(std::move(job)).get(); }
+
+std::future<nlohmann::json> NodeWorker::submit(Job job) {
   ++offered_;
   std::future<nlohmann::json> result;
   {
@@ -70,7 +76,7 @@ nlohmann::json NodeWorker::run(Job job) {
     result = jobs_.back().result.get_future();
   }
   wake_.notify_all();
-  return result.get();
+  return result;
 }
 
 std::size_t NodeWorker::pending() const {
@@ -115,6 +121,7 @@ void NodeWorker::loop() {
       } catch (...) {
         next->result.set_exception(std::current_exception());
       }
+      client_.set_listener(scope_listener());  // a job that listened itself (a program run) may have left another
       refresh_status();
       continue;
     }

@@ -41,6 +41,12 @@ class NodeWorker {
   // Runs `job` on the node thread and returns its result; its exception is
   // rethrown here. A full queue throws ApiError(503) at once (nothing queued).
   nlohmann::json run(Job job);
+  // The same without waiting: the result when the job is done (a program
+  // run, whose handler answers once it started).
+  std::future<nlohmann::json> submit(Job job);
+  // The scope's own listener, for a job that listens to the node itself
+  // (node thread only; it is put back after every job anyway).
+  can_host::FrameListener scope_listener();
   std::size_t pending() const;
   // How many jobs run() was given so far (run or refused): a refused
   // request must leave this unchanged.

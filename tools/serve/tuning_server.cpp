@@ -1,5 +1,6 @@
 #include "tools/serve/tuning_server.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -8,6 +9,7 @@
 #include "tools/serve/http_reply.hpp"
 #include "tools/serve/page_files.hpp"
 #include "tools/serve/page_motion.hpp"
+#include "tools/serve/page_program.hpp"
 #include "tools/serve/telemetry_sample.hpp"
 // Last: <resolv.h>, which it includes, defines the macro _res that Eigen's headers use as a name.
 #include <httplib.h>
@@ -59,6 +61,7 @@ GateOptions gate_options(const ServeOptions& o) {
   g.tls = !o.tls_cert.empty();
   g.read_only = o.read_only;
   g.max_body_bytes = o.max_body_bytes;
+  g.max_program_bytes = o.max_program_bytes;
   return g;
 }
 
@@ -93,7 +96,7 @@ TuningServer::TuningServer(can_host::NodeClient& client, can_host::EmulatedBus* 
       http_(make_http(options_)) {
   http_->new_task_queue = [] { return new httplib::ThreadPool(kHttpThreads); };
   http_->set_keep_alive_timeout(2);
-  http_->set_payload_max_length(options_.max_body_bytes);
+  http_->set_payload_max_length(std::max(options_.max_body_bytes, options_.max_program_bytes));
   http_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
     return gatekeeper(req, res) ? httplib::Server::HandlerResponse::Handled
                                 : httplib::Server::HandlerResponse::Unhandled;
@@ -120,7 +123,11 @@ void TuningServer::get(const std::string& pattern, Handler handler) {
 void TuningServer::post(const std::string& pattern, Handler handler) {
   // Audited here, with the body read and the answer not yet compressed for the wire.
   Handler logged = [this, handler = std::move(handler)](const httplib::Request& req, httplib::Response& res) {
-    handler(req, res);
+    // A chunked body has no length in its headers: its route's limit is checked here, once read.
+    if (const std::size_t limit = gate_.body_limit(req.path); req.body.size() > limit)
+      reply(res, 413, {{"error", "the request body is over " + std::to_string(limit) + " bytes"}});
+    else
+      handler(req, res);
     audited(req, res, gate_.check(req).session);
   };
   http_->Post(pattern, logged);
@@ -156,6 +163,13 @@ bool TuningServer::gatekeeper(const httplib::Request& req, httplib::Response& re
 void TuningServer::audited(const httplib::Request& req, const httplib::Response& res, const std::string& session) {
   if (req.method == "GET" || req.method == "HEAD") return;
   if (req.path == "/api/control/heartbeat" && res.status == 200) return;  // ten a second: only a refused one
+  if (req.path.rfind("/api/program/", 0) == 0) {  // a program's size, lines and digest, not its text
+    const nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
+    if (body.is_object() && body.contains("gcode") && body["gcode"].is_string()) {
+      audit_.request(req, res, session, {{"gcode", program_summary(body["gcode"].get<std::string>())}});
+      return;
+    }
+  }
   audit_.request(req, res, session);
 }
 
@@ -188,7 +202,9 @@ void TuningServer::deadman_loop() {
     if (stopping_) break;
     const std::string gone = control_.lapse(Clock::now());
     if (gone.empty()) continue;
-    const bool moving = page_motion_.exchange(false);
+    // A program's stream is told at once; the stop job runs after its job.
+    const bool program = program_.interrupt();
+    const bool moving = page_motion_.exchange(false) || program;
     lock.unlock();
     std::string what = "tab " + gone.substr(0, 8) + "... went quiet: control ended";
     try {
@@ -204,6 +220,7 @@ void TuningServer::deadman_loop() {
         c.release_ownership_if_taken();
         return nlohmann::json{{"refused", refused}};
       });
+      if (program) what += ", its program interrupted";
       if (moving) what += done["refused"] == "" ? ", its motion stopped" : ", stop refused: " + done["refused"].get<std::string>();
     } catch (const std::exception& e) {
       what += std::string(", the stop failed: ") + e.what();
@@ -245,6 +262,7 @@ void TuningServer::listen() {
 }
 
 void TuningServer::stop() {
+  program_.interrupt();  // the node thread's join must not wait for a program's end
   {
     const std::lock_guard lock(deadman_mutex_);
     stopping_ = true;
@@ -307,6 +325,7 @@ void TuningServer::telemetry_stream(const httplib::Request& req, httplib::Respon
         nlohmann::json event = batch_json(samples);
         event["status"] = worker_.status();
         event["control"] = control_json(token);
+        event["program"] = program_.json();
         const std::string text = "data: " + json_text(event) + "\n\n";
         *last_sent = Clock::now();
         return sink.write(text.data(), text.size());
@@ -346,11 +365,13 @@ void TuningServer::routes() {
     answer(res, [&] {
       const std::string token = req.get_header_value(kTokenHeader);
       // Released by the page, the node is free for another host too (tnvctl --host-id 2 autotune ...).
-      if (control_.release(token))
+      if (control_.release(token)) {
+        program_.interrupt();  // nobody's program runs on: stopped on its path
         worker_.run([](can_host::NodeClient& c) {
           c.release_ownership_if_taken();
           return nlohmann::json();
         });
+      }
       return control_json(token);
     });
   });
@@ -365,6 +386,7 @@ void TuningServer::routes() {
   });
 
   node_routes();
+  program_routes();
 }
 
 }  // namespace tnv::serve

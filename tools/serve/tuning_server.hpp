@@ -28,6 +28,7 @@
 #include "tools/serve/capture_shelf.hpp"
 #include "tools/serve/node_worker.hpp"
 #include "tools/serve/param_desk.hpp"
+#include "tools/serve/program_state.hpp"
 #include "tools/serve/scope_ring.hpp"
 
 namespace httplib {
@@ -57,6 +58,8 @@ struct ServeOptions {
   std::string tls_key;
   std::string audit_path;  // "" = stderr (the journal under systemd)
   std::size_t max_body_bytes = 64 * 1024;
+  // The Program panel's requests (/api/program/*) carry a whole program: their own limit.
+  std::size_t max_program_bytes = 4 * 1024 * 1024;
   nlohmann::json info = nlohmann::json::object();  // shown in the page's header (node, bus)
 };
 
@@ -83,6 +86,8 @@ class TuningServer {
   // The page's address with the secret, as printed: scheme://host:port/?token=SECRET.
   std::string page_url(const std::string& host, int port) const;
   const AuditLog& audit() const noexcept { return audit_; }
+  // The page's program run: {"phase", "line", ...} as the telemetry stream carries it.
+  nlohmann::json program_state() const { return program_.json(); }
 
   // One request through the gate and the API's routes in memory, no
   // socket (the fuzz target; the page's own files are not served here).
@@ -110,6 +115,7 @@ class TuningServer {
   void deadman_loop();
   void routes();
   void node_routes();  // node_routes.cpp
+  void program_routes();  // program_routes.cpp
   // A command or a change: only from the tab with control.
   void commanded(const httplib::Request& req, httplib::Response& res,
                  const std::function<nlohmann::json(const nlohmann::json& body)>& f);
@@ -126,6 +132,7 @@ class TuningServer {
   BrowserControl control_;
   ParamDesk desk_;  // node thread only (used inside jobs)
   CaptureShelf captures_;
+  ProgramState program_;  // the page's program run
   std::unique_ptr<httplib::Server> http_;
   std::atomic<std::size_t> streams_{0};
   std::atomic<bool> stopping_{false};

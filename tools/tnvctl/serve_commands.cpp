@@ -31,6 +31,7 @@ struct ServeCommandOptions {
   std::string audit;  // "" = stderr
   bool read_only = false;
   int deadman_ms = 300;
+  int max_program_kib = 4096;
 };
 
 void check_serve(const ServeCommandOptions& o) {
@@ -58,6 +59,7 @@ int run_serve(const ServeCommandOptions& o, Session& session, Report& report) {
   options.audit_path = o.audit;
   options.read_only = o.read_only;
   options.control_deadman = std::chrono::milliseconds(o.deadman_ms);
+  options.max_program_bytes = static_cast<std::size_t>(o.max_program_kib) * 1024;
   options.info = {{"node", session.options().node},
                   {"host_id", session.options().host_id},
                   {"bus", client.bus().describe()},
@@ -122,6 +124,10 @@ void add_serve_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("--deadman-ms", o->deadman_ms,
                   "the tab with control that is not heard from for this long loses it, and its motion is stopped")
       ->check(CLI::Range(100, 10000))
+      ->capture_default_str();
+  cmd->add_option("--max-program-kib", o->max_program_kib,
+                  "the largest program the page's Program panel may send (its request body; other requests: 64 KiB)")
+      ->check(CLI::Range(64, 1024 * 1024))
       ->capture_default_str();
   cmd->add_flag("--read-only", o->read_only, "a second screen: the page may watch, never command or change");
   cmd->callback([&slot, o] {

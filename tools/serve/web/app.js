@@ -14,6 +14,7 @@
   $('node-info').textContent = `node ${info.data.node} on ${info.data.bus}, host id ${info.data.host_id}`;
   if (info.data.read_only) $('node-info').textContent += ' (read-only server: watch only)';
   scope.init(info.data.channels);
+  program.init(info.data.channels);
   startHeartbeat(info.data.deadman_ms || 300);
   connect();
   const c = await api('GET', '/api/control');

@@ -94,6 +94,7 @@ function connect() {
     page.events++;
     scope.take(ev);
     scope.draw();
+    program.take(ev);
     showStatus(ev.status);
     showControl(ev.control);
   };

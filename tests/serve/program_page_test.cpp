@@ -1,0 +1,276 @@
+// The Program panel's server side, over real HTTP on the loopback against
+// the emulated node: a preview of a small program (its pieces, points and
+// lines, an arc drawn in chords on its circle), a huge one thinned and
+// saying so, a refused program (400 naming line and column, nothing sent:
+// the servo stays off), a run refused without control, a run to its end
+// (its line advancing, the audit trail with the program's size, lines and
+// SHA-256 and not its text), a Stop and the dead-man rule interrupting a
+// running program, and the program route's own body limit.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <thread>
+
+#include "tests/serve/tuning_server_fixture.hpp"
+#include "tools/gcode/gcode_program.hpp"
+#include "tools/serve/page_program.hpp"
+// Last: <resolv.h>, which it includes, defines the macro _res that Eigen's headers use as a name.
+#include <httplib.h>
+
+namespace tnv::serve {
+namespace {
+
+using namespace tnv::serve::testing;
+
+// Incremental (the table starts where the scenario's circle does): lines 2 and 3
+// are lines, line 4 a half circle about start + (2.5, 2.5) back to the start.
+const std::string kSquareAndArc = "G21 G91 G17\nG1 X5 Y0 F600\nG1 X0 Y5\nG2 X-5 Y-5 I-2.5 J-2.5\nM2\n";
+// 2 mm and 1 mm at 10 mm/s: 0.3 s of machine time.
+const std::string kShort = "G21 G91 G17\nG1 X2 Y0 F600\nG1 X0 Y1\nM2\n";
+const std::string kShortSha256 = "1200ab278c3ad0d28edf250de0e5a47625f8fe632c916f20c66dbb11a23031e0";  // sha256sum of kShort
+// 100 elements of 1 mm at 5 mm/s: 20 s of machine time, long enough to be stopped halfway whatever the load.
+const std::string kLong = [] {
+  std::string text = "G21 G91 G17 F300\n";
+  for (int i = 0; i < 100; ++i) text += "G1 X1\n";
+  return text;
+}();
+
+class ProgramPageTest : public TuningServerTest {
+ protected:
+  // A run of 20 s of machine time may take longer on a loaded machine: control must outlast it
+  // (these tests send no heartbeat; ProgramDeadmanTest does).
+  std::chrono::milliseconds deadman() const override { return std::chrono::minutes(5); }
+  nlohmann::json program() {
+    const httplib::Result r = http_->Get("/api/program");
+    EXPECT_TRUE(r && r->status == 200);
+    return r ? nlohmann::json::parse(r->body) : nlohmann::json();
+  }
+  // The node's state from its heartbeat (waiting for the first one).
+  std::string node_state() {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    for (;;) {
+      const httplib::Result r = http_->Get("/api/status");
+      const nlohmann::json s = nlohmann::json::parse(r->body);
+      if (!s["heartbeat"].is_null()) return s["heartbeat"]["state"].get<std::string>();
+      if (std::chrono::steady_clock::now() > deadline) return "no heartbeat";
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  // Polls the run until `done` holds; a generous wall deadline for a busy machine (never a measurement).
+  template <typename F>
+  nlohmann::json wait_program(F done, const char* what) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    for (;;) {
+      nlohmann::json p = program();
+      if (done(p)) return p;
+      if (std::chrono::steady_clock::now() > deadline) {
+        ADD_FAILURE() << what << " not seen within 60 s: " << p.dump();
+        return p;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  void run_until_halfway_started() {
+    const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", kLong}});
+    ASSERT_TRUE(run);
+    ASSERT_EQ(run->status, 200) << run->body;
+    EXPECT_TRUE(nlohmann::json::parse(run->body).value("started", false)) << run->body;
+    wait_program([](const nlohmann::json& p) { return p["phase"] == "running" && p["fraction"].get<double>() >= 0.02; },
+                 "the long program running (2 of its 100 mm run)");
+  }
+};
+
+TEST_F(ProgramPageTest, APreviewHasEachSegmentsPiecesPointsAndLines) {
+  const httplib::Result r = post("/api/program/preview", kTabA, {{"gcode", kSquareAndArc}});
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const nlohmann::json p = nlohmann::json::parse(r->body);
+  EXPECT_EQ(p["segments"], 3);
+  EXPECT_GE(p["lines"].get<int>(), 4);
+  EXPECT_FALSE(p["thinned"].get<bool>());
+  const double semicircle_mm = std::numbers::pi * std::sqrt(2.0 * 2.5 * 2.5);
+  EXPECT_NEAR(p["length_mm"].get<double>(), 10.0 + semicircle_mm, 1e-6);
+  EXPECT_NEAR(p["cycle_time_s"].get<double>(), (10.0 + semicircle_mm) / 10.0, 1e-6);
+  ASSERT_EQ(p["pieces"].size(), 3U);
+  const nlohmann::json& pieces = p["pieces"];
+  EXPECT_EQ(pieces[0]["line"], 2);
+  EXPECT_EQ(pieces[1]["line"], 3);
+  EXPECT_EQ(pieces[2]["line"], 4);
+  // The table stands where the node says, and the first piece starts there.
+  const double x0 = p["start"][0].get<double>(), y0 = p["start"][1].get<double>();
+  EXPECT_EQ(pieces[0]["points"].size(), 4U);
+  EXPECT_NEAR(pieces[0]["points"][0].get<double>(), x0, 1e-4);
+  EXPECT_NEAR(pieces[0]["points"][1].get<double>(), y0, 1e-4);
+  ASSERT_EQ(pieces[1]["points"].size(), 4U);
+  EXPECT_NEAR(pieces[1]["points"][0].get<double>(), x0 + 5.0, 1e-4);
+  EXPECT_NEAR(pieces[1]["points"][3].get<double>(), y0 + 5.0, 1e-4);
+  // The half circle in 5-degree chords: 36 chords, 37 points, every one on the circle.
+  const nlohmann::json& arc = pieces[2]["points"];
+  ASSERT_EQ(arc.size(), 2U * 37U);
+  for (std::size_t i = 0; i < arc.size(); i += 2)
+    EXPECT_NEAR(std::hypot(arc[i].get<double>() - x0 - 2.5, arc[i + 1].get<double>() - y0 - 2.5), std::sqrt(12.5), 1e-3)
+        << i;
+  EXPECT_NEAR(arc[arc.size() - 2].get<double>(), x0, 1e-4) << "the half circle ends at the start";
+  EXPECT_EQ(p["points"], 2 + 2 + 37);
+  EXPECT_LT(p["travel"]["x"][0].get<double>(), p["travel"]["x"][1].get<double>());
+  EXPECT_EQ(program()["phase"], "idle") << "a preview runs nothing";
+  EXPECT_EQ(node_state(), "disabled");
+}
+
+TEST(ProgramPreview, AHugePathIsThinnedWithinItsBudgetAndSaysSo) {
+  std::string text = "G21 G90 G17 F100\n";
+  for (int i = 1; i <= 3000; ++i) text += "G1 X" + std::to_string(i * 0.01) + " Y" + std::to_string(i % 2 * 0.5) + "\n";
+  can_host::ProgramPlan plan;
+  plan.parsed = gcode::parse_gcode(text);
+  ASSERT_FALSE(plan.parsed.error) << gcode::to_string(*plan.parsed.error);
+  const nlohmann::json p = preview_json(plan, 600);
+  EXPECT_TRUE(p["thinned"].get<bool>());
+  EXPECT_NE(p["note"], "");
+  EXPECT_LE(p["points"].get<std::size_t>(), 600U);
+  EXPECT_GT(p["points"].get<std::size_t>(), 100U);
+  const nlohmann::json& first = p["pieces"].front();
+  const nlohmann::json& last = p["pieces"].back();
+  EXPECT_EQ(first["line"], 2);
+  EXPECT_EQ(last["last_line"], 3001);
+  EXPECT_EQ(first["points"][0], 0.0);
+  EXPECT_NEAR(last["points"][last["points"].size() - 2].get<double>(), 30.0, 1e-9) << "the path's end is kept";
+  EXPECT_EQ(p["segments"], 3000);
+}
+
+TEST_F(ProgramPageTest, ARefusedProgramIs400NamingLineAndColumnAndSendsNothing) {
+  const std::string bad = "G21 G91\nG1 X5 F600\nG1 X20 E3\n";  // line 3, column 8: unsupported word E
+  const httplib::Result preview = post("/api/program/preview", kTabA, {{"gcode", bad}});
+  ASSERT_TRUE(preview);
+  EXPECT_EQ(preview->status, 400);
+  const nlohmann::json e = nlohmann::json::parse(preview->body);
+  EXPECT_EQ(e["line"], 3) << preview->body;
+  EXPECT_EQ(e["column"], 8) << preview->body;
+  EXPECT_NE(e["error"].get<std::string>().find("line 3"), std::string::npos) << preview->body;
+
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", bad}});
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->status, 400) << run->body;
+  EXPECT_EQ(nlohmann::json::parse(run->body)["line"], 3) << run->body;
+  const nlohmann::json p = program();
+  EXPECT_EQ(p["phase"], "ended");
+  EXPECT_EQ(p["end"], "refused");
+  EXPECT_EQ(node_state(), "disabled") << "the servo was switched on for a refused program";
+}
+
+TEST_F(ProgramPageTest, OnlyTheTabWithControlRuns) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const std::size_t offered = server_->worker().jobs_offered();
+  const httplib::Result run = post("/api/program/run", kTabB, {{"gcode", kShort}});
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->status, 403) << run->body;
+  EXPECT_EQ(server_->worker().jobs_offered(), offered);
+  EXPECT_EQ(program()["phase"], "idle");
+  EXPECT_EQ(node_state(), "disabled");
+}
+
+TEST_F(ProgramPageTest, AProgramRunsToItsEndAndTheAuditTrailNamesItsDigest) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", kShort}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  EXPECT_EQ(p["line"], 3) << "the last line the node ran";
+  EXPECT_EQ(p["element"], 2);
+  EXPECT_NEAR(p["fraction"].get<double>(), 1.0, 1e-9);
+  bool logged = false;
+  for (const nlohmann::json& line : audit_lines()) {
+    if (line.value("path", "") != "/api/program/run") continue;
+    logged = true;
+    EXPECT_EQ(line["body"]["gcode"]["sha256"], kShortSha256);
+    EXPECT_EQ(line["body"]["gcode"]["bytes"], kShort.size());
+    EXPECT_EQ(line["body"]["gcode"]["lines"], 4);
+    EXPECT_EQ(line.dump().find("X2 Y1"), std::string::npos) << "the program's text is in the trail";
+  }
+  EXPECT_TRUE(logged);
+}
+
+TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  run_until_halfway_started();
+  const httplib::Result stop = post("/api/motion", kTabA, {{"kind", "stop"}});
+  ASSERT_TRUE(stop);
+  EXPECT_EQ(stop->status, 200) << stop->body;
+  EXPECT_EQ(nlohmann::json::parse(stop->body)["program"], "interrupted") << stop->body;
+  // The stop's answer comes after the program's job ended: no waiting here.
+  const nlohmann::json p = program();
+  EXPECT_EQ(p["phase"], "ended");
+  EXPECT_EQ(p["end"], "interrupted") << p.dump();
+  EXPECT_LT(p["fraction"].get<double>(), 0.5) << "the program ran on for 10 s of machine time after the stop";
+  // The node is free again: a new run is accepted.
+  const httplib::Result again = post("/api/program/run", kTabA, {{"gcode", "G91\nG1 X-1 F600\n"}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 200) << again->body;
+  wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the second run's end");
+}
+
+TEST_F(ProgramPageTest, AnotherMotionIsRefusedWhileAProgramRuns) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  run_until_halfway_started();
+  const httplib::Result move = post("/api/motion", kTabA, {{"kind", "move"}, {"distance_mm", 5.0}, {"speed_mm_s", 5.0}});
+  ASSERT_TRUE(move);
+  EXPECT_EQ(move->status, 409) << move->body;
+  const httplib::Result second = post("/api/program/run", kTabA, {{"gcode", kShort}});
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->status, 409) << second->body;
+  ASSERT_EQ(post("/api/motion", kTabA, {{"kind", "estop"}})->status, 200);
+  EXPECT_EQ(program()["end"], "interrupted");
+}
+
+TEST_F(ProgramPageTest, TheProgramRouteHasItsOwnBodyLimit) {
+  std::string text = "G21 G90 G17 F100\n";
+  while (text.size() < 100 * 1024) text += "(a CAM post's comment, long enough to fill a line of text) G1 X1 Y1\n";
+  const httplib::Result preview = post("/api/program/preview", kTabA, {{"gcode", text}});
+  ASSERT_TRUE(preview);
+  EXPECT_EQ(preview->status, 200) << preview->body.substr(0, 200);
+  const httplib::Result motion = post("/api/motion", kTabA, {{"kind", "stop"}, {"padding", text}});
+  ASSERT_TRUE(motion);
+  EXPECT_EQ(motion->status, 413);
+}
+
+class ProgramDeadmanTest : public ProgramPageTest {
+ protected:
+  std::chrono::milliseconds deadman() const override { return std::chrono::milliseconds(300); }
+};
+
+TEST_F(ProgramDeadmanTest, ATabThatGoesQuietHasItsProgramInterrupted) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  std::atomic<bool> silent{false};
+  std::thread heart([&] {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_default_headers({{"Authorization", "Bearer " + server_->secret()}, {"Origin", origin()}, {"X-Tnv-Token", kTabA}});
+    while (!silent) {
+      c.Post("/api/control/heartbeat", "", "application/json");
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  run_until_halfway_started();
+  silent = true;
+  heart.join();
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "interrupted") << p.dump();
+  EXPECT_LT(p["fraction"].get<double>(), 0.5);
+  bool logged = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!logged && std::chrono::steady_clock::now() < deadline) {
+    for (const nlohmann::json& line : audit_lines())
+      if (line.value("event", "") == "dead-man" &&
+          line["detail"].get<std::string>().find("program interrupted") != std::string::npos)
+        logged = true;
+    if (!logged) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_TRUE(logged) << "no dead-man line naming the program in the audit trail";
+}
+
+}  // namespace
+}  // namespace tnv::serve

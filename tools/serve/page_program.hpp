@@ -1,0 +1,43 @@
+#pragma once
+// The page's Program panel, server side: a program's preview (the path the
+// interpreter makes of it from where the table stands, with the node's
+// limits, as polylines the page draws), its run through run_gcode, and the
+// summary the audit trail keeps of a program instead of its text.
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tools/can/program_run.hpp"
+#include "tools/serve/program_state.hpp"
+
+namespace tnv::serve {
+
+// A preview draws at most this many points; a longer path is thinned (the reply says so).
+inline constexpr std::size_t kPreviewMaxPoints = 20'000;
+// Arcs are drawn as chords of at most this angle (5 degrees).
+inline constexpr double kPreviewArcStepRad = 0.0872664626;
+
+// {"bytes", "lines", "sha256"}: what the audit trail logs of a program (sha256sum's digest of the text).
+nlohmann::json program_summary(const std::string& gcode_text);
+
+// The program as the page draws it:
+// {"lines", "segments", "cycle_time_s", "length_mm", "tool_changes", "summary",
+//  "start": [x, y], "travel": {"x": [min, max], "y": [min, max]},
+//  "pieces": [{"line", "last_line", "points": [x0, y0, x1, y1, ...]}, ...],
+//  "points", "thinned", "note"}. Each piece is one segment (line = its G-code
+// line); past max_points, runs of consecutive segments share a piece (line
+// .. last_line) and only every k-th point of it is kept.
+nlohmann::json preview_json(const can_host::ProgramPlan& plan, std::size_t max_points = kPreviewMaxPoints);
+
+// The refusal of a plan, or null when it may run: {"error", "line", "column"}.
+nlohmann::json plan_refusal(const can_host::ProgramPlan& plan);
+
+// The page's program run on the node thread: run_gcode with the page's
+// telemetry left as it is (no score: 1 ms telemetry would flood the
+// scope), the run's progress and end into `state`, its interrupt flag as
+// the stream's Ctrl-C, the scope fed by `scope` meanwhile. A program that
+// cannot run throws ApiError(400) naming its line and column.
+nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text, ProgramState& state,
+                                    const can_host::FrameListener& scope);
+
+}  // namespace tnv::serve

@@ -1,0 +1,76 @@
+#include "tools/serve/tuning_server.hpp"
+
+#include <chrono>
+#include <future>
+#include <memory>
+
+#include "tools/serve/api_error.hpp"
+#include "tools/serve/http_reply.hpp"
+#include "tools/serve/page_program.hpp"
+// Last: <resolv.h>, which it includes, defines the macro _res that Eigen's headers use as a name.
+#include <httplib.h>
+
+// The Program panel's endpoints: a program's preview (anyone who may post)
+// and its run (the tab with control). Both interpret the program on the
+// node thread, with the node's limits from where the table stands.
+namespace tnv::serve {
+
+namespace {
+
+// How often the run's handler looks whether its program started streaming.
+constexpr std::chrono::milliseconds kStartLook{10};
+
+}  // namespace
+
+void TuningServer::program_routes() {
+  post("/api/program/preview", [this](const httplib::Request& req, httplib::Response& res) {
+    answer(res, [&] {
+      const std::string text = text_field(body_json(req), "gcode");
+      if (program_.active()) throw ApiError(kHttpConflict, "a program is running: preview it when it has ended");
+      auto plan = std::make_shared<can_host::ProgramPlan>();
+      worker_.run([this, text, plan](can_host::NodeClient& c) {
+        can_host::ProgramRunOptions o;
+        o.on_frame = worker_.scope_listener();
+        *plan = can_host::plan_gcode(c, text, o);
+        return nlohmann::json();
+      });
+      if (nlohmann::json refusal = plan_refusal(*plan); !refusal.is_null()) {
+        const std::string why = refusal["error"].get<std::string>();
+        throw ApiError(kHttpBadRequest, why, std::move(refusal));
+      }
+      return preview_json(*plan);
+    });
+  });
+
+  // Answers once the program's elements start going out (or it was
+  // refused); its progress and end come with the telemetry stream.
+  post("/api/program/run", [this](const httplib::Request& req, httplib::Response& res) {
+    commanded(req, res, [this](const nlohmann::json& body) {
+      const std::string text = text_field(body, "gcode");
+      if (!program_.begin(program_summary(text))) throw ApiError(kHttpConflict, "a program is running already");
+      std::future<nlohmann::json> done;
+      try {
+        done = worker_.submit([this, text](can_host::NodeClient& c) {
+          return run_program_for_page(c, text, program_, worker_.scope_listener());
+        });
+      } catch (const std::exception& e) {
+        program_.finish("refused", e.what());
+        throw;
+      }
+      while (done.wait_for(kStartLook) != std::future_status::ready && !program_.is_streaming()) {
+      }
+      if (done.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        nlohmann::json result = done.get();  // a refusal throws here (400 with its line, 409, 502)
+        result["program"] = program_.json();
+        return result;
+      }
+      return nlohmann::json{{"started", true}, {"program", program_.json()}};
+    });
+  });
+
+  get("/api/program", [this](const httplib::Request&, httplib::Response& res) {
+    answer(res, [&] { return program_.json(); });
+  });
+}
+
+}  // namespace tnv::serve

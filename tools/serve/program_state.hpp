@@ -1,0 +1,51 @@
+#pragma once
+// The page's program run, as the HTTP handlers and the telemetry stream see
+// it while the node thread streams it: idle, starting (planned and
+// checked), running (its elements going out), then ended (done,
+// interrupted, failed or refused) with the last line the node ran. Stop,
+// E-stop, the dead-man rule and a release set the interrupt flag here
+// directly: the program's job holds the node thread, so a stop job queued
+// behind it would wait for the program's end.
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tools/can/program_stream.hpp"
+
+namespace tnv::serve {
+
+class ProgramState {
+ public:
+  // A new run: false (and nothing changed) while one is starting or running.
+  bool begin(const nlohmann::json& summary);
+  // The run's elements start going out (the handler answers now).
+  void streaming();
+  void progress(const can_host::StreamProgress& p);
+  // end: "done", "interrupted", "failed" or "refused".
+  void finish(const std::string& end, const std::string& message);
+  // Stops the run on its path at the stream's next look: true when one was starting or running.
+  bool interrupt();
+  bool interrupted() const noexcept { return interrupt_.load(); }
+  bool active() const;
+  bool is_streaming() const;  // its elements are going out now
+  // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message", "program"}
+  nlohmann::json json() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::atomic<bool> interrupt_{false};
+  std::string phase_ = "idle";  // idle | starting | running | ended
+  std::uint64_t run_ = 0;       // the page tells one run's end from the next's
+  nlohmann::json summary_;
+  int line_ = 0;
+  std::size_t element_ = 0;
+  std::size_t total_ = 0;
+  double fraction_ = 0.0;
+  std::uint64_t underruns_ = 0;
+  std::string end_;
+  std::string message_;
+};
+
+}  // namespace tnv::serve

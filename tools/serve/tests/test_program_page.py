@@ -1,0 +1,77 @@
+"""The Program panel in Debian's headless chromium against
+`tnvctl --emu serve --port 0`: a refused program is shown with its line
+and column, a program loaded from a file is previewed (its path drawn, one
+polyline per segment), and run from the tab with control to its end on the
+emulated node, the current line advancing through the program and the tool
+marker following the table."""
+
+import pytest
+from conftest import wait_for
+from test_tuning_page import open_page, page_value, take_control
+
+# Incremental: it runs from wherever the table stands. Lines 3 and 4 are lines,
+# line 5 a half circle back to the start; 21 mm at 20 mm/s.
+PROGRAM = """(the page's test piece)
+G21 G91 G17
+G1 X5 Y0 F1200
+G1 X0 Y5
+G2 X-5 Y-5 I-2.5 J-2.5
+M2
+"""
+REFUSED = "G21 G90\nG1 X5 F100\nG1 X20 E3\n"  # line 3, column 8: unsupported word E
+
+
+@pytest.fixture(scope="module")
+def tab(server, browsers):
+    b = browsers()
+    open_page(b, server)
+    b.find_element("id", "pause").click()  # the scope need not redraw meanwhile
+    take_control(b)
+    b.execute_script("document.getElementById('program-section').scrollIntoView();")
+    return b
+
+
+def program_state(b):
+    return page_value(b, "window.tnvPage.program")
+
+
+def test_a_refused_program_is_shown_with_its_line_and_column(tab):
+    box = tab.find_element("id", "program-text")
+    box.clear()
+    box.send_keys(REFUSED)
+    tab.find_element("id", "program-preview").click()
+    text = wait_for(lambda: (lambda t: t if "line 3" in t else None)(tab.find_element("id", "program-error").text), 60,
+                    "the refusal naming line 3")
+    assert "column 8" in text, text
+    assert page_value(tab, "document.querySelectorAll('#program-path polyline').length") == 0
+
+
+def test_a_loaded_program_is_previewed_and_runs_to_its_end(tab, tmp_path, screenshot):
+    path = tmp_path / "piece.ngc"
+    path.write_text(PROGRAM)
+    tab.find_element("id", "program-file").send_keys(str(path))
+    wait_for(lambda: page_value(tab, "window.tnvPage.program.drawn") == 3, 60, "the preview's three pieces drawn")
+    preview = program_state(tab)["preview"]
+    assert [p["line"] for p in preview["pieces"]] == [3, 4, 5]
+    assert preview["segments"] == 3
+    assert len(preview["pieces"][2]["points"]) == 2 * 37, "the half circle is not drawn in 5-degree chords"
+    lines = page_value(tab, "Array.from(document.querySelectorAll('#program-path polyline')).map((e) => e.dataset.line)")
+    assert lines == ["3", "4", "5"], lines
+    assert "programmed cycle time" in tab.find_element("id", "program-info").text
+    start = preview["start"]
+
+    tab.find_element("id", "program-run").click()
+    state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" else None)(program_state(tab)), 120,
+                     "the run's end")
+    assert state["end"] == "done", (state, tab.find_element("id", "program-state").text,
+                                     tab.find_element("id", "program-error").text)
+    seen = state["linesSeen"]
+    assert seen and seen == sorted(seen) and seen[-1] == 5, f"the current line did not advance to 5: {seen}"
+    assert "done" in tab.find_element("id", "program-state").text
+    # The tool marker follows the telemetry: back at the start after the half circle (an encoder count is 0.4 um).
+    wait_for(lambda: (lambda t: t and abs(t[0] - start[0]) < 0.01 and abs(t[1] - start[1]) < 0.01)(
+        program_state(tab)["tool"]), 60, "the tool back at the start")
+    marker = page_value(tab, "[Number(document.querySelector('#program-path .tool').getAttribute('cx')),"
+                             " Number(document.querySelector('#program-path .tool').getAttribute('cy'))]")
+    assert abs(marker[0] - start[0]) < 0.01 and abs(marker[1] - start[1]) < 0.01, marker
+    screenshot(tab, "tuning-program")
