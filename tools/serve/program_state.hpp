@@ -30,7 +30,8 @@ class ProgramState {
   bool interrupted() const noexcept { return interrupt_.load(); }
   bool active() const;
   bool is_streaming() const;  // its elements are going out now
-  // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message", "program"}
+  // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message",
+  //  "program" (its summary), "interrupting" (a stop was asked)}
   nlohmann::json json() const;
 
  private:
