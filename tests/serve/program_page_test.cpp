@@ -18,6 +18,7 @@
 #include "tests/serve/tuning_server_fixture.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/serve/page_program.hpp"
+#include "tools/serve/program_state.hpp"
 // Last: <resolv.h>, which it includes, defines the macro _res that Eigen's headers use as a name.
 #include <httplib.h>
 
@@ -225,6 +226,46 @@ TEST_F(ProgramPageTest, AnotherMotionIsRefusedWhileAProgramRuns) {
   EXPECT_EQ(second->status, 409) << second->body;
   ASSERT_EQ(post("/api/motion", kTabA, {{"kind", "estop"}})->status, 200);
   EXPECT_EQ(program()["end"], "interrupted");
+}
+
+// The page's E-stop during a program goes out from the program's own job at
+// its next look, before the stream brakes on its path and asks the node to
+// abort: the node, e-stopped, has no program left to abort by then.
+TEST_F(ProgramPageTest, EstopDuringAProgramReachesTheNodeBeforeTheProgramIsBraked) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  run_until_halfway_started();
+  const httplib::Result estop = post("/api/motion", kTabA, {{"kind", "estop"}});
+  ASSERT_TRUE(estop);
+  EXPECT_EQ(estop->status, 200) << estop->body;
+  const nlohmann::json p = program();
+  EXPECT_EQ(p["end"], "interrupted") << p.dump();
+  EXPECT_LT(p["fraction"].get<double>(), 0.5) << p.dump();
+  // The node latched the remote e-stop (not only a stop on its path).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  std::string fault;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const nlohmann::json st = nlohmann::json::parse(http_->Get("/api/status")->body);
+    if (!st["heartbeat"].is_null()) fault = st["heartbeat"]["fault"].get<std::string>();
+    if (fault == "remote_estop") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(fault, "remote_estop");
+}
+
+TEST(ProgramStateFlags, OnlyAnEstopAsksTheProgramsJobToSendOneAndANewRunForgetsIt) {
+  ProgramState state;
+  EXPECT_FALSE(state.interrupt(true)) << "nothing runs: nothing to interrupt";
+  EXPECT_FALSE(state.estop_requested());
+  ASSERT_TRUE(state.begin(nlohmann::json::object()));
+  ASSERT_TRUE(state.interrupt());
+  EXPECT_TRUE(state.interrupted());
+  EXPECT_FALSE(state.estop_requested()) << "a stop brakes on the path; it sends no e-stop";
+  ASSERT_TRUE(state.interrupt(true));
+  EXPECT_TRUE(state.estop_requested());
+  state.finish("interrupted", "");
+  ASSERT_TRUE(state.begin(nlohmann::json::object()));
+  EXPECT_FALSE(state.interrupted());
+  EXPECT_FALSE(state.estop_requested());
 }
 
 TEST_F(ProgramPageTest, TheProgramRouteHasItsOwnBodyLimit) {

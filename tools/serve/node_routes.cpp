@@ -76,7 +76,8 @@ void TuningServer::node_routes() {
       const bool halt = motion.kind == "stop" || motion.kind == "estop";
       // A stop reaches a running program at once (its stream's interrupt flag); the command
       // itself follows on the node thread as soon as the program's job has stopped the table.
-      const bool interrupted = halt && program_.interrupt();
+      // An e-stop does not wait for that: the program's job sends it at its next look.
+      const bool interrupted = halt && program_.interrupt(motion.kind == "estop");
       if (!halt && program_.active()) throw ApiError(kHttpConflict, "a program is running: Stop it first");
       nlohmann::json done = worker_.run([motion, interrupted](can_host::NodeClient& c) {
         try {

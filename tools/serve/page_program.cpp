@@ -137,7 +137,16 @@ nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::str
   can_host::ProgramRunOptions o;
   o.telemetry_ms = 0;
   o.on_frame = scope;
-  o.interrupted = [&state] { return state.interrupted(); };
+  // Called on this (the node) thread between the stream's bus operations, so
+  // the e-stop goes out from here at once, not after the braking and the
+  // program's end as a job queued behind this one would.
+  o.interrupted = [&state, &client, estop_sent = false]() mutable {
+    if (state.estop_requested() && !estop_sent) {
+      client.estop(false);
+      estop_sent = true;
+    }
+    return state.interrupted();
+  };
   o.progress = [&state](const can_host::StreamProgress& p) { state.progress(p); };
   bool started = false;
   o.before_send = [&](std::size_t) {

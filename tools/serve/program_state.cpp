@@ -8,6 +8,7 @@ bool ProgramState::begin(const nlohmann::json& summary) {
   const std::lock_guard lock(mutex_);
   if (phase_ == "starting" || phase_ == "running") return false;
   interrupt_ = false;
+  estop_ = false;
   phase_ = "starting";
   ++run_;
   summary_ = summary;
@@ -45,9 +46,10 @@ void ProgramState::finish(const std::string& end, const std::string& message) {
   message_ = message;
 }
 
-bool ProgramState::interrupt() {
+bool ProgramState::interrupt(bool estop) {
   const std::lock_guard lock(mutex_);
   if (phase_ != "starting" && phase_ != "running") return false;
+  if (estop) estop_ = true;  // before the flag the stream looks at
   interrupt_ = true;
   return true;
 }

@@ -26,8 +26,10 @@ class ProgramState {
   // end: "done", "interrupted", "failed" or "refused".
   void finish(const std::string& end, const std::string& message);
   // Stops the run on its path at the stream's next look: true when one was starting or running.
-  bool interrupt();
+  // `estop`: the node thread sends the e-stop at that look, before the stream brakes and ends.
+  bool interrupt(bool estop = false);
   bool interrupted() const noexcept { return interrupt_.load(); }
+  bool estop_requested() const noexcept { return estop_.load(); }
   bool active() const;
   bool is_streaming() const;  // its elements are going out now
   // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message",
@@ -37,6 +39,7 @@ class ProgramState {
  private:
   mutable std::mutex mutex_;
   std::atomic<bool> interrupt_{false};
+  std::atomic<bool> estop_{false};
   std::string phase_ = "idle";  // idle | starting | running | ended
   std::uint64_t run_ = 0;       // the page tells one run's end from the next's
   nlohmann::json summary_;
