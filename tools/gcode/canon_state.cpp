@@ -75,8 +75,8 @@ std::string fixed(double v, int decimals) {
 }
 
 
-CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
-    : setup_(setup), calls_(calls), params_(setup.parameters) {
+CanonMachine::CanonMachine(const CanonSetup& setup, const CanonSink& sink)
+    : setup_(setup), sink_(sink), params_(setup.parameters) {
   params_.set_machine(this);
 }
 
@@ -109,7 +109,7 @@ void CanonMachine::emit(const std::string& text, const CanonMotion& motion) {
     queue_.push_back(std::move(q));
     return;
   }
-  calls_.push_back({line_, text, motion, file_});
+  sink_(CanonCall{line_, text, motion, file_});
 }
 
 CanonMotion CanonMachine::move_to(CanonMotion::Kind kind, const Vec3& program_mm) const {

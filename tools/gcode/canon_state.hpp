@@ -22,7 +22,7 @@ std::string fixed(double v, int decimals);
 
 class CanonMachine : private NgcMachineValues {
  public:
-  CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls);
+  CanonMachine(const CanonSetup& setup, const CanonSink& sink);
   CanonMachine(const CanonMachine&) = delete;  // its parameters point back at it
   CanonMachine& operator=(const CanonMachine&) = delete;
   void start();                                  // the start-up calls
@@ -179,7 +179,7 @@ class CanonMachine : private NgcMachineValues {
   Vec3 lathe_origin(const Vec3& v) const;
 
   const CanonSetup& setup_;
-  std::vector<CanonCall>& calls_;
+  const CanonSink& sink_;
   NgcParameters params_;
   int line_ = 0;            // the line the calls made now are tagged with
   int source_line_ = 0;      // the line being read and run (#<_line>)
