@@ -4,7 +4,7 @@
 // and arc segments, dwells dwell segments, each checked against the
 // firmware's limits (fw::motion::prepare) as the queue will check it.
 // Refused, with the line: a move that changes machine Z (a Z word, with a
-// tool length offset in force or not; a canned cycle; rigid tapping), an
+// tool length offset in force or not; a G17 canned cycle; rigid tapping), an
 // arc outside G17 (the
 // machine has X and Y only), a probe move (no probe input), a G5.1 spline,
 // and M0/M1 (a stream does not pause). Counted and not sent: tool changes
