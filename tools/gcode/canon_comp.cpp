@@ -141,15 +141,15 @@ void CanonMachine::print_queued(const Queued& q) {
   const int line = line_;
   line_ = q.line;
   switch (q.kind) {
-    case Queued::Kind::text: calls_.push_back({line_, q.text, q.motion, q.file}); break;
+    case Queued::Kind::text: sink_(CanonCall{line_, q.text, q.motion, q.file}); break;
     case Queued::Kind::traverse: {
       const Vec3 end = lathe_origin(q.end);
-      calls_.push_back({line_, "STRAIGHT_TRAVERSE(" + xyz(end) + ")", move_to(CanonMotion::Kind::traverse, end), q.file});
+      sink_(CanonCall{line_, "STRAIGHT_TRAVERSE(" + xyz(end) + ")", move_to(CanonMotion::Kind::traverse, end), q.file});
       break;
     }
     case Queued::Kind::feed: {
       const Vec3 end = lathe_origin(q.end);
-      calls_.push_back({line_, "STRAIGHT_FEED(" + xyz(end) + ")", move_to(CanonMotion::Kind::feed, end), q.file});
+      sink_(CanonCall{line_, "STRAIGHT_FEED(" + xyz(end) + ")", move_to(CanonMotion::Kind::feed, end), q.file});
       break;
     }
     case Queued::Kind::arc: {
@@ -159,7 +159,7 @@ void CanonMachine::print_queued(const Queued& q) {
       m.centre_mm = program_to_machine(point(first(centre), second(centre), third(end)));
       m.plane = plane_ / 10;
       m.turn = q.turn;
-      calls_.push_back({line_, "ARC_FEED(" + num(first(end)) + ", " + num(second(end)) + ", " + num(first(centre)) + ", " +
+      sink_(CanonCall{line_, "ARC_FEED(" + num(first(end)) + ", " + num(second(end)) + ", " + num(first(centre)) + ", " +
                                    num(second(centre)) + ", " + std::to_string(q.turn) + ", " + num(third(end)) +
                                    ", 0.0000, 0.0000, 0.0000)", m, q.file});
       break;

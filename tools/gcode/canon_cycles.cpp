@@ -1,12 +1,14 @@
-// Canned cycles G73, G81-G86 and G89 in the XY plane as LinuxCNC runs them:
-// Z up to R if below it, exact path for the cycle, XY above R, down to R,
-// the cycle's own moves, back to the clearance (R in G99, the Z the cycles
-// began at in G98); R, Z, P and Q stay from the last line of the same
-// cycle; L repeats; polar @ ^ place the hole (in G91 once per repeat: a
-// bolt circle). The drilling cycles: G81 (feed in), G82 (and dwell), G83
-// (pecks, out to R between), G73 (pecks, a small back-off between); the
-// tapping cycle G84; the boring cycles G85 (feed out), G86 (spindle
-// stopped, rapid out), G89 (dwell, feed out).
+// Canned cycles G73 and G81-G89 as LinuxCNC runs them, in G17 (along Z),
+// G18 (along Y) and G19 (along X); below for G17: Z up to R if below it,
+// exact path for the cycle, XY above R, down to R, the cycle's own moves,
+// back to the clearance (R in G99, the Z the cycles began at in G98); R,
+// Z, P, Q and I J K stay from the last line of the same cycle; L repeats;
+// polar @ ^ place the hole (in G91 once per repeat: a bolt circle). The
+// drilling cycles: G81 (feed in), G82 (and dwell), G83 (pecks, out to R
+// between), G73 (pecks, a small back-off between); the tapping cycle G84;
+// the boring cycles G85 (feed out), G86 (spindle stopped, rapid out), G87
+// (back boring), G88 (spindle stopped, program stop for a retract by
+// hand), G89 (dwell, feed out).
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -25,12 +27,27 @@ void CanonMachine::cycle_dwell() {
 }
 
 void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
-  if (plane_ != 170) throw NgcError(column, "canned cycles only in the XY plane (G17) for now");
-  const bool polar = block.polar_radius || block.polar_angle;  // never with X or Y (target() refused that)
-  // R, Z, Q and the dwell P of G82/G86/G89 carry over from the line before
-  // only while the same cycle goes on: a new cycle, or one after G80 or
-  // another motion, names them again (an R or Z left from an earlier cycle
-  // would be a guess at where the stock is). G84's P is kept whatever came between.
+  // The cycle's axes as LinuxCNC names them: the hole is placed on the
+  // plane's two (a, b) and the tool moves along the third (c).
+  std::size_t ia = 0, ib = 1, ic = 2;             // G17: X Y, along Z
+  if (plane_ == 180) { ia = 2; ib = 0; ic = 1; }  // G18: Z X, along Y
+  if (plane_ == 190) { ia = 1; ib = 2; ic = 0; }  // G19: Y Z, along X
+  static constexpr char kAxis[] = "xyz";
+  static constexpr char kOffset[] = "ijk";  // G87's offset along X, Y, Z
+  const char word_a = kAxis[ia], word_b = kAxis[ib], word_c = kAxis[ic];
+  const auto at = [&](double a, double b, double c) {
+    Vec3 v{};
+    v[ia] = a;
+    v[ib] = b;
+    v[ic] = c;
+    return v;
+  };
+  const bool polar = block.polar_radius || block.polar_angle;  // G17 only, never with X or Y (execute() refused that)
+  // R, the bottom, Q, the dwell P of G82/G86/G88/G89 and G87's I J K carry
+  // over from the line before only while the same cycle goes on: a new
+  // cycle, or one after G80 or another motion, names them again (an R or a
+  // bottom left from an earlier cycle would be a guess at where the stock
+  // is). G84's P is kept whatever came between.
   // The cycles are whole codes. Appended, not "G" + std::to_string(...):
   // GCC 12 warns a false -Wrestrict on that operator+ when this file is
   // compiled on its own at -O2 (the plain, non-unity build).
@@ -42,27 +59,42 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
                                  " (" + what + "): a cycle's words carry over only while the same cycle goes on");
   };
   needed('r', "the retract plane");
-  needed('z', "the bottom");
+  needed(word_c, "the bottom");
   if (motion == 730 || motion == 830) needed('q', "the peck depth");
-  if (motion == 820 || motion == 860 || motion == 890) needed('p', "the dwell at the bottom, seconds");
+  if (motion == 820 || motion == 860 || motion == 880 || motion == 890) needed('p', "the dwell at the bottom, seconds");
+  if (motion == 870) {
+    needed('i', "the offset along X to pass through the hole");
+    needed('j', "the offset along Y to pass through the hole");
+    needed('k', "the offset along Z to pass through the hole");
+  }
   if (block.has('r')) { cycle_r_words_ = block.value('r'); cycle_r_ = length(cycle_r_words_); }
-  if (block.has('z')) { cycle_z_words_ = block.value('z'); cycle_z_ = length(cycle_z_words_); }
+  if (block.has(word_c)) { cycle_z_words_ = block.value(word_c); cycle_z_ = length(cycle_z_words_); }
   if (block.has('q')) { cycle_q_words_ = block.value('q'); cycle_q_ = length(cycle_q_words_); }
   if (block.has('p')) cycle_p_ = block.value('p');
+  for (std::size_t n = 0; n < 3; ++n)
+    if (motion == 870 && block.has(kOffset[n])) cycle_ijk_[n] = length(block.value(kOffset[n]));
   if ((motion == 730 || motion == 830) && !(cycle_q_ > 0.0))
     throw NgcError(block.has('q') ? block.column('q') : column, "G73/G83 need a peck depth Q > 0");
   if (block.has('p') && cycle_p_ < 0.0) throw NgcError(block.column('p'), "negative dwell time P");
   if (feed_ <= 0.0) throw NgcError(column, "cannot run a canned cycle with zero feed rate (F)");
-  // G84 taps right-hand: the spindle must turn clockwise. G86 stops and
-  // restarts the spindle: it must turn.
+  // G84 taps right-hand: the spindle must turn clockwise. G86, G87 and G88
+  // stop and restart the spindle: it must turn.
   if (motion == 840 && spindle_ != 3)
     throw NgcError(column, spindle_ == 4 ? "G84 with the spindle turning counterclockwise (it taps right-hand: M3)"
                                          : "G84 with the spindle stopped (it taps right-hand: M3)");
-  if (motion == 860 && spindle_ == 5) throw NgcError(column, "G86 with the spindle stopped (M3 or M4 first)");
-  // G91: R from the Z the run of cycles began at, the bottom from R.
+  // rs274 (LinuxCNC 2.9) taps outside G17 along permuted axes (G18: the
+  // feed goes to X = the bottom, Y = Z, Z = X): a diagonal into the part.
+  // Refused rather than imitated (docs/gcode.md, deviations).
+  if (motion == 840 && plane_ != 170)
+    throw NgcError(column, "G84 only in the XY plane (G17): LinuxCNC's rs274 taps along the wrong axes in G18/G19");
+  if ((motion == 860 || motion == 870 || motion == 880) && spindle_ == 5)
+    throw NgcError(column, cycle + " with the spindle stopped (M3 or M4 first)");
+  // G91: R from where the run of cycles began along the cycle's axis, the bottom from R.
   const double r = absolute_ ? cycle_r_ : cycle_start_z_ + cycle_r_;
   const double bottom = absolute_ ? cycle_z_ : r + cycle_z_;
-  if (bottom > r) throw NgcError(column, "canned cycle: R below the bottom Z");
+  if (bottom > r)
+    throw NgcError(column, std::string("canned cycle: R below the bottom ") +
+                               static_cast<char>(std::toupper(static_cast<unsigned char>(word_c))));
   if ((motion == 730 || motion == 830) && (r - bottom) / cycle_q_ > 100000.0)
     throw NgcError(block.has('q') ? block.column('q') : column, "peck depth Q too small: more than 100000 pecks");
   int repeats = 1;
@@ -72,65 +104,102 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
   }
   const double clear = retract_old_z_ ? std::fmax(cycle_start_z_, r) : r;
   const double rapid_delta = 0.010 * 25.4;  // LinuxCNC's peck clearance, 0.010 inch
-  // G91: X and Y step from the last hole, once per repeat.
-  const double dx = block.has('x') ? length(block.value('x')) : 0.0;
-  const double dy = block.has('y') ? length(block.value('y')) : 0.0;
-  double x = absolute_ ? (block.has('x') ? dx : pos_[0]) : pos_[0];
-  double y = absolute_ ? (block.has('y') ? dy : pos_[1]) : pos_[1];
+  // G91: the hole steps from the last one, once per repeat.
+  const double da = block.has(word_a) ? length(block.value(word_a)) : 0.0;
+  const double db = block.has(word_b) ? length(block.value(word_b)) : 0.0;
+  double a = absolute_ ? (block.has(word_a) ? da : pos_[ia]) : pos_[ia];
+  double b = absolute_ ? (block.has(word_b) ? db : pos_[ib]) : pos_[ib];
   if (polar && absolute_) {  // G90: one hole at @ ^ (a missing one taken from here)
-    const std::array<double, 2> xy = polar_xy(block, x, y);
-    x = xy[0];
-    y = xy[1];
+    const std::array<double, 2> xy = polar_xy(block, a, b);
+    a = xy[0];
+    b = xy[1];
   }
+  // G87's top of the back bore: absolute in G90, from the bottom in G91.
+  const double middle = absolute_ ? cycle_ijk_[ic] : bottom + cycle_ijk_[ic];
+  const char* spindle_on = spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)";
+  // ORIENT_SPINDLE's last argument is the canon's direction: 2 clockwise, 3 counterclockwise.
+  const char* orient = spindle_ == 3 ? "ORIENT_SPINDLE(0, 0.0000, 2)" : "ORIENT_SPINDLE(0, 0.0000, 3)";
   // Up to R first, before the cycle's exact-path mode, when the run of
-  // cycles began below it (LinuxCNC judges by that Z, not by Z now).
-  if (cycle_start_z_ < r) move_traverse({pos_[0], pos_[1], r});
+  // cycles began below it (LinuxCNC judges by that height, not by where the tool is now).
+  if (cycle_start_z_ < r) {
+    Vec3 up = pos_;
+    up[ic] = r;
+    move_traverse(up);
+  }
   // The first hole is reached at the clearance when the tool is below it
-  // (a G98 line after G99 ones in the same run rises to the Z the run began
-  // at on the way, as rs274 does), else where it is.
-  double old_z = std::fmax(pos_[2], clear);
+  // (a G98 line after G99 ones in the same run rises to the height the run
+  // began at on the way, as rs274 does), else where it is.
+  double old_z = std::fmax(pos_[ic], clear);
   const bool switch_mode = control_ != 610;  // already exact path (G61): no switch, no switch back
   if (switch_mode) emit("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
   for (int k = 0; k < repeats; ++k) {
     if (!absolute_ && polar) {  // G91: each repeat adds @ and ^ to the last hole's radius and angle
-      const std::array<double, 2> xy = polar_xy(block, x, y);
-      x = xy[0];
-      y = xy[1];
+      const std::array<double, 2> xy = polar_xy(block, a, b);
+      a = xy[0];
+      b = xy[1];
     } else if (!absolute_) {
-      x += dx;
-      y += dy;
+      a += da;
+      b += db;
     }
-    move_traverse({x, y, old_z});
-    if (old_z != r) move_traverse({x, y, r});
+    move_traverse(at(a, b, old_z));
+    if (old_z != r) move_traverse(at(a, b, r));
     if (motion == 810 || motion == 820) {
-      move_feed({x, y, bottom}, column);
+      move_feed(at(a, b, bottom), column);
       if (motion == 820) cycle_dwell();
     } else if (motion == 840) {  // tap: in at feed, reverse, dwell, out at feed, forward again
       emit("DISABLE_FEED_OVERRIDE()");
       emit("DISABLE_SPEED_OVERRIDE(0)");
-      move_feed({x, y, bottom}, column);
+      move_feed(at(a, b, bottom), column);
       emit("STOP_SPINDLE_TURNING(0)");
       emit("START_SPINDLE_COUNTERCLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
       cycle_dwell();
-      move_feed({x, y, clear}, column);
+      move_feed(at(a, b, clear), column);
       emit("STOP_SPINDLE_TURNING(0)");
       emit("START_SPINDLE_CLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
       emit("ENABLE_FEED_OVERRIDE()");
       emit("ENABLE_SPEED_OVERRIDE(0)");
     } else if (motion == 850) {  // bore: in and out to R at feed, then up to the clearance
-      move_feed({x, y, bottom}, column);
-      move_feed({x, y, r}, column);
-      move_traverse({x, y, clear});
+      move_feed(at(a, b, bottom), column);
+      move_feed(at(a, b, r), column);
+      move_traverse(at(a, b, clear));
     } else if (motion == 860) {  // bore: in at feed, dwell, spindle stopped out at rapid, restarted
-      move_feed({x, y, bottom}, column);
+      move_feed(at(a, b, bottom), column);
       cycle_dwell();
       emit("STOP_SPINDLE_TURNING(0)");
-      move_traverse({x, y, clear});
-      emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
-    } else if (motion == 890) {  // bore: in at feed, dwell, out at feed
-      move_feed({x, y, bottom}, column);
+      move_traverse(at(a, b, clear));
+      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+    } else if (motion == 870) {
+      // Back bore: the spindle stopped and oriented, through the hole at
+      // the offset I J K, back over the hole's axis at the bottom, spindle
+      // on, up at feed to the top of the bore and down again, stopped and
+      // oriented, out through the hole at the offset, back over the hole.
+      const double oa = a + cycle_ijk_[ia], ob = b + cycle_ijk_[ib];
+      move_traverse(at(oa, ob, r));
+      emit("STOP_SPINDLE_TURNING(0)");
+      emit(orient);
+      move_traverse(at(oa, ob, bottom));
+      move_traverse(at(a, b, bottom));
+      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+      move_feed(at(a, b, middle), column);
+      move_feed(at(a, b, bottom), column);
+      emit("STOP_SPINDLE_TURNING(0)");
+      emit(orient);
+      move_traverse(at(oa, ob, bottom));
+      move_traverse(at(oa, ob, clear));
+      move_traverse(at(a, b, clear));
+      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+    } else if (motion == 880) {
+      // Bore, dwell, spindle stopped, a program stop: the operator takes
+      // the tool out by hand, and the program goes on from the clearance.
+      move_feed(at(a, b, bottom), column);
       cycle_dwell();
-      move_feed({x, y, clear}, column);
+      emit("STOP_SPINDLE_TURNING(0)");
+      emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
+      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+    } else if (motion == 890) {  // bore: in at feed, dwell, out at feed
+      move_feed(at(a, b, bottom), column);
+      cycle_dwell();
+      move_feed(at(a, b, clear), column);
     } else {
       // Pecks while above the bottom, then the last feed to the bottom. G83
       // retracts to R between pecks, G73 backs off by the clearance. The
@@ -141,15 +210,19 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       const double bottom_words = absolute_ ? cycle_z_words_ : r_words + cycle_z_words_;
       for (double depth_words = r_words - cycle_q_words_; depth_words > bottom_words; depth_words -= cycle_q_words_) {
         const double depth = depth_words * unit_mm_;
-        move_feed({x, y, depth}, column);
-        if (motion == 830) move_traverse({x, y, r});
-        move_traverse({x, y, depth + rapid_delta});
+        move_feed(at(a, b, depth), column);
+        if (motion == 830) move_traverse(at(a, b, r));
+        move_traverse(at(a, b, depth + rapid_delta));
       }
-      move_feed({x, y, bottom}, column);
+      move_feed(at(a, b, bottom), column);
     }
-    if (motion != 840 && motion != 850 && motion != 860 && motion != 890) move_traverse({x, y, clear});
+    if (motion == 730 || motion == 810 || motion == 820 || motion == 830) move_traverse(at(a, b, clear));
     old_z = clear;
   }
+  // After G88 the interpreter takes the tool to be at the clearance (the
+  // operator retracted it); the machine's last point is still the bottom
+  // (canon_pos_, where a tool change takes the position back from).
+  if (motion == 880 && repeats > 0) pos_ = at(a, b, clear);
   // Back to the program's path mode: the same call G61/G61.1/G64 makes,
   // and the naive-CAM tolerance whatever the mode.
   if (!switch_mode) return;

@@ -12,6 +12,7 @@
 #include "tools/gcode/ngc_block.hpp"
 #include "tools/gcode/ngc_error.hpp"
 #include "tools/gcode/ngc_program_flow.hpp"
+#include "tools/gcode/ngc_program_lines.hpp"
 #include "tools/gcode/ngc_subroutine_files.hpp"
 #include "tools/gcode/program_file.hpp"
 
@@ -44,15 +45,13 @@ void check_start_line(const RunFromLine& from, std::size_t line_count, const Pro
 
 }  // namespace
 
-CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
-  CanonResult result;
-  CanonMachine machine(setup, result.calls);
-  std::string why;
-  std::vector<NgcLine> lines;
+CanonRun interpret_canon_to(std::string_view text, const CanonSetup& setup, const CanonSink& sink) {
+  CanonRun result;
+  CanonMachine machine(setup, sink);
   int line_number = 0;
   std::string line_file;  // set while a line of a subroutine file runs
   try {
-    lines = normalize_lines(text, line_number);
+    ProgramLines lines(text, line_number);
     const std::size_t program_lines = lines.size();
     std::size_t calling_line = 0;
     SubroutineFiles files;
@@ -75,7 +74,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
         machine.set_file(static_cast<std::uint32_t>(o.file) + 1);
       }
     };
-    ProgramFlow flow(lines, setup.max_lines_run);
+    ProgramFlow flow(o_word_lines(lines), lines.size(), setup.max_lines_run);
     long passes_left = 0;
     if (setup.from_line) {
       check_start_line(*setup.from_line, program_lines, flow, line_number);
@@ -92,7 +91,7 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
       if (machine.muted() && line_file.empty() && line_number == setup.from_line->line && --passes_left == 0)
         machine.resume(*setup.from_line, line_number);
       if (!machine.muted()) ++result.lines_run;
-      const NgcLine& line = lines[*next];
+      const NgcLine line = lines.line(*next);
       if (line.text.empty()) continue;
       if (setup.block_delete && line.text[0] == '/') continue;
       if (line.text[0] == '%') {
@@ -128,11 +127,18 @@ CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
                                              ", not " + std::to_string(from.pass)));
     }
   } catch (const NgcError& e) {
-    result.calls.clear();
     result.files.clear();
     result.lines_run = 0;
     result.error = GcodeError{line_number, e.column(), e.what(), line_file};
   }
+  return result;
+}
+
+CanonResult interpret_canon(std::string_view text, const CanonSetup& setup) {
+  CanonResult result;
+  static_cast<CanonRun&>(result) =
+      interpret_canon_to(text, setup, [&result](const CanonCall& call) { result.calls.push_back(call); });
+  if (result.error) result.calls.clear();
   return result;
 }
 
@@ -142,17 +148,25 @@ std::string canon_text(const std::vector<CanonCall>& calls) {
   return out;
 }
 
-CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setup) {
+CanonRun interpret_canon_file_to(const std::string& path, const CanonSetup& setup, const CanonSink& sink) {
   std::string text;
   std::string error;
   if (!read_program_file(path, text, error)) {
-    CanonResult r;
+    CanonRun r;
     r.error = GcodeError{0, 0, error};
     return r;
   }
   CanonSetup with_own_directory = setup;
   add_program_directory(with_own_directory, path);
-  return interpret_canon(text, with_own_directory);
+  return interpret_canon_to(text, with_own_directory, sink);
+}
+
+CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setup) {
+  CanonResult result;
+  static_cast<CanonRun&>(result) =
+      interpret_canon_file_to(path, setup, [&result](const CanonCall& call) { result.calls.push_back(call); });
+  if (result.error) result.calls.clear();
+  return result;
 }
 
 void add_program_directory(CanonSetup& setup, const std::string& program_path) {

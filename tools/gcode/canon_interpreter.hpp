@@ -5,8 +5,12 @@
 // be compared call by call (docs/gcode.md). The interpreter knows Z, the
 // spindle, coolant, tools and offsets even where this machine cannot move
 // them yet. An error names line and column, and no call is returned.
+// interpret_canon_to hands each call to a sink as it is made, so nothing
+// holds them all: what a sink received from a run that ends in an error
+// is to be dropped (the calls up to the refused line).
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -92,18 +96,29 @@ struct CanonSetup {
   bool end_of_file_ends = false;
 };
 
-struct CanonResult {
-  std::vector<CanonCall> calls;
+// Receives each call as it is made, in order.
+using CanonSink = std::function<void(const CanonCall&)>;
+
+struct CanonRun {
   std::vector<std::string> files;  // the subroutine files read, as CanonCall::file names them
   std::size_t lines_run = 0;  // lines read and run (a loop's lines once per pass), from the start line
-  std::optional<GcodeError> error;  // set: calls is empty
+  std::optional<GcodeError> error;  // set: the calls the sink received are not the program's (drop them)
 };
 
+struct CanonResult : CanonRun {
+  std::vector<CanonCall> calls;  // empty when error is set
+};
+
+// Holds the program's lines (as views into `text`: ngc_program_lines.hpp)
+// and the interpreter's state, never the calls.
+CanonRun interpret_canon_to(std::string_view text, const CanonSetup& setup, const CanonSink& sink);
+// interpret_canon_to with every call collected.
 CanonResult interpret_canon(std::string_view text, const CanonSetup& setup = {});
 // The calls as text, one NAME(args) a line.
 std::string canon_text(const std::vector<CanonCall>& calls);
 // The file as a program (read_program_file), or an error at line 0;
 // subroutine files are looked for beside it first (add_program_directory).
+CanonRun interpret_canon_file_to(const std::string& path, const CanonSetup& setup, const CanonSink& sink);
 CanonResult interpret_canon_file(const std::string& path, const CanonSetup& setup = {});
 // Puts the program's own directory first on setup.subroutine_path.
 void add_program_directory(CanonSetup& setup, const std::string& program_path);

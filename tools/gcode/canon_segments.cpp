@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 namespace tnv::gcode {
 
@@ -28,101 +29,97 @@ class Refusal {
   std::string message_;
 };
 
-class Converter {
- public:
-  Converter(const std::array<double, 3>& start, const GcodeOptions& options) : at_(start), options_(options) {}
-
-  void run(const CanonCall& call) {
-    const CanonMotion& m = call.motion;
-    const auto tag = static_cast<std::uint32_t>(call.line);
-    switch (m.kind) {
-      case Kind::other: break;
-      case Kind::traverse:
-      case Kind::feed: {
-        check_z(m.end_mm);
-        if (std::hypot(m.end_mm[0] - at_[0], m.end_mm[1] - at_[1]) < kNoMove_mm) break;
-        const double feed = m.kind == Kind::traverse ? options_.rapid_feed_mm_s : feed_mm_min_ / 60.0;
-        if (!(feed > 0.0)) throw Refusal("feed move without a feed rate (F)");
-        add(fw::motion::line_to({m.end_mm[0], m.end_mm[1]}, feed, tag));
-        break;
-      }
-      case Kind::arc: {
-        if (m.plane != 17)
-          throw Refusal(std::string("arc in the ") + (m.plane == 18 ? "XZ plane (G18)" : "YZ plane (G19)") +
-                        ": this machine has X and Y only (arcs in G17)");
-        check_z(m.end_mm);
-        const double feed = feed_mm_min_ / 60.0;
-        if (!(feed > 0.0)) throw Refusal("arc without a feed rate (F)");
-        const bool clockwise = m.turn < 0;
-        const PlanePoint centre{m.centre_mm[0], m.centre_mm[1]};
-        // P turns: the full circles first, then the arc to the end.
-        for (int k = 1; k < std::abs(m.turn); ++k) add(fw::motion::arc_to(clockwise, {at_[0], at_[1]}, centre, feed, tag));
-        add(fw::motion::arc_to(clockwise, {m.end_mm[0], m.end_mm[1]}, centre, feed, tag));
-        break;
-      }
-      case Kind::probe: throw Refusal("probe move (G38.x): this machine has no probe input");
-      case Kind::spline: throw Refusal("G5.1 spline: the motion queue takes lines and arcs only");
-      case Kind::rigid_tap: throw Refusal("rigid tapping (G33.1) moves Z: this machine has X and Y only");
-      case Kind::dwell:
-        if (m.value > 0.0) add(fw::motion::dwell_for(m.value, tag));
-        break;
-      case Kind::feed_rate: feed_mm_min_ = m.value; break;
-      case Kind::tool_change: ++program_.tool_changes; break;
-      case Kind::spindle_on: ++program_.spindle_starts; break;
-      case Kind::coolant_on: ++program_.coolant_starts; break;
-      case Kind::pause:
-        throw Refusal("program stop (M0/M1): a streamed program does not pause; run the parts as programs of their own");
-      case Kind::end: program_.ended = true; break;
-    }
-  }
-
-  GcodeProgram take() { return std::move(program_); }
-
- private:
-  void check_z(const std::array<double, 3>& end) const {
-    if (std::fabs(end[2] - at_[2]) > kSameZ_mm)
-      throw Refusal("this move takes machine Z from " + fixed(at_[2], 4) + " to " + fixed(end[2], 4) +
-                    " mm: this machine has X and Y only");
-  }
-
-  void add(const Segment& segment) {
-    fw::motion::SegmentGeometry g;
-    const SegmentRefusal r = fw::motion::prepare(segment, {at_[0], at_[1]}, options_.limits, g);
-    if (r != SegmentRefusal::none) throw Refusal(std::string("segment refused: ") + fw::motion::to_string(r));
-    program_.segments.push_back(segment);
-    program_.geometry.push_back(g);
-    at_[0] = g.end_mm[0];
-    at_[1] = g.end_mm[1];
-  }
-
-  std::array<double, 3> at_;  // machine coordinates, mm
-  const GcodeOptions& options_;
-  double feed_mm_min_ = 0.0;
-  GcodeProgram program_;
-};
-
 }  // namespace
+
+void CanonSegmentSink::convert(const CanonCall& call) {
+  const CanonMotion& m = call.motion;
+  const auto tag = static_cast<std::uint32_t>(call.line);
+  switch (m.kind) {
+    case Kind::other: break;
+    case Kind::traverse:
+    case Kind::feed: {
+      check_z(m.end_mm);
+      if (std::hypot(m.end_mm[0] - at_[0], m.end_mm[1] - at_[1]) < kNoMove_mm) break;
+      const double feed = m.kind == Kind::traverse ? options_.rapid_feed_mm_s : feed_mm_min_ / 60.0;
+      if (!(feed > 0.0)) throw Refusal("feed move without a feed rate (F)");
+      add(fw::motion::line_to({m.end_mm[0], m.end_mm[1]}, feed, tag));
+      break;
+    }
+    case Kind::arc: {
+      if (m.plane != 17)
+        throw Refusal(std::string("arc in the ") + (m.plane == 18 ? "XZ plane (G18)" : "YZ plane (G19)") +
+                      ": this machine has X and Y only (arcs in G17)");
+      check_z(m.end_mm);
+      const double feed = feed_mm_min_ / 60.0;
+      if (!(feed > 0.0)) throw Refusal("arc without a feed rate (F)");
+      const bool clockwise = m.turn < 0;
+      const PlanePoint centre{m.centre_mm[0], m.centre_mm[1]};
+      // P turns: the full circles first, then the arc to the end.
+      for (int k = 1; k < std::abs(m.turn); ++k) add(fw::motion::arc_to(clockwise, {at_[0], at_[1]}, centre, feed, tag));
+      add(fw::motion::arc_to(clockwise, {m.end_mm[0], m.end_mm[1]}, centre, feed, tag));
+      break;
+    }
+    case Kind::probe: throw Refusal("probe move (G38.x): this machine has no probe input");
+    case Kind::spline: throw Refusal("G5.1 spline: the motion queue takes lines and arcs only");
+    case Kind::rigid_tap: throw Refusal("rigid tapping (G33.1) moves Z: this machine has X and Y only");
+    case Kind::dwell:
+      if (m.value > 0.0) add(fw::motion::dwell_for(m.value, tag));
+      break;
+    case Kind::feed_rate: feed_mm_min_ = m.value; break;
+    case Kind::tool_change: ++program_.tool_changes; break;
+    case Kind::spindle_on: ++program_.spindle_starts; break;
+    case Kind::coolant_on: ++program_.coolant_starts; break;
+    case Kind::pause:
+      throw Refusal("program stop (M0/M1): a streamed program does not pause; run the parts as programs of their own");
+    case Kind::end: program_.ended = true; break;
+  }
+}
+
+void CanonSegmentSink::check_z(const std::array<double, 3>& end) const {
+  if (std::fabs(end[2] - at_[2]) > kSameZ_mm)
+    throw Refusal("this move takes machine Z from " + fixed(at_[2], 4) + " to " + fixed(end[2], 4) +
+                  " mm: this machine has X and Y only");
+}
+
+void CanonSegmentSink::add(const Segment& segment) {
+  fw::motion::SegmentGeometry g;
+  const SegmentRefusal r = fw::motion::prepare(segment, {at_[0], at_[1]}, options_.limits, g);
+  if (r != SegmentRefusal::none) throw Refusal(std::string("segment refused: ") + fw::motion::to_string(r));
+  program_.segments.push_back(segment);
+  program_.geometry.push_back(g);
+  at_[0] = g.end_mm[0];
+  at_[1] = g.end_mm[1];
+}
+
+void CanonSegmentSink::operator()(const CanonCall& call) {
+  if (refused_) return;
+  try {
+    convert(call);
+  } catch (const Refusal& e) {
+    refused_ = Refused{call.line, call.file, e.message()};
+  }
+}
+
+GcodeResult CanonSegmentSink::finish(const CanonRun& run) {
+  GcodeResult result;
+  if (run.error) {
+    result.error = run.error;
+  } else if (refused_) {
+    result.error = GcodeError{refused_->line, 0, refused_->message,
+                              refused_->file == 0 ? std::string() : run.files.at(refused_->file - 1)};
+  } else {
+    result.program = std::move(program_);
+    result.program.lines_run = run.lines_run;
+  }
+  return result;
+}
 
 GcodeResult canon_segments(const CanonResult& canon, const std::array<double, 3>& start_machine_mm,
                            const GcodeOptions& options) {
-  GcodeResult result;
-  if (canon.error) {
-    result.error = canon.error;
-    return result;
-  }
-  Converter converter(start_machine_mm, options);
-  for (const CanonCall& call : canon.calls) {
-    try {
-      converter.run(call);
-    } catch (const Refusal& e) {
-      result.error = GcodeError{call.line, 0, e.message(),
-                                call.file == 0 ? std::string() : canon.files.at(call.file - 1)};
-      return result;
-    }
-  }
-  result.program = converter.take();
-  result.program.lines_run = canon.lines_run;
-  return result;
+  CanonSegmentSink sink(start_machine_mm, options);
+  if (!canon.error)
+    for (const CanonCall& call : canon.calls) sink(call);
+  return sink.finish(canon);
 }
 
 }  // namespace tnv::gcode

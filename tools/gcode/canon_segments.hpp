@@ -4,18 +4,51 @@
 // and arc segments, dwells dwell segments, each checked against the
 // firmware's limits (fw::motion::prepare) as the queue will check it.
 // Refused, with the line: a move that changes machine Z (a Z word, with a
-// tool length offset in force or not; a canned cycle; rigid tapping), an
+// tool length offset in force or not; a G17 canned cycle; rigid tapping), an
 // arc outside G17 (the
 // machine has X and Y only), a probe move (no probe input), a G5.1 spline,
 // and M0/M1 (a stream does not pause). Counted and not sent: tool changes
 // (the tool's length applies to Z, fine while Z does not move), spindle
 // starts and coolant (the table has neither).
 #include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
 
 #include "tools/gcode/canon_interpreter.hpp"
 #include "tools/gcode/gcode_program.hpp"
 
 namespace tnv::gcode {
+
+// Converts the calls as the interpreter makes them (a CanonSink:
+// interpret_canon_to), so no call is held, only the segments. After the
+// first refusal later calls are ignored.
+class CanonSegmentSink {
+ public:
+  // The interpreter runs from `start_machine_mm` (CanonSetup::start_machine_mm).
+  CanonSegmentSink(const std::array<double, 3>& start_machine_mm, const GcodeOptions& options)
+      : at_(start_machine_mm), options_(options) {}
+  void operator()(const CanonCall& call);
+  // The run's error if it has one, else the first refusal (its file named
+  // from run.files), else the program.
+  GcodeResult finish(const CanonRun& run);
+
+ private:
+  void convert(const CanonCall& call);  // throws the refusal (canon_segments.cpp)
+  void check_z(const std::array<double, 3>& end) const;
+  void add(const fw::motion::Segment& segment);
+
+  struct Refused {
+    int line = 0;
+    std::uint32_t file = 0;
+    std::string message;
+  };
+  std::array<double, 3> at_;  // machine coordinates, mm
+  const GcodeOptions& options_;
+  double feed_mm_min_ = 0.0;
+  GcodeProgram program_;
+  std::optional<Refused> refused_;
+};
 
 // `canon` ran from `start_machine_mm` (CanonSetup::start_machine_mm); its
 // error, if any, is the result's. Uses the options' rapid feed and limits.

@@ -31,7 +31,8 @@ std::string g_text(int code) {
 int g_group(int code) {
   switch (code) {
     case 0: case 10: case 20: case 30: case 51: case 331: case 382: case 383: case 384: case 385:
-    case 800: case 730: case 810: case 820: case 830: case 840: case 850: case 860: case 890: return 1;
+    case 800: case 730: case 810: case 820: case 830: case 840: case 850: case 860: case 870: case 880: case 890:
+      return 1;
     case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921: case 922: case 923:
       return 0;
     case 170: case 180: case 190: return 2;
@@ -50,8 +51,7 @@ int g_group(int code) {
 
 std::string unsupported_g(int code) {
   std::string why;
-  if (code == 870 || code == 880) why = " (back boring G87 and manual-retract boring G88 are not supported)";
-  else if (code == 930) why = " (inverse-time feed is not supported yet)";
+  if (code == 930) why = " (inverse-time feed is not supported yet)";
   return "unsupported G-code " + g_text(code) + why;
 }
 
@@ -75,8 +75,8 @@ std::string fixed(double v, int decimals) {
 }
 
 
-CanonMachine::CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls)
-    : setup_(setup), calls_(calls), params_(setup.parameters) {
+CanonMachine::CanonMachine(const CanonSetup& setup, const CanonSink& sink)
+    : setup_(setup), sink_(sink), params_(setup.parameters) {
   params_.set_machine(this);
 }
 
@@ -109,7 +109,7 @@ void CanonMachine::emit(const std::string& text, const CanonMotion& motion) {
     queue_.push_back(std::move(q));
     return;
   }
-  calls_.push_back({line_, text, motion, file_});
+  sink_(CanonCall{line_, text, motion, file_});
 }
 
 CanonMotion CanonMachine::move_to(CanonMotion::Kind kind, const Vec3& program_mm) const {
@@ -492,8 +492,8 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
-    if (block.has(c) && !arc && !(c == 'k' && motion == 331) && !(c != 'k' && motion == 51))
-      throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2 or G3 to use it");
+    if (block.has(c) && !arc && !(c == 'k' && motion == 331) && !(c != 'k' && motion == 51) && motion != 870)
+      throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2, G3 or G87 to use it");
   if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
   if (block.has('l') && non_modal != 100 && !cycle && !has_code(block.g, 411) && !has_code(block.g, 421))
@@ -501,9 +501,9 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
   if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
     throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
-  const bool cycle_dwell = motion == 820 || motion == 840 || motion == 860 || motion == 890;
+  const bool cycle_dwell = motion == 820 || motion == 840 || motion == 860 || motion == 880 || motion == 890;
   if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || cycle_dwell || has_code(block.g, 640)))
-    throw NgcError(block.column('p'), "word P with no G4, G10, G64, arc or G82/G84/G86/G89 to use it");
+    throw NgcError(block.column('p'), "word P with no G4, G10, G64, arc or G82/G84/G86/G88/G89 to use it");
 }
 
 void CanonMachine::execute(const NgcBlock& block, int line) {
@@ -749,7 +749,11 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   }
 
   // Motion.
-  if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_)) cycle_start_z_ = pos_[2];
+  // Where a run of canned cycles begins along the cycle's axis (Z in G17,
+  // Y in G18, X in G19: the plane of this line, set above). One number, as
+  // in rs274: a plane change within the run keeps it.
+  if (g_motion && is_cycle(g_motion->code) && !is_cycle(motion_))
+    cycle_start_z_ = pos_[plane_ == 170 ? 2 : plane_ == 180 ? 1 : 0];
   // A cycle's R, Z, P and Q carry over only while the same cycle goes on.
   cycle_continues_ = !g_motion || g_motion->code == motion_;
   if (g_motion && g_motion->code != 51) motion_ = g_motion->code;  // G5.1 leaves the motion mode as it was (as rs274 does)

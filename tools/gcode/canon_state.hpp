@@ -22,7 +22,7 @@ std::string fixed(double v, int decimals);
 
 class CanonMachine : private NgcMachineValues {
  public:
-  CanonMachine(const CanonSetup& setup, std::vector<CanonCall>& calls);
+  CanonMachine(const CanonSetup& setup, const CanonSink& sink);
   CanonMachine(const CanonMachine&) = delete;  // its parameters point back at it
   CanonMachine& operator=(const CanonMachine&) = delete;
   void start();                                  // the start-up calls
@@ -100,10 +100,10 @@ class CanonMachine : private NgcMachineValues {
   void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();
-  // G73, G81-G86, G89 in the XY plane (canon_cycles.cpp).
+  // G73, G81-G89 in G17, G18 and G19 (canon_cycles.cpp).
   static bool is_cycle(int motion) { return motion == 730 || (motion >= 810 && motion <= 890); }
   void canned_cycle(const NgcBlock& block, int motion, int column);
-  void cycle_dwell();  // DWELL(P) at the bottom of G82, G84, G86, G89
+  void cycle_dwell();  // DWELL(P) at the bottom of G82, G84, G86, G88, G89
   void check_words(const NgcBlock& block, int motion, int non_modal) const;
 
   // M70 save, M71 invalidate, M72 restore, M73 save for restore at return
@@ -179,7 +179,7 @@ class CanonMachine : private NgcMachineValues {
   Vec3 lathe_origin(const Vec3& v) const;
 
   const CanonSetup& setup_;
-  std::vector<CanonCall>& calls_;
+  const CanonSink& sink_;
   NgcParameters params_;
   int line_ = 0;            // the line the calls made now are tagged with
   int source_line_ = 0;      // the line being read and run (#<_line>)
@@ -206,8 +206,10 @@ class CanonMachine : private NgcMachineValues {
   int control_ = 640;      // G61 / G61.1 / G64 (x 10), with G64's P and Q
   double control_p_ = 0.0, control_q_ = 0.0;
   bool retract_old_z_ = false;  // G98; rs274 starts in G99 (retract to R)
-  double cycle_start_z_ = 0.0;  // Z where the run of canned cycles began (mm)
-  double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;  // sticky words, mm (P seconds)
+  double cycle_start_z_ = 0.0;  // where the run of canned cycles began along the cycle's axis (mm)
+  // Sticky words, mm (P seconds); cycle_z_ is the bottom along the cycle's axis (Z, Y or X).
+  double cycle_r_ = 0.0, cycle_z_ = 0.0, cycle_q_ = 0.0, cycle_p_ = 0.0;
+  std::array<double, 3> cycle_ijk_{};  // G87's I J K, mm
   double cycle_r_words_ = 0.0, cycle_z_words_ = 0.0, cycle_q_words_ = 0.0;  // the same, as written (program units)
   bool cycle_continues_ = false;  // this line's motion mode is the one before it
   Vec3 canon_pos_{};       // the last point moved to, as the machine knows it (program coordinates)

@@ -1,6 +1,8 @@
 #include "tools/gcode/gcode_program.hpp"
 
 #include <cstdio>
+#include <string>
+#include <string_view>
 
 #include "tools/gcode/canon_segments.hpp"
 
@@ -52,14 +54,19 @@ std::string summary_text(const GcodeProgram& p) {
   return s;
 }
 
+// The calls become segments as they are made: none is held.
 GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options) {
   const CanonSetup setup = machine_setup(options);
-  return canon_segments(interpret_canon(text, setup), setup.start_machine_mm, options);
+  CanonSegmentSink sink(setup.start_machine_mm, options);
+  const CanonRun run = interpret_canon_to(text, setup, [&sink](const CanonCall& call) { sink(call); });
+  return sink.finish(run);
 }
 
 GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options) {
   const CanonSetup setup = machine_setup(options);
-  return canon_segments(interpret_canon_file(path, setup), setup.start_machine_mm, options);
+  CanonSegmentSink sink(setup.start_machine_mm, options);
+  const CanonRun run = interpret_canon_file_to(path, setup, [&sink](const CanonCall& call) { sink(call); });
+  return sink.finish(run);
 }
 
 }  // namespace tnv::gcode

@@ -7,33 +7,38 @@
 
 namespace tnv::gcode {
 
-ProgramFlow::ProgramFlow(const std::vector<NgcLine>& lines, std::size_t max_lines_run)
-    : max_lines_run_(max_lines_run) {
-  o_.reserve(lines.size());
-  for (const NgcLine& line : lines) {
-    try {
-      o_.push_back(scan_o_word(line));
-    } catch (const NgcError&) {
-      o_.emplace_back();  // read_block reports it when the line runs
-    }
-  }
+ProgramFlow::ProgramFlow(std::vector<std::pair<std::size_t, NgcOWord>> o_words, std::size_t line_count,
+                         std::size_t max_lines_run)
+    : line_count_(line_count), max_lines_run_(max_lines_run) {
+  o_lines_.reserve(o_words.size());
+  for (auto& [line, o] : o_words) o_lines_.push_back({line, std::move(o), line});
   // A label opens one block (sub, if, while, do, repeat): LinuxCNC refuses
   // a second block under the same label.
   std::map<std::string, std::size_t> opened;
-  first_opening_.resize(o_.size());
-  for (std::size_t i = 0; i < o_.size(); ++i) {
-    first_opening_[i] = i;
-    const OKeyword k = o_[i].keyword;
+  for (OLine& l : o_lines_) {
+    const OKeyword k = l.o.keyword;
     const bool opens = k == OKeyword::sub || k == OKeyword::if_ || k == OKeyword::do_ || k == OKeyword::repeat ||
-                       (k == OKeyword::while_ && !closes_do(i));
+                       (k == OKeyword::while_ && !closes_do(l.line));
     if (!opens) continue;
-    const auto [it, inserted] = opened.emplace(o_[i].name, i);
-    if (!inserted) first_opening_[i] = it->second;
+    const auto [it, inserted] = opened.emplace(l.o.name, l.line);
+    if (!inserted) l.first_opening = it->second;
   }
 }
 
+std::size_t ProgramFlow::o_index_from(std::size_t line) const {
+  return static_cast<std::size_t>(
+      std::lower_bound(o_lines_.begin(), o_lines_.end(), line, [](const OLine& l, std::size_t v) { return l.line < v; }) -
+      o_lines_.begin());
+}
+
+const NgcOWord& ProgramFlow::o_at(std::size_t line) const {
+  static const NgcOWord kNone{};
+  const std::size_t k = o_index_from(line);
+  return k < o_lines_.size() && o_lines_[k].line == line ? o_lines_[k].o : kNone;
+}
+
 std::optional<std::size_t> ProgramFlow::next_line() {
-  if (pc_ >= o_.size()) return std::nullopt;
+  if (pc_ >= line_count_) return std::nullopt;
   if (++lines_run_ > max_lines_run_)
     throw NgcError(1, "more than " + std::to_string(max_lines_run_) + " lines run: a loop that does not end?");
   current_ = pc_++;
@@ -41,38 +46,40 @@ std::optional<std::size_t> ProgramFlow::next_line() {
 }
 
 std::optional<ProgramFlow::Definition> ProgramFlow::definition_holding(std::size_t line) const {
-  for (std::size_t i = 0; i < o_.size() && i <= line; ++i) {
-    if (o_[i].keyword != OKeyword::sub) continue;
-    std::size_t end = i + 1;
-    while (end < o_.size() && !(o_[end].keyword == OKeyword::endsub && o_[end].name == o_[i].name)) ++end;
-    if (line <= end) return Definition{o_[i].name, i, std::min(end, o_.size() - 1)};
-    i = end;
+  for (std::size_t i = 0; i < o_lines_.size() && o_lines_[i].line <= line; ++i) {
+    if (o_lines_[i].o.keyword != OKeyword::sub) continue;
+    const std::string& name = o_lines_[i].o.name;
+    std::size_t e = i + 1;
+    while (e < o_lines_.size() && !(o_lines_[e].o.keyword == OKeyword::endsub && o_lines_[e].o.name == name)) ++e;
+    const std::size_t end = e < o_lines_.size() ? o_lines_[e].line : line_count_;
+    if (line <= end) return Definition{name, o_lines_[i].line, std::min(end, line_count_ - 1)};
+    i = e;
   }
   return std::nullopt;
 }
 
 std::size_t ProgramFlow::find_forward(std::size_t from, const std::string& name,
                                       std::initializer_list<OKeyword> keywords, int column, const char* what) const {
-  for (std::size_t i = from; i < o_.size(); ++i) {
-    if (o_[i].name != name) continue;
+  for (std::size_t i = o_index_from(from); i < o_lines_.size(); ++i) {
+    if (o_lines_[i].o.name != name) continue;
     for (OKeyword k : keywords)
-      if (o_[i].keyword == k) return i;
+      if (o_lines_[i].o.keyword == k) return o_lines_[i].line;
   }
   throw NgcError(column, "o" + name + ": " + what + " not found");
 }
 
 std::size_t ProgramFlow::find_backward(std::size_t from, const std::string& name, OKeyword keyword, int column,
                                        const char* what) const {
-  for (std::size_t i = from + 1; i-- > 0;)
-    if (o_[i].name == name && o_[i].keyword == keyword) return i;
+  for (std::size_t i = o_index_from(from + 1); i-- > 0;)
+    if (o_lines_[i].o.name == name && o_lines_[i].o.keyword == keyword) return o_lines_[i].line;
   throw NgcError(column, "o" + name + ": " + what + " not found");
 }
 
 bool ProgramFlow::closes_do(std::size_t while_line) const {
-  const std::string& name = o_[while_line].name;
-  for (std::size_t i = while_line; i-- > 0;) {
-    if (o_[i].name != name) continue;
-    const OKeyword k = o_[i].keyword;
+  const std::string& name = o_at(while_line).name;
+  for (std::size_t i = o_index_from(while_line); i-- > 0;) {
+    if (o_lines_[i].o.name != name) continue;
+    const OKeyword k = o_lines_[i].o.keyword;
     if (k == OKeyword::do_) return true;
     if (k == OKeyword::while_ || k == OKeyword::endwhile || k == OKeyword::sub || k == OKeyword::endsub) return false;
   }
@@ -81,10 +88,11 @@ bool ProgramFlow::closes_do(std::size_t while_line) const {
 
 // The line that ends the loop named `name` (endwhile, endrepeat or a do's while).
 std::size_t ProgramFlow::loop_end(std::size_t from, const std::string& name, int column) const {
-  for (std::size_t i = from; i < o_.size(); ++i) {
-    if (o_[i].name != name) continue;
-    if (o_[i].keyword == OKeyword::endwhile || o_[i].keyword == OKeyword::endrepeat) return i;
-    if (o_[i].keyword == OKeyword::while_ && closes_do(i)) return i;
+  for (std::size_t i = o_index_from(from); i < o_lines_.size(); ++i) {
+    const OLine& l = o_lines_[i];
+    if (l.o.name != name) continue;
+    if (l.o.keyword == OKeyword::endwhile || l.o.keyword == OKeyword::endrepeat) return l.line;
+    if (l.o.keyword == OKeyword::while_ && closes_do(l.line)) return l.line;
   }
   throw NgcError(column, "o" + name + ": the end of the loop not found");
 }
@@ -95,9 +103,12 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
     if (o.args.size() != 1) throw NgcError(o.column, "o" + o.name + ": needs one [condition]");
     return o.args[0] != 0.0;
   };
-  if (first_opening_[at] != at)
+  const std::size_t k_at = o_index_from(at);
+  const std::size_t first_opening =
+      k_at < o_lines_.size() && o_lines_[k_at].line == at ? o_lines_[k_at].first_opening : at;
+  if (first_opening != at)
     throw NgcError(o.column, "duplicate O-word label o" + o.name + " (it opened a block on line " +
-                                 std::to_string(first_opening_[at] + 1) + ")");
+                                 std::to_string(first_opening + 1) + ")");
   const bool via_branch = branch_target_ == at;
   branch_target_.reset();
   switch (o.keyword) {
@@ -127,13 +138,13 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
       break;
     }
     case OKeyword::call: {
-      std::size_t sub = o_.size();
-      for (std::size_t i = 0; i < o_.size(); ++i)
-        if (o_[i].keyword == OKeyword::sub && o_[i].name == o.name) {
-          sub = i;
+      std::size_t sub = line_count_;
+      for (const OLine& l : o_lines_)
+        if (l.o.keyword == OKeyword::sub && l.o.name == o.name) {
+          sub = l.line;
           break;
         }
-      if (sub == o_.size()) {
+      if (sub == line_count_) {
         const bool named = o.name.find_first_not_of("0123456789") != std::string::npos;
         throw NgcError(o.column, named ? "o<" + o.name + "> call: no o<" + o.name + "> sub in the program, nor a file " +
                                              o.name + ".ngc on the subroutine path"
@@ -204,7 +215,7 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
     }
     case OKeyword::break_: {
       const std::size_t end = loop_end(at + 1, o.name, o.column);
-      if (o_[end].keyword == OKeyword::endrepeat) {
+      if (o_at(end).keyword == OKeyword::endrepeat) {
         const std::size_t start = find_backward(end, o.name, OKeyword::repeat, o.column, "repeat");
         repeats_left_.erase({frames_.size(), start});
       }
@@ -213,7 +224,7 @@ void ProgramFlow::execute(const NgcOWord& o, NgcParameters& params) {
     }
     case OKeyword::continue_: {
       const std::size_t end = loop_end(at + 1, o.name, o.column);
-      pc_ = o_[end].keyword == OKeyword::endwhile ? find_backward(end, o.name, OKeyword::while_, o.column, "while")
+      pc_ = o_at(end).keyword == OKeyword::endwhile ? find_backward(end, o.name, OKeyword::while_, o.column, "while")
                                                   : end;
       break;
     }

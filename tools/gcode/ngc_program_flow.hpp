@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tools/gcode/ngc_block.hpp"
@@ -17,8 +18,11 @@ namespace tnv::gcode {
 class ProgramFlow {
  public:
   static constexpr int kMaxCallDepth = 64;
-  // A loop that never ends is an error after max_lines_run lines, not a hang.
-  ProgramFlow(const std::vector<NgcLine>& lines, std::size_t max_lines_run);
+  // `o_words`: the lines of the program (line_count long) that have an
+  // O-word, in order (o_word_lines). A loop that never ends is an error
+  // after max_lines_run lines, not a hang.
+  ProgramFlow(std::vector<std::pair<std::size_t, NgcOWord>> o_words, std::size_t line_count,
+              std::size_t max_lines_run);
   // The next line to run (0-based), nullopt at the end of the file.
   std::optional<std::size_t> next_line();
   // The O-word of the line next_line() returned; throws NgcError.
@@ -45,8 +49,19 @@ class ProgramFlow {
   bool closes_do(std::size_t while_line) const;
   std::size_t loop_end(std::size_t from, const std::string& name, int column) const;
 
-  std::vector<NgcOWord> o_;  // per line; keyword none where there is none (or it does not scan)
-  std::vector<std::size_t> first_opening_;  // per line: where its label first opened a block (itself if it did)
+  // Only the lines with an O-word are held (a program of a million moves
+  // has a handful): o_at() finds a line's by binary search.
+  struct OLine {
+    std::size_t line = 0;
+    NgcOWord o;
+    std::size_t first_opening = 0;  // where its label first opened a block (its own line if it did)
+  };
+  const NgcOWord& o_at(std::size_t line) const;
+  // The first of o_lines_ at or after `line`.
+  std::size_t o_index_from(std::size_t line) const;
+
+  std::vector<OLine> o_lines_;
+  std::size_t line_count_ = 0;
   std::size_t pc_ = 0;       // the next line
   std::size_t current_ = 0;  // the line being run
   std::size_t lines_run_ = 0;

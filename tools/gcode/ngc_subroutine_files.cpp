@@ -3,6 +3,10 @@
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "tools/gcode/ngc_block.hpp"
 #include "tools/gcode/ngc_error.hpp"
@@ -12,16 +16,6 @@ namespace tnv::gcode {
 
 namespace {
 
-std::optional<NgcOWord> o_word(const NgcLine& line) {
-  try {
-    NgcOWord o = scan_o_word(line);
-    if (o.keyword != OKeyword::none) return o;
-  } catch (const NgcError&) {
-    // reported when the line runs
-  }
-  return std::nullopt;
-}
-
 bool file_name_safe(const std::string& name) {
   if (name.empty() || name.find_first_not_of("0123456789") == std::string::npos) return false;  // o100: no file
   return name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos;
@@ -29,7 +23,7 @@ bool file_name_safe(const std::string& name) {
 
 }  // namespace
 
-SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::vector<std::string>& dirs,
+SubroutineFiles append_subroutine_files(ProgramLines& lines, const std::vector<std::string>& dirs,
                                         std::size_t& error_line) {
   SubroutineFiles loaded;
   std::set<std::string> defined, looked_up;
@@ -38,12 +32,13 @@ SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::
   while (scanned < lines.size()) {
     const std::size_t end = lines.size();
     std::vector<std::pair<std::string, std::size_t>> wanted;  // name, first calling line
-    for (std::size_t i = scanned; i < end; ++i)
-      if (const auto o = o_word(lines[i]); o && o->keyword == OKeyword::sub) defined.insert(o->name);
-    for (std::size_t i = scanned; i < end; ++i)
-      if (const auto o = o_word(lines[i]); o && o->keyword == OKeyword::call && file_name_safe(o->name) &&
-                                           !defined.count(o->name) && looked_up.insert(o->name).second)
-        wanted.emplace_back(o->name, i);
+    const std::vector<std::pair<std::size_t, NgcOWord>> o_words = o_word_lines(lines, scanned);
+    for (const auto& [i, o] : o_words)
+      if (o.keyword == OKeyword::sub) defined.insert(o.name);
+    for (const auto& [i, o] : o_words)
+      if (o.keyword == OKeyword::call && file_name_safe(o.name) && !defined.count(o.name) &&
+          looked_up.insert(o.name).second)
+        wanted.emplace_back(o.name, i);
     scanned = end;
     for (const auto& [name, caller] : wanted) {
       error_line = caller + 1;
@@ -63,10 +58,11 @@ SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::
       std::string text, why;
       if (!read_program_file(path, text, why)) throw NgcError(1, "o<" + name + "> call: " + why);
       int file_line = 0;  // a line LinuxCNC refuses throws at the calling line, as a read error does
-      const std::vector<NgcLine> file_lines = normalize_lines(text, file_line);
+      std::vector<std::string_view> file_lines;
+      ProgramLines::split_checked(text, file_line, file_lines);
       std::optional<std::size_t> sub, endsub;
       for (std::size_t k = 0; k < file_lines.size() && !endsub; ++k) {
-        const auto o = o_word(file_lines[k]);
+        const auto o = raw_o_word(file_lines[k]);
         if (!o || o->name != name) continue;
         if (o->keyword == OKeyword::sub && !sub) sub = k;
         else if (o->keyword == OKeyword::endsub && sub) endsub = k;
@@ -75,9 +71,15 @@ SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::
         throw NgcError(1, "o<" + name + "> call: " + path + " has no o<" + name + "> sub ... o<" + name +
                               "> endsub");
       loaded.files.push_back(path);
-      for (std::size_t k = *sub; k <= *endsub; ++k) {
-        lines.push_back(file_lines[k]);
-        loaded.origins.push_back({loaded.files.size() - 1, static_cast<int>(k + 1)});
+      // Only the definition's text is kept (the rest of the file never runs).
+      const auto def_begin = static_cast<std::size_t>(file_lines[*sub].data() - text.data());
+      const auto def_end = static_cast<std::size_t>(file_lines[*endsub].data() + file_lines[*endsub].size() - text.data());
+      std::vector<std::string_view> definition;
+      int definition_line = 0;
+      ProgramLines::split_checked(lines.keep(text.substr(def_begin, def_end - def_begin)), definition_line, definition);
+      for (std::size_t k = 0; k < definition.size(); ++k) {
+        lines.append(definition[k]);
+        loaded.origins.push_back({loaded.files.size() - 1, static_cast<int>(*sub + k + 1)});
       }
       defined.insert(name);
     }

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/gcode/ngc_line.hpp"
+#include "tools/gcode/ngc_program_lines.hpp"
 
 namespace tnv::gcode {
 
@@ -36,7 +36,7 @@ inline constexpr std::size_t kMaxSubroutineFiles = 100;
 // LinuxCNC). Throws NgcError (column 1) for a file that cannot be read or
 // has no whole definition of its name; `error_line` is then the program's
 // (or an earlier file's) line calling it, 1-based in `lines`.
-SubroutineFiles append_subroutine_files(std::vector<NgcLine>& lines, const std::vector<std::string>& dirs,
+SubroutineFiles append_subroutine_files(ProgramLines& lines, const std::vector<std::string>& dirs,
                                         std::size_t& error_line);
 
 }  // namespace tnv::gcode

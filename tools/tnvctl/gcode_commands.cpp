@@ -7,6 +7,8 @@
 
 #include "tools/cli/gcode_setup_options.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
+#include "tools/gcode/canon_text_spool.hpp"
+#include "tools/gcode/gcode_error.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -34,20 +36,29 @@ gcode::CanonSetup load_setup(const CanonOptions& o) {
   return setup;
 }
 
+[[noreturn]] void refuse(const CanonOptions& o, const gcode::GcodeError& e) {
+  // Nothing printed but the error: a refused program emits no call.
+  throw BadInput(e.line == 0 ? e.message : o.program + ": " + gcode::to_string(e));
+}
+
 int run_canon(const CanonOptions& o, Session&, Report& report) {
-  const gcode::CanonResult r = gcode::interpret_canon_file(o.program, load_setup(o));
-  if (r.error) {
-    // Nothing printed but the error: a refused program emits no call.
-    throw BadInput(r.error->line == 0 ? r.error->message : o.program + ": " + gcode::to_string(*r.error));
-  }
-  if (report.json_mode()) {
+  const gcode::CanonSetup setup = load_setup(o);
+  if (report.json_mode()) {  // one JSON object, printed at the end: the calls are held
+    const gcode::CanonResult r = gcode::interpret_canon_file(o.program, setup);
+    if (r.error) refuse(o, *r.error);
     nlohmann::json calls = nlohmann::json::array();
     for (const gcode::CanonCall& c : r.calls) calls.push_back({{"line", c.line}, {"call", c.text}});
     report.data["calls"] = calls;
-  } else {
-    std::cout << gcode::canon_text(r.calls);
-    std::cout.flush();
+    return kExitOk;
   }
+  // The calls go to a temporary file as they are made and are printed only
+  // once the program has run to its end: memory does not grow with them.
+  gcode::CanonTextSpool spool;
+  const gcode::CanonRun run =
+      gcode::interpret_canon_file_to(o.program, setup, [&spool](const gcode::CanonCall& c) { spool(c); });
+  if (run.error) refuse(o, *run.error);
+  std::string error;
+  if (!spool.copy_to(std::cout, error)) throw RunFailed(error);
   return kExitOk;
 }
 

@@ -143,13 +143,13 @@ TEST(CanonInterpreter, RefusalsNameTheWordLineAndColumn) {
   e = error_of("G19 G41 D1\nM2\n");  // cutter radius compensation only in G17 (and G18)
   EXPECT_EQ(e.column, 5);
   EXPECT_NE(e.message.find("G41"), std::string::npos) << e.message;
-  e = error_of("F100\nG87 X1 Y1 Z-1 R1\nM2\n");  // back boring: not supported
+  e = error_of("F100 S100 M3\nG87 X1 Y1 Z-1 R1\nM2\n");  // back boring needs I, J and K
   EXPECT_EQ(e.line, 2);
-  EXPECT_NE(e.message.find("G87"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("G87 needs I"), std::string::npos) << e.message;
   e = error_of("F100\nG81 X1 ^30 Z-1 R1\nM2\n");  // polar and X on one line
   EXPECT_NE(e.message.find("polar"), std::string::npos) << e.message;
-  e = error_of("F100\nG18 G81 X1 Y1 Z-1 R1\nM2\n");
-  EXPECT_NE(e.message.find("XY plane"), std::string::npos) << e.message;
+  e = error_of("F100\nG18 G81 X1 Z-1 R1\nM2\n");  // in G18 the bottom is a Y
+  EXPECT_NE(e.message.find("needs Y"), std::string::npos) << e.message;
   e = error_of("G1 X1\nM2\n");
   EXPECT_NE(e.message.find("zero feed rate"), std::string::npos) << e.message;
   e = error_of("X1\nM2\n");

@@ -368,6 +368,12 @@ std::optional<std::array<double, 3>> machine_after(const std::vector<CanonCall>&
       // point is no longer the machine's, and the approach goes to the
       // interpreter's (the tail's moves start from it).
       at.reset();
+    } else if (starts("PROGRAM_STOP()") && k >= 2 && calls[k - 1].text == "STOP_SPINDLE_TURNING(0)" &&
+               calls[k - 2].text.rfind("DWELL(", 0) == 0) {
+      // G88's stop: the operator retracts the tool by hand, the calls do
+      // not say where to; the interpreter takes it to be at the clearance,
+      // and the approach goes there (the tail's moves start from it).
+      at.reset();
     } else if (starts("STRAIGHT_TRAVERSE(") || starts("STRAIGHT_FEED(")) {
       const auto v = numbers(t);
       length_changed = false;

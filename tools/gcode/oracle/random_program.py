@@ -2,7 +2,8 @@
 (docs/gcode.md), for differential testing against LinuxCNC's rs274: moves
 in every plane and unit, centre and R arcs, helices and full circles,
 dwells, spindle, coolant, tools and length offsets, work offsets, G10,
-G92, G28/G30, G53, cutter radius compensation (G41/G42/G41.1/G42.1
+G92, G28/G30, G53, canned cycles (G73, G81-G89 in G17, G18 and G19),
+cutter radius compensation (G41/G42/G41.1/G42.1
 contours of lines and arcs, G40 and a straight exit), parameters,
 expressions, comments and O-word control flow. Every program is valid by construction; each seed gives one program.
 """
@@ -209,28 +210,38 @@ class Generator:
         self.xy_move()  # the exit move: straight
 
     def cycle(self) -> None:
-        """A run of canned cycles (XY plane, G90 or G91), ended by G80."""
-        if self.plane != 17:
-            return self.move()
+        """A run of canned cycles (in the plane in force, G90 or G91), ended by G80."""
+        word_a, word_b, word_c = PLANES[self.plane][:3]  # the hole on a, b; the tool along c
         s = self.scale()
         r = self.r.uniform(-5, 10) * s
-        bottom = r - self.r.uniform(0.5, 15) * s
-        if not self.absolute:  # G91: R from the start Z, Z from R
+        depth = self.r.uniform(0.5, 15) * s
+        bottom = r - depth
+        if not self.absolute:  # G91: R from the start, the bottom from R
             bottom = bottom - r
-        code = self.r.choice(["G81", "G82", "G83", "G73", "G84", "G85", "G86", "G89"])
+        codes = ["G81", "G82", "G83", "G73", "G84", "G85", "G86", "G87", "G88", "G89"]
+        if self.plane != 17:  # rs274 taps along permuted axes outside G17; tnvctl refuses G84 there
+            codes.remove("G84")
+        code = self.r.choice(codes)
+        offset = {"X": "I", "Y": "J", "Z": "K"}  # G87's offset words, by axis
+        top = self.r.uniform(0.1, 0.9) * depth  # G87's top of the back bore: above the bottom
         extra = {"G81": "", "G82": f" P{self.num(0, 1)}", "G83": f" Q{self.r.uniform(0.3, 4) * s:.4f}",
                  "G73": f" Q{self.r.uniform(0.3, 4) * s:.4f}", "G85": "", "G86": f" P{self.num(0, 1)}",
-                 "G89": f" P{self.num(0, 1)}",
+                 "G87": (f" {offset[word_a]}{self.r.uniform(-3, 3) * s:.4f} {offset[word_b]}{self.r.uniform(-3, 3) * s:.4f}"
+                         f" {offset[word_c]}{(top if not self.absolute else r - depth + top):.4f}"),
+                 "G88": f" P{self.num(0, 1)}", "G89": f" P{self.num(0, 1)}",
                  "G84": self.r.choice(["", f" P{self.num(0, 1)}"])}[code]
-        if code in ("G84", "G86"):  # tapping needs the spindle clockwise, G86 turning
+        if code == "G84":  # tapping needs the spindle clockwise
             self.lines.append(f"S{self.r.randint(100, 3000)} M3")
+        elif code in ("G86", "G87", "G88"):  # these stop and restart the spindle: it must turn
+            self.lines.append(f"S{self.r.randint(100, 3000)} {self.r.choice(['M3', 'M4'])}")
         repeat = f" L{self.r.randint(1, 3)}" if self.r.random() < 0.2 else ""
         retract = self.r.choice(["G98 ", "G99 ", ""])
         span = 40.0 * s
-        self.lines.append(f"{retract}{code} X{self.value(-span, span)} Y{self.value(-span, span)} "
-                          f"Z{bottom:.4f} R{r:.4f}{extra}{repeat}")
+        self.lines.append(f"{retract}{code} {word_a}{self.value(-span, span)} {word_b}{self.value(-span, span)} "
+                          f"{word_c}{bottom:.4f} R{r:.4f}{extra}{repeat}")
         for _ in range(self.r.randint(0, 2)):
-            self.lines.append(f"X{self.value(-span, span)}" + (f" Y{self.num(-span, span)}" if self.r.random() < 0.5 else ""))
+            self.lines.append(f"{word_a}{self.value(-span, span)}" +
+                              (f" {word_b}{self.num(-span, span)}" if self.r.random() < 0.5 else ""))
         self.lines.append("G80")
 
     def control(self) -> None:

@@ -243,6 +243,61 @@ def test_a_cycle_after_another_names_its_words_again_as_rs274_requires(tnvctl, t
         assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, body
 
 
+def test_back_boring_and_cycles_in_every_plane_agree(tnvctl, tables, tmp_path):
+    """G87 (back boring: through the hole at the I J K offset, spindle
+    stopped and oriented, bore upward) and G88 (spindle stopped, a program
+    stop for a retract by hand), beside the other cycles, in G17, G18 (along
+    Y) and G19 (along X), G90 and G91, G98 and G99, L repeats, M3 and M4,
+    lines that go on with the same cycle and plane changes within a run."""
+    rng = random.Random(29)
+    program = tmp_path / "cycles.ngc"
+    planes = {"G17": ("X", "Y", "Z"), "G18": ("Z", "X", "Y"), "G19": ("Y", "Z", "X")}
+    offset = {"X": "I", "Y": "J", "Z": "K"}
+    failures = []
+    for _ in range(40):
+        units, v = _random_units(rng)
+        lines = [f"{units} F{rng.choice([5, 50])} S{rng.choice([300, 1200])} {rng.choice(['M3', 'M4'])}",
+                 f"G0 X{v(0.5, 1)} Y{v(0.5, 1)} Z{v(0.5, 1)}"]
+        for _ in range(rng.randint(1, 3)):
+            plane = rng.choice(list(planes))
+            a, b, c = planes[plane]
+            code = rng.choice(["G87", "G88", "G87", "G88", "G81", "G83", "G86"])
+            absolute = rng.random() < 0.6
+            r, depth = v(0.1, 0.3), v(0.2, 0.6)
+            bottom = round(r - depth, 4) if absolute else round(-depth, 4)
+            top = round(depth * rng.uniform(0.2, 0.8), 4)
+            words = {"G87": f" {offset[a]}{v(-0.2, 0.2)} {offset[b]}{v(-0.2, 0.2)} "
+                            f"{offset[c]}{round(r - depth + top, 4) if absolute else top}",
+                     "G88": f" P{rng.choice([0, 0.5])}", "G86": f" P{rng.choice([0, 0.5])}",
+                     "G83": f" Q{v(0.05, 0.3)}"}.get(code, "")
+            repeat = f" L{rng.randint(1, 3)}" if not absolute and rng.random() < 0.5 else ""
+            lines.append(f"{plane} {'G90' if absolute else 'G91'} {rng.choice(['G98', 'G99'])} {code} {a}{v(-1, 1)} "
+                         f"{b}{v(-1, 1)} R{r} {c}{bottom}{words}{repeat}")
+            for _ in range(rng.randint(0, 2)):  # the same cycle goes on
+                lines.append(rng.choice(["", "G98 ", "G99 "]) + f"{a}{v(-1, 1)}" +
+                             (f" {b}{v(-1, 1)}" if rng.random() < 0.5 else ""))
+            if rng.random() < 0.3:
+                # G88 leaves the tool where the machine has it; M6 stops the spindle (the next cycle needs it)
+                lines.append(rng.choice(["T1 M6\nM4", "G0 X0", "M5\nM3"]))
+            lines.append(rng.choice(["G80", "G80 G90", "G90 G0 Z1"]))
+        lines.append("M2")
+        failures += _runs_and_agrees(tnvctl, tables, program, "\n".join(lines) + "\n")
+    assert not failures, "\n".join(failures[:10])
+
+
+def test_back_boring_refusals_agree(tnvctl, tables, tmp_path):
+    """Both refuse: G87 without I, J or K, G88 without P, either with the
+    spindle stopped, a new cycle without its words, a cycle in G18 without
+    its Y, in G19 with R below the bottom X."""
+    program = tmp_path / "refused.ngc"
+    for body in ["G87 X1 Y1 Z-3 R1 I1 J1", "G87 X1 Y1 Z-3 R1 J1 K-1", "G88 X1 Y1 Z-3 R1", "M5\nG88 X1 Z-3 R1 P1",
+                 "M5\nG87 X1 Z-3 R1 I1 J1 K-2", "G87 X1 Z-3 R1 I1 J1 K-2\nG88 X2", "G18 G81 X1 Z1 R1",
+                 "G19 G81 Y1 Z1 X2 R1", "G18 G83 X1 Z1 Y-3 R1"]:
+        program.write_text(f"G21 F100 S500 M3\nG0 X0 Y0 Z5\n{body}\nM2\n")
+        assert not canon_compare.run_rs274(program, tables[1]).ok, body
+        assert not canon_compare.run_tnvctl(tnvctl, program, tables[0]).ok, body
+
+
 def test_subroutine_files_agree(tnvctl, tables, tmp_path):
     """o<name> call of a subroutine in name.ngc beside the program (rs274
     finds it in its working directory, tnvctl beside the program), a file

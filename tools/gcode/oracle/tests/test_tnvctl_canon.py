@@ -3,6 +3,7 @@ options."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -59,3 +60,41 @@ def test_bad_tool_table_and_var_file_are_refused(tmp_path):
     assert p.returncode == 2 and "bad.var: line 1" in p.stderr
     p = run(str(tmp_path / "missing.ngc"))
     assert p.returncode == 2 and "missing.ngc" in p.stderr
+
+
+def moves_program(lines: int, tail: str = "M2\n") -> str:
+    return "F600\n" + "".join(f"G1 X{k % 97}.{k % 10} Y{k % 89}.5 Z-{k % 3}\n" for k in range(lines)) + tail
+
+
+def test_a_refusal_after_many_calls_prints_none_of_them(tmp_path):
+    # The calls are spooled as they are made: the 20,000 moves before line 20003
+    # must still not reach stdout.
+    p = run(write(tmp_path / "p.ngc", moves_program(20000, "G0 X0\nG5.2 X1\nM2\n")))
+    assert p.returncode == 2
+    assert p.stdout == ""
+    assert "line 20003, column 1" in p.stderr and "G5.2" in p.stderr
+
+
+def peak_rss_kib(args: list[str], out: Path) -> int:
+    """The one child's peak resident set (kernel accounting, not sampled)."""
+    with out.open("w") as sink:
+        proc = subprocess.Popen(args, stdout=sink, stderr=subprocess.DEVNULL, stdin=subprocess.DEVNULL)
+        _, status, usage = os.wait4(proc.pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    return usage.ru_maxrss
+
+
+def test_memory_does_not_grow_with_the_calls(tmp_path):
+    # 16 times the moves: the peak grows by the program's text and a little
+    # per line, not by the calls (a held call costs about 200 bytes, its
+    # text on stdout about 66: 28 times the program's size before the calls
+    # were streamed).
+    small, large = tmp_path / "small.ngc", tmp_path / "large.ngc"
+    small.write_text(moves_program(20000))
+    large.write_text(moves_program(320000))
+    tnvctl = canon_compare.env_tnvctl()
+    peaks = [peak_rss_kib([tnvctl, "gcode", "canon", str(p)], tmp_path / "out.txt") for p in (small, large)]
+    out_bytes = (tmp_path / "out.txt").stat().st_size
+    extra_program_kib = (large.stat().st_size - small.stat().st_size) / 1024
+    assert out_bytes > 2 * large.stat().st_size  # the calls are more than the program
+    assert peaks[1] - peaks[0] < 3 * extra_program_kib, (peaks, extra_program_kib)
