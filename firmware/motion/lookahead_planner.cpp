@@ -48,7 +48,6 @@ void LookaheadPlanner::start_walk(const SegmentQueue& queue, bool full, double f
 std::size_t LookaheadPlanner::replan(SegmentQueue& queue, double feed_override, std::size_t budget) noexcept {
   std::size_t examined = 0;
   const DerivedLimits& d = queue.derived();
-  const double dv = d.path_accel_mm_s2 * d.dt_s;
   if (active_ && starting_) {
     walk_override_ = feed_override;
     starting_ = false;
@@ -71,6 +70,7 @@ std::size_t LookaheadPlanner::replan(SegmentQueue& queue, double feed_override, 
     double entry = 0.0;
     double hard = 0.0;
     if (q.segment.kind != SegmentKind::dwell) {
+      const double dv = q.tangent_accel_mm_s2 * d.dt_s;  // the element's own path acceleration
       double exit = 0.0;
       double exit_hard = 0.0;
       const std::uint32_t next = cursor_seq_ + 1;

@@ -17,10 +17,7 @@ const char* MotionInterpolator::configure(const MotionLimits& limits, const Plan
 }
 
 void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_accel_cap_mm_s2) noexcept {
-  MotionLimits limits = limits_;
-  if (path_accel_cap_mm_s2 > 0.0)  // the path gets half of the axis acceleration (docs/motion.md)
-    for (AxisLimits& a : limits.axis) a.accel_mm_s2 = std::min(a.accel_mm_s2, 2.0 * path_accel_cap_mm_s2);
-  queue_.reset(limits, position_mm);
+  queue_.reset(limits_, position_mm, path_accel_cap_mm_s2);
   planner_.reset();
   follower_.place(position_mm);
   filter_.reset(queue_.derived().filter_taps, position_mm);

@@ -17,8 +17,6 @@
 
 namespace tnv::fw::motion {
 
-inline constexpr double kMaxFeedOverride = 1.5;
-
 enum class MotionState : std::uint8_t {
   idle = 0,      // nothing queued, reference at rest
   running = 1,

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "firmware/control/param_check.hpp"
+#include "firmware/motion/segment.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw::motion {
@@ -32,6 +33,28 @@ struct MotionLimits {
 // The jerk filter (a moving average over filter_taps ticks) needs capacity.
 inline constexpr std::size_t kMaxFilterTaps = 128;
 
+// Highest feed override (the planner sizes an arc's tangential acceleration for it).
+inline constexpr double kMaxFeedOverride = 1.5;
+
+// The per-axis envelope (docs/motion.md "Per-axis envelope"). Along a line
+// the path accelerates at this share of the largest rate every axis allows
+// in its direction; the rest of each axis' limit is what a sharp corner's
+// turn may take in the tick that crosses it.
+inline constexpr double kTangentShare = 0.95;
+// An arc's centripetal acceleration stays within this share of its axes'
+// smallest limit, so that sqrt(tangential^2 + centripetal^2) <= kTangentShare
+// leaves its tangential acceleration at least 0.3 of it.
+inline constexpr double kCentripetalShare = 0.9;
+// A line gives up tangential acceleration so that the corner at its start
+// can be crossed at the programmed feed, but keeps at least this share of
+// its own rate; a corner that needs more is a near-stop instead.
+inline constexpr double kTangentFloorShare = 0.3;
+// A corner the path nearly stops at, braked into and left at A: the jerk
+// filter's mean of the two sides stays within A T^2 / 48 of them (T the
+// filter's window). Every path acceleration is capped at this share of
+// 48 eps / T^2, so that rounding stays within the path tolerance eps.
+inline constexpr double kCornerRoundingShare = 0.9;
+
 // The first limit that is wrong: its member in `limits` and why (static
 // text); ok when valid.
 ParamCheck check(const MotionLimits& limits) noexcept;
@@ -40,13 +63,24 @@ const char* validate(const MotionLimits& limits) noexcept;
 
 // Quantities every part of the planner derives from the limits.
 struct DerivedLimits {
-  double accel_mm_s2 = 0.0;       // smallest axis acceleration: the input path budget
-  double path_accel_mm_s2 = 0.0;  // half of it for tangential acceleration
+  // Each axis' own acceleration limit: the budget of the path point's
+  // per-axis second difference (a_i dt^2), so of the reference's too.
+  std::array<double, hal::kAxisCount> axis_accel_mm_s2{};
+  // Smallest tangential acceleration of any line (the jog's lead distance).
+  double path_accel_mm_s2 = 0.0;
+  // Cap of every path acceleration: the corner rounding's (above) and the
+  // jog's own limit.
+  double path_accel_cap_mm_s2 = 1e300;
   double dt_s = 1e-3;
   std::size_t filter_taps = 1;    // moving-average length that turns accel into the jerk limit
 };
 
-// Requires validate(limits) == "".
-DerivedLimits derive(const MotionLimits& limits) noexcept;
+// Requires validate(limits) == "". With path_accel_cap_mm_s2 > 0 no path
+// acceleration exceeds it (the jog's limit).
+DerivedLimits derive(const MotionLimits& limits, double path_accel_cap_mm_s2 = 0.0) noexcept;
+
+// Tangential acceleration of a line along `unit`: kTangentShare of the
+// largest value with |unit_i| * value <= a_i on every axis, within the cap.
+double line_accel_mm_s2(const DerivedLimits& d, const PlanePoint& unit) noexcept;
 
 }  // namespace tnv::fw::motion

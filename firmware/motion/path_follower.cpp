@@ -42,7 +42,7 @@ double PathFollower::crossing_speed_mm_s(const SegmentQueue& queue, std::uint32_
     const QueuedSegment& after = queue.at(head + 2);
     next_exit = std::min(after.planned_entry_mm_s, feed_limit_mm_s(after, feed_override));
   }
-  const double dv = d.path_accel_mm_s2 * d.dt_s;
+  const double dv = next.tangent_accel_mm_s2 * d.dt_s;
   return free_mm_s <= reachable_speed_mm_s(next.geometry.length_mm - into_next_mm, next_exit, dv, d.dt_s) ? free_mm_s
                                                                                                          : 0.0;
 }
@@ -83,9 +83,9 @@ PathFollower::Located PathFollower::locate(const SegmentQueue& queue, double ds_
 
 bool PathFollower::within_budget(const SegmentQueue& queue, const PlanePoint& next_mm) const noexcept {
   const DerivedLimits& d = queue.derived();
-  const double budget_mm = d.accel_mm_s2 * d.dt_s * d.dt_s * (1.0 + 1e-9);
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    if (std::fabs(next_mm[i] - 2.0 * point_mm_[i] + prev_point_mm_[i]) > budget_mm) return false;
+  const double dt2 = d.dt_s * d.dt_s * (1.0 + 1e-9);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {  // each axis within its own limit
+    if (std::fabs(next_mm[i] - 2.0 * point_mm_[i] + prev_point_mm_[i]) > d.axis_accel_mm_s2[i] * dt2) return false;
   }
   return true;
 }
@@ -127,7 +127,8 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
       distance_mm_ = 0.0;
       continue;
     }
-    if (at_end && !continues_into_next(queue, queue.head_seq()) && speed_mm_s_ <= d.path_accel_mm_s2 * d.dt_s) {
+    if (at_end && !continues_into_next(queue, queue.head_seq()) &&
+        speed_mm_s_ <= front.tangent_accel_mm_s2 * d.dt_s) {
       finish_front(queue);
       if (hold_ticks_ > 0) {
         prev_point_mm_ = here_mm;
@@ -146,7 +147,7 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
 
   const std::uint32_t head = queue.head_seq();
   const QueuedSegment& front = queue.at(head);
-  const double dv = d.path_accel_mm_s2 * d.dt_s;
+  const double dv = front.tangent_accel_mm_s2 * d.dt_s;
   const double target = hold ? 0.0 : feed_limit_mm_s(front, feed_override);
   double exit = 0.0;
   double exit_hard = 0.0;  // without the programmed feeds: corner limits, speed caps, the queue end
@@ -157,7 +158,7 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
   }
   const double remaining_mm = front.geometry.length_mm - distance_mm_;
   double brake = reachable_speed_mm_s(remaining_mm, exit, dv, d.dt_s);
-  const double free = std::min(speed_mm_s_ + dv, target);
+  const double free = std::min(speed_mm_s_ + queue.speed_up_accel_mm_s2(front, speed_mm_s_) * d.dt_s, target);
   if (brake < free && free <= exit && free * d.dt_s > remaining_mm)
     brake = std::max(brake, crossing_speed_mm_s(queue, head, free, remaining_mm, feed_override));
   double v = std::min({free, brake});
@@ -183,6 +184,17 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
     double lo = std::min(slowest, v);
     double hi = v;
     Located best = locate(queue, lo * d.dt_s);
+    if (!within_budget(queue, best.point_mm) && lo > 0.0) {
+      // Arriving slowly at a sharp corner at the end of a braking run (the
+      // last step of a discrete stop may be up to one tick's speed change,
+      // above the corner's limit), a stop for this tick may be all that
+      // fits: the second difference is then the last step, within the limit.
+      const Located rest = locate(queue, 0.0);
+      if (within_budget(queue, rest.point_mm)) {
+        lo = 0.0;
+        best = rest;
+      }
+    }
     if (within_budget(queue, best.point_mm)) {
       ++stats_.guard_reductions;
       for (int i = 0; i < kGuardBisections; ++i) {

@@ -18,6 +18,10 @@ struct QueuedSegment {
   Segment segment{};
   SegmentGeometry geometry{};
   double speed_cap_mm_s = 0.0;     // axis speed, centripetal, arc lag and tick-length caps (no feed)
+  // The path acceleration on this element (speed changes by it * dt per tick
+  // at most): the per-axis envelope less what its start corner's turn and,
+  // on an arc, the centripetal acceleration take (docs/motion.md).
+  double tangent_accel_mm_s2 = 0.0;
   double entry_limit_mm_s = 0.0;   // corner limit at the start (0 after a stop, a dwell or from rest)
   double planned_entry_mm_s = 0.0; // look-ahead result: can still stop at the end of the queue
   // The same without the programmed feeds (corner limits, speed caps, the
@@ -30,8 +34,9 @@ struct QueuedSegment {
 class SegmentQueue {
  public:
   SegmentQueue() = default;
-  // Requires validate(limits) == "". Empties the queue; the path starts at start_mm.
-  void reset(const MotionLimits& limits, const PlanePoint& start_mm) noexcept;
+  // Requires validate(limits) == "". Empties the queue; the path starts at
+  // start_mm. path_accel_cap_mm_s2 > 0: no path acceleration above it (the jog's).
+  void reset(const MotionLimits& limits, const PlanePoint& start_mm, double path_accel_cap_mm_s2 = 0.0) noexcept;
 
   SegmentRefusal push(const Segment& segment) noexcept;
   void pop_front() noexcept;
@@ -50,10 +55,17 @@ class SegmentQueue {
   double queued_length_mm() const noexcept { return queued_length_mm_; }  // every queued element's length
   const DerivedLimits& derived() const noexcept { return derived_; }
   const MotionLimits& limits() const noexcept { return limits_; }
+  // How fast the path point may speed up on q from speed_mm_s: speeding up
+  // is never part of a braking plan, so it takes the whole envelope (a line's
+  // direction rate; on an arc what the centripetal term leaves at the new
+  // speed), not q's tangent_accel_mm_s2. Near a corner the follower's
+  // second-difference check lowers it to what the corner leaves.
+  double speed_up_accel_mm_s2(const QueuedSegment& q, double speed_mm_s) const noexcept;
 
  private:
   double corner_limit_mm_s(const QueuedSegment& before, const QueuedSegment& after) const noexcept;
   double speed_cap_mm_s(const SegmentGeometry& g) const noexcept;
+  double tangent_accel_mm_s2(const QueuedSegment& q, const QueuedSegment* before) const noexcept;
 
   std::array<QueuedSegment, kSegmentQueueCapacity> slots_{};
   std::uint32_t head_seq_ = 0;

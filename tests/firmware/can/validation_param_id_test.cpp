@@ -51,7 +51,7 @@ TEST(ValidationNamesTheParameter, CrossFieldRulesNameTheFieldTheirMessageIsAbout
       {"y.sliding.phi_mm_s", 0.01, "y.sliding.phi_mm_s"},      // phi > eta / (q + 1)
       {"x.sliding.gamma", 0.95, "x.sliding.gamma"},            // gamma < min(1 - g, q)
       {"x.homing.search_mm_s", 0.5, "x.homing.latch_mm_s"},    // latch (1 mm/s) <= search
-      {"y.path.jerk_mm_s3", 10.0, "x.path.jerk_mm_s3"},        // the jerk filter's length (x's jerk stands for it)
+      {"y.path.jerk_mm_s3", 10.0, "y.path.jerk_mm_s3"},        // the jerk filter's length: the axis that needs it
       {"arsc.override_min", 1.5, "arsc.override_min"},         // below override_max
       {"y.model.b2", 0.0, "y.pid.feedforward"},              // the feed-forward divides by B2: its switch is at fault
   };

@@ -23,7 +23,7 @@ inline MotionInterpolator configured(const PlanePoint& start = {0.0, 0.0}) {
 }
 
 struct MotionRun {
-  std::vector<PlanePoint> position_mm;  // x_ref,k of both axes, one per tick
+  std::vector<PlanePoint> position_mm;  // x_ref,k of every axis, one per tick
   double accel_ratio_max = 0.0;
   double jerk_ratio_max = 0.0;
   double speed_ratio_max = 0.0;
@@ -68,7 +68,9 @@ MotionRun run_program(MotionInterpolator& m, const std::vector<Segment>& program
     if (close_program && next == program.size()) m.end_program();
     on_tick(k, m);
     const MotionReference ref = m.tick();
-    run.position_mm.push_back({ref.axis[0].position_mm, ref.axis[1].position_mm});
+    PlanePoint p{};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = ref.axis[i].position_mm;
+    run.position_mm.push_back(p);
     if (next == program.size() && m.queued() == 0 && m.at_rest() && k > 4) break;
   }
   score_limits(run, m.limits());

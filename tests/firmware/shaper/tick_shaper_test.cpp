@@ -201,7 +201,8 @@ TEST_F(TickShaperTest, JogFollowsTheOperatorAndTheDeadManStopsIt) {
   tick();  // the first holding tick: x_ref,k is the rest point
   const double coast_mm = task.last_record().axis[0].reference_mm - x_release;
   // The jog runs through the planner (docs/motion.md): the path point
-  // coasts deadman_s, then brakes by dv = a/2 dt per tick; the reference
+  // coasts deadman_s, then brakes by dv = A dt per tick (A: the line's
+  // rate, along an axis of equal axes path_accel_mm_s2); the reference
   // it is measured on trails the path point by the jerk filter's half
   // window plus the two ticks of look-ahead.
   const motion::DerivedLimits& d = task.motion().derived();
