@@ -198,8 +198,11 @@ inline constexpr FieldDef kHeartbeat[] = {
 inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"kind", WireType::u8, 1, 1, "",
-     "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop",
-     "element; the _exact_stop kinds end at rest before the next element starts"},
+     "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
+     "8=rapid_exact_stop",
+     "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
+     "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
+     "speed"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
      "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit)"},
     {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for a dwell"},
