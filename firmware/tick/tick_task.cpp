@@ -56,6 +56,7 @@ TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
   }
   (void)motion_.configure(path_limits(config_), held_point());  // validate(config) checked the limits
   feed_.configure(config_.arsc);                                  // and the force loop's parameters
+  (void)spindle_.set_params(config_.spindle);                     // and the spindle's (at rest)
 }
 
 bool TickTask::servo_on() const noexcept {

@@ -63,6 +63,7 @@ enum class CommandStatus : std::uint8_t {
   invalid,  // a parameter is out of range or non-finite
   cause_present,  // clear_fault refused: the fault's cause is still asserted
   not_homed,      // config homing_required and an axis the motion moves is not homed
+  spindle_running,  // apply_config: new spindle parameters while the spindle turns (stop it, let it come to rest)
 };
 
 constexpr const char* to_string(CommandStatus s) noexcept {
@@ -73,6 +74,7 @@ constexpr const char* to_string(CommandStatus s) noexcept {
     case CommandStatus::invalid: return "invalid";
     case CommandStatus::cause_present: return "cause_present";
     case CommandStatus::not_homed: return "not_homed";
+    case CommandStatus::spindle_running: return "spindle_running";
   }
   return "?";
 }
@@ -174,7 +176,9 @@ class TickTask {
   // a new loop (at rest); its f* alone is taken on line. While moving (dwell
   // or moving, jog and controlled stop included) only the live-tunable part
   // may differ: sliding.*, pid.kp / ki / kd / u_max_mm_s, the force sensor's
-  // scale and arsc.force_ref_n; anything else -> busy.
+  // scale and arsc.force_ref_n; anything else -> busy. New spindle
+  // parameters apply only while the spindle is stopped and still
+  // (spindle_running otherwise).
   CommandStatus apply_config(const FirmwareConfig& config) noexcept;
   // True when `to` differs from `from` only in what apply_config() takes
   // while moving.
@@ -226,8 +230,8 @@ class TickTask {
   SpindleResult spindle_start(SpindleDirection direction, double rpm) noexcept;
   SpindleResult spindle_set_speed(double rpm) noexcept;
   void spindle_stop() noexcept;  // cause command
-  // busy unless the spindle is stopped and still; invalid outside the ranges.
-  SpindleResult set_spindle_params(const SpindleParams& params) noexcept;
+  // Its parameters are the config's spindle member (apply_config(): only
+  // while the spindle is stopped and still, spindle_running otherwise).
   // The CAN node's host timeout: true when the owning host went silent,
   // false once a host holds command ownership again. Its rising edge stops
   // the spindle (cause host_timeout); its falling edge does not start it.

@@ -26,10 +26,6 @@ SpindleResult TickTask::spindle_set_speed(double rpm) noexcept { return spindle_
 
 void TickTask::spindle_stop() noexcept { spindle_.stop(SpindleStopCause::command); }
 
-SpindleResult TickTask::set_spindle_params(const SpindleParams& params) noexcept {
-  return spindle_.set_params(params);
-}
-
 void TickTask::set_host_lost(bool lost) noexcept {
   host_lost_ = lost;
   update_spindle_inhibit();

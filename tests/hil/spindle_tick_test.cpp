@@ -221,18 +221,20 @@ TEST(SpindleTick, AHostLossStopsTheSpindleAndItsReturnDoesNotStartIt) {
 TEST(SpindleTick, ParametersChangeOnlyWhileTheSpindleIsStoppedAndStill) {
   auto rig = holding_rig();
   ASSERT_TRUE(rig);
-  fw::SpindleParams p = rig->task.spindle().params();
-  p.accel_rpm_s = 2000.0;
+  fw::FirmwareConfig next = rig->task.config();
+  next.spindle.accel_rpm_s = 2000.0;
   ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
   run(*rig, 1500);
-  EXPECT_EQ(rig->task.set_spindle_params(p), fw::SpindleResult::busy);
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::spindle_running);
   EXPECT_EQ(rig->task.spindle().params().accel_rpm_s, fw::SpindleParams{}.accel_rpm_s) << "a refusal changes nothing";
+  EXPECT_EQ(rig->task.config().spindle.accel_rpm_s, fw::SpindleParams{}.accel_rpm_s);
   rig->task.spindle_stop();
   run(*rig, 50);
-  EXPECT_EQ(rig->task.set_spindle_params(p), fw::SpindleResult::busy) << "still turning down";
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::spindle_running) << "still turning down";
   run(*rig, 4000);
-  EXPECT_EQ(rig->task.set_spindle_params(p), fw::SpindleResult::ok);
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::ok);
   EXPECT_EQ(rig->task.spindle().params().accel_rpm_s, 2000.0);
+  EXPECT_FALSE(rig->task.spindle().commanded_on()) << "a parameter change never starts it";
 }
 
 TEST(SpindleTick, ASpeedChangeWhileCuttingHoldsTheFeedUntilTheNewSpeed) {
