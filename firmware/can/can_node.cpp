@@ -87,6 +87,7 @@ std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command
   // ownership, and motion (which only the owner may have started) comes to a controlled stop.
   if (access_.owner_timed_out(ticks, params_.settings().can.host_timeout_ms)) {
+    task_.set_host_lost(true);  // the spindle stops (host_timeout) and stays off until a host starts it again
     programs_.drop_pending();
     if (task_.moving() && !task_.stopping()) {
       programs_.stopping();
@@ -167,6 +168,7 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::param_request: params_.handle(frame); return;
     case MessageId::capture_control: capture_.control(frame, params_.settings().capture); return;
     case MessageId::bore_gauge: handle_bore(frame); return;
+    case MessageId::spindle: handle_spindle(frame); return;
     case MessageId::segment:
       if (programs_.segment(frame)) motion_accepted();
       return;

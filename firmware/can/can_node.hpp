@@ -163,6 +163,7 @@ class CanNode {
   void handle_shaper(const hal::CanFrame& frame) noexcept;
   void handle_excite(const hal::CanFrame& frame) noexcept;
   void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
+  void handle_spindle(const hal::CanFrame& frame) noexcept;  // SPINDLE: can_node_spindle.cpp
   // COMMAND codes with more to them than one TickTask call
   ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
   ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;

@@ -72,6 +72,8 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
       e = access_.ownership(code);
       if (e == ErrorCode::ok && code == CommandCode::release_ownership)
         programs_.drop_pending();  // a half-received element of the host that let go
+      if (e == ErrorCode::ok && code == CommandCode::take_ownership)
+        task_.set_host_lost(false);  // a host is back: lifts the inhibit, starts nothing
       break;
     case CommandCode::enter_commissioning: e = commissioning_.enter(); break;
     case CommandCode::leave_commissioning: commissioning_.leave(); break;

@@ -13,6 +13,7 @@ constexpr ErrorCode to_error(CommandStatus s) noexcept {
     case CommandStatus::invalid: return ErrorCode::invalid;
     case CommandStatus::cause_present: return ErrorCode::cause_present;
     case CommandStatus::not_homed: return ErrorCode::not_homed;
+    case CommandStatus::spindle_running: return ErrorCode::spindle_running;
   }
   return ErrorCode::invalid;
 }

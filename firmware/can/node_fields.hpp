@@ -39,6 +39,17 @@ inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
 inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
 inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
+inline constexpr const MessageDef& kSpindleMsg = message(MessageId::spindle);
+inline constexpr const MessageDef& kTlmSpindleMsg = message(MessageId::tlm_spindle);
+
+inline constexpr const FieldDef& kSpindleOp = field(kSpindleMsg, "op");
+inline constexpr const FieldDef& kSpindleDirection = field(kSpindleMsg, "direction");
+inline constexpr const FieldDef& kSpindleRpm = field(kSpindleMsg, "rpm");
+inline constexpr const FieldDef& kTlmSpindleTarget = field(kTlmSpindleMsg, "target");
+inline constexpr const FieldDef& kTlmSpindleCommand = field(kTlmSpindleMsg, "command");
+inline constexpr const FieldDef& kTlmSpindleMeasured = field(kTlmSpindleMsg, "measured");
+inline constexpr const FieldDef& kTlmSpindleFlags = field(kTlmSpindleMsg, "flags");
+inline constexpr const FieldDef& kTlmSpindleStopCause = field(kTlmSpindleMsg, "stop_cause");
 
 inline constexpr const FieldDef& kCommandTag = field(kCommandMsg, "tag");
 inline constexpr const FieldDef& kCommandCode = field(kCommandMsg, "code");

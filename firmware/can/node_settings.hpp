@@ -30,6 +30,7 @@ struct TelemetryPeriods {
   std::uint32_t output_ms = 0;
   std::uint32_t contour_ms = 0;
   std::uint32_t arsc_ms = 0;
+  std::uint32_t spindle_ms = 0;
 };
 
 // What MOVE and CIRCLE frames do not carry (CircleSpec / MoveSpec defaults).

@@ -141,6 +141,23 @@ void NodeTelemetry::send(std::uint32_t due) noexcept {
     write_saturated(f, kArscGain, r.arsc_cutting_gain_n_per_mm_s);
     emit(f);
   }
+  if ((due & cyclic_bit(Cyclic::spindle)) != 0) {
+    hal::CanFrame f = make_frame(kTlmSpindleMsg, node_id_);
+    const SpindleControl& sp = task_.spindle();
+    write_saturated(f, kTlmSpindleTarget, r.spindle.target_rpm);
+    write_saturated(f, kTlmSpindleCommand, r.spindle.command_rpm);
+    write_saturated(f, kTlmSpindleMeasured, r.spindle.measured_rpm);
+    std::uint32_t flags = 0;
+    if (sp.commanded_on()) flags |= kSpindleOn;
+    if (r.spindle.enabled) flags |= kSpindleEnabled;
+    if (r.spindle.reverse) flags |= kSpindleReverse;
+    if (r.spindle.at_speed) flags |= kSpindleAtSpeed;
+    if (r.spindle.feed_gate_waiting) flags |= kSpindleFeedWaiting;
+    if (sp.inhibited()) flags |= kSpindleInhibited;
+    write_raw(f, kTlmSpindleFlags, flags);
+    write_raw(f, kTlmSpindleStopCause, static_cast<std::uint32_t>(sp.last_stop_cause()));
+    emit(f);
+  }
   if ((due & cyclic_bit(Cyclic::contour)) != 0) {
     hal::CanFrame f = make_frame(kContourMsg, node_id_);
     write(f, kContour, contour_um(task_, r));

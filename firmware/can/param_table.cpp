@@ -8,6 +8,7 @@
 #include "firmware/can/firmware_identity.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_rows_bore.hpp"
+#include "firmware/spindle/spindle_params.hpp"
 #include "firmware/compensation/excitation.hpp"
 #include "firmware/control/axis_model.hpp"
 #include "firmware/control/same_bytes.hpp"
@@ -348,6 +349,8 @@ constexpr ParamDef kParams[] = {
      TNV_INT(telemetry.output_ms), "TLM_OUTPUT period; 0 = off"},
     {0x0025, "tlm.contour_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.contour_ms), "TLM_CONTOUR period; 0 = off"},
+    {0x0026, "tlm.spindle_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
+     TNV_INT(telemetry.spindle_ms), "TLM_SPINDLE period; 0 = off"},
     {0x0030, "motion.circle_ramp_s", ParamType::f32, "s", 0.001, 10, "", Access::read_write, Apply::live, kOpen,
      TNV_REAL(motion.circle_ramp_s), "feed ramp at the start and end of a circle"},
     {0x0031, "motion.circle_dwell_s", ParamType::f32, "s", 0, 60, "", Access::read_write, Apply::live, kOpen,
@@ -421,6 +424,20 @@ constexpr ParamDef kParams[] = {
     {0x006F, "tlm.arsc_ms", ParamType::u32, "ms", 0, 60000, "", Access::read_write, Apply::live, kOpen,
      TNV_INT(telemetry.arsc_ms), "TLM_ARSC period; 0 = off"},
     TNV_BORE_PARAMS,
+    // The spindle (firmware/spindle/spindle_params.hpp): only while it is stopped and still (spindle_running
+    // otherwise; the table at rest too, as every idle parameter); inside the drive's own limits.
+    {0x0080, "spindle.max_rpm", ParamType::f32, "rpm", 1, kSpindleDriveFullScaleRpm, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.spindle.max_rpm), "a start or speed above this is refused"},
+    {0x0081, "spindle.accel_rpm_s", ParamType::f32, "rpm/s", 1, kSpindleDriveAccelRpmS, "", Access::read_write,
+     Apply::idle, kOpen, TNV_REAL(firmware.spindle.accel_rpm_s), "the command's ramp (the drive's limit: 6000)"},
+    {0x0082, "spindle.at_speed_fraction", ParamType::f32, "", 0.001, 0.5, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.spindle.at_speed_fraction), "at speed: |n - n_cmd| within this fraction of n_cmd ..."},
+    {0x0083, "spindle.at_speed_floor_rpm", ParamType::f32, "rpm", 0, 1000, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.spindle.at_speed_floor_rpm), "... or within this, whichever is larger"},
+    {0x0084, "spindle.at_speed_ticks", ParamType::u32, "tick", 1, 10000, "", Access::read_write, Apply::idle, kOpen,
+     TNV_INT(firmware.spindle.at_speed_ticks), "... for this many ticks in a row: then feed moves may start"},
+    {0x0085, "spindle.standstill_rpm", ParamType::f32, "rpm", 0.1, 500, "", Access::read_write, Apply::idle, kOpen,
+     TNV_REAL(firmware.spindle.standstill_rpm), "a stopping spindle at or below this is still (enable dropped)"},
 // One block of rows per axis of TNV_AXES: ids (index + 1) << 8, names "<axis>.".
 #define TNV_AXIS_PARAM_BLOCK(name, ...) \
   TNV_AXIS_PARAMS(hal::index(hal::Axis::name), axis_param_base(hal::Axis::name), #name "."),

@@ -15,7 +15,9 @@ namespace tnv::fw::can {
 // 2: request tags (byte 0 of every answered request, echoed by its reply), hosts and ownership.
 // 3: program streaming (SEGMENT, SEGMENT_TAIL, PROGRAM_STATUS, COMMAND 14..19); HEARTBEAT
 //    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
-inline constexpr std::uint32_t kProtocolVersion = 3;
+// 4: the spindle (SPINDLE, TLM_SPINDLE, spindle.* and tlm.spindle_ms, error spindle_running; SEGMENT kinds
+//    rapid and rapid_exact_stop).
+inline constexpr std::uint32_t kProtocolVersion = 4;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
@@ -46,7 +48,8 @@ inline constexpr std::uint32_t kProtocolVersion = 3;
   X(bad_arc)                 /* arc radius below the minimum, or start and end radius differ beyond the tolerance */ \
   X(feed_above_limit)        /* feed above what the axis speed limits allow on this element */ \
   X(outside_workspace)       /* the end point lies outside the soft travel limits */ \
-  X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */
+  X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */ \
+  X(spindle_running)         /* spindle.* parameters change only while the spindle is stopped and still: stop it first */
 
 TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
 
@@ -96,6 +99,24 @@ TNV_LISTED_ENUM(ParamOp, TNV_PARAM_OPS)
   X(upload)  /* send CAPTURE_CONTROL.frames CAPTURE_DATA frames from byte CAPTURE_CONTROL.offset */
 
 TNV_LISTED_ENUM(CaptureOp, TNV_CAPTURE_OPS)
+
+// SPINDLE.op
+#define TNV_SPINDLE_OPS(X) \
+  X(start)  /* turn in SPINDLE.direction at SPINDLE.rpm (also a new direction or speed while it turns) */ \
+  X(stop)   /* ramp down, enable dropped at standstill */ \
+  X(speed)  /* a new SPINDLE.rpm while it is commanded on; the direction stays */
+
+TNV_LISTED_ENUM(SpindleOp, TNV_SPINDLE_OPS)
+
+// TLM_SPINDLE.flags bits
+enum SpindleFlag : std::uint8_t {
+  kSpindleOn = 1u << 0,           // commanded on (a start since the last stop)
+  kSpindleEnabled = 1u << 1,      // the drive's enable output (stays on through a controlled stop)
+  kSpindleReverse = 1u << 2,      // the direction output
+  kSpindleAtSpeed = 1u << 3,      // within the at-speed window for spindle.at_speed_ticks
+  kSpindleFeedWaiting = 1u << 4,  // a feed move waits for it this tick
+  kSpindleInhibited = 1u << 5,    // a fault, the e-stop or a lost host forbids a start
+};
 
 // CAPTURE_STATUS.state
 #define TNV_CAPTURE_STATES(X) X(idle) X(armed) X(recording) X(done)

@@ -11,6 +11,7 @@
 #include "firmware/can/wire.hpp"
 #include "firmware/compensation/excitation.hpp"
 #include "firmware/shaper/shaper_type.hpp"
+#include "firmware/spindle/spindle_control.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
 #include "hal/axis.hpp"
@@ -45,8 +46,10 @@ enum class MessageId : std::uint8_t {
   tlm_arsc = 0x16,
   program_status = 0x17,
   capture_data = 0x18,
+  spindle = 0x19,
   bore_gauge = 0x1A,
   bore_infeed = 0x1B,
+  tlm_spindle = 0x1C,
 };
 
 namespace detail {
@@ -198,8 +201,11 @@ inline constexpr FieldDef kHeartbeat[] = {
 inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"kind", WireType::u8, 1, 1, "",
-     "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop",
-     "element; the _exact_stop kinds end at rest before the next element starts"},
+     "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
+     "8=rapid_exact_stop",
+     "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
+     "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
+     "speed"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
      "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit)"},
     {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for a dwell"},
@@ -258,6 +264,23 @@ inline constexpr FieldDef kTlmArsc[] = {
     {"cutting_gain", WireType::u16, 6, 0.001, "N*s/mm", "",
      "the loop's cutting-gain estimate (force per mm/s of path feed), saturated; 0 when it does not run"},
 };
+inline constexpr FieldDef kSpindle[] = {
+    {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
+    {"op", WireType::u8, 1, 1, "", kValueList<kSpindleOpNames>, "what to do"},
+    {"direction", WireType::u8, 2, 1, "", kValueList<kSpindleDirectionNames>, "start: the direction; else 0"},
+    {"reserved", WireType::u8, 3, 1, "", "", "0"},
+    {"rpm", WireType::f32, 4, 1, "rpm", "",
+     "start, speed: the speed, 0 < rpm <= spindle.max_rpm (out_of_range otherwise); stop: 0"},
+};
+inline constexpr FieldDef kTlmSpindle[] = {
+    {"target", WireType::i16, 0, 1, "rpm", "", "speed asked for (signed: negative is reverse); 0 when commanded off"},
+    {"command", WireType::i16, 2, 1, "rpm", "", "the ramped command written to the spindle DAC (signed)"},
+    {"measured", WireType::i16, 4, 1, "rpm", "", "speed from the spindle encoder (signed, M-method over the tick)"},
+    {"flags", WireType::u8, 6, 1, "", "",
+     "bit 0 commanded on, bit 1 enable output, bit 2 direction output reverse, bit 3 at speed, bit 4 a feed move "
+     "waits for it, bit 5 inhibited (fault, e-stop or a lost host)"},
+    {"stop_cause", WireType::u8, 7, 1, "", kValueList<kSpindleStopCauseNames>, "why it was last stopped"},
+};
 inline constexpr FieldDef kBoreGauge[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"op", WireType::u8, 1, 1, "", kValueList<kBoreOpNames>,
@@ -287,7 +310,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 25 + hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -359,6 +382,11 @@ inline constexpr std::array<MessageDef, 25 + hal::kAxisCount> kMessages{{
     {0x18, "capture_data", Direction::from_node, 8, detail::kCaptureData,
      "One segment of a capture upload. Below every control message in priority (only BORE_GAUGE and BORE_INFEED, "
      "which wait between parts, rank lower): never delays control traffic."},
+    {0x19, "spindle", Direction::to_node, 8, detail::kSpindle,
+     "The spindle (docs/safety.md \"Spindle\"): start in a direction at a speed, stop, or a new speed. Needs "
+     "command ownership. A start is refused (faulted) while a fault, the e-stop or a lost host inhibits it; it never "
+     "starts by itself. While it is commanded on and not at speed, feed moves wait. Answered by COMMAND_ACK (code "
+     "= op)."},
     {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
      "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "
      "the bore.* parameters; the node's planner records the part with the infeeds it told for it (RLS on the log "
@@ -369,6 +397,8 @@ inline constexpr std::array<MessageDef, 25 + hal::kAxisCount> kMessages{{
      "Answer to every BORE_GAUGE, echoing its tag: the infeeds to cut with and, in flags, what happened to the "
      "part. The parts counted, the resets and the estimates are the read-only parameters bore.parts, bore.resets, "
      "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
+    {0x1C, "tlm_spindle", Direction::from_node, 8, detail::kTlmSpindle,
+     "Telemetry every tlm.spindle_ms (0 = off): the spindle's speeds, outputs and last stop cause."},
 }};
 
 namespace detail {

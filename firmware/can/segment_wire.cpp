@@ -39,6 +39,7 @@ WireKind wire_kind(const motion::Segment& s) noexcept {
     case SegmentKind::arc_ccw: return s.exact_stop ? WireKind::arc_ccw_exact_stop : WireKind::arc_ccw;
     case SegmentKind::line: break;
   }
+  if (s.rapid) return s.exact_stop ? WireKind::rapid_exact_stop : WireKind::rapid;
   return s.exact_stop ? WireKind::line_exact_stop : WireKind::line;
 }
 
@@ -115,9 +116,11 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
   }
   const double feed_mm_s = read(*tail, kTailFeed);
   const bool exact_stop = head.kind == WireKind::line_exact_stop || head.kind == WireKind::arc_cw_exact_stop ||
-                          head.kind == WireKind::arc_ccw_exact_stop;
-  if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop) {
+                          head.kind == WireKind::arc_ccw_exact_stop || head.kind == WireKind::rapid_exact_stop;
+  const bool rapid = head.kind == WireKind::rapid || head.kind == WireKind::rapid_exact_stop;
+  if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop || rapid) {
     out = motion::line_to(head.end_mm, feed_mm_s);
+    out.rapid = rapid;
   } else {
     const ChordCentre cc{read(*tail, kTailCentreNormal), read(*tail, kTailCentreAlong)};
     PlanePoint centre_mm{};

@@ -30,8 +30,10 @@ enum class WireKind : std::uint8_t {
   line_exact_stop,
   arc_cw_exact_stop,
   arc_ccw_exact_stop,
+  rapid,             // a line that is a rapid (G0): it does not wait for the spindle (motion/segment.hpp)
+  rapid_exact_stop,
 };
-inline constexpr std::uint8_t kWireKindCount = 7;
+inline constexpr std::uint8_t kWireKindCount = 9;
 
 constexpr bool wire_kind_has_tail(WireKind k) noexcept { return k != WireKind::dwell; }
 

@@ -25,6 +25,8 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   profiled_ = ProfiledRun{};
   override_ = effective_override_ = 1.0;
   hold_ = false;
+  feed_gate_open_ = true;
+  gate_waiting_ = false;
   stopping_ = false;
   program_open_ = false;
   last_phase_ = FollowerPhase::drained;
@@ -130,8 +132,11 @@ void MotionInterpolator::finish_profiled() noexcept {
 }
 
 MotionReference MotionInterpolator::tick() noexcept {
+  gate_waiting_ = false;
   if (profiled_.active()) return profiled_tick();
-  if (front_profiled() && at_rest()) {
+  const bool front_gated =
+      !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
+  if (front_profiled() && at_rest() && (stopping_ || !front_gated)) {
     if (stopping_) {
       queue_.clear(follower_.point_mm());  // stopped before it began
       follower_.place(follower_.point_mm());
@@ -149,7 +154,8 @@ MotionReference MotionInterpolator::tick() noexcept {
   const bool wait = front_profiled();
   const std::size_t queued_before = queue_.size();
   const FollowerStep step = wait ? FollowerStep{FollowerPhase::holding, queue_.at(queue_.head_seq()).segment.tag}
-                                 : follower_.step(queue_, effective_override_, hold_ || stopping_);
+                                 : follower_.step(queue_, effective_override_, hold_ || stopping_, feed_gate_open_);
+  gate_waiting_ = !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
   if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
   if (stopping_ && follower_.at_rest()) {
     queue_.clear(follower_.point_mm());

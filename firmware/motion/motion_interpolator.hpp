@@ -87,6 +87,16 @@ class MotionInterpolator {
   // dwell or a profiled element in front, feed hold, a controlled stop).
   double running_feed_mm_s() const noexcept;
 
+  // The spindle's feed gate (firmware/spindle/spindle_control.hpp
+  // feed_permitted()), set before each tick(): while it is shut a feed move
+  // (is_feed_move(): a line or arc that is not a rapid, a profiled element
+  // included) does not start, and a planned one running brakes to rest on
+  // the path; it goes on when the gate opens. Rapids and dwells run. reset_at() opens it.
+  void set_feed_gate(bool open) noexcept { feed_gate_open_ = open; }
+  bool feed_gate_open() const noexcept { return feed_gate_open_; }
+  // The last tick held a feed move at the gate (at rest or braking for it).
+  bool waiting_for_feed_gate() const noexcept { return gate_waiting_; }
+
   void hold() noexcept { hold_ = true; }
   void resume() noexcept { hold_ = false; }
   // Brake on the path; once at rest, drop whatever is still queued. A
@@ -127,6 +137,8 @@ class MotionInterpolator {
   double override_ = 1.0;            // requested
   double effective_override_ = 1.0;  // in force (update_effective_override)
   bool hold_ = false;
+  bool feed_gate_open_ = true;
+  bool gate_waiting_ = false;
   bool stopping_ = false;
   bool program_open_ = false;
   FollowerPhase last_phase_ = FollowerPhase::drained;

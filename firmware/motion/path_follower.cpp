@@ -99,7 +99,7 @@ void PathFollower::finish_front(SegmentQueue& queue) noexcept {
   distance_mm_ = 0.0;
 }
 
-FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool hold) noexcept {
+FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open) noexcept {
   const PlanePoint here_mm = point_mm_;
   const DerivedLimits& d = queue.derived();
   if (hold_ticks_ > 0) {
@@ -147,6 +147,9 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
 
   const std::uint32_t head = queue.head_seq();
   const QueuedSegment& front = queue.at(head);
+  // Checked after the finished elements are retired: a feed move never
+  // starts from rest while the gate is shut, and one already running brakes.
+  if (!feed_gate_open && is_feed_move(front.segment)) hold = true;
   const double dv = front.tangent_accel_mm_s2 * d.dt_s;
   const double target = hold ? 0.0 : feed_limit_mm_s(front, feed_override);
   double exit = 0.0;

@@ -32,7 +32,9 @@ class PathFollower {
   void place(const PlanePoint& position_mm) noexcept;
 
   // hold: brake to rest on the path (feed hold or controlled stop).
-  FollowerStep step(SegmentQueue& queue, double feed_override, bool hold) noexcept;
+  // feed_gate_open false: while the front element is a feed move the point
+  // brakes to rest and waits (the spindle is not at speed); a rapid runs.
+  FollowerStep step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open = true) noexcept;
 
   const PlanePoint& point_mm() const noexcept { return point_mm_; }
   double speed_mm_s() const noexcept { return speed_mm_s_; }

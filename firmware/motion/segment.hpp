@@ -28,9 +28,18 @@ struct Segment {
   // producers use it; G-code and streamed programs do not.
   double ramp_s = 0.0;
   std::uint32_t tag = 0;   // producer's reference (G-code line number), reported back
+  // A rapid (G0): positioning, not cutting. Every other line and arc is a
+  // feed move, which starts only while the spindle permits it (commanded
+  // off, or on and at speed: firmware/spindle/spindle_control.hpp). A rapid
+  // followed by a feed move ends at rest (the queue makes it an exact
+  // stop), so the feed move can wait for the spindle there.
+  bool rapid = false;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
 };
+
+// A line or arc that cuts (not a rapid, not a dwell): what the spindle's feed gate holds.
+constexpr bool is_feed_move(const Segment& s) noexcept { return s.kind != SegmentKind::dwell && !s.rapid; }
 
 constexpr Segment line_to(PlanePoint end_mm, double feed_mm_s, std::uint32_t tag = 0) noexcept {
   Segment s;

@@ -150,6 +150,14 @@ SegmentRefusal SegmentQueue::push(const Segment& segment) noexcept {
   q.speed_cap_mm_s = segment.kind == SegmentKind::dwell ? 0.0 : speed_cap_mm_s(q.geometry);
   q.entry_limit_mm_s = 0.0;
   // From rest after a dwell, an exact stop or a profiled element, and into a profiled one.
+  // A rapid into a feed move ends at rest: the feed move may have to wait
+  // there for the spindle. The rapid is the queue's last element, planned to
+  // end at rest already, so marking it changes no plan in progress.
+  if (!empty() && is_feed_move(segment)) {
+    QueuedSegment& rapid_before = at(tail_seq_ - 1);
+    if (rapid_before.segment.rapid && rapid_before.segment.kind != SegmentKind::dwell)
+      rapid_before.segment.exact_stop = true;
+  }
   const QueuedSegment* before = nullptr;
   if (!empty() && segment.kind != SegmentKind::dwell && !segment.profiled()) {
     const QueuedSegment& b = at(tail_seq_ - 1);

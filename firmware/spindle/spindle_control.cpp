@@ -65,8 +65,12 @@ void SpindleControl::set_inhibit(bool inhibited, SpindleStopCause cause) noexcep
   inhibited_ = inhibited;
 }
 
+bool SpindleControl::can_set_params() const noexcept {
+  return !active() && std::fabs(last_measured_rpm_) <= params_.standstill_rpm;
+}
+
 SpindleResult SpindleControl::set_params(const SpindleParams& p) noexcept {
-  if (active() || std::fabs(last_measured_rpm_) > params_.standstill_rpm) return SpindleResult::busy;
+  if (!can_set_params()) return SpindleResult::busy;
   if (!validate(p).ok) return SpindleResult::invalid;
   params_ = p;
   return SpindleResult::ok;

@@ -19,7 +19,12 @@
 
 namespace tnv::fw {
 
-enum class SpindleDirection : std::uint8_t { forward, reverse };  // M3, M4
+// The direction asked for, in wire order (SPINDLE.direction).
+#define TNV_SPINDLE_DIRECTIONS(X) \
+  X(forward)  /* M3, clockwise seen from above */ \
+  X(reverse)  /* M4 */
+
+TNV_LISTED_ENUM(SpindleDirection, TNV_SPINDLE_DIRECTIONS)
 
 // Why the spindle was last stopped, with how: an immediate stop drops the
 // enable and zeroes the command at once (the drive coasts or brakes on its
@@ -70,6 +75,8 @@ class SpindleControl {
   SpindleResult set_speed(double rpm) noexcept;
   void stop(SpindleStopCause cause) noexcept;
   SpindleResult set_params(const SpindleParams& p) noexcept;
+  // set_params() would not answer busy: stopped and still.
+  bool can_set_params() const noexcept;
 
   // Once per tick, first: whether a cause that forbids turning is present
   // (a latched fault, the e-stop input, no owning host). Its rising edge
@@ -88,6 +95,7 @@ class SpindleControl {
   // Turning or still enabled (a controlled stop in progress counts).
   bool active() const noexcept { return on_ || outputs_.enable; }
   SpindleStopCause last_stop_cause() const noexcept { return last_stop_; }
+  bool inhibited() const noexcept { return inhibited_; }  // a start would be refused
   double target_rpm() const noexcept;  // signed; 0 when commanded off
   const SpindleOutputs& outputs() const noexcept { return outputs_; }
   const SpindleParams& params() const noexcept { return params_; }

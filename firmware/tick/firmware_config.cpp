@@ -100,6 +100,7 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
   // The force loop's check solves its pole placement (a 4x4 system): only when it changed.
   if (base == nullptr || !same_bytes(config.arsc, base->arsc))
     if (const ParamCheck c = arsc::validate(config.arsc); !c.ok) return {"arsc", c.field, c.reason, c.member};
+  if (const ParamCheck c = validate(config.spindle); !c.ok) return {"spindle", c.field, c.reason, c.member};
   const motion::MotionLimits limits = path_limits(config);
   if (const ParamCheck c = motion::check(limits); !c.ok)
     return {"path", "", c.reason, path_limits_source(config, limits, c.member)};

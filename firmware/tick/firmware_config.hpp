@@ -17,6 +17,7 @@
 #include "firmware/motion/motion_limits.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/trajectory/jog_limits.hpp"
+#include "firmware/spindle/spindle_params.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::fw {
@@ -65,6 +66,9 @@ struct FirmwareConfig {
   // homed. Off by default (the papers' runs start where the table stands at
   // power-up); a machine sets it on at commissioning (docs/safety.md).
   bool homing_required = false;
+  // The spindle's ramp, at-speed window and limits (spindle.* parameters):
+  // applied only while the spindle is stopped and still (TickTask::apply_config).
+  SpindleParams spindle{};
   // Member by member (C++20): a field added to any part is compared too.
   bool operator==(const FirmwareConfig&) const = default;
 };

@@ -37,6 +37,18 @@ struct AxisTickRecord {
   double accel_mm_s2 = 0.0;  // tool-side accelerometer at this tick's latch
 };
 
+// The spindle's part of the tick (firmware/spindle/spindle_control.hpp).
+struct SpindleTickRecord {
+  double measured_rpm = 0.0;  // signed, from the spindle encoder (M-method)
+  double command_rpm = 0.0;   // the ramped command (signed), what the DAC is written with while enabled
+  double target_rpm = 0.0;    // what was asked for (signed), 0 when commanded off
+  std::uint16_t dac_code = 0;
+  bool enabled = false;       // the drive's enable output
+  bool reverse = false;       // the direction output
+  bool at_speed = false;
+  bool feed_gate_waiting = false;  // a feed move waited for the spindle this tick
+};
+
 struct TickRecord {
   std::uint64_t tick = 0;             // firmware tick count since construction
   std::uint32_t sequence = 0;         // board tick sequence
@@ -48,6 +60,7 @@ struct TickRecord {
   double feed_override = 1.0;                  // the motion core's feed override this tick
   double arsc_force_ref_n = 0.0;               // the force loop's f* now (soft start included), 0 when off
   double arsc_cutting_gain_n_per_mm_s = 0.0;   // its cutting-gain estimate, 0 when off
+  SpindleTickRecord spindle{};
 };
 
 struct TickCounters {

@@ -49,12 +49,14 @@ TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
     : board_(board), config_(config), axis_(make_axis_loops(config)) {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     axis_[i].encoder = EncoderPosition(board_.counter_bits());
+    spindle_encoder_ = EncoderPosition(board_.counter_bits());
     hold_[i] = {config_.axis[i].home_position_mm, 0.0};
     next_[i] = hold_[i];
     origin_mm_[i] = config_.axis[i].home_position_mm;
   }
   (void)motion_.configure(path_limits(config_), held_point());  // validate(config) checked the limits
   feed_.configure(config_.arsc);                                  // and the force loop's parameters
+  (void)spindle_.set_params(config_.spindle);                     // and the spindle's (at rest)
 }
 
 bool TickTask::servo_on() const noexcept {
@@ -82,6 +84,7 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
   if (first_tick_) {
     // Power-up: this position is home; no period measured yet.
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) axis_[i].encoder.reset(board_.latched_count(hal::axis_from_index(i)));
+    spindle_encoder_.reset(board_.spindle_latched_count());
     last_sequence_ = latch.sequence;
     last_clock_ = latch.clock_10mhz;
     record_.period_clocks = kNominalPeriodClocks;
@@ -107,6 +110,7 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
     const std::int64_t delta = loop.encoder.update(board_.latched_count(hal::axis_from_index(i)));
     loop.speed_mm_s = m_method_speed_mm_s(delta, config_.axis[i].count_mm, period_clocks);
   }
+  spindle_rpm_ = spindle_rpm(spindle_encoder_.update(board_.spindle_latched_count()), period_clocks);
   last_sequence_ = latch.sequence;
   last_clock_ = latch.clock_10mhz;
   record_.period_clocks = period_clocks;
@@ -136,12 +140,16 @@ void TickTask::moving_reference() noexcept {
   record_.motion_tick = phase_tick_;
   ++phase_tick_;
   if (source_ == Source::jog) jog_.produce(motion_);
+  // Feed moves of programs, circles and moves wait for the spindle; the operator's jog does not.
+  motion_.set_feed_gate(source_ == Source::jog || spindle_.feed_permitted());
   const motion::MotionReference r = motion_.tick();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const AxisReference& a = r.axis[i];
     shape_reference(i, {a.position_mm, a.speed_mm_s}, {a.next_position_mm, a.next_speed_mm_s});
   }
   const bool done = motion_.state() == motion::MotionState::idle && (source_ != Source::jog || jog_.idle());
+  // The program's end (its stream closed and run dry; an aborted one stopped the spindle already).
+  if (done && source_ == Source::program && spindle_.commanded_on()) spindle_.stop(SpindleStopCause::program_end);
   if (done && shapers_.settled()) {
     state_ = MotionState::holding;
     stop_requested_ = false;
@@ -313,6 +321,7 @@ void TickTask::tick() noexcept {
   const FaultRecord f = check(config_.supervisor, check_in);
   if (f.active()) latch_fault(f);
   const bool outputs_live = servo_on();
+  spindle_tick();
 
   // 6. DAC codes and enables, one batched write, watchdog kick
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {

@@ -27,7 +27,9 @@
 // the tick: HomingSequence (the HOME command's axes, their cycles, homed and
 // the results), PathShapers (each axis' shaper design and on/off, the
 // path's series and its hand-over once quiet) and ProgramFeedOverride (the
-// operator's override and the S3 force loop). The tick's rules hold for each.
+// operator's override and the S3 force loop) and SpindleControl (the
+// spindle's start, ramp, at-speed and stop causes, firmware/spindle/;
+// tick_task_spindle.cpp wires it). The tick's rules hold for each.
 #include <array>
 #include <cstdint>
 
@@ -39,6 +41,7 @@
 #include "firmware/homing/homing_cycle.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
+#include "firmware/spindle/spindle_control.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
@@ -60,6 +63,7 @@ enum class CommandStatus : std::uint8_t {
   invalid,  // a parameter is out of range or non-finite
   cause_present,  // clear_fault refused: the fault's cause is still asserted
   not_homed,      // config homing_required and an axis the motion moves is not homed
+  spindle_running,  // apply_config: new spindle parameters while the spindle turns (stop it, let it come to rest)
 };
 
 constexpr const char* to_string(CommandStatus s) noexcept {
@@ -70,6 +74,7 @@ constexpr const char* to_string(CommandStatus s) noexcept {
     case CommandStatus::invalid: return "invalid";
     case CommandStatus::cause_present: return "cause_present";
     case CommandStatus::not_homed: return "not_homed";
+    case CommandStatus::spindle_running: return "spindle_running";
   }
   return "?";
 }
@@ -171,7 +176,9 @@ class TickTask {
   // a new loop (at rest); its f* alone is taken on line. While moving (dwell
   // or moving, jog and controlled stop included) only the live-tunable part
   // may differ: sliding.*, pid.kp / ki / kd / u_max_mm_s, the force sensor's
-  // scale and arsc.force_ref_n; anything else -> busy.
+  // scale and arsc.force_ref_n; anything else -> busy. New spindle
+  // parameters apply only while the spindle is stopped and still
+  // (spindle_running otherwise).
   CommandStatus apply_config(const FirmwareConfig& config) noexcept;
   // True when `to` differs from `from` only in what apply_config() takes
   // while moving.
@@ -210,6 +217,28 @@ class TickTask {
   bool homed(hal::Axis axis) const noexcept { return homing_.homed(hal::index(axis)); }
   HomingResult homing_result(hal::Axis axis) const noexcept { return homing_.result(hal::index(axis)); }
   bool homing() const noexcept { return moving() && source_ == Source::homing; }
+
+  // --- the spindle (tick_task_spindle.cpp; docs/safety.md "Spindle")
+  // Every tick reads its encoder speed, sets its inhibit (a latched fault,
+  // the e-stop input, a lost host) and writes its DAC code, enable and
+  // direction. It stops at the program's end (cause program_end) and when a
+  // program, circle or move is stopped or the servo is switched off while
+  // one runs (abort), and turns only on a new start. While it is commanded
+  // on and not at speed, feed moves of programs, circles and moves wait
+  // (MotionInterpolator::set_feed_gate); a jog and rapids do not.
+  // Between ticks, like every command. Refusals change nothing.
+  SpindleResult spindle_start(SpindleDirection direction, double rpm) noexcept;
+  SpindleResult spindle_set_speed(double rpm) noexcept;
+  void spindle_stop() noexcept;  // cause command
+  // Its parameters are the config's spindle member (apply_config(): only
+  // while the spindle is stopped and still, spindle_running otherwise).
+  // The CAN node's host timeout: true when the owning host went silent,
+  // false once a host holds command ownership again. Its rising edge stops
+  // the spindle (cause host_timeout); its falling edge does not start it.
+  void set_host_lost(bool lost) noexcept;
+  bool host_lost() const noexcept { return host_lost_; }
+  const SpindleControl& spindle() const noexcept { return spindle_; }
+  double spindle_measured_rpm() const noexcept { return spindle_rpm_; }  // signed, M-method over the last period
 
   // --- status
   const TickRecord& last_record() const noexcept { return record_; }
@@ -273,6 +302,12 @@ class TickTask {
   void shape_reference(std::size_t i, const AxisSample& now, const AxisSample& next) noexcept;
   void moving_reference() noexcept;
   void homing_reference() noexcept;            // tick_task_homing.cpp
+  // tick_task_spindle.cpp: the inhibit from the fault, e-stop and host
+  // state now; the spindle's tick and outputs (after the supervisor).
+  void update_spindle_inhibit() noexcept;
+  void spindle_tick() noexcept;
+  // A running program, circle or move ends early (stop, disable): the spindle stops (abort).
+  void abort_spindle() noexcept;
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
   // config homing_required and one of the axes is not homed.
@@ -325,6 +360,10 @@ class TickTask {
   bool one_nominal_period_ = false;
   bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)
   HomingSequence homing_{};  // the HOME command's axes, their cycles, homed and the results
+  SpindleControl spindle_{};  // the spindle's command logic (firmware/spindle/spindle_control.hpp)
+  EncoderPosition spindle_encoder_{};
+  double spindle_rpm_ = 0.0;  // measured (signed)
+  bool host_lost_ = false;
 };
 
 }  // namespace tnv::fw

@@ -38,6 +38,8 @@ CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) n
 
 CommandStatus TickTask::disable() noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::ok;  // already safe
+  // Servo off under a running program, circle or move aborts it.
+  if (moving() && source_ != Source::jog && source_ != Source::homing) abort_spindle();
   state_ = MotionState::disabled;
   return CommandStatus::ok;
 }

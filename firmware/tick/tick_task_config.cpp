@@ -51,6 +51,8 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
   // After the first accepted config, only what differs from the running one is checked again.
   if (!(config_validated_ ? validate(config, config_) : validate(config)).ok()) return CommandStatus::invalid;
   if (moving() && !live_tunable_only(config_, config)) return CommandStatus::busy;
+  const bool spindle_changed = !(config.spindle == config_.spindle);
+  if (spindle_changed && !spindle_.can_set_params()) return CommandStatus::spindle_running;
   // Everything checked: from here on nothing can refuse, so it applies whole.
   FirmwareConfig next = config;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -96,6 +98,7 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
   // The force loop: a new loop at rest (validated with the config), f* on line.
   if (!same_but_force_ref(next.arsc, config_.arsc)) feed_.configure(next.arsc);
   else if (next.arsc.force_ref_n != config_.arsc.force_ref_n) feed_.set_force_ref_n(next.arsc.force_ref_n);
+  if (spindle_changed) (void)spindle_.set_params(next.spindle);  // stopped and still, validated: cannot refuse
   config_ = next;
   config_validated_ = true;
   if (path_changed) (void)motion_.configure(path_limits(config_), held_point());  // validated with the config

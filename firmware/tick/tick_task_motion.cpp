@@ -172,10 +172,12 @@ std::uint32_t TickTask::jog_deadman_stops() const noexcept { return jog_.deadman
 CommandStatus TickTask::stop() noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (state_ == MotionState::dwell) {
+    if (source_ != Source::homing) abort_spindle();
     state_ = MotionState::holding;  // the reference never left hold_
     return CommandStatus::ok;
   }
   if (state_ != MotionState::moving || stopping()) return CommandStatus::ok;
+  if (source_ != Source::jog && source_ != Source::homing) abort_spindle();  // the program, circle or move is aborted
   if (source_ == Source::jog) {
     jog_.release();
     stop_requested_ = true;

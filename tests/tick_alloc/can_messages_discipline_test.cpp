@@ -43,7 +43,8 @@ const std::map<std::string, double> kFieldValues = {
     {"shaper.zeta", 0.05},     {"shaper.freq", 30.0},       {"excite.duration", 0.1},
     {"excite.level", 5.0},     {"capture_control.frames", 4}, {"segment.x", 2.0},
     {"segment.y", 1.0},        {"segment_tail.feed", 5.0},
-    {"bore_gauge.part", 1},    {"bore_gauge.top", 0.05},    {"bore_gauge.bottom", 0.17}};
+    {"bore_gauge.part", 1},    {"bore_gauge.top", 0.05},    {"bore_gauge.bottom", 0.17},
+    {"spindle.rpm", 3000.0}};
 
 // The parameter PARAM_REQUEST addresses, by name (its id and value come from the table).
 constexpr const char* kParamName = "x.sliding.gamma";

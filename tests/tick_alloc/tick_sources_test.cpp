@@ -175,6 +175,47 @@ std::vector<SourceCase> source_cases() {
     c.end_state = fw::MotionState::holding;
     out.push_back(c);
   }
+  {
+    SourceCase c;  // the spindle: a start, a rapid while it ramps, feed moves that wait for it, a speed
+                   // change mid-cut (the feed brakes and waits), the program's end stopping it
+    c.name = "spindle_program";
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      if (held != fw::CommandStatus::ok) return held;
+      if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
+        return fw::CommandStatus::invalid;
+      const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
+      fw::motion::Segment rapid = fw::motion::line_to({at[0] + 1.0, at[1]}, 20.0);
+      rapid.rapid = true;
+      fw::motion::SegmentRefusal why{};
+      const fw::CommandStatus pushed = rig.task.push_segment(rapid, why);
+      if (pushed != fw::CommandStatus::ok) return pushed;
+      return rig.task.push_segment(fw::motion::line_to({at[0] + 6.0, at[1]}, 5.0), why);
+    };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k == 1500) (void)rig.task.spindle_set_speed(2000.0);
+      if (k == 2000) (void)rig.task.end_program();
+    };
+    c.ticks = 5000;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
+    SourceCase c;  // the spindle turning when the e-stop input trips: stopped in that tick
+    c.name = "spindle_estop";
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      if (held != fw::CommandStatus::ok) return held;
+      return rig.task.spindle_start(fw::SpindleDirection::reverse, 2000.0) == fw::SpindleResult::ok
+                 ? fw::CommandStatus::ok
+                 : fw::CommandStatus::invalid;
+    };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k == 1000) rig.machine.set_estop(true);
+    };
+    c.fault = fw::FaultReason::estop;
+    out.push_back(c);
+  }
   for (const std::uint32_t period : {1u, 10u}) {
     SourceCase c;  // a program of 1 mm pieces cut under the force loop (the S3 feed-override source)
     c.name = "program_force_loop_every_" + std::to_string(period) + "_ticks";

@@ -236,6 +236,19 @@ CommandAck NodeClient::circle(double radius_mm, double feed_mm_s) {
   return checked(circle_request(node_, tag, radius_mm, feed_mm_s), tag, 0, what);
 }
 
+CommandAck NodeClient::spindle(can::SpindleOp op, fw::SpindleDirection direction, double rpm) {
+  char what[96];
+  if (op == can::SpindleOp::start)
+    std::snprintf(what, sizeof what, "spindle start %s at %g rpm", fw::to_string(direction), rpm);
+  else if (op == can::SpindleOp::speed)
+    std::snprintf(what, sizeof what, "spindle speed %g rpm", rpm);
+  else
+    std::snprintf(what, sizeof what, "spindle stop");
+  need_ownership();
+  const std::uint8_t tag = next_tag();
+  return checked(spindle_request(node_, tag, op, direction, rpm), tag, static_cast<std::uint8_t>(op), what);
+}
+
 CommandAck NodeClient::jog(double speed_x_mm_s, double speed_y_mm_s) {
   char what[96];
   std::snprintf(what, sizeof what, "jog x %g mm/s, y %g mm/s", speed_x_mm_s, speed_y_mm_s);

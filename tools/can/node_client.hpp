@@ -54,6 +54,9 @@ class NodeClient {
   bool holds_ownership() const noexcept { return owned_; }
   CommandAck move(std::uint8_t axis, double distance_mm, double speed_mm_s);
   CommandAck circle(double radius_mm, double feed_mm_s);
+  // SPINDLE start / stop / speed (docs/safety.md "Spindle"); needs ownership like the motion commands.
+  CommandAck spindle(can::SpindleOp op, fw::SpindleDirection direction = fw::SpindleDirection::forward,
+                     double rpm = 0.0);
   CommandAck jog(double speed_x_mm_s, double speed_y_mm_s);
   CommandAck shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
   // EXCITE: kind 0 step, 1 ramp (open loop), 2 sweep, 3 multisine (closed loop, band: excite.* parameters).

@@ -70,6 +70,17 @@ hal::CanFrame move_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axi
   return f;
 }
 
+hal::CanFrame spindle_request(std::uint8_t node, std::uint8_t tag, can::SpindleOp op, fw::SpindleDirection direction,
+                              double rpm) {
+  const can::MessageDef& m = can::fields::kSpindleMsg;
+  hal::CanFrame f = can::make_frame(m, node);
+  can::write_raw(f, field(m, "tag"), tag);
+  can::write_raw(f, can::fields::kSpindleOp, static_cast<std::uint32_t>(op));
+  can::write_raw(f, can::fields::kSpindleDirection, static_cast<std::uint32_t>(direction));
+  can::write(f, can::fields::kSpindleRpm, rpm);
+  return f;
+}
+
 hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_mm, double feed_mm_s) {
   hal::CanFrame f = can::make_frame(kCircleMsg, node);
   can::write_raw(f, field(kCircleMsg, "tag"), tag);

@@ -8,6 +8,7 @@
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/program_tracker.hpp"
+#include "firmware/spindle/spindle_control.hpp"
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
 
@@ -80,6 +81,9 @@ hal::CanFrame command_request(std::uint8_t node, std::uint8_t tag, can::CommandC
                               std::uint8_t arg, double value);
 hal::CanFrame move_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, double distance_mm,
                            double speed_mm_s);
+// SPINDLE: start (direction, rpm), stop, speed (rpm); rpm as f32.
+hal::CanFrame spindle_request(std::uint8_t node, std::uint8_t tag, can::SpindleOp op, fw::SpindleDirection direction,
+                              double rpm);
 // Feed in 0.01 mm/s steps (0 .. 655.35); the caller range-checks.
 hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_mm, double feed_mm_s);
 // Speeds in 0.01 mm/s steps (+-327.67); out of range or NaN: the node refuses the clamped value.

@@ -42,7 +42,9 @@ void CanonSegmentSink::convert(const CanonCall& call) {
       if (std::hypot(m.end_mm[0] - at_[0], m.end_mm[1] - at_[1]) < kNoMove_mm) break;
       const double feed = m.kind == Kind::traverse ? options_.rapid_feed_mm_s : feed_mm_min_ / 60.0;
       if (!(feed > 0.0)) throw Refusal("feed move without a feed rate (F)");
-      add(fw::motion::line_to({m.end_mm[0], m.end_mm[1]}, feed, tag));
+      fw::motion::Segment line = fw::motion::line_to({m.end_mm[0], m.end_mm[1]}, feed, tag);
+      line.rapid = m.kind == Kind::traverse;  // a rapid does not wait for the spindle
+      add(line);
       break;
     }
     case Kind::arc: {

@@ -18,6 +18,7 @@ void add_rt_budget_commands(CLI::App& app, Runner& run);    // rt-budget (CAN se
 void add_bus_stress_commands(CLI::App& app, Runner& run);   // bus-stress (safety: CAN priority, tags, hosts)
 void add_path_commands(CLI::App& app, Runner& run);         // path (G-code programs, docs/motion.md)
 void add_homing_commands(CLI::App& app, Runner& run);       // homing (home switch and index, docs/safety.md)
+void add_spindle_commands(CLI::App& app, Runner& run);      // spindle-safety (docs/safety.md "Spindle")
 void add_screw_commands(CLI::App& app, Runner& run);
 #ifdef TNV_HAVE_CAMPAIGN
 void add_campaign_commands(CLI::App& app, Runner& run);  // campaign plan | run | merge | replay | report

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add_rt_budget_commands(app, run);
   add_bus_stress_commands(app, run);
   add_homing_commands(app, run);
+  add_spindle_commands(app, run);
   add_screw_commands(app, run);
   add_freq_response_commands(app, run);
 #ifdef TNV_HAVE_CAMPAIGN

@@ -17,6 +17,7 @@ void add_device_commands(CLI::App& app, ActionSlot& slot) {
   add_params_commands(app, slot);
   add_motion_commands(app, slot);
   add_shaper_commands(app, slot);
+  add_spindle_commands(app, slot);
   add_monitor_commands(app, slot);
   add_capture_commands(app, slot);
   add_tune_commands(app, slot);

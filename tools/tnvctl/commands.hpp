@@ -33,6 +33,7 @@ void add_params_commands(CLI::App& app, ActionSlot& slot);   // params list | ge
 void add_motion_commands(CLI::App& app, ActionSlot& slot);   // circle, move, jog, stop, estop, enable, disable,
                                                              // clear-faults, zero, controller, status
 void add_shaper_commands(CLI::App& app, ActionSlot& slot);   // shaper
+void add_spindle_commands(CLI::App& app, ActionSlot& slot);  // spindle start | stop | speed
 void add_monitor_commands(CLI::App& app, ActionSlot& slot);  // monitor
 void add_capture_commands(CLI::App& app, ActionSlot& slot);  // capture
 void add_tune_commands(CLI::App& app, ActionSlot& slot);     // identify, autotune

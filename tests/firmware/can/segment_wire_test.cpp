@@ -92,7 +92,30 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::arc_ccw_exact_stop);
+  EXPECT_EQ(head.kind, WireKind::rapid_exact_stop);
+}
+
+// A rapid (G0) keeps its kind over the wire, with and without an exact
+// stop: the node must not make it a feed move that waits for the spindle,
+// nor a feed move a rapid that does not.
+TEST(SegmentWire, ARapidStaysARapidAndAFeedMoveStaysAFeedMove) {
+  for (const bool exact : {false, true}) {
+    for (const bool rapid : {false, true}) {
+      motion::Segment s = motion::line_to({2.0, -1.0}, 25.0);
+      s.rapid = rapid;
+      s.exact_stop = exact;
+      SegmentFrames f;
+      ASSERT_EQ(encode_segment(s, {0.0, 0.0}, 1, 0x11, f), nullptr);
+      SegmentHead head;
+      ASSERT_TRUE(decode_head(f.head, head));
+      motion::Segment back;
+      ASSERT_TRUE(decode_segment(head, &f.tail, {0.0, 0.0}, back));
+      EXPECT_EQ(back.rapid, rapid);
+      EXPECT_EQ(back.exact_stop, exact);
+      EXPECT_EQ(back.kind, motion::SegmentKind::line);
+      EXPECT_NEAR(back.feed_mm_s, 25.0, 0.005);
+    }
+  }
 }
 
 TEST(SegmentWire, ChordCoordinatesInvertExactly) {

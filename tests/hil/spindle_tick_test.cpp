@@ -1,0 +1,262 @@
+// The spindle in the tick (issue 27), judged on the emulated machine: the
+// spindle's real speed (SpindleDrive) and the table's real motion, not the
+// firmware's own view. Feed moves wait for at-speed; a spindle that is off
+// blocks nothing; the spindle stops at a program's end, on abort, e-stop,
+// fault and host loss, and turns again only on a new start.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "emulator/scenario_file.hpp"
+#include "tests/hil/hil_rig.hpp"
+
+namespace tnv::hil {
+namespace {
+
+namespace motion = fw::motion;
+
+constexpr double kRpm = 3000.0;
+constexpr double kMovingMmS = 0.05;  // the table counts as moving above this (real speed)
+
+bool table_moving(const test::HilRig& rig) {
+  return std::fabs(rig.machine.truth(hal::Axis::x).speed_mm_s) > kMovingMmS ||
+         std::fabs(rig.machine.truth(hal::Axis::y).speed_mm_s) > kMovingMmS;
+}
+// The spindle really turns within the firmware's default at-speed window of `rpm`.
+bool really_at_speed(const test::HilRig& rig, double rpm) {
+  return std::fabs(rig.machine.spindle_truth().speed_rpm - rpm) <= std::max(0.05 * std::fabs(rpm), 20.0);
+}
+double spindle_rpm(const test::HilRig& rig) { return rig.machine.spindle_truth().speed_rpm; }
+
+std::unique_ptr<test::HilRig> holding_rig() {
+  auto rig = std::make_unique<test::HilRig>(*emu::builtin_scenario("no-cut"));
+  if (!rig->init_ok) return nullptr;
+  for (int i = 0; i < 3; ++i) rig->tick();
+  if (rig->task.hold_position() != fw::CommandStatus::ok) return nullptr;
+  for (int i = 0; i < 10; ++i) rig->tick();
+  return rig;
+}
+
+motion::Segment line_by(const test::HilRig& rig, double dx_mm, double feed_mm_s, bool rapid = false) {
+  motion::PlanePoint end = rig.task.next_segment_start_mm();
+  end[0] += dx_mm;
+  motion::Segment s = motion::line_to(end, feed_mm_s);
+  s.rapid = rapid;
+  return s;
+}
+
+void push(test::HilRig& rig, const motion::Segment& s) {
+  motion::SegmentRefusal why{};
+  ASSERT_EQ(rig.task.push_segment(s, why), fw::CommandStatus::ok) << motion::to_string(why);
+}
+
+// Ticks until the table moves (or `limit`); the tick count it took.
+int ticks_until_moving(test::HilRig& rig, int limit) {
+  for (int t = 1; t <= limit; ++t) {
+    rig.tick();
+    if (table_moving(rig)) return t;
+  }
+  return -1;
+}
+
+void run(test::HilRig& rig, int ticks) {
+  for (int i = 0; i < ticks; ++i) rig.tick();
+}
+
+TEST(SpindleTick, AFeedMoveStartsOnlyOnceTheSpindleIsReallyAtSpeed) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 3.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  const int onset = ticks_until_moving(*rig, 5000);
+  ASSERT_GT(onset, 0) << "the feed move never started";
+  // The ramp alone (3000 rpm at 5000 rpm/s) takes 600 ticks.
+  EXPECT_GT(onset, 600);
+  EXPECT_TRUE(really_at_speed(*rig, kRpm)) << "the table moved with the spindle at " << spindle_rpm(*rig) << " rpm";
+  EXPECT_TRUE(rig->task.last_record().spindle.enabled);
+}
+
+TEST(SpindleTick, ARapidRunsWhileTheSpindleRampsAndTheFeedMoveAfterItWaits) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  const double x0 = rig->machine.truth(hal::Axis::x).position_mm;
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 2.0, 20.0, true));
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  const int onset = ticks_until_moving(*rig, 200);
+  ASSERT_GT(onset, 0) << "the rapid waited for the spindle";
+  EXPECT_LT(std::fabs(spindle_rpm(*rig)), 0.5 * kRpm) << "the rapid should run while the spindle ramps";
+  // Past the rapid's end by more than the loop's error: only with the spindle at speed.
+  bool beyond = false;
+  for (int t = 0; t < 5000 && !beyond; ++t) {
+    rig->tick();
+    if (rig->machine.truth(hal::Axis::x).position_mm > x0 + 2.01) {
+      beyond = true;
+      EXPECT_TRUE(really_at_speed(*rig, kRpm)) << "the feed move began at " << spindle_rpm(*rig) << " rpm";
+    }
+  }
+  EXPECT_TRUE(beyond) << "the feed move never ran";
+}
+
+TEST(SpindleTick, ASpindleThatIsOffBlocksNothingAndStaysOff) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  push(*rig, line_by(*rig, 3.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  const int onset = ticks_until_moving(*rig, 200);
+  ASSERT_GT(onset, 0);
+  EXPECT_LT(onset, 100);
+  run(*rig, 1500);
+  EXPECT_EQ(rig->task.state(), fw::MotionState::holding) << "the program should have ended";
+  EXPECT_EQ(spindle_rpm(*rig), 0.0);
+  EXPECT_FALSE(rig->machine.board_outputs().spindle_enabled);
+}
+
+TEST(SpindleTick, TheProgramsEndStopsTheSpindle) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::reverse, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  EXPECT_TRUE(really_at_speed(*rig, -kRpm)) << spindle_rpm(*rig);
+  EXPECT_TRUE(rig->task.last_record().spindle.reverse);
+  push(*rig, line_by(*rig, 1.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  run(*rig, 500);
+  EXPECT_EQ(rig->task.state(), fw::MotionState::holding);
+  EXPECT_FALSE(rig->task.spindle().commanded_on());
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::program_end);
+  run(*rig, 2500);
+  EXPECT_LT(std::fabs(spindle_rpm(*rig)), 1.0);
+  EXPECT_FALSE(rig->machine.board_outputs().spindle_enabled) << "the controlled stop ends with the enable dropped";
+}
+
+TEST(SpindleTick, AnAbortedProgramStopsTheSpindleAndLeavesItStopped) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 10.0, 5.0));
+  ASSERT_GT(ticks_until_moving(*rig, 5000), 0);
+  ASSERT_EQ(rig->task.stop(), fw::CommandStatus::ok);
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::abort);
+  run(*rig, 3000);
+  EXPECT_EQ(rig->task.state(), fw::MotionState::holding);
+  EXPECT_LT(std::fabs(spindle_rpm(*rig)), 1.0);
+  // A new program with the spindle off runs at once and does not start it.
+  push(*rig, line_by(*rig, 1.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  EXPECT_GT(ticks_until_moving(*rig, 200), 0);
+  run(*rig, 1000);
+  EXPECT_LT(std::fabs(spindle_rpm(*rig)), 1.0);
+}
+
+TEST(SpindleTick, AfterAnEstopReleaseTheSpindleTurnsOnlyOnANewStart) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  ASSERT_TRUE(really_at_speed(*rig, kRpm));
+  rig->machine.set_estop(true);
+  rig->tick();
+  EXPECT_FALSE(rig->machine.board_outputs().spindle_enabled) << "the e-stop drops the spindle's enable in its tick";
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::estop);
+  EXPECT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::inhibited);
+  run(*rig, 3000);
+  rig->machine.set_estop(false);
+  rig->tick();
+  ASSERT_EQ(rig->task.clear_fault(), fw::CommandStatus::ok);
+  ASSERT_EQ(rig->task.hold_position(), fw::CommandStatus::ok);
+  double peak = 0.0;
+  for (int i = 0; i < 3000; ++i) {
+    rig->tick();
+    peak = std::max(peak, std::fabs(spindle_rpm(*rig)));
+  }
+  EXPECT_LT(peak, 1.0) << "the spindle turned after the e-stop release without a start";
+  EXPECT_FALSE(rig->machine.board_outputs().spindle_enabled);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  EXPECT_TRUE(really_at_speed(*rig, kRpm));
+}
+
+TEST(SpindleTick, AFaultStopsTheSpindleAndClearingItDoesNotStartIt) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  rig->machine.set_servo_alarm(hal::Axis::y, true);
+  rig->tick();
+  ASSERT_EQ(rig->task.state(), fw::MotionState::faulted);
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::fault);
+  EXPECT_FALSE(rig->machine.board_outputs().spindle_enabled);
+  rig->machine.set_servo_alarm(hal::Axis::y, false);
+  run(*rig, 2);
+  ASSERT_EQ(rig->task.clear_fault(), fw::CommandStatus::ok);
+  double peak_after = 0.0;
+  run(*rig, 3000);  // coasting down
+  for (int i = 0; i < 1000; ++i) {
+    rig->tick();
+    peak_after = std::max(peak_after, std::fabs(spindle_rpm(*rig)));
+  }
+  EXPECT_LT(peak_after, 1.0);
+}
+
+TEST(SpindleTick, AHostLossStopsTheSpindleAndItsReturnDoesNotStartIt) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  rig->task.set_host_lost(true);
+  EXPECT_FALSE(rig->task.spindle().commanded_on());
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::host_timeout);
+  EXPECT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::inhibited);
+  run(*rig, 3000);
+  rig->task.set_host_lost(false);
+  run(*rig, 1000);
+  EXPECT_LT(std::fabs(spindle_rpm(*rig)), 1.0);
+  EXPECT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+}
+
+TEST(SpindleTick, ParametersChangeOnlyWhileTheSpindleIsStoppedAndStill) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  fw::FirmwareConfig next = rig->task.config();
+  next.spindle.accel_rpm_s = 2000.0;
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  run(*rig, 1500);
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::spindle_running);
+  EXPECT_EQ(rig->task.spindle().params().accel_rpm_s, fw::SpindleParams{}.accel_rpm_s) << "a refusal changes nothing";
+  EXPECT_EQ(rig->task.config().spindle.accel_rpm_s, fw::SpindleParams{}.accel_rpm_s);
+  rig->task.spindle_stop();
+  run(*rig, 50);
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::spindle_running) << "still turning down";
+  run(*rig, 4000);
+  EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::ok);
+  EXPECT_EQ(rig->task.spindle().params().accel_rpm_s, 2000.0);
+  EXPECT_FALSE(rig->task.spindle().commanded_on()) << "a parameter change never starts it";
+}
+
+TEST(SpindleTick, ASpeedChangeWhileCuttingHoldsTheFeedUntilTheNewSpeed) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 20.0, 5.0));
+  ASSERT_GT(ticks_until_moving(*rig, 5000), 0);
+  run(*rig, 200);
+  ASSERT_EQ(rig->task.spindle_set_speed(2.0 * kRpm), fw::SpindleResult::ok);
+  // The table brakes to rest and moves again only with the spindle at the new speed.
+  bool stopped = false;
+  int t = 0;
+  for (; t < 1000 && !stopped; ++t) {
+    rig->tick();
+    stopped = !table_moving(*rig);
+  }
+  ASSERT_TRUE(stopped) << "the feed did not wait for the new speed";
+  EXPECT_TRUE(rig->task.last_record().spindle.feed_gate_waiting);
+  ASSERT_GT(ticks_until_moving(*rig, 5000), 0);
+  EXPECT_TRUE(really_at_speed(*rig, 2.0 * kRpm)) << spindle_rpm(*rig);
+}
+
+}  // namespace
+}  // namespace tnv::hil
