@@ -36,15 +36,16 @@ from concurrent.futures import ThreadPoolExecutor
 UNITY_INCLUDE = re.compile(r'^#include "(.+)"\s*$', re.MULTILINE)
 
 
-def units(entry):
+def units(entry, whole_batch=False):
     """The sources of one compile_commands entry that the build did not
     already compile on their own: a unity batch's second and later files
     (its first sees nothing before it but what the plain build sees, and a
-    source outside the batches is compiled alone anyway)."""
+    source outside the batches is compiled alone anyway). `whole_batch`
+    (for --optimize): its first too, whose optimizer saw the later files."""
     path = entry["file"]
     if os.path.basename(os.path.dirname(path)) == "Unity" and re.match(r"unity_\d+_cxx\.cxx$", os.path.basename(path)):
         with open(path, encoding="utf-8") as f:
-            return UNITY_INCLUDE.findall(f.read())[1:]
+            return UNITY_INCLUDE.findall(f.read())[0 if whole_batch else 1:]
     return []
 
 
@@ -88,7 +89,7 @@ def main():
 
     jobs = {}  # source -> (directory, command): each source once, with its first target's flags
     for entry in entries:
-        for source in units(entry):
+        for source in units(entry, opts.optimize):
             if source.endswith((".cpp", ".cc", ".cxx")) and wanted(source):
                 jobs.setdefault(source, (entry["directory"], syntax_command(entry, source, opts.optimize)))
 
