@@ -28,17 +28,8 @@ set(tnv_precompiled
     tnv_score tnv_pch_json
     tnv_serve tnv_pch_json_eigen
     tnv_tune tnv_pch_eigen
-    tnv_campaign tnv_pch_json_eigen
-    test_firmware tnv_pch_eigen
-    test_hil tnv_pch_json_eigen
-    test_can_host tnv_pch_json_eigen
-    test_campaign tnv_pch_json_eigen
-    test_serve tnv_pch_json_eigen
-    test_linux tnv_pch_eigen
-    test_tick_alloc tnv_pch_eigen
-    test_protocol tnv_pch_eigen
-    test_tune tnv_pch_eigen
-    test_tools tnv_pch_json)
+    tnv_campaign tnv_pch_json_eigen)
+# The test suites share one precompiled header: tests/CMakeLists.txt, tnv_test_pch.
 list(LENGTH tnv_precompiled n)
 math(EXPR last "${n} - 1")
 foreach(i RANGE 0 ${last} 2)
