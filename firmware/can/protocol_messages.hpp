@@ -70,11 +70,6 @@ enum class MessageId : std::uint8_t {
 
 namespace detail {
 
-// Byte offset of an axis' field in a frame that carries one per axis.
-constexpr std::uint8_t axis_byte(hal::Axis axis, std::size_t first, std::size_t width) {
-  return static_cast<std::uint8_t>(first + hal::index(axis) * width);
-}
-
 // a + b, at compile time, in a buffer of N (a longer text fails the build).
 template <std::size_t N>
 constexpr std::array<char, N> joined_text(const char* a, const char* b) {
