@@ -12,9 +12,10 @@ namespace {
 
 can_filter filter_for(std::uint8_t node) noexcept {
   can_filter f{};
-  f.can_id = node & 0x3Fu;
+  // The node id is the identifier's low 5 bits (firmware/can/can_id.hpp).
+  f.can_id = node & 0x1Fu;
   // Match the node bits and require the EFF and RTR flags to be clear.
-  f.can_mask = 0x3Fu | CAN_EFF_FLAG | CAN_RTR_FLAG;
+  f.can_mask = 0x1Fu | CAN_EFF_FLAG | CAN_RTR_FLAG;
   return f;
 }
 

@@ -2,7 +2,7 @@
 // The firmware's CAN controller on Linux SocketCAN (CAN_RAW), as a
 // hal::CanPort for fw::can::CanNode:
 // - receive filters for this node's identifiers and the broadcast node
-//   (firmware/can/can_id.hpp: node id in the low 6 bits), standard frames;
+//   (firmware/can/can_id.hpp: node id in the low 5 bits), standard frames;
 // - CAN error frames are counted (by class), never returned;
 // - transmit never blocks: a full socket queue drops the frame and counts
 //   it (try_send -> timeout), so the tick thread cannot stall on the bus;

@@ -44,7 +44,7 @@ NodeCounters CanNode::counters() const noexcept {
 }
 CaptureState CanNode::capture_state() const noexcept { return capture_.recorder().state(); }
 std::uint32_t CanNode::capture_samples() const noexcept { return capture_.recorder().samples(); }
-std::uint32_t CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
+ChannelMask CanNode::capture_channel_mask() const noexcept { return capture_.recorder().channel_mask(); }
 std::span<const std::uint32_t> CanNode::capture_words() const noexcept { return capture_.recorder().words(); }
 std::size_t CanNode::staged_count() const noexcept { return params_.staged_count(); }
 std::size_t CanNode::staged_count(std::uint8_t host) const noexcept { return params_.staged_count(host); }
@@ -57,6 +57,7 @@ bool CanNode::params_unsaved() const noexcept { return storage_.unsaved(); }
 bool CanNode::storage_in_flight() const noexcept { return storage_.pending(); }
 std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
 std::uint16_t CanNode::heartbeat_errors() const noexcept { return telemetry_.heartbeat_errors(); }
+std::uint8_t CanNode::heartbeat_axes() const noexcept { return telemetry_.heartbeat_axes(); }
 
 bool CanNode::moving() const noexcept { return task_.moving(); }
 

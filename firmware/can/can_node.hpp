@@ -53,6 +53,7 @@
 #include <cstdint>
 #include <span>
 
+#include "firmware/can/capture_channels.hpp"
 #include "firmware/can/command_ack.hpp"
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
@@ -131,9 +132,10 @@ class CanNode {
 
   // --- inspection (tests and the in-process emulated controller)
   std::uint16_t heartbeat_errors() const noexcept;  // HEARTBEAT.errors if one were sent now
+  std::uint8_t heartbeat_axes() const noexcept;     // HEARTBEAT.axes if one were sent now
   CaptureState capture_state() const noexcept;
   std::uint32_t capture_samples() const noexcept;
-  std::uint32_t capture_channel_mask() const noexcept;  // channels of the current / last capture
+  ChannelMask capture_channel_mask() const noexcept;  // channels of the current / last capture
   // The capture image as 32-bit words: samples x channels, sample-major,
   // channels in bit order (CAPTURE_DATA carries these little-endian).
   std::span<const std::uint32_t> capture_words() const noexcept;

@@ -154,23 +154,20 @@ ErrorCode CanNode::command_shaper_enable(const hal::CanFrame& frame, std::uint8_
 
 void CanNode::handle_jog(const hal::CanFrame& frame) noexcept {
   if (!access_.owns()) return ack_.send(kJogMsg.id, 0, ErrorCode::not_owner, 0);
-  std::array<double, hal::kAxisCount> speed_mm_s{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    speed_mm_s[i] = read(frame, *kJogSpeeds[i]);
-    const std::uint8_t detail = index_of(kJogMsg, *kJogSpeeds[i]);
-    if (!std::isfinite(speed_mm_s[i])) return ack_.send(kJogMsg.id, 0, ErrorCode::not_finite, detail);
-    if (std::fabs(speed_mm_s[i]) > task_.config().axis[i].jog.speed_max_mm_s)
-      return ack_.send(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
-  }
+  const std::uint32_t axis = read_raw(frame, kJogAxis);
+  if (axis >= hal::kAxisCount) return ack_.send(kJogMsg.id, 0, ErrorCode::bad_axis, index_of(kJogMsg, kJogAxis));
+  const double speed_mm_s = read(frame, kJogSpeed);
+  const std::uint8_t detail = index_of(kJogMsg, kJogSpeed);
+  if (!std::isfinite(speed_mm_s)) return ack_.send(kJogMsg.id, 0, ErrorCode::not_finite, detail);
+  if (std::fabs(speed_mm_s) > task_.config().axis[axis].jog.speed_max_mm_s)
+    return ack_.send(kJogMsg.id, 0, ErrorCode::out_of_range, detail);
   ErrorCode e = ErrorCode::ok;
   if (task_.state() == MotionState::faulted) {
     e = ErrorCode::faulted;
   } else if ((task_.state() != MotionState::holding && !task_.jogging()) || task_.stopping()) {
     e = ErrorCode::busy;
   } else {
-    // Checked above, so no call refuses: the first axis may start the jog, the others join it.
-    for (const hal::Axis a : hal::kAxes)
-      if (e == ErrorCode::ok) e = to_error(task_.jog(a, speed_mm_s[hal::index(a)]));
+    e = to_error(task_.jog(hal::axis_from_index(axis), speed_mm_s));
   }
   if (e == ErrorCode::ok) motion_accepted();
   ack_.send(kJogMsg.id, 0, e, 0);

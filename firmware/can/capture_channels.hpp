@@ -1,8 +1,9 @@
 #pragma once
 // THE protocol table, part 3: what an on-target capture can record. Each
-// channel is one 32-bit little-endian value per sample; bit n of the
-// capture.channels parameter selects channel n, and a sample holds the
-// selected channels in bit order. A channel's bit is its place in the list
+// channel is one 32-bit little-endian value per sample; bit n of the 64-bit
+// channel mask selects channel n (capture.channels holds bits 0-31,
+// capture.channels_high bits 32-63), and a sample holds the selected
+// channels in bit order. A channel's bit is its place in the list
 // below; a per-axis channel is one per axis of TNV_AXES (hal/axis.hpp), in
 // axis order ("pos_x", "pos_y").
 #include <array>
@@ -105,9 +106,16 @@ constexpr std::array<ChannelDef, kChannelCount> numbered_channels() {
 
 }  // namespace detail
 
-// capture.channels is a 32-bit mask: more channels (per-axis ones times the
-// axes) need a wider mask, a protocol change.
-static_assert(detail::kChannelCount <= 32, "capture channels: at most 32 (capture.channels is a 32-bit mask)");
+// The channel mask: 64 bits, in two 32-bit parameters (capture.channels,
+// capture.channels_high).
+using ChannelMask = std::uint64_t;
+static_assert(detail::kChannelCount <= 64, "capture channels: at most 64 (capture.channels and capture.channels_high)");
+constexpr ChannelMask channel_mask_bit(std::uint8_t bit) noexcept { return ChannelMask{1} << bit; }
+constexpr std::uint32_t channel_mask_low(ChannelMask m) noexcept { return static_cast<std::uint32_t>(m); }
+constexpr std::uint32_t channel_mask_high(ChannelMask m) noexcept { return static_cast<std::uint32_t>(m >> 32); }
+constexpr ChannelMask channel_mask_of(std::uint32_t low, std::uint32_t high) noexcept {
+  return ChannelMask{low} | ChannelMask{high} << 32;
+}
 
 inline constexpr std::array<ChannelDef, detail::kChannelCount> kCaptureChannels = detail::numbered_channels();
 
@@ -125,11 +133,12 @@ consteval std::uint8_t channel_bit(std::string_view name) {
 
 // The default set: enough to score a circle and plot the tracking (the XY
 // plane's positions and references, the contour error, the motion tick).
-inline constexpr std::uint32_t kDefaultCaptureChannels =
-    (1u << channel_bit("pos_x")) | (1u << channel_bit("pos_y")) | (1u << channel_bit("ref_x")) |
-    (1u << channel_bit("ref_y")) | (1u << channel_bit("contour")) | (1u << channel_bit("motion_tick"));
+inline constexpr ChannelMask kDefaultCaptureChannels =
+    channel_mask_bit(channel_bit("pos_x")) | channel_mask_bit(channel_bit("pos_y")) |
+    channel_mask_bit(channel_bit("ref_x")) | channel_mask_bit(channel_bit("ref_y")) |
+    channel_mask_bit(channel_bit("contour")) | channel_mask_bit(channel_bit("motion_tick"));
 
-constexpr std::uint32_t kAllCaptureChannels =
-    kCaptureChannels.size() == 32 ? 0xFFFFFFFFu : (1u << kCaptureChannels.size()) - 1u;
+constexpr ChannelMask kAllCaptureChannels =
+    kCaptureChannels.size() == 64 ? ~ChannelMask{0} : (ChannelMask{1} << kCaptureChannels.size()) - 1u;
 
 }  // namespace tnv::fw::can

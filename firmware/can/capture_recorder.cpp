@@ -52,7 +52,7 @@ std::uint32_t channel_word(std::uint8_t bit, const TickRecord& r, const TickSign
 }
 
 void CaptureRecorder::arm(const CaptureSettings& settings) noexcept {
-  mask_ = settings.channels & kAllCaptureChannels;
+  mask_ = channel_mask_of(settings.channels, settings.channels_high) & kAllCaptureChannels;
   channels_ = static_cast<std::uint32_t>(std::popcount(mask_));
   decimation_ = settings.decimation == 0 ? 1 : settings.decimation;
   trigger_ = settings.trigger;

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <span>
 
+#include "firmware/can/capture_channels.hpp"
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/tick/tick_record.hpp"
@@ -42,7 +43,7 @@ class CaptureRecorder {
   void on_tick(const TickRecord& record, const TickSignals& signals) noexcept;
 
   CaptureState state() const noexcept { return state_; }
-  std::uint32_t channel_mask() const noexcept { return mask_; }
+  ChannelMask channel_mask() const noexcept { return mask_; }
   std::uint32_t channel_count() const noexcept { return channels_; }
   std::uint32_t decimation() const noexcept { return decimation_; }
   std::uint32_t samples() const noexcept { return samples_; }
@@ -57,7 +58,7 @@ class CaptureRecorder {
 
   CaptureState state_ = CaptureState::idle;
   CaptureTrigger trigger_ = CaptureTrigger::motion;
-  std::uint32_t mask_ = 0;
+  ChannelMask mask_ = 0;
   std::uint32_t channels_ = 0;
   std::uint32_t decimation_ = 1;
   std::uint32_t samples_ = 0;

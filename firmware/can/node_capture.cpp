@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 
+#include "firmware/can/capture_channels.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/tick_signals.hpp"
@@ -32,6 +33,8 @@ void NodeCapture::control(const hal::CanFrame& frame, const CaptureSettings& set
   switch (static_cast<CaptureOp>(op_raw)) {
     case CaptureOp::arm:
       if (st == CaptureState::recording || upload_.active) return reply(ErrorCode::busy);
+      if ((channel_mask_of(settings.channels, settings.channels_high) & kAllCaptureChannels) == 0)
+        return reply(ErrorCode::out_of_range);  // nothing to record
       capture_.arm(settings);
       excite_capture_ = false;
       return reply(ErrorCode::ok);

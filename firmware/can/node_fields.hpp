@@ -2,6 +2,7 @@
 // The fields the node reads and writes, looked up by name at compile time
 // (a typo is a compile error). Shared by the node and the host tools.
 #include <array>
+#include <optional>
 
 #include "firmware/can/protocol_messages.hpp"
 #include "hal/axis.hpp"
@@ -23,13 +24,21 @@ inline constexpr const MessageDef& kCaptureStatusMsg = message(MessageId::captur
 inline constexpr const MessageDef& kCaptureDataMsg = message(MessageId::capture_data);
 inline constexpr const MessageDef& kFaultEventMsg = message(MessageId::fault_event);
 inline constexpr const MessageDef& kHeartbeatMsg = message(MessageId::heartbeat);
-inline constexpr const MessageDef& kPositionMsg = message(MessageId::tlm_position);
-inline constexpr const MessageDef& kFollowingMsg = message(MessageId::tlm_following);
-// TLM_SLIDING_<AXIS>, in axis order.
+// The per-axis telemetry messages (TLM_POSITION_<AXIS>, ...), in axis order.
+inline constexpr std::array<const MessageDef*, hal::kAxisCount> kPositionMsgs{
+#define TNV_POSITION_MSG(name, ...) &message(MessageId::tlm_position_##name),
+    TNV_AXES(TNV_POSITION_MSG)
+#undef TNV_POSITION_MSG
+};
 inline constexpr std::array<const MessageDef*, hal::kAxisCount> kSlidingMsgs{
 #define TNV_SLIDING_MSG(name, ...) &message(MessageId::tlm_sliding_##name),
     TNV_AXES(TNV_SLIDING_MSG)
 #undef TNV_SLIDING_MSG
+};
+inline constexpr std::array<const MessageDef*, hal::kAxisCount> kDacMsgs{
+#define TNV_DAC_MSG(name, ...) &message(MessageId::tlm_dac_##name),
+    TNV_AXES(TNV_DAC_MSG)
+#undef TNV_DAC_MSG
 };
 inline constexpr const MessageDef& kOutputMsg = message(MessageId::tlm_output);
 inline constexpr const MessageDef& kContourMsg = message(MessageId::tlm_contour);
@@ -66,12 +75,9 @@ inline constexpr const FieldDef& kAckFault = field(kAckMsg, "fault");
 inline constexpr const FieldDef& kAckDetail = field(kAckMsg, "detail");
 inline constexpr const FieldDef& kAckOwner = field(kAckMsg, "owner");
 
-// JOG speed_<axis>, in axis order.
-inline constexpr std::array<const FieldDef*, hal::kAxisCount> kJogSpeeds{
-#define TNV_JOG_SPEED_FIELD(name, ...) &field(kJogMsg, "speed_" #name),
-    TNV_AXES(TNV_JOG_SPEED_FIELD)
-#undef TNV_JOG_SPEED_FIELD
-};
+inline constexpr const FieldDef& kJogTag = field(kJogMsg, "tag");
+inline constexpr const FieldDef& kJogAxis = field(kJogMsg, "axis");
+inline constexpr const FieldDef& kJogSpeed = field(kJogMsg, "speed");
 
 inline constexpr const FieldDef& kMoveAxis = field(kMoveMsg, "axis");
 inline constexpr const FieldDef& kMoveSpeed = field(kMoveMsg, "speed");
@@ -121,26 +127,14 @@ inline constexpr const FieldDef& kHbErrors = field(kHeartbeatMsg, "errors");
 inline constexpr const FieldDef& kHbOverruns = field(kHeartbeatMsg, "overruns");
 inline constexpr const FieldDef& kHbFreeSlots = field(kHeartbeatMsg, "free_slots");
 inline constexpr const FieldDef& kHbOwner = field(kHeartbeatMsg, "owner");
-inline constexpr const FieldDef& kHbTick = field(kHeartbeatMsg, "tick_low");
+inline constexpr const FieldDef& kHbAxes = field(kHeartbeatMsg, "axes");
 
 inline constexpr const FieldDef& kSlidingS = field(*kSlidingMsgs[0], "s");
 inline constexpr const FieldDef& kSlidingDHat = field(*kSlidingMsgs[0], "d_hat");
-// TLM_OUTPUT dac_<axis>, TLM_POSITION and TLM_FOLLOWING <axis>, in axis order.
-inline constexpr std::array<const FieldDef*, hal::kAxisCount> kOutputDacs{
-#define TNV_OUTPUT_DAC_FIELD(name, ...) &field(kOutputMsg, "dac_" #name),
-    TNV_AXES(TNV_OUTPUT_DAC_FIELD)
-#undef TNV_OUTPUT_DAC_FIELD
-};
-inline constexpr std::array<const FieldDef*, hal::kAxisCount> kPositionFields{
-#define TNV_POSITION_FIELD(name, ...) &field(kPositionMsg, #name),
-    TNV_AXES(TNV_POSITION_FIELD)
-#undef TNV_POSITION_FIELD
-};
-inline constexpr std::array<const FieldDef*, hal::kAxisCount> kFollowingFields{
-#define TNV_FOLLOWING_FIELD(name, ...) &field(kFollowingMsg, #name),
-    TNV_AXES(TNV_FOLLOWING_FIELD)
-#undef TNV_FOLLOWING_FIELD
-};
+// The per-axis messages' fields (every axis' message has the same layout).
+inline constexpr const FieldDef& kPosition = field(*kPositionMsgs[0], "position");
+inline constexpr const FieldDef& kFollowing = field(*kPositionMsgs[0], "following");
+inline constexpr const FieldDef& kDacCode = field(*kDacMsgs[0], "code");
 inline constexpr const FieldDef& kOutputForce = field(kOutputMsg, "force");
 inline constexpr const FieldDef& kContour = field(kContourMsg, "contour");
 inline constexpr const FieldDef& kContourTick = field(kContourMsg, "motion_tick");
@@ -173,6 +167,15 @@ inline constexpr const FieldDef& kProgramFreeSlots = field(kProgramStatusMsg, "f
 inline constexpr const FieldDef& kProgramUnderruns = field(kProgramStatusMsg, "underruns");
 inline constexpr const FieldDef& kProgramSegment = field(kProgramStatusMsg, "segment");
 inline constexpr const FieldDef& kProgramOverride = field(kProgramStatusMsg, "feed_override");
+
+// The axis whose message of a per-axis block `id` is (`block` is that
+// block's messages in axis order), none for another id.
+constexpr std::optional<hal::Axis> axis_of(const std::array<const MessageDef*, hal::kAxisCount>& block,
+                                           std::uint8_t id) noexcept {
+  for (const hal::Axis a : hal::kAxes)
+    if (block[hal::index(a)]->id == id) return a;
+  return std::nullopt;
+}
 
 // Field index within its message (COMMAND_ACK.detail names the offending field).
 constexpr std::uint8_t index_of(const MessageDef& m, const FieldDef& f) noexcept {

@@ -61,7 +61,7 @@ bool NodeParameters::capture_change_refused(const NodeSettings& next) const noex
   if (!capture_.settings_locked()) return false;
   const CaptureSettings& a = settings_.capture;
   const CaptureSettings& b = next.capture;
-  return a.channels != b.channels || a.trigger != b.trigger || a.decimation != b.decimation;
+  return a.channels != b.channels || a.channels_high != b.channels_high || a.trigger != b.trigger || a.decimation != b.decimation;
 }
 
 // The one way a parameter change reaches the task: the whole next set is

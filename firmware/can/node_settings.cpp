@@ -7,7 +7,8 @@ namespace tnv::fw::can {
 NodeSettings default_node_settings() noexcept {
   NodeSettings s;
   s.firmware = default_firmware_config();
-  s.capture.channels = kDefaultCaptureChannels;
+  s.capture.channels = channel_mask_low(kDefaultCaptureChannels);
+  s.capture.channels_high = channel_mask_high(kDefaultCaptureChannels);
   return s;
 }
 

@@ -16,7 +16,7 @@
 namespace tnv::fw::can {
 
 struct CanSettings {
-  std::uint32_t node_id = 1;          // 1..63; applies at the next start
+  std::uint32_t node_id = 1;          // 1..31 (kMaxNodeId); applies at the next start
   std::uint32_t bitrate_kbit = 1000;  // 125, 250, 500, 1000; applies at the next start
   std::uint32_t host_timeout_ms = 0;  // stop motion when the host is silent this long; 0 = off
 };
@@ -24,8 +24,7 @@ struct CanSettings {
 // Period of each cyclic message, ms; 0 = off.
 struct TelemetryPeriods {
   std::uint32_t heartbeat_ms = 100;
-  std::uint32_t position_ms = 10;
-  std::uint32_t following_ms = 10;
+  std::uint32_t position_ms = 10;  // TLM_POSITION_<AXIS>: position and following error
   std::uint32_t sliding_ms = 0;
   std::uint32_t output_ms = 0;
   std::uint32_t contour_ms = 0;
@@ -42,7 +41,9 @@ struct MotionDefaults {
 };
 
 struct CaptureSettings {
-  std::uint32_t channels = 0;  // bit mask of capture_channels.hpp; default set in default_node_settings()
+  // The channel mask of capture_channels.hpp, bits 0-31 and 32-63; default set in default_node_settings().
+  std::uint32_t channels = 0;
+  std::uint32_t channels_high = 0;
   CaptureTrigger trigger = CaptureTrigger::motion;
   std::uint32_t decimation = 1;  // ticks per sample
 };

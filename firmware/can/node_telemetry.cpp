@@ -71,11 +71,18 @@ std::uint16_t NodeTelemetry::heartbeat_errors() const noexcept {
   set(c.bus_errors != bus_errors_at_heartbeat_, kHbBoardBusErrors);
   set(c.late_ticks != late_ticks_at_heartbeat_, kHbLateTicks);
   set(params_.staged_count() != 0, kHbParamsStaged);
-  for (const hal::Axis a : hal::kAxes) set(task_.shaper_active(a), static_cast<HeartbeatBit>(kHbShaperBits[hal::index(a)]));
   set(host_timeout_, kHbHostTimeout);
   set(can_.error_frames() != can_errors_at_heartbeat_, kHbCanErrors);
   set(commissioning_.active(), kHbCommissioning);
-  for (const hal::Axis a : hal::kAxes) set(task_.homed(a), static_cast<HeartbeatBit>(kHbHomedBits[hal::index(a)]));
+  return bits;
+}
+
+std::uint8_t NodeTelemetry::heartbeat_axes() const noexcept {
+  std::uint8_t bits = 0;
+  for (const hal::Axis a : hal::kAxes) {
+    if (task_.homed(a)) bits = static_cast<std::uint8_t>(bits | hb_homed_bit(a));
+    if (task_.shaper_active(a)) bits = static_cast<std::uint8_t>(bits | hb_shaper_bit(a));
+  }
   return bits;
 }
 
@@ -88,7 +95,7 @@ void NodeTelemetry::send_heartbeat() noexcept {
   write_raw(f, kHbOverruns, static_cast<std::uint32_t>(std::min<std::uint64_t>(c.missed_ticks + c.late_ticks, 0xFFu)));
   write_raw(f, kHbFreeSlots, programs_.free_slots());
   write_raw(f, kHbOwner, access_.owner());
-  write_raw(f, kHbTick, static_cast<std::uint32_t>(task_.last_record().tick & 0xFFu));
+  write_raw(f, kHbAxes, heartbeat_axes());
   tx_.heartbeat_sent();
   bus_errors_at_heartbeat_ = c.bus_errors;
   late_ticks_at_heartbeat_ = c.late_ticks;
@@ -107,16 +114,14 @@ void NodeTelemetry::send(std::uint32_t due) noexcept {
     const double lim_mm = 2147483647.0 * field.scale;
     write(f, field, std::clamp(std::isfinite(mm) ? mm : 0.0, -lim_mm, lim_mm));
   };
+  // One frame per axis and kind, axis by axis.
   if ((due & cyclic_bit(Cyclic::position)) != 0) {
-    hal::CanFrame f = make_frame(kPositionMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) i32_mm(f, *kPositionFields[i], r.axis[i].position_mm);
-    emit(f);
-  }
-  if ((due & cyclic_bit(Cyclic::following)) != 0) {
-    hal::CanFrame f = make_frame(kFollowingMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-      i32_mm(f, *kFollowingFields[i], r.axis[i].reference_mm - r.axis[i].position_mm);
-    emit(f);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      hal::CanFrame f = make_frame(*kPositionMsgs[i], node_id_);
+      i32_mm(f, kPosition, r.axis[i].position_mm);
+      i32_mm(f, kFollowing, r.axis[i].reference_mm - r.axis[i].position_mm);
+      emit(f);
+    }
   }
   if ((due & cyclic_bit(Cyclic::sliding)) != 0) {
     for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -128,8 +133,12 @@ void NodeTelemetry::send(std::uint32_t due) noexcept {
     }
   }
   if ((due & cyclic_bit(Cyclic::output)) != 0) {
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      hal::CanFrame f = make_frame(*kDacMsgs[i], node_id_);
+      write_raw(f, kDacCode, r.axis[i].dac_code);
+      emit(f);
+    }
     hal::CanFrame f = make_frame(kOutputMsg, node_id_);
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) write_raw(f, *kOutputDacs[i], r.axis[i].dac_code);
     write(f, kOutputForce, force_n(r, params_.settings()));
     emit(f);
   }

@@ -53,6 +53,8 @@ class NodeTelemetry {
   void send(std::uint32_t due) noexcept;
   // HEARTBEAT.errors, were one sent now.
   std::uint16_t heartbeat_errors() const noexcept;
+  // HEARTBEAT.axes (homed and shaper bits per axis), were one sent now.
+  std::uint8_t heartbeat_axes() const noexcept;
 
  private:
   void send_heartbeat() noexcept;

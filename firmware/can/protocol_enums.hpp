@@ -17,7 +17,11 @@ namespace tnv::fw::can {
 //    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
 // 4: the spindle (SPINDLE, TLM_SPINDLE, spindle.* and tlm.spindle_ms, error spindle_running; SEGMENT kinds
 //    rapid and rapid_exact_stop).
-inline constexpr std::uint32_t kProtocolVersion = 4;
+// 5: room for any number of axes: identifier [10:5] message, [4:0] node (nodes 1..31); one message per
+//    axis for TLM_POSITION (now with the following error; TLM_FOLLOWING and tlm.following_ms are gone),
+//    TLM_SLIDING and the DAC codes (TLM_DAC), blocks of 4 ids from 0x20; TLM_OUTPUT keeps the force; JOG names its axis; SPINDLE moved to 0x10, CAPTURE_DATA to 0x3E;
+//    HEARTBEAT byte 7 is `axes` (homed and shaper bits per axis); capture.channels_high.
+inline constexpr std::uint32_t kProtocolVersion = 5;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
@@ -175,23 +179,24 @@ enum HeartbeatBit : std::uint16_t {
   kHbBoardBusErrors = 1u << 6,
   kHbLateTicks = 1u << 7,
   kHbParamsStaged = 1u << 8,
-  kHbShaperX = 1u << 9,
-  kHbShaperY = 1u << 10,
+  // bits 9 and 10: free (the shaper bits are HEARTBEAT.axes since protocol 5)
   kHbHostTimeout = 1u << 11,
   kHbCanErrors = 1u << 12,
   kHbCommissioning = 1u << 13,
-  kHbHomedX = 1u << 14,
-  kHbHomedY = 1u << 15,
+  // bits 14 and 15: free (the homed bits are HEARTBEAT.axes since protocol 5)
 };
 
-// The per-axis heartbeat bits, in axis order. HEARTBEAT's errors word is 16
-// bits and all are used: an axis beyond these needs a new heartbeat layout,
-// and a missing entry (0) fails the build.
-inline constexpr std::array<std::uint16_t, hal::kAxisCount> kHbShaperBits{kHbShaperX, kHbShaperY};
-inline constexpr std::array<std::uint16_t, hal::kAxisCount> kHbHomedBits{kHbHomedX, kHbHomedY};
-static_assert(std::ranges::find(kHbShaperBits, std::uint16_t{0}) == kHbShaperBits.end() &&
-                  std::ranges::find(kHbHomedBits, std::uint16_t{0}) == kHbHomedBits.end(),
-              "HEARTBEAT: every axis needs its shaper and homed bits");
+// HEARTBEAT.axes: the per-axis bits, by axis index (hal/axis.hpp): bit i
+// axis i is homed, bit kHbAxesPerKind + i its input shaper is on. Four
+// axes fit; a fifth needs a wider field.
+inline constexpr std::size_t kHbAxesPerKind = 4;
+static_assert(hal::kAxisCount <= kHbAxesPerKind, "HEARTBEAT.axes holds the homed and shaper bits of four axes");
+constexpr std::uint8_t hb_homed_bit(hal::Axis axis) noexcept {
+  return static_cast<std::uint8_t>(1u << hal::index(axis));
+}
+constexpr std::uint8_t hb_shaper_bit(hal::Axis axis) noexcept {
+  return static_cast<std::uint8_t>(1u << (kHbAxesPerKind + hal::index(axis)));
+}
 
 struct HeartbeatBitDoc {
   std::uint16_t mask;
@@ -208,13 +213,9 @@ inline constexpr HeartbeatBitDoc kHeartbeatBits[] = {
     {kHbBoardBusErrors, "board_bus_errors", "the I/O-board register bus reported errors"},
     {kHbLateTicks, "late_ticks", "ticks with a measured period beyond tolerance"},
     {kHbParamsStaged, "params_staged", "a pending (staged) parameter set waits for commit"},
-    {kHbShaperX, "shaper_x", "input shaper on, x"},
-    {kHbShaperY, "shaper_y", "input shaper on, y"},
     {kHbHostTimeout, "host_timeout", "motion was stopped because the host went silent"},
     {kHbCanErrors, "can_errors", "the CAN controller reported error frames (bus error, error-passive, bus-off)"},
     {kHbCommissioning, "commissioning", "commissioning mode: safety parameters are writable (docs/safety.md)"},
-    {kHbHomedX, "homed_x", "x is homed: its frame is the home switch's index (docs/safety.md \"Homing\")"},
-    {kHbHomedY, "homed_y", "y is homed"},
 };
 
 }  // namespace tnv::fw::can

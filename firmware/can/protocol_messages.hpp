@@ -6,6 +6,7 @@
 // Parameters are in param_table.hpp, capture channels in capture_channels.hpp.
 #include <array>
 
+#include "firmware/can/can_id.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "firmware/can/value_list.hpp"
 #include "firmware/can/wire.hpp"
@@ -18,6 +19,17 @@
 
 namespace tnv::fw::can {
 
+// Per-axis messages come in blocks of kAxisBlock ids, one id per axis of
+// TNV_AXES (block base + axis index): a new axis is a line in the axis list,
+// up to kAxisBlock axes.
+inline constexpr std::uint8_t kAxisBlock = 4;
+static_assert(hal::kAxisCount <= kAxisBlock, "per-axis CAN messages: an axis beyond kAxisBlock needs wider id blocks");
+
+// Lower id = higher priority: commands and their answers (0x00-0x13), then
+// the node-wide telemetry, then the per-axis telemetry blocks, the capture
+// upload last; BORE_GAUGE and BORE_INFEED, which wait between parts, rank
+// among the telemetry. 0x11-0x13, 0x18, 0x19, 0x1D-0x1F, 0x24-0x27 and
+// 0x30-0x3D are free.
 enum class MessageId : std::uint8_t {
   estop = 0x00,
   fault_event = 0x01,
@@ -35,29 +47,28 @@ enum class MessageId : std::uint8_t {
   excite = 0x0D,
   segment = 0x0E,
   segment_tail = 0x0F,
-  tlm_position = 0x10,
-  tlm_following = 0x11,
-// TLM_SLIDING_<AXIS>: one message per axis of TNV_AXES from 0x12.
-#define TNV_TLM_SLIDING_ID(name, ...) tlm_sliding_##name = 0x12 + static_cast<std::uint8_t>(hal::Axis::name),
-  TNV_AXES(TNV_TLM_SLIDING_ID)
-#undef TNV_TLM_SLIDING_ID
+  spindle = 0x10,
   tlm_output = 0x14,
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
   program_status = 0x17,
-  capture_data = 0x18,
-  spindle = 0x19,
   bore_gauge = 0x1A,
   bore_infeed = 0x1B,
   tlm_spindle = 0x1C,
+// The per-axis blocks: TLM_POSITION_<AXIS> from 0x20, TLM_SLIDING_<AXIS>
+// from 0x28, TLM_DAC_<AXIS> from 0x2C (0x24-0x27 free).
+#define TNV_AXIS_MESSAGE_IDS(name, ...)                                      \
+  tlm_position_##name = 0x20 + static_cast<std::uint8_t>(hal::Axis::name),  \
+  tlm_sliding_##name = 0x28 + static_cast<std::uint8_t>(hal::Axis::name),   \
+  tlm_dac_##name = 0x2C + static_cast<std::uint8_t>(hal::Axis::name),
+  TNV_AXES(TNV_AXIS_MESSAGE_IDS)
+#undef TNV_AXIS_MESSAGE_IDS
+  capture_data = 0x3E,
+  // 0x3F is never used: its identifiers for nodes 16-31 (0x7F0-0x7FF) are
+  // the ones CAN 2.0A forbids (the seven most significant bits recessive).
 };
 
 namespace detail {
-
-// Byte offset of an axis' field in a frame that carries one per axis.
-constexpr std::uint8_t axis_byte(hal::Axis axis, std::size_t first, std::size_t width) {
-  return static_cast<std::uint8_t>(first + hal::index(axis) * width);
-}
 
 // a + b, at compile time, in a buffer of N (a longer text fails the build).
 template <std::size_t N>
@@ -114,12 +125,8 @@ inline constexpr FieldDef kCommandAck[] = {
 };
 inline constexpr FieldDef kJog[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
-    {"reserved", WireType::u8, 1, 1, "", "", "0"},
-#define TNV_JOG_SPEED(name, ...) \
-  {"speed_" #name, WireType::i16, axis_byte(hal::Axis::name, 2, 2), 0.01, "mm/s", "", "target speed, " #name " (repeat within jog.deadman_s)"},
-    TNV_AXES(TNV_JOG_SPEED)
-#undef TNV_JOG_SPEED
-    {"reserved2", WireType::u16, 6, 1, "", "", "0"},
+    {"axis", WireType::u8, 1, 1, "", kAxisIndexValues, "the axis this frame jogs; the others keep their own streams"},
+    {"speed", WireType::i16, 2, 0.01, "mm/s", "", "target speed of that axis (repeat within its jog.deadman_s)"},
 };
 inline constexpr FieldDef kMove[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
@@ -196,7 +203,9 @@ inline constexpr FieldDef kHeartbeat[] = {
     {"overruns", WireType::u8, 4, 1, "tick", "", "missed + late ticks since start (saturates at 255)"},
     {"free_slots", WireType::u8, 5, 1, "", "", "free slots in the motion queue (flow control for SEGMENT)"},
     {"owner", WireType::u8, 6, 1, "", "", "host id holding command ownership, 0 none"},
-    {"tick_low", WireType::u8, 7, 1, "tick", "", "low 8 bits of the tick count"},
+    {"axes", WireType::u8, 7, 1, "", "",
+     "per-axis bits by axis index: bit i axis i is homed (its frame is the home switch's index, docs/safety.md "
+     "\"Homing\"), bit 4 + i its input shaper is on"},
 };
 inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
@@ -228,27 +237,23 @@ inline constexpr FieldDef kProgramStatus[] = {
      "number of the program's element being run, from 1 in the order accepted; 0 before the first"},
     {"feed_override", WireType::u8, 7, 1, "%", "", "feed override in percent of the programmed feeds"},
 };
+// The per-axis telemetry frames: one message per axis, the same fields.
+// Position and following error share a frame: one 8-byte frame per axis
+// and tick costs less bus time than two 4-byte ones (a program streamed at
+// full rate keeps its 1 ms telemetry).
 inline constexpr FieldDef kTlmPosition[] = {
-#define TNV_TLM_POSITION(name, ...) {#name, WireType::i32, axis_byte(hal::Axis::name, 0, 4), 1e-6, "mm", "", "encoder position, " #name},
-    TNV_AXES(TNV_TLM_POSITION)
-#undef TNV_TLM_POSITION
-};
-inline constexpr FieldDef kTlmFollowing[] = {
-#define TNV_TLM_FOLLOWING(name, ...) \
-  {#name, WireType::i32, axis_byte(hal::Axis::name, 0, 4), 1e-6, "mm", "", "reference - position, " #name},
-    TNV_AXES(TNV_TLM_FOLLOWING)
-#undef TNV_TLM_FOLLOWING
+    {"position", WireType::i32, 0, 1e-6, "mm", "", "encoder position"},
+    {"following", WireType::i32, 4, 1e-6, "mm", "", "reference - position, the same tick"},
 };
 inline constexpr FieldDef kTlmSliding[] = {
     {"s", WireType::f32, 0, 1, "mm/s", "", "sliding variable s_k (S1 eq. 5)"},
     {"d_hat", WireType::f32, 4, 1, "mm/s", "", "disturbance estimate d^_k (S1 eq. 7)"},
 };
+inline constexpr FieldDef kTlmDac[] = {
+    {"code", WireType::u16, 0, 1, "", "", "DAC code (offset binary)"},
+};
 inline constexpr FieldDef kTlmOutput[] = {
-#define TNV_TLM_DAC(name, ...) \
-  {"dac_" #name, WireType::u16, axis_byte(hal::Axis::name, 0, 2), 1, "", "", "DAC code, " #name " (offset binary)"},
-    TNV_AXES(TNV_TLM_DAC)
-#undef TNV_TLM_DAC
-    {"force", WireType::f32, 4, 1, "N", "", "force sensor (force.n_per_volt x ADC volts)"},
+    {"force", WireType::f32, 0, 1, "N", "", "force sensor (force.n_per_volt x ADC volts)"},
 };
 inline constexpr FieldDef kTlmContour[] = {
     {"contour", WireType::f32, 0, 1, "um", "", "contour error of the running circle (S1 eq. 33), 0 otherwise"},
@@ -310,7 +315,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 25 + 3 * hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -324,9 +329,10 @@ inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
     {0x03, "command_ack", Direction::from_node, 8, detail::kCommandAck,
      "Answer to COMMAND, JOG, MOVE, CIRCLE, SHAPER, EXCITE, SEGMENT and SEGMENT_TAIL: accepted (ok) or why not; "
      "echoes the request's tag."},
-    {0x04, "jog", Direction::to_node, 8, detail::kJog,
-     "Operator jog stream (both axes). Starts a jog from holding; each frame must follow the last within "
-     "jog.deadman_s of the jogging axes or they stop. Answered by COMMAND_ACK."},
+    {0x04, "jog", Direction::to_node, 4, detail::kJog,
+     "Operator jog stream, one axis per frame (a stream per jogging axis). Starts a jog from holding; each "
+     "jogging axis stops unless a frame naming it follows its last within its jog.deadman_s. Answered by "
+     "COMMAND_ACK (detail names the offending field); a refused frame changes no axis."},
     {0x05, "move", Direction::to_node, 8, detail::kMove,
      "Point-to-point move of one axis with motion.move_ramp_s speed ramps. Answered by COMMAND_ACK."},
     {0x06, "circle", Direction::to_node, 8, detail::kCircle,
@@ -361,17 +367,13 @@ inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
     {0x0F, "segment_tail", Direction::to_node, 8, detail::kSegmentTail,
      "Second frame of a line or arc: feed and arc centre. Must follow its SEGMENT from the same host; a SEGMENT "
      "without its tail is refused (not_ready) when the next SEGMENT comes. Answered by COMMAND_ACK."},
-    {0x10, "tlm_position", Direction::from_node, 8, detail::kTlmPosition,
-     "Telemetry every tlm.position_ms (0 = off)."},
-    {0x11, "tlm_following", Direction::from_node, 8, detail::kTlmFollowing,
-     "Telemetry every tlm.following_ms (0 = off)."},
-#define TNV_TLM_SLIDING(name, ...)                                                                                \
-  {static_cast<std::uint8_t>(MessageId::tlm_sliding_##name), "tlm_sliding_" #name, Direction::from_node, 8,  \
-   detail::kTlmSliding, "Telemetry every tlm.sliding_ms (0 = off): " #name " controller internals (0 for PID)."},
-    TNV_AXES(TNV_TLM_SLIDING)
-#undef TNV_TLM_SLIDING
-    {0x14, "tlm_output", Direction::from_node, 8, detail::kTlmOutput,
-     "Telemetry every tlm.output_ms (0 = off)."},
+    {0x10, "spindle", Direction::to_node, 8, detail::kSpindle,
+     "The spindle (docs/safety.md \"Spindle\"): start in a direction at a speed, stop, or a new speed. Needs "
+     "command ownership. A start is refused (faulted) while a fault, the e-stop or a lost host inhibits it; it never "
+     "starts by itself. While it is commanded on and not at speed, feed moves wait. Answered by COMMAND_ACK (code "
+     "= op)."},
+    {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
+     "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
      "Telemetry every tlm.contour_ms (0 = off)."},
     {0x16, "tlm_arsc", Direction::from_node, 8, detail::kTlmArsc,
@@ -379,14 +381,6 @@ inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
     {0x17, "program_status", Direction::from_node, 8, detail::kProgramStatus,
      "Program progress and flow control: with every HEARTBEAT while a program runs, once when its state changes, "
      "and on COMMAND program_status."},
-    {0x18, "capture_data", Direction::from_node, 8, detail::kCaptureData,
-     "One segment of a capture upload. Below every control message in priority (only BORE_GAUGE and BORE_INFEED, "
-     "which wait between parts, rank lower): never delays control traffic."},
-    {0x19, "spindle", Direction::to_node, 8, detail::kSpindle,
-     "The spindle (docs/safety.md \"Spindle\"): start in a direction at a speed, stop, or a new speed. Needs "
-     "command ownership. A start is refused (faulted) while a fault, the e-stop or a lost host inhibits it; it never "
-     "starts by itself. While it is commanded on and not at speed, feed moves wait. Answered by COMMAND_ACK (code "
-     "= op)."},
     {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
      "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "
      "the bore.* parameters; the node's planner records the part with the infeeds it told for it (RLS on the log "
@@ -399,6 +393,24 @@ inline constexpr std::array<MessageDef, 27 + hal::kAxisCount> kMessages{{
      "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
     {0x1C, "tlm_spindle", Direction::from_node, 8, detail::kTlmSpindle,
      "Telemetry every tlm.spindle_ms (0 = off): the spindle's speeds, outputs and last stop cause."},
+// The per-axis blocks, block by block so that the ids stay sorted.
+#define TNV_TLM_POSITION(name, ...)                                                                           \
+  {static_cast<std::uint8_t>(MessageId::tlm_position_##name), "tlm_position_" #name, Direction::from_node, 8, \
+   detail::kTlmPosition, "Telemetry every tlm.position_ms (0 = off): the encoder position and the following error of " #name "."},
+#define TNV_TLM_SLIDING(name, ...)                                                                            \
+  {static_cast<std::uint8_t>(MessageId::tlm_sliding_##name), "tlm_sliding_" #name, Direction::from_node, 8,  \
+   detail::kTlmSliding, "Telemetry every tlm.sliding_ms (0 = off): " #name " controller internals (0 for PID)."},
+#define TNV_TLM_DAC(name, ...)                                                                            \
+  {static_cast<std::uint8_t>(MessageId::tlm_dac_##name), "tlm_dac_" #name, Direction::from_node, 2,      \
+   detail::kTlmDac, "Telemetry every tlm.output_ms (0 = off): the DAC code of " #name "."},
+    TNV_AXES(TNV_TLM_POSITION)
+    TNV_AXES(TNV_TLM_SLIDING)
+    TNV_AXES(TNV_TLM_DAC)
+#undef TNV_TLM_POSITION
+#undef TNV_TLM_SLIDING
+#undef TNV_TLM_DAC
+    {0x3E, "capture_data", Direction::from_node, 8, detail::kCaptureData,
+     "One segment of a capture upload. The lowest priority of all: never delays control traffic or telemetry."},
 }};
 
 namespace detail {
@@ -408,7 +420,7 @@ namespace detail {
 consteval bool messages_well_formed() {
   for (std::size_t i = 0; i < kMessages.size(); ++i) {
     const MessageDef& m = kMessages[i];
-    if (m.id > 0x1F || (i > 0 && m.id <= kMessages[i - 1].id)) return false;
+    if (m.id >= kMaxMessageId || (i > 0 && m.id <= kMessages[i - 1].id)) return false;
     std::uint32_t used = 0;
     for (const FieldDef& f : m.fields) {
       const std::size_t bytes = wire_size(f.type);

@@ -9,8 +9,8 @@
 
 namespace tnv::fw::can {
 
-enum class Cyclic : std::uint8_t { heartbeat = 0, position, following, sliding, output, contour, arsc, spindle };
-inline constexpr std::size_t kCyclicCount = 8;
+enum class Cyclic : std::uint8_t { heartbeat = 0, position, sliding, output, contour, arsc, spindle };
+inline constexpr std::size_t kCyclicCount = 7;
 
 constexpr std::uint32_t cyclic_bit(Cyclic c) noexcept { return 1u << static_cast<unsigned>(c); }
 

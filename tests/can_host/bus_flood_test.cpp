@@ -44,8 +44,8 @@ std::unique_ptr<EmulatedBus> make_flood_bus(const char* name) {
 
 // The flooding host: one frame of the mix per call, none of which may change
 // the node's parameters or motion. Every identifier is below the node's
-// telemetry (0x400 and up), so telemetry loses every arbitration while the
-// flood lasts; the node's replies (COMMAND_ACK 0x0C1, PARAM_REPLY 0x241)
+// telemetry (0x280 and up), so telemetry loses every arbitration while the
+// flood lasts; the node's replies (COMMAND_ACK 0x061, PARAM_REPLY 0x121)
 // still win against part of it.
 class Flooder {
  public:
@@ -55,7 +55,7 @@ class Flooder {
   hal::CanFrame next() {
     using namespace test;
     if (shortest_) {
-      const auto other = static_cast<std::uint8_t>(2 + pick(62));
+      const auto other = static_cast<std::uint8_t>(2 + pick(30));
       return hal::CanFrame{can::make_can_id(static_cast<std::uint8_t>(pick(13)), other), false, 0, {}};
     }
     const auto params = can::param_table();
@@ -72,7 +72,7 @@ class Flooder {
       case 3:  // malformed for us: no such command
         return command(kFloodNode, static_cast<can::CommandCode>(can::kCommandCodeCount + pick(200)));
       case 4: {  // for another node: anything, even stop and e-stop
-        const auto other = static_cast<std::uint8_t>(2 + pick(62));
+        const auto other = static_cast<std::uint8_t>(2 + pick(30));
         return pick(2) == 0 ? command(other, can::CommandCode::stop) : frame_to(MessageId::estop, other);
       }
       case 5:  // broadcast, but not one of the two broadcasts a node obeys
@@ -83,7 +83,7 @@ class Flooder {
         return f;
       }
       case 7:  // a message id nobody defined
-        return hal::CanFrame{can::make_can_id(0x0D, kFloodNode), false, static_cast<std::uint8_t>(pick(9)), {}};
+        return hal::CanFrame{can::make_can_id(0x11, kFloodNode), false, static_cast<std::uint8_t>(pick(9)), {}};
       default:  // a to-host message under our id (a spoofed heartbeat)
         return frame_to(MessageId::heartbeat, kFloodNode);
     }

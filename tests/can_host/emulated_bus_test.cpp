@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 #include "tools/can/node_client.hpp"
 #include "tools/can/telemetry_view.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
@@ -62,7 +63,6 @@ TEST(EmulatedBus, ABurstOfCaptureFramesTakesTheTimeTheWireNeeds) {
   const can_host::CaptureStatus status = client.capture(can::CaptureOp::abort);
   ASSERT_GT(status.image_bytes(), 255u * 7u);
   client.set(param("tlm.position_ms"), 0);  // only the upload on the wire
-  client.set(param("tlm.following_ms"), 0);
   client.set(param("tlm.heartbeat_ms"), 0);
   bus->send(can_host::capture_request(1, 0x11 /* host 1, sequence 1 */, can::CaptureOp::upload, 255, 0));
   const Micros t0 = bus->now();
@@ -143,10 +143,13 @@ TEST(EmulatedBus, TheTelemetryStreamDecodesAtTheConfiguredRates) {
   can_host::TelemetryView view;
   client.set_listener([&view](const hal::CanFrame& f, can::MessageId id) { view.take(f, id); });
   client.pump(Micros{1'000'000});
-  // 100 ms heartbeat; position, following, sliding x + y, output, contour, arsc every 10 ms.
+  // 100 ms heartbeat; every 10 ms per axis a position and a sliding frame (8 bytes) and a DAC frame (2
+  // bytes), and the force (4 bytes), contour and arsc frames (8 bytes).
+  const double axes = static_cast<double>(hal::kAxisCount);
   const double frames = static_cast<double>(view.frames);
-  EXPECT_NEAR(frames, 10 + 7 * 100, 8) << "frames in 1 s";
-  EXPECT_NEAR(static_cast<double>(view.bits) / frames, 111.0, 1e-9) << "every frame carries 8 bytes";
+  EXPECT_NEAR(frames, 10 + (3 * axes + 3) * 100, 8) << "frames in 1 s";
+  const double bits_per_10ms = 2 * axes * 111 + axes * 63 + 79 + 2 * 111;  // 47 + 8 x bytes each
+  EXPECT_NEAR(static_cast<double>(view.bits), 10 * 111 + 100 * bits_per_10ms, 8 * 111) << "bits in 1 s";
   ASSERT_TRUE(view.heartbeat && view.position_mm && view.following_mm && view.s_mm_s && view.output && view.contour &&
               view.arsc);
   EXPECT_EQ(view.arsc->feed_override, 1.0) << "no program: the motion core's override at rest";

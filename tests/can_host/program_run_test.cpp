@@ -158,7 +158,6 @@ TEST(ProgramStream, HeartbeatRepliesAndFaultEventsKeepFlowingWhileAProgramStream
   ASSERT_TRUE(b.bus);
   can_host::NodeClient client(*b.bus, 1);
   client.set(*can::find_param("tlm.position_ms"), 1);
-  client.set(*can::find_param("tlm.following_ms"), 1);
   client.command(can::CommandCode::enable);
   gcode::GcodeOptions g;
   g.start_mm = b.bus->rig().task.next_segment_start_mm();

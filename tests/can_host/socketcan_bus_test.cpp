@@ -42,11 +42,11 @@ TEST(SocketCanBus, OpensFiltersForTheNodeAndBindsToTheNamedInterface) {
   const can_filter f = api.filters[0];
   // The kernel's test: (received id & mask) == (filter id & mask).
   auto passes = [&](canid_t id) { return (id & f.can_mask) == (f.can_id & f.can_mask); };
-  EXPECT_TRUE(passes((0x09u << 6) | 5u)) << "PARAM_REPLY of node 5";
-  EXPECT_TRUE(passes((0x0Cu << 6) | 5u)) << "HEARTBEAT of node 5";
-  EXPECT_FALSE(passes((0x09u << 6) | 6u)) << "another node";
-  EXPECT_FALSE(passes(((0x09u << 6) | 5u) | CAN_EFF_FLAG)) << "extended frame";
-  EXPECT_FALSE(passes(((0x09u << 6) | 5u) | CAN_RTR_FLAG)) << "remote frame";
+  EXPECT_TRUE(passes((0x09u << 5) | 5u)) << "PARAM_REPLY of node 5";
+  EXPECT_TRUE(passes((0x0Cu << 5) | 5u)) << "HEARTBEAT of node 5";
+  EXPECT_FALSE(passes((0x09u << 5) | 6u)) << "another node";
+  EXPECT_FALSE(passes(((0x09u << 5) | 5u) | CAN_EFF_FLAG)) << "extended frame";
+  EXPECT_FALSE(passes(((0x09u << 5) | 5u) | CAN_RTR_FLAG)) << "remote frame";
   EXPECT_EQ(bus.describe(), "can7");
 }
 

@@ -80,7 +80,7 @@ TEST(CandumpLog, WhatIsNotOneClassicFrameIsRefusedWithItsReason) {
 
 TEST(FrameText, ParameterValuesAreTypedByTheirParameterAndBitsNamed) {
   const can::ParamDef& gamma = *can::find_param("x.sliding.gamma");
-  hal::CanFrame reply = can::make_frame(*can::classify(frame(0x241, {})), 1);
+  hal::CanFrame reply = can::make_frame(*can::classify(frame(0x121, {})), 1);  // PARAM_REPLY of node 1
   reply.dlc = 8;
   const can::MessageDef& m = *can::classify(reply);
   ASSERT_STREQ(m.name, "param_reply");
@@ -95,16 +95,20 @@ TEST(FrameText, ParameterValuesAreTypedByTheirParameterAndBitsNamed) {
   EXPECT_NE(text.find("param=0x0116 (x.sliding.gamma)"), std::string::npos) << text;
   EXPECT_NE(text.find("value=0.25"), std::string::npos) << text;
 
-  hal::CanFrame hb = can::make_frame(*can::classify(frame(0x301, {})), 1);
-  for (const can::FieldDef& f : can::classify(hb)->fields)
+  hal::CanFrame hb = can::make_frame(*can::classify(frame(0x181, {})), 1);  // HEARTBEAT of node 1
+  for (const can::FieldDef& f : can::classify(hb)->fields) {
     if (std::string_view(f.name) == "errors") can::write_raw(hb, f, can::kHbParamsUnsaved | can::kHbCommissioning);
+    if (std::string_view(f.name) == "axes")
+      can::write_raw(hb, f, can::hb_homed_bit(hal::Axis::x) | can::hb_shaper_bit(hal::Axis::y));
+  }
   const std::string hb_text = can_host::frame_text(hb);
   EXPECT_NE(hb_text.find("HEARTBEAT node 1"), std::string::npos) << hb_text;
   EXPECT_NE(hb_text.find("errors=[params_unsaved commissioning]"), std::string::npos) << hb_text;
+  EXPECT_NE(hb_text.find("axes=[homed_x shaper_y]"), std::string::npos) << hb_text;
   EXPECT_NE(hb_text.find("state=disabled"), std::string::npos) << hb_text;
 
   EXPECT_NE(can_host::frame_text(frame(0x7FF, {1, 2})).find("not this protocol"), std::string::npos);
-  EXPECT_NE(can_host::frame_text(frame(0x241, {1, 2})).find("short frame"), std::string::npos);
+  EXPECT_NE(can_host::frame_text(frame(0x121, {1, 2})).find("short frame"), std::string::npos);
 }
 
 TEST(TracingBus, RecordsEveryFrameOfASessionBothWaysInOrder) {

@@ -102,8 +102,8 @@ std::string can_frames(const std::uint8_t* data, std::size_t size) {
     const std::size_t at = r / kFrameRecordBytes;
     hal::CanFrame frame = frame_of_record(rec);
     if ((rec[0] & 0x20u) != 0 && !frame.extended) {
-      // bit 5: message id (rec[1], 5 bits) addressed to this node, so mutations stay on the node's messages
-      frame.id = can::make_can_id(static_cast<std::uint8_t>(rec[1] & 0x1Fu), test::kNode);
+      // bit 5: message id (rec[1], 6 bits) addressed to this node, so mutations stay on the node's messages
+      frame.id = can::make_can_id(static_cast<std::uint8_t>(rec[1] & can::kMessageIdMask), test::kNode);
     }
 
     bool refused = false;

@@ -73,7 +73,7 @@ void seed_can_frames(const fs::path& dir) {
   for (std::uint8_t code = 0; code < can::kCommandCodeCount; ++code)
     put(frames({command(n, static_cast<CommandCode>(code), 0, 1, 0.5)}));
   put(frames({command(n, CommandCode::enable), circle(n, 6.0, 2.0)}, true));
-  put(frames({command(n, CommandCode::enable), jog(n, 1.0, -1.0), jog(n, 0.0, 0.0)}, true));
+  put(frames({command(n, CommandCode::enable), jog(n, 0, 1.0), jog(n, 1, -1.0), jog(n, 0, 0.0), jog(n, 1, 0.0)}, true));
   put(frames({command(n, CommandCode::enable), move(n, 0, 2.0, 1.0)}, true));
   put(frames({command(n, CommandCode::enable), circle(n, 6.0, 2.0), frame_to(MessageId::estop, n)}, true));
   put(frames({frame_to(MessageId::estop, can::kBroadcastNode), command(can::kBroadcastNode, CommandCode::stop)}));

@@ -220,14 +220,14 @@ TEST(CanNodeMoving, StopEndsAMoveAndAJogAndDwellStopsAtOnce) {
   EXPECT_TRUE(r->run_until(fw::MotionState::holding, 100));
   EXPECT_LT(r->task().last_record().axis[1].reference_mm, 5.0) << "stopped short of the end";
 
-  ASSERT_EQ(r->result(jog(kRigNode, 5.0, 0.0)), kOk);
+  ASSERT_EQ(r->result(jog(kRigNode, 0, 5.0)), kOk);
   for (int k = 0; k < 50; ++k) {
     r->step();
-    if (k % 20 == 0) r->request(jog(kRigNode, 5.0, 0.0));
+    if (k % 20 == 0) r->request(jog(kRigNode, 0, 5.0));
   }
   ASSERT_TRUE(r->task().jogging());
   EXPECT_EQ(r->result(command(kRigNode, CommandCode::stop)), kOk);
-  EXPECT_EQ(r->result(jog(kRigNode, 5.0, 0.0)), kBusy) << "the stop wins over the stream";
+  EXPECT_EQ(r->result(jog(kRigNode, 0, 5.0)), kBusy) << "the stop wins over the stream";
   EXPECT_TRUE(r->run_until(fw::MotionState::holding, 100));
   EXPECT_EQ(r->node->heartbeat_errors() & fw::can::kHbJogDeadman, 0) << "stopped by command, not by the dead man";
 
@@ -251,7 +251,7 @@ TEST(CanNodeMoving, AJogStreamThatGoesSilentStopsByItsDeadMan) {
   const double x0 = r->task().last_record().axis[0].position_mm;
   for (int k = 0; k < 300; ++k) {
     if (k % 50 == 0) {
-      ASSERT_EQ(r->result(jog(kRigNode, -4.0, 0.0)), kOk);  // within the 0.1 s dead man
+      ASSERT_EQ(r->result(jog(kRigNode, 0, -4.0)), kOk);  // within the 0.1 s dead man
     }
     r->step();
   }
@@ -259,7 +259,7 @@ TEST(CanNodeMoving, AJogStreamThatGoesSilentStopsByItsDeadMan) {
   EXPECT_TRUE(r->run_until(fw::MotionState::holding, 400)) << "silent: the dead man stops it";
   EXPECT_NE(r->node->heartbeat_errors() & fw::can::kHbJogDeadman, 0);
   EXPECT_LT(r->task().last_record().axis[0].position_mm, x0 - 1.0) << "it moved about 1.2 mm in -x";
-  ASSERT_EQ(r->result(jog(kRigNode, 0.0, 2.0)), kOk);
+  ASSERT_EQ(r->result(jog(kRigNode, 1, 2.0)), kOk);
   EXPECT_EQ(r->node->heartbeat_errors() & fw::can::kHbJogDeadman, 0) << "cleared by the next accepted motion";
 }
 

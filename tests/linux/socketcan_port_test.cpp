@@ -42,7 +42,7 @@ TEST(SocketCanPort, FiltersThisNodeAndBroadcastStandardFramesAndEnablesErrorFram
   ASSERT_EQ(api.filters.size(), 2u);
   EXPECT_EQ(api.filters[0].can_id, 5u);
   EXPECT_EQ(api.filters[1].can_id, 0u);
-  for (const can_filter& f : api.filters) EXPECT_EQ(f.can_mask, 0x3Fu | CAN_EFF_FLAG | CAN_RTR_FLAG);
+  for (const can_filter& f : api.filters) EXPECT_EQ(f.can_mask, 0x1Fu | CAN_EFF_FLAG | CAN_RTR_FLAG);
 }
 
 TEST(SocketCanPort, SetupFailuresNameTheInterfaceAndTheStepAndCloseTheSocket) {

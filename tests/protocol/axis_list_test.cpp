@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
@@ -146,21 +147,23 @@ TEST(AxisList, EveryAxisHasItsProtocolFieldsAndDbcSignals) {
     if (at == std::string::npos) return std::string();
     return dbc.substr(at, dbc.find("\n\n", at) - at);
   };
-  const std::string jog = block_of("jog"), position = block_of("tlm_position"), following = block_of("tlm_following"),
-                    output = block_of("tlm_output"), heartbeat = block_of("heartbeat"),
-                    params = block_of("param_reply");
+  const std::string jog = block_of("jog"), heartbeat = block_of("heartbeat"), params = block_of("param_reply");
   ASSERT_FALSE(jog.empty());
   ASSERT_FALSE(params.empty());
   for (const hal::Axis a : hal::kAxes) {
     const std::string n = hal::axis_label(a);
     SCOPED_TRACE("axis " + n);
-    ASSERT_NE(message_named("tlm_sliding_" + n), nullptr);
-    EXPECT_NE(block_of("tlm_sliding_" + n).find(" SG_ s :"), std::string::npos);
-    EXPECT_TRUE(has_field(*message_named("jog"), "speed_" + n));
-    EXPECT_NE(jog.find(" SG_ speed_" + n + " :"), std::string::npos);
-    EXPECT_NE(position.find(" SG_ " + n + " :"), std::string::npos);
-    EXPECT_NE(following.find(" SG_ " + n + " :"), std::string::npos);
-    EXPECT_NE(output.find(" SG_ dac_" + n + " :"), std::string::npos);
+    // One message per axis of each per-axis block, at block base + axis index.
+    const std::pair<const char*, const char*> blocks[] = {
+        {"tlm_position_", " SG_ following :"}, {"tlm_sliding_", " SG_ s :"}, {"tlm_dac_", " SG_ code :"}};
+    for (const auto& [prefix, signal] : blocks) {
+      const fw::can::MessageDef* m = message_named(prefix + n);
+      ASSERT_NE(m, nullptr) << prefix << n;
+      const fw::can::MessageDef* first = message_named(prefix + std::string(hal::kAxisNames[0]));
+      ASSERT_NE(first, nullptr);
+      EXPECT_EQ(m->id, first->id + hal::index(a)) << prefix << n;
+      EXPECT_NE(block_of(prefix + n).find(signal), std::string::npos) << prefix << n;
+    }
     EXPECT_NE(heartbeat.find(" SG_ homed_" + n + " :"), std::string::npos);
     EXPECT_NE(heartbeat.find(" SG_ shaper_" + n + " :"), std::string::npos);
     EXPECT_NE(params.find(" SG_ " + n + "_controller m"), std::string::npos);
@@ -171,11 +174,17 @@ TEST(AxisList, EveryAxisHasItsProtocolFieldsAndDbcSignals) {
     EXPECT_NE(std::string(fw::can::field(fw::can::message(fw::can::MessageId::command), "axis").values).find(value),
               std::string::npos);
   }
-  // Nothing for an axis the list does not have: one TLM_SLIDING_* per axis.
-  std::size_t sliding = 0;
-  for (const auto& m : kMessages) sliding += std::string_view(m.name).starts_with("tlm_sliding_") ? 1 : 0;
-  EXPECT_EQ(sliding, hal::kAxisCount);
-  EXPECT_EQ(message_named("jog")->fields.size(), 3 + hal::kAxisCount) << "tag, reserved, reserved2 and the speeds";
+  // Nothing for an axis the list does not have: one message of each block per axis.
+  for (const char* prefix : {"tlm_position_", "tlm_sliding_", "tlm_dac_"}) {
+    std::size_t count = 0;
+    for (const auto& m : kMessages) count += std::string_view(m.name).starts_with(prefix) ? 1 : 0;
+    EXPECT_EQ(count, hal::kAxisCount) << prefix;
+  }
+  // JOG names its axis: its fields do not grow with the list.
+  EXPECT_TRUE(has_field(*message_named("jog"), "axis"));
+  EXPECT_TRUE(has_field(*message_named("jog"), "speed"));
+  EXPECT_EQ(message_named("jog")->fields.size(), 3u);
+  EXPECT_NE(jog.find(" SG_ speed :"), std::string::npos);
 }
 
 // The board: each axis has its own registers and bits, inside their windows.

@@ -1,6 +1,7 @@
 // Bus time of the default telemetry and the issue's streaming estimate.
 #include <gtest/gtest.h>
 
+#include "hal/axis.hpp"
 #include "tools/protogen/bus_load.hpp"
 
 namespace {
@@ -13,18 +14,21 @@ TEST(BusLoad, FrameBits) {
   EXPECT_EQ(frame_bits_nominal(0), 47);
 }
 
-TEST(BusLoad, TwoFramesPerTickIsAQuarterOfTheBus) {
-  // The issue: 2 axes x 1 kHz streaming would take 22-27 % of 1 Mbit/s.
+TEST(BusLoad, PositionsAndContourEveryTickCountAFramePerAxis) {
+  // TLM_POSITION_<AXIS> is one 8-byte frame per axis, TLM_CONTOUR one more.
   tnv::fw::can::NodeSettings s;
   s.telemetry = {};
   s.telemetry.heartbeat_ms = 0;
-  s.telemetry.following_ms = 0;
   s.telemetry.position_ms = 1;
   s.telemetry.contour_ms = 1;
   const BusLoad load = telemetry_load(s);
-  EXPECT_DOUBLE_EQ(load.frames_per_s, 2000.0);
-  EXPECT_NEAR(load.load_nominal, 0.222, 1e-9);
-  EXPECT_NEAR(load.load_worst, 0.270, 1e-9);
+  const double axes = static_cast<double>(tnv::hal::kAxisCount);
+  EXPECT_DOUBLE_EQ(load.frames_per_s, 1000.0 * (axes + 1.0));
+  EXPECT_NEAR(load.load_nominal, 1e-3 * (axes + 1.0) * 111.0, 1e-9);  // 47 + 8 x 8 bits per frame
+  EXPECT_NEAR(load.load_worst, 1e-3 * (axes + 1.0) * 135.0, 1e-9);
+  if (tnv::hal::kAxisCount == 2) {
+    EXPECT_NEAR(load.load_nominal, 0.333, 1e-9) << "two axes: 3 x 111 bits per ms";
+  }
 }
 
 TEST(BusLoad, DefaultTelemetryIsLight) {

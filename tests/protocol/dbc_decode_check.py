@@ -56,6 +56,7 @@ def main():
         fail("only %d frames recorded" % len(frames))
 
     gamma_replies, controller_replies, heartbeats, positions = [], [], [], []
+    pending_x = None  # a tick's TLM_POSITION_X waiting for its _Y
     for can_id, data in frames:
         frame = db.frame_by_id(canmatrix.ArbitrationId(can_id))
         if frame is None:
@@ -68,8 +69,12 @@ def main():
             controller_replies.append(decoded["x_controller"].named_value)
         if frame.name == "HEARTBEAT":
             heartbeats.append(values)
-        if frame.name == "TLM_POSITION":
-            positions.append((float(values["x"]), float(values["y"])))
+        # One TLM_POSITION_<AXIS> per axis (protocol 5): a sample is x then y of a tick.
+        if frame.name == "TLM_POSITION_X":
+            pending_x = float(values["position"])
+        if frame.name == "TLM_POSITION_Y" and pending_x is not None:
+            positions.append((pending_x, float(values["position"])))
+            pending_x = None
 
     if 0.25 not in gamma_replies:
         fail("no PARAM_REPLY decoded x_sliding_gamma as 0.25 (decoded: %s)" % gamma_replies[:8])
@@ -77,7 +82,7 @@ def main():
         fail("no PARAM_REPLY decoded x_controller as dvsc (decoded: %s)" % controller_replies[:8])
     if not heartbeats:
         fail("no HEARTBEAT recorded")
-    for bit in ("params_unsaved", "storage_fault", "commissioning"):
+    for bit in ("params_unsaved", "storage_fault", "commissioning", "homed_x", "shaper_y"):
         if bit not in heartbeats[-1]:
             fail("HEARTBEAT has no 1-bit signal %s" % bit)
     if int(heartbeats[-1]["params_unsaved"]) != 1:
@@ -85,7 +90,7 @@ def main():
     if int(heartbeats[-1]["storage_fault"]) != 0:
         fail("storage_fault set on a fresh node: %s" % heartbeats[-1])
     if not positions or abs(positions[-1][0] - 6.0) > 0.01 or abs(positions[-1][1]) > 0.01:
-        fail("TLM_POSITION should read x 6 mm, y 0 mm at rest: %s" % positions[-3:])
+        fail("TLM_POSITION_X and _Y should read x 6 mm, y 0 mm at rest: %s" % positions[-3:])
     cycle = db.frame_by_name("HEARTBEAT").attribute("GenMsgCycleTime", db)
     if int(cycle) != 100:
         fail("HEARTBEAT GenMsgCycleTime %s, expected 100 ms" % cycle)

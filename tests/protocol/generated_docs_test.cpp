@@ -10,6 +10,7 @@
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "hal/axis.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/protogen/protocol_doc_writer.hpp"
 
@@ -87,7 +88,8 @@ TEST(GeneratedDocs, DbcHasEveryMessageAndSignal) {
       const bool param_message = message == "param_request" || message == "param_reply";
       std::size_t expected = m.fields.size();
       if (param_message) expected += tnv::fw::can::param_table().size();
-      if (message == "heartbeat") expected += std::size(tnv::fw::can::kHeartbeatBits);
+      // The errors bits, and homed_<axis> and shaper_<axis> of the axes byte.
+      if (message == "heartbeat") expected += std::size(tnv::fw::can::kHeartbeatBits) + 2 * tnv::hal::kAxisCount;
       EXPECT_EQ(signals, expected) << m.name;
       if (param_message) {
         EXPECT_NE(block.find(" SG_ param M : 16|16@1+"), std::string::npos) << "param multiplexes: " << m.name;

@@ -2,10 +2,12 @@
 // the codec the firmware and the host share.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/program_tracker.hpp"
@@ -72,7 +74,7 @@ std::vector<double> raw_samples(WireType t) {
 
 TEST(MessageTable, EveryFieldRoundTrips) {
   for (const MessageDef& m : kMessages) {
-    for (std::uint8_t node : {std::uint8_t{1}, std::uint8_t{63}}) {
+    for (std::uint8_t node : {std::uint8_t{1}, kMaxNodeId}) {
       CanFrame frame = make_frame(m, node);
       EXPECT_EQ(frame.dlc, m.dlc);
       ASSERT_EQ(classify(frame), &m) << m.name;
@@ -139,12 +141,35 @@ TEST(FrameCodec, ClassifyRejectsForeignFrames) {
 }
 
 TEST(FrameCodec, IdentifierLayout) {
-  EXPECT_EQ(make_can_id(0x0C, 1), 0x301u);
-  EXPECT_EQ(message_of(0x301), 0x0C);
-  EXPECT_EQ(node_of(0x301), 1);
+  EXPECT_EQ(make_can_id(0x0C, 1), 0x181u);  // [10:5] message, [4:0] node
+  EXPECT_EQ(message_of(0x181), 0x0C);
+  EXPECT_EQ(node_of(0x181), 1);
+  EXPECT_EQ(make_can_id(kMaxMessageId, kMaxNodeId), 0x7FFu) << "the whole 11-bit identifier";
+  EXPECT_EQ(kMaxNodeId, 31);
+  // CAN 2.0A forbids identifiers whose seven most significant bits are all recessive (0x7F0-0x7FF).
+  for (const MessageDef& m : kMessages)
+    for (std::uint8_t node = 0; node <= kMaxNodeId; ++node)
+      EXPECT_LT(make_can_id(m.id, node), 0x7F0u) << m.name << " node " << int{node};
   // Priority: an e-stop to the highest node id beats telemetry of node 1.
   EXPECT_LT(make_can_id(static_cast<std::uint8_t>(MessageId::estop), kMaxNodeId),
-            make_can_id(static_cast<std::uint8_t>(MessageId::tlm_position), 1));
+            make_can_id(static_cast<std::uint8_t>(MessageId::tlm_position_x), 1));
+}
+
+// Lower id = higher priority: every request to the node but BORE_GAUGE (which
+// waits between parts) and every answer ranks above every telemetry frame, and
+// the capture upload ranks below everything.
+TEST(FrameCodec, CommandsRankAboveTelemetryAndTheUploadLast) {
+  std::uint8_t lowest_telemetry = kMaxMessageId;
+  for (const MessageDef& m : kMessages)
+    if (std::string_view(m.name).starts_with("tlm_")) lowest_telemetry = std::min(lowest_telemetry, m.id);
+  for (const MessageDef& m : kMessages) {
+    if (m.direction == Direction::to_node && m.id != static_cast<std::uint8_t>(MessageId::bore_gauge)) {
+      EXPECT_LT(m.id, lowest_telemetry) << m.name;
+    }
+    if (m.id != static_cast<std::uint8_t>(MessageId::capture_data)) {
+      EXPECT_LT(m.id, static_cast<std::uint8_t>(MessageId::capture_data)) << m.name;
+    }
+  }
 }
 
 // The value tables in the message table name the same things as the firmware enums.

@@ -74,7 +74,8 @@ TEST(ParamTable, CheckValueRefusesBadValues) {
   const ParamDef& node = *find_param("can.node_id");
   EXPECT_EQ(check_value(node, 0.0), ErrorCode::out_of_range);
   EXPECT_EQ(check_value(node, 2.5), ErrorCode::out_of_range) << "integers only";
-  EXPECT_EQ(check_value(node, 63.0), ErrorCode::ok);
+  EXPECT_EQ(check_value(node, 31.0), ErrorCode::ok);
+  EXPECT_EQ(check_value(node, 32.0), ErrorCode::out_of_range) << "the identifier has 5 bits of node id";
   const ParamDef& rate = *find_param("can.bitrate_kbit");
   EXPECT_EQ(check_value(rate, 500.0), ErrorCode::ok);
   EXPECT_EQ(check_value(rate, 300.0), ErrorCode::out_of_range) << "not a supported bit rate";

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "firmware/can/param_table.hpp"
+#include "tools/can/capture_run.hpp"
 #include "tools/can/capture_table.hpp"
 #include "tools/tune/identification_sequence.hpp"
 
@@ -27,17 +28,20 @@ const can::ParamDef& identify_param(const std::string& name) {
 // (raw values; named apart from capture_run.hpp's CaptureSetup for the unity build).
 struct CaptureParamValues {
   double channels = 0.0;
+  double channels_high = 0.0;
   double trigger = 0.0;
   double decimation = 0.0;
 };
 
 CaptureParamValues read_capture_params(NodeClient& client) {
-  return {client.get(identify_param("capture.channels")), client.get(identify_param("capture.trigger")),
+  return {client.get(identify_param("capture.channels")), client.get(identify_param("capture.channels_high")),
+          client.get(identify_param("capture.trigger")),
           client.get(identify_param("capture.decimation"))};
 }
 
 void write_capture_params(NodeClient& client, const CaptureParamValues& s) {
   client.stage(identify_param("capture.channels"), s.channels);
+  client.stage(identify_param("capture.channels_high"), s.channels_high);
   client.stage(identify_param("capture.trigger"), s.trigger);
   client.stage(identify_param("capture.decimation"), s.decimation);
   client.commit();
@@ -78,7 +82,7 @@ ExcitationSeries run_excitation_over_can(NodeClient& client, hal::Axis axis, con
   const CaptureStatus status =
       client.wait_capture_done(Micros{static_cast<long long>(longest_s * 1e6)}, Micros{20'000});
   const std::vector<std::uint8_t> image = client.upload(status);
-  const auto mask = static_cast<std::uint32_t>(client.get(identify_param("capture.channels")));
+  const can::ChannelMask mask = read_channel_mask(client);
   std::string error;
   const std::optional<CaptureTable> table = decode_capture(image, mask, status.samples, status.decimation, error);
   if (!table) throw std::runtime_error(excitation_text(axis, spec) + ": " + error);
@@ -107,10 +111,12 @@ tune::AxisIdentification identify_axis_over_can(NodeClient& client, hal::Axis ax
   std::string error;
   const std::string channels = std::string("pos_") + excite_axis_name(axis) + ",dac_" + excite_axis_name(axis);
   // With the tool-side accelerometer where the protocol has it: the structural mode (tools/tune/mode_fit.hpp).
-  std::optional<std::uint32_t> mask = parse_channel_list(channels + ",accel_" + excite_axis_name(axis), error);
+  std::optional<can::ChannelMask> mask = parse_channel_list(channels + ",accel_" + excite_axis_name(axis), error);
   if (!mask) mask = parse_channel_list(channels, error);
   if (!mask) throw std::logic_error(error);
-  write_capture_params(client, {static_cast<double>(*mask), static_cast<double>(can::CaptureTrigger::motion), 1.0});
+  write_capture_params(client, {static_cast<double>(can::channel_mask_low(*mask)),
+                                static_cast<double>(can::channel_mask_high(*mask)),
+                                static_cast<double>(can::CaptureTrigger::motion), 1.0});
 
   std::vector<tune::StepRecord> steps;
   std::vector<tune::RampRecord> ramps;

@@ -28,13 +28,26 @@ void check_capture_setup(const CaptureSetup& setup) {
     throw std::invalid_argument("capture decimation must be 1..255 ticks per sample (0: the node's)");
 }
 
+can::ChannelMask read_channel_mask(NodeClient& client) {
+  const auto low = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels")));
+  const auto high = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels_high")));
+  return can::channel_mask_of(low, high);
+}
+
+void stage_channel_mask(NodeClient& client, can::ChannelMask mask) {
+  client.stage(*can::find_param("capture.channels"), can::channel_mask_low(mask));
+  client.stage(*can::find_param("capture.channels_high"), can::channel_mask_high(mask));
+}
+
 ArmedCapture arm_capture(NodeClient& client, const CaptureSetup& setup) {
   check_capture_setup(setup);
   std::vector<std::pair<const can::ParamDef*, double>> changes;
   std::string error;
-  if (!setup.channels.empty())
-    changes.emplace_back(can::find_param("capture.channels"),
-                         static_cast<double>(*parse_channel_list(setup.channels, error)));
+  if (!setup.channels.empty()) {
+    const can::ChannelMask mask = *parse_channel_list(setup.channels, error);
+    changes.emplace_back(can::find_param("capture.channels"), can::channel_mask_low(mask));
+    changes.emplace_back(can::find_param("capture.channels_high"), can::channel_mask_high(mask));
+  }
   if (!setup.trigger.empty()) {
     const can::ParamDef* p = can::find_param("capture.trigger");
     changes.emplace_back(p, *parse_param_value(*p, setup.trigger, error));
@@ -45,7 +58,7 @@ ArmedCapture arm_capture(NodeClient& client, const CaptureSetup& setup) {
     client.commit();
   }
   ArmedCapture armed;
-  armed.channel_mask = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels")));
+  armed.channel_mask = read_channel_mask(client);
   const can::ParamDef& trigger = *can::find_param("capture.trigger");
   armed.trigger = format_param_value(trigger, client.get(trigger));
   armed.decimation = static_cast<int>(client.get(*can::find_param("capture.decimation")));
@@ -67,10 +80,10 @@ DownloadedCapture download_capture(NodeClient& client, Micros wait, const Upload
     }
     status = client.wait_capture_done(wait, Micros{100'000});
   }
-  const auto mask = static_cast<std::uint32_t>(client.get(*can::find_param("capture.channels")));
+  const can::ChannelMask mask = read_channel_mask(client);
   if (std::popcount(mask) != status.channels) {
     std::string message = "capture.channels was changed after the recording: the image cannot be decoded (";
-    message.append(std::to_string(status.channels)).append(" channels recorded, capture.channels has ");
+    message.append(std::to_string(status.channels)).append(" channels recorded, the channel mask has ");
     throw CaptureError(message.append(std::to_string(std::popcount(mask))).append(")"));
   }
   const Micros started = client.bus().now();

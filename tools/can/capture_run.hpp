@@ -30,8 +30,13 @@ const char* capture_state_name(can::CaptureState s);
 // naming what is wrong.
 void check_capture_setup(const CaptureSetup& setup);
 
+// The node's channel mask (capture.channels and capture.channels_high).
+can::ChannelMask read_channel_mask(NodeClient& client);
+// Stages `mask` as capture.channels and capture.channels_high (the caller commits).
+void stage_channel_mask(NodeClient& client, can::ChannelMask mask);
+
 struct ArmedCapture {
-  std::uint32_t channel_mask = 0;
+  can::ChannelMask channel_mask = 0;
   std::string trigger;  // as the node has it now
   int decimation = 1;
   CaptureStatus status;
@@ -47,7 +52,7 @@ void stop_capture_after(NodeClient& client, Micros tail);
 struct DownloadedCapture {
   CaptureTable table;
   CaptureStatus status;
-  std::uint32_t channel_mask = 0;
+  can::ChannelMask channel_mask = 0;
   std::size_t bytes = 0;
   double upload_s = 0.0;  // on the bus clock
   std::uint64_t rerequests = 0;

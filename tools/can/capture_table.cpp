@@ -24,7 +24,7 @@ double physical(const can::ChannelDef& c, std::uint32_t raw) {
 
 }  // namespace
 
-std::optional<CaptureTable> decode_capture(std::span<const std::uint8_t> image, std::uint32_t channel_mask,
+std::optional<CaptureTable> decode_capture(std::span<const std::uint8_t> image, can::ChannelMask channel_mask,
                                            std::uint32_t samples, std::uint32_t decimation, std::string& error) {
   CaptureTable t;
   t.decimation = decimation;
@@ -51,10 +51,10 @@ std::optional<CaptureTable> decode_capture(std::span<const std::uint8_t> image, 
   return t;
 }
 
-std::optional<std::uint32_t> parse_channel_list(const std::string& list, std::string& error) {
+std::optional<can::ChannelMask> parse_channel_list(const std::string& list, std::string& error) {
   if (list == "default") return can::kDefaultCaptureChannels;
   if (list == "all") return can::kAllCaptureChannels;
-  std::uint32_t mask = 0;
+  can::ChannelMask mask = 0;
   std::istringstream in(list);
   std::string name;
   while (std::getline(in, name, ',')) {
@@ -67,7 +67,7 @@ std::optional<std::uint32_t> parse_channel_list(const std::string& list, std::st
       error.append(name).append("' (channels: ").append(channel_list_text(can::kAllCaptureChannels)).append(")");
       return std::nullopt;
     }
-    mask |= 1u << found->bit;
+    mask |= can::channel_mask_bit(found->bit);
   }
   if (mask == 0) {
     error = "no capture channels given";
@@ -76,7 +76,7 @@ std::optional<std::uint32_t> parse_channel_list(const std::string& list, std::st
   return mask;
 }
 
-std::string channel_list_text(std::uint32_t mask) {
+std::string channel_list_text(can::ChannelMask mask) {
   std::string out;
   for (const can::ChannelDef& c : can::kCaptureChannels)
     if ((mask >> c.bit) & 1u) {

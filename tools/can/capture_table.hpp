@@ -27,13 +27,13 @@ struct CaptureTable {
 };
 
 // nullopt with `error` when the image length is not samples x channels x 4.
-std::optional<CaptureTable> decode_capture(std::span<const std::uint8_t> image, std::uint32_t channel_mask,
+std::optional<CaptureTable> decode_capture(std::span<const std::uint8_t> image, can::ChannelMask channel_mask,
                                            std::uint32_t samples, std::uint32_t decimation, std::string& error);
 
 // "pos_x,pos_y,contour" -> mask; also "default" and "all". nullopt with
 // `error` naming the unknown channel and listing the valid ones.
-std::optional<std::uint32_t> parse_channel_list(const std::string& list, std::string& error);
-std::string channel_list_text(std::uint32_t mask);
+std::optional<can::ChannelMask> parse_channel_list(const std::string& list, std::string& error);
+std::string channel_list_text(can::ChannelMask mask);
 
 // CSV / JSON column name with the unit: pos_x_mm, speed_x_mm_s, contour_um, motion_tick.
 std::string column_name(const can::ChannelDef& c);

@@ -5,6 +5,8 @@
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/protocol_enums.hpp"
+#include "hal/axis.hpp"
 #include "tools/can/param_text.hpp"
 #include "tools/protogen/text_format.hpp"
 
@@ -50,6 +52,16 @@ std::string heartbeat_bits(std::uint32_t errors) {
   return out + "]";
 }
 
+// HEARTBEAT.axes: homed_<axis> and shaper_<axis>, named from the axis list.
+std::string heartbeat_axis_bits(std::uint32_t axes) {
+  std::string out = "[";
+  for (const hal::Axis a : hal::kAxes) {
+    if ((axes & can::hb_homed_bit(a)) != 0) out.append(out.size() > 1 ? " " : "").append("homed_").append(hal::axis_label(a));
+    if ((axes & can::hb_shaper_bit(a)) != 0) out.append(out.size() > 1 ? " " : "").append("shaper_").append(hal::axis_label(a));
+  }
+  return out + "]";
+}
+
 }  // namespace
 
 std::string frame_text(const hal::CanFrame& frame) {
@@ -85,6 +97,8 @@ std::string frame_text(const hal::CanFrame& frame) {
       if (param->unit[0] != '\0') out.append(" ").append(param->unit);
     } else if (std::string_view(m->name) == "heartbeat" && name == "errors") {
       out += heartbeat_bits(can::read_raw(frame, f));
+    } else if (std::string_view(m->name) == "heartbeat" && name == "axes") {
+      out += heartbeat_axis_bits(can::read_raw(frame, f));
     } else {
       out += field_text(frame, f);
     }

@@ -9,6 +9,7 @@
 #include "firmware/can/node_settings.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/io/dac_code.hpp"
+#include "tools/can/capture_run.hpp"
 #include "tools/can/capture_table.hpp"
 #include "tools/can/freq_response_defaults.hpp"
 #include "tools/tune/freq_response_smoothing.hpp"
@@ -238,7 +239,7 @@ namespace {
 // Band, tones and capture set, one EXCITE, wait, upload: the record.
 // A carrier goes the other way when the soft limits leave no room ahead
 // (carrier_used_mm_s: as it went), and the table is moved back after.
-tune::LoopRecord record_experiment(NodeClient& client, hal::Axis axis, const fw::DacScale& dac, std::uint32_t mask,
+tune::LoopRecord record_experiment(NodeClient& client, hal::Axis axis, const fw::DacScale& dac, can::ChannelMask mask,
                                    const FreqExperiment& e, double duration_s, const FreqResponseProgress& progress,
                                    double& carrier_used_mm_s) {
   const std::string a = freq_axis_name(axis);
@@ -247,7 +248,7 @@ tune::LoopRecord record_experiment(NodeClient& client, hal::Axis axis, const fw:
   client.stage(freq_param("excite.f_max_hz"), e.f_max_hz);
   client.stage(freq_param("excite.tones"), freq_spec_of(e, duration_s).tones);
   client.stage(freq_param("excite.carrier_mm_s"), e.carrier_mm_s);
-  client.stage(freq_param("capture.channels"), mask);
+  stage_channel_mask(client, mask);
   client.stage(freq_param("capture.trigger"), static_cast<double>(can::CaptureTrigger::motion));
   client.stage(freq_param("capture.decimation"), 1.0);
   client.commit();
@@ -341,10 +342,10 @@ FreqResponseResult run_freq_response(NodeClient& client, hal::Axis axis, const F
       st == can::CaptureState::recording || st == can::CaptureState::armed)
     client.capture(can::CaptureOp::abort);  // capture.* cannot change while armed
   const FreqSaved before =
-      freq_save(client, {"capture.channels", "capture.trigger", "capture.decimation", "excite.f_min_hz",
+      freq_save(client, {"capture.channels", "capture.channels_high", "capture.trigger", "capture.decimation", "excite.f_min_hz",
                          "excite.f_max_hz", "excite.tones", "excite.carrier_mm_s"});
   std::string error;
-  const std::optional<std::uint32_t> mask =
+  const std::optional<can::ChannelMask> mask =
       parse_channel_list("pos_" + a + ",command_" + a + ",dac_" + a + ",excite_" + a, error);
   if (!mask) throw std::logic_error(error);
 

@@ -37,7 +37,7 @@ double homing_bound_s(NodeClient& client, std::uint8_t axis) {
 
 std::optional<std::string> not_homed_message(const Heartbeat& hb, std::uint8_t axis) {
   for (const hal::Axis a : hal::kAxes)
-    if ((axis == kAllAxes || axis == hal::index(a)) && (hb.errors & fw::can::kHbHomedBits[hal::index(a)]) == 0)
+    if ((axis == kAllAxes || axis == hal::index(a)) && !hb.homed(a))
       return std::string(hal::axis_label(a)) + " is not homed (the cycle was stopped?)";
   return std::nullopt;
 }

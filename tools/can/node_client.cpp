@@ -249,12 +249,12 @@ CommandAck NodeClient::spindle(can::SpindleOp op, fw::SpindleDirection direction
   return checked(spindle_request(node_, tag, op, direction, rpm), tag, static_cast<std::uint8_t>(op), what);
 }
 
-CommandAck NodeClient::jog(double speed_x_mm_s, double speed_y_mm_s) {
+CommandAck NodeClient::jog(std::uint8_t axis, double speed_mm_s) {
   char what[96];
-  std::snprintf(what, sizeof what, "jog x %g mm/s, y %g mm/s", speed_x_mm_s, speed_y_mm_s);
+  std::snprintf(what, sizeof what, "jog %s %g mm/s", hal::axis_label_or(axis, "?"), speed_mm_s);
   need_ownership();
   const std::uint8_t tag = next_tag();
-  return checked(jog_request(node_, tag, speed_x_mm_s, speed_y_mm_s), tag, 0, what);
+  return checked(jog_request(node_, tag, axis, speed_mm_s), tag, 0, what);
 }
 
 CommandAck NodeClient::shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta) {

@@ -57,7 +57,7 @@ class NodeClient {
   // SPINDLE start / stop / speed (docs/safety.md "Spindle"); needs ownership like the motion commands.
   CommandAck spindle(can::SpindleOp op, fw::SpindleDirection direction = fw::SpindleDirection::forward,
                      double rpm = 0.0);
-  CommandAck jog(double speed_x_mm_s, double speed_y_mm_s);
+  CommandAck jog(std::uint8_t axis, double speed_mm_s);  // one axis' stream (JOG names its axis)
   CommandAck shaper(std::uint8_t axis, std::uint8_t type, double freq_hz, double zeta);
   // EXCITE: kind 0 step, 1 ramp (open loop), 2 sweep, 3 multisine (closed loop, band: excite.* parameters).
   CommandAck excite(std::uint8_t axis, std::uint8_t kind, double level_mm_s, double duration_s);

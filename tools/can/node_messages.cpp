@@ -89,11 +89,11 @@ hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_
   return f;
 }
 
-hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, double speed_x_mm_s, double speed_y_mm_s) {
+hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, double speed_mm_s) {
   hal::CanFrame f = can::make_frame(kJogMsg, node);
   can::write_raw(f, field(kJogMsg, "tag"), tag);
-  can::write_saturated(f, field(kJogMsg, "speed_x"), speed_x_mm_s);
-  can::write_saturated(f, field(kJogMsg, "speed_y"), speed_y_mm_s);
+  can::write_raw(f, field(kJogMsg, "axis"), axis);
+  can::write_saturated(f, field(kJogMsg, "speed"), speed_mm_s);
   return f;
 }
 
@@ -150,7 +150,7 @@ Heartbeat read_heartbeat(const hal::CanFrame& frame) {
   h.overruns = raw_as<std::uint16_t>(frame, field(kHeartbeatMsg, "overruns"));
   h.free_slots = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "free_slots"));
   h.owner = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "owner"));
-  h.tick_low = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "tick_low"));
+  h.axes = raw_as<std::uint8_t>(frame, field(kHeartbeatMsg, "axes"));
   return h;
 }
 

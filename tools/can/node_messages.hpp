@@ -23,7 +23,9 @@ struct Heartbeat {
   std::uint16_t overruns = 0;  // saturates at 255 (protocol 3)
   std::uint8_t free_slots = 0;  // motion queue (flow control for SEGMENT)
   std::uint8_t owner = 0;  // host id holding command ownership, 0 none
-  std::uint8_t tick_low = 0;
+  std::uint8_t axes = 0;  // per-axis bits (can::hb_homed_bit, can::hb_shaper_bit)
+  bool homed(hal::Axis a) const noexcept { return (axes & fw::can::hb_homed_bit(a)) != 0; }
+  bool shaper_on(hal::Axis a) const noexcept { return (axes & fw::can::hb_shaper_bit(a)) != 0; }
 };
 
 struct ProgramStatus {
@@ -87,7 +89,7 @@ hal::CanFrame spindle_request(std::uint8_t node, std::uint8_t tag, can::SpindleO
 // Feed in 0.01 mm/s steps (0 .. 655.35); the caller range-checks.
 hal::CanFrame circle_request(std::uint8_t node, std::uint8_t tag, double radius_mm, double feed_mm_s);
 // Speeds in 0.01 mm/s steps (+-327.67); out of range or NaN: the node refuses the clamped value.
-hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, double speed_x_mm_s, double speed_y_mm_s);
+hal::CanFrame jog_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, double speed_mm_s);
 // Frequency in 0.01 Hz steps (0 .. 655.35 Hz).
 hal::CanFrame shaper_request(std::uint8_t node, std::uint8_t tag, std::uint8_t axis, std::uint8_t type,
                              double freq_hz, double zeta);

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <toml++/toml.h>
 
+#include "firmware/can/can_id.hpp"
 #include "tools/can/param_text.hpp"
 
 namespace tnv::can_host {
@@ -160,9 +161,9 @@ std::optional<ParamFile> read_param_file(const std::string& text, std::string& e
   const auto build = (*node)["build_id"].value<std::string>();
   const auto protocol = (*node)["protocol_version"].value<std::int64_t>();
   const auto hash = (*node)["params_hash"].value<std::string>();
-  if (!id || *id < 0 || *id > 63 || !firmware || !build || !protocol || *protocol < 0 || !hash) {
+  if (!id || *id < 0 || *id > tnv::fw::can::kMaxNodeId || !firmware || !build || !protocol || *protocol < 0 || !hash) {
     error = line_of(*node) +
-            "[node] needs id (1..63, 0 for a set not read from a node), firmware_version, build_id, protocol_version and params_hash as an export "
+            "[node] needs id (1..31, 0 for a set not read from a node), firmware_version, build_id, protocol_version and params_hash as an export "
             "writes them";
     return std::nullopt;
   }

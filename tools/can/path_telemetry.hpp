@@ -1,15 +1,13 @@
 #pragma once
-// Samples of a program run from the node's cyclic telemetry: TLM_POSITION
-// (measured position) and TLM_FOLLOWING (reference - position) of the same
-// tick. The node queues both every tick, but its transmit queue orders by
-// identifier: when the bus is busy (a burst of SEGMENT frames wins every
-// arbitration), the positions of several ticks leave before their
-// followings. Each kind keeps its own order, so the n-th position pairs
-// with the n-th following; counting starts at a position. The reference is
-// rebuilt from the two rounded 1 nm values (within 1 nm).
+// Samples of a program run from the node's cyclic telemetry:
+// TLM_POSITION_<AXIS> (measured position and reference - position of the
+// same tick) of the plane's two axes. The node queues one frame per axis,
+// in axis order, every tick; a sample is the plane's first axis' frame and
+// the second's that follows it (a second axis' frame without its first is
+// dropped: counting began between them). The reference is rebuilt from the
+// two rounded 1 nm values (within 1 nm).
 #include <array>
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <vector>
 
@@ -22,17 +20,16 @@ class PathTelemetry {
  public:
   void take(const hal::CanFrame& frame, can::MessageId id);
   const std::vector<hil::PathSample>& samples() const noexcept { return samples_; }
-  // Frames still without a partner (one waits normally; more: the node dropped a TLM frame or
-  // the two periods differ).
-  std::uint64_t unpaired() const noexcept { return positions_.size() + followings_.size(); }
+  // Frames still without a partner (the plane's first axis of a tick whose second has not come).
+  std::uint64_t unpaired() const noexcept { return first_ ? 1 : 0; }
   // A HEARTBEAT said frames were dropped (its tx_dropped bit) while samples were taken: ticks are missing.
   bool dropped() const noexcept { return dropped_; }
   // The last reference seen (where the table is held when it rests).
   std::optional<fw::motion::PlanePoint> last_reference() const;
 
  private:
-  std::deque<std::array<std::int32_t, 2>> positions_;
-  std::deque<std::array<std::int32_t, 2>> followings_;
+  // The plane's first axis' position and following (raw 1 nm) of a tick whose second axis has not come yet.
+  std::optional<std::array<std::int32_t, 2>> first_;
   std::vector<hil::PathSample> samples_;
   bool dropped_ = false;
 };

@@ -15,7 +15,7 @@ const can::ParamDef& param(const char* name) { return *can::find_param(name); }
 fw::motion::PlanePoint standing_reference(NodeClient& client, PathTelemetry& telemetry) {
   const std::size_t seen = telemetry.samples().size();
   if (!client.pump_until([&] { return telemetry.samples().size() >= seen + 2; }, Micros{500'000}))
-    throw RequestError(RequestError::Kind::timeout, "no TLM_POSITION / TLM_FOLLOWING pair from node " +
+    throw RequestError(RequestError::Kind::timeout, "no TLM_POSITION_X / _Y pair from node " +
                                                         std::to_string(client.node()) + " within 500 ms");
   return *telemetry.last_reference();
 }
@@ -102,46 +102,40 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
   PathTelemetry telemetry;
   const auto listen = [&] { client.set_listener(both(telemetry, o.on_frame)); };
   const can::ParamDef& position = param("tlm.position_ms");
-  const can::ParamDef& following = param("tlm.following_ms");
   const double old_position_ms = client.get(position);
-  const double old_following_ms = client.get(following);
   // Sampled every tick for the score; without a score, telemetry stays as it is unless it is off
   // (the start point comes from it).
   const double run_position_ms = o.telemetry_ms > 0 ? o.telemetry_ms : (old_position_ms > 0 ? old_position_ms : 10);
-  const double run_following_ms = o.telemetry_ms > 0 ? o.telemetry_ms : (old_following_ms > 0 ? old_following_ms : 10);
   bool changed = false;
   const auto restore = [&] {
     if (!changed) return;
     changed = false;
     client.set(position, old_position_ms);
-    client.set(following, old_following_ms);
   };
   double position_now_ms = old_position_ms;
-  double following_now_ms = old_following_ms;
-  const auto set_periods = [&](double position_ms, double following_ms) {
-    if (position_ms == position_now_ms && following_ms == following_now_ms) return;
+  const auto set_period = [&](double position_ms) {
+    if (position_ms == position_now_ms) return;
     changed = true;
     position_now_ms = client.set(position, position_ms);
-    following_now_ms = client.set(following, following_ms);
   };
   try {
     listen();
     // Where the table stands, from the telemetry as it is (on by default): a program that cannot
     // run from there is refused before anything on the node changes.
     std::optional<fw::motion::PlanePoint> start;
-    if (old_position_ms > 0 && old_following_ms > 0) {
+    if (old_position_ms > 0) {
       try {
         start = standing_reference(client, telemetry);
       } catch (const RequestError&) {
       }
     }
     if (!start) {
-      set_periods(run_position_ms, run_following_ms);
+      set_period(run_position_ms);
       start = standing_reference(client, telemetry);
     }
     r.start_mm = *start;
     Prepared p = prepare(gcode_text, r.start_mm, r.limits, o, client.node());
-    set_periods(run_position_ms, run_following_ms);
+    set_period(run_position_ms);
     if (hb.state == fw::MotionState::disabled) {
       client.command(can::CommandCode::enable);
       // Servo on holds where the table stood; parse again if that is not where the program was planned from.

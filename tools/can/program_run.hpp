@@ -1,13 +1,13 @@
 #pragma once
 // `tnvctl run`'s work, for any transport: read the node's planner limits and
 // where the table stands, parse the program from there with those limits,
-// turn telemetry on at 1 ms (TLM_POSITION and TLM_FOLLOWING), enable the
+// turn telemetry on at 1 ms (TLM_POSITION_<AXIS>), enable the
 // servo, stream the program (program_stream.hpp), restore the telemetry
 // periods and score the run (tools/score/path_score.hpp).
 //
-// Telemetry rate: 1 ms, two 8-byte frames per tick, is 22 % of 1 Mbit/s
-// (27 % with worst-case stuffing). Both identifiers (0x401, 0x441 for node
-// 1) lose arbitration to every control frame (FAULT_EVENT, replies,
+// Telemetry rate: 1 ms, an 8-byte frame per axis and tick (two axes: 22 %
+// of 1 Mbit/s, 27 % with worst-case stuffing). The identifiers (0x401,
+// 0x421, ... for node 1) lose arbitration to every control frame (FAULT_EVENT, replies,
 // HEARTBEAT and the host's SEGMENT frames), and the node drops telemetry
 // first when its transmit queue fills. The score needs every tick: the
 // jerk and acceleration ratios are finite differences of the 1 ms
@@ -69,7 +69,7 @@ struct ProgramPlan {
   fw::motion::PlanePoint start_mm{};
 };
 
-// Throws RequestError when the node sends no TLM_POSITION / TLM_FOLLOWING pair within 500 ms.
+// Throws RequestError when the node sends no TLM_POSITION_X / _Y pair within 500 ms.
 ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options);
 
 // The planner's limits the node runs with (x/y.path.*, path.tolerance_mm, the soft travel limits).

@@ -7,13 +7,15 @@
 #include <cerrno>
 #include <cstring>
 
+#include "firmware/can/can_id.hpp"
+
 namespace tnv::can_host {
 
 can_filter node_filter(std::uint8_t node) noexcept {
   can_filter f{};
-  f.can_id = node & 0x3Fu;
+  f.can_id = node & fw::can::kNodeIdMask;
   // Match the node bits, and require the EFF and RTR flags to be clear.
-  f.can_mask = 0x3Fu | CAN_EFF_FLAG | CAN_RTR_FLAG;
+  f.can_mask = fw::can::kNodeIdMask | CAN_EFF_FLAG | CAN_RTR_FLAG;
   return f;
 }
 

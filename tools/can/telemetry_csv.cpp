@@ -5,6 +5,7 @@
 
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::can_host {
 
@@ -26,9 +27,15 @@ std::optional<double> field(const std::optional<T>& part, F&& get) {
 }  // namespace
 
 std::string telemetry_csv_header() {
-  return "t_s,frames,bus_load,state,fault,pos_x_mm,pos_y_mm,following_x_um,following_y_um,s_x_mm_s,s_y_mm_s,"
-         "d_hat_x_mm_s,d_hat_y_mm_s,dac_x,dac_y,force_n,contour_um,arsc_force_n,arsc_force_ref_n,feed_override,"
-         "cutting_gain_n_per_mm_s";
+  std::string out = "t_s,frames,bus_load,state,fault";
+  // The per-axis columns, kind by kind, from the axis list.
+  for (const char* kind : {"pos_%s_mm", "following_%s_um", "s_%s_mm_s", "d_hat_%s_mm_s", "dac_%s"})
+    for (const hal::Axis a : hal::kAxes) {
+      char name[32];
+      std::snprintf(name, sizeof name, kind, hal::axis_label(a));
+      out.append(",").append(name);
+    }
+  return out + ",force_n,contour_um,arsc_force_n,arsc_force_ref_n,feed_override,cutting_gain_n_per_mm_s";
 }
 
 std::string telemetry_csv_row(const TelemetryView& v, double t_s, double bus_load) {
@@ -37,13 +44,15 @@ std::string telemetry_csv_row(const TelemetryView& v, double t_s, double bus_loa
   std::string row = head;
   if (v.heartbeat) row.append(fw::to_string(v.heartbeat->state)).append(",").append(fw::to_string(v.heartbeat->fault));
   else row += ',';
-  using Pair = std::array<double, 2>;
-  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.position_mm, [axis](const Pair& p) { return p[axis]; }));
-  for (int axis = 0; axis < 2; ++axis)
-    cell(row, field(v.following_mm, [axis](const Pair& p) { return p[axis] * 1e3; }));
-  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.s_mm_s, [axis](const Pair& p) { return p[axis]; }));
-  for (int axis = 0; axis < 2; ++axis) cell(row, field(v.d_hat_mm_s, [axis](const Pair& p) { return p[axis]; }));
-  for (int axis = 0; axis < 2; ++axis)
+  using PerAxis = std::array<double, hal::kAxisCount>;
+  constexpr std::size_t kAxes = hal::kAxisCount;
+  for (std::size_t axis = 0; axis < kAxes; ++axis) cell(row, field(v.position_mm, [axis](const PerAxis& p) { return p[axis]; }));
+  for (std::size_t axis = 0; axis < kAxes; ++axis)
+    cell(row, field(v.following_mm, [axis](const PerAxis& p) { return p[axis] * 1e3; }));
+  for (std::size_t axis = 0; axis < kAxes; ++axis) cell(row, field(v.s_mm_s, [axis](const PerAxis& p) { return p[axis]; }));
+  for (std::size_t axis = 0; axis < kAxes; ++axis)
+    cell(row, field(v.d_hat_mm_s, [axis](const PerAxis& p) { return p[axis]; }));
+  for (std::size_t axis = 0; axis < kAxes; ++axis)
     cell(row, field(v.output, [axis](const OutputTelemetry& o) { return o.dac_code[axis]; }));
   cell(row, field(v.output, [](const OutputTelemetry& o) { return o.force_n; }));
   cell(row, field(v.contour, [](const ContourTelemetry& c) { return c.contour_um; }));

@@ -11,6 +11,10 @@ nlohmann::json heartbeat_json(const Heartbeat& hb) {
   nlohmann::json bits = nlohmann::json::array();
   for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
     if ((hb.errors & b.mask) != 0) bits.push_back(b.name);
+  for (const hal::Axis a : hal::kAxes) {  // HEARTBEAT.axes, named as the errors bits are
+    if (hb.homed(a)) bits.push_back(std::string("homed_") + hal::axis_label(a));
+    if (hb.shaper_on(a)) bits.push_back(std::string("shaper_") + hal::axis_label(a));
+  }
   return {{"state", fw::to_string(hb.state)},
           {"fault", fw::to_string(hb.fault)},
           {"flags", bits},

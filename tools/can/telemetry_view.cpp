@@ -10,8 +10,6 @@ namespace {
 using can::field;
 using can::MessageId;
 
-using can::fields::kPositionMsg;
-using can::fields::kFollowingMsg;
 using can::fields::kOutputMsg;
 using can::fields::kContourMsg;
 using can::fields::kArscMsg;
@@ -21,14 +19,6 @@ void set_axis(std::optional<std::array<double, hal::kAxisCount>>& slot, std::siz
   (*slot)[axis] = v;
 }
 
-// One value per axis from a frame's per-axis fields.
-std::array<double, hal::kAxisCount> per_axis(const hal::CanFrame& f,
-                                             const std::array<const can::FieldDef*, hal::kAxisCount>& fields) {
-  std::array<double, hal::kAxisCount> out{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) out[i] = can::read(f, *fields[i]);
-  return out;
-}
-
 }  // namespace
 
 void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
@@ -36,10 +26,9 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
   bits += VirtualCanBus::frame_bits(f);
   switch (id) {
     case MessageId::heartbeat: heartbeat = read_heartbeat(f); break;
-    case MessageId::tlm_position: position_mm = per_axis(f, can::fields::kPositionFields); break;
-    case MessageId::tlm_following: following_mm = per_axis(f, can::fields::kFollowingFields); break;
     case MessageId::tlm_output:
-      output = OutputTelemetry{per_axis(f, can::fields::kOutputDacs), can::read(f, field(kOutputMsg, "force"))};
+      if (!output) output = OutputTelemetry{};
+      output->force_n = can::read(f, field(kOutputMsg, "force"));
       break;
     case MessageId::tlm_contour:
       contour = ContourTelemetry{can::read(f, field(kContourMsg, "contour")), can::read(f, field(kContourMsg, "motion_tick"))};
@@ -49,14 +38,22 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
                            can::read(f, field(kArscMsg, "feed_override")),
                            can::read(f, field(kArscMsg, "cutting_gain"))};
       break;
-    default:
-      // TLM_SLIDING_<axis>: one message per axis.
-      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-        if (static_cast<std::uint8_t>(id) != can::fields::kSlidingMsgs[i]->id) continue;
-        set_axis(s_mm_s, i, can::read(f, can::fields::kSlidingS));
-        set_axis(d_hat_mm_s, i, can::read(f, can::fields::kSlidingDHat));
+    default: {
+      // The per-axis messages: one per axis of each block.
+      namespace fl = can::fields;
+      const auto m = static_cast<std::uint8_t>(id);
+      if (const auto a = fl::axis_of(fl::kPositionMsgs, m)) {
+        set_axis(position_mm, hal::index(*a), can::read(f, fl::kPosition));
+        set_axis(following_mm, hal::index(*a), can::read(f, fl::kFollowing));
+      } else if (const auto c = fl::axis_of(fl::kSlidingMsgs, m)) {
+        set_axis(s_mm_s, hal::index(*c), can::read(f, fl::kSlidingS));
+        set_axis(d_hat_mm_s, hal::index(*c), can::read(f, fl::kSlidingDHat));
+      } else if (const auto d = fl::axis_of(fl::kDacMsgs, m)) {
+        if (!output) output = OutputTelemetry{};
+        output->dac_code[hal::index(*d)] = can::read(f, fl::kDacCode);
       }
       break;
+    }
   }
 }
 

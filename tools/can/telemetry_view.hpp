@@ -31,7 +31,7 @@ struct ArscTelemetry {
 
 struct TelemetryView {
   std::optional<Heartbeat> heartbeat;
-  // Per axis, in axis order.
+  // Per axis, in axis order (one frame per axis: an axis not heard from yet reads 0).
   std::optional<std::array<double, hal::kAxisCount>> position_mm;
   std::optional<std::array<double, hal::kAxisCount>> following_mm;  // reference - position
   std::optional<std::array<double, hal::kAxisCount>> s_mm_s;        // sliding variable (0 for PID)

@@ -32,7 +32,7 @@ constexpr std::int64_t kMaxTicks = 60'000;
 // Parameters the hosts stage, each at its current value: a commit changes
 // nothing the circle depends on, but its applied count shows whose set it was.
 constexpr std::array<const char*, 6> kStagedParams{"motion.circle_ramp_s", "motion.circle_dwell_s", "motion.move_ramp_s",
-                                                   "motion.move_dwell_s",  "tlm.position_ms",       "tlm.following_ms"};
+                                                   "motion.move_dwell_s",  "tlm.position_ms",       "tlm.heartbeat_ms"};
 
 enum class Step : std::uint8_t { stage, take, commit, release, get, status };
 

@@ -1,10 +1,14 @@
 #include "tools/protogen/dbc_writer.hpp"
 
+#include <bit>
 #include <regex>
+#include <string>
+#include <vector>
 
 #include "firmware/can/can_id.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "hal/axis.hpp"
 #include "tools/protogen/text_format.hpp"
 
 namespace tnv::protogen {
@@ -107,6 +111,30 @@ std::string heartbeat_bit_lines(const FieldDef& errors) {
   return out;
 }
 
+// The heartbeat's `axes` byte: homed_<axis> and shaper_<axis>, one 1-bit
+// signal per axis of the axis list.
+struct AxisBitSignal {
+  std::string name;
+  unsigned bit;  // within the byte
+  std::string doc;
+};
+std::vector<AxisBitSignal> heartbeat_axis_signals() {
+  std::vector<AxisBitSignal> out;
+  for (const hal::Axis a : hal::kAxes) {
+    const std::string n = hal::axis_label(a);
+    out.push_back({"homed_" + n, static_cast<unsigned>(std::countr_zero(fw::can::hb_homed_bit(a))), n + " is homed"});
+    out.push_back({"shaper_" + n, static_cast<unsigned>(std::countr_zero(fw::can::hb_shaper_bit(a))),
+                   "input shaper on, " + n});
+  }
+  return out;
+}
+std::string heartbeat_axis_lines(const FieldDef& axes) {
+  std::string out;
+  for (const AxisBitSignal& s : heartbeat_axis_signals())
+    append(out, " SG_ ", s.name, " : ", std::to_string(axes.byte_offset * 8 + s.bit), "|1@1+ (1,0) [0|1] \"\" HOST\n");
+  return out;
+}
+
 // A cyclic message says "every tlm.<name>_ms" in its doc: that
 // parameter's default is its cycle time.
 int default_cycle_ms(const MessageDef& m) {
@@ -137,13 +165,14 @@ std::string write_dbc(std::uint8_t node) {
       if (is_param_message(m) && std::string_view(f.name) == "param") line.replace(line.find(" : "), 3, " M : ");
       out += line;
       if (std::string_view(m.name) == "heartbeat" && std::string_view(f.name) == "errors") out += heartbeat_bit_lines(f);
+      if (std::string_view(m.name) == "heartbeat" && std::string_view(f.name) == "axes") out += heartbeat_axis_lines(f);
     }
     if (is_param_message(m)) out += param_signal_lines(receiver);
     out += '\n';
   }
   append(out, "CM_ \"TNV-40 controller CAN protocol ", version,
          ", generated from firmware/can/ by tnv-protogen; identifiers for node ", std::to_string(node),
-         " (identifier = message id << 6 | node id).\";\n");
+         " (identifier = message id << ", std::to_string(fw::can::kNodeIdBits), " | node id).\";\n");
   for (const MessageDef& m : fw::can::kMessages) {
     const std::string id = std::to_string(fw::can::make_can_id(m.id, node));
     append(out, "CM_ BO_ ", id, " ", quoted(m.doc), ";\n");
@@ -154,6 +183,9 @@ std::string write_dbc(std::uint8_t node) {
     if (std::string_view(m.name) == "heartbeat")
       for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
         append(out, "CM_ SG_ ", id, " ", b.name, " ", quoted(b.doc), ";\n");
+    if (std::string_view(m.name) == "heartbeat")
+      for (const AxisBitSignal& s : heartbeat_axis_signals())
+        append(out, "CM_ SG_ ", id, " ", s.name, " ", quoted(s.doc), ";\n");
   }
   // Cycle times: the defaults of the tlm.*_ms parameters (0 = sent on request or event).
   out += "BA_DEF_ BO_ \"GenMsgCycleTime\" INT 0 60000;\n";

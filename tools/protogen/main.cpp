@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "firmware/can/can_id.hpp"
 #include "tools/cli/cli_frame.hpp"
 #include "tools/protogen/dbc_writer.hpp"
 #include "tools/protogen/protocol_doc_writer.hpp"
@@ -30,7 +31,7 @@ int main(int argc, char** argv) {
   int node = 1;
   app.add_option("--dbc", dbc_path, "write the DBC here ('-' = stdout)");
   app.add_option("--doc", doc_path, "write the Markdown protocol document here ('-' = stdout)");
-  app.add_option("--node", node, "node id the DBC's identifiers are for")->check(CLI::Range(1, 63));
+  app.add_option("--node", node, "node id the DBC's identifiers are for")->check(CLI::Range(1, int{tnv::fw::can::kMaxNodeId}));
   tnv::cli::add_version_flag(app, "tnv-protogen");
   try {
     app.parse(argc, argv);

@@ -1,11 +1,14 @@
 #include "tools/protogen/protocol_doc_writer.hpp"
 
+#include <bit>
 #include <cmath>
+#include <string>
 
 #include "firmware/can/can_id.hpp"
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/can/protocol_messages.hpp"
+#include "hal/axis.hpp"
 #include "tools/protogen/bus_load.hpp"
 #include "tools/protogen/text_format.hpp"
 
@@ -40,15 +43,20 @@ std::string cell(std::string_view s) {
 void framing(std::string& out, const NodeSettings& d) {
   append(out, "## Framing\n\n",
          "- Classic CAN (2.0A), 11-bit identifiers, default bit rate ", std::to_string(d.can.bitrate_kbit),
-         " kbit/s (parameter `can.bitrate_kbit`). Every message has a fixed length; all but ESTOP carry 8 bytes.\n",
-         "- Identifier = message id << 6 | node id. The message id (5 bits) is in the high bits, so arbitration ",
-         "orders by message: an ESTOP to any node wins over every other frame on the bus. Node ids are 1..",
+         " kbit/s (parameter `can.bitrate_kbit`). Every message has a fixed length (the DLC column below).\n",
+         "- Identifier = message id << ", std::to_string(kNodeIdBits), " | node id. The message id (",
+         std::to_string(11 - kNodeIdBits), " bits) is in the high bits, so arbitration ",
+         "orders by message: an ESTOP to any node wins over every other frame on the bus; commands rank above ",
+         "telemetry (BORE_GAUGE, which waits between parts, ranks among it), the capture upload last. Node ids are 1..",
          std::to_string(kMaxNodeId), " (parameter `can.node_id`, default ", std::to_string(d.can.node_id),
          "); node 0 is broadcast and carries only ESTOP and COMMAND `stop`.\n",
          "- Requests go host -> node with the node's id; the node answers with its own id.\n",
          "- Fields are little-endian and byte-aligned; physical value = raw x scale. `f32` is an IEEE-754 ",
          "single; `raw32` holds a parameter value: the f32 bits, or the integer, by the parameter's type.\n",
-         "- CAN FD is not used; the payloads fit classic frames.\n\n");
+         "- CAN FD is not used; the payloads fit classic frames.\n",
+         "- Per-axis messages (TLM_POSITION_<AXIS>, TLM_SLIDING_<AXIS>, TLM_DAC_<AXIS>) come in ",
+         "blocks of ", std::to_string(kAxisBlock), " ids: block base + axis index, one message per axis of the ",
+         "axis list (hal/axis.hpp), so an axis is a line in that list. JOG names the axis it jogs.\n\n");
 }
 
 void message_summary(std::string& out) {
@@ -103,6 +111,18 @@ void codes(std::string& out) {
     while ((1u << bit) != b.mask) ++bit;
     append(out, "| ", std::to_string(bit), " | ", b.name, " | ", b.doc, " |\n");
   }
+  out += "\n## Heartbeat axis bits (HEARTBEAT.axes)\n\nOne pair per axis of the axis list (hal/axis.hpp), by axis "
+         "index; room for four axes.\n\n| bit | name | meaning |\n|---|---|---|\n";
+  for (const hal::Axis a : hal::kAxes) {
+    const std::string n = hal::axis_label(a);
+    append(out, "| ", std::to_string(std::countr_zero(hb_homed_bit(a))), " | homed_", n, " | ", n,
+           " is homed: its frame is the home switch's index (docs/safety.md \"Homing\") |\n");
+  }
+  for (const hal::Axis a : hal::kAxes) {
+    const std::string n = hal::axis_label(a);
+    append(out, "| ", std::to_string(std::countr_zero(hb_shaper_bit(a))), " | shaper_", n, " | input shaper on, ", n,
+           " |\n");
+  }
   out += '\n';
 }
 
@@ -130,7 +150,9 @@ void parameters(std::string& out, const NodeSettings& d) {
 
 void capture(std::string& out, const NodeSettings& d) {
   append(out, "## Capture channels\n\n",
-         "Bit n of `capture.channels` records channel n, one 32-bit little-endian value per tick (or every ",
+         "Bit n of the 64-bit channel mask records channel n (`capture.channels` holds bits 0-31, ",
+         "`capture.channels_high` bits 32-63; an arm with no channel is refused `out_of_range`), one 32-bit ",
+         "little-endian value per tick (or every ",
          "`capture.decimation` ticks). The image is sample-major with the selected channels in bit order; the ",
          "buffer holds ", std::to_string(kCaptureCapacityWords), " values. Upload: CAPTURE_CONTROL upload (offset, ",
          "frames) -> that many CAPTURE_DATA frames, sequence 0.., 7 image bytes each; a gap in the sequence means ",
@@ -158,7 +180,7 @@ void malformed(std::string& out) {
 | known request with the wrong DLC | the request's reply with `bad_length`; nothing changes |
 | ESTOP with any DLC | acted on (safety first) |
 | COMMAND with an unknown code | COMMAND_ACK `unknown_command` |
-| COMMAND / MOVE / SHAPER with a bad axis byte | COMMAND_ACK `bad_axis` |
+| COMMAND / JOG / MOVE / SHAPER / EXCITE with a bad axis byte | COMMAND_ACK `bad_axis`; no axis changes |
 | PARAM_REQUEST with an unknown op | PARAM_REPLY `unknown_command` |
 | PARAM_REQUEST for an unknown id | PARAM_REPLY `unknown_id`, value 0 |
 | set / stage of a read-only parameter | `read_only` |
@@ -190,10 +212,10 @@ void bus_load(std::string& out, const NodeSettings& d) {
          "A classic 8-byte frame with an 11-bit identifier takes ", std::to_string(frame_bits_nominal(8)),
          " bit times including the interframe space, and up to ", std::to_string(frame_bits_worst(8)),
          " with worst-case bit stuffing. The default cyclic set (HEARTBEAT every ", std::to_string(d.telemetry.heartbeat_ms),
-         " ms, TLM_POSITION every ", std::to_string(d.telemetry.position_ms), " ms, TLM_FOLLOWING every ",
-         std::to_string(d.telemetry.following_ms), " ms) is ", number(load.frames_per_s), " frames/s: ",
+         " ms, TLM_POSITION_<AXIS>, an 8-byte frame per axis with position and following error, every ",
+         std::to_string(d.telemetry.position_ms), " ms) is ", number(load.frames_per_s), " frames/s: ",
          percent(load.load_nominal), " to ", percent(load.load_worst), " of ", std::to_string(d.can.bitrate_kbit),
-         " kbit/s. Streaming two 8-byte frames per 1 ms tick instead would take ",
+         " kbit/s. Streaming two 8-byte frames per 1 ms tick would take ",
          percent(2000.0 * frame_bits_nominal(8) / (1000.0 * d.can.bitrate_kbit)), " to ",
          percent(2000.0 * frame_bits_worst(8) / (1000.0 * d.can.bitrate_kbit)),
          ": full-rate traces of long runs are captured on the node and uploaded afterwards, and `tnvctl run` takes this ",

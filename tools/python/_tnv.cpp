@@ -424,7 +424,7 @@ PYBIND11_MODULE(_tnv, m) {
   m.def("channel_names", [] {
     std::string error;
     std::vector<std::string> names;
-    const std::optional<std::uint32_t> all = host::parse_channel_list("all", error);
+    const std::optional<can::ChannelMask> all = host::parse_channel_list("all", error);
     const std::string text = host::channel_list_text(all.value_or(0));
     std::size_t start = 0;
     while (start <= text.size()) {

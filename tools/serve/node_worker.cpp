@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "firmware/can/node_fields.hpp"
 #include "hal/axis_choice.hpp"
 #include "tools/can/telemetry_json.hpp"
 #include "tools/serve/api_error.hpp"
@@ -91,7 +92,8 @@ nlohmann::json NodeWorker::status() const {
 
 void NodeWorker::take_frame(const hal::CanFrame& frame, fw::can::MessageId id) {
   view_.take(frame, id);
-  if (id != fw::can::MessageId::tlm_position) return;
+  // A scope sample per tick of positions: when the last axis' position has come.
+  if (static_cast<std::uint8_t>(id) != fw::can::fields::kPositionMsgs.back()->id) return;
   const double t_s = static_cast<double>((client_.bus().now() - started_).count()) * 1e-6;
   ring_.push(scope_sample(view_, t_s));
 }

@@ -1,11 +1,13 @@
 #pragma once
 // One scope sample: the latest value of every telemetry channel when a
-// TLM_POSITION frame arrived (the node's fastest cyclic message), named
-// with its unit as the page shows it.
+// tick's TLM_POSITION_<AXIS> frames have arrived (the node's fastest cyclic
+// message), named with its unit as the page shows it. The per-axis
+// channels come from the axis list (hal/axis.hpp), kind by kind.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 
+#include "hal/axis.hpp"
 #include "tools/can/telemetry_view.hpp"
 
 namespace tnv::serve {
@@ -15,20 +17,25 @@ struct ScopeChannel {
   const char* unit;
 };
 
-inline constexpr std::array<ScopeChannel, 12> kScopeChannels{{
-    {"pos_x_mm", "mm"},
-    {"pos_y_mm", "mm"},
-    {"following_x_um", "um"},
-    {"following_y_um", "um"},
-    {"s_x_mm_s", "mm/s"},
-    {"s_y_mm_s", "mm/s"},
-    {"d_hat_x_mm_s", "mm/s"},
-    {"d_hat_y_mm_s", "mm/s"},
-    {"dac_x_code", "code"},
-    {"dac_y_code", "code"},
+#define TNV_SCOPE_POS(a, ...) {"pos_" #a "_mm", "mm"},
+#define TNV_SCOPE_FOLLOWING(a, ...) {"following_" #a "_um", "um"},
+#define TNV_SCOPE_S(a, ...) {"s_" #a "_mm_s", "mm/s"},
+#define TNV_SCOPE_DHAT(a, ...) {"d_hat_" #a "_mm_s", "mm/s"},
+#define TNV_SCOPE_DAC(a, ...) {"dac_" #a "_code", "code"},
+inline constexpr auto kScopeChannels = std::to_array<ScopeChannel>({
+    TNV_AXES(TNV_SCOPE_POS)
+    TNV_AXES(TNV_SCOPE_FOLLOWING)
+    TNV_AXES(TNV_SCOPE_S)
+    TNV_AXES(TNV_SCOPE_DHAT)
+    TNV_AXES(TNV_SCOPE_DAC)
     {"force_n", "N"},
     {"contour_um", "um"},
-}};
+});
+#undef TNV_SCOPE_POS
+#undef TNV_SCOPE_FOLLOWING
+#undef TNV_SCOPE_S
+#undef TNV_SCOPE_DHAT
+#undef TNV_SCOPE_DAC
 
 struct ScopeSample {
   std::uint64_t seq = 0;  // given by the ring: strictly increasing

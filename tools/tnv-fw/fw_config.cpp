@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "drivers/storage/regular_file.hpp"
+#include "firmware/can/can_id.hpp"
 #include "emulator/toml_type_name.hpp"
 
 namespace tnv::fwd {
@@ -154,7 +155,7 @@ ConfigResult parse_daemon_config(std::string_view text, const std::string& sourc
   if (const toml::table* can = r.table(root, "can"); can != nullptr) {
     r.only(*can, "can.", {"interface", "node_id"});
     r.text(*can, "can.", "interface", c.can.interface_name);
-    r.integer(*can, "can.", "node_id", 1, 63, c.can.node_id);
+    r.integer(*can, "can.", "node_id", 1, tnv::fw::can::kMaxNodeId, c.can.node_id);
     if (!r.failed() && c.can.interface_name.rfind("unix:", 0) != 0 && c.can.interface_name.size() > 15) {
       r.fail(*can->get("interface"), "can.interface", "a network interface name has at most 15 characters");
     }

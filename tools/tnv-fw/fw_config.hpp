@@ -23,7 +23,7 @@ struct BoardConfig {
 
 struct CanConfig {
   std::string interface_name = "can0";  // or "unix:/path" (CAN frames over a Unix datagram socket)
-  std::uint8_t node_id = 1;             // 1..63; overrides the stored parameter image's id
+  std::uint8_t node_id = 1;             // 1..31; overrides the stored parameter image's id
 };
 
 struct RtConfig {

@@ -203,7 +203,7 @@ int run_capture(const CaptureOptions& o, Session& session, Report& report) {
       can_host::download_capture(client, Micros{static_cast<long long>(o.wait_s * 1e6)}, std::ref(progress));
   const can_host::CaptureTable* table = &d.table;
   const can_host::CaptureStatus& status = d.status;
-  const std::uint32_t mask = d.channel_mask;
+  const can::ChannelMask mask = d.channel_mask;
   const double upload_s = d.upload_s;
   char buf[200];
   std::snprintf(buf, sizeof buf, "captured %u samples x %u channels (%.3f s), %zu bytes uploaded in %.2f s, %llu re-requests",

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "firmware/can/can_id.hpp"
 #include "tools/cli/cli_frame.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -30,7 +31,7 @@ int main(int argc, char** argv) {
   CLI::Option* iface = app.add_option("--iface", g.iface, "SocketCAN interface (e.g. can0), or unix:PATH for tnv-fw's Unix-socket CAN link");
   CLI::Option* emu = app.add_flag("--emu", g.emu, "the in-process emulated controller (real firmware, emulated table)");
   iface->excludes(emu);
-  app.add_option("--node", g.node, "node id")->check(CLI::Range(1, 63))->capture_default_str();
+  app.add_option("--node", g.node, "node id")->check(CLI::Range(1, int{tnv::fw::can::kMaxNodeId}))->capture_default_str();
   app.add_option("--host-id", g.host_id,
                  "this host's id on the bus (request tags, its own staged parameter set, command ownership: taken "
                  "when a command needs it, released at the end)")

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 #include "tools/can/telemetry_csv.hpp"
 #include "tools/can/telemetry_view.hpp"
 #include "tools/tnvctl/commands.hpp"
@@ -33,16 +34,29 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
                         l.heartbeat ? fw::to_string(l.heartbeat->state) : "?",
                         l.heartbeat ? fw::to_string(l.heartbeat->fault) : "?");
   auto room = [&] { return sizeof buf - static_cast<std::size_t>(std::min<int>(n, sizeof buf - 1)); };
-  if (l.position_mm)
-    n += std::snprintf(buf + n, room(), "  x %10.6f y %10.6f mm", (*l.position_mm)[0], (*l.position_mm)[1]);
-  if (l.following_mm)
-    n += std::snprintf(buf + n, room(), "  following x %8.2f y %8.2f um", (*l.following_mm)[0] * 1e3,
-                       (*l.following_mm)[1] * 1e3);
+  // Per axis, from the axis list: "  x 1.000000 y 2.000000 mm".
+  if (l.position_mm) {
+    for (const hal::Axis a : hal::kAxes)
+      n += std::snprintf(buf + n, room(), "%s%s %10.6f", a == hal::kAxes[0] ? "  " : " ", hal::axis_label(a),
+                         (*l.position_mm)[hal::index(a)]);
+    n += std::snprintf(buf + n, room(), " mm");
+  }
+  if (l.following_mm) {
+    n += std::snprintf(buf + n, room(), "  following");
+    for (const hal::Axis a : hal::kAxes)
+      n += std::snprintf(buf + n, room(), " %s %8.2f", hal::axis_label(a), (*l.following_mm)[hal::index(a)] * 1e3);
+    n += std::snprintf(buf + n, room(), " um");
+  }
   if (l.contour) n += std::snprintf(buf + n, room(), "  contour %7.3f um", l.contour->contour_um);
-  if (l.s_mm_s) n += std::snprintf(buf + n, room(), "  s %8.4f %8.4f", (*l.s_mm_s)[0], (*l.s_mm_s)[1]);
-  if (l.output)
-    n += std::snprintf(buf + n, room(), "  dac %5.0f %5.0f  force %7.2f N", l.output->dac_code[0],
-                       l.output->dac_code[1], l.output->force_n);
+  if (l.s_mm_s) {
+    n += std::snprintf(buf + n, room(), "  s");
+    for (const double v : *l.s_mm_s) n += std::snprintf(buf + n, room(), " %8.4f", v);
+  }
+  if (l.output) {
+    n += std::snprintf(buf + n, room(), "  dac");
+    for (const double v : l.output->dac_code) n += std::snprintf(buf + n, room(), " %5.0f", v);
+    n += std::snprintf(buf + n, room(), "  force %7.2f N", l.output->force_n);
+  }
   if (l.arsc)
     n += std::snprintf(buf + n, room(), "  force %7.2f / %7.2f N  override %5.3f  G %6.3f N*s/mm", l.arsc->force_n,
                        l.arsc->force_ref_n, l.arsc->feed_override, l.arsc->cutting_gain_n_per_mm_s);

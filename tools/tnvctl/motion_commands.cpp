@@ -132,18 +132,16 @@ int run_jog(const JogOptions& o, Session& session, Report& report) {
                   o.axis.c_str(), deadman_s);
     throw BadInput(buf);
   }
-  const double sx = axis == 0 ? o.speed_mm_s : 0.0;
-  const double sy = axis == 1 ? o.speed_mm_s : 0.0;
   const Micros start = client.bus().now();
   const Micros end = start + micros(o.duration_s);
   int frames = 0;
   for (Micros next = start; client.bus().now() < end; next += micros(period_s)) {
-    client.jog(sx, sy);
+    client.jog(axis, o.speed_mm_s);
     ++frames;
     const Micros wait = std::min(next + micros(period_s), end) - client.bus().now();
     if (wait > Micros{0}) client.pump(wait);
   }
-  client.jog(0.0, 0.0);
+  client.jog(axis, 0.0);
   ++frames;
   char buf[160];
   std::snprintf(buf, sizeof buf, "jog %s at %g mm/s for %g s: %d JOG frames, one every %.0f ms", o.axis.c_str(),
@@ -228,7 +226,7 @@ int run_home(const std::string& axis_name, Session& session, Report& report) {
   const can_host::Heartbeat hb = finish(client, "home " + axis_name, bound_s, report);
   report.data["homed"] = nlohmann::json::object();
   for (const hal::Axis a : hal::kAxes)
-    report.data["homed"][hal::axis_label(a)] = (hb.errors & can::kHbHomedBits[hal::index(a)]) != 0;
+    report.data["homed"][hal::axis_label(a)] = hb.homed(a);
   if (const auto why = can_host::not_homed_message(hb, axis)) throw RunFailed(*why);
   return kExitOk;
 }

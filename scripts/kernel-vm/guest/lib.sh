@@ -117,8 +117,9 @@ frame_field() {
   for ((i = len - 1; i >= 0; i--)); do v=$(( (v << 8) | 16#${hex:$(( (off + i) * 2 )):2} )); done
   echo "$v"
 }
-hb_id() { printf '%03X' $(( (0x0C << 6) | NODE )); }
-fault_id() { printf '%03X' $(( (0x01 << 6) | NODE )); }
+# Identifier = message id << 5 | node id (protocol 5, firmware/can/can_id.hpp).
+hb_id() { printf '%03X' $(( (0x0C << 5) | NODE )); }
+fault_id() { printf '%03X' $(( (0x01 << 5) | NODE )); }
 last_heartbeat() {  # one HEARTBEAT frame, "ID#HEX"
   candump -L -n 1 -T 10000 "vcan0,$(hb_id):7FF" | awk '{print $3}'
 }
@@ -236,14 +237,14 @@ case_heartbeat() {
   local n
   n=$(wc -l < "$out")
   ((n == 3)) || { fail "candump saw $n HEARTBEAT frames (id $(hb_id)) in 10 s, expected 3"; return 1; }
-  local t0 t2 f
-  # HEARTBEAT.tick_low: byte 7, the low 8 bits of the tick count.
-  f=$(sed -n 1p "$out" | awk '{print $3}'); t0=$(frame_field "$f" 7 1)
-  f=$(sed -n 3p "$out" | awk '{print $3}'); t2=$(frame_field "$f" 7 1)
-  (( ((t2 - t0) & 0xFF) > 0 )) || { fail "tick_low did not advance between heartbeats ($t0 -> $t2)"; return 1; }
+  local f a
+  # HEARTBEAT.axes (byte 7): nothing is homed after a start.
+  f=$(sed -n 1p "$out" | awk '{print $3}'); a=$(frame_field "$f" 7 1)
+  (( (a & 0x0F) == 0 )) || { fail "HEARTBEAT.axes says an axis is homed after a start ($a)"; return 1; }
   local s0 s2
   s0=$(sed -n 1p "$out" | tr -d '()' | awk '{print $1}'); s2=$(sed -n 3p "$out" | tr -d '()' | awk '{print $1}')
-  metric "heartbeat ticks_per_2_frames_mod_256=$(( (t2 - t0) & 0xFF )) seconds=$(awk -v a="$s0" -v b="$s2" 'BEGIN{printf "%.3f", b-a}')"
+  awk -v a="$s0" -v b="$s2" 'BEGIN{exit !(b > a)}' || { fail "the heartbeats' timestamps do not advance ($s0 -> $s2)"; return 1; }
+  metric "heartbeat seconds_per_2_frames=$(awk -v a="$s0" -v b="$s2" 'BEGIN{printf "%.3f", b-a}')"
   cat "$out"
 }
 
@@ -252,7 +253,7 @@ case_param_roundtrip() {
   ctl params set tlm.heartbeat_ms=50 || { fail "tnvctl params set tlm.heartbeat_ms=50 failed"; return 1; }
   # Read back raw: PARAM_REQUEST tag 0x11 (host 1, sequence 1) get 0x0020 -> PARAM_REPLY tag 0x11, ok, id
   # 0x0020, value 50.
-  expect_reply 241 '^241#1100200032000000$' 201#1100200000000000 || return 1
+  expect_reply 121 '^121#1100200032000000$' 101#1100200000000000 || return 1
   local got
   got=$(ctl params get tlm.heartbeat_ms) || { fail "tnvctl params get failed"; return 1; }
   echo "  tnvctl params get: $got"
@@ -264,19 +265,19 @@ case_malformed() {
   local ok=0
   # Byte 0 of every request is its tag (host id << 4 | sequence), echoed in byte 0 of the reply.
   # PARAM_REQUEST of 2 bytes: bad_length (6).
-  expect_reply 241 '^241#1206' 201#1200 || ok=1
+  expect_reply 121 '^121#1206' 101#1200 || ok=1
   # get of an unknown parameter id 0x7FFF: unknown_id (1), value 0.
-  expect_reply 241 '^241#1301FF7F00000000$' 201#1300FF7F00000000 || ok=1
+  expect_reply 121 '^121#1301FF7F00000000$' 101#1300FF7F00000000 || ok=1
   # stage tlm.heartbeat_ms = 70000 (range 0..60000): out_of_range (3), value unchanged (50).
-  expect_reply 241 '^241#1403200032000000$' 201#1402200070110100 || ok=1
+  expect_reply 121 '^121#1403200032000000$' 101#1402200070110100 || ok=1
   # stage motion.circle_ramp_s = NaN: not_finite (4).
-  expect_reply 241 '^241#15043000' 201#150230000000C07F || ok=1
+  expect_reply 121 '^121#15043000' 101#150230000000C07F || ok=1
   # COMMAND with code 0xFF: COMMAND_ACK tag 16, request 2, code FF, unknown_command (7).
-  expect_reply 0C1 '^0C1#1602FF07' 081#16FF000000000000 || ok=1
+  expect_reply 061 '^061#1602FF07' 041#16FF000000000000 || ok=1
   # get from host 0 (anonymous): no_host (17 = 0x11).
-  expect_reply 241 '^241#0011' 201#0000200000000000 || ok=1
+  expect_reply 121 '^121#0011' 101#0000200000000000 || ok=1
   # enable from host 2 while nobody holds command ownership: not_owner (18 = 0x12).
-  expect_reply 0C1 '^0C1#21020012' 081#2100000000000000 || ok=1
+  expect_reply 061 '^061#21020012' 041#2100000000000000 || ok=1
   return $ok
 }
 

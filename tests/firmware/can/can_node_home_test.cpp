@@ -26,9 +26,10 @@ fw::can::NodeSettings heartbeat_settings() {
   return s;
 }
 
-// The errors field of the last heartbeat over 20 ticks (frames the node
-// queued before are sent first: the last one is from these ticks).
-std::uint32_t heartbeat_errors(NodeBench& b) {
+// The axes field (homed and shaper bits) of the last heartbeat over 20
+// ticks (frames the node queued before are sent first: the last one is from
+// these ticks).
+std::uint32_t heartbeat_axes(NodeBench& b) {
   std::vector<hal::CanFrame> hb;
   for (int i = 0; i < 20; ++i) {
     b.step();
@@ -38,7 +39,7 @@ std::uint32_t heartbeat_errors(NodeBench& b) {
     ADD_FAILURE() << "no heartbeat within 20 ticks";
     return 0;
   }
-  return raw_of(hb.back(), MessageId::heartbeat, "errors");
+  return raw_of(hb.back(), MessageId::heartbeat, "axes");
 }
 
 // Walks X's cycle with the inputs: switch on at the start (the search ends
@@ -57,7 +58,8 @@ TEST(CanNodeHome, HomesOnTheIndexAfterTheSwitchAndTheHeartbeatSaysSo) {
   s.firmware.axis[0].homing.position_mm = -5.0;
   NodeBench b(s);
   b.port.drain();
-  EXPECT_EQ(heartbeat_errors(b) & (fw::can::kHbHomedX | fw::can::kHbHomedY), 0u) << "not homed at power-up";
+  EXPECT_EQ(heartbeat_axes(b) & (fw::can::hb_homed_bit(hal::Axis::x) | fw::can::hb_homed_bit(hal::Axis::y)), 0u)
+      << "not homed at power-up";
   b.port.drain();
   EXPECT_EQ(home_ack(b.reply(command(kNode, CommandCode::home, 0))), ErrorCode::ok);
   EXPECT_TRUE(b.task.homing());
@@ -70,9 +72,9 @@ TEST(CanNodeHome, HomesOnTheIndexAfterTheSwitchAndTheHeartbeatSaysSo) {
   // The table stands at count 0, 24 counts above the index: home + 24 q.
   const double q = s.firmware.axis[0].count_mm;
   EXPECT_NEAR(b.task.last_record().axis[0].position_mm, -5.0 + 24.0 * q, 1e-9);
-  const std::uint32_t bits = heartbeat_errors(b);
-  EXPECT_NE(bits & fw::can::kHbHomedX, 0u);
-  EXPECT_EQ(bits & fw::can::kHbHomedY, 0u);
+  const std::uint32_t bits = heartbeat_axes(b);
+  EXPECT_NE(bits & fw::can::hb_homed_bit(hal::Axis::x), 0u);
+  EXPECT_EQ(bits & fw::can::hb_homed_bit(hal::Axis::y), 0u);
 }
 
 TEST(CanNodeHome, AllHomesXThenY) {

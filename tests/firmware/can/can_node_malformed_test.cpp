@@ -187,8 +187,11 @@ std::vector<Case> cases() {
   add(c, "circle radius NaN", circle(kNode, kNaN, 2.0), MessageId::command_ack, ErrorCode::not_finite, {}, 3u);
   add(c, "circle feed 0", circle(kNode, 6.0, 0.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
   add(c, "circle radius -6", circle(kNode, -6.0, 2.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 3u);
-  add(c, "jog x beyond its limit", jog(kNode, -300.0, 0.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
-  add(c, "jog y beyond its limit", jog(kNode, 0.0, 300.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 3u);
+  add(c, "jog x beyond its limit", jog(kNode, 0, -300.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
+  add(c, "jog y beyond its limit", jog(kNode, 1, 300.0), MessageId::command_ack, ErrorCode::out_of_range, {}, 2u);
+  add(c, "jog of an axis beyond the list", jog(kNode, static_cast<std::uint8_t>(hal::kAxisCount), 1.0),
+      MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
+  add(c, "jog of axis 255", jog(kNode, 255, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
   // Hosts: tag 0 is anonymous, and commands need command ownership (the bench's host 1 holds it).
   add(c, "enable from host 0", with_tag(command(kNode, CommandCode::enable), 0x01), MessageId::command_ack,
       ErrorCode::no_host);
@@ -220,7 +223,7 @@ std::vector<Case> cases() {
                ErrorCode::not_ready);
   // Frames the node must ignore silently.
   add(c, "set for node 2", param_request(2, ParamOp::set, gamma, f32_raw(0.2f)), std::nullopt);
-  add(c, "enable for node 63", command(63, CommandCode::enable), std::nullopt);
+  add(c, "enable for node 31", command(31, CommandCode::enable), std::nullopt);
   add(c, "e-stop for node 2", frame_to(MessageId::estop, 2), std::nullopt);
   add(c, "heartbeat id sent to the node", frame_to(MessageId::heartbeat, kNode), std::nullopt);
   add(c, "command_ack id sent to the node", frame_to(MessageId::command_ack, kNode), std::nullopt);

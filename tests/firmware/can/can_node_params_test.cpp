@@ -163,12 +163,12 @@ TEST(CanNodeParams, ShaperParametersConfigureTheTasksShaper) {
   b.step(2);
   EXPECT_TRUE(b.task.shaper(hal::Axis::x).shaping());
   EXPECT_NEAR(b.task.shaper_delay_s(hal::Axis::x), 0.5 / 40.0, 1e-3) << "ZVD at 40 Hz delays by half a period";
-  EXPECT_NE(b.node->heartbeat_errors() & fw::can::kHbShaperX, 0);
+  EXPECT_NE(b.node->heartbeat_axes() & fw::can::hb_shaper_bit(hal::Axis::x), 0);
   // Shaped axes stay in step: y runs x's shaper too, but its own is off.
   EXPECT_TRUE(b.task.shaper(hal::Axis::y).shaping());
   EXPECT_EQ(b.task.shaper_delay_s(hal::Axis::y), b.task.shaper_delay_s(hal::Axis::x));
   EXPECT_FALSE(b.task.shaper_active(hal::Axis::y));
-  EXPECT_EQ(b.node->heartbeat_errors() & fw::can::kHbShaperY, 0);
+  EXPECT_EQ(b.node->heartbeat_axes() & fw::can::hb_shaper_bit(hal::Axis::y), 0);
 }
 
 }  // namespace

@@ -271,9 +271,9 @@ TEST(NodeTelemetry, SendsWhatIsDueAndTheHeartbeatsStickyBitsClearOnAcceptedMotio
   EXPECT_NE(bits & fw::can::kHbHostTimeout, 0);
   b.telemetry.send(due);
   const std::vector<hal::CanFrame> out = b.sent();
-  ASSERT_EQ(out.size(), 2u);
+  ASSERT_EQ(out.size(), 1u + hal::kAxisCount) << "the heartbeat and a position frame per axis";
   EXPECT_EQ(only(out, MessageId::heartbeat).size(), 1u);
-  EXPECT_EQ(only(out, MessageId::tlm_position).size(), 1u);
+  EXPECT_EQ(only(out, MessageId::tlm_position_x).size(), 1u);
   EXPECT_EQ(raw_of(only(out, MessageId::heartbeat)[0], MessageId::heartbeat, "errors"), bits);
   b.telemetry.motion_accepted();
   EXPECT_EQ(b.telemetry.heartbeat_errors() & fw::can::kHbHostTimeout, 0);

@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "firmware/can/node_fields.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
 #include "tests/firmware/can/node_bench.hpp"
 
@@ -16,7 +17,8 @@ using fw::can::MessageId;
 
 TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount) {
   fw::can::TelemetryScheduler s;
-  fw::can::TelemetryPeriods p{100, 10, 0, 3, 0, 1, 4};
+  // heartbeat, position, sliding, output, contour, arsc, spindle
+  fw::can::TelemetryPeriods p{100, 10, 3, 0, 1, 4, 0};
   std::map<int, int> sent;
   for (int k = 0; k < 1000; ++k) {
     const std::uint32_t due = s.advance(p, 1);
@@ -24,10 +26,11 @@ TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount
   }
   EXPECT_EQ(sent[0], 10);
   EXPECT_EQ(sent[1], 100);
-  EXPECT_EQ(sent[2], 0) << "0 = off";
-  EXPECT_EQ(sent[3], 333);
-  EXPECT_EQ(sent[5], 1000);
-  EXPECT_EQ(sent[6], 250) << "TLM_ARSC";
+  EXPECT_EQ(sent[2], 333);
+  EXPECT_EQ(sent[3], 0) << "0 = off";
+  EXPECT_EQ(sent[4], 1000);
+  EXPECT_EQ(sent[5], 250) << "TLM_ARSC";
+  EXPECT_EQ(sent[6], 0) << "TLM_SPINDLE off";
   p.heartbeat_ms = 50;
   int hb = 0;
   for (int k = 0; k < 49; ++k) hb += s.advance(p, 1) & 1u;
@@ -37,7 +40,7 @@ TEST(TelemetryScheduler, EachMessageEveryPeriodAndAChangedPeriodRestartsItsCount
 
 TEST(CanNodeTelemetry, FrameCountsOverTwoSecondsMatchThePeriods) {
   fw::can::NodeSettings s = quiet_settings();
-  s.telemetry = {100, 10, 20, 50, 7, 0, 0};
+  s.telemetry = {100, 10, 50, 7, 0, 0, 0};
   NodeBench b(s);
   b.port.drain();
   constexpr int kTicks = 2000;
@@ -47,10 +50,14 @@ TEST(CanNodeTelemetry, FrameCountsOverTwoSecondsMatchThePeriods) {
     for (const hal::CanFrame& f : b.port.drain()) ++count[static_cast<MessageId>(fw::can::message_of(f.id))];
   }
   EXPECT_EQ(count[MessageId::heartbeat], kTicks / 100);
-  EXPECT_EQ(count[MessageId::tlm_position], kTicks / 10);
-  EXPECT_EQ(count[MessageId::tlm_following], kTicks / 20);
-  EXPECT_EQ(count[MessageId::tlm_sliding_x], kTicks / 50);
-  EXPECT_EQ(count[MessageId::tlm_sliding_y], kTicks / 50);
+  // One frame per axis of each per-axis message, every period.
+  for (const hal::Axis a : hal::kAxes) {
+    SCOPED_TRACE(hal::axis_label(a));
+    const auto i = hal::index(a);
+    EXPECT_EQ(count[static_cast<MessageId>(fw::can::fields::kPositionMsgs[i]->id)], kTicks / 10);
+    EXPECT_EQ(count[static_cast<MessageId>(fw::can::fields::kSlidingMsgs[i]->id)], kTicks / 50);
+    EXPECT_EQ(count[static_cast<MessageId>(fw::can::fields::kDacMsgs[i]->id)], kTicks / 7);
+  }
   EXPECT_EQ(count[MessageId::tlm_output], kTicks / 7);
   EXPECT_EQ(count[MessageId::tlm_contour], 0) << "off";
   EXPECT_EQ(b.node->counters().tx_dropped, 0u);
@@ -83,8 +90,8 @@ TEST(CanNodeTelemetry, HeartbeatCarriesStateFaultAndTick) {
   EXPECT_EQ(sent_at % 10, 0u) << "every 10th tick";
   EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "state"), static_cast<std::uint32_t>(fw::MotionState::holding));
   EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "fault"), 0u);
-  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "tick_low"), sent_at & 0xFFFFu);
   EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "errors"), 0u);
+  EXPECT_EQ(raw_of(hb[0], MessageId::heartbeat, "axes"), 0u) << "nothing homed, no shaper on";
 }
 
 // The error bits of the next heartbeat from the node (at most 20 ticks away).
@@ -114,10 +121,16 @@ TEST(CanNodeTelemetry, PositionTelemetryIsTheEncoderPositionInNanometres) {
   NodeBench b(s);
   b.board.counts = {480, 0xFFFF - 23};  // +0.2 mm and -24 counts (16-bit wrap)
   b.step();
-  const std::vector<hal::CanFrame> pos = only(b.port.drain(), MessageId::tlm_position);
-  ASSERT_EQ(pos.size(), 1u);
-  EXPECT_NEAR(value_of(pos[0], MessageId::tlm_position, "x"), 6.2, 1e-6);
-  EXPECT_NEAR(value_of(pos[0], MessageId::tlm_position, "y"), -24 * 10.0 / 24000.0, 1e-6);
+  const std::vector<hal::CanFrame> out = b.port.drain();
+  const std::vector<hal::CanFrame> pos_x = only(out, MessageId::tlm_position_x);
+  const std::vector<hal::CanFrame> pos_y = only(out, MessageId::tlm_position_y);
+  ASSERT_EQ(pos_x.size(), 1u);
+  ASSERT_EQ(pos_y.size(), 1u);
+  EXPECT_NEAR(value_of(pos_x[0], MessageId::tlm_position_x, "position"), 6.2, 1e-6);
+  EXPECT_NEAR(value_of(pos_x[0], MessageId::tlm_position_x, "following"),
+              b.task.last_record().axis[0].reference_mm - b.task.last_record().axis[0].position_mm, 1e-6)
+      << "the same tick's following error in the same frame";
+  EXPECT_NEAR(value_of(pos_y[0], MessageId::tlm_position_y, "position"), -24 * 10.0 / 24000.0, 1e-6);
 }
 
 TEST(CanNodeTelemetry, FaultEventIsSentOnceAndAgainOnlyAfterAClearAndANewFault) {
@@ -159,7 +172,7 @@ TEST(CanNodeTelemetry, FaultEventIsSentOnceAndAgainOnlyAfterAClearAndANewFault) 
 // then the heartbeats, telemetry last.
 TEST(CanNodeTelemetry, RepliesAndHeartbeatsLeaveBeforeTelemetryAndAFullQueueDropsTelemetryFirst) {
   fw::can::NodeSettings s = quiet_settings();
-  s.telemetry = {1, 1, 1, 0, 0, 0, 0};
+  s.telemetry = {1, 1, 0, 0, 0, 0, 0};
   NodeBench b(s);
   b.port.tx_capacity = 1;
   b.step(40);  // 40 heartbeats and 80 telemetry frames offered; 48 places in the queue
@@ -185,7 +198,7 @@ TEST(CanNodeTelemetry, RepliesAndHeartbeatsLeaveBeforeTelemetryAndAFullQueueDrop
   std::size_t first_telemetry = out.size();
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (is(out[i], MessageId::heartbeat)) last_heartbeat = i;
-    if (fw::can::message_of(out[i].id) >= static_cast<std::uint8_t>(MessageId::tlm_position))
+    if (fw::can::message_of(out[i].id) >= static_cast<std::uint8_t>(MessageId::tlm_output))  // the first telemetry id
       first_telemetry = std::min(first_telemetry, i);
   }
   EXPECT_GT(last_heartbeat, 0u) << "no heartbeat came out";

@@ -184,11 +184,12 @@ inline hal::CanFrame move(std::uint8_t node, std::uint8_t axis, double speed_mm_
   set_value(f, MessageId::move, "distance", distance_mm);
   return f;
 }
-inline hal::CanFrame jog(std::uint8_t node, double speed_x_mm_s, double speed_y_mm_s) {
+// JOG for one axis (the frame names it).
+inline hal::CanFrame jog(std::uint8_t node, std::uint8_t axis, double speed_mm_s) {
   using fw::can::MessageId;
   hal::CanFrame f = frame_to(MessageId::jog, node);
-  set_value(f, MessageId::jog, "speed_x", speed_x_mm_s);
-  set_value(f, MessageId::jog, "speed_y", speed_y_mm_s);
+  set_raw(f, MessageId::jog, "axis", axis);
+  set_value(f, MessageId::jog, "speed", speed_mm_s);
   return f;
 }
 

@@ -23,7 +23,7 @@ TickRecord at(std::uint64_t tick, MotionState state, std::int64_t motion_tick = 
 
 TEST(CaptureRecorder, ImmediateRecordsUntilTheBufferIsFull) {
   auto rec = std::make_unique<CaptureRecorder>();
-  rec->arm({kAllCaptureChannels, CaptureTrigger::immediate, 1});
+  rec->arm({channel_mask_low(kAllCaptureChannels), channel_mask_high(kAllCaptureChannels), CaptureTrigger::immediate, 1});
   EXPECT_EQ(rec->state(), CaptureState::recording);
   const std::uint32_t capacity = kCaptureCapacityWords / static_cast<std::uint32_t>(kCaptureChannels.size());
   ASSERT_EQ(rec->capacity_samples(), capacity);
@@ -40,7 +40,7 @@ TEST(CaptureRecorder, ImmediateRecordsUntilTheBufferIsFull) {
 
 TEST(CaptureRecorder, TheImageIsLittleEndianWordsAndZeroPastTheEnd) {
   auto rec = std::make_unique<CaptureRecorder>();
-  rec->arm({1u << 0, CaptureTrigger::immediate, 1});
+  rec->arm({1u << 0, 0, CaptureTrigger::immediate, 1});
   rec->on_tick(at(0x123, MotionState::holding), {});  // pos_x = 0.291 mm = 291000 nm = 0x000470B8
   rec->abort();
   ASSERT_EQ(rec->image_bytes(), 4u);
@@ -55,7 +55,7 @@ TEST(CaptureRecorder, FaultTriggerStartsAtTheTickTheFaultLatches) {
   auto rec = std::make_unique<CaptureRecorder>();
   rec->on_tick(at(1, MotionState::faulted), {});  // an old fault, before arming
   rec->on_tick(at(2, MotionState::disabled), {});
-  rec->arm({(1u << 0) | (1u << 17), CaptureTrigger::fault, 2});
+  rec->arm({(1u << 0) | (1u << 17), 0, CaptureTrigger::fault, 2});
   for (std::uint64_t t = 3; t < 10; ++t) rec->on_tick(at(t, MotionState::moving, static_cast<std::int64_t>(t)), {});
   EXPECT_EQ(rec->state(), CaptureState::armed);
   for (std::uint64_t t = 10; t < 15; ++t) rec->on_tick(at(t, MotionState::faulted), {});
@@ -68,7 +68,7 @@ TEST(CaptureRecorder, FaultTriggerStartsAtTheTickTheFaultLatches) {
 
 TEST(CaptureRecorder, MotionTriggerSpansDwellAndMotionAndEndsAfterIt) {
   auto rec = std::make_unique<CaptureRecorder>();
-  rec->arm({1u << 16, CaptureTrigger::motion, 1});
+  rec->arm({1u << 16, 0, CaptureTrigger::motion, 1});
   rec->on_tick(at(1, MotionState::holding), {});
   EXPECT_EQ(rec->state(), CaptureState::armed);
   rec->on_tick(at(2, MotionState::dwell), {});
@@ -79,7 +79,7 @@ TEST(CaptureRecorder, MotionTriggerSpansDwellAndMotionAndEndsAfterIt) {
   ASSERT_EQ(rec->samples(), 3u);
   EXPECT_EQ(static_cast<std::int32_t>(rec->words()[0]), -1);
   EXPECT_EQ(rec->words()[2], 1u);
-  rec->arm({1u << 16, CaptureTrigger::motion, 1});
+  rec->arm({1u << 16, 0, CaptureTrigger::motion, 1});
   EXPECT_EQ(rec->samples(), 0u) << "arming drops the old image";
 }
 
