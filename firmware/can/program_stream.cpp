@@ -157,6 +157,7 @@ ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, s
       stopping();
       return to_error(task_.stop());
     case CommandCode::program_status: send_status(); return ErrorCode::ok;
+    case CommandCode::cycle_start: return to_error(task_.cycle_start());
     default: break;
   }
   return ErrorCode::unknown_command;

@@ -17,7 +17,8 @@ namespace tnv::fw::can {
 //    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
 // 4: the spindle (SPINDLE, TLM_SPINDLE, spindle.* and tlm.spindle_ms, error spindle_running; SEGMENT kinds
 //    rapid and rapid_exact_stop).
-inline constexpr std::uint32_t kProtocolVersion = 4;
+// 5: program pauses (SEGMENT kind pause, PROGRAM_STATUS state paused, COMMAND cycle_start).
+inline constexpr std::uint32_t kProtocolVersion = 5;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
@@ -77,7 +78,8 @@ TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
   X(end_program)          /* the last segment has been sent: running the queue dry is then the end, not an underrun */ \
   X(abort_program)        /* controlled stop on the path; the queue and a half-received segment are dropped */ \
   X(program_status)       /* answer, and send a PROGRAM_STATUS now */ \
-  X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */
+  X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */ \
+  X(cycle_start)          /* the program goes on from the pause it rests at (PROGRAM_STATUS paused); not_ready otherwise */
 
 TNV_LISTED_ENUM(CommandCode, TNV_COMMAND_CODES)
 
@@ -139,7 +141,8 @@ TNV_LISTED_ENUM(BoreOp, TNV_BORE_OPS)
   X(stopping)  /* braking on the path after abort / stop */ \
   X(starved)   /* underrun: at rest on the path until elements arrive */ \
   X(done)      /* ran its queue dry after end_program */ \
-  X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */
+  X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */ \
+  X(paused)    /* at rest at a program pause (SEGMENT kind pause: M0, M1, M6) until COMMAND cycle_start */
 
 TNV_LISTED_ENUM(ProgramState, TNV_PROGRAM_STATES)
 

@@ -34,7 +34,7 @@ bool chord_of(const PlanePoint& start_mm, const PlanePoint& end_mm, Chord& c) no
 
 WireKind wire_kind(const motion::Segment& s) noexcept {
   switch (s.kind) {
-    case SegmentKind::dwell: return WireKind::dwell;
+    case SegmentKind::dwell: return s.pause ? WireKind::pause : WireKind::dwell;
     case SegmentKind::arc_cw: return s.exact_stop ? WireKind::arc_cw_exact_stop : WireKind::arc_cw;
     case SegmentKind::arc_ccw: return s.exact_stop ? WireKind::arc_ccw_exact_stop : WireKind::arc_ccw;
     case SegmentKind::line: break;
@@ -77,6 +77,10 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   write_raw(out.head, kSegmentTag, tag);
   const WireKind kind = wire_kind(s);
   write_raw(out.head, kSegmentKind, static_cast<std::uint32_t>(kind));
+  if (kind == WireKind::pause) {
+    out.end_mm = start_mm;
+    return nullptr;
+  }
   if (kind == WireKind::dwell) {
     // A dwell that rounds to no time at all would be refused by the queue as bad_dwell.
     if (!write(out.head, kSegmentX, s.dwell_s) || read_raw(out.head, kSegmentX) == 0 || read(out.head, kSegmentX) < 0.0)
@@ -110,6 +114,10 @@ bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
 
 bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
                     motion::Segment& out) noexcept {
+  if (head.kind == WireKind::pause) {
+    out = motion::pause_here();
+    return true;
+  }
   if (head.kind == WireKind::dwell || tail == nullptr) {
     out = motion::dwell_for(head.dwell_s);
     return head.kind == WireKind::dwell;

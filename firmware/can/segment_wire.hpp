@@ -32,10 +32,11 @@ enum class WireKind : std::uint8_t {
   arc_ccw_exact_stop,
   rapid,             // a line that is a rapid (G0): it does not wait for the spindle (motion/segment.hpp)
   rapid_exact_stop,
+  pause,             // a program pause (M0, M1, M6): no fields, no tail (motion/segment.hpp Segment::pause)
 };
-inline constexpr std::uint8_t kWireKindCount = 9;
+inline constexpr std::uint8_t kWireKindCount = 10;
 
-constexpr bool wire_kind_has_tail(WireKind k) noexcept { return k != WireKind::dwell; }
+constexpr bool wire_kind_has_tail(WireKind k) noexcept { return k != WireKind::dwell && k != WireKind::pause; }
 
 // The offset of an arc's centre from the chord's midpoint, in the chord's frame.
 struct ChordCentre {

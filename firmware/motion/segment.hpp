@@ -34,6 +34,12 @@ struct Segment {
   // followed by a feed move ends at rest (the queue makes it an exact
   // stop), so the feed move can wait for the spindle there.
   bool rapid = false;
+  // A dwell that is a program pause (M0, M1, M6's manual tool change): the
+  // path point comes to rest at it (the element before it ends at rest, as
+  // before any dwell) and it stays at the front of the queue, the motion
+  // core paused, until the producer releases it
+  // (MotionInterpolator::release_pause()). dwell_s is 0.
+  bool pause = false;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
 };
@@ -69,6 +75,14 @@ constexpr Segment dwell_for(double dwell_s, std::uint32_t tag = 0) noexcept {
   return s;
 }
 
+constexpr Segment pause_here(std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = SegmentKind::dwell;
+  s.pause = true;
+  s.tag = tag;
+  return s;
+}
+
 // Why the queue refused a segment (the queue is then unchanged).
 enum class SegmentRefusal : std::uint8_t {
   none = 0,
@@ -81,7 +95,7 @@ enum class SegmentRefusal : std::uint8_t {
   feed_not_positive = 7,
   feed_above_limit = 8,    // feed above what the axis speed limits allow on this element
   outside_workspace = 9,   // end point outside the soft limits
-  bad_dwell = 10,          // dwell time <= 0 or too long
+  bad_dwell = 10,          // dwell time <= 0 or too long (a pause's not 0)
   bad_ramp = 11,           // ramp_s negative, on a dwell, or its two ramps longer than the element
 };
 

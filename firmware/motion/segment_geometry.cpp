@@ -65,11 +65,13 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   SegmentGeometry g;
   g.kind = segment.kind;
   g.start_mm = start_mm;
+  if (segment.pause && segment.kind != SegmentKind::dwell) return SegmentRefusal::bad_kind;  // a pause is a dwell
   switch (segment.kind) {
     case SegmentKind::dwell: {
       if (!std::isfinite(segment.dwell_s) || !std::isfinite(segment.ramp_s)) return SegmentRefusal::not_finite;
       if (segment.ramp_s != 0.0) return SegmentRefusal::bad_ramp;
-      if (segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s) return SegmentRefusal::bad_dwell;
+      if (segment.pause ? segment.dwell_s != 0.0 : segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s)
+        return SegmentRefusal::bad_dwell;
       g.end_mm = start_mm;
       out = g;
       return SegmentRefusal::none;

@@ -160,6 +160,12 @@ CommandStatus TickTask::feed_hold(bool hold) noexcept {
   return CommandStatus::ok;
 }
 
+CommandStatus TickTask::cycle_start() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (!program_running()) return CommandStatus::busy;
+  return motion_.release_pause() ? CommandStatus::ok : CommandStatus::not_paused;
+}
+
 CommandStatus TickTask::set_feed_override(double ratio) noexcept {
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (!std::isfinite(ratio) || ratio < 0.0 || ratio > motion::kMaxFeedOverride) return CommandStatus::invalid;

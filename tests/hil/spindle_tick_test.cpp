@@ -237,6 +237,46 @@ TEST(SpindleTick, ParametersChangeOnlyWhileTheSpindleIsStoppedAndStill) {
   EXPECT_FALSE(rig->task.spindle().commanded_on()) << "a parameter change never starts it";
 }
 
+TEST(SpindleTick, AProgramPauseLeavesTheSpindleTurning) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  push(*rig, motion::pause_here());
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  int t = 0;
+  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
+  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  run(*rig, 2000);
+  EXPECT_TRUE(rig->task.spindle().commanded_on()) << "M0/M1/M6 do not stop the spindle";
+  EXPECT_TRUE(really_at_speed(*rig, kRpm)) << spindle_rpm(*rig) << " rpm";
+  EXPECT_FALSE(table_moving(*rig));
+  ASSERT_EQ(rig->task.cycle_start(), fw::CommandStatus::ok);
+  ASSERT_GT(ticks_until_moving(*rig, 50), 0) << "at speed: the feed after the pause starts at once";
+}
+
+TEST(SpindleTick, AfterAPauseWithTheSpindleRestartedTheFeedWaitsForAtSpeed) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  push(*rig, motion::pause_here());
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  int t = 0;
+  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
+  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  run(*rig, 500);  // the reference rests from the pause's first tick; the table settles behind it
+  ASSERT_FALSE(table_moving(*rig));
+  // During the pause (a manual tool change, say) the operator starts the spindle, and continues at once.
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  ASSERT_EQ(rig->task.cycle_start(), fw::CommandStatus::ok);
+  const int onset = ticks_until_moving(*rig, 5000);
+  ASSERT_GT(onset, 0) << "the feed move never started";
+  EXPECT_GT(onset, 600) << "the ramp alone takes 600 ticks";
+  EXPECT_TRUE(really_at_speed(*rig, kRpm)) << "the table moved with the spindle at " << spindle_rpm(*rig) << " rpm";
+}
+
 TEST(SpindleTick, ASpeedChangeWhileCuttingHoldsTheFeedUntilTheNewSpeed) {
   auto rig = holding_rig();
   ASSERT_TRUE(rig);

@@ -18,6 +18,12 @@ void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options) {
                   "the block delete switch: on skips the lines that start with '/' (LinuxCNC's default), off runs them")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  command
+      .add_option("--optional-stop", options.optional_stop,
+                  "the optional stop switch: on makes M1 pause a machine run as M0 does (LinuxCNC's default), off "
+                  "runs through it; the canon calls are the same either way")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
 }
 
 bool load_gcode_setup(const GcodeSetupOptions& options, gcode::CanonSetup& setup, std::string& error) {
@@ -25,6 +31,7 @@ bool load_gcode_setup(const GcodeSetupOptions& options, gcode::CanonSetup& setup
   if (!options.var_file.empty() && !gcode::load_var_file(options.var_file, setup, error)) return false;
   setup.subroutine_path = options.subroutine_path;
   setup.block_delete = options.block_delete != "off";
+  setup.optional_stop = options.optional_stop != "off";
   return true;
 }
 

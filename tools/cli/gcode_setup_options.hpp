@@ -1,7 +1,7 @@
 #pragma once
 // The options every command that runs a G-code program takes, as `tnvctl
 // gcode canon` takes them: --tool-table, --var-file, --subroutine-path,
-// --block-delete (tnvctl gcode canon, tnvctl run, tnv-hil path). Built as tnv_gcode_cli
+// --block-delete, --optional-stop (tnvctl gcode canon, tnvctl run, tnv-hil path). Built as tnv_gcode_cli
 // (tools/CMakeLists.txt): the G-code library itself needs no CLI11.
 #include <string>
 #include <vector>
@@ -21,6 +21,9 @@ struct GcodeSetupOptions {
   // The operator's block delete switch: "on" skips the lines that start
   // with '/', as LinuxCNC does by default; "off" runs them.
   std::string block_delete = "on";
+  // The optional stop switch: "on" makes M1 pause a machine run (tnvctl
+  // run, tnv-hil path) as M0 does, LinuxCNC's default; "off" runs through it.
+  std::string optional_stop = "on";
 };
 
 // `options` must outlive the parse.

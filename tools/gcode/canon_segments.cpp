@@ -68,11 +68,21 @@ void CanonSegmentSink::convert(const CanonCall& call) {
       if (m.value > 0.0) add(fw::motion::dwell_for(m.value, tag));
       break;
     case Kind::feed_rate: feed_mm_min_ = m.value; break;
-    case Kind::tool_change: ++program_.tool_changes; break;
+    case Kind::tool_change:
+      // A manual change: the program pauses for the operator. The interpreter
+      // applies the new length (G43) from the next move, as LinuxCNC does.
+      ++program_.tool_changes;
+      add_pause(tag, PauseReason::tool_change, static_cast<int>(m.value));
+      break;
     case Kind::spindle_on: ++program_.spindle_starts; break;
     case Kind::coolant_on: ++program_.coolant_starts; break;
     case Kind::pause:
-      throw Refusal("program stop (M0/M1): a streamed program does not pause; run the parts as programs of their own");
+      if (m.value == 1.0 && !options_.canon.optional_stop) {
+        ++program_.optional_stops_skipped;
+        break;
+      }
+      add_pause(tag, m.value == 1.0 ? PauseReason::optional_stop : PauseReason::program_stop, 0);
+      break;
     case Kind::end: program_.ended = true; break;
   }
 }
@@ -91,6 +101,11 @@ void CanonSegmentSink::add(const Segment& segment) {
   program_.geometry.push_back(g);
   at_[0] = g.end_mm[0];
   at_[1] = g.end_mm[1];
+}
+
+void CanonSegmentSink::add_pause(std::uint32_t tag, PauseReason reason, int tool) {
+  program_.pauses.push_back({program_.segments.size(), reason, tool});
+  add(fw::motion::pause_here(tag));
 }
 
 void CanonSegmentSink::operator()(const CanonCall& call) {

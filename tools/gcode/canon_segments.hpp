@@ -6,10 +6,11 @@
 // Refused, with the line: a move that changes machine Z (a Z word, with a
 // tool length offset in force or not; a G17 canned cycle; rigid tapping), an
 // arc outside G17 (the
-// machine has X and Y only), a probe move (no probe input), a G5.1 spline,
-// and M0/M1 (a stream does not pause). Counted and not sent: tool changes
-// (the tool's length applies to Z, fine while Z does not move), spindle
-// starts and coolant (the table has neither).
+// machine has X and Y only), a probe move (no probe input) and a G5.1
+// spline. Program pauses (Segment::pause, GcodeProgram::pauses): M0, M1
+// while the optional stop switch is on (CanonSetup::optional_stop), and M6
+// (a manual tool change; the tool's length applies to Z, fine while Z does
+// not move). Counted and not sent: spindle starts and coolant.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -37,6 +38,7 @@ class CanonSegmentSink {
   void convert(const CanonCall& call);  // throws the refusal (canon_segments.cpp)
   void check_z(const std::array<double, 3>& end) const;
   void add(const fw::motion::Segment& segment);
+  void add_pause(std::uint32_t tag, PauseReason reason, int tool);
 
   struct Refused {
     int line = 0;

@@ -806,7 +806,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     comp_column_ = m->column;
     comp_flush_here();
     if (m->code == 0) emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
-    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
+    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", valued(CanonMotion::Kind::pause, 1.0));
     else program_end(m->code == 30);
   }
 }

@@ -43,11 +43,22 @@ std::string count_of(std::size_t n, const char* what) {
 
 }  // namespace
 
+const char* to_string(PauseReason reason) noexcept {
+  switch (reason) {
+    case PauseReason::program_stop: return "program stop (M0)";
+    case PauseReason::optional_stop: return "optional stop (M1)";
+    case PauseReason::tool_change: return "tool change (M6)";
+  }
+  return "?";
+}
+
 std::string summary_text(const GcodeProgram& p) {
   char time[64];
   std::snprintf(time, sizeof time, "%.3f s", p.programmed_time_s());
   std::string s = count_of(p.lines_run, "line") + " run, " + count_of(p.segments.size(), "segment") + ", " +
                   count_of(p.tool_changes, "tool change") + ", programmed cycle time " + time;
+  if (!p.pauses.empty()) s += ", " + count_of(p.pauses.size(), "pause");
+  if (p.optional_stops_skipped > 0) s += ", " + count_of(p.optional_stops_skipped, "optional stop") + " skipped (switch off)";
   if (p.spindle_starts + p.coolant_starts > 0)
     s += "; not sent (this table has no spindle and no coolant): " + count_of(p.spindle_starts, "spindle start") +
          ", " + count_of(p.coolant_starts, "coolant start");

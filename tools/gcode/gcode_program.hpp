@@ -33,12 +33,28 @@ struct GcodeOptions {
   CanonSetup canon{};
 };
 
+// Why a program pauses (a Segment::pause): the operator continues it.
+enum class PauseReason : std::uint8_t {
+  program_stop,   // M0 (and G88's stop at the bottom of the bore)
+  optional_stop,  // M1 with the optional stop switch on
+  tool_change,    // M6: a manual tool change; the new tool's length applies from the next move
+};
+const char* to_string(PauseReason reason) noexcept;
+
+struct ProgramPause {
+  std::size_t segment = 0;  // index into GcodeProgram::segments
+  PauseReason reason = PauseReason::program_stop;
+  int tool = 0;  // tool_change: the tool now in the spindle
+};
+
 struct GcodeProgram {
   std::vector<fw::motion::Segment> segments;           // tag = source line
   std::vector<fw::motion::SegmentGeometry> geometry;   // one per segment, with its start point
   bool ended = false;                                  // M2, M30 or the closing % seen
   std::size_t lines_run = 0;                           // CanonResult::lines_run
   std::size_t tool_changes = 0;                        // M6 (its length may apply to Z while Z does not move)
+  std::vector<ProgramPause> pauses;                    // in program order: M0, M1 (switch on), M6
+  std::size_t optional_stops_skipped = 0;              // M1 with the optional stop switch off
   // Calls this machine has nothing to do with (no spindle, no coolant):
   // counted and reported, not sent.
   std::size_t spindle_starts = 0;  // M3, M4
