@@ -28,7 +28,7 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   feed_gate_open_ = true;
   gate_waiting_ = false;
   stopping_ = false;
-  release_pause_ = false;
+  release_front_ = false;
   program_open_ = false;
   last_phase_ = FollowerPhase::drained;
   state_ = MotionState::idle;
@@ -47,10 +47,24 @@ bool MotionInterpolator::front_pause() const noexcept {
   return !queue_.empty() && queue_.at(queue_.head_seq()).segment.pause;
 }
 
+bool MotionInterpolator::front_action() const noexcept {
+  return !queue_.empty() && is_program_action(queue_.at(queue_.head_seq()).segment);
+}
+
 bool MotionInterpolator::release_pause() noexcept {
   if (state_ != MotionState::paused) return false;
-  release_pause_ = true;
+  release_front_ = true;
   return true;
+}
+
+const Segment* MotionInterpolator::spindle_change_due() const noexcept {
+  if (release_front_ || stopping_ || hold_ || queue_.empty()) return nullptr;
+  const Segment& front = queue_.at(queue_.head_seq()).segment;
+  return front.spindle != SpindleChange::none && at_rest() ? &front : nullptr;
+}
+
+void MotionInterpolator::spindle_change_done() noexcept {
+  if (spindle_change_due() != nullptr) release_front_ = true;
 }
 
 SegmentRefusal MotionInterpolator::push(const Segment& segment) noexcept {
@@ -158,9 +172,9 @@ MotionReference MotionInterpolator::tick() noexcept {
       return profiled_tick();
     }
   }
-  if (release_pause_) {
-    release_pause_ = false;
-    if (front_pause() && !stopping_) {
+  if (release_front_) {
+    release_front_ = false;
+    if (front_action() && !stopping_) {
       queue_.pop_front();
       ++stats_.segments_done;
     }

@@ -104,6 +104,11 @@ class MotionInterpolator {
   // (nothing changes) when not paused. A feed hold or a stop is not a pause:
   // neither is released here, and a pause is not left by resume().
   bool release_pause() noexcept;
+  // A spindle command (Segment::spindle) at the front with everything at
+  // rest, no hold and no stop: the tick task carries it out and calls
+  // spindle_change_done(), and the next tick drops it. nullptr otherwise.
+  const Segment* spindle_change_due() const noexcept;
+  void spindle_change_done() noexcept;
 
   void hold() noexcept { hold_ = true; }
   void resume() noexcept { hold_ = false; }
@@ -134,6 +139,7 @@ class MotionInterpolator {
   void update_effective_override() noexcept;
   bool front_profiled() const noexcept;
   bool front_pause() const noexcept;
+  bool front_action() const noexcept;
   void finish_profiled() noexcept;
 
   MotionLimits limits_{};
@@ -149,7 +155,7 @@ class MotionInterpolator {
   bool feed_gate_open_ = true;
   bool gate_waiting_ = false;
   bool stopping_ = false;
-  bool release_pause_ = false;  // release_pause() was asked: the pause leaves the queue at the next tick
+  bool release_front_ = false;  // release_pause() / spindle_change_done(): the front leaves the queue at the next tick
   bool program_open_ = false;
   FollowerPhase last_phase_ = FollowerPhase::drained;
   MotionState state_ = MotionState::idle;

@@ -111,8 +111,8 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
   // A segment ends at rest here: retire it (and start a dwell) before moving on.
   while (!queue.empty()) {
     const QueuedSegment& front = queue.at(queue.head_seq());
-    if (front.segment.pause) {
-      // Stays at the front until released (MotionInterpolator::release_pause()).
+    if (is_program_action(front.segment)) {
+      // Stays at the front until released (MotionInterpolator::release_pause(), spindle_change_done()).
       tag_ = front.segment.tag;
       prev_point_mm_ = point_mm_;
       speed_mm_s_ = 0.0;

@@ -316,6 +316,9 @@ class TickTask {
   void spindle_tick() noexcept;
   // A running program, circle or move ends early (stop, disable): the spindle stops (abort).
   void abort_spindle() noexcept;
+  // A program's spindle command the motion core rests at (Segment::spindle):
+  // carried out now; a start the spindle refuses (inhibited) stops the program.
+  void program_spindle_change(const motion::Segment& change) noexcept;
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
   // config homing_required and one of the axes is not homed.

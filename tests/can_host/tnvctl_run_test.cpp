@@ -139,7 +139,7 @@ TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
 // The dialect on the emulated node: a work offset from --var-file, a tool
 // from --tool-table (its M6 pauses: refused without a terminal unless
 // --resume-after-s is given), a subroutine in a file beside the program,
-// spindle and coolant counted and not sent; the report has lines,
+// the spindle sent, coolant counted and not sent; the report has lines,
 // segments, tool changes, the pause and the programmed cycle time.
 TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
   const auto state = test::state_dir("run_dialect");
@@ -165,13 +165,14 @@ TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
   EXPECT_EQ(j["pauses"][0]["tool"], 2);
   EXPECT_GE(j["paused_s"].get<double>(), 0.2);
   EXPECT_EQ(j["tool_changes"], 1);
-  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["spindle_starts"], 1);
+  EXPECT_EQ(j["spindle_commands"], 3) << "M6's stop, M3 S1000, M2's stop";
   EXPECT_EQ(j["coolant_starts_not_sent"], 1);
   EXPECT_EQ(j["lines_run"], 7 + 3) << "the program's seven lines, and the subroutine's two lines and endsub once";
-  // The M6's pause, to G54's X2 Y1 (unless the table stands there), 3 mm at 10 mm/s, the dwell, 3 mm back at
-  // the rapid feed.
+  // M6's spindle stop and pause, M3 S1000, to G54's X2 Y1 (unless the table stands there), 3 mm at 10 mm/s,
+  // the dwell, 3 mm back at the rapid feed, M2's spindle stop.
   const int segments = j["segments"].get<int>();
-  EXPECT_TRUE(segments == 4 || segments == 5) << segments;
+  EXPECT_TRUE(segments == 7 || segments == 8) << segments;
   const double tail_s = 3.0 / 10.0 + 0.2 + 3.0 / 50.0;
   EXPECT_GE(j["programmed_time_s"].get<double>(), tail_s - 1e-9);
   EXPECT_EQ(j["elements_accepted"].get<int>(), segments);

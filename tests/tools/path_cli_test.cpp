@@ -63,7 +63,7 @@ TEST(PathCli, AProgramErrorNamesLineAndColumnAndRunsNothing) {
 
 // The dialect with a tool table and a parameter file: G55's offset from
 // the .var file, tool 4 from the .tbl (the M6 pauses, and continues after
-// --resume-after-s), spindle and coolant counted and not sent; the report
+// --resume-after-s), the spindle sent, coolant counted and not sent; the report
 // has lines run, segments, tool changes, the pause and the programmed cycle time.
 TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCycleTime) {
   const std::string tbl = temp_program("tools", "T4 P4 Z20 D3\n");
@@ -75,13 +75,15 @@ TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCyc
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["tool_changes"], 1);
-  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["spindle_starts"], 1);
+  EXPECT_EQ(j["spindle_commands"], 3) << "M6's stop, M4 S500, M2's stop";
   EXPECT_EQ(j["coolant_starts_not_sent"], 1);
   // Five lines, two passes of the loop's five lines, the while line once more (false), G4 and M2.
   EXPECT_EQ(j["lines_run"], 5 + 2 * 5 + 1 + 2);
   const int segments = j["segments"].get<int>();
-  // The M6's pause, the rapid to G55's origin (none if the table stands there), two 4 mm feeds at 10 mm/s, the dwell.
-  EXPECT_TRUE(segments == 4 || segments == 5) << segments;
+  // M6's spindle stop and pause, M4 S500, the rapid to G55's origin (none if the table stands there), two 4 mm
+  // feeds at 10 mm/s, the dwell, M2's spindle stop.
+  EXPECT_TRUE(segments == 7 || segments == 8) << segments;
   EXPECT_EQ(j["program_pauses"], 1);
   ASSERT_EQ(j["pauses"].size(), 1u) << j.dump();
   EXPECT_EQ(j["pauses"][0]["line"], 2);

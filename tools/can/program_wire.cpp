@@ -89,7 +89,7 @@ std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, cons
     const SegmentGeometry& g = program.geometry[k];
     const int line = static_cast<int>(s.tag);
     bool ok = true;
-    if (s.pause) {
+    if (fw::motion::is_program_action(s)) {
       ok = b.add(s, line, 0.0);
       const auto p = std::ranges::find(program.pauses, k, &gcode::ProgramPause::segment);
       if (ok && p != program.pauses.end()) b.out.elements.back().pause = *p;

@@ -38,7 +38,9 @@ struct CanonMotion {
     dwell,        // DWELL: value = seconds
     feed_rate,    // SET_FEED_RATE: value = mm per minute
     tool_change,  // CHANGE_TOOL: value = the tool now in the spindle
-    spindle_on,   // START_SPINDLE_CLOCKWISE / _COUNTERCLOCKWISE
+    spindle_on,   // START_SPINDLE_CLOCKWISE (value 1) / _COUNTERCLOCKWISE (value -1)
+    spindle_speed,  // SET_SPINDLE_SPEED: value = rpm (G97; G96 is refused)
+    spindle_stop,   // STOP_SPINDLE_TURNING: value 1 at the program's end (M2, M30), else 0
     coolant_on,   // MIST_ON / FLOOD_ON
     pause,        // PROGRAM_STOP (M0, G88's stop): value 0; OPTIONAL_PROGRAM_STOP (M1): value 1
     end,          // PROGRAM_END (M2, M30) / FINISH (the closing %)

@@ -59,9 +59,9 @@ std::string summary_text(const GcodeProgram& p) {
                   count_of(p.tool_changes, "tool change") + ", programmed cycle time " + time;
   if (!p.pauses.empty()) s += ", " + count_of(p.pauses.size(), "pause");
   if (p.optional_stops_skipped > 0) s += ", " + count_of(p.optional_stops_skipped, "optional stop") + " skipped (switch off)";
-  if (p.spindle_starts + p.coolant_starts > 0)
-    s += "; not sent (this table has no spindle and no coolant): " + count_of(p.spindle_starts, "spindle start") +
-         ", " + count_of(p.coolant_starts, "coolant start");
+  if (p.spindle_changes > 0) s += ", " + count_of(p.spindle_changes, "spindle command");
+  if (p.coolant_starts > 0)
+    s += "; not sent (this table has no coolant): " + count_of(p.coolant_starts, "coolant start");
   return s;
 }
 

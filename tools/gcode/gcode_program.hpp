@@ -55,9 +55,9 @@ struct GcodeProgram {
   std::size_t tool_changes = 0;                        // M6 (its length may apply to Z while Z does not move)
   std::vector<ProgramPause> pauses;                    // in program order: M0, M1 (switch on), M6
   std::size_t optional_stops_skipped = 0;              // M1 with the optional stop switch off
-  // Calls this machine has nothing to do with (no spindle, no coolant):
-  // counted and reported, not sent.
-  std::size_t spindle_starts = 0;  // M3, M4
+  std::size_t spindle_starts = 0;   // M3, M4 (and a canned cycle's restarts)
+  std::size_t spindle_changes = 0;  // spindle elements sent (starts, new speeds, stops)
+  // Calls this machine has nothing to do with (no coolant): counted and reported, not sent.
   std::size_t coolant_starts = 0;  // M7, M8
   double programmed_length_mm() const noexcept;
   // Sum of length / feed over the moves (rapids at the rapid feed); dwells add their time.

@@ -21,7 +21,8 @@ nlohmann::json program_summary_json(const gcode::GcodeProgram& p) {
           {"optional_stops_skipped", p.optional_stops_skipped},
           {"programmed_time_s", p.programmed_time_s()},
           {"programmed_length_mm", p.programmed_length_mm()},
-          {"spindle_starts_not_sent", p.spindle_starts},
+          {"spindle_starts", p.spindle_starts},
+          {"spindle_commands", p.spindle_changes},
           {"coolant_starts_not_sent", p.coolant_starts}};
 }
 
