@@ -216,10 +216,26 @@ TEST(TnvctlRun, CtrlCStopsOnThePathAndExitsOne) {
   std::filesystem::remove_all(state);
 }
 
+// The run-from-line options are shared with `tnvctl gcode canon` (no device needed there).
+TEST(TnvctlRun, GcodeCanonRunsFromALineWithTheSharedOptions) {
+  const auto state = test::state_dir("canon_from");
+  const auto prog = test::write_file(state / "p.ngc", "G21 G90\nG1 X1 F100\nG1 X2\nM2\n");
+  const ToolRun r = test::tnvctl(state, "gcode canon " + prog.string() +
+                                            " --from-line 3 --machine-position 5 0 0 --approach-height 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("COMMENT(\"interpreter: run from line 3\")"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000"), std::string::npos) << "the approach to line 3's start: "
+                                                                                        << r.out;
+  const ToolRun bad = test::tnvctl(state, "gcode canon " + prog.string() + " --from-pass 2");
+  EXPECT_EQ(bad.exit_code, 2);
+  std::filesystem::remove_all(state);
+}
+
 TEST(TnvctlRun, HelpReadsLikeAManualPage) {
   const ToolRun r = test::run_tool(std::string(TNVCTL_EXE) + " run --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* section : {"G-CODE", "PAUSES", "--resume-after-s", "--optional-stop", "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
+  for (const char* section : {"G-CODE", "PAUSES", "RUN FROM LINE", "--from-line", "--resume-after-s", "--optional-stop",
+                              "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
                               "--tool-table", "--var-file", "--subroutine-path"})
     EXPECT_NE(r.out.find(section), std::string::npos) << section;
 }

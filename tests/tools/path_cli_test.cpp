@@ -141,6 +141,22 @@ TEST(PathCli, PausesAtM0AndM1AndContinuesAfterTheResumeTime) {
   std::filesystem::remove(file);
 }
 
+// --from-line N runs the program from line N (with --from-pass K for a line in a loop); the companions need it.
+TEST(PathCli, RunsFromALine) {
+  const std::string file = temp_program("fromline", "G21 G91 F600\nG1 X2\nG1 Y2\nG1 X-2\nM2\n");
+  const CliRun r = run_tnv_hil("path " + file + " --from-line 3 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  // The spindle as line 3 has it (off: a stop), the approach across to the end of line 2, then lines 3 and 4.
+  EXPECT_EQ(j["segments"], 4) << j.dump();
+  EXPECT_EQ(j["spindle_commands"], 1);
+  EXPECT_NEAR(j["programmed_length_mm"].get<double>(), 2.0 + 2.0 + 2.0, 1e-9);
+  const CliRun alone = run_tnv_hil("path " + file + " --from-pass 2");
+  EXPECT_EQ(alone.exit_code, 2) << "--from-pass without --from-line";
+  EXPECT_NE(alone.err.find("--from-line"), std::string::npos) << alone.err;
+  std::filesystem::remove(file);
+}
+
 TEST(PathCli, RefusesAMissingFileAndAPlotIntoAMissingDirectory) {
   EXPECT_EQ(run_tnv_hil("path /nonexistent/piece.ngc").exit_code, 2);
   const std::string file = temp_program("plotdir", kSmallPiece);

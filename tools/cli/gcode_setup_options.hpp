@@ -10,6 +10,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }  // namespace CLI
 
 namespace tnv::cli {
@@ -25,6 +26,20 @@ struct GcodeSetupOptions {
   // run, tnv-hil path) as M0 does, LinuxCNC's default; "off" runs through it.
   std::string optional_stop = "on";
 };
+
+// Run from line N (docs/gcode.md "Run from line"): --from-line, --from-pass,
+// --clearance-z, --approach-height, --tool-in-spindle. Where the machine
+// is comes from the caller (tnvctl gcode canon: --machine-position; a
+// machine run: where the table stands).
+struct FromLineOptions {
+  int from_line = 0;  // 0: the whole program
+  gcode::RunFromLine run_from;
+};
+
+// `options` must outlive the parse; the returned option is --from-line (for needs()).
+CLI::Option* add_from_line_options(CLI::App& command, FromLineOptions& options);
+// setup.from_line from the options (unset when --from-line is not given).
+void apply_from_line(const FromLineOptions& options, gcode::CanonSetup& setup);
 
 // `options` must outlive the parse.
 void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options);

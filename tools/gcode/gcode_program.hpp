@@ -30,6 +30,9 @@ struct GcodeOptions {
   // The tool table, parameters (.var: work offsets, G28/G30, G92) and
   // subroutine path. A program ends at the end of its file too here (no
   // M2 needed, as LinuxCNC's task runs it); Z starts at start_machine_mm[2].
+  // With canon.from_line set it runs from that line, its approach starting
+  // where the machine is (start_mm and start_machine_mm[2]: the
+  // from_line's own machine_position_mm is replaced).
   CanonSetup canon{};
 };
 

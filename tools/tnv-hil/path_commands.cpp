@@ -26,6 +26,7 @@ namespace {
 struct PathOptions {
   std::string file;
   GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
+  FromLineOptions from;     // --from-line and its companions
   std::string controller = "rdvsc";
   std::string scenario = "no-cut";
   int seeds = 1;
@@ -62,6 +63,7 @@ int run_path_command(const PathOptions& o) {
     std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
     return kExitBadInput;
   }
+  apply_from_line(o.from, options.canon);
   gcode::add_program_directory(options.canon, o.file);
   options.rapid_feed_mm_s = o.rapid_feed_mm_s;
   options.resume_after_s = o.resume_after_s;
@@ -148,6 +150,7 @@ void add_path_commands(CLI::App& app, Runner& run) {
               "its geometry");
   cmd->add_option("file", o->file, "the program (.ngc)")->required();
   add_gcode_setup_options(*cmd, o->files);
+  add_from_line_options(*cmd, o->from);
   cmd->add_option("--controller", o->controller, "pid | dvsc | rdvsc")
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();

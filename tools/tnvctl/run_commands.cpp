@@ -31,6 +31,7 @@ extern "C" void on_run_interrupt(int) { g_run_interrupted = true; }
 struct RunOptions {
   std::string file;
   cli::GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
+  cli::FromLineOptions from;     // --from-line and its companions
   std::optional<double> feed_override;
   double rapid_feed_mm_s = 50.0;
   bool no_score = false;
@@ -52,6 +53,7 @@ gcode::CanonSetup run_setup(const RunOptions& o) {
   gcode::CanonSetup setup;
   std::string error;
   if (!cli::load_gcode_setup(o.files, setup, error)) throw BadInput(error);
+  cli::apply_from_line(o.from, setup);
   gcode::add_program_directory(setup, o.file);
   return setup;
 }
@@ -263,12 +265,18 @@ constexpr const char* kRunHelp =
     "  --subroutine-path as for `tnvctl gcode canon`. This table has X and Y only: a move that changes machine Z\n"
     "  (a Z word, where G43's tool length counts; a canned cycle), an arc outside G17, a probe move, a G5.1 spline\n"
     "  are refused with their line. M0, M1 (with --optional-stop on, the default) and M6 (a manual tool change)\n"
-    "  pause the program: see PAUSES. Spindle (M3/M4) and coolant (M7/M8) are counted and not sent. The program\n"
+    "  pause the program: see PAUSES. S, M3, M4 and M5 start and stop the spindle where the program reaches\n"
+    "  them (at rest; feed moves wait for it at speed); coolant (M7/M8) is counted and not sent. The program\n"
     "  ends at M2, M30, the closing % or the end of the file.\n"
     "  Before the run: lines run, segments, tool changes and the programmed cycle time.\n\n"
     "PROGRESS\n"
     "  On stderr: the G-code line being run, the share of the program's length done, the element and the\n"
     "  underruns (the queue ran dry: the table waits at rest on the path and goes on when elements arrive).\n\n"
+    "RUN FROM LINE\n"
+    "  --from-line N starts at line N (the Nth line run: --from-pass K for a line in a loop) with the modal state\n"
+    "  the full run has there; from where the table stands the tool goes up to --clearance-z, across at rapid and\n"
+    "  down to the start, the last --approach-height mm at the feed (docs/gcode.md \"Run from line\"). A tool other\n"
+    "  than --tool-in-spindle (default none) is changed first: a pause. The spindle is started as the line has it.\n\n"
     "PAUSES\n"
     "  The table comes to rest at the pause and holds there; the spindle is left as it is. tnvctl prints the\n"
     "  line, the reason and, for M6, the tool, and waits for Enter on the terminal (COMMAND cycle_start). With\n"
@@ -302,6 +310,7 @@ void add_run_commands(CLI::App& app, ActionSlot& slot) {
   cmd->footer(kRunHelp);
   cmd->add_option("file", o->file, "RS274/NGC program")->required();
   cli::add_gcode_setup_options(*cmd, o->files);
+  cli::add_from_line_options(*cmd, o->from);
   cmd->add_option("--feed-override", o->feed_override, "path speed ratio 0..1.5, applied once the program runs");
   cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")->capture_default_str();
   cmd->add_flag("--no-score", o->no_score, "leave telemetry as it is and print no score");
