@@ -17,9 +17,10 @@ namespace tnv::fw::can {
 //    carries the motion queue's free slots in byte 5, its overrun count shrank to u8 (byte 4).
 // 4: the spindle (SPINDLE, TLM_SPINDLE, spindle.* and tlm.spindle_ms, error spindle_running; SEGMENT kinds
 //    rapid and rapid_exact_stop).
-// 5: program pauses (SEGMENT kind pause, PROGRAM_STATUS state paused, COMMAND cycle_start) and the
+// 5: per-axis telemetry (the Z axis).
+// 6: program pauses (SEGMENT kind pause, PROGRAM_STATUS state paused, COMMAND cycle_start) and the
 //    program's spindle commands (SEGMENT kinds spindle_forward, spindle_reverse, spindle_stop).
-inline constexpr std::uint32_t kProtocolVersion = 5;
+inline constexpr std::uint32_t kProtocolVersion = 6;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
