@@ -82,7 +82,8 @@ void CanNode::handle_command(const hal::CanFrame& frame) noexcept {
     case CommandCode::feed_override:
     case CommandCode::end_program:
     case CommandCode::abort_program:
-    case CommandCode::program_status: e = programs_.command(code, frame, detail); break;
+    case CommandCode::program_status:
+    case CommandCode::cycle_start: e = programs_.command(code, frame, detail); break;
   }
   if (design_.deferred()) return;  // handled again, and answered, when the shaper designs are made
   ack_.send(kCommandMsg.id, code_raw, e, detail);

@@ -14,6 +14,7 @@ constexpr ErrorCode to_error(CommandStatus s) noexcept {
     case CommandStatus::cause_present: return ErrorCode::cause_present;
     case CommandStatus::not_homed: return ErrorCode::not_homed;
     case CommandStatus::spindle_running: return ErrorCode::spindle_running;
+    case CommandStatus::not_paused: return ErrorCode::not_ready;
   }
   return ErrorCode::invalid;
 }

@@ -35,7 +35,8 @@ Refusal refusal(motion::SegmentRefusal why) noexcept {
     case SegmentRefusal::feed_not_positive: return {ErrorCode::out_of_range, &kSegmentTailMsg, &kTailFeed};
     case SegmentRefusal::feed_above_limit: return {ErrorCode::feed_above_limit, &kSegmentTailMsg, &kTailFeed};
     case SegmentRefusal::outside_workspace: return {ErrorCode::outside_workspace, &kSegmentMsg, &kSegmentX};
-    case SegmentRefusal::bad_dwell: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::bad_dwell:
+    case SegmentRefusal::bad_spindle: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentX};
     case SegmentRefusal::bad_ramp:
     case SegmentRefusal::none: break;
   }
@@ -157,6 +158,7 @@ ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, s
       stopping();
       return to_error(task_.stop());
     case CommandCode::program_status: send_status(); return ErrorCode::ok;
+    case CommandCode::cycle_start: return to_error(task_.cycle_start());
     default: break;
   }
   return ErrorCode::unknown_command;

@@ -35,7 +35,7 @@ class ProgramStream {
   bool segment(const hal::CanFrame& frame) noexcept;
   bool segment_tail(const hal::CanFrame& frame) noexcept;
   // COMMAND feed_hold, feed_resume, feed_override, end_program,
-  // abort_program and program_status (the caller answers; `detail` = index
+  // abort_program, program_status and cycle_start (the caller answers; `detail` = index
   // of the offending field).
   ErrorCode command(CommandCode code, const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
 

@@ -14,7 +14,7 @@ namespace tnv::fw::can {
 
 constexpr bool active(ProgramState s) noexcept {
   return s == ProgramState::running || s == ProgramState::holding || s == ProgramState::stopping ||
-         s == ProgramState::starved;
+         s == ProgramState::starved || s == ProgramState::paused;
 }
 
 class ProgramTracker {
@@ -44,6 +44,7 @@ class ProgramTracker {
         case motion::MotionState::holding: next = ProgramState::holding; break;
         case motion::MotionState::stopping: next = ProgramState::stopping; break;
         case motion::MotionState::starved: next = ProgramState::starved; break;
+        case motion::MotionState::paused: next = ProgramState::paused; break;
         case motion::MotionState::idle:
         case motion::MotionState::running: next = ProgramState::running; break;
       }

@@ -21,7 +21,9 @@ namespace tnv::fw::can {
 //    axis for TLM_POSITION (now with the following error; TLM_FOLLOWING and tlm.following_ms are gone),
 //    TLM_SLIDING and the DAC codes (TLM_DAC), blocks of 4 ids from 0x20; TLM_OUTPUT keeps the force; JOG names its axis; SPINDLE moved to 0x10, CAPTURE_DATA to 0x3E;
 //    HEARTBEAT byte 7 is `axes` (homed and shaper bits per axis); capture.channels_high.
-inline constexpr std::uint32_t kProtocolVersion = 5;
+// 6: program pauses (SEGMENT kind pause, PROGRAM_STATUS state paused, COMMAND cycle_start) and the
+//    program's spindle commands (SEGMENT kinds spindle_forward, spindle_reverse, spindle_stop).
+inline constexpr std::uint32_t kProtocolVersion = 6;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
@@ -81,7 +83,8 @@ TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
   X(end_program)          /* the last segment has been sent: running the queue dry is then the end, not an underrun */ \
   X(abort_program)        /* controlled stop on the path; the queue and a half-received segment are dropped */ \
   X(program_status)       /* answer, and send a PROGRAM_STATUS now */ \
-  X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */
+  X(home)                 /* homing cycle of COMMAND.axis (0 x, 1 y, 255 x then y); from enable or disable (docs/safety.md "Homing") */ \
+  X(cycle_start)          /* the program goes on from the pause it rests at (PROGRAM_STATUS paused); not_ready otherwise */
 
 TNV_LISTED_ENUM(CommandCode, TNV_COMMAND_CODES)
 
@@ -143,7 +146,8 @@ TNV_LISTED_ENUM(BoreOp, TNV_BORE_OPS)
   X(stopping)  /* braking on the path after abort / stop */ \
   X(starved)   /* underrun: at rest on the path until elements arrive */ \
   X(done)      /* ran its queue dry after end_program */ \
-  X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */
+  X(aborted)   /* stopped before its end (abort, stop, fault, host timeout, disable) */ \
+  X(paused)    /* at rest at a program pause (SEGMENT kind pause: M0, M1, M6) until COMMAND cycle_start */
 
 TNV_LISTED_ENUM(ProgramState, TNV_PROGRAM_STATES)
 

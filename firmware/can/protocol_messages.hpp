@@ -211,13 +211,17 @@ inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"kind", WireType::u8, 1, 1, "",
      "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
-     "8=rapid_exact_stop",
+     "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop",
      "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
      "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
-     "speed"},
+     "speed; a pause (M0, M1, M6) is reached at rest and holds (PROGRAM_STATUS paused) until COMMAND cycle_start, "
+     "the spindle left as it is; the spindle kinds (S, M3, M4, M5) are reached at rest and carried out there in "
+     "program order (a start while turning is a new speed or direction); dwell, pause and the spindle kinds have no "
+     "SEGMENT_TAIL"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
-     "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit)"},
-    {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for a dwell"},
+     "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit); for spindle_forward "
+     "and spindle_reverse the speed in rpm / 1000 (0.1 rpm per unit); 0 for a pause and spindle_stop"},
+    {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for the other kinds"},
 };
 inline constexpr FieldDef kSegmentTail[] = {
     {"tag", WireType::u8, 0, 1, "", "", "the tag of the SEGMENT frame this completes (a reply echoes it)"},
@@ -230,7 +234,8 @@ inline constexpr FieldDef kSegmentTail[] = {
 inline constexpr FieldDef kProgramStatus[] = {
     {"state", WireType::u8, 0, 1, "", kValueList<kProgramStateNames>,
      "program state: holding = feed hold; starved = underrun, at rest on the path until segments arrive; aborted = "
-     "stopped (abort, stop, fault, host timeout) before its end"},
+     "stopped (abort, stop, fault, host timeout) before its end; paused = at rest at a pause element (segment names "
+     "it) until COMMAND cycle_start"},
     {"free_slots", WireType::u8, 1, 1, "", "", "free slots in the motion queue"},
     {"underruns", WireType::u16, 2, 1, "", "", "times this program's queue ran dry before its end (saturates)"},
     {"segment", WireType::u24, 4, 1, "", "",

@@ -34,7 +34,14 @@ bool chord_of(const PlanePoint& start_mm, const PlanePoint& end_mm, Chord& c) no
 
 WireKind wire_kind(const motion::Segment& s) noexcept {
   switch (s.kind) {
-    case SegmentKind::dwell: return WireKind::dwell;
+    case SegmentKind::dwell:
+      switch (s.spindle) {
+        case motion::SpindleChange::forward: return WireKind::spindle_forward;
+        case motion::SpindleChange::reverse: return WireKind::spindle_reverse;
+        case motion::SpindleChange::stop: return WireKind::spindle_stop;
+        case motion::SpindleChange::none: break;
+      }
+      return s.pause ? WireKind::pause : WireKind::dwell;
     case SegmentKind::arc_cw: return s.exact_stop ? WireKind::arc_cw_exact_stop : WireKind::arc_cw;
     case SegmentKind::arc_ccw: return s.exact_stop ? WireKind::arc_ccw_exact_stop : WireKind::arc_ccw;
     case SegmentKind::line: break;
@@ -77,6 +84,17 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   write_raw(out.head, kSegmentTag, tag);
   const WireKind kind = wire_kind(s);
   write_raw(out.head, kSegmentKind, static_cast<std::uint32_t>(kind));
+  if (kind == WireKind::pause || kind == WireKind::spindle_stop) {
+    out.end_mm = start_mm;
+    return nullptr;
+  }
+  if (kind == WireKind::spindle_forward || kind == WireKind::spindle_reverse) {
+    out.end_mm = start_mm;
+    if (!write(out.head, kSegmentX, s.spindle_rpm / kSpindleRpmPerX) || read_raw(out.head, kSegmentX) == 0 ||
+        read(out.head, kSegmentX) < 0.0)
+      return &kSegmentX;
+    return nullptr;
+  }
   if (kind == WireKind::dwell) {
     // A dwell that rounds to no time at all would be refused by the queue as bad_dwell.
     if (!write(out.head, kSegmentX, s.dwell_s) || read_raw(out.head, kSegmentX) == 0 || read(out.head, kSegmentX) < 0.0)
@@ -105,11 +123,19 @@ bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
   out.kind = static_cast<WireKind>(kind);
   out.end_mm = {read(head, kSegmentX), read(head, kSegmentY)};
   out.dwell_s = read(head, kSegmentX);
+  out.spindle_rpm = read(head, kSegmentX) * kSpindleRpmPerX;
   return true;
 }
 
 bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
                     motion::Segment& out) noexcept {
+  switch (head.kind) {
+    case WireKind::pause: out = motion::pause_here(); return true;
+    case WireKind::spindle_forward: out = motion::spindle_here(motion::SpindleChange::forward, head.spindle_rpm); return true;
+    case WireKind::spindle_reverse: out = motion::spindle_here(motion::SpindleChange::reverse, head.spindle_rpm); return true;
+    case WireKind::spindle_stop: out = motion::spindle_here(motion::SpindleChange::stop, 0.0); return true;
+    default: break;
+  }
   if (head.kind == WireKind::dwell || tail == nullptr) {
     out = motion::dwell_for(head.dwell_s);
     return head.kind == WireKind::dwell;

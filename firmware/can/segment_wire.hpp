@@ -32,10 +32,22 @@ enum class WireKind : std::uint8_t {
   arc_ccw_exact_stop,
   rapid,             // a line that is a rapid (G0): it does not wait for the spindle (motion/segment.hpp)
   rapid_exact_stop,
+  pause,             // a program pause (M0, M1, M6): no fields, no tail (motion/segment.hpp Segment::pause)
+  spindle_forward,   // a program's spindle start or new speed (M3, S): x = rpm / kSpindleRpmPerX; no tail
+  spindle_reverse,   // M4
+  spindle_stop,      // M5: no fields, no tail
 };
-inline constexpr std::uint8_t kWireKindCount = 9;
+inline constexpr std::uint8_t kWireKindCount = 13;
 
-constexpr bool wire_kind_has_tail(WireKind k) noexcept { return k != WireKind::dwell; }
+// A spindle start's speed in SEGMENT.x: 1 mm of the field is 1000 rpm, so its 0.1 um step is 0.1 rpm
+// (up to 838,860 rpm).
+inline constexpr double kSpindleRpmPerX = 1000.0;
+
+constexpr bool wire_kind_has_tail(WireKind k) noexcept {
+  return k == WireKind::line || k == WireKind::arc_cw || k == WireKind::arc_ccw || k == WireKind::line_exact_stop ||
+         k == WireKind::arc_cw_exact_stop || k == WireKind::arc_ccw_exact_stop || k == WireKind::rapid ||
+         k == WireKind::rapid_exact_stop;
+}
 
 // The offset of an arc's centre from the chord's midpoint, in the chord's frame.
 struct ChordCentre {
@@ -67,8 +79,9 @@ struct SegmentFrames {
 // previous element's end_mm as sent, or where the table stands). nullptr
 // on success; otherwise the field that cannot carry the element's value
 // (out is then unspecified): an end point beyond the i24 range, a feed
-// outside 0.01..655.35 mm/s, a dwell beyond 838 s, an arc without a chord
-// or with its centre too far off the bisector.
+// outside 0.01..655.35 mm/s, a dwell beyond 838 s, a spindle speed that
+// rounds to 0 or beyond 838,860 rpm, an arc without a chord or with its
+// centre too far off the bisector.
 const FieldDef* encode_segment(const motion::Segment& segment, const motion::PlanePoint& start_mm, std::uint8_t node,
                                std::uint8_t tag, SegmentFrames& out) noexcept;
 
@@ -78,6 +91,7 @@ struct SegmentHead {
   WireKind kind = WireKind::line;
   motion::PlanePoint end_mm{};  // lines and arcs
   double dwell_s = 0.0;         // dwells
+  double spindle_rpm = 0.0;     // spindle starts
 };
 bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept;
 

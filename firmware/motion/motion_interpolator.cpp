@@ -28,6 +28,7 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   feed_gate_open_ = true;
   gate_waiting_ = false;
   stopping_ = false;
+  release_front_ = false;
   program_open_ = false;
   last_phase_ = FollowerPhase::drained;
   state_ = MotionState::idle;
@@ -40,6 +41,30 @@ void MotionInterpolator::stop() noexcept {
 
 bool MotionInterpolator::front_profiled() const noexcept {
   return !queue_.empty() && queue_.at(queue_.head_seq()).segment.profiled();
+}
+
+bool MotionInterpolator::front_pause() const noexcept {
+  return !queue_.empty() && queue_.at(queue_.head_seq()).segment.pause;
+}
+
+bool MotionInterpolator::front_action() const noexcept {
+  return !queue_.empty() && is_program_action(queue_.at(queue_.head_seq()).segment);
+}
+
+bool MotionInterpolator::release_pause() noexcept {
+  if (state_ != MotionState::paused) return false;
+  release_front_ = true;
+  return true;
+}
+
+const Segment* MotionInterpolator::spindle_change_due() const noexcept {
+  if (release_front_ || stopping_ || hold_ || queue_.empty()) return nullptr;
+  const Segment& front = queue_.at(queue_.head_seq()).segment;
+  return front.spindle != SpindleChange::none && at_rest() ? &front : nullptr;
+}
+
+void MotionInterpolator::spindle_change_done() noexcept {
+  if (spindle_change_due() != nullptr) release_front_ = true;
 }
 
 SegmentRefusal MotionInterpolator::push(const Segment& segment) noexcept {
@@ -147,6 +172,13 @@ MotionReference MotionInterpolator::tick() noexcept {
       return profiled_tick();
     }
   }
+  if (release_front_) {
+    release_front_ = false;
+    if (front_action() && !stopping_) {
+      queue_.pop_front();
+      ++stats_.segments_done;
+    }
+  }
   update_effective_override();
   const double walk_override = std::max(effective_override_, override_);
   stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, walk_override));
@@ -173,6 +205,7 @@ MotionReference MotionInterpolator::tick() noexcept {
 
   if (stopping_) state_ = MotionState::stopping;
   else if (hold_ && !queue_.empty()) state_ = MotionState::holding;
+  else if (front_pause() && at_rest()) state_ = MotionState::paused;
   else if (step.phase != FollowerPhase::drained || !at_rest()) state_ = MotionState::running;
   else state_ = program_open_ ? MotionState::starved : MotionState::idle;
 

@@ -23,6 +23,7 @@ enum class MotionState : std::uint8_t {
   holding = 2,   // feed hold: braking or at rest on the path, queue kept
   stopping = 3,  // controlled stop: braking on the path, then the queue is dropped
   starved = 4,   // the queue ran dry before the program's end: at rest on the path, resumes on push
+  paused = 5,    // at rest at a program pause (Segment::pause) until release_pause()
 };
 
 constexpr const char* to_string(MotionState s) noexcept {
@@ -32,6 +33,7 @@ constexpr const char* to_string(MotionState s) noexcept {
     case MotionState::holding: return "holding";
     case MotionState::stopping: return "stopping";
     case MotionState::starved: return "starved";
+    case MotionState::paused: return "paused";
   }
   return "?";
 }
@@ -97,6 +99,17 @@ class MotionInterpolator {
   // The last tick held a feed move at the gate (at rest or braking for it).
   bool waiting_for_feed_gate() const noexcept { return gate_waiting_; }
 
+  // A program pause at the front (Segment::pause) with everything at rest
+  // (state() paused): the next tick drops it and the program goes on. false
+  // (nothing changes) when not paused. A feed hold or a stop is not a pause:
+  // neither is released here, and a pause is not left by resume().
+  bool release_pause() noexcept;
+  // A spindle command (Segment::spindle) at the front with everything at
+  // rest, no hold and no stop: the tick task carries it out and calls
+  // spindle_change_done(), and the next tick drops it. nullptr otherwise.
+  const Segment* spindle_change_due() const noexcept;
+  void spindle_change_done() noexcept;
+
   void hold() noexcept { hold_ = true; }
   void resume() noexcept { hold_ = false; }
   // Brake on the path; once at rest, drop whatever is still queued. A
@@ -125,6 +138,8 @@ class MotionInterpolator {
   MotionReference profiled_tick() noexcept;
   void update_effective_override() noexcept;
   bool front_profiled() const noexcept;
+  bool front_pause() const noexcept;
+  bool front_action() const noexcept;
   void finish_profiled() noexcept;
 
   MotionLimits limits_{};
@@ -140,6 +155,7 @@ class MotionInterpolator {
   bool feed_gate_open_ = true;
   bool gate_waiting_ = false;
   bool stopping_ = false;
+  bool release_front_ = false;  // release_pause() / spindle_change_done(): the front leaves the queue at the next tick
   bool program_open_ = false;
   FollowerPhase last_phase_ = FollowerPhase::drained;
   MotionState state_ = MotionState::idle;

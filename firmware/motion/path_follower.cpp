@@ -111,6 +111,13 @@ FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool 
   // A segment ends at rest here: retire it (and start a dwell) before moving on.
   while (!queue.empty()) {
     const QueuedSegment& front = queue.at(queue.head_seq());
+    if (is_program_action(front.segment)) {
+      // Stays at the front until released (MotionInterpolator::release_pause(), spindle_change_done()).
+      tag_ = front.segment.tag;
+      prev_point_mm_ = point_mm_;
+      speed_mm_s_ = 0.0;
+      return {FollowerPhase::holding, tag_};
+    }
     if (front.segment.kind == SegmentKind::dwell) {
       tag_ = front.segment.tag;
       // The filter output rests for the dwell once it has caught up (taps ticks).

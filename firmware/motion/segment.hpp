@@ -14,6 +14,9 @@ using PlanePoint = std::array<double, hal::kAxisCount>;  // [x_mm, y_mm]
 
 enum class SegmentKind : std::uint8_t { line = 0, arc_cw = 1, arc_ccw = 2, dwell = 3 };
 
+// A program's spindle command (S, M3, M4, M5) carried in its place in the queue.
+enum class SpindleChange : std::uint8_t { none = 0, forward, reverse, stop };
+
 struct Segment {
   SegmentKind kind = SegmentKind::line;
   PlanePoint end_mm{};     // line and arc end point
@@ -34,9 +37,26 @@ struct Segment {
   // followed by a feed move ends at rest (the queue makes it an exact
   // stop), so the feed move can wait for the spindle there.
   bool rapid = false;
+  // A dwell that is a program pause (M0, M1, M6's manual tool change): the
+  // path point comes to rest at it (the element before it ends at rest, as
+  // before any dwell) and it stays at the front of the queue, the motion
+  // core paused, until the producer releases it
+  // (MotionInterpolator::release_pause()). dwell_s is 0.
+  bool pause = false;
+  // A dwell that is a spindle command of the program (S, M3, M4, M5): like
+  // a pause it is reached at rest and waits at the front, and the tick task
+  // carries it out (spindle_rpm for a start; a start while turning is a new
+  // speed or direction) the tick the motion core rests at it, then the
+  // program goes on (MotionInterpolator::spindle_change_due()). As
+  // LinuxCNC's task waits for motion to finish before a spindle command.
+  SpindleChange spindle = SpindleChange::none;
+  double spindle_rpm = 0.0;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
 };
+
+// An element that is not motion: a pause or a spindle command (the motion core holds it at the front).
+constexpr bool is_program_action(const Segment& s) noexcept { return s.pause || s.spindle != SpindleChange::none; }
 
 // A line or arc that cuts (not a rapid, not a dwell): what the spindle's feed gate holds.
 constexpr bool is_feed_move(const Segment& s) noexcept { return s.kind != SegmentKind::dwell && !s.rapid; }
@@ -69,6 +89,24 @@ constexpr Segment dwell_for(double dwell_s, std::uint32_t tag = 0) noexcept {
   return s;
 }
 
+constexpr Segment pause_here(std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = SegmentKind::dwell;
+  s.pause = true;
+  s.tag = tag;
+  return s;
+}
+
+// A spindle command of a program: forward or reverse at rpm, or stop (rpm ignored).
+constexpr Segment spindle_here(SpindleChange change, double rpm, std::uint32_t tag = 0) noexcept {
+  Segment s;
+  s.kind = SegmentKind::dwell;
+  s.spindle = change;
+  s.spindle_rpm = change == SpindleChange::stop ? 0.0 : rpm;
+  s.tag = tag;
+  return s;
+}
+
 // Why the queue refused a segment (the queue is then unchanged).
 enum class SegmentRefusal : std::uint8_t {
   none = 0,
@@ -81,8 +119,9 @@ enum class SegmentRefusal : std::uint8_t {
   feed_not_positive = 7,
   feed_above_limit = 8,    // feed above what the axis speed limits allow on this element
   outside_workspace = 9,   // end point outside the soft limits
-  bad_dwell = 10,          // dwell time <= 0 or too long
+  bad_dwell = 10,          // dwell time <= 0 or too long (a pause's not 0)
   bad_ramp = 11,           // ramp_s negative, on a dwell, or its two ramps longer than the element
+  bad_spindle = 12,        // a spindle start's rpm not above zero or above the spindle's max_rpm
 };
 
 constexpr const char* to_string(SegmentRefusal r) noexcept {
@@ -99,6 +138,7 @@ constexpr const char* to_string(SegmentRefusal r) noexcept {
     case SegmentRefusal::outside_workspace: return "outside_workspace";
     case SegmentRefusal::bad_dwell: return "bad_dwell";
     case SegmentRefusal::bad_ramp: return "bad_ramp";
+    case SegmentRefusal::bad_spindle: return "bad_spindle";
   }
   return "?";
 }

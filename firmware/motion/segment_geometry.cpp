@@ -65,11 +65,20 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   SegmentGeometry g;
   g.kind = segment.kind;
   g.start_mm = start_mm;
+  // A pause or a spindle command is a dwell, and one element is not both.
+  if (is_program_action(segment) && (segment.kind != SegmentKind::dwell || (segment.pause && segment.spindle != SpindleChange::none)))
+    return SegmentRefusal::bad_kind;
+  if (segment.spindle == SpindleChange::forward || segment.spindle == SpindleChange::reverse) {
+    if (!std::isfinite(segment.spindle_rpm)) return SegmentRefusal::not_finite;
+    if (segment.spindle_rpm <= 0.0) return SegmentRefusal::bad_spindle;
+  }
   switch (segment.kind) {
     case SegmentKind::dwell: {
       if (!std::isfinite(segment.dwell_s) || !std::isfinite(segment.ramp_s)) return SegmentRefusal::not_finite;
       if (segment.ramp_s != 0.0) return SegmentRefusal::bad_ramp;
-      if (segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s) return SegmentRefusal::bad_dwell;
+      if (is_program_action(segment) ? segment.dwell_s != 0.0
+                                     : segment.dwell_s <= 0.0 || segment.dwell_s > limits.max_dwell_s)
+        return SegmentRefusal::bad_dwell;
       g.end_mm = start_mm;
       out = g;
       return SegmentRefusal::none;

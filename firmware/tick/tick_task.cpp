@@ -147,6 +147,8 @@ void TickTask::moving_reference() noexcept {
     const AxisReference& a = r.axis[i];
     shape_reference(i, {a.position_mm, a.speed_mm_s}, {a.next_position_mm, a.next_speed_mm_s});
   }
+  if (source_ == Source::program)
+    if (const motion::Segment* change = motion_.spindle_change_due()) program_spindle_change(*change);
   const bool done = motion_.state() == motion::MotionState::idle && (source_ != Source::jog || jog_.idle());
   // The program's end (its stream closed and run dry; an aborted one stopped the spindle already).
   if (done && source_ == Source::program && spindle_.commanded_on()) spindle_.stop(SpindleStopCause::program_end);

@@ -64,6 +64,7 @@ enum class CommandStatus : std::uint8_t {
   cause_present,  // clear_fault refused: the fault's cause is still asserted
   not_homed,      // config homing_required and an axis the motion moves is not homed
   spindle_running,  // apply_config: new spindle parameters while the spindle turns (stop it, let it come to rest)
+  not_paused,       // cycle_start: the program is not at rest at a pause
 };
 
 constexpr const char* to_string(CommandStatus s) noexcept {
@@ -75,6 +76,7 @@ constexpr const char* to_string(CommandStatus s) noexcept {
     case CommandStatus::cause_present: return "cause_present";
     case CommandStatus::not_homed: return "not_homed";
     case CommandStatus::spindle_running: return "spindle_running";
+    case CommandStatus::not_paused: return "not_paused";
   }
   return "?";
 }
@@ -114,6 +116,12 @@ class TickTask {
   // With the force loop on (config arsc.enabled) the override given here
   // scales the loop's range (arsc_feed_source.hpp); each program starts at 1.
   CommandStatus feed_hold(bool hold) noexcept;
+  // The program goes on from the pause it rests at (a Segment::pause: M0,
+  // M1, M6). The spindle was left as it was; a feed move after the pause
+  // waits for it as every feed move does. busy without a program,
+  // not_paused while it is not at rest at a pause (still braking for it,
+  // held, stopping).
+  CommandStatus cycle_start() noexcept;
   CommandStatus set_feed_override(double ratio) noexcept;
   double operator_feed_override() const noexcept { return feed_.operator_override(); }
   // The S3 force loop as the programs' feed-override source (config arsc):
@@ -308,6 +316,9 @@ class TickTask {
   void spindle_tick() noexcept;
   // A running program, circle or move ends early (stop, disable): the spindle stops (abort).
   void abort_spindle() noexcept;
+  // A program's spindle command the motion core rests at (Segment::spindle):
+  // carried out now; a start the spindle refuses (inhibited) stops the program.
+  void program_spindle_change(const motion::Segment& change) noexcept;
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
   // config homing_required and one of the axes is not homed.

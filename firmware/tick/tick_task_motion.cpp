@@ -130,6 +130,11 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
     why = motion::SegmentRefusal::bad_ramp;
     return CommandStatus::invalid;
   }
+  if ((segment.spindle == motion::SpindleChange::forward || segment.spindle == motion::SpindleChange::reverse) &&
+      segment.spindle_rpm > spindle_.params().max_rpm) {
+    why = motion::SegmentRefusal::bad_spindle;  // the spindle would refuse it when the program reaches it
+    return CommandStatus::invalid;
+  }
   if (!running) motion_.reset_at(held_point());  // a refused first segment leaves the task holding
   why = motion_.push(segment);
   if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
@@ -158,6 +163,12 @@ CommandStatus TickTask::feed_hold(bool hold) noexcept {
   if (hold) motion_.hold();
   else motion_.resume();
   return CommandStatus::ok;
+}
+
+CommandStatus TickTask::cycle_start() noexcept {
+  if (state_ == MotionState::faulted) return CommandStatus::faulted;
+  if (!program_running()) return CommandStatus::busy;
+  return motion_.release_pause() ? CommandStatus::ok : CommandStatus::not_paused;
 }
 
 CommandStatus TickTask::set_feed_override(double ratio) noexcept {

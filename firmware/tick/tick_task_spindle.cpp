@@ -35,6 +35,19 @@ void TickTask::abort_spindle() noexcept {
   if (spindle_.commanded_on()) spindle_.stop(SpindleStopCause::abort);
 }
 
+void TickTask::program_spindle_change(const motion::Segment& change) noexcept {
+  if (change.spindle == motion::SpindleChange::stop) {
+    if (spindle_.commanded_on()) spindle_.stop(SpindleStopCause::command);  // M5: a commanded stop
+    motion_.spindle_change_done();
+    return;
+  }
+  update_spindle_inhibit();
+  const SpindleDirection d =
+      change.spindle == motion::SpindleChange::reverse ? SpindleDirection::reverse : SpindleDirection::forward;
+  if (spindle_.start(d, change.spindle_rpm) == SpindleResult::ok) motion_.spindle_change_done();
+  else stop();  // the program cannot go on as written: a controlled stop on the path, as an abort
+}
+
 // After the supervisor: a fault it latched this tick stops the spindle in
 // this very tick's outputs. The measured speed is the last period's
 // (read_timebase); a snapshot that did not advance keeps it.

@@ -137,9 +137,10 @@ TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
 }
 
 // The dialect on the emulated node: a work offset from --var-file, a tool
-// from --tool-table, a subroutine in a file beside the program, spindle
-// and coolant counted and not sent; the report has lines, segments, tool
-// changes and the programmed cycle time.
+// from --tool-table (its M6 pauses: refused without a terminal unless
+// --resume-after-s is given), a subroutine in a file beside the program,
+// the spindle sent, coolant counted and not sent; the report has lines,
+// segments, tool changes, the pause and the programmed cycle time.
 TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
   const auto state = test::state_dir("run_dialect");
   const auto tbl = test::write_file(state / "tools.tbl", "T2 P2 Z30 D6\n");
@@ -147,17 +148,31 @@ TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
   test::write_file(state / "side.ngc", "o<side> sub\n  G91 G1 X#1 F600\n  G90\no<side> endsub\nM2\n");
   const auto prog = test::write_file(state / "part.ngc",
                                      "T2 M6\nM3 S1000 M8\nG0 X0 Y0\no<side> call [3]\nG4 P0.2\nG0 X0\nM2\n");
-  ToolRun r = test::tnvctl(state, "--emu --json run " + prog.string() + " --no-score --tool-table " + tbl.string() +
-                                      " --var-file " + var.string());
+  // The M6 pauses: without a terminal to press Enter on, the run needs --resume-after-s.
+  ToolRun r = test::tnvctl(state, "--iface tnv_none0 run " + prog.string() + " --tool-table " + tbl.string() +
+                                      " --var-file " + var.string() + " </dev/null");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("the program pauses (line 1: tool change (M6)) and stdin is not a terminal"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("nothing was sent"), std::string::npos) << r.err;
+  r = test::tnvctl(state, "--emu --json run " + prog.string() + " --no-score --tool-table " + tbl.string() +
+                              " --var-file " + var.string() + " --resume-after-s 0.2 </dev/null");
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.err.find("paused at line 1: tool change (M6), tool 2: continuing in 0.2 s"), std::string::npos) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["pauses"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["pauses"][0]["line"], 1);
+  EXPECT_EQ(j["pauses"][0]["tool"], 2);
+  EXPECT_GE(j["paused_s"].get<double>(), 0.2);
   EXPECT_EQ(j["tool_changes"], 1);
-  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["spindle_starts"], 1);
+  EXPECT_EQ(j["spindle_commands"], 3) << "M6's stop, M3 S1000, M2's stop";
   EXPECT_EQ(j["coolant_starts_not_sent"], 1);
   EXPECT_EQ(j["lines_run"], 7 + 3) << "the program's seven lines, and the subroutine's two lines and endsub once";
-  // To G54's X2 Y1 (unless the table stands there), 3 mm at 10 mm/s, the dwell, 3 mm back at the rapid feed.
+  // M6's spindle stop and pause, M3 S1000, to G54's X2 Y1 (unless the table stands there), 3 mm at 10 mm/s,
+  // the dwell, 3 mm back at the rapid feed, M2's spindle stop.
   const int segments = j["segments"].get<int>();
-  EXPECT_TRUE(segments == 3 || segments == 4) << segments;
+  EXPECT_TRUE(segments == 7 || segments == 8) << segments;
   const double tail_s = 3.0 / 10.0 + 0.2 + 3.0 / 50.0;
   EXPECT_GE(j["programmed_time_s"].get<double>(), tail_s - 1e-9);
   EXPECT_EQ(j["elements_accepted"].get<int>(), segments);
@@ -201,10 +216,26 @@ TEST(TnvctlRun, CtrlCStopsOnThePathAndExitsOne) {
   std::filesystem::remove_all(state);
 }
 
+// The run-from-line options are shared with `tnvctl gcode canon` (no device needed there).
+TEST(TnvctlRun, GcodeCanonRunsFromALineWithTheSharedOptions) {
+  const auto state = test::state_dir("canon_from");
+  const auto prog = test::write_file(state / "p.ngc", "G21 G90\nG1 X1 F100\nG1 X2\nM2\n");
+  const ToolRun r = test::tnvctl(state, "gcode canon " + prog.string() +
+                                            " --from-line 3 --machine-position 5 0 0 --approach-height 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("COMMENT(\"interpreter: run from line 3\")"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000"), std::string::npos) << "the approach to line 3's start: "
+                                                                                        << r.out;
+  const ToolRun bad = test::tnvctl(state, "gcode canon " + prog.string() + " --from-pass 2");
+  EXPECT_EQ(bad.exit_code, 2);
+  std::filesystem::remove_all(state);
+}
+
 TEST(TnvctlRun, HelpReadsLikeAManualPage) {
   const ToolRun r = test::run_tool(std::string(TNVCTL_EXE) + " run --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* section : {"G-CODE", "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
+  for (const char* section : {"G-CODE", "PAUSES", "RUN FROM LINE", "--from-line", "--resume-after-s", "--optional-stop",
+                              "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
                               "--tool-table", "--var-file", "--subroutine-path"})
     EXPECT_NE(r.out.find(section), std::string::npos) << section;
 }

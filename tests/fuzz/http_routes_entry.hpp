@@ -9,7 +9,8 @@
 // none, the fuzzed text), Origin (bits 3-5: the Host's, foreign, "null",
 // none, the fuzzed text), credentials (bits 6-7: the bearer secret, the
 // session cookie, a wrong bearer, none); byte 1 = route (bits 0-4, table
-// in the entry; the last ones take the fuzzed text as path or method),
+// in the entry; 20-23 take the fuzzed text as path or method, 24-27 are
+// the Program panel's /api/program, preview, run and resume),
 // Content-Type (bits 5-6: JSON, JSON with charset, text/plain, the fuzzed
 // text), tab token (bit 7: a valid one, the fuzzed text); then the fuzzed
 // text up to the first '\n', and the body after it.

@@ -19,18 +19,18 @@ namespace motion = fw::motion;
 constexpr double kRpm = 3000.0;
 constexpr double kMovingMmS = 0.05;  // the table counts as moving above this (real speed)
 
-bool table_moving(const test::HilRig& rig) {
+bool table_moving(const ::tnv::test::HilRig& rig) {
   return std::fabs(rig.machine.truth(hal::Axis::x).speed_mm_s) > kMovingMmS ||
          std::fabs(rig.machine.truth(hal::Axis::y).speed_mm_s) > kMovingMmS;
 }
 // The spindle really turns within the firmware's default at-speed window of `rpm`.
-bool really_at_speed(const test::HilRig& rig, double rpm) {
+bool really_at_speed(const ::tnv::test::HilRig& rig, double rpm) {
   return std::fabs(rig.machine.spindle_truth().speed_rpm - rpm) <= std::max(0.05 * std::fabs(rpm), 20.0);
 }
-double spindle_rpm(const test::HilRig& rig) { return rig.machine.spindle_truth().speed_rpm; }
+double spindle_rpm(const ::tnv::test::HilRig& rig) { return rig.machine.spindle_truth().speed_rpm; }
 
-std::unique_ptr<test::HilRig> holding_rig() {
-  auto rig = std::make_unique<test::HilRig>(*emu::builtin_scenario("no-cut"));
+std::unique_ptr<::tnv::test::HilRig> holding_rig() {
+  auto rig = std::make_unique<::tnv::test::HilRig>(*emu::builtin_scenario("no-cut"));
   if (!rig->init_ok) return nullptr;
   for (int i = 0; i < 3; ++i) rig->tick();
   if (rig->task.hold_position() != fw::CommandStatus::ok) return nullptr;
@@ -38,7 +38,7 @@ std::unique_ptr<test::HilRig> holding_rig() {
   return rig;
 }
 
-motion::Segment line_by(const test::HilRig& rig, double dx_mm, double feed_mm_s, bool rapid = false) {
+motion::Segment line_by(const ::tnv::test::HilRig& rig, double dx_mm, double feed_mm_s, bool rapid = false) {
   motion::PlanePoint end = rig.task.next_segment_start_mm();
   end[0] += dx_mm;
   motion::Segment s = motion::line_to(end, feed_mm_s);
@@ -46,13 +46,13 @@ motion::Segment line_by(const test::HilRig& rig, double dx_mm, double feed_mm_s,
   return s;
 }
 
-void push(test::HilRig& rig, const motion::Segment& s) {
+void push(::tnv::test::HilRig& rig, const motion::Segment& s) {
   motion::SegmentRefusal why{};
   ASSERT_EQ(rig.task.push_segment(s, why), fw::CommandStatus::ok) << motion::to_string(why);
 }
 
 // Ticks until the table moves (or `limit`); the tick count it took.
-int ticks_until_moving(test::HilRig& rig, int limit) {
+int ticks_until_moving(::tnv::test::HilRig& rig, int limit) {
   for (int t = 1; t <= limit; ++t) {
     rig.tick();
     if (table_moving(rig)) return t;
@@ -60,7 +60,7 @@ int ticks_until_moving(test::HilRig& rig, int limit) {
   return -1;
 }
 
-void run(test::HilRig& rig, int ticks) {
+void run(::tnv::test::HilRig& rig, int ticks) {
   for (int i = 0; i < ticks; ++i) rig.tick();
 }
 
@@ -235,6 +235,95 @@ TEST(SpindleTick, ParametersChangeOnlyWhileTheSpindleIsStoppedAndStill) {
   EXPECT_EQ(rig->task.apply_config(next), fw::CommandStatus::ok);
   EXPECT_EQ(rig->task.spindle().params().accel_rpm_s, 2000.0);
   EXPECT_FALSE(rig->task.spindle().commanded_on()) << "a parameter change never starts it";
+}
+
+TEST(SpindleTick, AProgramPauseLeavesTheSpindleTurning) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  push(*rig, motion::pause_here());
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  int t = 0;
+  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
+  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  run(*rig, 2000);
+  EXPECT_TRUE(rig->task.spindle().commanded_on()) << "M0/M1/M6 do not stop the spindle";
+  EXPECT_TRUE(really_at_speed(*rig, kRpm)) << spindle_rpm(*rig) << " rpm";
+  EXPECT_FALSE(table_moving(*rig));
+  ASSERT_EQ(rig->task.cycle_start(), fw::CommandStatus::ok);
+  ASSERT_GT(ticks_until_moving(*rig, 50), 0) << "at speed: the feed after the pause starts at once";
+}
+
+TEST(SpindleTick, AfterAPauseWithTheSpindleRestartedTheFeedWaitsForAtSpeed) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  push(*rig, motion::pause_here());
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  int t = 0;
+  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
+  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  run(*rig, 500);  // the reference rests from the pause's first tick; the table settles behind it
+  ASSERT_FALSE(table_moving(*rig));
+  // During the pause (a manual tool change, say) the operator starts the spindle, and continues at once.
+  ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
+  ASSERT_EQ(rig->task.cycle_start(), fw::CommandStatus::ok);
+  const int onset = ticks_until_moving(*rig, 5000);
+  ASSERT_GT(onset, 0) << "the feed move never started";
+  EXPECT_GT(onset, 600) << "the ramp alone takes 600 ticks";
+  EXPECT_TRUE(really_at_speed(*rig, kRpm)) << "the table moved with the spindle at " << spindle_rpm(*rig) << " rpm";
+}
+
+// S / M3 / M5 in the program (Segment::spindle): the start is carried out
+// only when the table rests where the program puts it, the feed after it
+// waits for at-speed, and the stop stops it before the next move.
+TEST(SpindleTick, AProgramsSpindleCommandsRunInProgramOrderAtRest) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  const double x0 = rig->task.next_segment_start_mm()[0];
+  push(*rig, line_by(*rig, 2.0, 20.0, true));  // a rapid
+  push(*rig, motion::spindle_here(motion::SpindleChange::forward, kRpm));
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  push(*rig, motion::spindle_here(motion::SpindleChange::stop, 0.0));
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
+  double x_at_start = -1.0;
+  double x_at_stop = -1.0;
+  bool fed_slow = false;  // the table past the rapid's end with the spindle not at speed
+  bool was_on = false;
+  for (int t = 0; t < 20000 && rig->task.state() != fw::MotionState::holding; ++t) {
+    rig->tick();
+    const double ref_x = rig->task.last_record().axis[0].reference_mm;
+    const bool on = rig->task.spindle().commanded_on();
+    if (on && !was_on) x_at_start = ref_x;
+    if (!on && was_on) x_at_stop = ref_x;
+    was_on = on;
+    const double x = rig->machine.truth(hal::Axis::x).position_mm;
+    if (on && x > x0 + 2.01 && x < x0 + 3.99 && !really_at_speed(*rig, kRpm)) fed_slow = true;
+  }
+  ASSERT_EQ(rig->task.state(), fw::MotionState::holding) << "the program did not end";
+  EXPECT_NEAR(x_at_start, x0 + 2.0, 1e-6) << "the start was carried out away from its place in the program";
+  EXPECT_NEAR(x_at_stop, x0 + 4.0, 1e-6) << "the stop was carried out away from its place in the program";
+  EXPECT_FALSE(fed_slow) << "a feed move ran with the spindle below speed";
+  EXPECT_FALSE(rig->task.spindle().commanded_on());
+  EXPECT_EQ(rig->task.spindle().last_stop_cause(), fw::SpindleStopCause::command);
+  EXPECT_NEAR(rig->task.last_record().axis[0].reference_mm, x0 + 6.0, 1e-6);
+}
+
+TEST(SpindleTick, AProgramsSpindleStartAboveMaxRpmIsRefusedWhenPushed) {
+  auto rig = holding_rig();
+  ASSERT_TRUE(rig);
+  push(*rig, line_by(*rig, 2.0, 10.0));
+  const std::size_t queued = rig->task.motion().queued();
+  motion::SegmentRefusal why{};
+  const double too_fast = rig->task.spindle().params().max_rpm * 1.01;
+  EXPECT_EQ(rig->task.push_segment(motion::spindle_here(motion::SpindleChange::forward, too_fast), why),
+            fw::CommandStatus::invalid);
+  EXPECT_EQ(why, motion::SegmentRefusal::bad_spindle);
+  EXPECT_EQ(rig->task.motion().queued(), queued) << "the queue changed";
 }
 
 TEST(SpindleTick, ASpeedChangeWhileCuttingHoldsTheFeedUntilTheNewSpeed) {

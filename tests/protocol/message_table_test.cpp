@@ -192,7 +192,7 @@ TEST(MessageTable, ValueTablesMatchTheEnums) {
   expect_value_table<MotionState>(field(message(MessageId::heartbeat), "state").values, 5, "state");
   expect_value_table<ErrorCode>(field(message(MessageId::param_reply), "result").values, kErrorCodeCount, "result");
   expect_value_table<CommandCode>(field(message(MessageId::command), "code").values, kCommandCodeCount, "command");
-  expect_value_table<ProgramState>(field(message(MessageId::program_status), "state").values, 7, "program state");
+  expect_value_table<ProgramState>(field(message(MessageId::program_status), "state").values, 8, "program state");
   EXPECT_EQ(tnv::protogen::value_table(field(message(MessageId::segment), "kind").values).size(), kWireKindCount);
   expect_value_table<tnv::fw::ShaperType>(field(message(MessageId::shaper), "type").values,
                                           static_cast<int>(std::size(tnv::fw::kShaperTypes)), "shaper type");

@@ -196,6 +196,40 @@ TEST_F(ProgramPageTest, AProgramRunsToItsEndAndTheAuditTrailNamesItsDigest) {
   EXPECT_TRUE(logged);
 }
 
+// A program pause waits for the Resume of the tab with control: another
+// tab is refused (403), nothing paused is 409, and the Resume is in the
+// audit trail.
+TEST_F(ProgramPageTest, APauseWaitsForTheResumeOfTheTabWithControl) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result early = post("/api/program/resume", kTabA);
+  ASSERT_TRUE(early);
+  EXPECT_EQ(early->status, 409) << "nothing is paused: " << early->body;
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", "G21 G91 G17\nG1 X1 F600\nM0\nG1 X-1\nM2\n"}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json paused =
+      wait_program([](const nlohmann::json& s) { return !s["pause"].is_null() || s["phase"] == "ended"; }, "the pause");
+  ASSERT_FALSE(paused["pause"].is_null()) << paused.dump();
+  EXPECT_EQ(paused["pause"]["line"], 3);
+  EXPECT_EQ(paused["pause"]["reason"], "program stop (M0)");
+  EXPECT_EQ(paused["phase"], "running");
+  const httplib::Result other = post("/api/program/resume", kTabB);
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403) << other->body;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(program()["pause"].is_null()) << "it went on without the Resume";
+  const httplib::Result resume = post("/api/program/resume", kTabA);
+  ASSERT_TRUE(resume);
+  EXPECT_EQ(resume->status, 200) << resume->body;
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  EXPECT_TRUE(p["pause"].is_null());
+  int resumes_logged = 0;
+  for (const nlohmann::json& line : audit_lines())
+    if (line.value("path", "") == "/api/program/resume") ++resumes_logged;
+  EXPECT_EQ(resumes_logged, 3) << "the early one, the other tab's and the accepted one";
+}
+
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
   run_until_halfway_started();

@@ -62,9 +62,9 @@ TEST(PathCli, AProgramErrorNamesLineAndColumnAndRunsNothing) {
 }
 
 // The dialect with a tool table and a parameter file: G55's offset from
-// the .var file, tool 4 from the .tbl, spindle and coolant counted and not
-// sent; the report has lines run, segments, tool changes and the
-// programmed cycle time.
+// the .var file, tool 4 from the .tbl (the M6 pauses, and continues after
+// --resume-after-s), the spindle sent, coolant counted and not sent; the report
+// has lines run, segments, tool changes, the pause and the programmed cycle time.
 TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCycleTime) {
   const std::string tbl = temp_program("tools", "T4 P4 Z20 D3\n");
   const std::string var = temp_program("offsets", "5241 1\n5242 2\n");  // G55 at X1 Y2
@@ -75,13 +75,21 @@ TEST(PathCli, TakesAToolTableAndAVarFileAndReportsLinesSegmentsToolChangesAndCyc
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["tool_changes"], 1);
-  EXPECT_EQ(j["spindle_starts_not_sent"], 1);
+  EXPECT_EQ(j["spindle_starts"], 1);
+  EXPECT_EQ(j["spindle_commands"], 3) << "M6's stop, M4 S500, M2's stop";
   EXPECT_EQ(j["coolant_starts_not_sent"], 1);
   // Five lines, two passes of the loop's five lines, the while line once more (false), G4 and M2.
   EXPECT_EQ(j["lines_run"], 5 + 2 * 5 + 1 + 2);
   const int segments = j["segments"].get<int>();
-  // The rapid to G55's origin (none if the table stands there), two 4 mm feeds at 10 mm/s, the dwell.
-  EXPECT_TRUE(segments == 3 || segments == 4) << segments;
+  // M6's spindle stop and pause, M4 S500, the rapid to G55's origin (none if the table stands there), two 4 mm
+  // feeds at 10 mm/s, the dwell, M2's spindle stop.
+  EXPECT_TRUE(segments == 7 || segments == 8) << segments;
+  EXPECT_EQ(j["program_pauses"], 1);
+  ASSERT_EQ(j["pauses"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["pauses"][0]["line"], 2);
+  EXPECT_EQ(j["pauses"][0]["reason"], "tool change (M6)");
+  EXPECT_EQ(j["pauses"][0]["tool"], 4);
+  EXPECT_GE(j["pauses"][0]["paused_s"].get<double>(), 1.0 - 1e-9) << "the default --resume-after-s";
   EXPECT_GE(j["programmed_time_s"].get<double>(), 8.0 / 10.0 + 0.1 - 1e-9);
   EXPECT_EQ(j["cycle_time_s"].is_number(), true);
   // Without the tool table, tool 4 is unknown: a program error, nothing run.
@@ -108,6 +116,44 @@ TEST(PathCli, BlockDeleteSwitchDecidesWhetherTheSlashedLineRuns) {
   const CliRun bad = run_tnv_hil("path " + file + " --block-delete maybe");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--block-delete"), std::string::npos) << bad.err;
+  std::filesystem::remove(file);
+}
+
+// M0 pauses, M1 only with the optional stop switch on; each pause is
+// continued after --resume-after-s and printed with its line.
+TEST(PathCli, PausesAtM0AndM1AndContinuesAfterTheResumeTime) {
+  const std::string file = temp_program("pauses", "G21 G91 F600\nG1 X2\nM0\nG1 Y2\nM1\nG1 X-2\nM2\n");
+  const CliRun on = run_tnv_hil("path " + file + " --resume-after-s 0.25 --json");
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  const auto j_on = nlohmann::json::parse(on.out);
+  ASSERT_EQ(j_on["pauses"].size(), 2u) << j_on.dump();
+  EXPECT_EQ(j_on["pauses"][0]["line"], 3);
+  EXPECT_EQ(j_on["pauses"][0]["reason"], "program stop (M0)");
+  EXPECT_EQ(j_on["pauses"][1]["line"], 5);
+  EXPECT_NEAR(j_on["pauses"][1]["paused_s"].get<double>(), 0.25, 1e-9);
+  const CliRun off = run_tnv_hil("path " + file + " --optional-stop off --resume-after-s 0.25");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_NE(off.out.find("paused at line 3: program stop (M0)"), std::string::npos) << off.out;
+  EXPECT_EQ(off.out.find("line 5"), std::string::npos) << "M1 paused with the switch off: " << off.out;
+  EXPECT_NE(off.out.find("1 optional stop skipped"), std::string::npos) << off.out;
+  const CliRun bad = run_tnv_hil("path " + file + " --optional-stop maybe");
+  EXPECT_EQ(bad.exit_code, 2);
+  std::filesystem::remove(file);
+}
+
+// --from-line N runs the program from line N (with --from-pass K for a line in a loop); the companions need it.
+TEST(PathCli, RunsFromALine) {
+  const std::string file = temp_program("fromline", "G21 G91 F600\nG1 X2\nG1 Y2\nG1 X-2\nM2\n");
+  const CliRun r = run_tnv_hil("path " + file + " --from-line 3 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  // The spindle as line 3 has it (off: a stop), the approach across to the end of line 2, then lines 3 and 4.
+  EXPECT_EQ(j["segments"], 4) << j.dump();
+  EXPECT_EQ(j["spindle_commands"], 1);
+  EXPECT_NEAR(j["programmed_length_mm"].get<double>(), 2.0 + 2.0 + 2.0, 1e-9);
+  const CliRun alone = run_tnv_hil("path " + file + " --from-pass 2");
+  EXPECT_EQ(alone.exit_code, 2) << "--from-pass without --from-line";
+  EXPECT_NE(alone.err.find("--from-line"), std::string::npos) << alone.err;
   std::filesystem::remove(file);
 }
 

@@ -156,6 +156,8 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     so.interrupted = o.interrupted;
     so.progress = o.progress;
     so.before_send = o.before_send;
+    so.on_pause = o.on_pause;
+    so.resume = o.resume;
     so.on_frame = both(telemetry, o.on_frame);
     r.stream = stream_program(client, r.wire, so);
     listen();

@@ -42,6 +42,9 @@ struct ProgramRunOptions {
   std::function<bool()> interrupted;
   std::function<void(const StreamProgress&)> progress;
   std::function<void(std::size_t)> before_send;  // tests: called before element k is sent
+  // Program pauses (M0, M1, M6): StreamOptions::on_pause and resume. No resume: the run stops at the first pause.
+  std::function<void(const StreamPause&)> on_pause;
+  std::function<bool(const StreamPause&, Micros paused_for)> resume;
   FrameListener on_frame;  // every frame from the node too, besides the run's own telemetry (a live page's scope)
 };
 

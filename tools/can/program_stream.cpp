@@ -59,6 +59,7 @@ class Streamer {
       if (failure_) return stop(StreamResult::End::failed, *failure_);
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
       if (acked_ > 0 && o_.feed_override && !override_sent_) set_override();
+      handle_pause();
       while (next_ < program_.elements.size() && flight_.size() < window && room() > 0) send_next();
       const Micros now = client_.bus().now();
       if (!flight_.empty() && now - flight_.front().sent_at > client_.options().timeout) {
@@ -84,6 +85,27 @@ class Streamer {
       return stop(StreamResult::End::failed, e.what());
     }
     wait_end();
+  }
+
+  // Time the node has rested at pauses so far (the one it rests at now included).
+  Micros paused_time() const {
+    return paused_total_ + (pause_ ? client_.bus().now() - pause_since_ : Micros{0});
+  }
+
+  // A pause the node reports: told once, then cycle_start when the caller says go.
+  void handle_pause() {
+    if (!pause_ || resume_sent_ || failure_) return;
+    if (!o_.resume) {
+      failure_ = "the program paused at " + pause_text(*pause_) + " and this run does not continue pauses";
+      return;
+    }
+    if (!o_.resume(*pause_, client_.bus().now() - pause_since_)) return;
+    resume_sent_ = true;
+    try {
+      client_.command(can::CommandCode::cycle_start);
+    } catch (const RequestError& e) {
+      failure_ = "cycle start at " + pause_text(*pause_) + " refused: " + e.what();
+    }
   }
 
   void mark_filled(Micros now) {
@@ -165,6 +187,7 @@ class Streamer {
     r_.final_status = s;
     r_.underruns = s.underruns;
     if (fw::can::active(s.state)) running_ = std::max(running_, s.element);
+    track_pause(s);
     if (!o_.progress) return;
     StreamProgress p;
     p.sent = next_;
@@ -176,6 +199,28 @@ class Streamer {
     p.underruns = s.underruns;
     p.state = s.state;
     o_.progress(p);
+  }
+
+  void track_pause(const ProgramStatus& s) {
+    const bool paused = s.state == ProgramState::paused;
+    if (pause_ && (!paused || s.element != pause_->element)) {  // left it (continued, or stopped)
+      paused_total_ += client_.bus().now() - pause_since_;
+      r_.paused_s = static_cast<double>(paused_total_.count()) * 1e-6;
+      pause_.reset();
+      resume_sent_ = false;
+    }
+    if (!paused || pause_) return;
+    StreamPause p;
+    p.element = s.element;
+    if (s.element >= 1 && s.element <= program_.elements.size()) {
+      const WireElement& e = program_.elements[s.element - 1];
+      p.line = e.line;
+      p.why = e.pause;
+    }
+    pause_ = p;
+    pause_since_ = client_.bus().now();
+    r_.pauses.push_back(p);
+    if (o_.on_pause) o_.on_pause(p);
   }
 
   std::string element_text(std::size_t index) const {
@@ -206,9 +251,10 @@ class Streamer {
         last_poll = client_.bus().now();
         client_.send_raw(command_request(client_.node(), client_.next_tag(), can::CommandCode::program_status, 0, 0, 0.0));
       }
+      handle_pause();
       if (failure_) return stop(StreamResult::End::failed, *failure_);
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
-      if (client_.bus().now() > deadline)
+      if (client_.bus().now() > deadline + paused_time())
         return stop(StreamResult::End::failed, "the program did not end within " +
                                                    std::to_string(limit.count() / 1'000'000) + " s");
       client_.pump_until([this] { return over(status_.state) || failure_.has_value(); }, Micros{50'000});
@@ -260,9 +306,21 @@ class Streamer {
   bool news_ = false;
   bool filled_ = false;
   bool override_sent_ = false;
+  std::optional<StreamPause> pause_;  // the pause the node rests at
+  bool resume_sent_ = false;
+  Micros pause_since_{0};
+  Micros paused_total_{0};
 };
 
 }  // namespace
+
+std::string pause_text(const StreamPause& pause) {
+  std::string out = "line " + std::to_string(pause.line) + ": ";
+  if (!pause.why) return out + "pause (element " + std::to_string(pause.element) + ")";
+  out += gcode::to_string(pause.why->reason);
+  if (pause.why->reason == gcode::PauseReason::tool_change) out += ", tool " + std::to_string(pause.why->tool);
+  return out;
+}
 
 StreamResult stream_program(NodeClient& client, const WireProgram& program, const StreamOptions& options) {
   return Streamer(client, program, options).run();

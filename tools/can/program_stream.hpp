@@ -17,9 +17,18 @@
 // Frames from one host reach the node in the order sent (SocketCAN keeps a
 // socket's order; so does the emulated bus): a SEGMENT_TAIL always follows
 // its SEGMENT, and end_program follows the last element.
+//
+// Program pauses (M0, M1, M6: WireElement::pause): when PROGRAM_STATUS
+// says paused, on_pause is told once, and the stream waits (still asking
+// for PROGRAM_STATUS now and then, which keeps the node's host timeout
+// fed) until resume() says go: then COMMAND cycle_start. Without a
+// resume() the run ends failed at the first pause, after an abort: a
+// program never goes on by itself unless the caller asked for it.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "tools/can/node_client.hpp"
 #include "tools/can/program_wire.hpp"
@@ -37,6 +46,16 @@ struct StreamProgress {
   fw::can::ProgramState state = fw::can::ProgramState::none;
 };
 
+// A pause the node rests at.
+struct StreamPause {
+  std::uint32_t element = 0;  // 1-based
+  int line = 0;               // its G-code line
+  std::optional<gcode::ProgramPause> why;  // from the program (M0, M1, M6 and the tool)
+};
+
+// "line 12: tool change (M6), tool 3"
+std::string pause_text(const StreamPause& pause);
+
 struct StreamOptions {
   std::size_t window = 12;           // unanswered elements at most (<= 15)
   std::optional<double> feed_override;  // 0..1.5, sent once the program runs
@@ -46,6 +65,9 @@ struct StreamOptions {
   std::function<void(const StreamProgress&)> progress;  // on every PROGRAM_STATUS
   FrameListener on_frame;                             // every frame from the node (telemetry)
   std::function<void(std::size_t)> before_send;       // called before element k is sent (tests pause here)
+  std::function<void(const StreamPause&)> on_pause;   // the node rests at a pause (once per pause)
+  // Asked while paused, with the time since the pause was reported: true sends cycle_start.
+  std::function<bool(const StreamPause&, Micros paused_for)> resume;
 };
 
 struct StreamResult {
@@ -59,7 +81,9 @@ struct StreamResult {
   int min_free_slots = 255;     // lowest free slots an answer reported
   std::size_t queue_capacity = 0;
   double fill_elements_per_s = 0.0;  // elements accepted per second while the queue still had room
-  double run_s = 0.0;           // first element sent -> end of the program (bus time)
+  double run_s = 0.0;           // first element sent -> end of the program (bus time), pauses included
+  double paused_s = 0.0;        // time the node rested at pauses (bus time)
+  std::vector<StreamPause> pauses;  // in the order reached
   ProgramStatus final_status{};
   std::optional<Heartbeat> final_heartbeat;
 };

@@ -89,7 +89,11 @@ std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, cons
     const SegmentGeometry& g = program.geometry[k];
     const int line = static_cast<int>(s.tag);
     bool ok = true;
-    if (s.kind == SegmentKind::dwell) {
+    if (fw::motion::is_program_action(s)) {
+      ok = b.add(s, line, 0.0);
+      const auto p = std::ranges::find(program.pauses, k, &gcode::ProgramPause::segment);
+      if (ok && p != program.pauses.end()) b.out.elements.back().pause = *p;
+    } else if (s.kind == SegmentKind::dwell) {
       for (double left_s = s.dwell_s; ok && left_s > 0.0; left_s -= kMaxWireDwellS)
         ok = b.add(fw::motion::dwell_for(std::min(left_s, kMaxWireDwellS), s.tag), line, 0.0);
     } else if (s.kind == SegmentKind::line) {

@@ -19,6 +19,7 @@ struct WireElement {
   fw::can::SegmentFrames frames;  // tag byte 0: the streamer writes each request's tag
   int line = 0;                   // source line of the G-code (the parsed segment's tag)
   double length_mm = 0.0;         // path length of this element (0 for a dwell)
+  std::optional<gcode::ProgramPause> pause;  // a program pause: why (its segment index is the parsed program's)
 };
 
 struct WireProgram {

@@ -150,12 +150,12 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       emit("DISABLE_FEED_OVERRIDE()");
       emit("DISABLE_SPEED_OVERRIDE(0)");
       move_feed(at(a, b, bottom), column);
-      emit("STOP_SPINDLE_TURNING(0)");
-      emit("START_SPINDLE_COUNTERCLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
+      emit("START_SPINDLE_COUNTERCLOCKWISE(0)", valued(CanonMotion::Kind::spindle_on, -1.0));
       cycle_dwell();
       move_feed(at(a, b, clear), column);
-      emit("STOP_SPINDLE_TURNING(0)");
-      emit("START_SPINDLE_CLOCKWISE(0)", kind_only(CanonMotion::Kind::spindle_on));
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
+      emit("START_SPINDLE_CLOCKWISE(0)", valued(CanonMotion::Kind::spindle_on, 1.0));
       emit("ENABLE_FEED_OVERRIDE()");
       emit("ENABLE_SPEED_OVERRIDE(0)");
     } else if (motion == 850) {  // bore: in and out to R at feed, then up to the clearance
@@ -165,9 +165,9 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
     } else if (motion == 860) {  // bore: in at feed, dwell, spindle stopped out at rapid, restarted
       move_feed(at(a, b, bottom), column);
       cycle_dwell();
-      emit("STOP_SPINDLE_TURNING(0)");
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
       move_traverse(at(a, b, clear));
-      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+      emit(spindle_on, valued(CanonMotion::Kind::spindle_on, spindle_ == 3 ? 1.0 : -1.0));
     } else if (motion == 870) {
       // Back bore: the spindle stopped and oriented, through the hole at
       // the offset I J K, back over the hole's axis at the bottom, spindle
@@ -175,27 +175,27 @@ void CanonMachine::canned_cycle(const NgcBlock& block, int motion, int column) {
       // oriented, out through the hole at the offset, back over the hole.
       const double oa = a + cycle_ijk_[ia], ob = b + cycle_ijk_[ib];
       move_traverse(at(oa, ob, r));
-      emit("STOP_SPINDLE_TURNING(0)");
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
       emit(orient);
       move_traverse(at(oa, ob, bottom));
       move_traverse(at(a, b, bottom));
-      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+      emit(spindle_on, valued(CanonMotion::Kind::spindle_on, spindle_ == 3 ? 1.0 : -1.0));
       move_feed(at(a, b, middle), column);
       move_feed(at(a, b, bottom), column);
-      emit("STOP_SPINDLE_TURNING(0)");
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
       emit(orient);
       move_traverse(at(oa, ob, bottom));
       move_traverse(at(oa, ob, clear));
       move_traverse(at(a, b, clear));
-      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+      emit(spindle_on, valued(CanonMotion::Kind::spindle_on, spindle_ == 3 ? 1.0 : -1.0));
     } else if (motion == 880) {
       // Bore, dwell, spindle stopped, a program stop: the operator takes
       // the tool out by hand, and the program goes on from the clearance.
       move_feed(at(a, b, bottom), column);
       cycle_dwell();
-      emit("STOP_SPINDLE_TURNING(0)");
+      emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
       emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
-      emit(spindle_on, kind_only(CanonMotion::Kind::spindle_on));
+      emit(spindle_on, valued(CanonMotion::Kind::spindle_on, spindle_ == 3 ? 1.0 : -1.0));
     } else if (motion == 890) {  // bore: in at feed, dwell, out at feed
       move_feed(at(a, b, bottom), column);
       cycle_dwell();

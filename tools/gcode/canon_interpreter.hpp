@@ -38,9 +38,11 @@ struct CanonMotion {
     dwell,        // DWELL: value = seconds
     feed_rate,    // SET_FEED_RATE: value = mm per minute
     tool_change,  // CHANGE_TOOL: value = the tool now in the spindle
-    spindle_on,   // START_SPINDLE_CLOCKWISE / _COUNTERCLOCKWISE
+    spindle_on,   // START_SPINDLE_CLOCKWISE (value 1) / _COUNTERCLOCKWISE (value -1)
+    spindle_speed,  // SET_SPINDLE_SPEED: value = rpm (G97; G96 is refused)
+    spindle_stop,   // STOP_SPINDLE_TURNING: value 1 at the program's end (M2, M30), else 0
     coolant_on,   // MIST_ON / FLOOD_ON
-    pause,        // PROGRAM_STOP (M0) / OPTIONAL_PROGRAM_STOP (M1)
+    pause,        // PROGRAM_STOP (M0, G88's stop): value 0; OPTIONAL_PROGRAM_STOP (M1): value 1
     end,          // PROGRAM_END (M2, M30) / FINISH (the closing %)
   };
   Kind kind = Kind::other;
@@ -81,6 +83,10 @@ struct CanonSetup {
   ToolTable tools;           // lengths in millimetres (this machine's units)
   NgcParameters parameters;  // from a .var file: work offsets, G28/G30 homes, G92
   bool block_delete = true;  // '/' lines skipped (LinuxCNC's default: the switch on)
+  // The optional stop switch: M1 pauses a machine run (canon_segments.hpp)
+  // only while it is on (LinuxCNC's default). The calls are the same
+  // either way: rs274 prints OPTIONAL_PROGRAM_STOP whatever the switch.
+  bool optional_stop = true;
   // Where a call of o<name> that the program does not define finds name.ngc,
   // in order (ngc_subroutine_files.hpp); interpret_canon_file puts the
   // program's own directory first.

@@ -64,20 +64,20 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   if (tool_in_spindle_ != from.tool_in_spindle) {
     emit("SELECT_TOOL(" + std::to_string(tool_in_spindle_) + ")");
     emit("START_CHANGE()");
-    emit("STOP_SPINDLE_TURNING(0)");
+    emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
     emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")", valued(CanonMotion::Kind::tool_change, tool_in_spindle_));
   }
   if (selected_tool_ != tool_in_spindle_) emit("SELECT_TOOL(" + std::to_string(selected_tool_) + ")");
 
   // 3. Spindle and coolant as the full run has them, the spindle at speed
   // before anything moves on.
-  emit("SET_SPINDLE_SPEED(0, " + four_decimals(speed_) + ")");
+  emit("SET_SPINDLE_SPEED(0, " + four_decimals(speed_) + ")", valued(CanonMotion::Kind::spindle_speed, speed_));
   if (spindle_ == 3 || spindle_ == 4) {
     emit(spindle_ == 3 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)",
-         kind_only(CanonMotion::Kind::spindle_on));
+         valued(CanonMotion::Kind::spindle_on, spindle_ == 3 ? 1.0 : -1.0));
     emit("WAIT_SPINDLE_AT_SPEED(0)");
   } else {
-    emit("STOP_SPINDLE_TURNING(0)");
+    emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
   }
   emit(mist_ ? "MIST_ON()" : "MIST_OFF()", kind_only(mist_ ? CanonMotion::Kind::coolant_on : CanonMotion::Kind::other));
   emit(flood_ ? "FLOOD_ON()" : "FLOOD_OFF()", kind_only(flood_ ? CanonMotion::Kind::coolant_on : CanonMotion::Kind::other));

@@ -68,11 +68,35 @@ void CanonSegmentSink::convert(const CanonCall& call) {
       if (m.value > 0.0) add(fw::motion::dwell_for(m.value, tag));
       break;
     case Kind::feed_rate: feed_mm_min_ = m.value; break;
-    case Kind::tool_change: ++program_.tool_changes; break;
-    case Kind::spindle_on: ++program_.spindle_starts; break;
+    case Kind::tool_change:
+      // A manual change: the program pauses for the operator. The interpreter
+      // applies the new length (G43) from the next move, as LinuxCNC does.
+      ++program_.tool_changes;
+      add_pause(tag, PauseReason::tool_change, static_cast<int>(m.value));
+      break;
+    case Kind::spindle_on:
+      ++program_.spindle_starts;
+      spindle_direction_ = m.value < 0.0 ? -1 : 1;
+      add_spindle(tag);
+      break;
+    case Kind::spindle_speed:
+      spindle_rpm_ = m.value;
+      if (spindle_direction_ != 0) add_spindle(tag);  // a new speed while it turns
+      break;
+    case Kind::spindle_stop:
+      spindle_direction_ = 0;
+      // The program's end stops a spindle the program started; the node stops it at the end anyway.
+      if (m.value == 1.0 && (!sent_spindle_ || sent_spindle_->first == fw::motion::SpindleChange::stop)) break;
+      add_spindle(tag);
+      break;
     case Kind::coolant_on: ++program_.coolant_starts; break;
     case Kind::pause:
-      throw Refusal("program stop (M0/M1): a streamed program does not pause; run the parts as programs of their own");
+      if (m.value == 1.0 && !options_.canon.optional_stop) {
+        ++program_.optional_stops_skipped;
+        break;
+      }
+      add_pause(tag, m.value == 1.0 ? PauseReason::optional_stop : PauseReason::program_stop, 0);
+      break;
     case Kind::end: program_.ended = true; break;
   }
 }
@@ -91,6 +115,27 @@ void CanonSegmentSink::add(const Segment& segment) {
   program_.geometry.push_back(g);
   at_[0] = g.end_mm[0];
   at_[1] = g.end_mm[1];
+}
+
+// The spindle as the program has it now: on at S in its direction, or
+// stopped. M3 or M4 at S0 is a spindle turning at 0 rpm: sent as a stop,
+// and the next S starts it. A command that changes nothing is not sent.
+void CanonSegmentSink::add_spindle(std::uint32_t tag) {
+  using fw::motion::SpindleChange;
+  const bool on = spindle_direction_ != 0 && spindle_rpm_ > 0.0;
+  const SpindleChange change = !on ? SpindleChange::stop
+                               : spindle_direction_ > 0 ? SpindleChange::forward
+                                                        : SpindleChange::reverse;
+  const double rpm = on ? spindle_rpm_ : 0.0;
+  if (sent_spindle_ && sent_spindle_->first == change && sent_spindle_->second == rpm) return;
+  add(fw::motion::spindle_here(change, rpm, tag));
+  sent_spindle_ = {change, rpm};
+  ++program_.spindle_changes;
+}
+
+void CanonSegmentSink::add_pause(std::uint32_t tag, PauseReason reason, int tool) {
+  program_.pauses.push_back({program_.segments.size(), reason, tool});
+  add(fw::motion::pause_here(tag));
 }
 
 void CanonSegmentSink::operator()(const CanonCall& call) {

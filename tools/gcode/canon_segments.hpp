@@ -6,14 +6,18 @@
 // Refused, with the line: a move that changes machine Z (a Z word, with a
 // tool length offset in force or not; a G17 canned cycle; rigid tapping), an
 // arc outside G17 (the
-// machine has X and Y only), a probe move (no probe input), a G5.1 spline,
-// and M0/M1 (a stream does not pause). Counted and not sent: tool changes
-// (the tool's length applies to Z, fine while Z does not move), spindle
-// starts and coolant (the table has neither).
+// machine has X and Y only), a probe move (no probe input) and a G5.1
+// spline. Program pauses (Segment::pause, GcodeProgram::pauses): M0, M1
+// while the optional stop switch is on (CanonSetup::optional_stop), and M6
+// (a manual tool change; the tool's length applies to Z, fine while Z does
+// not move). Spindle commands (S, M3, M4, M5, and the stops of M6 and the
+// program's end) become spindle elements (Segment::spindle) in program
+// order. Counted and not sent: coolant (the table has none).
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "tools/gcode/canon_interpreter.hpp"
 #include "tools/gcode/gcode_program.hpp"
@@ -37,6 +41,8 @@ class CanonSegmentSink {
   void convert(const CanonCall& call);  // throws the refusal (canon_segments.cpp)
   void check_z(const std::array<double, 3>& end) const;
   void add(const fw::motion::Segment& segment);
+  void add_pause(std::uint32_t tag, PauseReason reason, int tool);
+  void add_spindle(std::uint32_t tag);
 
   struct Refused {
     int line = 0;
@@ -46,6 +52,11 @@ class CanonSegmentSink {
   std::array<double, 3> at_;  // machine coordinates, mm
   const GcodeOptions& options_;
   double feed_mm_min_ = 0.0;
+  int spindle_direction_ = 0;  // 1 M3, -1 M4, 0 stopped (M5, M6, the program's end)
+  double spindle_rpm_ = 0.0;   // the last S
+  // The last spindle command sent; none yet: the first is sent whatever it is (the
+  // spindle may turn from before the program).
+  std::optional<std::pair<fw::motion::SpindleChange, double>> sent_spindle_;
   GcodeProgram program_;
   std::optional<Refused> refused_;
 };

@@ -471,7 +471,7 @@ void CanonMachine::program_end(bool m30) {
   feed_ = 0.0;
   emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
   spindle_ = 5;
-  emit("STOP_SPINDLE_TURNING(0)");
+  emit("STOP_SPINDLE_TURNING(0)", valued(CanonMotion::Kind::spindle_stop, 1.0));  // 1: the program's end
   emit("SET_SPINDLE_MODE(0 0.0000)");
   if (mist_) emit("MIST_OFF()");
   if (flood_) emit("FLOOD_OFF()");
@@ -561,7 +561,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (block.has('s')) {
     if (block.value('s') < 0.0) throw NgcError(block.column('s'), "negative spindle speed S");
     speed_ = block.value('s');
-    emit("SET_SPINDLE_SPEED(0, " + fixed(speed_, 4) + ")");
+    emit("SET_SPINDLE_SPEED(0, " + fixed(speed_, 4) + ")", valued(CanonMotion::Kind::spindle_speed, speed_));
   }
   if (block.has('t')) {
     const int t = static_cast<int>(block.value('t'));
@@ -574,7 +574,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (m_by_group[6]) {  // M6
     comp_refuse(comp_side_ != 0, m_by_group[6]->column, "change tools");
     emit("START_CHANGE()");
-    emit("STOP_SPINDLE_TURNING(0)");
+    emit("STOP_SPINDLE_TURNING(0)", kind_only(CanonMotion::Kind::spindle_stop));
     spindle_ = 5;
     tool_in_spindle_ = selected_tool_;
     emit("CHANGE_TOOL(" + std::to_string(tool_in_spindle_) + ")", valued(CanonMotion::Kind::tool_change, tool_in_spindle_));
@@ -583,7 +583,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     spindle_ = m->code;
     emit(m->code == 3 ? "START_SPINDLE_CLOCKWISE(0)" : m->code == 4 ? "START_SPINDLE_COUNTERCLOCKWISE(0)"
                                                                     : "STOP_SPINDLE_TURNING(0)",
-         kind_only(m->code == 5 ? CanonMotion::Kind::other : CanonMotion::Kind::spindle_on));
+         m->code == 5 ? kind_only(CanonMotion::Kind::spindle_stop)
+                      : valued(CanonMotion::Kind::spindle_on, m->code == 3 ? 1.0 : -1.0));
   }
   if (const NgcCode* m = m_by_group[8]) {
     if (m->code == 7) { mist_ = true; emit("MIST_ON()", kind_only(CanonMotion::Kind::coolant_on)); }
@@ -806,7 +807,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     comp_column_ = m->column;
     comp_flush_here();
     if (m->code == 0) emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
-    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
+    else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", valued(CanonMotion::Kind::pause, 1.0));
     else program_end(m->code == 30);
   }
 }

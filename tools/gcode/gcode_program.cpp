@@ -15,6 +15,8 @@ CanonSetup machine_setup(const GcodeOptions& options) {
   setup.start_machine_mm[0] = options.start_mm[0];
   setup.start_machine_mm[1] = options.start_mm[1];
   setup.end_of_file_ends = true;
+  // A run from line N approaches its start from where the machine is.
+  if (setup.from_line) setup.from_line->machine_position_mm = setup.start_machine_mm;
   return setup;
 }
 
@@ -43,14 +45,25 @@ std::string count_of(std::size_t n, const char* what) {
 
 }  // namespace
 
+const char* to_string(PauseReason reason) noexcept {
+  switch (reason) {
+    case PauseReason::program_stop: return "program stop (M0)";
+    case PauseReason::optional_stop: return "optional stop (M1)";
+    case PauseReason::tool_change: return "tool change (M6)";
+  }
+  return "?";
+}
+
 std::string summary_text(const GcodeProgram& p) {
   char time[64];
   std::snprintf(time, sizeof time, "%.3f s", p.programmed_time_s());
   std::string s = count_of(p.lines_run, "line") + " run, " + count_of(p.segments.size(), "segment") + ", " +
                   count_of(p.tool_changes, "tool change") + ", programmed cycle time " + time;
-  if (p.spindle_starts + p.coolant_starts > 0)
-    s += "; not sent (this table has no spindle and no coolant): " + count_of(p.spindle_starts, "spindle start") +
-         ", " + count_of(p.coolant_starts, "coolant start");
+  if (!p.pauses.empty()) s += ", " + count_of(p.pauses.size(), "pause");
+  if (p.optional_stops_skipped > 0) s += ", " + count_of(p.optional_stops_skipped, "optional stop") + " skipped (switch off)";
+  if (p.spindle_changes > 0) s += ", " + count_of(p.spindle_changes, "spindle command");
+  if (p.coolant_starts > 0)
+    s += "; not sent (this table has no coolant): " + count_of(p.coolant_starts, "coolant start");
   return s;
 }
 

@@ -30,7 +30,24 @@ struct GcodeOptions {
   // The tool table, parameters (.var: work offsets, G28/G30, G92) and
   // subroutine path. A program ends at the end of its file too here (no
   // M2 needed, as LinuxCNC's task runs it); Z starts at start_machine_mm[2].
+  // With canon.from_line set it runs from that line, its approach starting
+  // where the machine is (start_mm and start_machine_mm[2]: the
+  // from_line's own machine_position_mm is replaced).
   CanonSetup canon{};
+};
+
+// Why a program pauses (a Segment::pause): the operator continues it.
+enum class PauseReason : std::uint8_t {
+  program_stop,   // M0 (and G88's stop at the bottom of the bore)
+  optional_stop,  // M1 with the optional stop switch on
+  tool_change,    // M6: a manual tool change; the new tool's length applies from the next move
+};
+const char* to_string(PauseReason reason) noexcept;
+
+struct ProgramPause {
+  std::size_t segment = 0;  // index into GcodeProgram::segments
+  PauseReason reason = PauseReason::program_stop;
+  int tool = 0;  // tool_change: the tool now in the spindle
 };
 
 struct GcodeProgram {
@@ -39,9 +56,11 @@ struct GcodeProgram {
   bool ended = false;                                  // M2, M30 or the closing % seen
   std::size_t lines_run = 0;                           // CanonResult::lines_run
   std::size_t tool_changes = 0;                        // M6 (its length may apply to Z while Z does not move)
-  // Calls this machine has nothing to do with (no spindle, no coolant):
-  // counted and reported, not sent.
-  std::size_t spindle_starts = 0;  // M3, M4
+  std::vector<ProgramPause> pauses;                    // in program order: M0, M1 (switch on), M6
+  std::size_t optional_stops_skipped = 0;              // M1 with the optional stop switch off
+  std::size_t spindle_starts = 0;   // M3, M4 (and a canned cycle's restarts)
+  std::size_t spindle_changes = 0;  // spindle elements sent (starts, new speeds, stops)
+  // Calls this machine has nothing to do with (no coolant): counted and reported, not sent.
   std::size_t coolant_starts = 0;  // M7, M8
   double programmed_length_mm() const noexcept;
   // Sum of length / feed over the moves (rapids at the rapid feed); dwells add their time.

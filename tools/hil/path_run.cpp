@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <thread>
 
 #include "tools/hil/command_status_text.hpp"
@@ -52,8 +53,11 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
   samples.push_back(sample_of(task.last_record()));
   ProgramFeeder feeder(program.segments);
-  // Generous: the programmed time three times over, plus ten seconds.
-  const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000;
+  // Generous: the programmed time three times over, plus ten seconds, plus the pauses.
+  const auto resume_ticks = static_cast<std::int64_t>(std::llround(std::max(0.0, options.resume_after_s) / kTickPeriodS));
+  const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000 +
+                         static_cast<std::int64_t>(program.pauses.size()) * resume_ticks;
+  std::int64_t paused_ticks = -1;  // >= 0 while the task rests at a pause
   for (std::int64_t k = 0; k < max_ticks; ++k) {
     // Stream as a host would: as many segments as there are free slots.
     if (!feeder.feed(task)) {
@@ -66,6 +70,27 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     }
     result.segments = feeder.next_index();
     rig->tick();
+    if (task.motion().state() == fw::motion::MotionState::paused) {
+      if (paused_ticks < 0) {
+        paused_ticks = 0;
+        PathPause p;
+        // Pauses are reached in program order.
+        if (result.pauses.size() < program.pauses.size()) {
+          p.why = program.pauses[result.pauses.size()];
+          p.line = static_cast<int>(program.segments[p.why.segment].tag);
+        }
+        result.pauses.push_back(p);
+      }
+      if (++paused_ticks >= resume_ticks) {
+        result.pauses.back().paused_s = static_cast<double>(paused_ticks) * kTickPeriodS;
+        if (const fw::CommandStatus st = task.cycle_start(); st != fw::CommandStatus::ok) {
+          result.error = "cycle start refused: " + command_status_text(st, task);
+          return result;
+        }
+        paused_ticks = -1;
+      }
+      continue;  // the operator's wait is not scored
+    }
     samples.push_back(sample_of(task.last_record()));
     if (options.keep_samples) result.path_speed_mm_s.push_back(task.motion().path_speed_mm_s());
     if (task.state() == fw::MotionState::faulted) break;

@@ -3,7 +3,9 @@
 // The program is read for the table's home (tools/gcode), streamed into the
 // tick task's motion queue as room frees up (as a host streams over CAN),
 // and every tick's reference and measured position are scored against the
-// exact programmed geometry (tools/score/path_score.hpp).
+// exact programmed geometry (tools/score/path_score.hpp). A pause continues
+// after PathRunOptions::resume_after_s; the ticks it rests are left out of
+// the score (its cycle time is the program's motion, not the operator's wait).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -21,6 +23,15 @@ struct PathRunOptions {
   double rapid_feed_mm_s = 50.0;  // G0 path speed
   gcode::CanonSetup canon{};      // tool table, parameters, subroutine path (gcode_program.hpp)
   bool keep_samples = false;      // every tick's reference and position (plots, CSV)
+  // A program pause (M0, M1, M6) continues (TickTask::cycle_start) after
+  // resting this long, as an operator would; its ticks are not scored.
+  double resume_after_s = 1.0;
+};
+
+struct PathPause {
+  gcode::ProgramPause why;  // as the program has it (segment index, reason, tool)
+  int line = 0;
+  double paused_s = 0.0;    // from the tick it reported paused to cycle start
 };
 
 struct PathRunResult {
@@ -37,6 +48,7 @@ struct PathRunResult {
   gcode::GcodeProgram program;             // as read for where the table stood
   std::vector<PathSample> samples;  // from the first streamed segment, when keep_samples
   std::vector<double> path_speed_mm_s;     // the planner's path speed, with samples
+  std::vector<PathPause> pauses;           // in the order reached
 };
 
 // One run of `gcode_text` with `controller` on both axes.

@@ -17,9 +17,12 @@ nlohmann::json program_summary_json(const gcode::GcodeProgram& p) {
   return {{"lines_run", p.lines_run},
           {"segments", p.segments.size()},
           {"tool_changes", p.tool_changes},
+          {"program_pauses", p.pauses.size()},
+          {"optional_stops_skipped", p.optional_stops_skipped},
           {"programmed_time_s", p.programmed_time_s()},
           {"programmed_length_mm", p.programmed_length_mm()},
-          {"spindle_starts_not_sent", p.spindle_starts},
+          {"spindle_starts", p.spindle_starts},
+          {"spindle_commands", p.spindle_changes},
           {"coolant_starts_not_sent", p.coolant_starts}};
 }
 

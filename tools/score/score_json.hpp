@@ -14,7 +14,7 @@ nlohmann::json contour_stats_json(const ContourStats& s);
 nlohmann::json path_score_json(const PathScore& s);
 // What a program is, before it runs (tnv-hil path and tnvctl run --json):
 // lines_run, segments, tool_changes, programmed_time_s, programmed_length_mm,
-// and what was not sent (spindle_starts_not_sent, coolant_starts_not_sent).
+// and what was not sent (coolant_starts_not_sent).
 nlohmann::json program_summary_json(const gcode::GcodeProgram& p);
 
 }  // namespace tnv::hil

@@ -148,6 +148,9 @@ nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::str
     return state.interrupted();
   };
   o.progress = [&state](const can_host::StreamProgress& p) { state.progress(p); };
+  // A pause waits for the Resume button of the tab with control (POST /api/program/resume).
+  o.on_pause = [&state](const can_host::StreamPause& p) { state.paused(p); };
+  o.resume = [&state](const can_host::StreamPause&, can_host::Micros) { return state.take_resume(); };
   bool started = false;
   o.before_send = [&](std::size_t) {
     if (started) return;

@@ -35,7 +35,8 @@ nlohmann::json plan_refusal(const can_host::ProgramPlan& plan);
 // The page's program run on the node thread: run_gcode with the page's
 // telemetry left as it is (no score: 1 ms telemetry would flood the
 // scope), the run's progress and end into `state`, its interrupt flag as
-// the stream's Ctrl-C, the scope fed by `scope` meanwhile. A program that
+// the stream's Ctrl-C, a pause continued by the Resume button
+// (ProgramState::resume()), the scope fed by `scope` meanwhile. A program that
 // cannot run throws ApiError(400) naming its line and column.
 nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text, ProgramState& state,
                                     const can_host::FrameListener& scope);

@@ -68,6 +68,14 @@ void TuningServer::program_routes() {
     });
   });
 
+  // The program rests at a pause (M0, M1, M6): go on (COMMAND cycle_start, sent by the run's stream).
+  post("/api/program/resume", [this](const httplib::Request& req, httplib::Response& res) {
+    commanded(req, res, [this](const nlohmann::json&) {
+      if (!program_.resume()) throw ApiError(kHttpConflict, "the program is not paused");
+      return program_.json();
+    });
+  });
+
   get("/api/program", [this](const httplib::Request&, httplib::Response& res) {
     answer(res, [&] { return program_.json(); });
   });

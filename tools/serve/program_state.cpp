@@ -9,6 +9,8 @@ bool ProgramState::begin(const nlohmann::json& summary) {
   if (phase_ == "starting" || phase_ == "running") return false;
   interrupt_ = false;
   estop_ = false;
+  resume_ = false;
+  pause_ = nullptr;
   phase_ = "starting";
   ++run_;
   summary_ = summary;
@@ -31,6 +33,7 @@ void ProgramState::progress(const can_host::StreamProgress& p) {
   const std::lock_guard lock(mutex_);
   total_ = p.total;
   underruns_ = p.underruns;
+  if (p.state != fw::can::ProgramState::paused) pause_ = nullptr;
   // Before the node runs (and after an abort) the stream's progress names the last element accepted,
   // not one that ran: the page shows the line the table is on.
   if (!fw::can::active(p.state) && p.state != fw::can::ProgramState::done) return;
@@ -42,6 +45,7 @@ void ProgramState::progress(const can_host::StreamProgress& p) {
 void ProgramState::finish(const std::string& end, const std::string& message) {
   const std::lock_guard lock(mutex_);
   phase_ = "ended";
+  pause_ = nullptr;
   end_ = end;
   message_ = message;
 }
@@ -51,6 +55,24 @@ bool ProgramState::interrupt(bool estop) {
   if (phase_ != "starting" && phase_ != "running") return false;
   if (estop) estop_ = true;  // before the flag the stream looks at
   interrupt_ = true;
+  return true;
+}
+
+void ProgramState::paused(const can_host::StreamPause& pause) {
+  const std::lock_guard lock(mutex_);
+  resume_ = false;  // a Resume pressed before this pause is not an answer to it
+  pause_ = {{"line", pause.line}, {"text", can_host::pause_text(pause)}, {"reason", nullptr}, {"tool", nullptr}};
+  if (pause.why) {
+    pause_["reason"] = gcode::to_string(pause.why->reason);
+    if (pause.why->reason == gcode::PauseReason::tool_change) pause_["tool"] = pause.why->tool;
+  }
+  if (pause.line > 0) line_ = pause.line;
+}
+
+bool ProgramState::resume() {
+  const std::lock_guard lock(mutex_);
+  if (phase_ != "running" || pause_.is_null()) return false;
+  resume_ = true;
   return true;
 }
 
@@ -68,7 +90,7 @@ nlohmann::json ProgramState::json() const {
   const std::lock_guard lock(mutex_);
   return {{"phase", phase_},   {"run", run_},         {"line", line_},           {"element", element_},
           {"total", total_},   {"fraction", fraction_}, {"underruns", underruns_}, {"end", end_},
-          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}};
+          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}, {"pause", pause_}};
 }
 
 }  // namespace tnv::serve

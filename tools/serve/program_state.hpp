@@ -30,16 +30,25 @@ class ProgramState {
   bool interrupt(bool estop = false);
   bool interrupted() const noexcept { return interrupt_.load(); }
   bool estop_requested() const noexcept { return estop_.load(); }
+  // The node rests at a program pause (M0, M1, M6); progress() past it clears it.
+  void paused(const can_host::StreamPause& pause);
+  // The Resume button (the tab with control): false when the program does not rest at a pause.
+  bool resume();
+  // The stream's look while paused: true once after resume().
+  bool take_resume() noexcept { return resume_.exchange(false); }
   bool active() const;
   bool is_streaming() const;  // its elements are going out now
   // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message",
-  //  "program" (its summary), "interrupting" (a stop was asked)}
+  //  "program" (its summary), "interrupting" (a stop was asked),
+  //  "pause": null or {"line", "reason", "tool", "text"} while it rests at a pause}
   nlohmann::json json() const;
 
  private:
   mutable std::mutex mutex_;
   std::atomic<bool> interrupt_{false};
   std::atomic<bool> estop_{false};
+  std::atomic<bool> resume_{false};
+  nlohmann::json pause_;  // null unless paused
   std::string phase_ = "idle";  // idle | starting | running | ended
   std::uint64_t run_ = 0;       // the page tells one run's end from the next's
   nlohmann::json summary_;

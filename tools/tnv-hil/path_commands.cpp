@@ -26,11 +26,13 @@ namespace {
 struct PathOptions {
   std::string file;
   GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
+  FromLineOptions from;     // --from-line and its companions
   std::string controller = "rdvsc";
   std::string scenario = "no-cut";
   int seeds = 1;
   bool best = false;
   double rapid_feed_mm_s = 50.0;
+  double resume_after_s = 1.0;
   bool json = false;
   std::string plot;
   std::string csv;
@@ -61,8 +63,10 @@ int run_path_command(const PathOptions& o) {
     std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
     return kExitBadInput;
   }
+  apply_from_line(o.from, options.canon);
   gcode::add_program_directory(options.canon, o.file);
   options.rapid_feed_mm_s = o.rapid_feed_mm_s;
+  options.resume_after_s = o.resume_after_s;
   options.keep_samples = !o.plot.empty() || !o.csv.empty();
   Progress progress("path");
   const hil::PathSweepResult r =
@@ -88,6 +92,13 @@ int run_path_command(const PathOptions& o) {
     nlohmann::json per_seed = nlohmann::json::array();
     for (const hil::PathRunResult& s : r.per_seed) per_seed.push_back(hil::path_score_json(s.score));
     j["per_seed"] = per_seed;
+    nlohmann::json pauses = nlohmann::json::array();
+    for (const hil::PathPause& p : seed0.pauses) {
+      nlohmann::json pj{{"line", p.line}, {"reason", gcode::to_string(p.why.reason)}, {"paused_s", p.paused_s}};
+      if (p.why.reason == gcode::PauseReason::tool_change) pj["tool"] = p.why.tool;
+      pauses.push_back(pj);
+    }
+    j["pauses"] = pauses;
     j["error"] = r.error;
     std::cout << j.dump(2) << '\n';
   } else {
@@ -104,6 +115,11 @@ int run_path_command(const PathOptions& o) {
     std::printf("feed ratio %.4f  cycle time %.3f s  underruns %llu\n", m.feed_ratio, m.cycle_time_s,
                 static_cast<unsigned long long>(r.underruns));
     std::printf("program: %s\n", gcode::summary_text(seed0.program).c_str());
+    for (const hil::PathPause& p : seed0.pauses) {
+      std::printf("paused at line %d: %s", p.line, gcode::to_string(p.why.reason));
+      if (p.why.reason == gcode::PauseReason::tool_change) std::printf(", tool %d", p.why.tool);
+      std::printf("; continued after %.3f s (not scored)\n", p.paused_s);
+    }
   }
   bool ok = r.error.empty();
   if (!ok) std::fprintf(stderr, "tnv-hil path: %s\n", r.error.c_str());
@@ -134,6 +150,7 @@ void add_path_commands(CLI::App& app, Runner& run) {
               "its geometry");
   cmd->add_option("file", o->file, "the program (.ngc)")->required();
   add_gcode_setup_options(*cmd, o->files);
+  add_from_line_options(*cmd, o->from);
   cmd->add_option("--controller", o->controller, "pid | dvsc | rdvsc")
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();
@@ -146,6 +163,11 @@ void add_path_commands(CLI::App& app, Runner& run) {
                 "feed-forward, speed observer)");
   cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")
       ->check(CLI::Range(0.01, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--resume-after-s", o->resume_after_s,
+                  "a program pause (M0, M1 with --optional-stop on, M6) continues after resting this long; the "
+                  "pause's ticks are not scored")
+      ->check(CLI::Range(0.0, 600.0))
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
   cmd->add_option("--plot", o->plot, "write the path, contour-error and path-speed figure (.svg, .png or .pdf)")->check(tnv::cli::OutputFile());

@@ -18,8 +18,7 @@ namespace {
 struct CanonOptions {
   std::string program;
   cli::GcodeSetupOptions files;
-  int from_line = 0;  // 0: the whole program
-  gcode::RunFromLine run_from;
+  cli::FromLineOptions from;
   std::vector<double> machine_position;  // X Y Z, or empty
 };
 
@@ -27,12 +26,10 @@ gcode::CanonSetup load_setup(const CanonOptions& o) {
   gcode::CanonSetup setup;
   std::string error;
   if (!cli::load_gcode_setup(o.files, setup, error)) throw BadInput(error);
-  if (o.from_line != 0) {
-    setup.from_line = o.run_from;
-    setup.from_line->line = o.from_line;
+  cli::apply_from_line(o.from, setup);
+  if (setup.from_line)
     for (std::size_t a = 0; a < o.machine_position.size() && a < 3; ++a)
       setup.from_line->machine_position_mm[a] = o.machine_position[a];
-  }
   return setup;
 }
 
@@ -72,27 +69,10 @@ void add_gcode_commands(CLI::App& app, ActionSlot& slot) {
       "canon", "print a program's canonical machine calls, one per line, as LinuxCNC's rs274 -g prints them");
   canon->add_option("FILE", o->program, "the program (.ngc)")->required();
   cli::add_gcode_setup_options(*canon, o->files);
-  CLI::Option* from_line = canon->add_option("--from-line", o->from_line,
-                    "run from this line (1-based): the lines before run silently, the modal state is made again and "
-                    "the tool approaches the start (docs/gcode.md \"Run from line\")")
-      ->check(CLI::PositiveNumber);
-  canon->add_option("--from-pass", o->run_from.pass, "with --from-line: start the Nth time the line runs (in a loop)")
-      ->check(CLI::PositiveNumber)
-      ->needs(from_line);
-  canon->add_option("--clearance-z", o->run_from.clearance_z_mm,
-                    "with --from-line: machine Z (mm) of the first retract (default 0: the top of Z's travel)")
-      ->needs(from_line);
-  canon->add_option("--approach-height", o->run_from.approach_mm,
-                    "with --from-line: the last mm above the start point go at the feed rate (default 5)")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(from_line);
+  CLI::Option* from_line = cli::add_from_line_options(*canon, o->from);
   canon->add_option("--machine-position", o->machine_position,
                     "with --from-line: where the machine is, X Y Z in machine coordinates, mm (default 0 0 0)")
       ->expected(3)
-      ->needs(from_line);
-  canon->add_option("--tool-in-spindle", o->run_from.tool_in_spindle,
-                    "with --from-line: the tool the machine holds (default 0: none); another is changed at the start")
-      ->check(CLI::NonNegativeNumber)
       ->needs(from_line);
   canon->callback([&slot, o] {
     slot = Action{"gcode canon", false, [o](Session& s, Report& r) { return run_canon(*o, s, r); },

@@ -1,5 +1,7 @@
 // tnvctl run FILE.ngc: stream a G-code program to the node and score the
 // run (the work is in tools/can/program_run.hpp; this file parses and prints).
+#include <poll.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "tools/can/program_run.hpp"
@@ -28,10 +31,13 @@ extern "C" void on_run_interrupt(int) { g_run_interrupted = true; }
 struct RunOptions {
   std::string file;
   cli::GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
+  cli::FromLineOptions from;     // --from-line and its companions
   std::optional<double> feed_override;
   double rapid_feed_mm_s = 50.0;
   bool no_score = false;
   int window = 12;
+  // Program pauses (M0, M1, M6) continue after this long by themselves; unset: the operator presses Enter.
+  std::optional<double> resume_after_s;
 };
 
 std::string read_file(const std::string& path) {
@@ -47,6 +53,7 @@ gcode::CanonSetup run_setup(const RunOptions& o) {
   gcode::CanonSetup setup;
   std::string error;
   if (!cli::load_gcode_setup(o.files, setup, error)) throw BadInput(error);
+  cli::apply_from_line(o.from, setup);
   gcode::add_program_directory(setup, o.file);
   return setup;
 }
@@ -69,6 +76,26 @@ void check_run(const RunOptions& o) {
   const gcode::GcodeResult r = gcode::parse_gcode(read_file(o.file), g);
   if (r.error) throw BadInput(o.file + ": " + gcode::to_string(*r.error) + " (nothing was sent)");
   if (r.program.segments.empty()) throw BadInput(o.file + ": the program has no motion and no dwell (nothing was sent)");
+  if (o.resume_after_s && !(*o.resume_after_s >= 0.0 && *o.resume_after_s <= 3600.0))
+    throw BadInput("--resume-after-s must be in [0, 3600] s");
+  // A pause waits for the operator's Enter: without a terminal nobody could press it.
+  if (!r.program.pauses.empty() && !o.resume_after_s && isatty(STDIN_FILENO) == 0) {
+    const gcode::ProgramPause& p = r.program.pauses.front();
+    throw BadInput(o.file + ": the program pauses (line " + std::to_string(r.program.segments[p.segment].tag) + ": " +
+                   gcode::to_string(p.reason) +
+                   ") and stdin is not a terminal to continue it from: run it from a terminal (Enter continues) or "
+                   "give --resume-after-s S (nothing was sent)");
+  }
+}
+
+// The operator's Enter on stdin, without blocking the stream (which keeps the node's host timeout fed).
+bool enter_pressed() {
+  pollfd p{STDIN_FILENO, POLLIN, 0};
+  if (poll(&p, 1, 0) <= 0 || (p.revents & (POLLIN | POLLHUP)) == 0) return false;
+  char c = 0;
+  while (read(STDIN_FILENO, &c, 1) == 1)
+    if (c == '\n') return true;
+  return false;  // end of input: never a go
 }
 
 // Progress on stderr: rewritten in place on a terminal (at most 5 times a
@@ -134,6 +161,21 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   ro.interrupted = [] { return g_run_interrupted.load(); };
   ProgressPrinter printer;
   ro.progress = [&printer](const can_host::StreamProgress& p) { printer(p); };
+  ro.on_pause = [&o](const can_host::StreamPause& p) {
+    if (o.resume_after_s) {
+      std::fprintf(stderr, "\nrun: paused at %s: continuing in %.1f s (--resume-after-s), Ctrl-C stops\n",
+                   can_host::pause_text(p).c_str(), *o.resume_after_s);
+    } else {
+      tcflush(STDIN_FILENO, TCIFLUSH);  // an Enter typed before the pause is not an answer to it
+      std::fprintf(stderr, "\nrun: paused at %s: press Enter to continue, Ctrl-C stops the program\n",
+                   can_host::pause_text(p).c_str());
+    }
+    std::fflush(stderr);
+  };
+  ro.resume = [&o](const can_host::StreamPause&, can_host::Micros paused_for) {
+    if (o.resume_after_s) return static_cast<double>(paused_for.count()) * 1e-6 >= *o.resume_after_s;
+    return enter_pressed();
+  };
   g_run_interrupted = false;
   auto previous = std::signal(SIGINT, on_run_interrupt);
   can_host::ProgramRunResult r;
@@ -166,6 +208,22 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   report.data["underruns"] = st.underruns;
   report.data["run_s"] = st.run_s;
   report.data["fill_elements_per_s"] = st.fill_elements_per_s;
+  report.data["paused_s"] = st.paused_s;
+  nlohmann::json pauses = nlohmann::json::array();
+  for (const can_host::StreamPause& p : st.pauses) {
+    nlohmann::json j{{"element", p.element}, {"line", p.line}};
+    if (p.why) {
+      j["reason"] = gcode::to_string(p.why->reason);
+      if (p.why->reason == gcode::PauseReason::tool_change) j["tool"] = p.why->tool;
+    }
+    pauses.push_back(j);
+  }
+  report.data["pauses"] = pauses;
+  if (!st.pauses.empty()) {
+    std::snprintf(buf, sizeof buf, "%zu pause%s, %.3f s paused (the run's time includes them)", st.pauses.size(),
+                  st.pauses.size() == 1 ? "" : "s", st.paused_s);
+    report.line(buf);
+  }
   if (st.end == can_host::StreamResult::End::interrupted) {
     if (st.acknowledged == 0) throw RunFailed("stopped by Ctrl-C before the program started: nothing moved");
     const std::uint32_t element = std::max<std::uint32_t>(st.final_status.element, 1);
@@ -206,12 +264,25 @@ constexpr const char* kRunHelp =
     "  parameters, O-word subroutines and flow, cutter compensation. --tool-table, --var-file and\n"
     "  --subroutine-path as for `tnvctl gcode canon`. This table has X and Y only: a move that changes machine Z\n"
     "  (a Z word, where G43's tool length counts; a canned cycle), an arc outside G17, a probe move, a G5.1 spline\n"
-    "  and M0/M1 are refused with their line. M6 counts as a tool change; spindle (M3/M4) and coolant (M7/M8)\n"
-    "  are counted and not sent. The program ends at M2, M30, the closing % or the end of the file.\n"
+    "  are refused with their line. M0, M1 (with --optional-stop on, the default) and M6 (a manual tool change)\n"
+    "  pause the program: see PAUSES. S, M3, M4 and M5 start and stop the spindle where the program reaches\n"
+    "  them (at rest; feed moves wait for it at speed); coolant (M7/M8) is counted and not sent. The program\n"
+    "  ends at M2, M30, the closing % or the end of the file.\n"
     "  Before the run: lines run, segments, tool changes and the programmed cycle time.\n\n"
     "PROGRESS\n"
     "  On stderr: the G-code line being run, the share of the program's length done, the element and the\n"
     "  underruns (the queue ran dry: the table waits at rest on the path and goes on when elements arrive).\n\n"
+    "RUN FROM LINE\n"
+    "  --from-line N starts at line N (the Nth line run: --from-pass K for a line in a loop) with the modal state\n"
+    "  the full run has there; from where the table stands the tool goes up to --clearance-z, across at rapid and\n"
+    "  down to the start, the last --approach-height mm at the feed (docs/gcode.md \"Run from line\"). A tool other\n"
+    "  than --tool-in-spindle (default none) is changed first: a pause. The spindle is started as the line has it.\n\n"
+    "PAUSES\n"
+    "  The table comes to rest at the pause and holds there; the spindle is left as it is. tnvctl prints the\n"
+    "  line, the reason and, for M6, the tool, and waits for Enter on the terminal (COMMAND cycle_start). With\n"
+    "  --resume-after-s S it continues by itself after S seconds. A program that pauses is refused before\n"
+    "  anything is sent when stdin is not a terminal and --resume-after-s is not given. Waiting keeps the\n"
+    "  node's host timeout fed; Ctrl-C while paused stops the program there.\n\n"
     "CTRL-C\n"
     "  A controlled stop on the path (COMMAND abort_program): the table brakes along the programmed path, holds\n"
     "  there, the rest of the program is dropped; tnvctl exits 1 naming the line it stopped at.\n\n"
@@ -239,9 +310,13 @@ void add_run_commands(CLI::App& app, ActionSlot& slot) {
   cmd->footer(kRunHelp);
   cmd->add_option("file", o->file, "RS274/NGC program")->required();
   cli::add_gcode_setup_options(*cmd, o->files);
+  cli::add_from_line_options(*cmd, o->from);
   cmd->add_option("--feed-override", o->feed_override, "path speed ratio 0..1.5, applied once the program runs");
   cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")->capture_default_str();
   cmd->add_flag("--no-score", o->no_score, "leave telemetry as it is and print no score");
+  cmd->add_option("--resume-after-s", o->resume_after_s,
+                  "continue each program pause (M0, M1, M6) by itself after this many seconds; without it the "
+                  "operator presses Enter");
   cmd->add_option("--window", o->window, "elements sent ahead of their answers")
       ->check(CLI::Range(1, 15))
       ->capture_default_str();

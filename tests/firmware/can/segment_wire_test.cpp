@@ -92,7 +92,53 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::rapid_exact_stop);
+  EXPECT_EQ(head.kind, WireKind::spindle_stop);
+}
+
+// A program pause is one frame of its own kind and comes back a pause, not a dwell that runs out.
+TEST(SegmentWire, APauseIsOneFrameAndStaysAPause) {
+  SegmentFrames f;
+  ASSERT_EQ(encode_segment(motion::pause_here(7), {1.5, -2.0}, 1, 0x11, f), nullptr);
+  EXPECT_FALSE(f.has_tail);
+  EXPECT_EQ(f.end_mm, (PlanePoint{1.5, -2.0})) << "the next element starts where the pause rests";
+  SegmentHead head;
+  ASSERT_TRUE(decode_head(f.head, head));
+  EXPECT_EQ(head.kind, WireKind::pause);
+  EXPECT_FALSE(wire_kind_has_tail(head.kind));
+  motion::Segment back;
+  ASSERT_TRUE(decode_segment(head, nullptr, {1.5, -2.0}, back));
+  EXPECT_TRUE(back.pause);
+  EXPECT_EQ(back.kind, motion::SegmentKind::dwell);
+  EXPECT_EQ(back.dwell_s, 0.0);
+  // A plain dwell is not a pause.
+  ASSERT_EQ(encode_segment(motion::dwell_for(0.5), {0.0, 0.0}, 1, 0x11, f), nullptr);
+  ASSERT_TRUE(decode_head(f.head, head));
+  ASSERT_TRUE(decode_segment(head, nullptr, {0.0, 0.0}, back));
+  EXPECT_FALSE(back.pause);
+}
+
+// A program's spindle commands are one frame each, the speed to 0.1 rpm.
+TEST(SegmentWire, SpindleCommandsKeepTheirDirectionAndSpeed) {
+  using motion::SpindleChange;
+  for (const SpindleChange c : {SpindleChange::forward, SpindleChange::reverse, SpindleChange::stop}) {
+    SegmentFrames f;
+    ASSERT_EQ(encode_segment(motion::spindle_here(c, 12345.67), {1.0, 2.0}, 1, 0x11, f), nullptr);
+    EXPECT_FALSE(f.has_tail);
+    EXPECT_EQ(f.end_mm, (PlanePoint{1.0, 2.0}));
+    SegmentHead head;
+    ASSERT_TRUE(decode_head(f.head, head));
+    motion::Segment back;
+    ASSERT_TRUE(decode_segment(head, nullptr, {1.0, 2.0}, back));
+    EXPECT_EQ(back.spindle, c);
+    EXPECT_FALSE(back.pause);
+    EXPECT_EQ(back.kind, motion::SegmentKind::dwell);
+    EXPECT_NEAR(back.spindle_rpm, c == SpindleChange::stop ? 0.0 : 12345.7, 1e-6);
+  }
+  SegmentFrames f;
+  EXPECT_EQ(encode_segment(motion::spindle_here(SpindleChange::forward, 900'000.0), {0.0, 0.0}, 1, 0x11, f), &fields::kSegmentX)
+      << "beyond 838,860 rpm";
+  EXPECT_EQ(encode_segment(motion::spindle_here(SpindleChange::forward, 0.04), {0.0, 0.0}, 1, 0x11, f), &fields::kSegmentX)
+      << "rounds to no speed";
 }
 
 // A rapid (G0) keeps its kind over the wire, with and without an exact

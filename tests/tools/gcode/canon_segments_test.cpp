@@ -12,12 +12,14 @@
 #include <numbers>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "tools/gcode/gcode_program.hpp"
 
 namespace tnv::gcode {
 namespace {
 
+using fw::motion::Segment;
 using fw::motion::SegmentKind;
 using Kind = CanonMotion::Kind;
 
@@ -94,19 +96,26 @@ TEST(CanonSegments, ADialectProgramWithOffsetsASubroutineAnArcAndADwell) {
       o);
   ASSERT_FALSE(r.error) << to_string(*r.error);
   const GcodeProgram& p = r.program;
-  ASSERT_EQ(p.segments.size(), 5u);
-  EXPECT_EQ(p.segments[0].end_mm, (PlanePoint{14.0, 5.0})) << "G0 X0 Y0 was the table's start: no segment";
-  EXPECT_EQ(p.segments[0].tag, 2u) << "the subroutine's line";
-  EXPECT_DOUBLE_EQ(p.segments[0].feed_mm_s, 10.0);
-  EXPECT_EQ(p.segments[1].end_mm, (PlanePoint{14.0, 9.0}));
-  EXPECT_EQ(p.segments[2].kind, SegmentKind::arc_cw);
-  EXPECT_EQ(p.segments[2].centre_mm, (PlanePoint{14.0, 5.0}));
-  EXPECT_EQ(p.segments[2].end_mm, (PlanePoint{18.0, 5.0}));
-  EXPECT_EQ(p.segments[2].tag, 9u);
-  EXPECT_EQ(p.segments[3].kind, SegmentKind::dwell);
-  EXPECT_DOUBLE_EQ(p.segments[3].dwell_s, 0.5);
-  EXPECT_EQ(p.segments[4].end_mm, (PlanePoint{20.0, 5.0})) << "G10 L2 moved G54's X to 20";
-  EXPECT_DOUBLE_EQ(p.segments[4].feed_mm_s, o.rapid_feed_mm_s);
+  ASSERT_EQ(p.segments.size(), 7u);
+  EXPECT_EQ(p.segments[0].spindle, fw::motion::SpindleChange::stop) << "M6 stops the spindle (rs274's STOP_SPINDLE_TURNING)";
+  EXPECT_TRUE(p.segments[1].pause) << "M6 is a manual tool change: the program pauses";
+  EXPECT_EQ(p.segments[1].tag, 6u);
+  ASSERT_EQ(p.pauses.size(), 1u);
+  EXPECT_EQ(p.pauses[0].segment, 1u);
+  EXPECT_EQ(p.pauses[0].reason, PauseReason::tool_change);
+  EXPECT_EQ(p.pauses[0].tool, 1);
+  EXPECT_EQ(p.segments[2].end_mm, (PlanePoint{14.0, 5.0})) << "G0 X0 Y0 was the table's start: no segment";
+  EXPECT_EQ(p.segments[2].tag, 2u) << "the subroutine's line";
+  EXPECT_DOUBLE_EQ(p.segments[2].feed_mm_s, 10.0);
+  EXPECT_EQ(p.segments[3].end_mm, (PlanePoint{14.0, 9.0}));
+  EXPECT_EQ(p.segments[4].kind, SegmentKind::arc_cw);
+  EXPECT_EQ(p.segments[4].centre_mm, (PlanePoint{14.0, 5.0}));
+  EXPECT_EQ(p.segments[4].end_mm, (PlanePoint{18.0, 5.0}));
+  EXPECT_EQ(p.segments[4].tag, 9u);
+  EXPECT_EQ(p.segments[5].kind, SegmentKind::dwell);
+  EXPECT_DOUBLE_EQ(p.segments[5].dwell_s, 0.5);
+  EXPECT_EQ(p.segments[6].end_mm, (PlanePoint{20.0, 5.0})) << "G10 L2 moved G54's X to 20";
+  EXPECT_DOUBLE_EQ(p.segments[6].feed_mm_s, o.rapid_feed_mm_s);
   EXPECT_TRUE(p.ended);
   EXPECT_EQ(p.tool_changes, 1u);
   EXPECT_EQ(p.spindle_starts, 1u);
@@ -168,8 +177,7 @@ TEST(CanonSegments, ArcTurnsPBecomeFullCirclesThenTheArc) {
 }
 
 TEST(CanonSegments, WhatTheTableCannotDoIsRefusedWithItsLine) {
-  for (const auto& [text, line, what] : {std::tuple{"G1 X1 F60\nM0\nM2\n", 2, "M0/M1"},
-                                         std::tuple{"F60\nG38.2 X5\nM2\n", 2, "probe"},
+  for (const auto& [text, line, what] : {std::tuple{"F60\nG38.2 X5\nM2\n", 2, "probe"},
                                          std::tuple{"F60\nG5.1 X5 I1 J1\nM2\n", 2, "spline"},
                                          std::tuple{"G1 X300 F60\nM2\n", 1, "outside_workspace"}}) {
     const GcodeResult r = parse_gcode(text);
@@ -178,6 +186,89 @@ TEST(CanonSegments, WhatTheTableCannotDoIsRefusedWithItsLine) {
     EXPECT_NE(r.error->message.find(what), std::string::npos) << r.error->message;
     EXPECT_TRUE(r.program.segments.empty());
   }
+}
+
+TEST(CanonSegments, M0AndM6PauseAndM1PausesOnlyWithTheOptionalStopSwitchOn) {
+  const char* text = "G1 X1 F60\nM0\nG1 X2\nM1\nT3 M6\nG1 X3\nM2\n";
+  GcodeOptions with_tool;
+  std::string error;
+  ASSERT_TRUE(with_tool.canon.tools.load_text("T3 P3 Z0\n", error)) << error;
+  const GcodeResult on = parse_gcode(text, with_tool);
+  ASSERT_FALSE(on.error) << to_string(*on.error);
+  ASSERT_EQ(on.program.segments.size(), 7u) << "three lines, three pauses and M6's spindle stop";
+  ASSERT_EQ(on.program.pauses.size(), 3u);
+  const PauseReason reasons[] = {PauseReason::program_stop, PauseReason::optional_stop, PauseReason::tool_change};
+  const std::uint32_t lines[] = {2, 4, 5};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const ProgramPause& pause = on.program.pauses[k];
+    EXPECT_EQ(pause.reason, reasons[k]);
+    const Segment& s = on.program.segments.at(pause.segment);
+    EXPECT_TRUE(s.pause);
+    EXPECT_EQ(s.kind, SegmentKind::dwell);
+    EXPECT_EQ(s.tag, lines[k]);
+  }
+  EXPECT_EQ(on.program.pauses[2].tool, 3);
+  EXPECT_EQ(on.program.optional_stops_skipped, 0u);
+
+  GcodeOptions off = with_tool;
+  off.canon.optional_stop = false;
+  const GcodeResult r = parse_gcode(text, off);
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.pauses.size(), 2u) << "M1 runs through with the switch off";
+  EXPECT_EQ(r.program.pauses[0].reason, PauseReason::program_stop);
+  EXPECT_EQ(r.program.pauses[1].reason, PauseReason::tool_change);
+  EXPECT_EQ(r.program.segments.size(), 6u);
+  EXPECT_EQ(r.program.optional_stops_skipped, 1u);
+  EXPECT_NE(summary_text(r.program).find("1 optional stop skipped"), std::string::npos) << summary_text(r.program);
+}
+
+// S, M3, M4 and M5 become spindle elements in program order: a new S while
+// it turns is a new speed, M3 at S0 is a stop until an S, a command that
+// changes nothing is not sent, and the program's end stops only a spindle
+// the program started.
+TEST(CanonSegments, SpindleCommandsAreSentInProgramOrder) {
+  using fw::motion::SpindleChange;
+  const GcodeResult r = parse_gcode(
+      "M3\n"             // 1: at S0: a stop
+      "S1000\n"          // 2: now it turns
+      "G1 X1 F60\n"      // 3
+      "S1000\n"          // 4: no change: not sent
+      "S2000 M4\n"       // 5: S first, then M4: forward 2000, then reverse 2000
+      "G1 X2\n"          // 6
+      "M5\n"             // 7
+      "G1 X3\n"          // 8
+      "M2\n");           // 9: stopped already: no stop at the end
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  struct Expected {
+    std::uint32_t line;
+    SpindleChange change;
+    double rpm;
+  };
+  const Expected expected[] = {{1, SpindleChange::stop, 0.0},     {2, SpindleChange::forward, 1000.0},
+                               {5, SpindleChange::forward, 2000.0}, {5, SpindleChange::reverse, 2000.0},
+                               {7, SpindleChange::stop, 0.0}};
+  std::vector<const Segment*> changes;
+  for (const Segment& s : r.program.segments)
+    if (s.spindle != SpindleChange::none) changes.push_back(&s);
+  ASSERT_EQ(changes.size(), std::size(expected));
+  for (std::size_t k = 0; k < changes.size(); ++k) {
+    EXPECT_EQ(changes[k]->tag, expected[k].line) << k;
+    EXPECT_EQ(changes[k]->spindle, expected[k].change) << k;
+    EXPECT_EQ(changes[k]->spindle_rpm, expected[k].rpm) << k;
+    EXPECT_EQ(changes[k]->kind, SegmentKind::dwell);
+  }
+  EXPECT_EQ(r.program.spindle_changes, 5u);
+  EXPECT_EQ(r.program.segments.size(), 8u) << "three moves and five spindle commands";
+  EXPECT_NE(summary_text(r.program).find("5 spindle commands"), std::string::npos) << summary_text(r.program);
+
+  const GcodeResult left_on = parse_gcode("S500 M3\nG1 X1 F60\nM30\n");
+  ASSERT_FALSE(left_on.error);
+  ASSERT_EQ(left_on.program.segments.size(), 3u);
+  EXPECT_EQ(left_on.program.segments.back().spindle, SpindleChange::stop) << "M30 stops the spindle it started";
+  EXPECT_EQ(left_on.program.segments.back().tag, 3u);
+  const GcodeResult none = parse_gcode("G1 X1 F60\nM2\n");
+  ASSERT_FALSE(none.error);
+  EXPECT_EQ(none.program.segments.size(), 1u) << "a program without spindle commands gets none";
 }
 
 TEST(CanonSegments, AProgramMayEndAtTheEndOfItsFileWhileTheCanonTextStillRefusesThat) {

@@ -76,3 +76,30 @@ def test_a_loaded_program_is_previewed_and_runs_to_its_end(tab, tmp_path, screen
                              " Number(document.querySelector('#program-path .tool').getAttribute('cy'))]")
     assert abs(marker[0] - start[0]) < 0.01 and abs(marker[1] - start[1]) < 0.01, marker
     screenshot(tab, "tuning-program")
+
+
+PAUSING = """(a program stop between two lines)
+G21 G91 G17
+G1 X2 Y0 F600
+M0
+G1 X-2 Y0
+M2
+"""
+
+
+def test_a_paused_program_shows_resume_and_continues_on_it(tab, tmp_path):
+    path = tmp_path / "pausing.ngc"
+    path.write_text(PAUSING)
+    tab.find_element("id", "program-file").send_keys(str(path))
+    wait_for(lambda: page_value(tab, "window.tnvPage.program.drawn") == 2, 60, "the preview's two pieces drawn")
+    assert not tab.find_element("id", "program-resume").is_displayed(), "Resume shown with nothing paused"
+    tab.find_element("id", "program-run").click()
+    wait_for(lambda: (lambda p: p if p else None)(program_state(tab)["pause"]), 60, "the pause at line 4")
+    pause = program_state(tab)["pause"]
+    assert pause["line"] == 4 and pause["reason"] == "program stop (M0)", pause
+    assert "paused at line 4" in tab.find_element("id", "program-state").text
+    wait_for(lambda: tab.find_element("id", "program-resume").is_displayed(), 10, "the Resume button")
+    tab.find_element("id", "program-resume").click()
+    state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" else None)(program_state(tab)), 60, "the run's end")
+    assert state["end"] == "done", (state, tab.find_element("id", "program-state").text)
+    assert not tab.find_element("id", "program-resume").is_displayed()

@@ -15,7 +15,7 @@ const program = (() => {
   let fitTravel = false;
   // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
-                                 linesSeen: [], runStarted: -1, tool: null, error: '' };
+                                 linesSeen: [], runStarted: -1, tool: null, error: '', pause: null };
 
   function el(name, attrs, parent) {
     const e = document.createElementNS(SVG, name);
@@ -154,9 +154,12 @@ const program = (() => {
       text = `running line ${s.line}: ${(textLines[s.line - 1] || '').trim()} — element ${s.element}/${s.total}, ` +
         `${(100 * s.fraction).toFixed(1)} %` + (s.underruns ? `, underruns ${s.underruns}` : '') +
         (s.interrupting ? ' — stopping' : '');
+      if (s.pause) text = `paused at ${s.pause.text} — Resume continues, Stop ends the program`;
     } else if (s.phase === 'ended') {
       text = `run ${s.run} ${s.end}` + (s.line ? ` at line ${s.line}` : '') + (s.message ? `: ${s.message}` : '');
     }
+    state.pause = s.pause || null;
+    $('program-resume').hidden = !(s.phase === 'running' && s.pause);
     $('program-state').textContent = text;
     $('program-state').classList.toggle('refusal', s.phase === 'ended' && s.end !== 'done');
   }
@@ -169,6 +172,10 @@ const program = (() => {
   $('program-run').addEventListener('click', run);
   $('program-stop').addEventListener('click', async () => {
     const r = await api('POST', '/api/motion', { kind: 'stop' });
+    say($('program-error'), r.ok ? '' : r.error, r.ok);
+  });
+  $('program-resume').addEventListener('click', async () => {
+    const r = await api('POST', '/api/program/resume', {});
     say($('program-error'), r.ok ? '' : r.error, r.ok);
   });
   $('program-fit').addEventListener('click', () => {
