@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs every test stage, stops at the first failure and prints
-# how long each stage took:
+# how long each stage took and the size of build/ after it (checking first
+# that the disk has room for the stages it runs):
 #   release  unity build, default generator (tests and benchmarks compiled),
 #            every source compiled on its own once more, syntax only (what a
 #            plain non-unity build needs: scripts/compile-each.py), every
@@ -27,13 +28,47 @@ stages=(${TNV_STAGES:-release slurm asan tsan fuzz arm64 kernel})
 jobs=$(nproc)
 declare -a report=()
 
+# What each stage leaves under build/, in MB, rounded up from a clean clone
+# of 76d5e55 (2026-11-29; docs/notes.md "Build and CI"): release 3,726,
+# asan 5,094, tsan 1,344, fuzz 298, arm64 557, the kernel stage's VM cache
+# 737. The test suites share one precompiled header since, which takes
+# about a third off the release and asan trees; the figures are kept as
+# upper bounds. ccache's own directory is not counted.
+declare -A stage_disk_mb=([release]=4100 [slurm]=50 [asan]=5600 [tsan]=1500 [fuzz]=400 [arm64]=700
+                          [kernel]=900 [package]=4100)
+# The packages the stages install (chromium, LinuxCNC, clang, the cross
+# compiler, qemu and a kernel) land on the same disk when / holds build/.
+installs_mb=3000
+
+# The run needs room for every stage it runs: say so before the first
+# build, not as a compiler's "No space left on device" forty minutes in.
+check_disk() {
+  mkdir -p build
+  local need_mb=${installs_mb} stage dir have_mb
+  for stage in "${stages[@]}"; do
+    # A tree left by an earlier run already holds its share.
+    dir=build/${stage}
+    [[ "${stage}" == kernel ]] && dir=build/kernel-vm-cache
+    have_mb=0
+    [[ -d "${dir}" ]] && have_mb=$(du -sm "${dir}" | cut -f1)
+    ((have_mb < ${stage_disk_mb[${stage}]:-0})) && need_mb=$((need_mb + ${stage_disk_mb[${stage}]:-0} - have_mb))
+  done
+  local free_mb
+  free_mb=$(df -Pm build | awk 'NR == 2 { print $4 }')
+  if ((free_mb < need_mb)); then
+    echo "test.sh: the stages ${stages[*]} need about ${need_mb} MB free under build/; $(df -Pm build | awk 'NR == 2 { print $6 }') has ${free_mb} MB." >&2
+    echo "test.sh: free some space (build trees of other branches, ccache -C) or run fewer stages (TNV_STAGES)." >&2
+    exit 1
+  fi
+}
+
 run_stage() {
   local name=$1
   shift
   local start=$SECONDS
   echo "=== ${name}"
   "$@"
-  report+=("$(printf '%-8s %4d s' "${name}" $((SECONDS - start)))")
+  report+=("$(printf '%-8s %4d s   build/ now %5d MB' "${name}" $((SECONDS - start)) "$(du -sm build | cut -f1)")")
 }
 
 # A step of a stage, its time reported with the stage's ("release.build").
@@ -53,6 +88,7 @@ build_and_test() {
   run_step "${preset}.tests" ctest --preset "${preset}" -j "${jobs}" -LE kernel
 }
 
+check_disk
 scripts/install-deps.sh
 # LinuxCNC's rs274, the G-code oracle (ctest -L gcode-oracle, docs/gcode.md):
 # the tests' alone, so scripts/run-main.sh does not install it.
