@@ -140,10 +140,14 @@ def test_the_scope_pauses_while_data_arrives_and_resumes(first, screenshot):
     assert page_value(first, "window.tnvPage.updates") == frozen_updates, "the scope redrew while paused"
     assert newest_drawn_t(first) == frozen_t, "the drawn trace moved while paused"
     box = first.find_element("id", "scope")
-    for dx in (-300, 200):  # cursor A, then cursor B
-        first.execute_script("""const c = Chart.getChart('scope'); const r = arguments[0].getBoundingClientRect();
+    # Chart.js handles a canvas' events once per animation frame (the last
+    # of a frame wins), as a hand's clicks always are: each click waits for
+    # its cursor before the next.
+    for dx, cursor in ((-300, "A "), (200, "B ")):  # cursor A, then cursor B
+        first.execute_script("""const r = arguments[0].getBoundingClientRect();
             arguments[0].dispatchEvent(new MouseEvent('click', {clientX: r.left + r.width / 2 + arguments[1],
             clientY: r.top + r.height / 2, bubbles: true}));""", box, dx)
+        wait_for(lambda: cursor in first.find_element("id", "cursor-readout").text, 10, f"cursor {cursor}set")
     readout = first.find_element("id", "cursor-readout").text
     assert "Δt" in readout and TRACE in readout, readout
     screenshot(first, "tuning-scope")
