@@ -136,10 +136,8 @@ Machine::Impl::Impl(const Scenario& s)
       spindle_encoder(s.spindle),
       sample_noise(s.noise.any_sample_noise()),
       force_noise(make_noise_stream(s.noise.seed, NoiseStreamId::force_adc)),
-      accel_noise{make_noise_stream(s.noise.seed, NoiseStreamId::accel_x),
-                  make_noise_stream(s.noise.seed, NoiseStreamId::accel_y)},
-      glitch_noise{make_noise_stream(s.noise.seed, NoiseStreamId::glitch_x),
-                   make_noise_stream(s.noise.seed, NoiseStreamId::glitch_y)},
+      accel_noise(make_axis_noise_streams(s.noise.seed, AxisNoise::accel)),
+      glitch_noise(make_axis_noise_streams(s.noise.seed, AxisNoise::glitch)),
       transport(s.io, s.noise.seed),
       fault_timeline(s.faults),
       fault_on(s.faults.size(), false) {

@@ -7,10 +7,15 @@
 // sequence, on every standard library. One stream per noise source, each
 // seeded from the scenario seed and its own stream number, so switching
 // one source on does not reshuffle another.
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <utility>
+
+#include "hal/axis.hpp"
 
 namespace tnv::emu {
 
@@ -51,7 +56,8 @@ class NoiseStream {
   bool has_spare_ = false;
 };
 
-// Stream numbers (fixed: changing one changes every seeded run).
+// Stream numbers (fixed: changing one changes every seeded run). The
+// per-axis sources' streams are axis_noise_stream()'s.
 enum class NoiseStreamId : std::uint64_t {
   force_adc = 1,
   accel_x = 2,
@@ -65,5 +71,50 @@ enum class NoiseStreamId : std::uint64_t {
 inline NoiseStream make_noise_stream(std::uint64_t seed, NoiseStreamId id) {
   return NoiseStream(seed, static_cast<std::uint64_t>(id));
 }
+
+// A noise source with a stream per axis.
+enum class AxisNoise : std::uint64_t {
+  accel = 0,   // the tool accelerometer's random part
+  glitch = 1,  // encoder glitches
+};
+
+// The first stream number past NoiseStreamId's: axes after x and y draw from here on.
+inline constexpr std::uint64_t kFirstFurtherAxisStream = 8;
+
+// The stream of `source` on the axis with list index `axis_index`: x and y
+// keep the numbers they had before the list (accel_x/_y, glitch_x/_y), so
+// their runs stay bit-identical; each further axis takes a pair of new ones
+// (accel, glitch) from kFirstFurtherAxisStream on.
+constexpr std::uint64_t axis_noise_stream(AxisNoise source, std::size_t axis_index) noexcept {
+  const auto k = static_cast<std::uint64_t>(source);
+  if (axis_index < 2) {
+    const NoiseStreamId first = source == AxisNoise::accel ? NoiseStreamId::accel_x : NoiseStreamId::glitch_x;
+    return static_cast<std::uint64_t>(first) + axis_index;
+  }
+  return kFirstFurtherAxisStream + 2 * (axis_index - 2) + k;
+}
+
+// One stream of `source` per axis of the list, in index order.
+inline std::array<NoiseStream, hal::kAxisCount> make_axis_noise_streams(std::uint64_t seed, AxisNoise source) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array<NoiseStream, hal::kAxisCount>{NoiseStream(seed, axis_noise_stream(source, I))...};
+  }(std::make_index_sequence<hal::kAxisCount>{});
+}
+
+namespace detail {
+// No two streams alike and none of NoiseStreamId's, for `axes` axes.
+constexpr bool axis_noise_streams_distinct(std::size_t axes) noexcept {
+  for (std::size_t i = 0; i < 2 * axes; ++i) {
+    const std::uint64_t a = axis_noise_stream(static_cast<AxisNoise>(i % 2), i / 2);
+    for (const NoiseStreamId id : {NoiseStreamId::force_adc, NoiseStreamId::io_jitter, NoiseStreamId::bore_gauge})
+      if (a == static_cast<std::uint64_t>(id)) return false;
+    for (std::size_t j = 0; j < i; ++j)
+      if (a == axis_noise_stream(static_cast<AxisNoise>(j % 2), j / 2)) return false;
+  }
+  return true;
+}
+}  // namespace detail
+static_assert(detail::axis_noise_streams_distinct(hal::kAxisCount) && detail::axis_noise_streams_distinct(26),
+              "every axis' noise sources draw from streams of their own");
 
 }  // namespace tnv::emu

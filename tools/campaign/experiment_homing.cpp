@@ -1,4 +1,4 @@
-// homing: the firmware's homing cycle of both axes (tnv-hil homing) from a
+// homing: the firmware's homing cycle of every axis (tnv-hil homing) from a
 // power-up position and encoder phase drawn from the run's seed, on the
 // run's table with the reference board's home switches and index marks
 // where it has none of its own; judged against the machine's truth.
@@ -28,18 +28,19 @@ void run_homing_row(const RunContext& c, nlohmann::ordered_json& row) {
                                                        static_cast<std::uint32_t>(c.run.seed));
   const nlohmann::json j = hil::homing_seed_json(r);
   // Where it started is known whether or not it homed.
-  for (const char* k : {"power_up_offset_x_mm", "power_up_offset_y_mm", "offset_counts_x", "offset_counts_y"})
-    row[k] = j.at(k);
+  for (const std::string& k : hil::homing_start_keys()) row[k] = j.at(k);
   if (!r.homed) {
     row["status"] = r.timed_out ? "timeout" : r.faulted ? "fault" : "error";
     row["reason"] = r.failure;
     return;
   }
   row["status"] = "ok";
-  for (const char* k : {"home_error_x_um", "home_error_y_um", "reading_error_x_um", "reading_error_y_um", "time_s"})
-    row[k] = j.at(k);
-  // As tnv-hil homing's summary: the largest |home error|, here over the two axes.
-  row["home_error_um_max"] = std::max(std::fabs(r.home_error_x_um), std::fabs(r.home_error_y_um));
+  for (const std::string& k : hil::homing_error_keys()) row[k] = j.at(k);
+  row["time_s"] = j.at("time_s");
+  // As tnv-hil homing's summary: the largest |home error|, here over the axes.
+  double home_error_um_max = 0.0;
+  for (const double e : r.home_error_um) home_error_um_max = std::max(home_error_um_max, std::fabs(e));
+  row["home_error_um_max"] = home_error_um_max;
 }
 
 }  // namespace
@@ -49,10 +50,10 @@ const Experiment& homing_experiment() {
     Experiment x;
     x.name = "homing";
     x.controllers = ControllerUse::choose;
-    for (const char* k : {"home_error_um_max", "home_error_x_um", "home_error_y_um", "reading_error_x_um",
-                          "reading_error_y_um", "time_s", "power_up_offset_x_mm", "power_up_offset_y_mm",
-                          "offset_counts_x", "offset_counts_y"})
-      x.results.push_back({k, "REAL"});
+    x.results.push_back({"home_error_um_max", "REAL"});
+    for (const std::string& k : hil::homing_error_keys()) x.results.push_back({k, "REAL"});
+    x.results.push_back({"time_s", "REAL"});
+    for (const std::string& k : hil::homing_start_keys()) x.results.push_back({k, "REAL"});
     x.default_metric = "home_error_um_max";
     x.check_settings = [](const nlohmann::ordered_json&, const std::string&, std::string&) { return std::string(); };
     x.check_input = any_input;

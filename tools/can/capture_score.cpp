@@ -1,31 +1,44 @@
 #include "tools/can/capture_score.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "hal/axis.hpp"
 
 namespace tnv::can_host {
 
 namespace {
 
+// The circle is in the XY plane: its columns are the plane axes' (ref_x,
+// ref_y, pos_x, pos_y with today's list), in TraceSample's plane order.
+constexpr std::array<hal::Axis, 2> kPlane{hal::kPlaneFirst, hal::kPlaneSecond};
+
+std::string column_name(const char* channel, hal::Axis axis) { return std::string(channel) + "_" + hal::axis_label(axis); }
+
 struct Columns {
   const std::vector<double>* motion_tick = nullptr;
   const std::vector<double>* contour_um = nullptr;
-  const std::vector<double>* ref_x = nullptr;
-  const std::vector<double>* ref_y = nullptr;
-  const std::vector<double>* pos_x = nullptr;
-  const std::vector<double>* pos_y = nullptr;
-  bool has_path() const { return ref_x && ref_y && pos_x && pos_y; }
+  std::array<const std::vector<double>*, 2> ref{};  // per plane axis
+  std::array<const std::vector<double>*, 2> pos{};
+  bool has_path() const { return ref[0] && ref[1] && pos[0] && pos[1]; }
 };
 
 Columns columns_of(const CaptureTable& t) {
-  return {t.column("motion_tick"), t.column("contour"), t.column("ref_x"),
-          t.column("ref_y"),       t.column("pos_x"),   t.column("pos_y")};
+  Columns c{t.column("motion_tick"), t.column("contour"), {}, {}};
+  for (std::size_t k = 0; k < kPlane.size(); ++k) {
+    c.ref[k] = t.column(column_name("ref", kPlane[k]));
+    c.pos[k] = t.column(column_name("pos", kPlane[k]));
+  }
+  return c;
 }
 
 // The sample's contour error, mm.
 double contour_mm(const Columns& c, std::size_t i) {
   if (c.contour_um) return (*c.contour_um)[i] / 1000.0;
   // S1 eq. (33) from the captured path (nm resolution).
-  return hil::contour_error_mm((*c.ref_x)[i], (*c.ref_y)[i], (*c.pos_x)[i], (*c.pos_y)[i]);
+  return hil::contour_error_mm((*c.ref[0])[i], (*c.ref[1])[i], (*c.pos[0])[i], (*c.pos[1])[i]);
 }
 
 }  // namespace
@@ -57,15 +70,14 @@ std::vector<hil::TraceSample> circle_trace(const CaptureTable& table) {
     hil::TraceSample t;
     t.t_s = tick * 1e-3;
     if (c.has_path()) {
-      t.reference_mm = {(*c.ref_x)[i], (*c.ref_y)[i]};
-      t.position_mm = {(*c.pos_x)[i], (*c.pos_y)[i]};
+      t.reference_mm = {(*c.ref[0])[i], (*c.ref[1])[i]};
+      t.position_mm = {(*c.pos[0])[i], (*c.pos[1])[i]};
     }
-    if (const auto* v = table.column("command_x")) t.command_mm_s[0] = (*v)[i];
-    if (const auto* v = table.column("command_y")) t.command_mm_s[1] = (*v)[i];
-    if (const auto* v = table.column("s_x")) t.s[0] = (*v)[i];
-    if (const auto* v = table.column("s_y")) t.s[1] = (*v)[i];
-    if (const auto* v = table.column("d_hat_x")) t.d_hat_mm_s[0] = (*v)[i];
-    if (const auto* v = table.column("d_hat_y")) t.d_hat_mm_s[1] = (*v)[i];
+    for (std::size_t k = 0; k < kPlane.size(); ++k) {
+      if (const auto* v = table.column(column_name("command", kPlane[k]))) t.command_mm_s[k] = (*v)[i];
+      if (const auto* v = table.column(column_name("s", kPlane[k]))) t.s[k] = (*v)[i];
+      if (const auto* v = table.column(column_name("d_hat", kPlane[k]))) t.d_hat_mm_s[k] = (*v)[i];
+    }
     t.contour_um = contour_mm(c, i) * 1000.0;
     trace.push_back(t);
   }
@@ -74,9 +86,9 @@ std::vector<hil::TraceSample> circle_trace(const CaptureTable& table) {
 
 double reference_radius_mm(const CaptureTable& table) {
   const Columns c = columns_of(table);
-  if (!c.ref_x || !c.ref_y) return 0.0;
+  if (!c.ref[0] || !c.ref[1]) return 0.0;
   for (std::size_t i = 0; i < table.samples(); ++i)
-    if (!c.motion_tick || (*c.motion_tick)[i] >= 0) return std::hypot((*c.ref_x)[i], (*c.ref_y)[i]);
+    if (!c.motion_tick || (*c.motion_tick)[i] >= 0) return std::hypot((*c.ref[0])[i], (*c.ref[1])[i]);
   return 0.0;
 }
 

@@ -15,6 +15,7 @@
 #include "firmware/supervisor/fault.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "hal/axis.hpp"
 #include "tools/hil/hil_rig.hpp"
 
 namespace tnv::hil {
@@ -53,7 +54,7 @@ struct FaultObservation {
   bool watchdog_tripped = false;      // the board's watchdog made the outputs safe on its own
   bool live_before_detection = true;  // both enables on at every tick from the injection until the latch
   emu::BoardOutputs after_latch{};    // the board's outputs right after the latching tick's write
-  std::array<double, 2> command_after_mm_s{};  // what the servopacks get one sub-step after that
+  std::array<double, hal::kAxisCount> command_after_mm_s{};  // per axis: what the servopacks get one sub-step after that
   double deviation_um = 0.0;  // max |table - reference| on either axis from the injection to the latch
   fw::TickCounters counters{};
 
@@ -81,7 +82,7 @@ struct WatchdogObservation {
   double last_kick_s = 0.0;
   std::optional<double> trip_s;  // the board's watchdog trip
   emu::BoardOutputs at_trip{};
-  std::array<double, 2> command_at_trip_mm_s{};
+  std::array<double, hal::kAxisCount> command_at_trip_mm_s{};  // per axis
   fw::FaultRecord fault_on_return{};
   fw::CommandStatus clear_while_tripped = fw::CommandStatus::ok;
   fw::CommandStatus clear_after_reset = fw::CommandStatus::ok;

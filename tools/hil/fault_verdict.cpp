@@ -6,13 +6,19 @@
 
 namespace tnv::hil {
 
+bool every_command_zero(const std::array<double, hal::kAxisCount>& command_mm_s) noexcept {
+  for (const double v : command_mm_s)
+    if (v != 0.0) return false;
+  return true;
+}
+
 bool fault_case_met(const FaultCase& c, const FaultObservation& o, std::uint32_t mid_code) {
   if (!o.error.empty()) return false;
   if (c.expected == fw::FaultReason::none) return !o.detected && o.live_before_detection;
   const bool reason_ok =
       o.fault.reason == c.expected || (c.also_accepted != fw::FaultReason::none && o.fault.reason == c.also_accepted);
   return o.detected && reason_ok && o.fault.tick == o.latching_tick && o.after_latch.safe(mid_code) &&
-         o.command_after_mm_s[0] == 0.0 && o.command_after_mm_s[1] == 0.0;
+         every_command_zero(o.command_after_mm_s);
 }
 
 const char* latched_text(const FaultObservation& o) noexcept { return o.detected ? fw::to_string(o.fault.reason) : "none"; }
@@ -36,10 +42,11 @@ nlohmann::json fault_case_json(const FaultCase& c, const FaultObservation& obs, 
                         {"ok", met}};
   row["time_to_safe_ms"] = obs.time_to_safe_s() ? nlohmann::json(*obs.time_to_safe_s() * 1e3) : nlohmann::json();
   if (obs.detected) {
-    row["after_latch"] = {{"dac_x", obs.after_latch.dac_register[0]},
-                          {"dac_y", obs.after_latch.dac_register[1]},
-                          {"enable_x", obs.after_latch.enabled[0]},
-                          {"enable_y", obs.after_latch.enabled[1]}};
+    nlohmann::json& after = row["after_latch"];
+    for (const hal::Axis a : hal::kAxes) {
+      after[std::string("dac_") + hal::axis_label(a)] = obs.after_latch.dac_register[hal::index(a)];
+      after[std::string("enable_") + hal::axis_label(a)] = obs.after_latch.enabled[hal::index(a)];
+    }
   }
   if (!obs.error.empty()) row["error"] = obs.error;
   return row;

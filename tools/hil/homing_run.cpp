@@ -43,14 +43,14 @@ emu::Scenario homing_scenario() {
 }
 
 emu::Scenario with_homing_board(emu::Scenario table) {
-  if (table.board.axis[0].home_switch || table.board.axis[1].home_switch) return table;
+  for (const auto& axis : table.board.axis)
+    if (axis.home_switch) return table;
   const emu::Scenario board = homing_scenario();
-  table.board.axis[0].home_switch = board.board.axis[0].home_switch;
-  table.board.axis[1].home_switch = board.board.axis[1].home_switch;
-  table.board.axis[0].home_mm = board.board.axis[0].home_mm;
-  table.board.axis[1].home_mm = board.board.axis[1].home_mm;
-  table.board.axis[0].index_deg = board.board.axis[0].index_deg;
-  table.board.axis[1].index_deg = board.board.axis[1].index_deg;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    table.board.axis[i].home_switch = board.board.axis[i].home_switch;
+    table.board.axis[i].home_mm = board.board.axis[i].home_mm;
+    table.board.axis[i].index_deg = board.board.axis[i].index_deg;
+  }
   return table;
 }
 
@@ -74,14 +74,15 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
   out.seed = seed;
   std::mt19937_64 g(seed);
   emu::Scenario s = base_scenario;
-  s.board.axis[0].power_up_offset_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
-  s.board.axis[1].power_up_offset_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
-  s.encoder.axis_offset_counts[0] = unit_interval(g) * 65536.0;
-  s.encoder.axis_offset_counts[1] = unit_interval(g) * 65536.0;
-  out.power_up_offset_x_mm = s.board.axis[0].power_up_offset_mm;
-  out.power_up_offset_y_mm = s.board.axis[1].power_up_offset_mm;
-  out.offset_counts_x = s.encoder.axis_offset_counts[0];
-  out.offset_counts_y = s.encoder.axis_offset_counts[1];
+  // Every axis' power-up position, then every axis' count offset: for two
+  // axes the draws of the seeds published so far.
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    s.board.axis[i].power_up_offset_mm = (2.0 * unit_interval(g) - 1.0) * kPowerUpRangeMm;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) s.encoder.axis_offset_counts[i] = unit_interval(g) * 65536.0;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    out.power_up_offset_mm[i] = s.board.axis[i].power_up_offset_mm;
+    out.offset_counts[i] = s.encoder.axis_offset_counts[i];
+  }
 
   std::string error;
   const std::unique_ptr<HilRig> rig = HilRig::create(s, config, config.axis[0].controller, error);
@@ -124,8 +125,8 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
     const double q_mm = s.encoder.count_mm();
     const double exact_counts = motor_mm / q_mm + s.encoder.offset_counts(axis);
     const double rounding_um = (static_cast<double>(std::llround(exact_counts)) - exact_counts) * q_mm * 1000.0;
-    (i == 0 ? out.reading_error_x_um : out.reading_error_y_um) = reading_error_um;
-    (i == 0 ? out.home_error_x_um : out.home_error_y_um) = reading_error_um - rounding_um;
+    out.reading_error_um[i] = reading_error_um;
+    out.home_error_um[i] = reading_error_um - rounding_um;
   }
   out.homed = true;
   return out;
@@ -134,7 +135,7 @@ HomingSeedResult run_homing_seed(const emu::Scenario& base_scenario, const fw::F
 HomingSummary run_homing(const emu::Scenario& scenario, const fw::FirmwareConfig& config, std::uint32_t seeds) {
   HomingSummary sum;
   bool any = false;
-  double min_x = 0.0, max_x = 0.0, min_y = 0.0, max_y = 0.0;
+  std::array<double, hal::kAxisCount> min_um{}, max_um{};  // home error per axis over the homed seeds
   for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
     const HomingSeedResult r = run_homing_seed(scenario, config, seed);
     sum.seeds.push_back(r);
@@ -142,17 +143,17 @@ HomingSummary run_homing(const emu::Scenario& scenario, const fw::FirmwareConfig
       sum.all_homed = false;
       continue;
     }
-    min_x = any ? std::min(min_x, r.home_error_x_um) : r.home_error_x_um;
-    max_x = any ? std::max(max_x, r.home_error_x_um) : r.home_error_x_um;
-    min_y = any ? std::min(min_y, r.home_error_y_um) : r.home_error_y_um;
-    max_y = any ? std::max(max_y, r.home_error_y_um) : r.home_error_y_um;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      min_um[i] = any ? std::min(min_um[i], r.home_error_um[i]) : r.home_error_um[i];
+      max_um[i] = any ? std::max(max_um[i], r.home_error_um[i]) : r.home_error_um[i];
+      sum.home_error_um_max = std::max(sum.home_error_um_max, std::fabs(r.home_error_um[i]));
+      sum.reading_error_um_max = std::max(sum.reading_error_um_max, std::fabs(r.reading_error_um[i]));
+    }
     any = true;
-    sum.home_error_um_max = std::max({sum.home_error_um_max, std::fabs(r.home_error_x_um), std::fabs(r.home_error_y_um)});
-    sum.reading_error_um_max =
-        std::max({sum.reading_error_um_max, std::fabs(r.reading_error_x_um), std::fabs(r.reading_error_y_um)});
     sum.time_s_max = std::max(sum.time_s_max, r.time_s);
   }
-  sum.home_error_spread_um = std::max(max_x - min_x, max_y - min_y);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    sum.home_error_spread_um = std::max(sum.home_error_spread_um, max_um[i] - min_um[i]);
   return sum;
 }
 

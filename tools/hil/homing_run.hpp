@@ -13,30 +13,29 @@
 // the encoder and its index are on the motor, so home is a motor
 // reference; with backlash or lead error the table differs from it by the
 // screw (docs/safety.md "Homing").
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "emulator/scenario.hpp"
+#include "hal/axis.hpp"
 #include "firmware/tick/firmware_config.hpp"
 
 namespace tnv::hil {
 
 struct HomingSeedResult {
   std::uint32_t seed = 0;
-  double power_up_offset_x_mm = 0.0;  // [board] power_up_offset_*_mm of this seed
-  double power_up_offset_y_mm = 0.0;
-  double offset_counts_x = 0.0;       // [encoder] offset_counts_* (power-up count and phase)
-  double offset_counts_y = 0.0;
+  // Per axis, indexed by hal::index(axis).
+  std::array<double, hal::kAxisCount> power_up_offset_mm{};  // [board] power_up_offset_*_mm of this seed
+  std::array<double, hal::kAxisCount> offset_counts{};       // [encoder] offset_counts_* (power-up count and phase)
   bool homed = false;
   std::string failure;                // why not, when not homed
   bool faulted = false;               // not homed: the firmware latched a fault
   bool timed_out = false;             // not homed: still homing when the bench's time ran out
-  double home_error_x_um = 0.0;       // the frame's error at the mark, motor side
-  double home_error_y_um = 0.0;
-  double reading_error_x_um = 0.0;    // the reading at rest after homing, motor side
-  double reading_error_y_um = 0.0;
-  double time_s = 0.0;                // command to both axes homed
+  std::array<double, hal::kAxisCount> home_error_um{};     // the frame's error at the mark, motor side
+  std::array<double, hal::kAxisCount> reading_error_um{};  // the reading at rest after homing, motor side
+  double time_s = 0.0;                // command to every axis homed
 };
 
 struct HomingSummary {

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "firmware/shaper/grid_taps.hpp"
+#include "hal/axis.hpp"
 #include "firmware/shaper/residual_vibration.hpp"
 #include "tools/hil/plot_data.hpp"
 #include "tools/hil/shaper_design_report.hpp"
@@ -174,7 +175,7 @@ json move_plot_data(const std::string& title, const MoveComparison& c) {
 
 json jog_plot_data(const std::string& title, const JogRunResult& u, const JogRunResult& s) {
   json panels = json::array();
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     std::vector<double> t, cmd, ref, teu, eu, tes, es;
     for (const JogTraceSample& q : s.trace) t.push_back(q.t_s), cmd.push_back(q.unshaped_mm[i]), ref.push_back(q.reference_mm[i]);
     for (const JogTraceSample& q : u.trace)

@@ -1,8 +1,12 @@
 #include "tools/hil/shaper_jog_run.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "emulator/machine.hpp"
 #include "firmware/tick/tick_task.hpp"
@@ -26,20 +30,29 @@ bool parse_number(const std::string& field, double& out) {
 }
 }  // namespace
 
+std::string jog_csv_header() {
+  std::string h = "t_s";
+  for (const hal::Axis a : hal::kAxes) h += std::string(",") + hal::axis_label(a) + "_mm_s";
+  return h;
+}
+
 std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, std::string& error) {
+  constexpr std::size_t kFields = 1 + hal::kAxisCount;  // t_s, then a speed per axis
+  const std::string header_text = jog_csv_header();
+  std::vector<std::string> names{"t_s"};
+  for (const hal::Axis a : hal::kAxes) names.push_back(std::string(hal::axis_label(a)) + "_mm_s");
   std::vector<JogCommand> out;
   std::istringstream in(text);
   std::string line;
   int n = 0;
   bool header = false;
-  const char* names[] = {"t_s", "x_mm_s", "y_mm_s"};
   while (std::getline(in, line)) {
     ++n;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
     if (!header) {
-      if (line != "t_s,x_mm_s,y_mm_s") {
-        error = "line " + std::to_string(n) + ": header must be t_s,x_mm_s,y_mm_s";
+      if (line != header_text) {
+        error = "line " + std::to_string(n) + ": header must be " + header_text;
         return std::nullopt;
       }
       header = true;
@@ -49,14 +62,14 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
     std::string f;
     std::istringstream row(line);
     while (std::getline(row, f, ',')) fields.push_back(f);
-    if (fields.size() != 3) {
-      error =
-          "line " + std::to_string(n) + ": expected 3 fields (t_s,x_mm_s,y_mm_s), got " + std::to_string(fields.size());
+    if (fields.size() != kFields) {
+      error = "line " + std::to_string(n) + ": expected " + std::to_string(kFields) + " fields (" + header_text +
+              "), got " + std::to_string(fields.size());
       return std::nullopt;
     }
-    double v[3];
-    for (int i = 0; i < 3; ++i)
-      if (!parse_number(fields[static_cast<std::size_t>(i)], v[i])) {
+    std::array<double, kFields> v{};
+    for (std::size_t i = 0; i < kFields; ++i)
+      if (!parse_number(fields[i], v[i])) {
         error = "line " + std::to_string(n) + ": " + names[i] + " is not a finite number";
         return std::nullopt;
       }
@@ -65,10 +78,12 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
               std::to_string(static_cast<int>(kLongestStreamS)) + " s";
       return std::nullopt;
     }
-    out.push_back({v[0], {v[1], v[2]}});
+    JogCommand c{v[0], {}};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) c.speed_mm_s[i] = v[1 + i];
+    out.push_back(c);
   }
   if (out.empty()) {
-    error = header ? "no command rows" : "empty file (header t_s,x_mm_s,y_mm_s expected)";
+    error = header ? "no command rows" : "empty file (header " + header_text + " expected)";
     return std::nullopt;
   }
   return out;
@@ -85,7 +100,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
   if (!rig) return result;
   emu::Machine& machine = rig->machine;
   fw::TickTask& task = rig->task;
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const hal::Axis axis = hal::axis_from_index(i);
     if (!request.shaper[i]) continue;
     if (task.configure_shaper(axis, *request.shaper[i]) != fw::CommandStatus::ok ||
@@ -103,7 +118,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
   rig->settle_charge();  // charged time (hil_rig.hpp)
   machine.advance_to_next_tick();
   rig->charged_call([&task]() noexcept { task.tick(); });
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     result.axis[i].start_mm = task.last_record().axis[i].reference_mm;
     result.axis[i].shaper_delay_s = task.shaper_delay_s(hal::axis_from_index(i));
   }
@@ -112,13 +127,13 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
   const auto window_ticks = static_cast<std::int64_t>(std::llround(request.window_s / kTickPeriodS));
   std::int64_t stop_tick = -1;  // first tick of the final rest, -1 while moving
   std::size_t row = 0;
-  std::vector<std::array<double, 3>> tool_samples;  // t, tool x, tool y
+  std::vector<std::array<double, 1 + hal::kAxisCount>> tool_samples;  // t, then the tool point per axis
   for (std::int64_t k = 0;; ++k) {
     const double t_s = static_cast<double>(k) * kTickPeriodS;
     // The pendant: hold the current row, silent after the last one.
     while (row + 1 < request.commands.size() && request.commands[row + 1].t_s <= t_s + 1e-9) ++row;
     if (k <= last_row_tick && request.commands[row].t_s <= t_s + 1e-9) {
-      for (std::size_t i = 0; i < 2; ++i) {
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
         const double v = request.commands[row].speed_mm_s[i];
         const bool axis_idle = v == 0.0 && task.state() != fw::MotionState::moving;
         if (axis_idle) continue;  // nothing to send for a standing axis
@@ -127,21 +142,26 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     }
     rig->settle_charge();  // charged time (hil_rig.hpp)
     machine.advance_to_next_tick();
-    const emu::AxisTruth tx = machine.truth(hal::kPlaneFirst), ty = machine.truth(hal::kPlaneSecond);
+    std::array<double, 1 + hal::kAxisCount> tool{t_s};  // the tool point where the sub-steps left it
+    for (const hal::Axis axis : hal::kAxes) tool[1 + hal::index(axis)] = machine.truth(axis).tool_position_mm;
     rig->charged_call([&task]() noexcept { task.tick(); });
     if (task.state() == fw::MotionState::faulted) break;
     const fw::TickRecord& rec = task.last_record();
-    tool_samples.push_back({t_s, tx.tool_position_mm, ty.tool_position_mm});
-    for (std::size_t i = 0; i < 2; ++i) {
+    tool_samples.push_back(tool);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
       const fw::AxisTickRecord& r = rec.axis[i];
       result.axis[i].max_following_error_um =
           std::max(result.axis[i].max_following_error_um, std::fabs(r.reference_mm - r.position_mm) * 1e3);
     }
-    if (request.keep_trace)
-      result.trace.push_back({t_s,
-                              {rec.axis[0].unshaped_reference_mm, rec.axis[1].unshaped_reference_mm},
-                              {rec.axis[0].reference_mm, rec.axis[1].reference_mm},
-                              {tx.tool_position_mm, ty.tool_position_mm}});
+    if (request.keep_trace) {
+      JogTraceSample q{.t_s = t_s};
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        q.unshaped_mm[i] = rec.axis[i].unshaped_reference_mm;
+        q.reference_mm[i] = rec.axis[i].reference_mm;
+        q.tool_mm[i] = tool[1 + i];
+      }
+      result.trace.push_back(q);
+    }
     const bool at_rest = task.state() == fw::MotionState::holding;
     if (k > last_row_tick && at_rest && stop_tick < 0) stop_tick = k;
     if (!at_rest) stop_tick = -1;
@@ -160,7 +180,7 @@ JogRunResult run_jog(const JogRunRequest& request, const fw::FirmwareConfig& bas
     return result;
   }
   result.stop_s = static_cast<double>(stop_tick) * kTickPeriodS;
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     JogAxisResult& a = result.axis[i];
     a.end_mm = task.last_record().axis[i].reference_mm;
     a.unshaped_end_mm = task.last_record().axis[i].unshaped_reference_mm;

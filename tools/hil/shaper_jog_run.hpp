@@ -12,15 +12,20 @@
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::hil {
 
 struct JogCommand {
   double t_s = 0.0;
-  std::array<double, 2> speed_mm_s{};  // x, y
+  std::array<double, hal::kAxisCount> speed_mm_s{};  // per axis, by hal::index
 };
 
-// CSV with the header `t_s,x_mm_s,y_mm_s`, rows in increasing time, t >= 0.
+// The CSV's header: t_s and a speed column per axis of the list
+// (`t_s,x_mm_s,y_mm_s`).
+std::string jog_csv_header();
+
+// CSV with the header jog_csv_header(), rows in increasing time, t >= 0.
 // Empty lines and lines starting with '#' are skipped. On error returns
 // nullopt and sets `error` to "line N: ..." naming the field.
 std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, std::string& error);
@@ -28,18 +33,19 @@ std::optional<std::vector<JogCommand>> parse_jog_csv(const std::string& text, st
 struct JogRunRequest {
   emu::Scenario scenario;
   std::vector<JogCommand> commands;
-  std::array<std::optional<fw::ShaperSpec>, 2> shaper{};  // per axis; nullopt: unshaped
+  std::array<std::optional<fw::ShaperSpec>, hal::kAxisCount> shaper{};  // per axis; nullopt: unshaped
   fw::ControllerKind controller = fw::ControllerKind::rdvsc;
-  double window_s = 1.5;  // recorded after both axes are back at rest
+  double window_s = 1.5;  // recorded after every axis is back at rest
   double settle_band_um = 1.0;
   bool keep_trace = false;
 };
 
 struct JogTraceSample {
   double t_s = 0.0;  // since the first command
-  std::array<double, 2> unshaped_mm{};
-  std::array<double, 2> reference_mm{};
-  std::array<double, 2> tool_mm{};
+  // Per axis, by hal::index:
+  std::array<double, hal::kAxisCount> unshaped_mm{};
+  std::array<double, hal::kAxisCount> reference_mm{};
+  std::array<double, hal::kAxisCount> tool_mm{};
 };
 
 struct JogAxisResult {
@@ -55,10 +61,10 @@ struct JogAxisResult {
 struct JogRunResult {
   bool completed = false;
   std::string error;
-  double stop_s = 0.0;  // both axes at rest (holding)
+  double stop_s = 0.0;  // every axis at rest (holding)
   std::uint32_t deadman_stops = 0;
   std::uint32_t refused_commands = 0;
-  std::array<JogAxisResult, 2> axis{};
+  std::array<JogAxisResult, hal::kAxisCount> axis{};
   std::vector<JogTraceSample> trace;
 };
 

@@ -213,20 +213,24 @@ SoakMetric metric(const std::vector<SoakCycle>& cycles, std::size_t first, std::
   return m;
 }
 
+// The mean of |v| over the axes (added in list order: for two axes the
+// (|x| + |y|) / 2 of before, bit for bit).
+double mean_abs(const std::array<double, hal::kAxisCount>& v) {
+  double sum = 0.0;
+  for (const double a : v) sum += std::fabs(a);
+  return sum / static_cast<double>(hal::kAxisCount);
+}
+
 SoakWindow window(const std::vector<SoakCycle>& cycles, std::size_t first, std::size_t count) {
   SoakWindow w;
   w.cycles = count;
   w.contour_max_um = metric(cycles, first, count, [](const SoakCycle& c) { return c.circle.max_um; });
   w.contour_mean_um = metric(cycles, first, count, [](const SoakCycle& c) { return c.circle.mean_um; });
   w.contour_std_um = metric(cycles, first, count, [](const SoakCycle& c) { return c.circle.std_um; });
-  w.rest_error_um = metric(cycles, first, count, [](const SoakCycle& c) {
-    return (std::fabs(c.rest_error_um[0]) + std::fabs(c.rest_error_um[1])) / 2.0;
-  });
-  w.rest_d_hat_mm_s = metric(cycles, first, count, [](const SoakCycle& c) {
-    return (std::fabs(c.rest_d_hat_mm_s[0]) + std::fabs(c.rest_d_hat_mm_s[1])) / 2.0;
-  });
+  w.rest_error_um = metric(cycles, first, count, [](const SoakCycle& c) { return mean_abs(c.rest_error_um); });
+  w.rest_d_hat_mm_s = metric(cycles, first, count, [](const SoakCycle& c) { return mean_abs(c.rest_d_hat_mm_s); });
   w.cycle_d_hat_mm_s = metric(cycles, first, count, [](const SoakCycle& c) {
-    return std::max(c.max_abs_d_hat_mm_s[0], c.max_abs_d_hat_mm_s[1]);
+    return *std::max_element(c.max_abs_d_hat_mm_s.begin(), c.max_abs_d_hat_mm_s.end());
   });
   return w;
 }

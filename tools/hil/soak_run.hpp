@@ -16,6 +16,7 @@
 #include "emulator/scenario.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "hal/axis.hpp"
 #include "tools/score/contour_stats.hpp"
 
 namespace tnv::hil {
@@ -36,9 +37,10 @@ struct SoakRequest {
 struct SoakCycle {
   double start_s = 0.0;  // machine time the circle was commanded
   ContourStats circle{};  // S1 eq. (33) over the circle's motion
-  std::array<double, 2> rest_error_um{};       // reference - measured position at the end of the rest
-  std::array<double, 2> rest_d_hat_mm_s{};     // the DDC's disturbance estimate then
-  std::array<double, 2> max_abs_d_hat_mm_s{};  // over the whole cycle
+  // Per axis, indexed by hal::index(axis):
+  std::array<double, hal::kAxisCount> rest_error_um{};       // reference - measured position at the end of the rest
+  std::array<double, hal::kAxisCount> rest_d_hat_mm_s{};     // the DDC's disturbance estimate then
+  std::array<double, hal::kAxisCount> max_abs_d_hat_mm_s{};  // over the whole cycle
   double jog_max_following_um = 0.0;           // |reference - measured| during the jogs
   std::uint32_t clock_wraps = 0;               // TICK_CLOCK wraps so far
 };
@@ -55,8 +57,8 @@ struct SoakWindow {
   SoakMetric contour_max_um{};
   SoakMetric contour_mean_um{};
   SoakMetric contour_std_um{};
-  SoakMetric rest_error_um{};     // |reference - position| at rest, both axes
-  SoakMetric rest_d_hat_mm_s{};   // |d_hat| at rest, both axes
+  SoakMetric rest_error_um{};     // |reference - position| at rest, mean over the axes
+  SoakMetric rest_d_hat_mm_s{};   // |d_hat| at rest, mean over the axes
   SoakMetric cycle_d_hat_mm_s{};  // max |d_hat| over the cycle, worse axis
 };
 

@@ -67,8 +67,8 @@ int run_faults_command(const FaultsOptions& o) {
   const hil::WatchdogObservation wd = hil::run_watchdog_case(*scenario, 3.0, 10.0, controller);
   const std::optional<double> wd_trip_after_kick_s =
       wd.trip_s ? std::optional<double>(*wd.trip_s - wd.last_kick_s) : std::nullopt;
-  const bool wd_ok = wd.error.empty() && wd.trip_s && wd.at_trip.safe(mid_code) && wd.command_at_trip_mm_s[0] == 0.0 &&
-                     wd.command_at_trip_mm_s[1] == 0.0;
+  const bool wd_ok = wd.error.empty() && wd.trip_s && wd.at_trip.safe(mid_code) &&
+                     hil::every_command_zero(wd.command_at_trip_mm_s);
   if (!wd_ok) ++failed;
   if (o.json) {
     nlohmann::json j = {{"scenario", scenario->name},

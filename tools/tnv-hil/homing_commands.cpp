@@ -4,8 +4,10 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
+#include <string>
 #include <nlohmann/json.hpp>
 
+#include "hal/axis.hpp"
 #include "tools/hil/homing_json.hpp"
 #include "tools/hil/homing_run.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
@@ -53,14 +55,23 @@ int run_homing_command(const HomingCliOptions& o) {
                                 {"runs", seeds}};
     std::cout << out.dump(2) << "\n";
   } else {
-    std::printf("homing on %s: %u seeds (power-up within +-20 mm, any count offset and phase), both axes, x then y\n",
-                scenario.name.c_str(), o.seeds);
-    std::printf("%5s %9s %9s %10s %10s %7s %10s %10s %7s\n", "seed", "x0_mm", "y0_mm", "cnt_x", "cnt_y", "homed",
-                "err_x_um", "err_y_um", "time_s");
+    std::string order;  // "x then y"
+    for (const hal::Axis a : hal::kHomingOrder) order += (order.empty() ? "" : " then ") + std::string(hal::axis_label(a));
+    std::printf("homing on %s: %u seeds (power-up within +-20 mm, any count offset and phase), %s, %s\n",
+                scenario.name.c_str(), o.seeds, hal::kAxisCount == 2 ? "both axes" : "every axis", order.c_str());
+    std::printf("%5s", "seed");
+    for (const hal::Axis a : hal::kAxes) std::printf(" %9s", hil::axis_key("*0_mm", a).c_str());
+    for (const hal::Axis a : hal::kAxes) std::printf(" %10s", hil::axis_key("cnt_*", a).c_str());
+    std::printf(" %7s", "homed");
+    for (const hal::Axis a : hal::kAxes) std::printf(" %10s", hil::axis_key("err_*_um", a).c_str());
+    std::printf(" %7s\n", "time_s");
     for (const hil::HomingSeedResult& r : sum.seeds) {
-      std::printf("%5u %9.3f %9.3f %10.3f %10.3f %7s %10.4f %10.4f %7.2f%s%s\n", r.seed, r.power_up_offset_x_mm,
-                  r.power_up_offset_y_mm, r.offset_counts_x, r.offset_counts_y, r.homed ? "yes" : "NO",
-                  r.home_error_x_um, r.home_error_y_um, r.time_s, r.failure.empty() ? "" : "  ", r.failure.c_str());
+      std::printf("%5u", r.seed);
+      for (const double v : r.power_up_offset_mm) std::printf(" %9.3f", v);
+      for (const double v : r.offset_counts) std::printf(" %10.3f", v);
+      std::printf(" %7s", r.homed ? "yes" : "NO");
+      for (const double v : r.home_error_um) std::printf(" %10.4f", v);
+      std::printf(" %7.2f%s%s\n", r.time_s, r.failure.empty() ? "" : "  ", r.failure.c_str());
     }
     std::printf("home_error_um_max %.4f (goal %.1f, motor side), spread %.4f um, reading_error_um_max %.4f, "
                 "time_s_max %.2f\n",

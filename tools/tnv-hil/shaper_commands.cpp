@@ -1,5 +1,6 @@
 // tnv-hil shaper design | move | jog | grid: the input shaper (issue 3).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "hal/axis.hpp"
 #include "hal/axis_choice.hpp"
 #include "emulator/text_file.hpp"
 #include "firmware/shaper/grid_taps.hpp"
@@ -232,7 +234,7 @@ int run_jog_command(const JogOptions& o) {
   request.scenario = *scenario;
   request.commands = *commands;
   request.keep_trace = !o.plot.empty();
-  for (std::size_t i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const emu::AxisPlantParams& plant = scenario->plant[i];
     const double f = o.freq_hz.value_or(plant.mode_hz);
     if (f <= 0.0) continue;  // no mode on this axis and none given: unshaped
@@ -240,7 +242,7 @@ int run_jog_command(const JogOptions& o) {
     if (!check_spec(spec)) return kExitBadInput;
     request.shaper[i] = spec;
   }
-  if (!request.shaper[0] && !request.shaper[1]) {
+  if (std::none_of(request.shaper.begin(), request.shaper.end(), [](const auto& spec) { return spec.has_value(); })) {
     std::fprintf(stderr, "tnv-hil: scenario %s has no structural mode: give --freq-hz\n", scenario->name.c_str());
     return kExitBadInput;
   }
@@ -268,7 +270,7 @@ int run_jog_command(const JogOptions& o) {
     }
   if (o.json) {
     nlohmann::json axes = nlohmann::json::object();
-    for (std::size_t i = 0; i < 2; ++i) {
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
       const auto one = [&](const hil::JogRunResult& r) {
         const hil::JogAxisResult& a = r.axis[i];
         return nlohmann::json{{"start_mm", a.start_mm},
@@ -298,7 +300,7 @@ int run_jog_command(const JogOptions& o) {
                   "%s: %zu jog rows; axes at rest after %.3f s unshaped, %.3f s shaped; dead-man stops %u\n",
                   scenario->name.c_str(), commands->size(), u.stop_s, s.stop_s, s.deadman_stops);
     std::cout << buf;
-    for (std::size_t i = 0; i < 2; ++i) {
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
       const hil::JogAxisResult& a = u.axis[i];
       const hil::JogAxisResult& b = s.axis[i];
       std::snprintf(
@@ -426,10 +428,10 @@ void add_shaper_commands(CLI::App& app, Runner& run) {
 
   auto j = std::make_shared<JogOptions>();
   CLI::App* jog =
-      shaper->add_subcommand("jog", "HIL operator jog stream (CSV t_s,x_mm_s,y_mm_s) through the real-time shaper");
+      shaper->add_subcommand("jog", "HIL operator jog stream (CSV " + hil::jog_csv_header() + ") through the real-time shaper");
   jog->add_option("--scenario", j->scenario, "built-in name or TOML file")->required();
   jog->add_option("--commands", j->commands,
-                  "CSV: t_s,x_mm_s,y_mm_s; each row held until the next, silence after the last")
+                  "CSV: " + hil::jog_csv_header() + "; each row held until the next, silence after the last")
       ->required();
   jog->add_option("--shaper", j->shaper, kTypes)
       ->check(CLI::IsMember({"zv", "zvd", "zvdd", "ei", "mzv"}))

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "hal/axis_choice.hpp"
 #include "tools/can/motion_run.hpp"
@@ -123,6 +125,18 @@ std::uint8_t parse_axis(const std::string& name) {
   std::string message = "axis must be " + std::string(hal::kAxisChoices) + ", not '";
   message.append(name).append("'");
   throw BadInput(message);
+}
+
+std::vector<std::string> axis_values_or(const std::string& every) {
+  std::vector<std::string> out(hal::kAxisNames.begin(), hal::kAxisNames.end());
+  out.push_back(every);
+  return out;
+}
+
+std::string axis_help_or(const std::string& every) {
+  std::string out;
+  for (const char* name : hal::kAxisNames) out.append(out.empty() ? "" : ", ").append(name);
+  return out + " or " + every;
 }
 
 const fw::can::ParamDef& param_named(const std::string& name) {

@@ -71,6 +71,10 @@ void add_param_file_commands(CLI::App& params, ActionSlot& slot);
 
 // Shared helpers for the families.
 std::uint8_t parse_axis(const std::string& name);  // "x" -> 0, "y" -> 1
+// The --axis values of a command that also takes every axis at once: each
+// axis' name, then `every` ({"x", "y", "all"}), and their help ("x, y or all").
+std::vector<std::string> axis_values_or(const std::string& every);
+std::string axis_help_or(const std::string& every);
 const fw::can::ParamDef& param_named(const std::string& name);  // from the table, or throws BadInput
 // Throws RunFailed when the node ended in a fault: names the reason.
 void require_no_fault(const can_host::Heartbeat& hb, can_host::NodeClient& client, const std::string& what);

@@ -347,15 +347,20 @@ void add_motion_commands(CLI::App& app, ActionSlot& slot) {
   auto home_axis = std::make_shared<std::string>("all");
   CLI::App* home_cmd = app.add_subcommand(
       "home", "homing cycle: search the home switch, back off, latch the next index; waits until homed");
-  home_cmd->add_option("--axis", *home_axis, "x, y or all (x then y)")
+  std::string homing_order;  // "x then y"
+  for (const hal::Axis a : hal::kHomingOrder)
+    homing_order.append(homing_order.empty() ? "" : " then ").append(hal::axis_label(a));
+  home_cmd->add_option("--axis", *home_axis, axis_help_or("all") + " (" + homing_order + ")")
       ->capture_default_str()
-      ->check(CLI::IsMember({"x", "y", "all"}));
+      ->check(CLI::IsMember(axis_values_or("all")));
   home_cmd->callback([&slot, home_axis] {
     slot = Action{"home", true, [home_axis](Session& s, Report& r) { return run_home(*home_axis, s, r); }};
   });
 
   CLI::App* ctl_cmd = app.add_subcommand("controller", "select the axis loop (at rest)");
-  ctl_cmd->add_option("--axis", *ctl_axis, "x, y or all")->check(CLI::IsMember({"x", "y", "all"}))->capture_default_str();
+  ctl_cmd->add_option("--axis", *ctl_axis, axis_help_or("all"))
+      ->check(CLI::IsMember(axis_values_or("all")))
+      ->capture_default_str();
   ctl_cmd->add_option("--controller", *ctl_kind, "pid | dvsc | rdvsc")->required()->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}));
   ctl_cmd->callback([&slot, ctl_axis, ctl_kind] {
     slot = Action{"controller", true,

@@ -29,7 +29,9 @@ struct TuneOptions {
 std::vector<hal::Axis> axes_of(const std::string& name) {
   if (const std::optional<hal::Axis> a = hal::axis_from_name(name)) return {*a};
   if (name == "both") return {hal::kAxes.begin(), hal::kAxes.end()};
-  std::string message = "--axis must be an axis (x, y) or both, not '";
+  std::string names;  // "x, y"
+  for (const char* n : hal::kAxisNames) names.append(names.empty() ? "" : ", ").append(n);
+  std::string message = "--axis must be an axis (" + names + ") or both, not '";
   throw BadInput(message.append(name).append("'"));
 }
 
@@ -245,7 +247,9 @@ void add_tune_commands(CLI::App& app, ActionSlot& slot) {
       "identify the axis plant (tau, K, Coulomb f_c, stiction f_s; A, B; a structural mode from the tool "
       "accelerometer) from open-loop EXCITE steps and ramps recorded by the node's capture; the node must be "
       "enabled and holding (tnvctl enable; with --emu: `tnvctl --emu script` with enable first)");
-  identify->add_option("--axis", id->axis, "x, y or both")->check(CLI::IsMember({"x", "y", "both"}))->capture_default_str();
+  identify->add_option("--axis", id->axis, axis_help_or("both"))
+      ->check(CLI::IsMember(axis_values_or("both")))
+      ->capture_default_str();
   identify->callback([&slot, id] {
     slot = Action{"identify", true, [id](Session& s, Report& r) { return run_identify(*id, s, r); },
                   [id] { axes_of(id->axis); }};
@@ -256,7 +260,9 @@ void add_tune_commands(CLI::App& app, ActionSlot& slot) {
       "autotune",
       "identify, design by the stated rules (docs/autotune.md), show old -> new and the predicted closed loops, "
       "then apply everything in one commit (all or nothing); asks first unless --yes");
-  autotune->add_option("--axis", tune->axis, "x, y or both")->check(CLI::IsMember({"x", "y", "both"}))->capture_default_str();
+  autotune->add_option("--axis", tune->axis, axis_help_or("both"))
+      ->check(CLI::IsMember(axis_values_or("both")))
+      ->capture_default_str();
   autotune->add_flag("--dry-run", tune->dry_run, "identify and show the change; apply nothing");
   autotune->add_flag("--yes", tune->yes, "apply without asking (needed when stdin is not a terminal)");
   autotune->callback([&slot, tune] {
