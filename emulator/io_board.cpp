@@ -10,7 +10,8 @@ namespace {
 constexpr std::uint32_t kEnableBits = regs::all_axes(&regs::AxisRegisters::output_enable);
 constexpr std::uint32_t kOutputBits = kEnableBits | regs::kOutputSpindleBits;  // every defined OUTPUTS bit
 constexpr std::uint32_t kControlBits = regs::kControlClearWatchdog | regs::kControlClearFaults;
-constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::all_axes(&regs::AxisRegisters::input_alarm) |
+constexpr std::uint32_t kBenchInputBits = regs::kInputEstop | regs::kInputProbe |
+                                          regs::all_axes(&regs::AxisRegisters::input_alarm) |
                                           regs::all_axes(&regs::AxisRegisters::input_limit_pos) |
                                           regs::all_axes(&regs::AxisRegisters::input_limit_neg);
 constexpr std::uint32_t kMinTickDividerClocks = kSubstepClocks;

@@ -18,6 +18,7 @@ struct DiscreteInputs {
   // Sticky board faults (stay set until the board's fault latch is cleared):
   std::array<bool, kAxisCount> encoder_error{};  // the decoder saw an illegal A/B transition
   std::array<bool, kAxisCount> dac_error{};      // the DAC output readback differs from the code written
+  bool probe = false;  // the touch probe is deflected (board 2.0)
 };
 
 class DiscreteIo {

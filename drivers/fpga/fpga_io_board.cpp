@@ -27,10 +27,17 @@ FpgaInitResult FpgaIoBoard::init(const FpgaBoardSettings& settings) noexcept {
   hal::HalStatus st = bus_.read_block(regs::kId, ident);
   if (st != hal::HalStatus::ok) return {st, "cannot read the I/O board id register"};
   if (ident[0] != regs::kIdValue) return {hal::HalStatus::not_present, "no TNV I/O board at this address (bad id)"};
-  if ((ident[1] >> 16) != (regs::kVersionValue >> 16))
-    return {hal::HalStatus::not_present, "unsupported I/O board major version"};
+  const std::uint32_t major = regs::version_major(ident[1]);
+  // A major version moves registers: every word this driver reads or writes
+  // would be another one on a board of another major.
+  if (major < regs::version_major(regs::kVersionValue))
+    return {hal::HalStatus::not_present,
+            "I/O board 1.x: its register map has room for two axes and puts the output window where 2.0 has the "
+            "axis slots; this driver needs a 2.x board (docs/register-map.md)"};
+  if (major != regs::version_major(regs::kVersionValue))
+    return {hal::HalStatus::not_present, "unsupported I/O board major version: newer than this driver's 2.x map"};
   // An older minor lacks registers this driver reads or writes each tick.
-  if ((ident[1] & 0xFFFFu) < (regs::kVersionValue & 0xFFFFu))
+  if (regs::version_minor(ident[1]) < regs::version_minor(regs::kVersionValue))
     return {hal::HalStatus::not_present, "I/O board too old: a lower minor version than this driver's register map (docs/register-map.md)"};
 
   const std::array<std::uint32_t, 3> config{settings.tick_divider_clocks, settings.watchdog_timeout_clocks,
@@ -81,6 +88,7 @@ hal::DiscreteInputs FpgaIoBoard::inputs() const noexcept {
   hal::DiscreteInputs in;
   in.estop = (bits & regs::kInputEstop) != 0;
   in.watchdog_tripped = (bits & regs::kInputWatchdogTripped) != 0;
+  in.probe = (bits & regs::kInputProbe) != 0;
   const std::uint32_t faults = snapshot_[slot(regs::kFaults)];
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const regs::AxisRegisters& r = regs::kAxisRegisters[i];

@@ -50,18 +50,30 @@ TEST(FpgaIoBoard, InitChecksTheIdAndProgramsDividerWatchdogAndSafeOutputs) {
   EXPECT_EQ(bus.regs_file[regs::kOutputs], 0u);
 }
 
-TEST(FpgaIoBoard, InitRefusesABoardOlderThanItsRegisterMap) {
+TEST(FpgaIoBoard, InitRefusesA1xBoardByItsMajorVersion) {
+  for (const std::uint32_t version : {0x00010004u, 0x00010000u, 0x0001FFFFu}) {
+    RecordingBus bus;
+    bus.regs_file[regs::kVersion] = version;
+    FpgaIoBoard board(bus);
+    const FpgaInitResult r = board.init({});
+    EXPECT_EQ(r.status, hal::HalStatus::not_present) << std::hex << version;
+    EXPECT_NE(std::string(r.message).find("I/O board 1.x"), std::string::npos) << r.message;
+    EXPECT_NE(std::string(r.message).find("2.x"), std::string::npos) << r.message;
+    ASSERT_EQ(bus.log.size(), 1u) << "only the identification was read";
+    EXPECT_FALSE(bus.log[0].write);
+    EXPECT_EQ(bus.regs_file.count(regs::kTickDivider), 0u) << "nothing written to it";
+    EXPECT_EQ(bus.regs_file.count(regs::kOutputFirst), 0u) << "nothing written to it";
+  }
+}
+
+TEST(FpgaIoBoard, InitRunsANewerMinorAndRefusesANewerMajor) {
   RecordingBus bus;
-  bus.regs_file[regs::kVersion] = 0x00010003;  // 1.3: no spindle registers
-  FpgaIoBoard board(bus);
-  const FpgaInitResult r = board.init({});
-  EXPECT_EQ(r.status, hal::HalStatus::not_present);
-  EXPECT_NE(std::string(r.message).find("too old"), std::string::npos) << r.message;
-  EXPECT_EQ(bus.regs_file.count(regs::kTickDivider), 0u) << "nothing written to it";
   bus.regs_file[regs::kVersion] = regs::kVersionValue + 1;  // a newer minor only adds registers
   EXPECT_TRUE(FpgaIoBoard(bus).init({}).ok());
-  bus.regs_file[regs::kVersion] = 0x00020000;
-  EXPECT_FALSE(FpgaIoBoard(bus).init({}).ok());
+  bus.regs_file[regs::kVersion] = 0x00030000;
+  const FpgaInitResult r = FpgaIoBoard(bus).init({});
+  EXPECT_EQ(r.status, hal::HalStatus::not_present);
+  EXPECT_NE(std::string(r.message).find("unsupported I/O board major version"), std::string::npos) << r.message;
 }
 
 TEST(FpgaIoBoard, TheSpindleOutputsGoInTheTicksOneWriteAndItsChannelsComeInItsOneRead) {
@@ -128,6 +140,10 @@ TEST(FpgaIoBoard, OneBatchedReadAndOneBatchedWritePerTick) {
   EXPECT_TRUE(bus.log[1].write);
   EXPECT_EQ(bus.log[1].first, regs::kOutputFirst);
   EXPECT_EQ(bus.log[1].words, regs::kOutputWords);
+  // The board's words and three snapshot words and one DAC per axis of the
+  // list: 14 and 5 with two axes, as the 1.x map read and wrote.
+  EXPECT_EQ(regs::kSnapshotWords, 8u + 3u * hal::kAxisCount);
+  EXPECT_EQ(regs::kOutputWords, 3u + hal::kAxisCount);
   EXPECT_EQ(bus.regs_file[regs::kDacX], 3000u);
   EXPECT_EQ(bus.regs_file[regs::kDacY], 100u);
   EXPECT_EQ(bus.regs_file[regs::kOutputs], regs::kOutputEnableY);
@@ -143,7 +159,8 @@ TEST(FpgaIoBoard, DecodesTheSnapshotWindow) {
   bus.regs_file[regs::kTickClock] = 0xFFFFFF00u;
   bus.regs_file[regs::kEncoderX] = 0x1234;
   bus.regs_file[regs::kEncoderY] = 0xFFFF;
-  bus.regs_file[regs::kInputs] = regs::kInputEstop | regs::kInputAlarmY | regs::kInputLimitXNeg | regs::kInputWatchdogTripped;
+  bus.regs_file[regs::kInputs] =
+      regs::kInputEstop | regs::kInputAlarmY | regs::kInputLimitXNeg | regs::kInputWatchdogTripped | regs::kInputProbe;
   bus.regs_file[regs::kAdcForce] = 4095;
   bus.regs_file[regs::kAdcAccelX] = 0x1000 | 2100;  // bits above the ADC width ignored
   bus.regs_file[regs::kAdcAccelY] = 17;
@@ -160,6 +177,7 @@ TEST(FpgaIoBoard, DecodesTheSnapshotWindow) {
   EXPECT_TRUE(in.limit_negative[0]);
   EXPECT_FALSE(in.limit_positive[0]);
   EXPECT_TRUE(in.watchdog_tripped);
+  EXPECT_TRUE(in.probe);
   EXPECT_EQ(board.latched_force_code(), 4095);
   EXPECT_EQ(board.latched_accel_code(hal::Axis::x), 2100);
   EXPECT_EQ(board.latched_accel_code(hal::Axis::y), 17);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace tnv::emu {
 namespace {
 
@@ -234,12 +236,12 @@ TEST_F(Watchdog, LatchedUntilControlClear) {
 
 TEST(IoBoard, InputsLatchAtTick) {
   IoBoard board = make_board();
-  board.set_input(regs::kInputEstop | regs::kInputLimitYNeg, true);
+  board.set_input(regs::kInputEstop | regs::kInputLimitYNeg | regs::kInputProbe, true);
   board.set_input(regs::kInputWatchdogTripped, true);  // not the bench's bit: ignored
   EXPECT_EQ(read(board, regs::kInputs), 0u);
   run(board, 100);
-  EXPECT_EQ(read(board, regs::kInputs), regs::kInputEstop | regs::kInputLimitYNeg);
-  board.set_input(regs::kInputEstop, false);
+  EXPECT_EQ(read(board, regs::kInputs), regs::kInputEstop | regs::kInputLimitYNeg | regs::kInputProbe);
+  board.set_input(regs::kInputEstop | regs::kInputProbe, false);
   run(board, 100);
   EXPECT_EQ(read(board, regs::kInputs), regs::kInputLimitYNeg);
 }
@@ -259,15 +261,22 @@ TEST(IoBoard, FaultsAreStickyUntilCleared) {
 TEST(IoBoard, UnmappedAndReadOnlyAccessIsRefused) {
   IoBoard board = make_board();
   std::uint32_t value = 0;
-  for (int address : {0x003, 0x00F, 0x01E, 0x01F, 0x025, 0x02F, 0x033, 0x100, 0xFFFF}) {
-    const auto word = static_cast<std::uint16_t>(address);
+  // The gaps of the 2.0 map, and the slots of the axes the list does not have.
+  std::vector<std::uint16_t> unmapped{0x003, 0x00F, 0x024, 0x027, 0x02F, 0x033, 0x100, 0xFFFF};
+  for (std::size_t slot = hal::kAxisCount; slot < regs::kMaxAxes; ++slot) {
+    const regs::AxisRegisters r = regs::axis_slot(slot);
+    unmapped.insert(unmapped.end(), {r.encoder, r.adc_accel, r.index, r.dac});
+  }
+  for (const std::uint16_t word : unmapped) {
     EXPECT_FALSE(board.read_register(word, value)) << "read of unmapped 0x" << std::hex << word;
     EXPECT_FALSE(board.write_register(word, 1)) << "write to unmapped 0x" << std::hex << word;
   }
-  for (std::uint16_t word : {regs::kId, regs::kVersion, regs::kClockLive, regs::kTickSequence, regs::kTickClock,
-                             regs::kEncoderX, regs::kEncoderY, regs::kInputs, regs::kAdcForce, regs::kFaults,
-                             regs::kClockAtRead, regs::kAdcAccelX, regs::kAdcAccelY, regs::kIndexX, regs::kIndexY,
-                             regs::kSpindleEncoder, regs::kSpindleIndex}) {
+  std::vector<std::uint16_t> read_only{regs::kId,      regs::kVersion,     regs::kClockLive,
+                                       regs::kTickSequence, regs::kTickClock, regs::kInputs,
+                                       regs::kAdcForce, regs::kFaults,      regs::kClockAtRead,
+                                       regs::kSpindleEncoder, regs::kSpindleIndex};
+  for (const regs::AxisRegisters& r : regs::kAxisRegisters) read_only.insert(read_only.end(), {r.encoder, r.adc_accel, r.index});
+  for (const std::uint16_t word : read_only) {
     const std::uint32_t before = read(board, word);
     EXPECT_FALSE(board.write_register(word, 0x5A5A)) << "write to read-only 0x" << std::hex << word;
     if (word != regs::kClockLive && word != regs::kClockAtRead) {

@@ -183,19 +183,31 @@ TEST(Machine, BenchInputsReachTheSnapshot) {
 TEST(Machine, ABlockWriteIsAllOrNothing) {
   Machine m(Scenario{});
   servo_on(m, 2100, 2000);
-  const std::array<std::uint32_t, 3> bad_outputs{2500, 1500, 0x8000'0000u};  // OUTPUTS: a bit the board lacks
-  EXPECT_FALSE(m.write_registers(regs::kDacX, bad_outputs));
+  // The tick's output block: OUTPUTS, the kick, the spindle's DAC, then the axes' DACs.
+  const auto outputs_block = [](std::uint32_t outputs, std::uint32_t dac_x, std::uint32_t dac_y) {
+    std::array<std::uint32_t, regs::kOutputWords> out{};
+    out.fill(2048u);
+    out[regs::kOutputs - regs::kOutputFirst] = outputs;
+    out[regs::kWatchdogKick - regs::kOutputFirst] = 0;
+    out[regs::kDacX - regs::kOutputFirst] = dac_x;
+    out[regs::kDacY - regs::kOutputFirst] = dac_y;
+    return out;
+  };
+  // The last DAC word is above 4095: the OUTPUTS and DAC words before it must not land either.
+  EXPECT_FALSE(m.write_registers(regs::kOutputFirst, outputs_block(regs::kOutputEnableX, 2500, 5000)));
+  EXPECT_FALSE(m.write_registers(regs::kOutputFirst, outputs_block(0x8000'0000u, 2500, 1500)))
+      << "OUTPUTS: a bit the board lacks";
   const std::array<std::uint32_t, 2> past_the_map{1u, 0u};  // CONTROL, then the word after the last register
   EXPECT_FALSE(m.write_registers(regs::kLastRegister, past_the_map));
   const std::array<std::uint32_t, 2> wrapping{1u, 2u};
   EXPECT_FALSE(m.write_registers(0xFFFF, wrapping));
   m.advance_to_next_tick();
-  EXPECT_EQ(m.board_outputs().dac_register[0], 2100u) << "DAC_X before the refused OUTPUTS word stayed";
+  EXPECT_EQ(m.board_outputs().dac_register[0], 2100u) << "DAC_X of the refused blocks did not land";
   EXPECT_EQ(m.board_outputs().dac_register[1], 2000u);
   EXPECT_TRUE(m.board_outputs().enabled[0]);
+  EXPECT_TRUE(m.board_outputs().enabled[1]) << "OUTPUTS before the refused DAC word did not land";
 
-  const std::array<std::uint32_t, 3> good{2500, 1500, regs::kOutputEnableX};
-  ASSERT_TRUE(m.write_registers(regs::kDacX, good));
+  ASSERT_TRUE(m.write_registers(regs::kOutputFirst, outputs_block(regs::kOutputEnableX, 2500, 1500)));
   m.advance_to_next_tick();
   EXPECT_EQ(m.board_outputs().dac_register[0], 2500u);
   EXPECT_EQ(m.board_outputs().dac_register[1], 1500u);

@@ -96,7 +96,7 @@ void seed_can_frames(const fs::path& dir) {
   put(frames({shaper}));
   // other nodes, extended, wrong lengths, to-host messages sent to the node
   put(frames({param_request(2, ParamOp::set, id_of("x.sliding.gamma"), wire("x.sliding.gamma", 0.25)),
-              command(63, CommandCode::enable)}));
+              command(can::kMaxNodeId, CommandCode::enable)}));
   CanFrame ext = param_request(n, ParamOp::get, 1);
   ext.extended = true;
   put(frames({ext}));

@@ -20,10 +20,15 @@ constexpr std::uint32_t kClocksPerUs = hal::kTimebaseHz / 1'000'000;
 
 std::string SafeStateReport::one_line() const {
   if (!read_back) return "outputs: safe state written, but the board did not answer the read-back";
-  char line[160];
-  std::snprintf(line, sizeof line, "outputs %s: DAC x %u, DAC y %u, DAC spindle %u (mid-scale %u), enables 0x%x",
-                safe ? "safe" : "NOT SAFE", dac_x, dac_y, dac_spindle, 1u << (hal::regs::kDacBits - 1), outputs);
-  return line;
+  std::string line = std::string("outputs ") + (safe ? "safe" : "NOT SAFE") + ":";
+  char part[96];
+  for (const hal::Axis a : hal::kAxes) {
+    std::snprintf(part, sizeof part, " DAC %s %u,", hal::axis_label(a), dac[hal::index(a)]);
+    line += part;
+  }
+  std::snprintf(part, sizeof part, " DAC spindle %u (mid-scale %u), enables 0x%x", dac_spindle,
+                1u << (hal::regs::kDacBits - 1), outputs);
+  return line + part;
 }
 
 std::unique_ptr<Daemon> Daemon::open(const DaemonConfig& config, const DaemonOptions& options, std::string& error) {
@@ -142,14 +147,15 @@ SafeStateReport Daemon::stop() {
   board_->force_safe_outputs();
   std::array<std::uint32_t, hal::regs::kOutputWords> out{};
   safe_.read_back = bus_->read_block(hal::regs::kOutputFirst, out) == hal::HalStatus::ok;
-  safe_.dac_x = out[hal::regs::kDacX - hal::regs::kOutputFirst];
-  safe_.dac_y = out[hal::regs::kDacY - hal::regs::kOutputFirst];
+  for (const hal::Axis a : hal::kAxes)
+    safe_.dac[hal::index(a)] = out[hal::regs::axis_registers(a).dac - hal::regs::kOutputFirst];
   safe_.dac_spindle = out[hal::regs::kDacSpindle - hal::regs::kOutputFirst];
   safe_.outputs = out[hal::regs::kOutputs - hal::regs::kOutputFirst];
   const std::uint32_t mid = 1u << (hal::regs::kDacBits - 1);
   // Every OUTPUTS bit is an enable or the spindle's direction: all off.
-  safe_.safe = safe_.read_back && safe_.dac_x == mid && safe_.dac_y == mid && safe_.dac_spindle == mid &&
-               safe_.outputs == 0;
+  bool dacs_mid = true;
+  for (const std::uint32_t code : safe_.dac) dacs_mid = dacs_mid && code == mid;
+  safe_.safe = safe_.read_back && dacs_mid && safe_.dac_spindle == mid && safe_.outputs == 0;
   return safe_;
 }
 

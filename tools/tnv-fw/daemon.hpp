@@ -6,6 +6,7 @@
 // stop request (SIGTERM in main.cpp, a flag in tests) and stops it: the
 // loop is joined first, then the outputs are made safe (DACs mid-scale,
 // enables off) and read back from the board.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -21,6 +22,7 @@
 #include "drivers/storage/thread_storage_worker.hpp"
 #include "firmware/can/can_node.hpp"
 #include "firmware/tick/tick_task.hpp"
+#include "hal/axis.hpp"
 #include "tools/tnv-fw/fw_config.hpp"
 
 namespace tnv::fwd {
@@ -31,7 +33,8 @@ struct DaemonOptions {
 
 struct SafeStateReport {
   bool read_back = false;  // the output window could be read after the safe write
-  std::uint32_t dac_x = 0, dac_y = 0, dac_spindle = 0, outputs = 0;
+  std::array<std::uint32_t, hal::kAxisCount> dac{};  // each axis' DAC register, in the list's order
+  std::uint32_t dac_spindle = 0, outputs = 0;
   bool safe = false;       // every DAC mid-scale (the spindle's too), every OUTPUTS bit off
   std::string one_line() const;
 };
