@@ -64,7 +64,7 @@ struct FieldDef {
 enum class Direction : std::uint8_t { to_node, from_node };
 
 struct MessageDef {
-  std::uint8_t id;    // 5-bit message id: the identifier's high bits (lower = higher priority)
+  std::uint8_t id;    // 6-bit message id: the identifier's high bits (lower = higher priority)
   const char* name;   // snake_case; the DBC message is its upper-case form
   Direction direction;
   std::uint8_t dlc;   // every message has a fixed length
