@@ -1,7 +1,8 @@
 // CanNode: SPINDLE (docs/safety.md "Spindle"), answered by one COMMAND_ACK
 // (code = op, detail = index of the offending field). Like every command
 // that moves the machine it needs command ownership, and every check comes
-// before anything changes: a refusal changes nothing.
+// before anything changes: a refusal changes nothing. During a program only
+// a stop is taken (the program's elements command the spindle).
 #include <cmath>
 
 #include "firmware/can/can_node.hpp"
@@ -38,6 +39,10 @@ void CanNode::handle_spindle(const hal::CanFrame& frame) noexcept {
     task_.spindle_stop();
     return answer(ErrorCode::ok, 0);
   }
+  // While a program runs (or holds, or waits at a pause) its own spindle
+  // elements set the spindle: a start or a new speed from the side would
+  // cut at a speed the program never asked for. A stop is always taken.
+  if (active(programs_.tracker().state())) return answer(ErrorCode::busy, 0);
   const std::uint32_t direction = read_raw(frame, kSpindleDirection);
   if (op == SpindleOp::start && direction >= kSpindleDirectionCount)
     return answer(ErrorCode::out_of_range, index_of(kSpindleMsg, kSpindleDirection));

@@ -375,8 +375,9 @@ inline constexpr std::array<MessageDef, 25 + 3 * hal::kAxisCount> kMessages{{
     {0x10, "spindle", Direction::to_node, 8, detail::kSpindle,
      "The spindle (docs/safety.md \"Spindle\"): start in a direction at a speed, stop, or a new speed. Needs "
      "command ownership. A start is refused (faulted) while a fault, the e-stop or a lost host inhibits it; it never "
-     "starts by itself. While it is commanded on and not at speed, feed moves wait. Answered by COMMAND_ACK (code "
-     "= op)."},
+     "starts by itself. While it is commanded on and not at speed, feed moves wait. While a program is active "
+     "(running, holding, starved or paused) a start or a new speed is refused busy: the program's spindle elements "
+     "command it; a stop is always taken. Answered by COMMAND_ACK (code = op)."},
     {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
