@@ -1,8 +1,10 @@
 // `tnvctl spindle` on the emulated node: start, speed and stop answered by
 // the node; a bad speed refused before anything is sent (exit 2); a speed
 // change of a spindle that is not turning refused by the node (exit 1,
-// naming why).
+// naming why); `tnvctl monitor` shows the turning spindle from TLM_SPINDLE.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -39,6 +41,21 @@ TEST(TnvctlSpindle, ABadSpeedIsRefusedBeforeAnythingIsSentAndTheNodeRefusesASpee
   const test::ToolRun idle = test::tnvctl(state, "--emu spindle speed 1000");
   EXPECT_EQ(idle.exit_code, 1) << idle.out << idle.err;
   EXPECT_NE(idle.err.find("not_ready"), std::string::npos) << idle.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlSpindle, MonitorShowsTheSpindleReachingSpeed) {
+  const auto state = test::state_dir("spindle_monitor");
+  const auto script = test::write_file(
+      state / "spindle.txt", "params set tlm.spindle_ms=10\nspindle start --rpm 1000\nmonitor --duration-s 1 --rate-hz 5\n");
+  const test::ToolRun r = test::tnvctl(state, "--emu script " + script.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  // The last sample, a second after the start (a 0.2 s ramp at spindle.accel_rpm_s): at speed.
+  const std::size_t last = r.out.rfind("spindle at_speed");
+  ASSERT_NE(last, std::string::npos) << r.out;
+  double measured_rpm = 0.0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + last, "spindle at_speed %lf", &measured_rpm), 1) << r.out;
+  EXPECT_NEAR(measured_rpm, 1000.0, 50.0) << r.out;
   std::filesystem::remove_all(state);
 }
 

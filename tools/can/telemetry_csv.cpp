@@ -35,7 +35,9 @@ std::string telemetry_csv_header() {
       std::snprintf(name, sizeof name, kind, hal::axis_label(a));
       out.append(",").append(name);
     }
-  return out + ",force_n,contour_um,arsc_force_n,arsc_force_ref_n,feed_override,cutting_gain_n_per_mm_s";
+  return out +
+         ",force_n,contour_um,arsc_force_n,arsc_force_ref_n,feed_override,cutting_gain_n_per_mm_s,spindle_state,"
+         "spindle_target_rpm,spindle_command_rpm,spindle_measured_rpm,spindle_at_speed";
 }
 
 std::string telemetry_csv_row(const TelemetryView& v, double t_s, double bus_load) {
@@ -60,6 +62,12 @@ std::string telemetry_csv_row(const TelemetryView& v, double t_s, double bus_loa
   cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.force_ref_n; }));
   cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.feed_override; }));
   cell(row, field(v.arsc, [](const ArscTelemetry& a) { return a.cutting_gain_n_per_mm_s; }));
+  row += ',';
+  if (v.spindle) row += spindle_state(*v.spindle);
+  cell(row, field(v.spindle, [](const SpindleTelemetry& s) { return s.target_rpm; }));
+  cell(row, field(v.spindle, [](const SpindleTelemetry& s) { return s.command_rpm; }));
+  cell(row, field(v.spindle, [](const SpindleTelemetry& s) { return s.measured_rpm; }));
+  cell(row, field(v.spindle, [](const SpindleTelemetry& s) { return s.at_speed() ? 1.0 : 0.0; }));
   return row;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "firmware/can/param_table.hpp"
+#include "firmware/can/protocol_enums.hpp"
 #include "hal/axis.hpp"
 
 namespace tnv::can_host {
@@ -21,6 +22,19 @@ nlohmann::json heartbeat_json(const Heartbeat& hb) {
           {"overruns", hb.overruns},
           {"free_slots", hb.free_slots},
           {"owner", hb.owner}};
+}
+
+nlohmann::json spindle_json(const SpindleTelemetry& s) {
+  return {{"state", spindle_state(s)},
+          {"target_rpm", s.target_rpm},
+          {"command_rpm", s.command_rpm},
+          {"measured_rpm", s.measured_rpm},
+          {"at_speed", s.at_speed()},
+          {"commanded_on", s.commanded_on()},
+          {"direction", s.reverse() ? "reverse" : "forward"},
+          {"inhibited", s.inhibited()},
+          {"waiting_feed", (s.flags & fw::can::kSpindleFeedWaiting) != 0},
+          {"stop_cause", fw::to_string(s.stop_cause)}};
 }
 
 nlohmann::json telemetry_json(const TelemetryView& l, double t_s, double load) {
@@ -44,6 +58,7 @@ nlohmann::json telemetry_json(const TelemetryView& l, double t_s, double load) {
                  {"force_ref_n", l.arsc->force_ref_n},
                  {"feed_override", l.arsc->feed_override},
                  {"cutting_gain_n_per_mm_s", l.arsc->cutting_gain_n_per_mm_s}};
+  if (l.spindle) j["spindle"] = spindle_json(*l.spindle);
   return j;
 }
 

@@ -11,6 +11,9 @@ namespace tnv::can_host {
 
 // {"state": ..., "fault": ..., "flags": [...], "overruns", "free_slots", "owner"}
 nlohmann::json heartbeat_json(const Heartbeat& hb);
+// {"state", "target_rpm", "command_rpm", "measured_rpm", "at_speed", "commanded_on",
+//  "direction", "inhibited", "waiting_feed", "stop_cause"}
+nlohmann::json spindle_json(const SpindleTelemetry& s);
 // One monitor sample: t_s, frames, bus_load and every value seen so far.
 nlohmann::json telemetry_json(const TelemetryView& l, double t_s, double load);
 

@@ -1,6 +1,8 @@
 #include "tools/can/telemetry_view.hpp"
 
+#include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/protocol_enums.hpp"
 #include "tools/can/virtual_can_bus.hpp"
 
 namespace tnv::can_host {
@@ -14,12 +16,38 @@ using can::fields::kOutputMsg;
 using can::fields::kContourMsg;
 using can::fields::kArscMsg;
 
+bool has(std::uint8_t flags, can::SpindleFlag bit) { return (flags & bit) != 0; }
+
+SpindleTelemetry read_spindle(const hal::CanFrame& f) {
+  namespace fl = can::fields;
+  SpindleTelemetry s;
+  s.target_rpm = can::read(f, fl::kTlmSpindleTarget);
+  s.command_rpm = can::read(f, fl::kTlmSpindleCommand);
+  s.measured_rpm = can::read(f, fl::kTlmSpindleMeasured);
+  s.flags = static_cast<std::uint8_t>(can::read_raw(f, fl::kTlmSpindleFlags));
+  // A cause this build does not know (a newer node) reads as none rather than past the list.
+  const std::uint32_t cause = can::read_raw(f, fl::kTlmSpindleStopCause);
+  if (cause < fw::kSpindleStopCauseCount) s.stop_cause = static_cast<fw::SpindleStopCause>(cause);
+  return s;
+}
+
 void set_axis(std::optional<std::array<double, hal::kAxisCount>>& slot, std::size_t axis, double v) {
   if (!slot) slot = std::array<double, hal::kAxisCount>{};
   (*slot)[axis] = v;
 }
 
 }  // namespace
+
+bool SpindleTelemetry::commanded_on() const noexcept { return has(flags, can::kSpindleOn); }
+bool SpindleTelemetry::at_speed() const noexcept { return has(flags, can::kSpindleAtSpeed); }
+bool SpindleTelemetry::inhibited() const noexcept { return has(flags, can::kSpindleInhibited); }
+bool SpindleTelemetry::reverse() const noexcept { return has(flags, can::kSpindleReverse); }
+
+const char* spindle_state(const SpindleTelemetry& s) noexcept {
+  if (s.inhibited()) return "inhibited";
+  if (s.commanded_on()) return s.at_speed() ? "at_speed" : "ramping";
+  return has(s.flags, can::kSpindleEnabled) ? "stopping" : "off";
+}
 
 void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
   ++frames;
@@ -38,6 +66,7 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
                            can::read(f, field(kArscMsg, "feed_override")),
                            can::read(f, field(kArscMsg, "cutting_gain"))};
       break;
+    case MessageId::tlm_spindle: spindle = read_spindle(f); break;
     default: {
       // The per-axis messages: one per axis of each block.
       namespace fl = can::fields;

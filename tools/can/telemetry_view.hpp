@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "firmware/spindle/spindle_control.hpp"
 #include "hal/axis.hpp"
 #include "tools/can/node_messages.hpp"
 
@@ -29,6 +30,25 @@ struct ArscTelemetry {
   double cutting_gain_n_per_mm_s = 0.0;
 };
 
+// TLM_SPINDLE (docs/safety.md "Spindle"): speeds signed, negative is reverse.
+struct SpindleTelemetry {
+  double target_rpm = 0.0;    // asked for; 0 when commanded off
+  double command_rpm = 0.0;   // the ramped command to the drive
+  double measured_rpm = 0.0;  // from the spindle encoder
+  std::uint8_t flags = 0;     // TLM_SPINDLE.flags (can::SpindleFlag bits)
+  fw::SpindleStopCause stop_cause = fw::SpindleStopCause::none;
+
+  bool commanded_on() const noexcept;
+  bool at_speed() const noexcept;
+  bool inhibited() const noexcept;
+  bool reverse() const noexcept;
+};
+
+// One word for the spindle, from its flags: "inhibited" (a fault, the e-stop or
+// a lost host forbids a start), "at_speed", "ramping" (commanded on, not yet at
+// speed), "stopping" (commanded off, the enable still held), "off".
+const char* spindle_state(const SpindleTelemetry& s) noexcept;
+
 struct TelemetryView {
   std::optional<Heartbeat> heartbeat;
   // Per axis, in axis order (one frame per axis: an axis not heard from yet reads 0).
@@ -39,6 +59,7 @@ struct TelemetryView {
   std::optional<OutputTelemetry> output;
   std::optional<ContourTelemetry> contour;
   std::optional<ArscTelemetry> arsc;
+  std::optional<SpindleTelemetry> spindle;
   std::uint64_t frames = 0;  // every frame taken
   std::uint64_t bits = 0;    // their nominal bits on the wire (no stuff bits)
 

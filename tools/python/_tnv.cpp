@@ -22,6 +22,7 @@
 #include "tools/can/node_identity.hpp"
 #include "tools/can/param_set.hpp"
 #include "tools/can/param_text.hpp"
+#include "tools/can/spindle_command.hpp"
 #include "tools/can/telemetry_json.hpp"
 #include "tools/can/telemetry_view.hpp"
 #include "tools/can_emu/node_connection.hpp"
@@ -250,6 +251,15 @@ class Connection {
       return wait ? std::optional(host::wait_motion_done(c, "stop", 10.0)) : std::nullopt;
     });
   }
+  // The spindle as `tnvctl spindle`: checked, sent, answered (docs/safety.md "Spindle").
+  py::dict spindle_start(const std::string& direction, double rpm) {
+    const tnv::fw::SpindleDirection d = host::spindle_direction_named(direction);  // ValueError before sending
+    return ack_dict(blocking(
+        [&](host::NodeClient& c) { return host::spindle_command(c, can::SpindleOp::start, d, rpm); }));
+  }
+  py::dict spindle_stop() {
+    return ack_dict(blocking([](host::NodeClient& c) { return host::spindle_command(c, can::SpindleOp::stop); }));
+  }
   py::dict clear_faults() {
     bool retried = false;
     py::dict d = ack_dict(blocking([&](host::NodeClient& c) { return host::clear_faults(c, retried); }));
@@ -470,6 +480,8 @@ PYBIND11_MODULE(_tnv, m) {
       .def("circle", &Connection::circle)
       .def("home", &Connection::home)
       .def("stop", &Connection::stop)
+      .def("spindle_start", &Connection::spindle_start)
+      .def("spindle_stop", &Connection::spindle_stop)
       .def("clear_faults", &Connection::clear_faults)
       .def("status", &Connection::status)
       .def("arm_capture", &Connection::arm_capture)

@@ -101,9 +101,12 @@ void NodeWorker::take_frame(const hal::CanFrame& frame, fw::can::MessageId id) {
 void NodeWorker::refresh_status() {
   nlohmann::json hb = client_.last_heartbeat() ? can_host::heartbeat_json(*client_.last_heartbeat()) : nullptr;
   nlohmann::json fault = client_.last_fault_event() ? fault_json(*client_.last_fault_event()) : nullptr;
+  // Display only: the page shows the spindle but cannot start it (docs/tuning-guide.md).
+  nlohmann::json spindle = view_.spindle ? can_host::spindle_json(*view_.spindle) : nullptr;
   const std::lock_guard lock(mutex_);
   status_["heartbeat"] = std::move(hb);
   status_["fault"] = std::move(fault);
+  status_["spindle"] = std::move(spindle);
 }
 
 void NodeWorker::loop() {

@@ -26,6 +26,7 @@ ScopeSample scope_sample(const can_host::TelemetryView& view, double t_s) {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) s.values[k++] = view.output ? view.output->dac_code[i] : kNone;
   s.values[k++] = view.output ? view.output->force_n : kNone;
   s.values[k++] = view.contour ? view.contour->contour_um : kNone;
+  s.values[k++] = view.spindle ? view.spindle->measured_rpm : kNone;
   return s;
 }
 

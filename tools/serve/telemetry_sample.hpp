@@ -30,6 +30,7 @@ inline constexpr auto kScopeChannels = std::to_array<ScopeChannel>({
     TNV_AXES(TNV_SCOPE_DAC)
     {"force_n", "N"},
     {"contour_um", "um"},
+    {"spindle_rpm", "rpm"},  // measured (TLM_SPINDLE, signed: negative is reverse)
 });
 #undef TNV_SCOPE_POS
 #undef TNV_SCOPE_FOLLOWING

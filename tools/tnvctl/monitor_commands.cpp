@@ -29,7 +29,7 @@ struct MonitorOptions {
 };
 
 std::string sample_text(const can_host::TelemetryView& l, double t_s) {
-  char buf[400];
+  char buf[480];
   int n = std::snprintf(buf, sizeof buf, "t %7.2f s  %-8s %-10s", t_s,
                         l.heartbeat ? fw::to_string(l.heartbeat->state) : "?",
                         l.heartbeat ? fw::to_string(l.heartbeat->fault) : "?");
@@ -60,6 +60,9 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
   if (l.arsc)
     n += std::snprintf(buf + n, room(), "  force %7.2f / %7.2f N  override %5.3f  G %6.3f N*s/mm", l.arsc->force_n,
                        l.arsc->force_ref_n, l.arsc->feed_override, l.arsc->cutting_gain_n_per_mm_s);
+  if (l.spindle)
+    n += std::snprintf(buf + n, room(), "  spindle %s %6.0f / %6.0f rpm", can_host::spindle_state(*l.spindle),
+                       l.spindle->measured_rpm, l.spindle->command_rpm);
   return buf;
 }
 

@@ -1,11 +1,11 @@
 // tnvctl spindle start --rpm N [--reverse] | stop | speed N: the SPINDLE
 // request (docs/safety.md "Spindle"). Each returns once the node answered:
 // the spindle ramps on its own, and feed moves wait until it is at speed.
-#include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
-#include "firmware/spindle/spindle_params.hpp"
+#include "tools/can/spindle_command.hpp"
 #include "tools/tnvctl/commands.hpp"
 
 namespace tnv::tnvctl {
@@ -21,17 +21,17 @@ struct SpindleOptions {
 };
 
 void check_spindle(const SpindleOptions& o) {
-  if (o.op == can::SpindleOp::stop) return;
-  if (std::isfinite(o.rpm) && o.rpm > 0.0 && o.rpm <= fw::kSpindleDriveFullScaleRpm) return;
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "the speed must be > 0 and <= %g rpm (got %g)", fw::kSpindleDriveFullScaleRpm, o.rpm);
-  throw BadInput(buf);
+  try {
+    can_host::check_spindle_rpm(o.op, o.rpm);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
 }
 
 int run_spindle(const SpindleOptions& o, Session& session, Report& report) {
   check_spindle(o);
   const fw::SpindleDirection direction = o.reverse ? fw::SpindleDirection::reverse : fw::SpindleDirection::forward;
-  const can_host::CommandAck ack = session.client().spindle(o.op, direction, o.rpm);
+  const can_host::CommandAck ack = can_host::spindle_command(session.client(), o.op, direction, o.rpm);
   char buf[160];
   if (o.op == can::SpindleOp::start)
     std::snprintf(buf, sizeof buf, "spindle started: %s at %g rpm (state %s)", fw::to_string(direction), o.rpm,

@@ -189,3 +189,35 @@ def test_waiting_on_the_bus_releases_the_gil(node):
     assert len(samples) == 3
     assert free > 0, "the counting thread never ran"
     assert during >= free / 4, f"{during} ticks while waiting on the bus, {free} in a plain sleep of as long"
+
+
+def test_spindle_starts_reaches_speed_in_telemetry_and_stops(node):
+    before = list(node.telemetry(period_s=0.05, count=2))
+    assert "spindle" not in before[-1], "tlm.spindle_ms is 0 by default: no TLM_SPINDLE"
+    node.params["tlm.spindle_ms"] = 10
+    assert node.spindle_start("reverse", 1500)["state"]
+    # 1500 rpm at spindle.accel_rpm_s (5000 rpm/s) is a 0.3 s ramp: at speed well within 1.5 s.
+    turning = list(node.telemetry(period_s=0.1, count=15))[-1]["spindle"]
+    assert turning["state"] == "at_speed", turning
+    assert turning["direction"] == "reverse"
+    assert turning["commanded_on"] is True
+    assert turning["measured_rpm"] == pytest.approx(-1500.0, abs=75.0)
+    node.spindle_stop()
+    stopped = list(node.telemetry(period_s=0.1, count=20))[-1]["spindle"]
+    assert stopped["state"] == "off", stopped
+    assert stopped["stop_cause"] == "command"
+    assert abs(stopped["measured_rpm"]) < 20.0
+
+
+def test_spindle_start_is_checked_before_anything_is_sent(node):
+    node.params["tlm.spindle_ms"] = 10
+    with pytest.raises(ValueError, match="forward or reverse"):
+        node.spindle_start("sideways", 1000)
+    with pytest.raises(ValueError, match="12000"):
+        node.spindle_start("forward", 20000)
+    with pytest.raises(ValueError, match="finite"):
+        node.spindle_start("forward", float("nan"))
+    with pytest.raises(ValueError, match="> 0"):
+        node.spindle_start("forward", 0)
+    spindle = list(node.telemetry(period_s=0.1, count=3))[-1]["spindle"]
+    assert spindle["commanded_on"] is False and spindle["state"] == "off", spindle

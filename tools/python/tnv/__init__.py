@@ -190,6 +190,20 @@ class Node:
     def stop(self, wait=True):
         return self._conn().stop(wait)
 
+    def spindle_start(self, direction, rpm):
+        """SPINDLE start as `tnvctl spindle start`: direction "forward" (M3) or
+        "reverse" (M4), rpm in (0, 12000] (the node refuses more than
+        spindle.max_rpm). Returns once the node acknowledged; the spindle then
+        ramps on its own and feed moves wait until it is at speed. Its state
+        and speeds are in telemetry()'s "spindle" (with tlm.spindle_ms > 0)."""
+        if not isinstance(direction, str):
+            raise ValueError(f"direction must be 'forward' or 'reverse', not {direction!r}")
+        return self._conn().spindle_start(direction, _finite("rpm", rpm))
+
+    def spindle_stop(self):
+        """SPINDLE stop (M5): the spindle ramps down, the enable drops at standstill."""
+        return self._conn().spindle_stop()
+
     def clear_fault(self):
         return self._conn().clear_faults()
 

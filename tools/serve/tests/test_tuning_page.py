@@ -1,7 +1,7 @@
 """The live tuning page in Debian's headless chromium against
 `tnvctl --emu serve --port 0`: it loads, the scope draws what the node
 sent and keeps its 10 s window, pauses and resumes, a parameter set round-trips, a refusal is shown with its
-reason, the fault banner clears, the Bode view draws a result file and
+reason, the header shows the spindle (and nothing starts it), the fault banner clears, the Bode view draws a result file and
 measures the open loop on the node, two browsers obey the control rules,
 the page needs the secret of its URL (a page of another origin cannot
 command), and closing the tab that has control stops its jog."""
@@ -177,6 +177,22 @@ def test_a_parameter_set_round_trips_and_a_refusal_is_shown(first, screenshot):
     wait_for(lambda: row_state(first, PARAM)["refusal"], 30, "the refusal again")
     first.execute_script("arguments[0].scrollIntoView({block: 'center'});", row(first, PARAM))
     screenshot(first, "tuning-refusal")
+
+
+def test_the_header_shows_the_spindle_and_the_page_cannot_start_it(first):
+    spindle = first.find_element("id", "spindle-state")
+    assert spindle.text.startswith("spindle: not streamed"), spindle.text
+    box = first.find_element("id", "param-filter")
+    box.clear()
+    box.send_keys("tlm.spindle")
+    set_value(first, "tlm.spindle_ms", "10")
+    wait_for(lambda: spindle.text == "spindle: off 0 rpm", 30, "the spindle in the header")
+    # Display only: nothing on the page starts the spindle (docs/tuning-guide.md).
+    buttons = [b.text for b in first.find_elements("css selector", "button") if "spindle" in b.text.lower()]
+    assert buttons == [], buttons
+    set_value(first, "tlm.spindle_ms", "0")
+    wait_for(lambda: row_state(first, "tlm.spindle_ms")["value"] == "0", 30, "tlm.spindle_ms back to 0")
+    box.clear()
 
 
 def test_the_fault_banner_shows_the_reason_and_clears(first):

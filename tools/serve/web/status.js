@@ -23,6 +23,23 @@ function showStatus(status) {
     link.textContent = `${hb.state}` + (hb.owner ? ` (owner host ${hb.owner})` : '');
     link.className = faulted ? 'state-bad' : 'state-ok';
   }
+  showSpindle(status.spindle);
+}
+
+// The spindle, shown only: starting it stays with tnvctl, a program or the
+// Python module (docs/tuning-guide.md "Spindle").
+function showSpindle(spindle) {
+  const el = $('spindle-state');
+  if (!spindle) {
+    el.textContent = 'spindle: not streamed (tlm.spindle_ms = 0)';
+    el.className = '';
+    return;
+  }
+  let text = `spindle: ${spindle.state.replace('_', ' ')} ${Math.round(spindle.measured_rpm)} rpm`;
+  if (spindle.commanded_on) text += ` (${spindle.direction}, command ${Math.round(spindle.command_rpm)} rpm)`;
+  else if (spindle.stop_cause !== 'none') text += ` (stopped: ${spindle.stop_cause})`;
+  el.textContent = text;
+  el.className = spindle.state === 'inhibited' ? 'state-bad' : spindle.state === 'at_speed' ? 'state-ok' : '';
 }
 
 function showControl(control) {
