@@ -12,11 +12,6 @@ using fw::can::CommandCode;
 using fw::can::ErrorCode;
 using fw::can::MessageId;
 
-ErrorCode ack_result(const hal::CanFrame& r) {
-  EXPECT_TRUE(is(r, MessageId::command_ack));
-  return static_cast<ErrorCode>(raw_of(r, MessageId::command_ack, "result"));
-}
-
 TEST(CanNodeCommands, EnableDisableAndTheAckCarriesStateCodeTagAndOwner) {
   NodeBench b;
   const hal::CanFrame on = b.reply(command(kNode, CommandCode::enable));

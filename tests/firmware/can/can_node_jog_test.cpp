@@ -14,13 +14,6 @@ using fw::can::CommandCode;
 using fw::can::ErrorCode;
 using fw::can::MessageId;
 
-ErrorCode ack_result(const hal::CanFrame& r) {
-  EXPECT_TRUE(is(r, MessageId::command_ack));
-  return static_cast<ErrorCode>(raw_of(r, MessageId::command_ack, "result"));
-}
-
-std::uint32_t ack_detail(const hal::CanFrame& r) { return raw_of(r, MessageId::command_ack, "detail"); }
-
 // A few ticks only: the fake board's table stands, so a longer jog ends in a following-error fault.
 TEST(CanNodeJog, AFrameJogsTheAxisItNamesAndNoOther) {
   for (const hal::Axis jogged : hal::kAxes) {

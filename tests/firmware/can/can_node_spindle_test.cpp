@@ -29,8 +29,6 @@ hal::CanFrame spindle(SpindleOp op, double rpm = 0.0, std::uint32_t direction = 
   return f;
 }
 
-ErrorCode ack_result(const hal::CanFrame& r) { return static_cast<ErrorCode>(raw_of(r, MessageId::command_ack, "result")); }
-std::uint32_t ack_detail(const hal::CanFrame& r) { return raw_of(r, MessageId::command_ack, "detail"); }
 std::uint8_t field_index(const char* name) {
   const fw::can::MessageDef& m = msg(MessageId::spindle);
   for (std::size_t i = 0; i < m.fields.size(); ++i)

@@ -1,6 +1,8 @@
 #pragma once
 // A CAN node on the scriptable fake board (no physics: the table stands
 // still), for the protocol tests that need no motion beyond a dwell.
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <vector>
 
@@ -12,6 +14,13 @@
 namespace tnv::test {
 
 inline constexpr std::uint8_t kNode = 1;
+
+// A COMMAND_ACK's result and detail (the frame must be one).
+inline fw::can::ErrorCode ack_result(const hal::CanFrame& r) {
+  EXPECT_TRUE(is(r, fw::can::MessageId::command_ack));
+  return static_cast<fw::can::ErrorCode>(raw_of(r, fw::can::MessageId::command_ack, "result"));
+}
+inline std::uint32_t ack_detail(const hal::CanFrame& r) { return raw_of(r, fw::can::MessageId::command_ack, "detail"); }
 
 // Telemetry off, so a request's answer is the only frame; the table at
 // (6, 0) (the default circle's start point) in the machine frame.
