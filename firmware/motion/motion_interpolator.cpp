@@ -37,6 +37,8 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
 void MotionInterpolator::stop() noexcept {
   stopping_ = true;
   profiled_.stop();
+  // Nothing moves in a dwell: a stop (abort, host timeout) ends it at once.
+  follower_.cut_dwell(queue_.derived().filter_taps);
 }
 
 bool MotionInterpolator::front_profiled() const noexcept {

@@ -5,6 +5,7 @@
 // and checks that the point's per-axis second difference stays within the
 // acceleration budget. The point turns sharp corners; the jerk filter after
 // it rounds them (docs/motion.md).
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -35,6 +36,11 @@ class PathFollower {
   // feed_gate_open false: while the front element is a feed move the point
   // brakes to rest and waits (the spindle is not at speed); a rapid runs.
   FollowerStep step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open = true) noexcept;
+
+  // A stop during a dwell ends it: at most settle_ticks more (the jerk
+  // filter's taps, so its output comes to rest on the point) instead of
+  // the dwell's remainder.
+  void cut_dwell(std::uint64_t settle_ticks) noexcept { hold_ticks_ = std::min(hold_ticks_, settle_ticks); }
 
   const PlanePoint& point_mm() const noexcept { return point_mm_; }
   double speed_mm_s() const noexcept { return speed_mm_s_; }

@@ -48,7 +48,7 @@ TEST(CanNodeSpindleElements, DuringAProgramOnlyAStopIsTakenFromTheSide) {
   auto r = holding_rig();
   ASSERT_TRUE(r);
   ProgramHost host(*r);
-  ASSERT_EQ(host.send(fw::motion::dwell_for(1.0)).at(0).result, kOk);  // the program is running
+  ASSERT_EQ(host.send(fw::motion::dwell_for(5.0)).at(0).result, kOk);  // the program is running
   const double rpm = 0.5 * r->task().spindle().params().max_rpm;
   EXPECT_EQ(ack_result(*r, spindle_request(fw::can::SpindleOp::start, rpm)),
             static_cast<std::uint32_t>(can::ErrorCode::busy));
@@ -59,7 +59,7 @@ TEST(CanNodeSpindleElements, DuringAProgramOnlyAStopIsTakenFromTheSide) {
   EXPECT_EQ(ack_result(*r, spindle_request(fw::can::SpindleOp::stop, 0.0)), kOk);
   // The same start once the program is aborted: taken (the refusal was the program's).
   ASSERT_EQ(ack_result(*r, command(kRigNode, fw::can::CommandCode::abort_program)), kOk);
-  ASSERT_TRUE(r->run_until(fw::MotionState::holding, 3000));  // an abort lets the dwell end (notes)
+  ASSERT_TRUE(r->run_until(fw::MotionState::holding, 100));  // an abort ends the dwell
   for (int k = 0; k < 2; ++k) r->step();
   ASSERT_EQ(r->node->program().state(), can::ProgramState::aborted);
   EXPECT_EQ(ack_result(*r, spindle_request(fw::can::SpindleOp::start, rpm)), kOk);

@@ -104,6 +104,23 @@ TEST(MotionStop, NewSegmentsAfterAStopStartFromRestWithoutAJump) {
   EXPECT_NEAR(path.back()[1], 10.0, 1e-9);
 }
 
+TEST(MotionStop, AStopDuringADwellEndsItOnceTheFilterHasSettled) {
+  MotionInterpolator m = configured();
+  ASSERT_EQ(m.push(dwell_for(5.0)), SegmentRefusal::none);
+  ASSERT_EQ(m.push(line_to({10.0, 0.0}, 20.0)), SegmentRefusal::none);
+  for (int k = 0; k < 100; ++k) m.tick();
+  ASSERT_NE(m.state(), MotionState::idle) << "the dwell holds";
+  m.stop();
+  const std::size_t settle = m.derived().filter_taps;
+  std::size_t ticks = 0;
+  while (m.state() != MotionState::idle && ticks < 6000) {
+    m.tick();
+    ++ticks;
+  }
+  EXPECT_LE(ticks, settle + 2) << "a stop waited for the dwell's remainder";
+  EXPECT_EQ(m.queued(), 0u);
+}
+
 TEST(MotionJoints, AStraightLineInPiecesKeepsItsSpeedAtEveryJoint) {
   MotionInterpolator m = configured();
   std::vector<Segment> pieces;
