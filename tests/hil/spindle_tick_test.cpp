@@ -64,6 +64,17 @@ void run(::tnv::test::HilRig& rig, int ticks) {
   for (int i = 0; i < ticks; ++i) rig.tick();
 }
 
+// A line, a program pause and a line, the program closed: true once the
+// motion core waits at the pause (within 10 s).
+bool run_to_a_pause(::tnv::test::HilRig& rig) {
+  push(rig, line_by(rig, 2.0, 10.0));
+  push(rig, motion::pause_here());
+  push(rig, line_by(rig, 2.0, 10.0));
+  if (rig.task.end_program() != fw::CommandStatus::ok) return false;
+  for (int t = 0; t < 10000 && rig.task.motion().state() != motion::MotionState::paused; ++t) rig.tick();
+  return rig.task.motion().state() == motion::MotionState::paused;
+}
+
 TEST(SpindleTick, AFeedMoveStartsOnlyOnceTheSpindleIsReallyAtSpeed) {
   auto rig = holding_rig();
   ASSERT_TRUE(rig);
@@ -241,13 +252,7 @@ TEST(SpindleTick, AProgramPauseLeavesTheSpindleTurning) {
   auto rig = holding_rig();
   ASSERT_TRUE(rig);
   ASSERT_EQ(rig->task.spindle_start(fw::SpindleDirection::forward, kRpm), fw::SpindleResult::ok);
-  push(*rig, line_by(*rig, 2.0, 10.0));
-  push(*rig, motion::pause_here());
-  push(*rig, line_by(*rig, 2.0, 10.0));
-  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
-  int t = 0;
-  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
-  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  ASSERT_TRUE(run_to_a_pause(*rig));
   run(*rig, 2000);
   EXPECT_TRUE(rig->task.spindle().commanded_on()) << "M0/M1/M6 do not stop the spindle";
   EXPECT_TRUE(really_at_speed(*rig, kRpm)) << spindle_rpm(*rig) << " rpm";
@@ -259,13 +264,7 @@ TEST(SpindleTick, AProgramPauseLeavesTheSpindleTurning) {
 TEST(SpindleTick, AfterAPauseWithTheSpindleRestartedTheFeedWaitsForAtSpeed) {
   auto rig = holding_rig();
   ASSERT_TRUE(rig);
-  push(*rig, line_by(*rig, 2.0, 10.0));
-  push(*rig, motion::pause_here());
-  push(*rig, line_by(*rig, 2.0, 10.0));
-  ASSERT_EQ(rig->task.end_program(), fw::CommandStatus::ok);
-  int t = 0;
-  for (; t < 10000 && rig->task.motion().state() != motion::MotionState::paused; ++t) rig->tick();
-  ASSERT_EQ(rig->task.motion().state(), motion::MotionState::paused);
+  ASSERT_TRUE(run_to_a_pause(*rig));
   run(*rig, 500);  // the reference rests from the pause's first tick; the table settles behind it
   ASSERT_FALSE(table_moving(*rig));
   // During the pause (a manual tool change, say) the operator starts the spindle, and continues at once.
