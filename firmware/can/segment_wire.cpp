@@ -84,21 +84,16 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   write_raw(out.head, kSegmentTag, tag);
   const WireKind kind = wire_kind(s);
   write_raw(out.head, kSegmentKind, static_cast<std::uint32_t>(kind));
-  if (kind == WireKind::pause || kind == WireKind::spindle_stop) {
-    out.end_mm = start_mm;
-    return nullptr;
-  }
-  if (kind == WireKind::spindle_forward || kind == WireKind::spindle_reverse) {
-    out.end_mm = start_mm;
-    if (!write(out.head, kSegmentX, s.spindle_rpm / kSpindleRpmPerX) || read_raw(out.head, kSegmentX) == 0 ||
-        read(out.head, kSegmentX) < 0.0)
-      return &kSegmentX;
-    return nullptr;
-  }
-  if (kind == WireKind::dwell) {
-    // A dwell that rounds to no time at all would be refused by the queue as bad_dwell.
-    if (!write(out.head, kSegmentX, s.dwell_s) || read_raw(out.head, kSegmentX) == 0 || read(out.head, kSegmentX) < 0.0)
-      return &kSegmentX;
+  const bool spindle_start = kind == WireKind::spindle_forward || kind == WireKind::spindle_reverse;
+  if (kind == WireKind::dwell || spindle_start || kind == WireKind::pause || kind == WireKind::spindle_stop) {
+    // Where the path is, one frame. A dwell's time or a start's speed in x:
+    // one that rounds to nothing would be refused by the queue (bad_dwell,
+    // bad_spindle).
+    if (kind == WireKind::dwell || spindle_start) {
+      const double amount = spindle_start ? s.spindle_rpm / kSpindleRpmPerX : s.dwell_s;
+      if (!write(out.head, kSegmentX, amount) || read_raw(out.head, kSegmentX) == 0 || read(out.head, kSegmentX) < 0.0)
+        return &kSegmentX;
+    }
     out.end_mm = start_mm;
     return nullptr;
   }
