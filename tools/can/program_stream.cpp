@@ -317,9 +317,7 @@ class Streamer {
 std::string pause_text(const StreamPause& pause) {
   std::string out = "line " + std::to_string(pause.line) + ": ";
   if (!pause.why) return out + "pause (element " + std::to_string(pause.element) + ")";
-  out += gcode::to_string(pause.why->reason);
-  if (pause.why->reason == gcode::PauseReason::tool_change) out += ", tool " + std::to_string(pause.why->tool);
-  return out;
+  return out + gcode::to_string(*pause.why);
 }
 
 StreamResult stream_program(NodeClient& client, const WireProgram& program, const StreamOptions& options) {

@@ -54,6 +54,12 @@ const char* to_string(PauseReason reason) noexcept {
   return "?";
 }
 
+std::string to_string(const ProgramPause& pause) {
+  std::string out = to_string(pause.reason);
+  if (pause.reason == PauseReason::tool_change) out += ", tool " + std::to_string(pause.tool);
+  return out;
+}
+
 std::string summary_text(const GcodeProgram& p) {
   char time[64];
   std::snprintf(time, sizeof time, "%.3f s", p.programmed_time_s());

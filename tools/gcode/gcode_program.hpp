@@ -50,6 +50,9 @@ struct ProgramPause {
   int tool = 0;  // tool_change: the tool now in the spindle
 };
 
+// "tool change (M6), tool 3", "program stop (M0)": the reason, and the tool for a tool change.
+std::string to_string(const ProgramPause& pause);
+
 struct GcodeProgram {
   std::vector<fw::motion::Segment> segments;           // tag = source line
   std::vector<fw::motion::SegmentGeometry> geometry;   // one per segment, with its start point

@@ -116,9 +116,8 @@ int run_path_command(const PathOptions& o) {
                 static_cast<unsigned long long>(r.underruns));
     std::printf("program: %s\n", gcode::summary_text(seed0.program).c_str());
     for (const hil::PathPause& p : seed0.pauses) {
-      std::printf("paused at line %d: %s", p.line, gcode::to_string(p.why.reason));
-      if (p.why.reason == gcode::PauseReason::tool_change) std::printf(", tool %d", p.why.tool);
-      std::printf("; continued after %.3f s (not scored)\n", p.paused_s);
+      std::printf("paused at line %d: %s; continued after %.3f s (not scored)\n", p.line, gcode::to_string(p.why).c_str(),
+                  p.paused_s);
     }
   }
   bool ok = r.error.empty();
