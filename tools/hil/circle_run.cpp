@@ -34,11 +34,17 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
     if (rec.motion_tick >= 0) {
       const auto& ax = rec.axis[0];
       const auto& ay = rec.axis[1];
-      const double e_mm = contour_error_mm(ax.reference_mm, ay.reference_mm, ax.position_mm, ay.position_mm);
+      // The three errors share the reference's radius, and the tool's is the
+      // table's when no structural mode deflects it (the same bits, computed once).
+      const double reference_radius_mm = radius_mm(ax.reference_mm, ay.reference_mm);
+      const double e_mm = contour_error_mm(reference_radius_mm, radius_mm(ax.position_mm, ay.position_mm));
       contour.add(e_mm);
       const emu::AxisTruth tx = machine.truth(hal::kPlaneFirst), ty = machine.truth(hal::kPlaneSecond);
-      true_table.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.position_mm, ty.position_mm));
-      true_tool.add(contour_error_mm(ax.reference_mm, ay.reference_mm, tx.tool_position_mm, ty.tool_position_mm));
+      const double table_radius_mm = radius_mm(tx.position_mm, ty.position_mm);
+      const bool tool_on_table = tx.tool_position_mm == tx.position_mm && ty.tool_position_mm == ty.position_mm;
+      true_table.add(contour_error_mm(reference_radius_mm, table_radius_mm));
+      true_tool.add(contour_error_mm(reference_radius_mm, tool_on_table ? table_radius_mm
+                                                                         : radius_mm(tx.tool_position_mm, ty.tool_position_mm)));
       if (options.keep_trace) {
         TraceSample t;
         t.t_s = static_cast<double>(rec.motion_tick) * period_s;

@@ -7,8 +7,12 @@
 namespace tnv::hil {
 
 // S1 eq. (33): e_c = | sqrt(x_ref^2 + y_ref^2) - sqrt(x^2 + y^2) |, circle centred at the origin.
+inline double radius_mm(double x_mm, double y_mm) noexcept { return std::hypot(x_mm, y_mm); }
+inline double contour_error_mm(double reference_radius_mm, double measured_radius_mm) noexcept {
+  return std::fabs(reference_radius_mm - measured_radius_mm);
+}
 inline double contour_error_mm(double x_ref_mm, double y_ref_mm, double x_mm, double y_mm) noexcept {
-  return std::fabs(std::hypot(x_ref_mm, y_ref_mm) - std::hypot(x_mm, y_mm));
+  return contour_error_mm(radius_mm(x_ref_mm, y_ref_mm), radius_mm(x_mm, y_mm));
 }
 
 struct ContourStats {
