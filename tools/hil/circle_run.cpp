@@ -43,8 +43,9 @@ CircleRunResult run_circle(const emu::Scenario& scenario, const fw::FirmwareConf
       const double table_radius_mm = radius_mm(tx.position_mm, ty.position_mm);
       const bool tool_on_table = tx.tool_position_mm == tx.position_mm && ty.tool_position_mm == ty.position_mm;
       true_table.add(contour_error_mm(reference_radius_mm, table_radius_mm));
-      true_tool.add(contour_error_mm(reference_radius_mm, tool_on_table ? table_radius_mm
-                                                                         : radius_mm(tx.tool_position_mm, ty.tool_position_mm)));
+      const double tool_radius_mm =
+          tool_on_table ? table_radius_mm : radius_mm(tx.tool_position_mm, ty.tool_position_mm);
+      true_tool.add(contour_error_mm(reference_radius_mm, tool_radius_mm));
       if (options.keep_trace) {
         TraceSample t;
         t.t_s = static_cast<double>(rec.motion_tick) * period_s;
