@@ -3,8 +3,10 @@
 // loop. The "realtime_x" counter is the ratio (goal >= 500).
 #include <benchmark/benchmark.h>
 
+#include "emulator/axis_plant.hpp"
 #include "emulator/machine.hpp"
 #include "emulator/scenario_file.hpp"
+#include "emulator/z_axis_plant.hpp"
 #include "hal/io_board_registers.hpp"
 #include "tools/hil/circle_run.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
@@ -79,5 +81,39 @@ void BM_EmulatorOnly(benchmark::State& state) {
   state.counters["realtime_x"] = benchmark::Counter(simulated_s, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EmulatorOnly)->Unit(benchmark::kMillisecond);
+
+// One more plant over one 1 ms tick (100 sub-steps, inputs held), as
+// emu::Machine steps each axis: what a third axis adds to every tick.
+// stuck: an idle head held by stiction (u = 0, its weight under f_s);
+// cruise: 2 mm/s, clear of the Stribeck zone (the closed form);
+// zone: 0.2 mm/s, inside it (every sub-step needs exp).
+constexpr std::size_t kSubstepsPerTick = 100;
+
+void BM_PlantTick(benchmark::State& state) {
+  const emu::AxisPlant plant(emu::ZAxisParams{}.plant);
+  const double gravity_mm_s = emu::ZAxisParams{}.gravity_mm_s;
+  const double speed_mm_s = state.range(0) == 0 ? 0.0 : state.range(0) == 1 ? 2.0 : 0.2;
+  for (auto _ : state) {
+    emu::AxisState x{.position_mm = -100.0, .speed_mm_s = speed_mm_s, .stuck = speed_mm_s == 0.0};
+    // The command that holds this speed against friction and the weight.
+    const double command_mm_s =
+        speed_mm_s == 0.0 ? 0.0 : speed_mm_s + plant.friction().magnitude_mm_s(speed_mm_s) - gravity_mm_s;
+    plant.advance_held(x, command_mm_s, gravity_mm_s, kSubstepsPerTick);
+    benchmark::DoNotOptimize(x);
+  }
+}
+BENCHMARK(BM_PlantTick)->ArgName("stuck_cruise_zone")->Arg(0)->Arg(1)->Arg(2);
+
+// The same idle head stepped one sub-step at a time (ZAxisPlant::step, with
+// its end-stop check), 100 per tick: the cost a per-sub-step loop would add.
+void BM_ZPlantSubstepsPerTick(benchmark::State& state) {
+  emu::ZAxisPlant z{emu::ZAxisParams{}};
+  z.set_state(-100.0, 0.0, true);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < kSubstepsPerTick; ++i) z.step(0.0);
+    benchmark::DoNotOptimize(z.position_mm());
+  }
+}
+BENCHMARK(BM_ZPlantSubstepsPerTick);
 
 }  // namespace
