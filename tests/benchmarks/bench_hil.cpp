@@ -89,10 +89,9 @@ BENCHMARK(BM_EmulatorOnly)->Unit(benchmark::kMillisecond);
 // zone: 0.2 mm/s, inside it (every sub-step needs exp).
 constexpr std::size_t kSubstepsPerTick = 100;
 
-void BM_PlantTick(benchmark::State& state) {
+void BM_PlantTick(benchmark::State& state, double speed_mm_s) {
   const emu::AxisPlant plant(emu::ZAxisParams{}.plant);
   const double gravity_mm_s = emu::ZAxisParams{}.gravity_mm_s;
-  const double speed_mm_s = state.range(0) == 0 ? 0.0 : state.range(0) == 1 ? 2.0 : 0.2;
   for (auto _ : state) {
     emu::AxisState x{.position_mm = -100.0, .speed_mm_s = speed_mm_s, .stuck = speed_mm_s == 0.0};
     // The command that holds this speed against friction and the weight.
@@ -102,7 +101,9 @@ void BM_PlantTick(benchmark::State& state) {
     benchmark::DoNotOptimize(x);
   }
 }
-BENCHMARK(BM_PlantTick)->ArgName("stuck_cruise_zone")->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK_CAPTURE(BM_PlantTick, stuck, 0.0);
+BENCHMARK_CAPTURE(BM_PlantTick, cruise, 2.0);
+BENCHMARK_CAPTURE(BM_PlantTick, zone, 0.2);
 
 // The same idle head stepped one sub-step at a time (ZAxisPlant::step, with
 // its end-stop check), 100 per tick: the cost a per-sub-step loop would add.
