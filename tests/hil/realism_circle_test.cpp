@@ -8,6 +8,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "firmware/tick/work_meter.hpp"
 #include "tools/hil/circle_run.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 #include "tools/hil/hil_rig.hpp"
@@ -166,6 +167,7 @@ TEST(RealismCircle, BenchScenariosRunTheCircleDeterministically) {
 // On the rig, the tick's output lands read latency + the firmware's metered
 // work + write latency after the latch: 100 + ~1 + 50 us -> the 160 us sub-step.
 TEST(RealismCircle, RigOutputLandsAfterReadWorkAndWrite) {
+  if (!fw::work_meter_enabled()) GTEST_SKIP() << "built with TNV_WORK_METER=OFF: the tick's work is not metered";
   emu::Scenario s = builtin("no-cut");
   s.io = emu::IoParams{.read_latency_us = 100.0, .write_latency_us = 50.0, .jitter_us = 0.0};
   std::string error;
