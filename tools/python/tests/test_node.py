@@ -93,7 +93,7 @@ def test_nan_and_out_of_range_are_value_errors_before_anything_is_sent(node):
     with pytest.raises(ValueError):
         node.move("x", math.nan, 10.0)
     with pytest.raises(ValueError):
-        node.move("z", 1.0, 10.0)
+        node.move("w", 1.0, 10.0)
 
 
 def test_move_then_capture_to_numpy_and_a_data_frame(node):
