@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <string>
 
 #include "hal/axis.hpp"
 #include "tests/hil/hil_rig.hpp"
@@ -98,6 +99,10 @@ TEST(ZAxis, AMoveFollowsItsCommandUnderTheHeadsWeightAndHoldsAtRest) {
       max_rest_error_mm =
           std::max(max_rest_error_mm, std::fabs(rig.machine.truth(kZ).position_mm - (from_mm + distance_mm)));
     }
+    const std::string leg = distance_mm < 0.0 ? "down" : "up";
+    RecordProperty("max_following_um_" + leg, std::to_string(max_following_mm * 1000.0));
+    RecordProperty("max_rest_error_um_" + leg, std::to_string(max_rest_error_mm * 1000.0));
+    RecordProperty("rest_command_mm_s_" + leg, std::to_string(rig.task.last_record().axis[kZi].command_mm_s));
     EXPECT_LT(max_following_mm, 0.05) << "moving " << distance_mm << " mm";
     EXPECT_LT(max_rest_error_mm, 3.0 * kCountMm) << "held after " << distance_mm << " mm";
     // The controller holds the weight: its command at rest is d_g's +1 mm/s

@@ -13,6 +13,7 @@
 
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 
 namespace {
 
@@ -110,7 +111,7 @@ TEST(ParamTable, AxesMirrorEachOther) {
 }
 
 TEST(ParamTable, EveryTunableTheIssueNamesIsThere) {
-  for (const char* axis_name : hal::kAxisNames)
+  for (const char* axis_name : tnv::hal::kAxisNames)
     for (const char* name : {"sliding.G_position_1_s", "sliding.eta_mm_s", "sliding.phi_mm_s", "sliding.q",
                              "sliding.g", "sliding.gamma", "pid.kp", "pid.ki", "pid.kd", "shaper.type",
                              "shaper.freq_hz", "shaper.zeta", "shaper.enable", "limits.position_min_mm",
@@ -131,7 +132,7 @@ TEST(ParamTable, SafetyParametersAreTheSupervisorsLimitsAndTheScales) {
   for (const ParamDef& p : param_table())
     if (safety_param(p)) safety.emplace_back(p.name);
   std::vector<std::string> expected = {"can.host_timeout_ms", "supervisor.max_missed_ticks"};
-  for (const char* axis_name : hal::kAxisNames)
+  for (const char* axis_name : tnv::hal::kAxisNames)
     for (const char* name : {"limits.position_min_mm", "limits.position_max_mm", "limits.speed_max_mm_s",
                              "limits.following_floor_mm", "limits.following_lag_s", "limits.stall_command_mm_s",
                              "limits.stall_ticks", "jog.deadman_s", "hw.count_mm", "hw.dac_full_scale_mm_s"})
