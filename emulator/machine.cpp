@@ -1,12 +1,12 @@
 #include "emulator/machine.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "emulator/axis_plant.hpp"
 #include "emulator/cutting_disturbance.hpp"
@@ -37,8 +37,8 @@ using AxisStates = std::array<AxisState, hal::kAxisCount>;
 using AxisSpeeds = std::array<double, hal::kAxisCount>;
 
 // What each axis carries beyond the table's law (the head's weight and its
-// stops on Z: z_axis_plant.hpp). One case
-// per axis and no default: a new axis of TNV_AXES states its own.
+// stops on Z: z_axis_plant.hpp). One case per axis and no default: a new
+// axis of TNV_AXES states its own.
 AxisLoad axis_load(const Scenario& s, Axis axis) noexcept {
   switch (axis) {
     case Axis::x:
@@ -93,8 +93,8 @@ struct Machine::Impl {
   std::uint32_t input_bit(const FaultSpec& f) const noexcept;
 
   // The cutting force is in the XY plane (CuttingVector::component) and the
-  // S3 milling force on X: index 0 (process_mm_s).
-  static_assert(hal::index(hal::kPlaneFirst) == 0, "the milling force acts on axis 0 (process_mm_s)");
+  // S3 milling force on X, index 0 (tick_samples, step_substeps).
+  static_assert(hal::index(hal::kPlaneFirst) == 0, "the milling force acts on axis 0");
 
   Scenario scenario;
   IoBoard board;
@@ -479,10 +479,8 @@ void Machine::Impl::step_spindle(std::size_t n) noexcept {
       QuadratureEncoder::wrap(spindle_encoder.latched_count()) | (edges << hal::regs::kIndexEdgesShift);
 }
 
-// The cutting and milling forces depend on the table's speed at the start
-// of each sub-step, the modes need every sub-step's table acceleration and
-// the backlash every sub-step's position: no closed form over the block,
-// one sub-step at a time.
+// A stop inside a block is met at its sub-step: the block is redone one
+// sub-step at a time from its start (rare: only a head driven into a stop).
 void Machine::Impl::advance_held(std::size_t i, AxisState& state, double u_mm_s, std::size_t n) noexcept {
   const AxisState from = state;
   const double load_mm_s = loads[i].constant_mm_s;
@@ -527,9 +525,7 @@ void Machine::Impl::step_substeps(AxisStates& states, const AxisSpeeds& u, std::
       if (!in_loop[i]) continue;
       // X: the cutting and the milling force; Y: the cutting force (as
       // before Z: the same sums, bit for bit); a further axis: its load.
-      const double d_mm_s = i == kX                     ? cut.x_mm_s + milling_x_mm_s
-                            : i == kY                   ? cut.y_mm_s
-                                                        : loads[i].constant_mm_s;
+      const double d_mm_s = i == kX ? cut.x_mm_s + milling_x_mm_s : i == kY ? cut.y_mm_s : loads[i].constant_mm_s;
       plants[i].advance(s[i], u[i], d_mm_s);
       if (any_stops) end_stops[i].apply(s[i]);
     }
