@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "emulator/axis_plant.hpp"
 #include "emulator/cutting_disturbance.hpp"
@@ -23,6 +24,7 @@
 #include "emulator/structural_mode.hpp"
 #include "emulator/substep_timing.hpp"
 #include "emulator/tool_accelerometer.hpp"
+#include "emulator/z_axis_plant.hpp"
 
 namespace tnv::emu {
 
@@ -31,6 +33,20 @@ using hal::Axis;
 namespace {
 constexpr double kStandardGravityMmS2 = 9806.65;
 
+using AxisStates = std::array<AxisState, hal::kAxisCount>;
+using AxisSpeeds = std::array<double, hal::kAxisCount>;
+
+// What each axis carries beyond the table's law (the head's weight and its
+// stops on Z: z_axis_plant.hpp). One case per axis and no default: a new
+// axis of TNV_AXES states its own.
+AxisLoad axis_load(const Scenario& s, Axis axis) noexcept {
+  switch (axis) {
+    case Axis::x:
+    case Axis::y: return AxisLoad{};
+    case Axis::z: return z_axis_load(s.z_axis);
+  }
+  return AxisLoad{};
+}
 // [noise] drawn for one tick latch, added before the ADCs quantise.
 struct SampleNoise {
   double force_v = 0.0;
@@ -44,7 +60,18 @@ struct Machine::Impl {
   // Sub-steps up to the next board event (or max_substeps), with the bus
   // outputs constant over the block; true if a tick latched at its end.
   bool run_block(std::uint64_t max_substeps) noexcept;
-  void step_substeps(AxisState& x, AxisState& y, double u_x, double u_y, std::size_t n) noexcept;
+  void step_substeps(AxisStates& states, const AxisSpeeds& u, std::size_t n) noexcept;
+  // n sub-steps of axis i with u and its load held (no cutting, mode or screw
+  // in play): the plant's closed form where it holds; sub-step by sub-step
+  // from the block's start when the block would end past a stop.
+  void advance_held(std::size_t i, AxisState& state, double u_mm_s, std::size_t n) noexcept;
+  // The XY table's axes take the cutting force (in their plane) and X the
+  // milling force in the sub-step loop; a further axis is stepped there only
+  // for its own mode or backlash, over the block in closed form otherwise.
+  bool in_substep_loop(std::size_t i) const noexcept {
+    const Axis axis = hal::axis_from_index(i);
+    return axis == hal::kPlaneFirst || axis == hal::kPlaneSecond || modes[i].enabled() || screws[i].has_backlash();
+  }
   TickSamples tick_samples(const SampleNoise* noise = nullptr) const noexcept;
   void step_spindle(std::size_t n) noexcept;
   SampleNoise draw_sample_noise() noexcept;
@@ -65,16 +92,16 @@ struct Machine::Impl {
   bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
   std::uint32_t input_bit(const FaultSpec& f) const noexcept;
 
-  // The sub-step loop (advance()) steps the XY table's two plants side by
-  // side, with the cutting force in their plane: an axis beyond x and y needs
-  // its own plant stepped there (the Z plant: z_axis_plant.hpp), so the
-  // Machine refuses to build with any other list than the plane's.
-  static_assert(hal::kAxisCount == 2 && hal::index(hal::kPlaneFirst) == 0 && hal::index(hal::kPlaneSecond) == 1,
-                "emu::Machine steps the x and y plants only: wire the new axis' plant into Machine::Impl");
+  // The cutting force is in the XY plane (CuttingVector::component) and the
+  // S3 milling force on X, index 0 (tick_samples, step_substeps).
+  static_assert(hal::index(hal::kPlaneFirst) == 0, "the milling force acts on axis 0");
 
   Scenario scenario;
   IoBoard board;
-  std::array<AxisPlant, hal::kAxisCount> plants;
+  std::array<AxisPlant, hal::kAxisCount> plants;    // each axis' law ([plant.<axis>])
+  std::array<AxisLoad, hal::kAxisCount> loads;      // and what it carries beyond it (axis_load)
+  std::array<EndStops, hal::kAxisCount> end_stops;  // from loads (none on X and Y)
+  bool any_stops;
   std::array<StructuralMode, hal::kAxisCount> modes;
   std::array<QuadratureEncoder, hal::kAxisCount> encoders;
   CuttingDisturbance cutting;
@@ -114,24 +141,32 @@ struct Machine::Impl {
 };
 
 namespace {
-StructuralMode make_mode(const AxisPlantParams& p) { return StructuralMode(p.mode_hz, p.mode_zeta, kSubstep_s); }
-QuadratureEncoder make_encoder(const EncoderParams& e, Axis axis) {
-  return QuadratureEncoder(e.count_mm(), e.offset_counts(axis));
+// One element per axis from f(axis).
+template <class F>
+auto per_axis_from(F f) {
+  return [&f]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array{f(hal::axis_from_index(I))...};
+  }(std::make_index_sequence<hal::kAxisCount>{});
 }
 }  // namespace
 
 Machine::Impl::Impl(const Scenario& s)
     : scenario(s),
       board(s.board, s.dac, s.encoder.lead_mm, s.noise, s.spindle),
-      plants{AxisPlant(s.plant[0]), AxisPlant(s.plant[1])},
-      modes{make_mode(s.plant[0]), make_mode(s.plant[1])},
-      encoders{make_encoder(s.encoder, Axis::x), make_encoder(s.encoder, Axis::y)},
+      plants(per_axis_from([&s](Axis a) { return AxisPlant(s.plant[hal::index(a)]); })),
+      loads(per_axis_from([&s](Axis a) { return axis_load(s, a); })),
+      end_stops(per_axis_from([this](Axis a) { return EndStops(loads[hal::index(a)]); })),
+      any_stops(std::any_of(loads.begin(), loads.end(), [](const AxisLoad& l) { return l.has_stops(); })),
+      modes(per_axis_from([&s](Axis a) {
+        const AxisPlantParams& p = s.plant[hal::index(a)];
+        return StructuralMode(p.mode_hz, p.mode_zeta, kSubstep_s);
+      })),
+      encoders(per_axis_from([&s](Axis a) { return QuadratureEncoder(s.encoder.count_mm(), s.encoder.offset_counts(a)); })),
       cutting(s.cutting, s.circle.feed_mm_s),
       milling(s.milling, kSubstep_s),
-      screws{ScrewTransmission(s.plant[0], s.circle.radius_mm + s.board.axis[0].power_up_offset_mm),
-             ScrewTransmission(s.plant[1], s.board.axis[1].power_up_offset_mm)},
-      any_mode(modes[0].enabled() || modes[1].enabled()),
-      any_backlash(screws[0].has_backlash() || screws[1].has_backlash()),
+      screws(per_axis_from([&s](Axis a) { return ScrewTransmission(s.plant[hal::index(a)], power_up_position_mm(s, a)); })),
+      any_mode(std::any_of(modes.begin(), modes.end(), [](const StructuralMode& m) { return m.enabled(); })),
+      any_backlash(std::any_of(screws.begin(), screws.end(), [](const ScrewTransmission& t) { return t.has_backlash(); })),
       spindle(s.spindle),
       spindle_encoder(s.spindle),
       sample_noise(s.noise.any_sample_noise()),
@@ -142,9 +177,8 @@ Machine::Impl::Impl(const Scenario& s)
       fault_timeline(s.faults),
       fault_on(s.faults.size(), false) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
-  // At rest, held by stiction, at the circle's start point (R, 0) (moved by [board] power_up_offset_*_mm).
-  plants[0].set_state(s.circle.radius_mm + s.board.axis[0].power_up_offset_mm, 0.0, true);
-  plants[1].set_state(s.board.axis[1].power_up_offset_mm, 0.0, true);  // (the screws' lash starts centred there)
+  // At rest, held by stiction, where power_up_position_mm puts it (the screws' lash starts centred there).
+  for (const Axis axis : hal::kAxes) plants[hal::index(axis)].set_state(power_up_position_mm(s, axis), 0.0, true);
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
     index_mm[i] = s.encoder.lead_mm * s.board.index_deg(hal::axis_from_index(i)) / 360.0;
   board.preset_snapshot(tick_samples());
@@ -222,8 +256,11 @@ TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept
   // Tool-side accelerometers: table acceleration with the inputs of the
   // sub-step that ends at the tick, plus the mode's deflection acceleration.
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const double disturbance_mm_s = applied_cutting.component(hal::axis_from_index(i)) +
-                                    (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
+    const double process_mm_s = applied_cutting.component(hal::axis_from_index(i)) +
+                                (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
+    // (an axis without a load: exactly the process' disturbance)
+    const double disturbance_mm_s =
+        loads[i].constant_mm_s != 0.0 ? loads[i].constant_mm_s + process_mm_s : process_mm_s;
     const double table_mm_s2 =
         table_acceleration_mm_s2(plants[i], drive_sign[i] * applied_command_mm_s[i], disturbance_mm_s);
     const double tool_mm_s2 = table_mm_s2 + modes[i].deflection_accel_mm_s2(table_mm_s2);
@@ -396,25 +433,27 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
                                                     fault_timeline.substeps_to_next(substep),
                                                     transport.substeps_to_next_landing(board.elapsed_clocks())}));
   // Inputs held over each sub-step, evaluated at its start.
-  applied_command_mm_s = {board.command_mm_s(Axis::x), board.command_mm_s(Axis::y)};
-  // The drive's gain sign (runaway fault: -1) acts on what the servopack is told.
-  const double u_x = drive_sign[0] * applied_command_mm_s[0], u_y = drive_sign[1] * applied_command_mm_s[1];
-  // Local state: independent chains, no memory round trips.
-  AxisState x = plants[0].state();
-  AxisState y = plants[1].state();
-  const double x_from_mm = x.position_mm, y_from_mm = y.position_mm;
+  AxisSpeeds u{};
+  AxisStates states{};
+  AxisSpeeds from_mm{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    applied_command_mm_s[i] = board.command_mm_s(hal::axis_from_index(i));
+    // The drive's gain sign (runaway fault: -1) acts on what the servopack is told.
+    u[i] = drive_sign[i] * applied_command_mm_s[i];
+    states[i] = plants[i].state();  // local state: independent chains, no memory round trips
+    from_mm[i] = states[i].position_mm;
+  }
   if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
-    step_substeps(x, y, u_x, u_y, n);
+    step_substeps(states, u, n);
   } else {
     // Held inputs: the closed form where it is provably the same as
     // stepping, sub-steps elsewhere (AxisPlant::advance_held).
-    plants[0].advance_held(x, u_x, 0.0, n);
-    plants[1].advance_held(y, u_y, 0.0, n);
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) advance_held(i, states[i], u[i], n);
   }
-  plants[0].set_state(x);
-  plants[1].set_state(y);
-  watch_index(0, x_from_mm, x.position_mm);
-  watch_index(1, y_from_mm, y.position_mm);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    plants[i].set_state(states[i]);
+    watch_index(i, from_mm[i], states[i].position_mm);
+  }
   step_spindle(n);
   substep += n;
   const bool tick_due = board.advance_substeps(n);
@@ -440,41 +479,66 @@ void Machine::Impl::step_spindle(std::size_t n) noexcept {
       QuadratureEncoder::wrap(spindle_encoder.latched_count()) | (edges << hal::regs::kIndexEdgesShift);
 }
 
+// A stop inside a block is met at its sub-step: the block is redone one
+// sub-step at a time from its start (rare: only a head driven into a stop).
+void Machine::Impl::advance_held(std::size_t i, AxisState& state, double u_mm_s, std::size_t n) noexcept {
+  const AxisState from = state;
+  const double load_mm_s = loads[i].constant_mm_s;
+  plants[i].advance_held(state, u_mm_s, load_mm_s, n);
+  if (!any_stops || !end_stops[i].beyond(state)) {
+    if (any_stops) end_stops[i].apply(state);  // leaving a stop re-arms its count
+    return;
+  }
+  state = from;
+  for (std::size_t k = 0; k < n; ++k) {
+    plants[i].advance(state, u_mm_s, load_mm_s);
+    end_stops[i].apply(state);
+  }
+}
+
 // The cutting and milling forces depend on the table's speed at the start
 // of each sub-step, the modes need every sub-step's table acceleration and
 // the backlash every sub-step's position: no closed form over the block,
 // one sub-step at a time.
-void Machine::Impl::step_substeps(AxisState& x_state, AxisState& y_state, double u_x, double u_y,
-                                  std::size_t n) noexcept {
+void Machine::Impl::step_substeps(AxisStates& states, const AxisSpeeds& u, std::size_t n) noexcept {
   double load_per_speed[CuttingDisturbance::kMaxFill];
   cutting.fill_load_per_speed(substep, n, load_per_speed);
   // Locals: the chains stay in registers (nothing here can alias them).
-  AxisState x = x_state, y = y_state;
-  ModeState mode_x = modes[0].state();
-  ModeState mode_y = modes[1].state();
+  AxisStates s = states;
+  std::array<ModeState, hal::kAxisCount> mode_states{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) mode_states[i] = modes[i].state();
   CuttingVector cut{};
   constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
+  constexpr std::size_t kX = hal::index(hal::kPlaneFirst), kY = hal::index(hal::kPlaneSecond);
   const bool cutting_on = cutting.enabled();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v0_x = x.speed_mm_s, v0_y = y.speed_mm_s;
-    if (cutting_on) cut = CuttingDisturbance::force(load_per_speed[i], v0_x, v0_y);
-    const double milling_x_mm_s = milling.enabled() ? milling.disturbance_mm_s() : 0.0;
-    plants[0].advance(x, u_x, cut.x_mm_s + milling_x_mm_s);
-    plants[1].advance(y, u_y, cut.y_mm_s);
-    if (milling.enabled()) milling.advance(v0_x, substep_time_s(substep + i));
-    if (any_mode) {
-      modes[0].advance(mode_x, (x.speed_mm_s - v0_x) * kPerSubstep);
-      modes[1].advance(mode_y, (y.speed_mm_s - v0_y) * kPerSubstep);
-    }
-    if (any_backlash) {
-      screws[0].follow(x.position_mm);
-      screws[1].follow(y.position_mm);
-    }
+  std::array<bool, hal::kAxisCount> in_loop{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    in_loop[i] = in_substep_loop(i);
+    if (!in_loop[i]) advance_held(i, s[i], u[i], n);
   }
-  x_state = x;
-  y_state = y;
-  modes[0].set_state(mode_x);
-  modes[1].set_state(mode_y);
+  for (std::size_t k = 0; k < n; ++k) {
+    AxisSpeeds v0{};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) v0[i] = s[i].speed_mm_s;
+    if (cutting_on) cut = CuttingDisturbance::force(load_per_speed[k], v0[kX], v0[kY]);
+    const double milling_x_mm_s = milling.enabled() ? milling.disturbance_mm_s() : 0.0;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      if (!in_loop[i]) continue;
+      // X: the cutting and the milling force; Y: the cutting force (as
+      // before Z: the same sums, bit for bit); a further axis: its load.
+      const double d_mm_s = i == kX ? cut.x_mm_s + milling_x_mm_s : i == kY ? cut.y_mm_s : loads[i].constant_mm_s;
+      plants[i].advance(s[i], u[i], d_mm_s);
+      if (any_stops) end_stops[i].apply(s[i]);
+    }
+    if (milling.enabled()) milling.advance(v0[0], substep_time_s(substep + k));
+    if (any_mode)
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+        if (in_loop[i]) modes[i].advance(mode_states[i], (s[i].speed_mm_s - v0[i]) * kPerSubstep);
+    if (any_backlash)
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+        if (in_loop[i]) screws[i].follow(s[i].position_mm);
+  }
+  states = s;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) modes[i].set_state(mode_states[i]);
   applied_cutting = cut;  // the last sub-step's: what the force sensor and truth() see
 }
 

@@ -1,12 +1,14 @@
 #pragma once
-// The emulated TNV-40: the FPGA I/O board at register level driving two
-// table axes and the spindle. The only door for firmware is read_register/write_register
+// The emulated TNV-40: the FPGA I/O board at register level driving the
+// axes of the list (the XY table and the Z head: z_axis_plant.hpp) and the
+// spindle. The only door for firmware is read_register/write_register
 // (through an emulated RegisterBus); truth() and the set_* inputs are the
 // test bench's side of the machine. The scenario's fault schedule
 // (fault_schedule.hpp) is injected as simulated time passes: a read during
 // an injected bus error returns false; a missed tick makes
 // advance_to_next_tick() sleep through that many tick latches.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -39,7 +41,7 @@ struct SpindleTruth {
 
 // The board's output side now (judge side: readable whatever the bus does).
 struct BoardOutputs {
-  std::array<std::uint32_t, hal::kAxisCount> dac_register{};  // DAC_X / DAC_Y as last written
+  std::array<std::uint32_t, hal::kAxisCount> dac_register{};  // each axis' DAC register as last written
   std::array<std::uint32_t, hal::kAxisCount> dac_output{};    // what the DACs output (differs when stuck)
   std::array<bool, hal::kAxisCount> enabled{};                // servo enable reaching the drive (watchdog gated)
   bool watchdog_tripped = false;
@@ -49,8 +51,9 @@ struct BoardOutputs {
   bool spindle_enabled = false;                               // its enable reaching the drive (watchdog gated)
   // DAC registers at mid-scale and every enable off, the spindle's too.
   bool safe(std::uint32_t mid_code) const noexcept {
-    return !enabled[0] && !enabled[1] && dac_register[0] == mid_code && dac_register[1] == mid_code &&
-           !spindle_enabled && spindle_dac_register == spindle_dac_mid_code;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+      if (enabled[i] || dac_register[i] != mid_code) return false;
+    return !spindle_enabled && spindle_dac_register == spindle_dac_mid_code;
   }
 };
 

@@ -92,9 +92,45 @@ struct BoardAxisParams {
   double limit_min_mm = -200.0;
   double limit_max_mm = 200.0;
   // Power-up position: the table starts this far from the circle's start
-  // point (circle.radius_mm, 0) (motor side and table together).
+  // point (circle.radius_mm, 0), the head this far from [plant.z] start_mm
+  // (motor side and table together).
   double power_up_offset_mm = 0.0;
 };
+
+// Each axis' law and switches by default (the reference plant; a switch
+// over the axes without a default: a new axis of TNV_AXES states its own).
+inline constexpr AxisPlantParams kYAxisLaw{.tau_s = 0.007122};
+inline constexpr AxisPlantParams kZAxisLaw{
+    .tau_s = 0.009, .gain = 1.0, .coulomb_mm_s = 2.0, .stiction_mm_s = 4.0, .stribeck_mm_s = 0.1};
+constexpr std::array<AxisPlantParams, hal::kAxisCount> default_axis_plants() noexcept {
+  std::array<AxisPlantParams, hal::kAxisCount> out{};
+  for (const hal::Axis axis : hal::kAxes) {
+    switch (axis) {
+      case hal::Axis::x: out[hal::index(axis)] = AxisPlantParams{}; break;
+      case hal::Axis::y: out[hal::index(axis)] = kYAxisLaw; break;
+      case hal::Axis::z: out[hal::index(axis)] = kZAxisLaw; break;
+    }
+  }
+  return out;
+}
+// X and Y: no home switch unless a scenario fits one. Z: the reference
+// plant's switch at the top of the head's travel (actuated at and above
+// 0 mm), and its limit switches (when on) halfway between the travel's ends
+// and the hard stops.
+constexpr std::array<BoardAxisParams, hal::kAxisCount> default_board_axes() noexcept {
+  std::array<BoardAxisParams, hal::kAxisCount> out{};
+  for (const hal::Axis axis : hal::kAxes) {
+    switch (axis) {
+      case hal::Axis::x:
+      case hal::Axis::y: break;
+      case hal::Axis::z:
+        out[hal::index(axis)] = BoardAxisParams{
+            .home_switch = true, .home_mm = 0.0, .home_side = 1, .limit_min_mm = -302.5, .limit_max_mm = 2.5};
+        break;
+    }
+  }
+  return out;
+}
 
 struct BoardParams {
   std::uint32_t clock_start = 0;  // initial value of the free-running 10 MHz counter
@@ -103,7 +139,7 @@ struct BoardParams {
   bool limit_switches = false;
   // Per axis, in TNV_AXES order; the file's keys are <field>_<axis> (home_x_mm,
   // home_switch_y, ...: scenario_file.cpp).
-  std::array<BoardAxisParams, hal::kAxisCount> axis{};
+  std::array<BoardAxisParams, hal::kAxisCount> axis = default_board_axes();
   bool home_switch(hal::Axis a) const noexcept { return axis[hal::index(a)].home_switch; }
   double home_mm(hal::Axis a) const noexcept { return axis[hal::index(a)].home_mm; }
   int home_side(hal::Axis a) const noexcept { return axis[hal::index(a)].home_side; }
@@ -151,13 +187,14 @@ struct CircleParams {
 // Z: the axis law of AxisPlantParams plus the head's uncompensated weight
 // (reference plant "Z axis"). Positions are the spindle nose in machine
 // coordinates, 0 at the top.
+// Its law (tau_Z, K, friction) is Scenario::plant's Z entry, [plant.z] like
+// every axis' (kZAxisLaw below); its home switch is the board's (home_z_mm).
 struct ZAxisParams {
-  AxisPlantParams plant{.tau_s = 0.009, .gain = 1.0, .coulomb_mm_s = 2.0, .stiction_mm_s = 4.0, .stribeck_mm_s = 0.1};
   double gravity_mm_s = -1.0;       // d_g: a constant pull toward -Z
   double travel_top_mm = 0.0;       // the travel's ends
   double travel_bottom_mm = -300.0;
   double overtravel_mm = 5.0;       // hard stops this far beyond each end of the travel
-  double home_switch_mm = 0.0;      // the home switch is actuated at and above this
+  double start_mm = -25.0;          // where the head stands at power-up (plus [board] power_up_offset_z_mm)
 };
 
 // The spindle drive and its encoder (reference plant "Spindle").
@@ -226,7 +263,7 @@ struct ProbeParams {
 
 struct Scenario {
   std::string name = "default";
-  std::array<AxisPlantParams, hal::kAxisCount> plant{AxisPlantParams{}, AxisPlantParams{.tau_s = 0.007122}};
+  std::array<AxisPlantParams, hal::kAxisCount> plant = default_axis_plants();
   CuttingParams cutting{};
   EncoderParams encoder{};
   DacParams dac{};
@@ -245,5 +282,19 @@ struct Scenario {
   ProbeParams probe{};         // [probe]
   std::vector<FaultSpec> faults{};  // [[fault]]: injected on schedule (fault_schedule.hpp)
 };
+
+// Where an axis stands at power-up (motor side and table together): the XY
+// table at the circle's start point (R, 0), the head at [plant.z] start_mm,
+// each moved by its [board] power_up_offset_<axis>_mm. One case per axis and
+// no default: a new axis of TNV_AXES states its own.
+inline double power_up_position_mm(const Scenario& s, hal::Axis axis) noexcept {
+  const double offset_mm = s.board.power_up_offset_mm(axis);
+  switch (axis) {
+    case hal::Axis::x: return s.circle.radius_mm + offset_mm;
+    case hal::Axis::y: return offset_mm;
+    case hal::Axis::z: return s.z_axis.start_mm + offset_mm;
+  }
+  return offset_mm;
+}
 
 }  // namespace tnv::emu

@@ -70,8 +70,8 @@ void add_axis_law(Section<AxisPlantParams>& p) {
         zero_or_plausible(100.0, 1e6, "a servo axis' current-limited acceleration, 0.01 to 100 g"));
 }
 
-// The table axes' structural mode and ball screw (not on Z).
-void add_table_axis_extras(Section<AxisPlantParams>& p) {
+// Each axis' structural mode and ball screw.
+void add_axis_extras(Section<AxisPlantParams>& p) {
   using P = AxisPlantParams;
   const double nyquist_hz = static_cast<double>(kSubstepsPerSecond) / 2.0;
   p.key("mode_hz", &P::mode_hz, below(nyquist_hz, "the sub-step Nyquist frequency " + format_number(nyquist_hz) + " Hz"));
@@ -97,7 +97,7 @@ std::vector<ScenarioKey> build_table() {
     Section<AxisPlantParams> p(rows, "plant." + std::string(hal::axis_label(axis)),
                                [i](Scenario& s) -> AxisPlantParams& { return s.plant[i]; });
     add_axis_law(p);
-    add_table_axis_extras(p);
+    add_axis_extras(p);
   }
 
   {
@@ -178,10 +178,7 @@ std::vector<ScenarioKey> build_table() {
     d.key("fall_s", &D::fall_s, non_negative());
   }
   {
-    // The vertical axis: the axis law's keys (no structural mode or screw
-    // model on Z yet) and its own (z_axis_plant.hpp).
-    Section<AxisPlantParams> p(rows, "plant.z", [](Scenario& s) -> AxisPlantParams& { return s.z_axis.plant; });
-    add_axis_law(p);
+    // The vertical axis' own keys (z_axis_plant.hpp); its law is the list's [plant.z] above.
     using Z = ZAxisParams;
     Section<Z> z(rows, "plant.z", [](Scenario& s) -> Z& { return s.z_axis; });
     z.key("gravity_mm_s", &Z::gravity_mm_s,
@@ -190,7 +187,7 @@ std::vector<ScenarioKey> build_table() {
     z.key("travel_bottom_mm", &Z::travel_bottom_mm, plausible(-kMachineRangeMm, kMachineRangeMm, "machine coordinates"));
     z.key("overtravel_mm", &Z::overtravel_mm,
           plausible(0.0, 100.0, "the room between a travel end and its hard stop"));
-    z.key("home_switch_mm", &Z::home_switch_mm, with_other_keys());  // within the travel and overtravel
+    z.key("start_mm", &Z::start_mm, with_other_keys());  // within the travel
   }
   {
     using S = SpindleParams;

@@ -71,22 +71,6 @@ void check_each_key(Rules& r, const Scenario& s) {
   }
 }
 
-// Z's plant has the table axes' law but not all of their keys; the members
-// no [plant.z] key sets (structural mode, ball screw) are held to the table
-// axes' rules all the same, for scenarios built in code.
-void check_z_plant_members_without_keys(Rules& r, const Scenario& s) {
-  Scenario as_table_axis;
-  as_table_axis.plant[0] = s.z_axis.plant;
-  const std::string table_axis = "plant." + std::string(hal::axis_label(hal::kAxes[0]));
-  for (const ScenarioKey& key : scenario_keys()) {
-    if (r.found) return;
-    if (key.section != table_axis || find_scenario_key("plant.z", key.name) != nullptr) continue;
-    const std::optional<double> value = scenario_key_number(key, as_table_axis);
-    if (!value) continue;
-    if (std::optional<std::string> why = key.rule.violation(*value)) r.fail_text("plant.z." + key.name, *why);
-  }
-}
-
 // Below: the rules between keys, after every key's own range.
 
 void check_friction(Rules& r, const AxisPlantParams& p, const std::string& section) {
@@ -98,8 +82,7 @@ void check_z_axis(Rules& r, const ZAxisParams& z) {
   if (!r.found && z.travel_bottom_mm == z.travel_top_mm)
     r.fail_text(r.is_given("plant.z.travel_top_mm") ? "plant.z.travel_top_mm" : "plant.z.travel_bottom_mm",
                 "the travel must not be empty (travel_bottom_mm = travel_top_mm = " + format_number(z.travel_top_mm) + ")");
-  r.plausible("plant.z.home_switch_mm", z.home_switch_mm, z.travel_bottom_mm, z.travel_top_mm + z.overtravel_mm,
-              "a home switch between the bottom of the travel and the top hard stop");
+  r.plausible("plant.z.start_mm", z.start_mm, z.travel_bottom_mm, z.travel_top_mm, "a power-up position on the travel");
 }
 
 void check_stock(Rules& r, const StockParams& st) {
@@ -198,11 +181,9 @@ std::optional<ScenarioViolation> find_scenario_violation(const Scenario& s,
                                                          const std::function<bool(std::string_view)>& given) {
   Rules r(given);
   check_each_key(r, s);
-  check_z_plant_members_without_keys(r, s);
   for (const hal::Axis axis : hal::kAxes)
     check_friction(r, s.plant[hal::index(axis)], "plant." + std::string(hal::axis_label(axis)));
   check_board(r, s.board);
-  check_friction(r, s.z_axis.plant, "plant.z");
   check_z_axis(r, s.z_axis);
   check_stock(r, s.stock);
   check_boring(r, s);

@@ -17,7 +17,8 @@
 // (lowest first; kHomingOrder).
 #define TNV_AXES(X) \
   X(x, 1)           \
-  X(y, 2)
+  X(y, 2)           \
+  X(z, 0)
 
 namespace tnv::hal {
 

@@ -45,7 +45,7 @@ inline constexpr std::size_t kParamImageHeaderBytes = 12;
 inline constexpr std::size_t kParamImageVersion1HeaderBytes = 8;
 inline constexpr std::size_t kParamImageEntryBytes = 10;
 inline constexpr std::size_t kParamImageCrcBytes = 4;
-inline constexpr std::size_t kParamImageMaxEntries = 256;  // > the table's read_write parameters (tested)
+inline constexpr std::size_t kParamImageMaxEntries = 384;  // > the table's read_write parameters (tested; 295 with X, Y, Z)
 inline constexpr std::size_t kParamImageMaxBytes =
     kParamImageHeaderBytes + kParamImageMaxEntries * kParamImageEntryBytes + kBoreStateImageBytes + kParamImageCrcBytes;
 

@@ -19,7 +19,7 @@ struct StagedParam {
 
 class StagedParams {
  public:
-  static constexpr std::size_t kCapacity = 256;  // > the table's parameters (tested)
+  static constexpr std::size_t kCapacity = 384;  // > the table's parameters (tested; 305 with X, Y, Z)
 
   // Adds or overwrites; false (nothing changes) when full.
   bool put(std::uint16_t id, double value) noexcept;

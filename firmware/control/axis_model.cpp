@@ -18,6 +18,13 @@ AxisModel paper_axis_model(hal::Axis axis) noexcept {
       m.A << 1.0, 0.0009, 0.0, 0.8690;
       m.B << 0.0001, 0.1310;
       break;
+    case hal::Axis::z:
+      // No paper has Z: the same 4-decimal zero-order hold of the reference
+      // plant that eq. (31) is of X's and Y's (zoh_axis_model with tau_Z =
+      // 9.0 ms, K = 1: A12 0.000946, A22 0.894839, B1 0.0000536, B2 0.105161).
+      m.A << 1.0, 0.0009, 0.0, 0.8948;
+      m.B << 0.0001, 0.1052;
+      break;
   }
   m.period_s = kControlPeriod_s;
   return m;

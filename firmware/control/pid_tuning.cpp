@@ -160,14 +160,24 @@ PidTuningReport paper_pid_tuning(hal::Axis axis) noexcept {
 PidParams paper_pid_params(hal::Axis axis, double u_max_mm_s) noexcept {
   // paper_pid_tuning(axis): kp, ki, kd, derivative filter (printed to round-trip).
   PidTuningReport r;
-  if (axis == hal::Axis::x) {
-    r.kp = 560.8273280856934;
-    r.ki = 33695.64484971097;
-    r.kd = 2.333590092507429;
-  } else {
-    r.kp = 662.7543577500362;
-    r.ki = 40766.365494139354;
-    r.kd = 2.693662614955271;
+  // One case per axis and no default: a new axis of TNV_AXES fails the
+  // build (-Wswitch) until its gains are printed here.
+  switch (axis) {
+    case hal::Axis::x:
+      r.kp = 560.8273280856934;
+      r.ki = 33695.64484971097;
+      r.kd = 2.333590092507429;
+      break;
+    case hal::Axis::y:
+      r.kp = 662.7543577500362;
+      r.ki = 40766.365494139354;
+      r.kd = 2.693662614955271;
+      break;
+    case hal::Axis::z:
+      r.kp = 1342.1240215543035;
+      r.ki = 98933.918004762774;
+      r.kd = 4.5517678000642317;
+      break;
   }
   r.derivative_filter_tf_s = 0.0;
   return pid_params_from(r, u_max_mm_s);

@@ -28,6 +28,15 @@ SlidingModeParams paper_rdvsc_params(hal::Axis axis) noexcept {
     p.g = 0.3104;
     p.gamma = 0.3040;
       break;
+    case hal::Axis::z:  // no paper table: the autotune rule (tools/tune/axis_design.hpp) on tau_Z = 9.0 ms
+    p.G_position_1_s = 167.0;  // G_p tau = 1.5 (X's and Y's tables: 1.54 and 1.45)
+    p.G_speed = 1.0;
+    p.eta_mm_s = 0.2343;       // 0.4 mm/s scaled by GB: 0.4 x 0.11409 / 0.19475 (the exact X model's GB)
+    p.phi_mm_s = 1.233;        // 10 eta / (q + 1)
+    p.q = 0.9;
+    p.g = 0.3;
+    p.gamma = 0.35;            // 0.5 min(1 - g, q)
+      break;
   }
   p.u_max_mm_s = kDacFullScaleSpeed_mm_s;
   return p;

@@ -5,6 +5,19 @@
 
 namespace tnv::fw {
 
+HomingParams machine_homing_params(hal::Axis axis) noexcept {
+  HomingParams p;
+  switch (axis) {
+    case hal::Axis::x:
+    case hal::Axis::y:
+      break;
+    case hal::Axis::z:
+      p.search_positive = true;
+      break;
+  }
+  return p;
+}
+
 ParamCheck validate(const HomingParams& p) noexcept {
   if (!std::isfinite(p.search_mm_s) || p.search_mm_s <= 0.0)
     return param_error(&p.search_mm_s, "search_mm_s", "must be > 0 and finite");

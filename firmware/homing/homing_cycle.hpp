@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "firmware/control/param_check.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::fw {
 
@@ -27,6 +28,12 @@ struct HomingParams {
   double latch_max_mm = 25.0;    // the longest back-off, and the longest run from release to an index
   bool operator==(const HomingParams&) const = default;
 };
+
+// The TNV-40's switches: X's and Y's at the negative end of the table's
+// travel, Z's at the top of the head's (reference plant "Z axis"). One case
+// per axis and no default: a new axis of TNV_AXES fails the build
+// (-Wswitch) until its switch side is stated here.
+HomingParams machine_homing_params(hal::Axis axis) noexcept;
 
 // Checks: speeds > 0 and finite, latch speed <= search speed, travels > 0, position finite.
 ParamCheck validate(const HomingParams& p) noexcept;

@@ -31,7 +31,11 @@ bool JogProducer::command(std::size_t axis, double speed_mm_s) noexcept {
 
 void JogProducer::release() noexcept { target_mm_s_ = {}; }
 
-double JogProducer::target_speed_mm_s() const noexcept { return std::hypot(target_mm_s_[0], target_mm_s_[1]); }
+double JogProducer::target_speed_mm_s() const noexcept {
+  double speed = std::hypot(target_mm_s_[0], target_mm_s_[1]);
+  for (std::size_t i = 2; i < hal::kAxisCount; ++i) speed = std::hypot(speed, target_mm_s_[i]);
+  return speed;
+}
 
 void JogProducer::produce(MotionInterpolator& motion) noexcept {
   const double dt = motion.derived().dt_s;
@@ -51,11 +55,19 @@ void JogProducer::produce(MotionInterpolator& motion) noexcept {
     }
     return;
   }
-  const PlanePoint dir{target_mm_s_[0] / speed, target_mm_s_[1] / speed};
+  PlanePoint dir{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) dir[i] = target_mm_s_[i] / speed;
   if (feeding_) {
-    const double cross = direction_[0] * dir[1] - direction_[1] * dir[0];
-    const double dot = direction_[0] * dir[0] + direction_[1] * dir[1];
-    if (std::fabs(cross) > kSameDirection || dot <= 0.0) {
+    // |direction x dir| over every pair of axes (the plane's alone with two).
+    double cross_sq = 0.0, dot = 0.0;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      dot += direction_[i] * dir[i];
+      for (std::size_t j = i + 1; j < hal::kAxisCount; ++j) {
+        const double c = direction_[i] * dir[j] - direction_[j] * dir[i];
+        cross_sq += c * c;
+      }
+    }
+    if (std::sqrt(cross_sq) > kSameDirection || dot <= 0.0) {
       motion.stop();  // a new direction goes through rest
       motion.end_program();
       feeding_ = false;
@@ -99,7 +111,8 @@ void JogProducer::top_up(MotionInterpolator& motion) noexcept {
         length = std::min(length, (lim.axis[i].position_min_mm + kLimitMarginMm - from[i]) / direction_[i]);
     }
     if (!(length >= lim.min_segment_mm)) break;  // at the soft limit: the jog rests there
-    const PlanePoint to{from[0] + direction_[0] * length, from[1] + direction_[1] * length};
+    PlanePoint to{};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) to[i] = from[i] + direction_[i] * length;
     if (motion.push(line_to(to, line_feed_mm_s_)) != SegmentRefusal::none) break;
   }
 }

@@ -8,7 +8,8 @@ namespace tnv::fw::motion {
 const char* MotionInterpolator::configure(const MotionLimits& limits, const PlanePoint& position_mm) noexcept {
   const char* why = validate(limits);
   if (*why != '\0') return why;
-  if (!std::isfinite(position_mm[0]) || !std::isfinite(position_mm[1])) return "start position must be finite";
+  for (const double v : position_mm)
+    if (!std::isfinite(v)) return "start position must be finite";
   limits_ = limits;
   reset_at(position_mm);
   follower_.reset(position_mm);  // and its counts

@@ -10,7 +10,9 @@ namespace tnv::fw::motion {
 
 // Where the circle starts and ends: its centre + (radius, 0).
 constexpr PlanePoint circle_start_mm(const CircleSpec& spec, const PlanePoint& centre_mm) noexcept {
-  return {centre_mm[0] + spec.radius_mm, centre_mm[1]};
+  PlanePoint start = centre_mm;  // the other axes where the centre is
+  start[hal::index(hal::kPlaneFirst)] += spec.radius_mm;
+  return start;
 }
 
 // A full counter-clockwise circle from circle_start_mm() back to it.

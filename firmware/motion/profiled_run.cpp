@@ -42,8 +42,13 @@ PathSample ProfiledRun::point_at(double distance_mm, double speed_mm_s) const no
   }
   const double c = std::cos(theta);
   const double s = std::sin(theta);
-  out.position_mm = {g.centre_mm[0] + r * c, g.centre_mm[1] + r * s};
-  out.speed_mm_s = {-sign * s * speed_mm_s, sign * c * speed_mm_s};
+  // In the XY plane; the other axes stay where the centre is (no helix).
+  out.position_mm = g.centre_mm;
+  out.position_mm[0] = g.centre_mm[0] + r * c;
+  out.position_mm[1] = g.centre_mm[1] + r * s;
+  out.speed_mm_s = {};
+  out.speed_mm_s[0] = -sign * s * speed_mm_s;
+  out.speed_mm_s[1] = sign * c * speed_mm_s;
   return out;
 }
 

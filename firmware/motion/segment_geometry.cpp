@@ -8,7 +8,20 @@ namespace tnv::fw::motion {
 
 namespace {
 
-bool finite(const PlanePoint& p) noexcept { return std::isfinite(p[0]) && std::isfinite(p[1]); }
+bool finite(const PlanePoint& p) noexcept {
+  for (const double v : p)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// |b - a| over every axis: hypot of the plane's two first, then each further
+// axis (hypot(h, 0) is h exactly, so a line in the plane has the length it
+// had with two axes, bit for bit).
+double distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept {
+  double d = std::hypot(b[0] - a[0], b[1] - a[1]);
+  for (std::size_t i = 2; i < hal::kAxisCount; ++i) d = std::hypot(d, b[i] - a[i]);
+  return d;
+}
 
 bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
@@ -19,7 +32,10 @@ bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
 // Tangent of an arc at angle theta; ccw: +90 degrees from the radius vector.
 PlanePoint arc_tangent(double theta, bool ccw) noexcept {
   const double sign = ccw ? 1.0 : -1.0;
-  return {-sign * std::sin(theta), sign * std::cos(theta)};
+  PlanePoint t{};
+  t[0] = -sign * std::sin(theta);
+  t[1] = sign * std::cos(theta);
+  return t;
 }
 
 // A profiled element's two raised-cosine ramps must fit its length, and its
@@ -39,12 +55,18 @@ PlanePoint SegmentGeometry::point_at(double distance_mm) const noexcept {
   if (kind == SegmentKind::dwell || length_mm <= 0.0) return start_mm;
   const double f = std::clamp(distance_mm / length_mm, 0.0, 1.0);
   if (kind == SegmentKind::line) {
-    return {start_mm[0] + f * (end_mm[0] - start_mm[0]), start_mm[1] + f * (end_mm[1] - start_mm[1])};
+    PlanePoint p{};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = start_mm[i] + f * (end_mm[i] - start_mm[i]);
+    return p;
   }
   if (f >= 1.0) return end_mm;
   const double theta = start_angle_rad + f * sweep_rad;
   const double r = start_radius_mm + f * (end_radius_mm - start_radius_mm);
-  return {centre_mm[0] + r * std::cos(theta), centre_mm[1] + r * std::sin(theta)};
+  // An arc is in the XY plane; the other axes stay where it starts (no helix).
+  PlanePoint p = start_mm;
+  p[0] = centre_mm[0] + r * std::cos(theta);
+  p[1] = centre_mm[1] + r * std::sin(theta);
+  return p;
 }
 
 double SegmentGeometry::axis_speed_cap_mm_s(const MotionLimits& limits) const noexcept {
@@ -85,12 +107,11 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
     }
     case SegmentKind::line: {
       if (!finite(segment.end_mm) || !std::isfinite(segment.feed_mm_s)) return SegmentRefusal::not_finite;
-      const double dx = segment.end_mm[0] - start_mm[0];
-      const double dy = segment.end_mm[1] - start_mm[1];
-      g.length_mm = std::hypot(dx, dy);
+      g.length_mm = distance_mm(start_mm, segment.end_mm);
       if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
       g.end_mm = segment.end_mm;
-      g.unit_start = {dx / g.length_mm, dy / g.length_mm};
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+        g.unit_start[i] = (segment.end_mm[i] - start_mm[i]) / g.length_mm;
       g.unit_end = g.unit_start;
       break;
     }

@@ -1,6 +1,7 @@
 #include "firmware/tick/firmware_config.hpp"
 
 #include <cmath>
+#include <iterator>
 
 #include "firmware/control/pid_tuning.hpp"
 #include "firmware/control/same_bytes.hpp"
@@ -15,6 +16,7 @@ FirmwareConfig default_firmware_config() noexcept {
     a.model = paper_axis_model(axis);
     a.sliding = paper_rdvsc_params(axis);
     a.pid = paper_pid_params(axis, a.sliding.u_max_mm_s);
+    a.homing = machine_homing_params(axis);
   }
   return config;
 }
@@ -47,8 +49,31 @@ const void* path_limits_source(const FirmwareConfig& config, const motion::Motio
 
 namespace {
 
-ConfigError axis_error(std::size_t axis, const char* what_x, const char* what_y, const ParamCheck& check) noexcept {
-  return {axis == 0 ? what_x : what_y, check.field, check.reason, check.member};
+// Each axis' section names, generated from the list (static strings: a
+// ConfigError points at them).
+struct AxisSections {
+  const char* axis;
+  const char* sliding;
+  const char* dvsc;
+  const char* pid;
+  const char* jog;
+  const char* friction;
+  const char* observer;
+  const char* homing;
+  const char* screw;
+};
+constexpr AxisSections kAxisSections[] = {
+#define TNV_AXIS_SECTIONS(name, ...)                                                                          \
+  {"axis " #name, "axis " #name ": sliding-mode", "axis " #name ": sliding-mode (gamma = 0)", "axis " #name ": pid", \
+   "axis " #name ": jog", "axis " #name ": friction feed-forward", "axis " #name ": speed observer",               \
+   "axis " #name ": homing", "axis " #name ": screw compensation"},
+    TNV_AXES(TNV_AXIS_SECTIONS)
+#undef TNV_AXIS_SECTIONS
+};
+static_assert(std::size(kAxisSections) == hal::kAxisCount);
+
+ConfigError axis_error(const char* section, const ParamCheck& check) noexcept {
+  return {section, check.field, check.reason, check.member};
 }
 
 // The member `member` of `copy` is, in `original` (what a check of a copy names).
@@ -64,7 +89,8 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const AxisConfig& a = config.axis[i];
     if (base != nullptr && same_bytes(a, base->axis[i])) continue;
-    const char* section = i == 0 ? "axis x" : "axis y";
+    const AxisSections& names = kAxisSections[i];
+    const char* section = names.axis;
     if (!std::isfinite(a.count_mm) || a.count_mm <= 0.0)
       return {section, "count_mm", "must be > 0 and finite", &a.count_mm};
     if (a.dac.bits < 8 || a.dac.bits > 16) return {section, "dac.bits", "must be 8..16", &a.dac.bits};
@@ -73,25 +99,25 @@ ConfigError validate_parts(const FirmwareConfig& config, const FirmwareConfig* b
     if (!std::isfinite(a.home_position_mm)) return {section, "home_position_mm", "must be finite", &a.home_position_mm};
     if (!is_finite(a.model)) return {section, "model", "A and B must be finite with period > 0", &a.model.B(1)};
     if (const ParamCheck c = validate(a.sliding, a.model); !c.ok)
-      return axis_error(i, "axis x: sliding-mode", "axis y: sliding-mode", c);
+      return axis_error(names.sliding, c);
     SlidingModeParams dvsc = a.sliding;
     dvsc.gamma = 0.0;
     if (ParamCheck c = validate(dvsc, a.model); !c.ok) {
       c.member = in_original(dvsc, a.sliding, c.member);
-      return axis_error(i, "axis x: sliding-mode (gamma = 0)", "axis y: sliding-mode (gamma = 0)", c);
+      return axis_error(names.dvsc, c);
     }
-    if (const ParamCheck c = validate(a.pid, a.model); !c.ok) return axis_error(i, "axis x: pid", "axis y: pid", c);
+    if (const ParamCheck c = validate(a.pid, a.model); !c.ok) return axis_error(names.pid, c);
     if (a.controller != ControllerKind::pid && a.controller != ControllerKind::dvsc &&
         a.controller != ControllerKind::rdvsc)
       return {section, "controller", "must be pid, dvsc or rdvsc", &a.controller};
-    if (const ParamCheck c = validate(a.jog); !c.ok) return axis_error(i, "axis x: jog", "axis y: jog", c);
+    if (const ParamCheck c = validate(a.jog); !c.ok) return axis_error(names.jog, c);
     if (const ParamCheck c = validate(a.friction); !c.ok)
-      return axis_error(i, "axis x: friction feed-forward", "axis y: friction feed-forward", c);
+      return axis_error(names.friction, c);
     if (const ParamCheck c = validate(a.observer, a.model); !c.ok)
-      return axis_error(i, "axis x: speed observer", "axis y: speed observer", c);
-    if (const ParamCheck c = validate(a.homing); !c.ok) return axis_error(i, "axis x: homing", "axis y: homing", c);
+      return axis_error(names.observer, c);
+    if (const ParamCheck c = validate(a.homing); !c.ok) return axis_error(names.homing, c);
     if (const ParamCheck c = validate(a.screw); !c.ok)
-      return axis_error(i, "axis x: screw compensation", "axis y: screw compensation", c);
+      return axis_error(names.screw, c);
   }
   if (base == nullptr || !same_bytes(config.supervisor, base->supervisor))
     if (const ParamCheck c = check(config.supervisor); !c.ok) return {"supervisor", "", c.reason, c.member};

@@ -322,8 +322,11 @@ class TickTask {
   // Moves axis a's frame by delta_mm: measurement and reference together (bumpless).
   void shift_frame(std::size_t a, double delta_mm) noexcept;
   // config homing_required and one of the axes is not homed.
-  bool homing_missing(bool x, bool y) const noexcept {
-    return config_.homing_required && ((x && !homing_.homed(0)) || (y && !homing_.homed(1)));
+  bool homing_missing(hal::AxisSet axes) const noexcept {
+    if (!config_.homing_required) return false;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+      if (hal::contains(axes, hal::axis_from_index(i)) && !homing_.homed(i)) return true;
+    return false;
   }
   void reset_controllers() noexcept;
   bool servo_on() const noexcept;
@@ -331,7 +334,11 @@ class TickTask {
   // Starts a profiled producer's segment from `start` (the circle, the move).
   CommandStatus start_profiled(const motion::Segment& segment, const std::array<AxisSample, hal::kAxisCount>& start,
                                double dwell_s, Source source) noexcept;
-  motion::PlanePoint held_point() const noexcept { return {hold_[0].position_mm, hold_[1].position_mm}; }
+  motion::PlanePoint held_point() const noexcept {
+    motion::PlanePoint p{};
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = hold_[i].position_mm;
+    return p;
+  }
 
   hal::IoBoard& board_;
   FirmwareConfig config_;

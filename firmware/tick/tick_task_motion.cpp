@@ -11,7 +11,9 @@ namespace tnv::fw {
 CommandStatus TickTask::start_profiled(const motion::Segment& segment,
                                        const std::array<AxisSample, hal::kAxisCount>& start, double dwell_s,
                                        Source source) noexcept {
-  motion_.reset_at({start[0].position_mm, start[1].position_mm});
+  motion::PlanePoint at_mm{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) at_mm[i] = start[i].position_mm;
+  motion_.reset_at(at_mm);
   if (motion_.push(segment) != motion::SegmentRefusal::none) return CommandStatus::invalid;
   motion_.end_program();
   source_ = source;
@@ -23,6 +25,11 @@ CommandStatus TickTask::start_profiled(const motion::Segment& segment,
   return CommandStatus::ok;
 }
 
+namespace {
+// What the circle and programs move (and need homed): the XY plane.
+constexpr hal::AxisSet kPlaneAxes = hal::axis_bit(hal::kPlaneFirst) | hal::axis_bit(hal::kPlaneSecond);
+}  // namespace
+
 CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept { return start_circle(spec, 0.0, 0.0); }
 
 CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm, double centre_y_mm) noexcept {
@@ -30,8 +37,12 @@ CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm,
   if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
   if (validate(spec)[0] != '\0') return CommandStatus::invalid;
   if (!std::isfinite(centre_x_mm) || !std::isfinite(centre_y_mm)) return CommandStatus::invalid;
-  if (homing_missing(true, true)) return CommandStatus::not_homed;
-  const motion::PlanePoint centre{centre_x_mm, centre_y_mm};
+  if (homing_missing(kPlaneAxes)) return CommandStatus::not_homed;
+  // A circle in the XY plane, at the height where the head stands.
+  motion::PlanePoint centre{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) centre[i] = record_.axis[i].position_mm;
+  centre[hal::index(hal::kPlaneFirst)] = centre_x_mm;
+  centre[hal::index(hal::kPlaneSecond)] = centre_y_mm;
   const motion::PlanePoint start_mm = motion::circle_start_mm(spec, centre);
   // The table must already stand at the start point (within the following-error floor).
   std::array<AxisSample, hal::kAxisCount> start{};
@@ -63,7 +74,7 @@ CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
   if (state_ == MotionState::dwell || state_ == MotionState::moving) return CommandStatus::busy;
   if (validate(spec)[0] != '\0') return CommandStatus::invalid;
   const std::size_t a = hal::index(spec.axis);
-  if (homing_missing(a == 0, a == 1)) return CommandStatus::not_homed;
+  if (homing_missing(hal::axis_bit(spec.axis))) return CommandStatus::not_homed;
   const bool was_on = state_ == MotionState::holding;
   // From a servo-off start the table's position is the start (bumpless).
   std::array<AxisSample, hal::kAxisCount> start = hold_;
@@ -72,7 +83,9 @@ CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
   const double end_mm = start[a].position_mm + spec.distance_mm;
   const AxisLimits& lim = config_.supervisor.axis[a];
   if (!(end_mm >= lim.position_min_mm && end_mm <= lim.position_max_mm)) return CommandStatus::invalid;
-  const motion::Segment segment = motion::move_segment(spec, {start[0].position_mm, start[1].position_mm});
+  motion::PlanePoint from_mm{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) from_mm[i] = start[i].position_mm;
+  const motion::Segment segment = motion::move_segment(spec, from_mm);
   if (const CommandStatus st = start_profiled(segment, start, spec.dwell_s, Source::move); st != CommandStatus::ok)
     return st;
   motion_ticks_ = static_cast<std::int64_t>(
@@ -125,7 +138,7 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
   const bool running = program_running();
   if (!running && state_ != MotionState::holding) return CommandStatus::busy;
   if (running && stop_requested_) return CommandStatus::busy;
-  if (!running && homing_missing(true, true)) return CommandStatus::not_homed;
+  if (!running && homing_missing(kPlaneAxes)) return CommandStatus::not_homed;
   if (segment.profiled()) {  // the circle and move producers' elements; a program is planned
     why = motion::SegmentRefusal::bad_ramp;
     return CommandStatus::invalid;
@@ -136,7 +149,17 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
     return CommandStatus::invalid;
   }
   if (!running) motion_.reset_at(held_point());  // a refused first segment leaves the task holding
-  why = motion_.push(segment);
+  // Programs are in the XY plane: an axis beyond it stays where the program
+  // found it (a segment's other coordinates, 0 from the wire, are no target).
+  motion::Segment in_plane = segment;
+  const motion::PlanePoint pinned_mm = running ? motion_.queue_end_mm() : held_point();
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    const hal::Axis axis = hal::axis_from_index(i);
+    if (axis == hal::kPlaneFirst || axis == hal::kPlaneSecond) continue;
+    in_plane.end_mm[i] = pinned_mm[i];
+    in_plane.centre_mm[i] = pinned_mm[i];
+  }
+  why = motion_.push(in_plane);
   if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
   if (!running) {
     source_ = Source::program;

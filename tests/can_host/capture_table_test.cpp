@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "firmware/can/capture_channels.hpp"
 #include "tools/can/capture_csv.hpp"
 #include "tools/can/capture_score.hpp"
 #include "tools/can/capture_table.hpp"
@@ -29,7 +30,9 @@ std::vector<std::uint8_t> image_of(const std::vector<std::array<double, 4>>& row
   return image;
 }
 
-constexpr std::uint32_t kMask = (1u << 0) | (1u << 2) | (1u << 15) | (1u << 16);
+using fw::can::channel_bit;
+constexpr std::uint32_t kMask = (1u << channel_bit("pos_x")) | (1u << channel_bit("ref_x")) |
+                                (1u << channel_bit("contour")) | (1u << channel_bit("motion_tick"));
 
 TEST(CaptureTable, DecodesSampleMajorChannelsInBitOrderToPhysicalUnits) {
   const auto image = image_of({{6.0, 6.0, 0.0, -1}, {5.999999, 6.000001, 0.5, 0}, {-0.000123, 0.0, 1.25, 1}});

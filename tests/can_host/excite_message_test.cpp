@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "firmware/can/capture_channels.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/param_table.hpp"
 #include "firmware/io/dac_code.hpp"
@@ -111,7 +112,7 @@ TEST(ExciteMessage, MalformedAndRefusedRequestsChangeNothing) {
        &fields::kExciteLevel},
       {"infinite level", excite_frame(0, 0, std::numeric_limits<double>::infinity(), 0.15),
        can::ErrorCode::out_of_range, &fields::kExciteLevel},
-      {"axis 2", excite_frame(2, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
+      {"axis past the list", excite_frame(static_cast<std::uint8_t>(hal::kAxisCount), 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
       {"axis 255", excite_frame(255, 0, 10.0, 0.15), can::ErrorCode::bad_axis, &fields::kExciteAxis},
       {"kind 5", excite_frame(0, 5, 10.0, 0.15), can::ErrorCode::out_of_range, &fields::kExciteKind},
       // Sweep / multisine (issue 17): 0.1 .. 40 s; a multisine holds 2 periods of 1 / excite.f_min_hz (1 s).
@@ -161,7 +162,7 @@ TEST(ExciteMessage, CaptureArmedForMotionRecordsTheExcitationFromItsFirstTick) {
   ASSERT_TRUE(bus);
   NodeClient client(*bus, 1);
   client.command(can::CommandCode::enable);
-  client.stage(*can::find_param("capture.channels"), (1u << 0) | (1u << 12));  // pos_x, dac_x
+  client.stage(*can::find_param("capture.channels"), (1u << can::channel_bit("pos_x")) | (1u << can::channel_bit("dac_x")));
   client.stage(*can::find_param("capture.trigger"), 1);                      // motion
   client.stage(*can::find_param("capture.decimation"), 1);
   client.commit();

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "emulator/scenario_file.hpp"
+#include "hal/axis.hpp"
 #include "tests/can_host/tnvctl_runner.hpp"
 
 namespace tnv::tnvctl_autotune_test {
@@ -56,8 +57,8 @@ TEST(TnvctlAutotune, IdentifyOnThreeTablesIsWithinTheIssueTolerances) {
     ASSERT_EQ(r.exit_code, 0) << t.label << ": " << r.err << r.out;
     const nlohmann::json id = script_json(r.out, "identify");
     ASSERT_TRUE(id.contains("axes")) << r.out;
-    ASSERT_EQ(id["axes"].size(), 2u);
-    for (std::size_t a = 0; a < 2; ++a) {
+    ASSERT_EQ(id["axes"].size(), hal::kAxisCount) << "both: every axis";
+    for (std::size_t a = 0; a < hal::kAxisCount; ++a) {
       const nlohmann::json& got = id["axes"][a];
       const emu::AxisPlantParams& p = truth.scenario->plant[a];
       const std::string what = std::string(t.label) + (a == 0 ? " x" : " y");
@@ -88,7 +89,7 @@ TEST(TnvctlAutotune, DryRunShowsTheChangeAndAppliesNothing) {
   const ToolRun first = run_script(state, "", "enable\nautotune --axis both --dry-run\n");
   ASSERT_EQ(first.exit_code, 0) << first.err << first.out;
   const nlohmann::json plan = script_json(first.out, "autotune");
-  ASSERT_EQ(plan["axes"].size(), 2u) << first.out;
+  ASSERT_EQ(plan["axes"].size(), hal::kAxisCount) << first.out;
   EXPECT_FALSE(plan["applied"].get<bool>());
   const std::string names = autotune_param_names(plan);
   ASSERT_GT(names.size(), 100u);

@@ -50,7 +50,7 @@ TEST(TnvctlHome, OneAxisAloneAndABadAxisRefused) {
   const nlohmann::json j = result_of(y.out);
   EXPECT_EQ(j["homed"]["x"], false) << j.dump();
   EXPECT_EQ(j["homed"]["y"], true) << j.dump();
-  const test::ToolRun bad = test::tnvctl(state, "--emu home --axis z");
+  const test::ToolRun bad = test::tnvctl(state, "--emu home --axis w");
   EXPECT_EQ(bad.exit_code, 2) << bad.out << bad.err;
   std::filesystem::remove_all(state);
 }

@@ -49,7 +49,7 @@ TEST(BoringPass, DeflectionIsS4EquationTwoAtTheCurrentDepth) {
 TEST(BoringPass, RealZMotionSetsTheBoreAtTheGaugeDepths) {
   Scenario s;
   s.boring.sigma_d_um = 0.0;  // the true bore, read by an exact gauge
-  ZAxisPlant z(s.z_axis);
+  ZAxisPlant z(s.z_axis, s.plant[hal::index(hal::Axis::z)]);
   SpindleDrive spindle(s.spindle);
   BoringPass pass(s.boring, s.stock, boring_process_config(s));
   spindle.set_command_code(spindle.code_for_rpm(6000.0));

@@ -12,6 +12,8 @@
 namespace tnv::emu {
 namespace {
 
+constexpr std::size_t kZ = hal::index(hal::Axis::z);
+
 constexpr std::string_view kMachineKeys = R"([plant.z]
 tau_s = 0.01
 gain = 1.05
@@ -23,7 +25,7 @@ gravity_mm_s = -0.5
 travel_top_mm = 10
 travel_bottom_mm = -350
 overtravel_mm = 3
-home_switch_mm = 8
+start_mm = -8
 
 [spindle]
 tau_s = 0.3
@@ -71,17 +73,17 @@ TEST(MachineKeys, EveryKeyIsParsed) {
   const ScenarioResult r = parse_scenario_text(kMachineKeys, "machine.toml");
   ASSERT_TRUE(r.scenario) << r.error;
   const Scenario& s = *r.scenario;
-  EXPECT_EQ(s.z_axis.plant.tau_s, 0.01);
-  EXPECT_EQ(s.z_axis.plant.gain, 1.05);
-  EXPECT_EQ(s.z_axis.plant.coulomb_mm_s, 1.5);
-  EXPECT_EQ(s.z_axis.plant.stiction_mm_s, 3.5);
-  EXPECT_EQ(s.z_axis.plant.stribeck_mm_s, 0.2);
-  EXPECT_EQ(s.z_axis.plant.accel_limit_mm_s2, 2000.0);
+  EXPECT_EQ(s.plant[kZ].tau_s, 0.01);
+  EXPECT_EQ(s.plant[kZ].gain, 1.05);
+  EXPECT_EQ(s.plant[kZ].coulomb_mm_s, 1.5);
+  EXPECT_EQ(s.plant[kZ].stiction_mm_s, 3.5);
+  EXPECT_EQ(s.plant[kZ].stribeck_mm_s, 0.2);
+  EXPECT_EQ(s.plant[kZ].accel_limit_mm_s2, 2000.0);
   EXPECT_EQ(s.z_axis.gravity_mm_s, -0.5);
   EXPECT_EQ(s.z_axis.travel_top_mm, 10.0);
   EXPECT_EQ(s.z_axis.travel_bottom_mm, -350.0);
   EXPECT_EQ(s.z_axis.overtravel_mm, 3.0);
-  EXPECT_EQ(s.z_axis.home_switch_mm, 8.0);
+  EXPECT_EQ(s.z_axis.start_mm, -8.0);
   EXPECT_EQ(s.spindle.tau_s, 0.3);
   EXPECT_EQ(s.spindle.dac_bits, 16);
   EXPECT_EQ(s.spindle.full_scale_v, 5.0);
@@ -144,15 +146,15 @@ INSTANTIATE_TEST_SUITE_P(
         ScenarioErrorCase{"z tau", "[plant.z]\ntau_s = 0\n", "2:1: plant.z.tau_s: must be > 0 and finite (got 0)"},
         ScenarioErrorCase{"z stiction below coulomb", "[plant.z]\nstiction_mm_s = 1\n",
                    "2:1: plant.z.stiction_mm_s: must be >= coulomb_mm_s = 2 (got 1)"},
-        ScenarioErrorCase{"z has no structural mode", "[plant.z]\nmode_hz = 30\n", "2:1: plant.z.mode_hz: unknown key"},
+        ScenarioErrorCase{"z structural mode beyond nyquist", "[plant.z]\nmode_hz = 1e9\n",
+                   "2:1: plant.z.mode_hz: must be >= 0 and below the sub-step Nyquist frequency 50000 Hz (got 1e+09)"},
         ScenarioErrorCase{"z gravity", "[plant.z]\ngravity_mm_s = -500\n",
                    "2:1: plant.z.gravity_mm_s: must be -100..100: what the counterbalance leaves of the head's weight, "
                    "as a table speed (got -500)"},
         ScenarioErrorCase{"z travel upside down", "[plant.z]\ntravel_bottom_mm = 10\n",
                    "2:1: plant.z.travel_bottom_mm: must be <= travel_top_mm = 0 (got 10)"},
-        ScenarioErrorCase{"z home switch off the travel", "\n[plant.z]\nhome_switch_mm = 50\n",
-                   "3:1: plant.z.home_switch_mm: must be -300..5: a home switch between the bottom of the travel and "
-                   "the top hard stop (got 50)"},
+        ScenarioErrorCase{"z start off the travel", "\n[plant.z]\nstart_mm = 50\n",
+                   "3:1: plant.z.start_mm: must be -300..0: a power-up position on the travel (got 50)"},
         ScenarioErrorCase{"spindle tau", "[spindle]\ntau_s = -0.2\n",
                    "2:1: spindle.tau_s: must be 0.001..10: a spindle drive's speed loop settles in 1 ms to 10 s (got -0.2)"},
         ScenarioErrorCase{"spindle ramp", "[spindle]\naccel_limit_rpm_s = 0\n",

@@ -177,17 +177,6 @@ TEST(ScenarioKeys, TheDefaultsAreInsideEveryRange) {
   EXPECT_EQ(validate_scenario(Scenario{}), "");
 }
 
-// Z's plant members without a [plant.z] key are still held to the table axes' rules (scenarios built in code).
-TEST(ScenarioKeys, ZPlantMembersWithoutKeysKeepTheTableAxisRules) {
-  Scenario s;
-  s.z_axis.plant.mode_hz = 1e9;
-  EXPECT_EQ(validate_scenario(s),
-            "plant.z.mode_hz: must be >= 0 and below the sub-step Nyquist frequency 50000 Hz (got 1e+09)");
-  s = Scenario{};
-  s.z_axis.plant.backlash_um = 5.0;
-  EXPECT_EQ(validate_scenario(s), "");
-}
-
 TEST(ScenarioKeys, PerAxisKeysFollowTheAxisList) {
   for (const hal::Axis axis : hal::kAxes) {
     const std::string n = hal::axis_label(axis);
@@ -282,21 +271,10 @@ TEST(ScenarioKeys, EveryMemberOfTheScenarioHasAKey) {
   for (const ScenarioKey& key : scenario_keys())
     targets[std::visit([](auto* p) { return static_cast<const void*>(p); }, key.target(s))] = key.path();
 
-  // Z's plant is the table axes' struct; its members beyond the axis law
-  // have no [plant.z] key and are held to the table axis' rules in code
-  // (scenario_validation.cpp). They are the members whose counterpart in
-  // the first table axis' plant is a key.
-  const auto* z_begin = reinterpret_cast<const char*>(&s.z_axis.plant);
-  const auto* x_begin = reinterpret_cast<const char*>(&s.plant[0]);
-  const auto z_plant_member_with_x_key = [&](const void* address) {
-    const auto* at = static_cast<const char*>(address);
-    return at >= z_begin && at < z_begin + sizeof(AxisPlantParams) && targets.count(x_begin + (at - z_begin));
-  };
-
   std::set<const void*> seen;
   auto leaf = [&](const void* address, const std::string& path) {
     seen.insert(address);
-    EXPECT_TRUE(targets.count(address) || z_plant_member_with_x_key(address))
+    EXPECT_TRUE(targets.count(address))
         << "Scenario member " << path << " (member indices from the top) is no key's: add its row to "
            "emulator/scenario_keys.cpp";
   };

@@ -13,12 +13,13 @@ constexpr double kT_s = 1e-3;         // control period: 100 sub-steps
 constexpr int kSubstepsPerTick = 100;
 constexpr double kTauZ_s = 0.009;     // reference plant
 
-ZAxisParams frictionless(double gravity_mm_s) {
+ZAxisPlant frictionless(double gravity_mm_s) {
   ZAxisParams z;
-  z.plant.coulomb_mm_s = 0.0;
-  z.plant.stiction_mm_s = 0.0;
+  AxisPlantParams law = kZAxisLaw;
+  law.coulomb_mm_s = 0.0;
+  law.stiction_mm_s = 0.0;
   z.gravity_mm_s = gravity_mm_s;
-  return z;
+  return ZAxisPlant(z, law);
 }
 
 void run(ZAxisPlant& z, double command_mm_s, int substeps, double push_mm_s = 0.0) {
@@ -27,11 +28,15 @@ void run(ZAxisPlant& z, double command_mm_s, int substeps, double push_mm_s = 0.
 
 TEST(ZAxisPlant, DefaultsAreTheReferencePlant) {
   const ZAxisParams z{};
-  EXPECT_EQ(z.plant.tau_s, kTauZ_s);
-  EXPECT_EQ(z.plant.gain, 1.0);
-  EXPECT_EQ(z.plant.coulomb_mm_s, 2.0);
-  EXPECT_EQ(z.plant.stiction_mm_s, 4.0);
-  EXPECT_EQ(z.plant.stribeck_mm_s, 0.1);
+  // Z's law is the scenario's [plant.z], like every axis'.
+  const AxisPlantParams law = Scenario{}.plant[hal::index(hal::Axis::z)];
+  EXPECT_EQ(law.tau_s, kTauZ_s);
+  EXPECT_EQ(law.gain, 1.0);
+  EXPECT_EQ(law.coulomb_mm_s, 2.0);
+  EXPECT_EQ(law.stiction_mm_s, 4.0);
+  EXPECT_EQ(law.stribeck_mm_s, 0.1);
+  EXPECT_EQ(law.mode_hz, 0.0);
+  EXPECT_EQ(law.backlash_um, 0.0);
   EXPECT_EQ(z.gravity_mm_s, -1.0);
   EXPECT_EQ(z.travel_top_mm, 0.0);
   EXPECT_EQ(z.travel_bottom_mm, -300.0);
@@ -39,7 +44,7 @@ TEST(ZAxisPlant, DefaultsAreTheReferencePlant) {
 
 TEST(ZAxisPlant, HundredSubstepsEqualTheExactOneMillisecondZoh) {
   // Friction and gravity off: the plant is the exact ZOH of tau_Z.
-  ZAxisPlant z(frictionless(0.0));
+  ZAxisPlant z = frictionless(0.0);
   const double a22 = std::exp(-kT_s / kTauZ_s);
   const double a12 = kTauZ_s * (1.0 - a22);
   z.set_state(-100.0, 1.0);
@@ -53,7 +58,7 @@ TEST(ZAxisPlant, HundredSubstepsEqualTheExactOneMillisecondZoh) {
 }
 
 TEST(ZAxisPlant, GravityIsAConstantInputThroughTheSameZoh) {
-  ZAxisPlant z(frictionless(-1.0));
+  ZAxisPlant z = frictionless(-1.0);
   const double a22 = std::exp(-kT_s / kTauZ_s);
   z.set_state(-100.0, 0.0);
   run(z, 0.0, kSubstepsPerTick);
@@ -62,12 +67,12 @@ TEST(ZAxisPlant, GravityIsAConstantInputThroughTheSameZoh) {
 }
 
 TEST(ZAxisPlant, CommandingPlusOneHoldsAgainstGravity) {
-  ZAxisPlant frictionless_z(frictionless(-1.0));
+  ZAxisPlant frictionless_z = frictionless(-1.0);
   frictionless_z.set_state(-100.0, 0.0);
   run(frictionless_z, 1.0, 100'000);  // 1 s
   EXPECT_EQ(frictionless_z.speed_mm_s(), 0.0);
   EXPECT_EQ(frictionless_z.position_mm(), -100.0) << "u = +1.0 mm/s balances d_g exactly";
-  ZAxisPlant held(frictionless(-1.0));
+  ZAxisPlant held = frictionless(-1.0);
   held.set_state(-100.0, 0.0);
   run(held, 0.9, 100'000);
   EXPECT_LT(held.position_mm(), -100.05) << "0.9 mm/s does not hold a frictionless head (it sinks at 0.1 mm/s)";
@@ -132,14 +137,13 @@ TEST(ZAxisPlant, EndStopsStopTheHeadAndCountTheHit) {
   EXPECT_EQ(z.end_stop_hits(), 2u);
 }
 
-TEST(ZAxisPlant, HomeSwitchIsActuatedAtTheTop) {
-  ZAxisPlant z(ZAxisParams{});
-  z.set_state(-0.001, 0.0);
-  EXPECT_FALSE(z.home_switch());
-  z.set_state(0.0, 0.0);
-  EXPECT_TRUE(z.home_switch());
-  z.set_state(2.0, 0.0);
-  EXPECT_TRUE(z.home_switch());
+TEST(ZAxisPlant, TheBoardsHomeSwitchIsAtTheTopOfTheTravel) {
+  const BoardParams board{};
+  EXPECT_TRUE(board.home_switch(hal::Axis::z));
+  EXPECT_EQ(board.home_mm(hal::Axis::z), ZAxisParams{}.travel_top_mm);
+  EXPECT_EQ(board.home_side(hal::Axis::z), 1);  // actuated at and above it
+  EXPECT_FALSE(board.home_switch(hal::Axis::x));
+  EXPECT_FALSE(board.home_switch(hal::Axis::y));
 }
 
 }  // namespace

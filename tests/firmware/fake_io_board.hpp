@@ -12,19 +12,19 @@ class FakeIoBoard final : public hal::IoBoard {
  public:
   // --- what the next read_inputs() returns
   hal::TickLatch latch{};
-  std::array<std::uint32_t, 2> counts{};
+  std::array<std::uint32_t, hal::kAxisCount> counts{};
   hal::DiscreteInputs in{};
-  std::array<hal::IndexLatch, 2> index{};  // the count at the last index edge, and the edge counter
+  std::array<hal::IndexLatch, hal::kAxisCount> index{};  // the count at the last index edge, and the edge counter
   std::uint16_t force_code = 0;
   hal::HalStatus read_status = hal::HalStatus::ok;
   hal::HalStatus write_status = hal::HalStatus::ok;
   unsigned bits = 16;
 
   // --- what the tick wrote (staged, then committed by write_outputs)
-  std::array<std::uint16_t, 2> staged_code{2048, 2048};
-  std::array<bool, 2> staged_enable{};
-  std::array<std::uint16_t, 2> written_code{2048, 2048};
-  std::array<bool, 2> written_enable{};
+  std::array<std::uint16_t, hal::kAxisCount> staged_code = hal::per_axis(std::uint16_t{2048});
+  std::array<bool, hal::kAxisCount> staged_enable{};
+  std::array<std::uint16_t, hal::kAxisCount> written_code = hal::per_axis(std::uint16_t{2048});
+  std::array<bool, hal::kAxisCount> written_enable{};
   int reads = 0, writes = 0, kicks = 0;
   bool kick_staged = false;
 
@@ -68,7 +68,7 @@ class FakeIoBoard final : public hal::IoBoard {
   int latch_clears = 0;
   std::uint16_t latched_force_code() const noexcept override { return force_code; }
   unsigned adc_bits() const noexcept override { return 12; }
-  std::array<std::uint16_t, 2> accel_code{2048, 2048};  // offset binary: 2048 = 0 mm/s^2
+  std::array<std::uint16_t, hal::kAxisCount> accel_code = hal::per_axis(std::uint16_t{2048});  // offset binary: 2048 = 0 mm/s^2
   std::uint16_t latched_accel_code(hal::Axis a) const noexcept override { return accel_code[hal::index(a)]; }
   void kick() noexcept override { kick_staged = true; }
 

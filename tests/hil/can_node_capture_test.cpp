@@ -122,7 +122,10 @@ TEST(CanNodeCapture, AFullCircleCapturedOverCanScoresExactlyLikeTnvHil) {
 TEST(CanNodeCapture, DecimationRecordsEveryNthTickAndTheTickTheMoveEnds) {
   auto r = CanRig::make();
   ASSERT_TRUE(r);
-  const std::uint32_t mask = (1u << 0) | (1u << 4) | (1u << 6) | (1u << 12) | (1u << 16) | (1u << 17);
+  using fw::can::channel_bit;
+  const std::uint32_t mask = (1u << channel_bit("pos_x")) | (1u << channel_bit("speed_x")) |
+                             (1u << channel_bit("command_x")) | (1u << channel_bit("dac_x")) |
+                             (1u << channel_bit("motion_tick")) | (1u << channel_bit("state"));
   ASSERT_EQ(r->result(param_request(kRigNode, fw::can::ParamOp::set, param_id("capture.channels"), mask)), kOk);
   ASSERT_EQ(r->result(param_request(kRigNode, fw::can::ParamOp::set, param_id("capture.decimation"), 3)), kOk);
   ASSERT_EQ(r->result(command(kRigNode, fw::can::CommandCode::enable)), kOk);

@@ -4,6 +4,8 @@
 // streams; HEARTBEAT and PROGRAM_STATUS carry the flow control.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "tests/hil/program_frames.hpp"
 
 namespace tnv::test {
@@ -22,6 +24,10 @@ constexpr std::uint32_t kTail = static_cast<std::uint32_t>(MessageId::segment_ta
 
 
 PlanePoint offset(const PlanePoint& p, double dx, double dy) { return {p[0] + dx, p[1] + dy}; }
+
+// A point's XY coordinates: SEGMENT frames are in the plane (the tick keeps
+// Z where the program found it, so the queue's end has the head's Z).
+std::array<double, 2> plane(const PlanePoint& p) { return {p[0], p[1]}; }
 
 TEST(CanNodeSegments, ALineWaitsForItsTailThenTheAckCarriesTheFreeSlots) {
   auto r = holding_rig();
@@ -81,7 +87,7 @@ TEST(CanNodeSegments, EveryRefusalNamesItsCodeAndFieldAndLeavesTheQueueUnchanged
     EXPECT_EQ(acks[0].detail, b.field != nullptr ? fld::index_of(m, *b.field) : 0u);
     EXPECT_EQ(r->task().motion().queued(), queued) << "a refused element must not be queued";
     EXPECT_EQ(acks[0].free_slots, r->task().motion().free_slots());
-    EXPECT_EQ(r->task().motion().queue_end_mm(), at) << "the next element still starts where the last accepted one ended";
+    EXPECT_EQ(plane(r->task().motion().queue_end_mm()), plane(at)) << "the next element still starts where the last accepted one ended";
   }
   // A negative dwell (the host's encoder never writes one).
   can::SegmentFrames f = host.frames(fw::motion::dwell_for(1.0));
@@ -145,7 +151,7 @@ TEST(CanNodeSegments, OnlyTheCommandOwnerStreams) {
   const std::vector<ElementAck> acks = owner.send_frames({mine.tail});
   ASSERT_EQ(acks.size(), 1u);
   EXPECT_EQ(acks[0].result, kOk);
-  EXPECT_EQ(r->task().motion().queue_end_mm(), mine.end_mm) << "the owner's element, not host 2's";
+  EXPECT_EQ(plane(r->task().motion().queue_end_mm()), plane(mine.end_mm)) << "the owner's element, not host 2's";
 }
 
 TEST(CanNodeSegments, HeartbeatAndProgramStatusReportTheFreeSlotsAndProgress) {

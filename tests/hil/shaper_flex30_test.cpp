@@ -88,7 +88,7 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
 TEST(ShaperFlex30, JogStreamEndsWhereItWouldAndRingsLess) {
   std::string error;
   const auto commands =
-      parse_jog_csv("t_s,x_mm_s,y_mm_s\n0,40,0\n0.3,0,0\n0.5,-25,0\n0.75,0,10\n0.9,0,0\n1.2,20,0\n", error);
+      parse_jog_csv("t_s,x_mm_s,y_mm_s,z_mm_s\n0,40,0,0\n0.3,0,0,0\n0.5,-25,0,0\n0.75,0,10,0\n0.9,0,0,0\n1.2,20,0,0\n", error);
   ASSERT_TRUE(commands) << error;
   JogRunRequest request;
   request.scenario = *emu::builtin_scenario("flex-30");
@@ -121,14 +121,14 @@ TEST(ShaperJogCsv, RefusesBadFilesWithTheLineAndField) {
   std::string error;
   EXPECT_FALSE(parse_jog_csv("", error));
   EXPECT_FALSE(parse_jog_csv("t,x,y\n0,1,2\n", error));
-  EXPECT_EQ(error, "line 1: header must be t_s,x_mm_s,y_mm_s");
-  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s\n0,1,2\n0.5,nan,0\n", error));
+  EXPECT_EQ(error, "line 1: header must be " + jog_csv_header());
+  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s,z_mm_s\n0,1,2,0\n0.5,nan,0,0\n", error));
   EXPECT_EQ(error, "line 3: x_mm_s is not a finite number");
-  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s\n0.5,1,2\n0.5,0,0\n", error));
+  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s,z_mm_s\n0.5,1,2,0\n0.5,0,0,0\n", error));
   EXPECT_NE(error.find("line 3: t_s must increase"), std::string::npos) << error;
-  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s\n0,1\n", error));
-  EXPECT_NE(error.find("expected 3 fields"), std::string::npos) << error;
-  const auto ok = parse_jog_csv("# comment\nt_s,x_mm_s,y_mm_s\r\n0,1.5,-2\r\n\n1,0,0\n", error);
+  EXPECT_FALSE(parse_jog_csv("t_s,x_mm_s,y_mm_s,z_mm_s\n0,1\n", error));
+  EXPECT_NE(error.find("expected 4 fields"), std::string::npos) << error;
+  const auto ok = parse_jog_csv("# comment\nt_s,x_mm_s,y_mm_s,z_mm_s\r\n0,1.5,-2,0\r\n\n1,0,0,0\n", error);
   ASSERT_TRUE(ok) << error;
   ASSERT_EQ(ok->size(), 2u);
   EXPECT_EQ((*ok)[0].speed_mm_s[1], -2.0);

@@ -32,7 +32,7 @@ TEST(TwoProcessRig, ParameterRoundTripOverCanThenSigtermLeavesTheOutputsSafe) {
   EXPECT_EQ(wait_exit(fw), 0);
   EXPECT_EQ(wait_exit(emu), 0) << "--once: the emulator ends when the firmware leaves";
   const std::string fw_log = read_file(dir.file("fw.log"));
-  EXPECT_NE(fw_log.find("tnv-fw: stopped (SIGTERM); outputs safe: DAC x 2048, DAC y 2048, DAC spindle 2048 (mid-scale 2048), enables 0x0"),
+  EXPECT_NE(fw_log.find("tnv-fw: stopped (SIGTERM); outputs safe: DAC x 2048, DAC y 2048, DAC z 2048, DAC spindle 2048 (mid-scale 2048), enables 0x0"),
             std::string::npos)
       << fw_log;
   const std::string emu_log = read_file(dir.file("emu.log"));

@@ -13,6 +13,7 @@
 
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 
 namespace {
 
@@ -110,12 +111,12 @@ TEST(ParamTable, AxesMirrorEachOther) {
 }
 
 TEST(ParamTable, EveryTunableTheIssueNamesIsThere) {
-  for (const char* axis : {"x.", "y."})
+  for (const char* axis_name : tnv::hal::kAxisNames)
     for (const char* name : {"sliding.G_position_1_s", "sliding.eta_mm_s", "sliding.phi_mm_s", "sliding.q",
                              "sliding.g", "sliding.gamma", "pid.kp", "pid.ki", "pid.kd", "shaper.type",
                              "shaper.freq_hz", "shaper.zeta", "shaper.enable", "limits.position_min_mm",
                              "limits.following_floor_mm", "limits.following_lag_s"}) {
-      std::string full = axis;
+      std::string full = std::string(axis_name) + ".";
       full += name;
       EXPECT_NE(find_param(full.c_str()), nullptr) << full;
     }
@@ -131,11 +132,11 @@ TEST(ParamTable, SafetyParametersAreTheSupervisorsLimitsAndTheScales) {
   for (const ParamDef& p : param_table())
     if (safety_param(p)) safety.emplace_back(p.name);
   std::vector<std::string> expected = {"can.host_timeout_ms", "supervisor.max_missed_ticks"};
-  for (const char* axis : {"x.", "y."})
+  for (const char* axis_name : tnv::hal::kAxisNames)
     for (const char* name : {"limits.position_min_mm", "limits.position_max_mm", "limits.speed_max_mm_s",
                              "limits.following_floor_mm", "limits.following_lag_s", "limits.stall_command_mm_s",
                              "limits.stall_ticks", "jog.deadman_s", "hw.count_mm", "hw.dac_full_scale_mm_s"})
-      expected.push_back(std::string(axis) + name);
+      expected.push_back(std::string(axis_name) + "." + name);
   std::sort(safety.begin(), safety.end());
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(safety, expected);

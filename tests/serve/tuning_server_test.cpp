@@ -168,7 +168,7 @@ class TuningServerNoFrictionTest : public TuningServerTest {
 
 TEST_F(TuningServerNoFrictionTest, TheBodeEndpointMeasuresTheOpenLoopWithItsMargins) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
-  EXPECT_EQ(post("/api/freq-response", kTabA, {{"axis", "z"}})->status, kHttpBadRequest);
+  EXPECT_EQ(post("/api/freq-response", kTabA, {{"axis", "w"}})->status, kHttpBadRequest);
   EXPECT_EQ(post("/api/freq-response", kTabA, {{"axis", "x"}, {"loop", "speed"}})->status, kHttpBadRequest);
   // Servo off: the node refuses the experiment, and says why.
   const httplib::Result off = post("/api/freq-response", kTabA, {{"axis", "x"}, {"loop", "open"}});

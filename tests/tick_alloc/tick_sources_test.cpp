@@ -69,6 +69,9 @@ std::unique_ptr<test::HilRig> rig_at_rest(const SourceCase& c) {
     s.board.axis[1].home_mm = -2.0;
     s.board.axis[0].index_deg = 162.0;  // marks at 4.5 + 10 k mm
     s.board.axis[1].index_deg = 306.0;  // marks at -1.5 + 10 k mm
+    // z 2 mm below its switch at the top (the default board's), marks 0.5 mm below its release.
+    s.z_axis.start_mm = -2.0;
+    s.board.axis[hal::index(hal::Axis::z)].index_deg = 342.0;  // marks at -0.5 + 10 k mm
   }
   if (c.force_loop) s.milling = {.enabled = true, .depth = {0.2, 1.0, 1.0, 1.0}};
   auto rig = std::make_unique<test::HilRig>(s, source_config(c));
@@ -146,7 +149,7 @@ std::vector<SourceCase> source_cases() {
     out.push_back(c);
   }
   {
-    SourceCase c;  // homing cycle of both axes: switch, back-off, index, frame moved at the index
+    SourceCase c;  // homing cycle of every axis: switch, back-off, index, frame moved at the index
     c.name = "home_all";
     c.home_switches = true;
     c.start = [](test::HilRig& rig) { return rig.task.home(hal::kEveryAxis); };

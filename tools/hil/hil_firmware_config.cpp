@@ -14,13 +14,9 @@ fw::FirmwareConfig firmware_config_for(const emu::Scenario& scenario, const fw::
     axis.dac.bits = static_cast<unsigned>(scenario.dac.bits);
     axis.dac.full_scale_mm_s = speed_at_full_scale_mm_s;
   }
-  // The emulated table powers up at rest at the circle's start point (R, 0) of the XY plane, moved by
-  // [board] power_up_offset_*.
-  for (const hal::Axis a : hal::kAxes) {
-    const double start_mm = a == hal::kPlaneFirst ? scenario.circle.radius_mm : 0.0;
-    cfg.axis[hal::index(a)].home_position_mm =
-        homed_position_mm(scenario, a, start_mm + scenario.board.power_up_offset_mm(a));
-  }
+  // The emulated machine powers up at rest where emu::power_up_position_mm puts each axis.
+  for (const hal::Axis a : hal::kAxes)
+    cfg.axis[hal::index(a)].home_position_mm = homed_position_mm(scenario, a, emu::power_up_position_mm(scenario, a));
   return cfg;
 }
 

@@ -39,16 +39,23 @@ emu::Scenario homing_scenario() {
   // Marks 4.5 mm (x) and 6 mm (y) past the releases: far from them, whatever the phase of the count.
   s.board.axis[0].index_deg = 342.0;  // x marks at ... -20.5, -10.5 mm
   s.board.axis[1].index_deg = 36.0;   // y marks at ... -19, -9 mm
+  // Z: its own switch at the top (the scenario's default: home_z_mm 0, side +1);
+  // its marks 5 mm below the release, so the head backs off down onto one.
+  const std::size_t z = hal::index(hal::Axis::z);
+  s.board.axis[z].index_deg = 180.0;  // z marks at ... -5, 5 mm
   return s;
 }
 
 emu::Scenario with_homing_board(emu::Scenario table) {
-  for (const auto& axis : table.board.axis)
-    if (axis.home_switch) return table;
+  // A switch the default board does not have (or lacks one it has) is the table's own.
+  const emu::BoardParams default_board{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (table.board.axis[i].home_switch != default_board.axis[i].home_switch) return table;
   const emu::Scenario board = homing_scenario();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     table.board.axis[i].home_switch = board.board.axis[i].home_switch;
     table.board.axis[i].home_mm = board.board.axis[i].home_mm;
+    table.board.axis[i].home_side = board.board.axis[i].home_side;
     table.board.axis[i].index_deg = board.board.axis[i].index_deg;
   }
   return table;
@@ -56,14 +63,14 @@ emu::Scenario with_homing_board(emu::Scenario table) {
 
 fw::FirmwareConfig homing_firmware_config() {
   fw::FirmwareConfig c = fw::default_firmware_config();
-  for (fw::AxisConfig& a : c.axis) {
-    a.homing.search_positive = false;
+  for (fw::AxisConfig& a : c.axis) {  // (each axis' switch side: the machine's, fw::machine_homing_params)
     a.homing.search_mm_s = 10.0;
     a.homing.latch_mm_s = 2.0;
     a.homing.position_mm = -20.0;
     a.homing.search_max_mm = 100.0;
     a.homing.latch_max_mm = 15.0;
   }
+  c.axis[hal::index(hal::Axis::z)].homing.position_mm = -5.0;  // Z's mark below its switch
   c.homing_required = true;
   return c;
 }

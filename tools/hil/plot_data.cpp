@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <string>
+
+#include "hal/axis.hpp"
 
 namespace tnv::hil {
 
@@ -267,16 +270,31 @@ json soak_plot_data(const SoakResult& r, std::string_view scenario_name) {
                   per_cycle("mean", cy, [](const SoakCycle& c) { return c.circle.mean_um; }, joined),
                   per_cycle("std", cy, [](const SoakCycle& c) { return c.circle.std_um; }, "dashed")};
   for (auto& s : contour) s["markers"] = true;
-  json rest = {per_cycle("X reference - position", cy, [](const SoakCycle& c) { return c.rest_error_um[0]; }, "dots"),
-               per_cycle("Y", cy, [](const SoakCycle& c) { return c.rest_error_um[1]; }, "dots")};
-  json d_hat = {per_cycle("max |d_hat| X, whole cycle", cy, [](const SoakCycle& c) { return c.max_abs_d_hat_mm_s[0]; }, "reference"),
-                per_cycle("max |d_hat| Y, whole cycle", cy, [](const SoakCycle& c) { return c.max_abs_d_hat_mm_s[1]; }, "reference"),
-                per_cycle("X d_hat at rest", cy, [](const SoakCycle& c) { return c.rest_d_hat_mm_s[0]; }, "dots"),
-                per_cycle("Y d_hat at rest", cy, [](const SoakCycle& c) { return c.rest_d_hat_mm_s[1]; }, "dots")};
-  d_hat[0]["color"] = "#9ecae1";
-  d_hat[1]["color"] = "#fdd0a2";
-  d_hat[2]["color"] = "#1f77b4";
-  d_hat[3]["color"] = "#ff7f0e";
+  // One colour per axis, light for the whole cycle's max and dark at rest.
+  struct AxisColours {
+    const char* dark;
+    const char* light;
+  };
+  constexpr AxisColours kColours[] = {{"#1f77b4", "#9ecae1"}, {"#ff7f0e", "#fdd0a2"}, {"#2ca02c", "#a1d99b"},
+                                      {"#d62728", "#fcbba1"}};
+  static_assert(hal::kAxisCount <= std::size(kColours), "the soak figure needs a colour for every axis");
+  json rest = json::array();
+  json d_hat_max = json::array();
+  json d_hat_rest = json::array();
+  for (const hal::Axis axis : hal::kAxes) {
+    const std::size_t i = hal::index(axis);
+    const std::string upper(1, hal::axis_upper_name(axis));
+    rest.push_back(per_cycle(i == 0 ? upper + " reference - position" : upper, cy,
+                             [i](const SoakCycle& c) { return c.rest_error_um[i]; }, "dots"));
+    d_hat_max.push_back(per_cycle("max |d_hat| " + upper + ", whole cycle", cy,
+                                  [i](const SoakCycle& c) { return c.max_abs_d_hat_mm_s[i]; }, "reference"));
+    d_hat_max.back()["color"] = kColours[i].light;
+    d_hat_rest.push_back(per_cycle(upper + " d_hat at rest", cy,
+                                   [i](const SoakCycle& c) { return c.rest_d_hat_mm_s[i]; }, "dots"));
+    d_hat_rest.back()["color"] = kColours[i].dark;
+  }
+  json d_hat = d_hat_max;
+  for (const json& series : d_hat_rest) d_hat.push_back(series);
   std::vector<double> wraps;
   for (double w : r.clock_wrap_s) wraps.push_back(w / 60.0);
   json panels = json::array();

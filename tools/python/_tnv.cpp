@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "firmware/can/param_table.hpp"
+#include "hal/axis.hpp"
 #include "tools/can/capture_run.hpp"
 #include "tools/can/motion_run.hpp"
 #include "tools/can/node_identity.hpp"
@@ -384,6 +385,11 @@ class Connection {
 PYBIND11_MODULE(_tnv, m) {
   m.doc() = "TNV-40 host library bindings (use the tnv package)";
   m.attr("protocol_version") = can::kProtocolVersion;
+  // The machine's axes in index order (hal/axis.hpp's list): the axis
+  // arguments' values and the order of per-axis lists.
+  std::vector<std::string> axes;
+  for (const char* name : tnv::hal::kAxisNames) axes.emplace_back(name);
+  m.attr("axes") = axes;
 
   static py::exception<std::runtime_error> exc_error(m, "Error", PyExc_RuntimeError);
   static py::exception<std::runtime_error> exc_refused(m, "Refused", exc_error.ptr());

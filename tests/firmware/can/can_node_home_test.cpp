@@ -77,11 +77,25 @@ TEST(CanNodeHome, HomesOnTheIndexAfterTheSwitchAndTheHeartbeatSaysSo) {
   EXPECT_EQ(bits & fw::can::hb_homed_bit(hal::Axis::y), 0u);
 }
 
-TEST(CanNodeHome, AllHomesXThenY) {
-  NodeBench b;
-  b.board.in.home_switch[1] = true;  // y's search ends at once too (the fake table cannot move to it)
+TEST(CanNodeHome, AllHomesZThenXThenY) {
+  constexpr std::size_t kX = hal::index(hal::Axis::x), kY = hal::index(hal::Axis::y), kZ = hal::index(hal::Axis::z);
+  // The fake table cannot move: the homed head holds a few um off its
+  // reference while X homes, and its DDC winds up against the rigid fake
+  // (a stall after 4 ticks). The order is what this test is about.
+  fw::can::NodeSettings s = quiet_settings();
+  s.firmware.supervisor.axis[kZ].stall.ticks = 1000;
+  NodeBench b(s);
+  b.board.in.home_switch[kX] = true;  // x's and y's searches end at once too (the fake table cannot move to them)
+  b.board.in.home_switch[kY] = true;
   EXPECT_EQ(home_ack(b.reply(command(kNode, CommandCode::home, kAxisAll))), ErrorCode::ok);
-  walk_cycle(b, 0, 100);
+  walk_cycle(b, kZ, 100);
+  ASSERT_FALSE(b.task.fault().active()) << fw::to_string(b.task.fault().reason) << " axis " << int(b.task.fault().axis);
+  EXPECT_TRUE(b.task.homed(hal::Axis::z)) << "z first";
+  EXPECT_FALSE(b.task.homed(hal::Axis::x));
+  EXPECT_FALSE(b.task.homed(hal::Axis::y));
+  EXPECT_TRUE(b.task.homing()) << "x follows z";
+  b.board.in.home_switch[kX] = true;
+  walk_cycle(b, kX, 100);
   ASSERT_FALSE(b.task.fault().active()) << fw::to_string(b.task.fault().reason) << " axis " << int(b.task.fault().axis);
   EXPECT_TRUE(b.task.homed(hal::Axis::x));
   EXPECT_TRUE(b.task.homing()) << "y follows x";
@@ -92,7 +106,7 @@ TEST(CanNodeHome, AllHomesXThenY) {
 
 TEST(CanNodeHome, RefusesABadAxisWhileMovingAndWhenFaulted) {
   NodeBench b;
-  const hal::CanFrame bad = b.reply(command(kNode, CommandCode::home, 2));
+  const hal::CanFrame bad = b.reply(command(kNode, CommandCode::home, static_cast<std::uint8_t>(hal::kAxisCount)));
   EXPECT_EQ(home_ack(bad), ErrorCode::bad_axis);
   EXPECT_EQ(raw_of(bad, MessageId::command_ack, "detail"), 2u) << "the axis field";
   EXPECT_EQ(b.task.state(), fw::MotionState::disabled) << "a refused home starts nothing";

@@ -19,6 +19,8 @@
 namespace tnv::test {
 namespace {
 
+constexpr auto kPastTheList = static_cast<std::uint8_t>(hal::kAxisCount);  // the first number that is no axis'
+
 using fw::can::CaptureOp;
 using fw::can::CommandCode;
 using fw::can::ErrorCode;
@@ -151,17 +153,17 @@ std::vector<Case> cases() {
   add(c, "enter commissioning while holding", command(kNode, CommandCode::enter_commissioning), MessageId::command_ack,
                ErrorCode::busy);
   // Bad axes.
-  add(c, "zero axis 2", command(kNode, CommandCode::zero, 2, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 2u);
+  add(c, "zero axis past the list", command(kNode, CommandCode::zero, kPastTheList, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 2u);
   add(c, "zero axis 255", command(kNode, CommandCode::zero, 255, 0, 1.0), MessageId::command_ack, ErrorCode::bad_axis);
   add(c, "select_controller axis 7", command(kNode, CommandCode::select_controller, 7, 0), MessageId::command_ack,
                ErrorCode::bad_axis, {}, 2u);
   add(c, "select_controller kind 3", command(kNode, CommandCode::select_controller, 0, 3), MessageId::command_ack,
                ErrorCode::out_of_range, {}, 3u);
-  add(c, "shaper_enable axis 2", command(kNode, CommandCode::shaper_enable, 2, 1), MessageId::command_ack,
+  add(c, "shaper_enable axis past the list", command(kNode, CommandCode::shaper_enable, kPastTheList, 1), MessageId::command_ack,
                ErrorCode::bad_axis);
   add(c, "shaper_enable arg 2", command(kNode, CommandCode::shaper_enable, 0, 2), MessageId::command_ack,
                ErrorCode::out_of_range);
-  add(c, "move axis 2", move(kNode, 2, 10.0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
+  add(c, "move axis past the list", move(kNode, kPastTheList, 10.0, 1.0), MessageId::command_ack, ErrorCode::bad_axis, {}, 1u);
   {
     hal::CanFrame f = frame_to(MessageId::shaper, kNode);
     set_raw(f, MessageId::shaper, "axis", 3);

@@ -32,10 +32,10 @@ TEST(CaptureRecorder, ImmediateRecordsUntilTheBufferIsFull) {
   EXPECT_EQ(rec->samples(), capacity);
   EXPECT_EQ(t, capacity) << "stopped at the tick that filled it";
   EXPECT_EQ(rec->state(), CaptureState::done);
-  // Last sample: pos_x is channel 0, dac_y channel 13.
+  // Last sample: pos_x is channel 0; dac_y's word is at its channel's place.
   const std::size_t last = static_cast<std::size_t>(capacity - 1) * kCaptureChannels.size();
   EXPECT_EQ(static_cast<std::int32_t>(rec->words()[last]), static_cast<std::int32_t>(capacity) * 1000) << "nm";
-  EXPECT_EQ(rec->words()[last + 13], capacity & 0xFFFFu);
+  EXPECT_EQ(rec->words()[last + channel_bit("dac_y")], capacity & 0xFFFFu);
 }
 
 TEST(CaptureRecorder, TheImageIsLittleEndianWordsAndZeroPastTheEnd) {
@@ -55,7 +55,7 @@ TEST(CaptureRecorder, FaultTriggerStartsAtTheTickTheFaultLatches) {
   auto rec = std::make_unique<CaptureRecorder>();
   rec->on_tick(at(1, MotionState::faulted), {});  // an old fault, before arming
   rec->on_tick(at(2, MotionState::disabled), {});
-  rec->arm({(1u << 0) | (1u << 17), 0, CaptureTrigger::fault, 2});
+  rec->arm({(1u << 0) | (1u << channel_bit("state")), 0, CaptureTrigger::fault, 2});
   for (std::uint64_t t = 3; t < 10; ++t) rec->on_tick(at(t, MotionState::moving, static_cast<std::int64_t>(t)), {});
   EXPECT_EQ(rec->state(), CaptureState::armed);
   for (std::uint64_t t = 10; t < 15; ++t) rec->on_tick(at(t, MotionState::faulted), {});
@@ -68,7 +68,7 @@ TEST(CaptureRecorder, FaultTriggerStartsAtTheTickTheFaultLatches) {
 
 TEST(CaptureRecorder, MotionTriggerSpansDwellAndMotionAndEndsAfterIt) {
   auto rec = std::make_unique<CaptureRecorder>();
-  rec->arm({1u << 16, 0, CaptureTrigger::motion, 1});
+  rec->arm({1u << channel_bit("motion_tick"), 0, CaptureTrigger::motion, 1});
   rec->on_tick(at(1, MotionState::holding), {});
   EXPECT_EQ(rec->state(), CaptureState::armed);
   rec->on_tick(at(2, MotionState::dwell), {});
@@ -79,7 +79,7 @@ TEST(CaptureRecorder, MotionTriggerSpansDwellAndMotionAndEndsAfterIt) {
   ASSERT_EQ(rec->samples(), 3u);
   EXPECT_EQ(static_cast<std::int32_t>(rec->words()[0]), -1);
   EXPECT_EQ(rec->words()[2], 1u);
-  rec->arm({1u << 16, 0, CaptureTrigger::motion, 1});
+  rec->arm({1u << channel_bit("motion_tick"), 0, CaptureTrigger::motion, 1});
   EXPECT_EQ(rec->samples(), 0u) << "arming drops the old image";
 }
 

@@ -16,7 +16,7 @@ namespace tnv::fw {
 namespace {
 
 TEST(PidTuning, PidLoopHasTheDvscCrossoverAndTheCappedPhaseMarginAndIsStable) {
-  for (hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+  for (hal::Axis axis : hal::kAxes) {
     const char name = hal::axis_name(axis);
     const PidTuningReport r = paper_pid_tuning(axis);
     ASSERT_TRUE(r.ok) << name << ": " << r.note;
@@ -24,12 +24,18 @@ TEST(PidTuning, PidLoopHasTheDvscCrossoverAndTheCappedPhaseMarginAndIsStable) {
     EXPECT_NEAR(r.pid_crossover_rad_s / r.dvsc_crossover_rad_s, 1.0, 0.01)
         << name << ": PID crossover " << r.pid_crossover_hz << " Hz, DVSC+DDC " << r.dvsc_crossover_hz << " Hz";
     EXPECT_NEAR(r.dvsc_crossover_hz, r.dvsc_crossover_rad_s / (2 * std::numbers::pi), 1e-9);
-    // The paper's parameters give DVSC+DDC margins above 60 deg: capped.
-    EXPECT_GT(r.dvsc_phase_margin_deg, 60.0) << name;
-    EXPECT_TRUE(r.phase_margin_capped) << name;
+    // The paper's parameters (X, Y) give DVSC+DDC margins above 60 deg:
+    // capped. Z's (the autotune rule's g = 0.3) give 56.3 deg: the PID gets
+    // the DVSC+DDC's own margin.
+    if (axis == hal::Axis::x || axis == hal::Axis::y) {
+      EXPECT_GT(r.dvsc_phase_margin_deg, 60.0) << name;
+      EXPECT_TRUE(r.phase_margin_capped) << name;
+    }
     EXPECT_TRUE(r.phase_margin_reached) << name;
-    EXPECT_DOUBLE_EQ(r.target_phase_margin_deg, 60.0);
-    EXPECT_NEAR(r.pid_phase_margin_deg, 60.0, 0.1) << name << ": PID phase margin " << r.pid_phase_margin_deg << " deg";
+    EXPECT_DOUBLE_EQ(r.target_phase_margin_deg, std::min(r.dvsc_phase_margin_deg, 60.0)) << name;
+    EXPECT_GT(r.target_phase_margin_deg, 45.0) << name;
+    EXPECT_NEAR(r.pid_phase_margin_deg, r.target_phase_margin_deg, 0.1)
+        << name << ": PID phase margin " << r.pid_phase_margin_deg << " deg";
     EXPECT_TRUE(r.pid_closed_loop_stable) << name << ": spectral radius " << r.pid_closed_loop_spectral_radius;
     EXPECT_LT(r.pid_closed_loop_spectral_radius, 1.0);
     EXPECT_LT(r.dvsc_closed_loop_spectral_radius, 1.0);
@@ -72,7 +78,7 @@ TEST(PidTuning, DefaultPidParamsAreTheTunedXAxisGains) {
 // were printed from (x86-64, no FMA contraction; elsewhere the contraction
 // moves its last bits).
 TEST(PidTuning, PrecomputedPaperGainsAreTheTunersGains) {
-  for (hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+  for (hal::Axis axis : hal::kAxes) {
     const char name = hal::axis_name(axis);
     const PidTuningReport r = paper_pid_tuning(axis);
     ASSERT_TRUE(r.ok) << name << ": " << r.note;

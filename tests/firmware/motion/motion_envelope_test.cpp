@@ -28,7 +28,7 @@ using test::run_program;
 // rounding's cap below the other axes' limits.)
 MotionLimits unequal_limits() {
   MotionLimits l;
-  AxisLimits& weak = l.axis[hal::kAxisCount - 1];
+  AxisLimits& weak = l.axis[hal::index(hal::kPlaneSecond)];  // the paths below are in the XY plane
   weak.speed_mm_s = 60.0;
   weak.accel_mm_s2 = 200.0;
   weak.jerk_mm_s3 = 20'000.0;
@@ -195,7 +195,7 @@ double axis_accel_max_mm_s2(const MotionRun& run, std::size_t axis) {
 
 TEST(MotionEnvelope, ALineAcceleratesAtWhatItsDirectionAllows) {
   const MotionLimits l = unequal_limits();
-  const std::size_t weak = hal::kAxisCount - 1;
+  const std::size_t weak = hal::index(hal::kPlaneSecond);
   // Along the first axis: its own limit, not the weak axis' 200 mm/s^2.
   const MotionRun along = run_with(l, {line_to(point(100.0, 0.0), 50.0)}, point(0.0, 0.0), "along the first axis");
   expect_within_limits(along, "along the first axis");

@@ -139,7 +139,7 @@ TEST(MotionJoints, AStraightLineInPiecesKeepsItsSpeedAtEveryJoint) {
   EXPECT_EQ(m.stats().follower.guard_failures, 0u);
 }
 
-std::array<JogLimits, 2> jog_limits() { return {JogLimits{50.0, 1000.0, 0.1}, JogLimits{50.0, 1000.0, 0.1}}; }
+std::array<JogLimits, hal::kAxisCount> jog_limits() { return hal::per_axis(JogLimits{50.0, 1000.0, 0.1}); }
 
 TEST(JogProducer, CruisesAtTheCommandedSpeedAndTheDeadManStopsItOnThePath) {
   MotionInterpolator m = configured();

@@ -31,15 +31,16 @@ TEST(ToolAccelRecord, EachTickRecordsBothAxesAndTheCaptureSendsThem) {
   const TickRecord& r = task.last_record();
   EXPECT_DOUBLE_EQ(r.axis[0].accel_mm_s2, 100 * kAccelLsb_mm_s2);
   EXPECT_DOUBLE_EQ(r.axis[1].accel_mm_s2, -7 * kAccelLsb_mm_s2);
-  const can::ChannelDef* x = can::find_channel(20);
-  const can::ChannelDef* y = can::find_channel(21);
+  constexpr std::uint8_t kX = can::channel_bit("accel_x"), kY = can::channel_bit("accel_y");
+  const can::ChannelDef* x = can::find_channel(kX);
+  const can::ChannelDef* y = can::find_channel(kY);
   ASSERT_NE(x, nullptr);
   ASSERT_NE(y, nullptr);
-  EXPECT_STREQ(x->name, "accel_x");
-  EXPECT_STREQ(y->name, "accel_y");
+  EXPECT_EQ(x->kind, can::ChannelKind::accel);
+  EXPECT_EQ(y->kind, can::ChannelKind::accel);
   const can::TickSignals sig{};
-  EXPECT_EQ(can::channel_word(20, r, sig), can::float_bits(static_cast<float>(100 * kAccelLsb_mm_s2)));
-  EXPECT_EQ(can::channel_word(21, r, sig), can::float_bits(static_cast<float>(-7 * kAccelLsb_mm_s2)));
+  EXPECT_EQ(can::channel_word(kX, r, sig), can::float_bits(static_cast<float>(100 * kAccelLsb_mm_s2)));
+  EXPECT_EQ(can::channel_word(kY, r, sig), can::float_bits(static_cast<float>(-7 * kAccelLsb_mm_s2)));
 }
 
 }  // namespace

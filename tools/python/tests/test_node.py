@@ -93,7 +93,7 @@ def test_nan_and_out_of_range_are_value_errors_before_anything_is_sent(node):
     with pytest.raises(ValueError):
         node.move("x", math.nan, 10.0)
     with pytest.raises(ValueError):
-        node.move("z", 1.0, 10.0)
+        node.move("w", 1.0, 10.0)
 
 
 def test_move_then_capture_to_numpy_and_a_data_frame(node):
@@ -129,7 +129,7 @@ def test_telemetry_yields_samples(node):
     assert len(samples) == 20
     assert samples[-1]["t_s"] == pytest.approx(1.0, abs=0.06)
     assert samples[-1]["frames"] > samples[0]["frames"] > 0
-    assert "position_mm" in samples[-1] and len(samples[-1]["position_mm"]) == 2
+    assert "position_mm" in samples[-1] and len(samples[-1]["position_mm"]) == len(tnv.axes)
     assert samples[-1]["status"]["state"]
     # The node is usable again afterwards.
     assert node.params[GAMMA] > 0
@@ -221,3 +221,9 @@ def test_spindle_start_is_checked_before_anything_is_sent(node):
         node.spindle_start("forward", 0)
     spindle = list(node.telemetry(period_s=0.1, count=3))[-1]["spindle"]
     assert spindle["commanded_on"] is False and spindle["state"] == "off", spindle
+
+
+def test_the_axes_are_the_firmwares_list():
+    assert tnv.axes == ("x", "y", "z")
+    with pytest.raises(ValueError, match="axis must be x, y, z or all"):
+        tnv._axis("w", allow_all=True)

@@ -27,14 +27,21 @@ BusError = _tnv.BusError
 MotionFailed = _tnv.MotionFailed
 protocol_version = _tnv.protocol_version
 
-_AXES = {"x": 0, "y": 1}
+# The machine's axes, from the firmware's list (hal/axis.hpp).
+axes = tuple(_tnv.axes)
+_AXES = {name: i for i, name in enumerate(axes)}
+
+
+def _choice(names):
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
 
 
 def _axis(axis, allow_all=False):
     if allow_all and axis == "all":
         return 255
     if axis not in _AXES:
-        raise ValueError(f"axis must be {'x, y or all' if allow_all else 'x or y'}, not {axis!r}")
+        names = list(axes) + (["all"] if allow_all else [])
+        raise ValueError(f"axis must be {_choice(names)}, not {axis!r}")
     return _AXES[axis]
 
 

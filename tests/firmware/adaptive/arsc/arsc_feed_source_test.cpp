@@ -68,7 +68,7 @@ struct Cut {
   explicit Cut(const ArscSourceParams& params) {
     EXPECT_STREQ(motion.configure(limits(), pos), "");
     EXPECT_TRUE(source.configure(params).ok);
-    source.start(pos);
+    source.start({pos[0], pos[1]});  // the force loop is the XY plane's
   }
   void tick() {
     while (next < program.size() && motion.free_slots() > 0) ASSERT_EQ(motion.push(program[next++]), motion::SegmentRefusal::none);
@@ -77,8 +77,8 @@ struct Cut {
     const double noise = noise_n * (2.0 * static_cast<double>(lcg >> 8) / 16777216.0 - 1.0);
     ArscFeedInput in;
     in.force_n = std::max(force_n + noise, 0.0);
-    in.position_mm = pos;
-    in.speed_mm_s = speed;
+    in.position_mm = {pos[0], pos[1]};
+    in.speed_mm_s = {speed[0], speed[1]};
     in.programmed_feed_mm_s = motion.running_feed_mm_s();
     in.operator_override = operator_override;
     const double ratio = source.tick(in);
