@@ -14,6 +14,7 @@
 #include <numbers>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "tests/serve/tuning_server_fixture.hpp"
 #include "tools/gcode/gcode_program.hpp"
@@ -228,6 +229,77 @@ TEST_F(ProgramPageTest, APauseWaitsForTheResumeOfTheTabWithControl) {
   for (const nlohmann::json& line : audit_lines())
     if (line.value("path", "") == "/api/program/resume") ++resumes_logged;
   EXPECT_EQ(resumes_logged, 3) << "the early one, the other tab's and the accepted one";
+}
+
+// Run from line on the page: the same interpreter as tnvctl run --from-line.
+// From line 3 of the square and arc, the preview has no piece of line 2 (the
+// approach to line 3's start is a rapid) and ends where the whole program's does; the run ends there too, the lines it
+// reports never below 3.
+TEST_F(ProgramPageTest, ARunFromLineStartsThereAndEndsWhereTheWholeProgramEnds) {
+  const httplib::Result whole = post("/api/program/preview", kTabA, {{"gcode", kSquareAndArc}});
+  ASSERT_TRUE(whole);
+  ASSERT_EQ(whole->status, 200) << whole->body;
+  const httplib::Result from = post("/api/program/preview", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 3}});
+  ASSERT_TRUE(from);
+  ASSERT_EQ(from->status, 200) << from->body;
+  const nlohmann::json w = nlohmann::json::parse(whole->body);
+  const nlohmann::json f = nlohmann::json::parse(from->body);
+  for (const nlohmann::json& piece : f["pieces"]) EXPECT_GE(piece["line"].get<int>(), 3) << f.dump();
+  const nlohmann::json& w_end = w["pieces"].back()["points"];
+  const nlohmann::json& f_end = f["pieces"].back()["points"];
+  EXPECT_NEAR(f_end[f_end.size() - 2].get<double>(), w_end[w_end.size() - 2].get<double>(), 1e-4);
+  EXPECT_NEAR(f_end.back().get<double>(), w_end.back().get<double>(), 1e-4);
+  // The approach covers line 2's 5 mm at rapid (50 mm/s), not at line 2's 10 mm/s: 0.4 s less.
+  EXPECT_NEAR(f["cycle_time_s"].get<double>(), w["cycle_time_s"].get<double>() - 0.4, 1e-6) << "line 2 was not left out";
+
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 3}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  EXPECT_EQ(p["line"], 4) << "the last line the node ran";
+  bool logged = false;
+  for (const nlohmann::json& line : audit_lines())
+    if (line.value("path", "") == "/api/program/run") logged = line["body"].value("from_line", 0) == 3;
+  EXPECT_TRUE(logged) << "the audit trail does not say the run started at line 3";
+}
+
+// Bad values are refused with the reason and start nothing: a field of the
+// wrong kind before the run begins (the program stays idle), a line the
+// interpreter cannot start at as a refused program (400 naming it).
+TEST_F(ProgramPageTest, ABadRunFromLineIsRefusedAndStartsNothing) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const std::pair<nlohmann::json, const char*> bad_fields[] = {
+      {{{"from_line", 0}}, "from_line must be a whole number from 1"},
+      {{{"from_line", 2.5}}, "from_line must be a whole number"},
+      {{{"from_line", "3"}}, "from_line must be a whole number"},
+      {{{"from_line", nullptr}}, "from_line must be a whole number"},
+      {{{"from_line", 3}, {"from_pass", 0}}, "from_pass must be a whole number from 1"},
+      {{{"from_line", 3}, {"tool_in_spindle", -1}}, "tool_in_spindle must be a whole number from 0"},
+      {{{"from_line", 3}, {"approach_height_mm", -1.0}}, "approach_height_mm must be a number >= 0"},
+      {{{"tool_in_spindle", 2}}, "tool_in_spindle needs from_line"},
+  };
+  for (const auto& [fields, why] : bad_fields) {
+    nlohmann::json body = fields;
+    body["gcode"] = kSquareAndArc;
+    for (const char* route : {"/api/program/preview", "/api/program/run"}) {
+      const httplib::Result r = post(route, kTabA, body);
+      ASSERT_TRUE(r);
+      EXPECT_EQ(r->status, 400) << route << " " << fields.dump() << ": " << r->body;
+      EXPECT_NE(nlohmann::json::parse(r->body)["error"].get<std::string>().find(why), std::string::npos)
+          << route << ": " << r->body;
+    }
+  }
+  EXPECT_EQ(program()["phase"], "idle") << "a bad field began a run";
+
+  const httplib::Result outside = post("/api/program/run", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 99}});
+  ASSERT_TRUE(outside);
+  EXPECT_EQ(outside->status, 400) << outside->body;
+  const nlohmann::json e = nlohmann::json::parse(outside->body);
+  EXPECT_NE(e["error"].get<std::string>().find("cannot run from line 99"), std::string::npos) << outside->body;
+  EXPECT_EQ(program()["end"], "refused");
+  EXPECT_EQ(node_state(), "disabled") << "the servo was switched on for a refused start";
 }
 
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {

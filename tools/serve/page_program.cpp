@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "tools/serve/api_error.hpp"
@@ -22,7 +24,47 @@ std::size_t chords(const fw::motion::SegmentGeometry& g) {
   return static_cast<std::size_t>(std::clamp(n, 1.0, 4096.0));
 }
 
+// body[key] as a whole number in [min, max]; `fallback` when absent.
+long whole_field(const nlohmann::json& body, const char* key, long fallback, long min, long max) {
+  if (!body.contains(key)) return fallback;
+  const nlohmann::json& v = body[key];
+  if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > max)
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be a whole number from " + std::to_string(min) + " to " +
+                                        std::to_string(max) + " (got " + v.dump() + ")");
+  return static_cast<long>(v.get<long long>());
+}
+
+// body[key] as a finite number of at least `min`; `fallback` when absent.
+double number_field(const nlohmann::json& body, const char* key, double fallback, double min) {
+  if (!body.contains(key)) return fallback;
+  const nlohmann::json& v = body[key];
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < min)
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be a number" +
+                                        (std::isfinite(min) ? " >= " + std::to_string(static_cast<long>(min)) : "") +
+                                        " (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
 }  // namespace
+
+gcode::CanonSetup page_canon_setup(const nlohmann::json& body) {
+  gcode::CanonSetup setup;
+  const char* companions[] = {"from_pass", "tool_in_spindle", "approach_height_mm", "clearance_z_mm"};
+  if (!body.contains("from_line")) {
+    for (const char* key : companions)
+      if (body.contains(key)) throw ApiError(kHttpBadRequest, std::string(key) + " needs from_line");
+    return setup;
+  }
+  constexpr long kMax = std::numeric_limits<int>::max();
+  gcode::RunFromLine from;
+  from.line = static_cast<int>(whole_field(body, "from_line", 0, 1, kMax));
+  from.pass = whole_field(body, "from_pass", from.pass, 1, kMax);
+  from.tool_in_spindle = static_cast<int>(whole_field(body, "tool_in_spindle", from.tool_in_spindle, 0, kMax));
+  from.approach_mm = number_field(body, "approach_height_mm", from.approach_mm, 0.0);
+  from.clearance_z_mm = number_field(body, "clearance_z_mm", from.clearance_z_mm, -HUGE_VAL);
+  setup.from_line = from;
+  return setup;
+}
 
 nlohmann::json program_summary(const std::string& gcode_text) {
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -132,9 +174,11 @@ nlohmann::json preview_json(const can_host::ProgramPlan& plan, std::size_t max_p
   return out;
 }
 
-nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text, ProgramState& state,
+nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text,
+                                    const gcode::CanonSetup& canon, ProgramState& state,
                                     const can_host::FrameListener& scope) {
   can_host::ProgramRunOptions o;
+  o.canon = canon;
   o.telemetry_ms = 0;
   o.on_frame = scope;
   // Called on this (the node) thread between the stream's bus operations, so

@@ -1,7 +1,8 @@
 // The Program panel: a program pasted or loaded from a file, its preview
 // (the path the server's interpreter makes of it from where the table
-// stands, with the node's limits), its run from the tab with control, and
-// while it runs the current line and the tool's position on the path.
+// stands, with the node's limits), its run from the tab with control (whole,
+// or from a line), and while it runs the current line and the tool's
+// position on the path.
 'use strict';
 
 const program = (() => {
@@ -90,9 +91,24 @@ const program = (() => {
     draw();
   }
 
+  // The request's body: the program, and a run from line when one is given (the server checks the values).
+  function body() {
+    const b = { gcode: $('program-text').value };
+    // A field the browser could not read as a number goes as text: the server refuses it, never runs the whole program.
+    const field = (id) => ($(id).validity.badInput ? 'not a number' : $(id).value.trim());
+    const as = (v) => (Number.isFinite(Number(v)) ? Number(v) : v);
+    const from = field('program-from-line');
+    if (from !== '') {
+      b.from_line = as(from);
+      const tool = field('program-tool');
+      if (tool !== '') b.tool_in_spindle = as(tool);
+    }
+    return b;
+  }
+
   async function previewNow() {
     say($('program-error'), 'interpreting…', true);
-    const r = await api('POST', '/api/program/preview', { gcode: $('program-text').value });
+    const r = await api('POST', '/api/program/preview', body());
     state.error = r.ok ? '' : r.error;
     if (!r.ok) {
       preview = state.preview = null;
@@ -121,7 +137,7 @@ const program = (() => {
     if (!(await previewNow())) return;
     state.linesSeen = [];
     state.runStarted = -1;
-    const r = await api('POST', '/api/program/run', { gcode: $('program-text').value });
+    const r = await api('POST', '/api/program/run', body());
     state.error = r.ok ? '' : r.error;
     if (r.ok) state.runStarted = r.data.program.run;
     say($('program-error'), r.ok ? '' : r.error, r.ok);
