@@ -302,6 +302,64 @@ TEST_F(ProgramPageTest, ABadRunFromLineIsRefusedAndStartsNothing) {
   EXPECT_EQ(node_state(), "disabled") << "the servo was switched on for a refused start";
 }
 
+// The node's PROGRAM_TOOL in the program's state: unknown while the M6
+// pause waits (a fresh node knows no tool either), the tool once Resume
+// confirms the change (T0: the spindle emptied, which the node knows too).
+TEST_F(ProgramPageTest, AConfirmedToolChangeShowsTheNodesToolInTheSpindle) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", "G21 G91 G17\nG1 X1 F600\nT0 M6\nG1 X-1\nM2\n"}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json paused = wait_program(
+      [](const nlohmann::json& s) { return (!s["pause"].is_null() && !s["spindle_tool"].is_null()) || s["phase"] == "ended"; },
+      "the tool change's pause");
+  ASSERT_FALSE(paused["pause"].is_null()) << paused.dump();
+  EXPECT_EQ(paused["pause"]["reason"], "tool change (M6)");
+  EXPECT_EQ(paused["spindle_tool"]["known"], false) << paused.dump();
+  EXPECT_EQ(paused["spindle_tool"]["text"], "unknown");
+  ASSERT_EQ(post("/api/program/resume", kTabA)->status, 200);
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  ASSERT_FALSE(p["spindle_tool"].is_null()) << p.dump();
+  EXPECT_EQ(p["spindle_tool"]["known"], true) << p.dump();
+  EXPECT_EQ(p["spindle_tool"]["tool"], 0);
+  EXPECT_EQ(p["spindle_tool"]["text"], "no tool");
+}
+
+// The optional stop and block delete switches, as --optional-stop and
+// --block-delete: on by default (M1 pauses, '/' lines are skipped); off,
+// the M1 runs through and the slashed line runs. A switch that is not
+// true or false is 400 before anything starts.
+TEST_F(ProgramPageTest, TheOptionalStopAndBlockDeleteSwitchesApplyAndAreCheckedFirst) {
+  const std::string slashed = "G21 G91 G17\nG1 X1 F600\n/G1 Y1\nG1 X-1\nM2\n";
+  const auto segments = [&](const nlohmann::json& body) {
+    const httplib::Result r = post("/api/program/preview", kTabA, body);
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    return r && r->status == 200 ? nlohmann::json::parse(r->body)["segments"].get<int>() : -1;
+  };
+  EXPECT_EQ(segments({{"gcode", slashed}}), 2) << "block delete is on by default";
+  EXPECT_EQ(segments({{"gcode", slashed}, {"block_delete", true}}), 2);
+  EXPECT_EQ(segments({{"gcode", slashed}, {"block_delete", false}}), 3) << "the slashed line did not run";
+
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  for (const char* key : {"optional_stop", "block_delete"}) {
+    const httplib::Result bad = post("/api/program/run", kTabA, {{"gcode", kShort}, {key, "off"}});
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400) << bad->body;
+    EXPECT_NE(nlohmann::json::parse(bad->body)["error"].get<std::string>().find(std::string(key) + " must be true or false"),
+              std::string::npos) << bad->body;
+  }
+  EXPECT_EQ(program()["phase"], "idle") << "a bad switch began a run";
+
+  const httplib::Result run =
+      post("/api/program/run", kTabA, {{"gcode", "G21 G91 G17\nG1 X1 F600\nM1\nG1 X-1\nM2\n"}, {"optional_stop", false}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json p = wait_program(
+      [](const nlohmann::json& s) { return s["phase"] == "ended" || !s["pause"].is_null(); }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << "the M1 paused with the switch off: " << p.dump();
+}
+
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
   run_until_halfway_started();

@@ -151,6 +151,7 @@ class Streamer {
   void on_frame(const hal::CanFrame& f, MessageId id) {
     if (id == MessageId::command_ack) on_ack(read_command_ack(f));
     if (id == MessageId::program_status) on_status(read_program_status(f));
+    if (id == MessageId::program_tool) on_tool(read_program_tool(f));
     if (id == MessageId::heartbeat) {
       r_.final_heartbeat = read_heartbeat(f);
       if (r_.final_heartbeat->state == fw::MotionState::faulted && !failure_ && acked_ > 0 && !over(status_.state))
@@ -188,8 +189,20 @@ class Streamer {
     r_.underruns = s.underruns;
     if (fw::can::active(s.state)) running_ = std::max(running_, s.element);
     track_pause(s);
+    report(s);
+  }
+
+  // PROGRAM_TOOL comes right after its PROGRAM_STATUS: a new tool is reported with that status.
+  void on_tool(const ProgramTool& t) {
+    const bool news = r_.final_tool != t;
+    r_.final_tool = t;
+    if (news && acked_ > 0) report(status_);
+  }
+
+  void report(const ProgramStatus& s) {
     if (!o_.progress) return;
     StreamProgress p;
+    p.tool = r_.final_tool;
     p.sent = next_;
     p.acknowledged = acked_;
     p.total = program_.elements.size();

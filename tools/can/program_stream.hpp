@@ -44,6 +44,7 @@ struct StreamProgress {
   double fraction = 0.0;         // of the program's length run
   std::uint64_t underruns = 0;
   fw::can::ProgramState state = fw::can::ProgramState::none;
+  std::optional<ProgramTool> tool;  // the node's PROGRAM_TOOL, once seen during this run
 };
 
 // A pause the node rests at.
@@ -85,6 +86,7 @@ struct StreamResult {
   double paused_s = 0.0;        // time the node rested at pauses (bus time)
   std::vector<StreamPause> pauses;  // in the order reached
   ProgramStatus final_status{};
+  std::optional<ProgramTool> final_tool;  // the node's last PROGRAM_TOOL of the run
   std::optional<Heartbeat> final_heartbeat;
 };
 

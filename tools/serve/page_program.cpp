@@ -45,10 +45,21 @@ double number_field(const nlohmann::json& body, const char* key, double fallback
   return v.get<double>();
 }
 
+// body[key] as true or false; `fallback` when absent.
+bool switch_field(const nlohmann::json& body, const char* key, bool fallback) {
+  if (!body.contains(key)) return fallback;
+  if (!body[key].is_boolean())
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be true or false (got " + body[key].dump() + ")");
+  return body[key].get<bool>();
+}
+
 }  // namespace
 
 gcode::CanonSetup page_canon_setup(const nlohmann::json& body) {
   gcode::CanonSetup setup;
+  // The operator's switches, LinuxCNC's defaults (on) when absent: --optional-stop and --block-delete.
+  setup.optional_stop = switch_field(body, "optional_stop", setup.optional_stop);
+  setup.block_delete = switch_field(body, "block_delete", setup.block_delete);
   const char* companions[] = {"from_pass", "tool_in_spindle", "approach_height_mm", "clearance_z_mm"};
   if (!body.contains("from_line")) {
     for (const char* key : companions)

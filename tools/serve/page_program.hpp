@@ -32,12 +32,14 @@ nlohmann::json preview_json(const can_host::ProgramPlan& plan, std::size_t max_p
 // The refusal of a plan, or null when it may run: {"error", "line", "column"}.
 nlohmann::json plan_refusal(const can_host::ProgramPlan& plan);
 
-// The interpreter's setup a preview or run of the page asks for: a run from
-// line N (docs/gcode.md "Run from line") from the body's optional
+// The interpreter's setup a preview or run of the page asks for: the
+// optional stop and block delete switches ("optional_stop", "block_delete":
+// true or false, on when absent, as --optional-stop and --block-delete),
+// and a run from line N (docs/gcode.md "Run from line") from the body's optional
 // "from_line" (1-based) with "from_pass", "tool_in_spindle",
 // "approach_height_mm" and "clearance_z_mm", the options `tnvctl run
 // --from-line` takes. Throws ApiError(400) for a field that is not a
-// number of its kind, or a companion without "from_line"; the values
+// number (or switch) of its kind, or a companion without "from_line"; the values
 // themselves (a line outside the program, one never run, ...) are refused
 // by the interpreter, as for the command lines, before anything is sent.
 gcode::CanonSetup page_canon_setup(const nlohmann::json& body);

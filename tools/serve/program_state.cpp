@@ -11,6 +11,7 @@ bool ProgramState::begin(const nlohmann::json& summary) {
   estop_ = false;
   resume_ = false;
   pause_ = nullptr;
+  spindle_tool_ = nullptr;  // this run's PROGRAM_STATUS brings it again
   phase_ = "starting";
   ++run_;
   summary_ = summary;
@@ -33,6 +34,9 @@ void ProgramState::progress(const can_host::StreamProgress& p) {
   const std::lock_guard lock(mutex_);
   total_ = p.total;
   underruns_ = p.underruns;
+  if (p.tool)
+    spindle_tool_ = {{"known", p.tool->known}, {"tool", p.tool->known ? nlohmann::json(p.tool->tool) : nullptr},
+                     {"text", can_host::to_string(*p.tool)}};
   if (p.state != fw::can::ProgramState::paused) pause_ = nullptr;
   // Before the node runs (and after an abort) the stream's progress names the last element accepted,
   // not one that ran: the page shows the line the table is on.
@@ -90,7 +94,8 @@ nlohmann::json ProgramState::json() const {
   const std::lock_guard lock(mutex_);
   return {{"phase", phase_},   {"run", run_},         {"line", line_},           {"element", element_},
           {"total", total_},   {"fraction", fraction_}, {"underruns", underruns_}, {"end", end_},
-          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}, {"pause", pause_}};
+          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}, {"pause", pause_},
+          {"spindle_tool", spindle_tool_}};
 }
 
 }  // namespace tnv::serve

@@ -40,7 +40,8 @@ class ProgramState {
   bool is_streaming() const;  // its elements are going out now
   // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message",
   //  "program" (its summary), "interrupting" (a stop was asked),
-  //  "pause": null or {"line", "reason", "tool", "text"} while it rests at a pause}
+  //  "pause": null or {"line", "reason", "tool", "text"} while it rests at a pause,
+  //  "spindle_tool": null (not reported) or {"known", "tool", "text"}: the node's PROGRAM_TOOL}
   nlohmann::json json() const;
 
  private:
@@ -49,6 +50,7 @@ class ProgramState {
   std::atomic<bool> estop_{false};
   std::atomic<bool> resume_{false};
   nlohmann::json pause_;  // null unless paused
+  nlohmann::json spindle_tool_;  // the node's last PROGRAM_TOOL seen by a run, null before any
   std::string phase_ = "idle";  // idle | starting | running | ended
   std::uint64_t run_ = 0;       // the page tells one run's end from the next's
   nlohmann::json summary_;

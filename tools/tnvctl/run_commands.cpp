@@ -224,6 +224,12 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
                   st.pauses.size() == 1 ? "" : "s", st.paused_s);
     report.line(buf);
   }
+  // The node's word (PROGRAM_TOOL), not the program's: unknown after a restart or an unconfirmed change.
+  report.data["tool_in_spindle"] = nullptr;
+  if (st.final_tool) {
+    report.line(o.file + ": in the spindle (the node's PROGRAM_TOOL): " + can_host::to_string(*st.final_tool));
+    if (st.final_tool->known) report.data["tool_in_spindle"] = st.final_tool->tool;
+  }
   if (st.end == can_host::StreamResult::End::interrupted) {
     if (st.acknowledged == 0) throw RunFailed("stopped by Ctrl-C before the program started: nothing moved");
     const std::uint32_t element = std::max<std::uint32_t>(st.final_status.element, 1);

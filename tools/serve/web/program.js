@@ -16,7 +16,8 @@ const program = (() => {
   let fitTravel = false;
   // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
-                                 linesSeen: [], runStarted: -1, tool: null, error: '', pause: null };
+                                 linesSeen: [], runStarted: -1, tool: null, error: '', pause: null,
+                                 spindleTool: null };
 
   function el(name, attrs, parent) {
     const e = document.createElementNS(SVG, name);
@@ -93,7 +94,8 @@ const program = (() => {
 
   // The request's body: the program, and a run from line when one is given (the server checks the values).
   function body() {
-    const b = { gcode: $('program-text').value };
+    const b = { gcode: $('program-text').value, optional_stop: $('program-optional-stop').checked,
+                block_delete: $('program-block-delete').checked };
     // A field the browser could not read as a number goes as text: the server refuses it, never runs the whole program.
     const field = (id) => ($(id).validity.badInput ? 'not a number' : $(id).value.trim());
     const as = (v) => (Number.isFinite(Number(v)) ? Number(v) : v);
@@ -174,6 +176,9 @@ const program = (() => {
     } else if (s.phase === 'ended') {
       text = `run ${s.run} ${s.end}` + (s.line ? ` at line ${s.line}` : '') + (s.message ? `: ${s.message}` : '');
     }
+    // The tool the node knows in the spindle (PROGRAM_TOOL), as the run last reported it.
+    state.spindleTool = s.spindle_tool || null;
+    if (text && s.spindle_tool) text += ` — in the spindle: ${s.spindle_tool.text}`;
     state.pause = s.pause || null;
     $('program-resume').hidden = !(s.phase === 'running' && s.pause);
     $('program-state').textContent = text;
