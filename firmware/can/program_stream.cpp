@@ -133,11 +133,15 @@ void ProgramStream::stopping() noexcept {
 }
 
 void ProgramStream::on_tick() noexcept {
-  if (!program_.update(task_)) return;
+  bool news = program_.update(task_);
   // At a tool change the operator takes the old tool out: unknown until cycle_start says the new one is in.
-  if (program_.state() == ProgramState::paused && tool_change_at(program_.element(task_)) != nullptr)
+  // Looked at on every paused tick, not only when the state changes: one pause may follow another at once.
+  if (program_.state() == ProgramState::paused && tool_ != kToolUnknown &&
+      tool_change_at(program_.element(task_)) != nullptr) {
     tool_ = kToolUnknown;
-  send_status();
+    news = true;
+  }
+  if (news) send_status();
 }
 
 const ToolChange* ProgramStream::tool_change_at(std::uint32_t element) const noexcept {

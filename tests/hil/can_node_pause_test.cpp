@@ -146,6 +146,38 @@ TEST(CanNodePause, AToolChangeTellsTheNodeItsToolOnceContinued) {
   EXPECT_EQ(again->node->tool_in_spindle(), -1);
 }
 
+// A tool change right after another pause (M0 then M6 with no move between):
+// the node still says unknown while the change waits, then the new tool.
+TEST(CanNodePause, AToolChangeRightAfterAnotherPauseIsStillUnknownUntilContinued) {
+  auto r = holding_rig();
+  ASSERT_TRUE(r);
+  ProgramHost host(*r);
+  send_tool_change_program(*r, host, 3);
+  ASSERT_TRUE(run_until_paused(*r));
+  ASSERT_EQ(ack_result(*r, command(kRigNode, CommandCode::cycle_start)), kOk);
+  ASSERT_TRUE(r->run_until(fw::MotionState::holding, 20000));
+  for (int k = 0; k < 2; ++k) r->step();
+  ASSERT_EQ(r->node->tool_in_spindle(), 3);
+
+  const PlanePoint start = host.at_mm();
+  ASSERT_EQ(host.send(fw::motion::pause_here()).at(0).result, kOk);
+  ASSERT_EQ(host.send_tool_change(4).at(0).result, kOk);
+  ASSERT_EQ(host.send(fw::motion::line_to(moved_by(start, 1.0, 0.0), 10.0)).at(0).result, kOk);
+  ASSERT_EQ(ack_result(*r, command(kRigNode, CommandCode::end_program)), kOk);
+  ASSERT_TRUE(run_until_paused(*r));
+  EXPECT_EQ(r->node->program().element(r->task()), 1u);
+  EXPECT_EQ(r->node->tool_in_spindle(), 3) << "a plain pause leaves the tool known";
+  ASSERT_EQ(ack_result(*r, command(kRigNode, CommandCode::cycle_start)), kOk);
+  int k = 0;
+  for (; k < 20000 && r->node->program().element(r->task()) != 2u; ++k) r->step();
+  for (int j = 0; j < 50; ++j) r->step();
+  ASSERT_EQ(r->node->program().state(), can::ProgramState::paused);
+  EXPECT_EQ(r->node->program().element(r->task()), 2u);
+  EXPECT_EQ(r->node->tool_in_spindle(), -1) << "tool 3 claimed while it is being changed for 4";
+  ASSERT_EQ(ack_result(*r, command(kRigNode, CommandCode::cycle_start)), kOk);
+  EXPECT_EQ(r->node->tool_in_spindle(), 4);
+}
+
 TEST(CanNodePause, ANegativeToolIsRefusedNamingX) {
   auto r = holding_rig();
   ASSERT_TRUE(r);
