@@ -360,6 +360,51 @@ TEST_F(ProgramPageTest, TheOptionalStopAndBlockDeleteSwitchesApplyAndAreCheckedF
   EXPECT_EQ(p["end"], "done") << "the M1 paused with the switch off: " << p.dump();
 }
 
+// The Feed hold button: the program brakes on its path and waits there
+// (PROGRAM_STATUS holding, its progress standing still) until the hold is
+// released, then goes on; only the tab with control holds, a hold that is
+// not true or false is 400, and nothing running is 409.
+TEST_F(ProgramPageTest, AFeedHoldWaitsOnThePathUntilReleased) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result idle = post("/api/program/hold", kTabA, {{"hold", true}});
+  ASSERT_TRUE(idle);
+  EXPECT_EQ(idle->status, 409) << idle->body;
+  run_until_halfway_started();
+  const httplib::Result bad = post("/api/program/hold", kTabA, {{"hold", "yes"}});
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400) << bad->body;
+  const httplib::Result other = post("/api/program/hold", kTabB, {{"hold", true}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403) << other->body;
+  const httplib::Result hold = post("/api/program/hold", kTabA, {{"hold", true}});
+  ASSERT_TRUE(hold);
+  ASSERT_EQ(hold->status, 200) << hold->body;
+  const nlohmann::json held =
+      wait_program([](const nlohmann::json& p) { return p["node_state"] == "holding" || p["phase"] == "ended"; },
+                   "the node holding");
+  ASSERT_EQ(held["node_state"], "holding") << held.dump();
+  // Braking on the path may still finish the element it is in; after that nothing moves on.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const nlohmann::json at = program();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const nlohmann::json later = program();
+  EXPECT_EQ(later["phase"], "running");
+  EXPECT_EQ(later["node_state"], "holding");
+  EXPECT_EQ(later["element"], at["element"]) << "it went on while held";
+  EXPECT_LT(later["fraction"].get<double>(), 0.5);
+  const httplib::Result go = post("/api/program/hold", kTabA, {{"hold", false}});
+  ASSERT_TRUE(go);
+  ASSERT_EQ(go->status, 200) << go->body;
+  // It goes on (2 mm more of the path), then a Stop ends it without waiting out the other 10 s.
+  const double from = later["fraction"].get<double>();
+  const nlohmann::json on = wait_program(
+      [from](const nlohmann::json& s) { return s["fraction"].get<double>() >= from + 0.02 || s["phase"] == "ended"; },
+      "the program going on after the release");
+  EXPECT_EQ(on["phase"], "running") << on.dump();
+  EXPECT_EQ(on["node_state"], "running");
+  ASSERT_EQ(post("/api/motion", kTabA, {{"kind", "stop"}})->status, 200);
+}
+
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
   run_until_halfway_started();

@@ -158,6 +158,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     so.before_send = o.before_send;
     so.on_pause = o.on_pause;
     so.resume = o.resume;
+    so.feed_hold = o.feed_hold;
     so.on_frame = both(telemetry, o.on_frame);
     r.stream = stream_program(client, r.wire, so);
     listen();

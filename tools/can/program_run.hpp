@@ -45,6 +45,7 @@ struct ProgramRunOptions {
   // Program pauses (M0, M1, M6): StreamOptions::on_pause and resume. No resume: the run stops at the first pause.
   std::function<void(const StreamPause&)> on_pause;
   std::function<bool(const StreamPause&, Micros paused_for)> resume;
+  std::function<bool()> feed_hold;  // StreamOptions::feed_hold: the operator's feed hold switch
   FrameListener on_frame;  // every frame from the node too, besides the run's own telemetry (a live page's scope)
 };
 

@@ -60,6 +60,7 @@ class Streamer {
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
       if (acked_ > 0 && o_.feed_override && !override_sent_) set_override();
       handle_pause();
+      handle_hold();
       while (next_ < program_.elements.size() && flight_.size() < window && room() > 0) send_next();
       const Micros now = client_.bus().now();
       if (!flight_.empty() && now - flight_.front().sent_at > client_.options().timeout) {
@@ -106,6 +107,27 @@ class Streamer {
     } catch (const RequestError& e) {
       failure_ = "cycle start at " + pause_text(*pause_) + " refused: " + e.what();
     }
+  }
+
+  // Time the feed has been held so far (the hold on now included).
+  Micros held_time() const { return held_total_ + (held_ ? client_.bus().now() - held_since_ : Micros{0}); }
+
+  // The caller's feed hold switch, sent when it changes (once the node has the program).
+  void handle_hold() {
+    if (!o_.feed_hold || acked_ == 0 || failure_) return;
+    const bool want = o_.feed_hold();
+    if (want == held_) return;
+    try {
+      client_.command(want ? can::CommandCode::feed_hold : can::CommandCode::feed_resume);
+    } catch (const RequestError& e) {
+      failure_ = std::string(want ? "feed hold" : "feed resume") + " refused: " + e.what();
+      return;
+    }
+    const Micros now = client_.bus().now();
+    if (want) held_since_ = now;
+    else held_total_ += now - held_since_;
+    held_ = want;
+    r_.held_s = static_cast<double>(held_time().count()) * 1e-6;
   }
 
   void mark_filled(Micros now) {
@@ -265,9 +287,10 @@ class Streamer {
         client_.send_raw(command_request(client_.node(), client_.next_tag(), can::CommandCode::program_status, 0, 0, 0.0));
       }
       handle_pause();
+      handle_hold();
       if (failure_) return stop(StreamResult::End::failed, *failure_);
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
-      if (client_.bus().now() > deadline + paused_time())
+      if (client_.bus().now() > deadline + paused_time() + held_time())
         return stop(StreamResult::End::failed, "the program did not end within " +
                                                    std::to_string(limit.count() / 1'000'000) + " s");
       client_.pump_until([this] { return over(status_.state) || failure_.has_value(); }, Micros{50'000});
@@ -301,6 +324,7 @@ class Streamer {
   void finish() {
     r_.run_s = static_cast<double>((client_.bus().now() - first_sent_).count()) * 1e-6;
     r_.underruns = status_.underruns;
+    r_.held_s = static_cast<double>(held_time().count()) * 1e-6;
   }
 
   NodeClient& client_;
@@ -321,6 +345,9 @@ class Streamer {
   bool override_sent_ = false;
   std::optional<StreamPause> pause_;  // the pause the node rests at
   bool resume_sent_ = false;
+  bool held_ = false;  // feed_hold sent and not yet resumed
+  Micros held_since_{0};
+  Micros held_total_{0};
   Micros pause_since_{0};
   Micros paused_total_{0};
 };

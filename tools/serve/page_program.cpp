@@ -206,6 +206,8 @@ nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::str
   // A pause waits for the Resume button of the tab with control (POST /api/program/resume).
   o.on_pause = [&state](const can_host::StreamPause& p) { state.paused(p); };
   o.resume = [&state](const can_host::StreamPause&, can_host::Micros) { return state.take_resume(); };
+  // The Feed hold button (POST /api/program/hold): brakes on the path and waits there until released.
+  o.feed_hold = [&state] { return state.feed_hold_wanted(); };
   bool started = false;
   o.before_send = [&](std::size_t) {
     if (started) return;

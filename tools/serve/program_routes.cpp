@@ -80,6 +80,16 @@ void TuningServer::program_routes() {
     });
   });
 
+  // The feed hold of the running program: {"hold": true} brakes on the path and waits, false goes on
+  // (COMMAND feed_hold / feed_resume, sent by the run's stream at its next look).
+  post("/api/program/hold", [this](const httplib::Request& req, httplib::Response& res) {
+    commanded(req, res, [this](const nlohmann::json& body) {
+      if (!body.contains("hold") || !body["hold"].is_boolean()) throw ApiError(kHttpBadRequest, "give \"hold\": true or false");
+      if (!program_.feed_hold(body["hold"].get<bool>())) throw ApiError(kHttpConflict, "no program is running");
+      return program_.json();
+    });
+  });
+
   get("/api/program", [this](const httplib::Request&, httplib::Response& res) {
     answer(res, [&] { return program_.json(); });
   });

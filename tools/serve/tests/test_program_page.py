@@ -5,7 +5,7 @@ polyline per segment), and run from the tab with control to its end on the
 emulated node, the current line advancing through the program and the tool
 marker following the table; a pause and its Resume; a run from line (a
 line outside the program refused and nothing started, then a run from
-line 4 that shows no line before it)."""
+line 4 that shows no line before it); the feed hold and its release."""
 
 import pytest
 from conftest import wait_for
@@ -134,3 +134,22 @@ def test_a_run_from_line_runs_from_there_and_a_bad_line_starts_nothing(tab, tmp_
         assert [p["line"] for p in program_state(tab)["preview"]["pieces"]][-1] == 5
     finally:
         from_line.clear()
+
+
+def test_feed_hold_holds_on_the_path_and_feed_resume_goes_on(tab, tmp_path):
+    path = tmp_path / "long.ngc"
+    path.write_text("G21 G91 G17 F300\n" + "G1 X0.5\n" * 60 + "G1 X-30\n")  # 60 s of machine time: never ends here
+    tab.find_element("id", "program-file").send_keys(str(path))
+    wait_for(lambda: page_value(tab, "window.tnvPage.program.drawn") == 61, 60, "the preview's 61 pieces drawn")
+    tab.find_element("id", "program-run").click()
+    wait_for(lambda: (lambda s: s["phase"] == "running" and s["line"] >= 3)(program_state(tab)), 60, "the run under way")
+    hold = tab.find_element("id", "program-hold")
+    hold.click()
+    wait_for(lambda: "feed held at line" in tab.find_element("id", "program-state").text, 60, "the feed held")
+    assert hold.text == "Feed resume", hold.text
+    held_line = program_state(tab)["line"]
+    hold.click()
+    wait_for(lambda: program_state(tab)["line"] >= held_line + 2, 60, "the program going on past the held line")
+    tab.find_element("id", "program-stop").click()
+    state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" else None)(program_state(tab)), 60, "the stop")
+    assert state["end"] == "interrupted", state

@@ -17,7 +17,7 @@ const program = (() => {
   // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
                                  linesSeen: [], runStarted: -1, tool: null, error: '', pause: null,
-                                 spindleTool: null };
+                                 spindleTool: null, feedHold: false };
 
   function el(name, attrs, parent) {
     const e = document.createElementNS(SVG, name);
@@ -172,6 +172,7 @@ const program = (() => {
       text = `running line ${s.line}: ${(textLines[s.line - 1] || '').trim()} — element ${s.element}/${s.total}, ` +
         `${(100 * s.fraction).toFixed(1)} %` + (s.underruns ? `, underruns ${s.underruns}` : '') +
         (s.interrupting ? ' — stopping' : '');
+      if (s.node_state === 'holding') text = `feed held at line ${s.line} — Feed resume goes on, Stop ends the program`;
       if (s.pause) text = `paused at ${s.pause.text} — Resume continues, Stop ends the program`;
     } else if (s.phase === 'ended') {
       text = `run ${s.run} ${s.end}` + (s.line ? ` at line ${s.line}` : '') + (s.message ? `: ${s.message}` : '');
@@ -181,6 +182,9 @@ const program = (() => {
     if (text && s.spindle_tool) text += ` — in the spindle: ${s.spindle_tool.text}`;
     state.pause = s.pause || null;
     $('program-resume').hidden = !(s.phase === 'running' && s.pause);
+    state.feedHold = !!s.feed_hold;
+    $('program-hold').hidden = s.phase !== 'running';
+    $('program-hold').textContent = s.feed_hold ? 'Feed resume' : 'Feed hold';
     $('program-state').textContent = text;
     $('program-state').classList.toggle('refusal', s.phase === 'ended' && s.end !== 'done');
   }
@@ -197,6 +201,10 @@ const program = (() => {
   });
   $('program-resume').addEventListener('click', async () => {
     const r = await api('POST', '/api/program/resume', {});
+    say($('program-error'), r.ok ? '' : r.error, r.ok);
+  });
+  $('program-hold').addEventListener('click', async () => {
+    const r = await api('POST', '/api/program/hold', { hold: !state.feedHold });
     say($('program-error'), r.ok ? '' : r.error, r.ok);
   });
   $('program-fit').addEventListener('click', () => {
