@@ -405,6 +405,49 @@ TEST_F(ProgramPageTest, AFeedHoldWaitsOnThePathUntilReleased) {
   ASSERT_EQ(post("/api/motion", kTabA, {{"kind", "stop"}})->status, 200);
 }
 
+// The page's tool table and .var file, as --tool-table and --var-file:
+// a tool change needs its tool in the table, a G54 offset from the .var
+// moves the path, a bad line is 400 naming the file and the line, and the
+// audit trail keeps the files' digests, not their text.
+TEST_F(ProgramPageTest, AToolTableAndAVarFileApplyAsOnTheCommandLine) {
+  const std::string change = "G21 G91 G17\nG1 X1 F600\nT2 M6\nG1 X-1\nM2\n";
+  const httplib::Result without = post("/api/program/preview", kTabA, {{"gcode", change}});
+  ASSERT_TRUE(without);
+  EXPECT_EQ(without->status, 400) << without->body;
+  EXPECT_NE(without->body.find("requested tool 2 not found"), std::string::npos) << without->body;
+  const httplib::Result with = post("/api/program/preview", kTabA, {{"gcode", change}, {"tool_table", "T2 P2 Z0 D6\n"}});
+  ASSERT_TRUE(with);
+  EXPECT_EQ(with->status, 200) << with->body;
+  EXPECT_EQ(nlohmann::json::parse(with->body)["tool_changes"], 1);
+
+  const std::string to_origin = "G21 G90 G17 G54\nG0 X7.25 Y1.5\nM2\n";
+  const auto end_x = [&](const nlohmann::json& body) {
+    const httplib::Result r = post("/api/program/preview", kTabA, body);
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    if (!r || r->status != 200) return -1e9;
+    const nlohmann::json pieces = nlohmann::json::parse(r->body)["pieces"];
+    if (pieces.empty()) return -1e9;
+    const nlohmann::json& points = pieces.back()["points"];
+    return points[points.size() - 2].get<double>();
+  };
+  EXPECT_NEAR(end_x({{"gcode", to_origin}}), 7.25, 1e-9);
+  EXPECT_NEAR(end_x({{"gcode", to_origin}, {"var_file", "5221\t12.5\n5222\t-3\n"}}), 19.75, 1e-9);
+
+  const httplib::Result bad = post("/api/program/preview", kTabA, {{"gcode", change}, {"tool_table", "T2 P2 Z0\nT3 Q\n"}});
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400) << bad->body;
+  EXPECT_NE(bad->body.find("tool_table: line 2"), std::string::npos) << bad->body;
+  const httplib::Result wrong = post("/api/program/preview", kTabA, {{"gcode", change}, {"var_file", 5221}});
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 400) << wrong->body;
+  bool logged = false;
+  for (const nlohmann::json& line : audit_lines())
+    if (line.value("path", "") == "/api/program/preview" && line["body"].contains("tool_table") &&
+        line["body"]["tool_table"].is_object())
+      logged = line["body"]["tool_table"]["lines"] == 1 || logged;
+  EXPECT_TRUE(logged) << "the tool table's digest is not in the audit trail";
+}
+
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {
   ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
   run_until_halfway_started();

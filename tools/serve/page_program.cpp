@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/serve/api_error.hpp"
+#include "tools/serve/http_reply.hpp"
 
 namespace tnv::serve {
 
@@ -60,6 +61,13 @@ gcode::CanonSetup page_canon_setup(const nlohmann::json& body) {
   // The operator's switches, LinuxCNC's defaults (on) when absent: --optional-stop and --block-delete.
   setup.optional_stop = switch_field(body, "optional_stop", setup.optional_stop);
   setup.block_delete = switch_field(body, "block_delete", setup.block_delete);
+  // The tool table and parameter file as their texts (the page reads the files), as --tool-table and
+  // --var-file load them: LinuxCNC's .tbl (lengths in mm) and .var (work offsets, G28/G30, G92 in mm).
+  std::string error;
+  if (body.contains("tool_table") && !setup.tools.load_text(text_field(body, "tool_table"), error))
+    throw ApiError(kHttpBadRequest, "tool_table: " + error);
+  if (body.contains("var_file") && !setup.parameters.load_var_text(text_field(body, "var_file"), error))
+    throw ApiError(kHttpBadRequest, "var_file: " + error);
   const char* companions[] = {"from_pass", "tool_in_spindle", "approach_height_mm", "clearance_z_mm"};
   if (!body.contains("from_line")) {
     for (const char* key : companions)

@@ -35,6 +35,9 @@ nlohmann::json plan_refusal(const can_host::ProgramPlan& plan);
 // The interpreter's setup a preview or run of the page asks for: the
 // optional stop and block delete switches ("optional_stop", "block_delete":
 // true or false, on when absent, as --optional-stop and --block-delete),
+// the texts of a tool table and a parameter file ("tool_table",
+// "var_file", as --tool-table and --var-file load them; 400 naming the
+// line of a bad one),
 // and a run from line N (docs/gcode.md "Run from line") from the body's optional
 // "from_line" (1-based) with "from_pass", "tool_in_spindle",
 // "approach_height_mm" and "clearance_z_mm", the options `tnvctl run

@@ -14,6 +14,7 @@ const program = (() => {
   let textLines = [];              // the previewed program's lines
   let preview = null;
   let fitTravel = false;
+  const files = { tool_table: null, var_file: null };  // the texts of the loaded tool table and .var file
   // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
                                  linesSeen: [], runStarted: -1, tool: null, error: '', pause: null,
@@ -96,6 +97,8 @@ const program = (() => {
   function body() {
     const b = { gcode: $('program-text').value, optional_stop: $('program-optional-stop').checked,
                 block_delete: $('program-block-delete').checked };
+    if (files.tool_table !== null) b.tool_table = files.tool_table;
+    if (files.var_file !== null) b.var_file = files.var_file;
     // A field the browser could not read as a number goes as text: the server refuses it, never runs the whole program.
     const field = (id) => ($(id).validity.badInput ? 'not a number' : $(id).value.trim());
     const as = (v) => (Number.isFinite(Number(v)) ? Number(v) : v);
@@ -212,6 +215,13 @@ const program = (() => {
     $('program-fit').textContent = fitTravel ? 'Fit path' : 'Show travel';
     draw();
   });
+  for (const [id, key] of [['program-tool-table', 'tool_table'], ['program-var-file', 'var_file']]) {
+    $(id).addEventListener('change', async (e) => {
+      const file = e.target.files[0];
+      files[key] = file ? await file.text() : null;
+      if ($('program-text').value.trim() !== '') previewNow();
+    });
+  }
   $('program-file').addEventListener('change', async (e) => {
     const file = e.target.files[0];
     if (!file) return;
