@@ -36,6 +36,9 @@ class ProgramInputError : public std::runtime_error {
 struct ProgramRunOptions {
   double rapid_feed_mm_s = 50.0;        // G0
   gcode::CanonSetup canon{};            // tool table, parameters, subroutine path (gcode_program.hpp)
+  // With canon.from_line: the tool in the spindle is the node's PROGRAM_TOOL when the node knows it
+  // (asked before the parse); when it does not, canon.from_line->tool_in_spindle stands.
+  bool tool_from_node = false;
   std::optional<double> feed_override;  // 0..1.5
   int telemetry_ms = 1;                 // 1: sample every tick and score; 0: no score
   std::size_t window = 12;

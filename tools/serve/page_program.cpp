@@ -194,10 +194,11 @@ nlohmann::json preview_json(const can_host::ProgramPlan& plan, std::size_t max_p
 }
 
 nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text,
-                                    const gcode::CanonSetup& canon, ProgramState& state,
+                                    const gcode::CanonSetup& canon, bool tool_from_node, ProgramState& state,
                                     const can_host::FrameListener& scope) {
   can_host::ProgramRunOptions o;
   o.canon = canon;
+  o.tool_from_node = tool_from_node;
   o.telemetry_ms = 0;
   o.on_frame = scope;
   // Called on this (the node) thread between the stream's bus operations, so

@@ -52,9 +52,10 @@ gcode::CanonSetup page_canon_setup(const nlohmann::json& body);
 // scope), the run's progress and end into `state`, its interrupt flag as
 // the stream's Ctrl-C, a pause continued by the Resume button
 // (ProgramState::resume()), the scope fed by `scope` meanwhile. A program that
-// cannot run throws ApiError(400) naming its line and column. `canon`: page_canon_setup.
+// cannot run throws ApiError(400) naming its line and column. `canon`: page_canon_setup;
+// `tool_from_node`: ProgramRunOptions::tool_from_node (no "tool_in_spindle" in the request).
 nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text,
-                                    const gcode::CanonSetup& canon, ProgramState& state,
+                                    const gcode::CanonSetup& canon, bool tool_from_node, ProgramState& state,
                                     const can_host::FrameListener& scope);
 
 }  // namespace tnv::serve

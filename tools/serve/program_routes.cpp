@@ -28,11 +28,13 @@ void TuningServer::program_routes() {
       const nlohmann::json body = body_json(req);
       const std::string text = text_field(body, "gcode");
       const gcode::CanonSetup canon = page_canon_setup(body);
+      const bool tool_from_node = !body.contains("tool_in_spindle");  // a run from line: the node's tool
       if (program_.active()) throw ApiError(kHttpConflict, "a program is running: preview it when it has ended");
       auto plan = std::make_shared<can_host::ProgramPlan>();
-      worker_.run([this, text, canon, plan](can_host::NodeClient& c) {
+      worker_.run([this, text, canon, tool_from_node, plan](can_host::NodeClient& c) {
         can_host::ProgramRunOptions o;
         o.canon = canon;
+        o.tool_from_node = tool_from_node;
         o.on_frame = worker_.scope_listener();
         *plan = can_host::plan_gcode(c, text, o);
         return nlohmann::json();
@@ -51,11 +53,12 @@ void TuningServer::program_routes() {
     commanded(req, res, [this](const nlohmann::json& body) {
       const std::string text = text_field(body, "gcode");
       const gcode::CanonSetup canon = page_canon_setup(body);  // a bad field: 400 before anything starts
+      const bool tool_from_node = !body.contains("tool_in_spindle");
       if (!program_.begin(program_summary(text))) throw ApiError(kHttpConflict, "a program is running already");
       std::future<nlohmann::json> done;
       try {
-        done = worker_.submit([this, text, canon](can_host::NodeClient& c) {
-          return run_program_for_page(c, text, canon, program_, worker_.scope_listener());
+        done = worker_.submit([this, text, canon, tool_from_node](can_host::NodeClient& c) {
+          return run_program_for_page(c, text, canon, tool_from_node, program_, worker_.scope_listener());
         });
       } catch (const std::exception& e) {
         program_.finish("refused", e.what());

@@ -155,6 +155,7 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   can_host::ProgramRunOptions ro;
   ro.rapid_feed_mm_s = o.rapid_feed_mm_s;
   ro.canon = run_setup(o);
+  ro.tool_from_node = !o.from.tool_given;  // a run from line: the node's tool, when it knows it
   ro.feed_override = o.feed_override;
   ro.telemetry_ms = o.no_score ? 0 : 1;
   ro.window = static_cast<std::size_t>(o.window);
