@@ -149,6 +149,8 @@ class CanNode {
   bool design_in_flight() const noexcept { return design_.pending(); }  // a request waits for shaper designs
   std::uint16_t reply_sequence() const noexcept;  // requests answered (mod 65536)
   const ProgramTracker& program() const noexcept { return programs_.tracker(); }
+  // The tool in the spindle as PROGRAM_TOOL reports it (ProgramStream::kToolUnknown: not known).
+  std::int32_t tool_in_spindle() const noexcept { return programs_.tool_in_spindle(); }
   bool segment_pending() const noexcept { return programs_.segment_pending(); }  // a SEGMENT waits for its tail
 
  private:

@@ -47,6 +47,7 @@ inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infe
 inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
 inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
+inline constexpr const MessageDef& kProgramToolMsg = message(MessageId::program_tool);
 inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
 inline constexpr const MessageDef& kSpindleMsg = message(MessageId::spindle);
 inline constexpr const MessageDef& kTlmSpindleMsg = message(MessageId::tlm_spindle);
@@ -167,6 +168,7 @@ inline constexpr const FieldDef& kProgramFreeSlots = field(kProgramStatusMsg, "f
 inline constexpr const FieldDef& kProgramUnderruns = field(kProgramStatusMsg, "underruns");
 inline constexpr const FieldDef& kProgramSegment = field(kProgramStatusMsg, "segment");
 inline constexpr const FieldDef& kProgramOverride = field(kProgramStatusMsg, "feed_override");
+inline constexpr const FieldDef& kProgramToolNumber = field(kProgramToolMsg, "tool");
 
 // The axis whose message of a per-axis block `id` is (`block` is that
 // block's messages in axis order), none for another id.

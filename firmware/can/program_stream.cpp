@@ -87,6 +87,12 @@ bool ProgramStream::segment_tail(const hal::CanFrame& frame) noexcept {
 
 bool ProgramStream::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
   const bool starting = !task_.program_running();
+  if (starting) tool_change_count_ = 0;  // an earlier program's changes never continued
+  if (head.kind == WireKind::tool_change && (head.tool < 0 || tool_change_count_ == tool_changes_.size())) {
+    ack_.send(kSegmentMsg.id, free_slots(), head.tool < 0 ? ErrorCode::out_of_range : ErrorCode::queue_full,
+              index_of(kSegmentMsg, kSegmentX));
+    return false;
+  }
   motion::Segment segment;
   if (!decode_segment(head, tail, task_.next_segment_start_mm(), segment)) {
     ack_.send(kSegmentTailMsg.id, free_slots(), ErrorCode::bad_arc, index_of(kSegmentTailMsg, kTailCentreNormal));
@@ -98,6 +104,7 @@ bool ProgramStream::push_element(const SegmentHead& head, const hal::CanFrame* t
   if (st == CommandStatus::ok) {
     if (starting) program_.started(task_);
     program_.accepted();
+    if (head.kind == WireKind::tool_change) tool_changes_[tool_change_count_++] = {segment.tag, head.tool};
     ack_.send(request, free_slots(), ErrorCode::ok, 0);
     if (program_.update(task_) || starting) send_status();
     return true;
@@ -126,7 +133,21 @@ void ProgramStream::stopping() noexcept {
 }
 
 void ProgramStream::on_tick() noexcept {
-  if (program_.update(task_)) send_status();
+  bool news = program_.update(task_);
+  // At a tool change the operator takes the old tool out: unknown until cycle_start says the new one is in.
+  // Looked at on every paused tick, not only when the state changes: one pause may follow another at once.
+  if (program_.state() == ProgramState::paused && tool_ != kToolUnknown &&
+      tool_change_at(program_.element(task_)) != nullptr) {
+    tool_ = kToolUnknown;
+    news = true;
+  }
+  if (news) send_status();
+}
+
+const ToolChange* ProgramStream::tool_change_at(std::uint32_t element) const noexcept {
+  for (std::size_t i = 0; i < tool_change_count_; ++i)
+    if (tool_changes_[i].element == element) return &tool_changes_[i];
+  return nullptr;
 }
 
 void ProgramStream::on_heartbeat() noexcept {
@@ -158,7 +179,18 @@ ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, s
       stopping();
       return to_error(task_.stop());
     case CommandCode::program_status: send_status(); return ErrorCode::ok;
-    case CommandCode::cycle_start: return to_error(task_.cycle_start());
+    case CommandCode::cycle_start: {
+      const std::uint32_t at = program_.element(task_);  // the pause it rests at
+      const ErrorCode e = to_error(task_.cycle_start());
+      const ToolChange* change = e == ErrorCode::ok ? tool_change_at(at) : nullptr;
+      if (change != nullptr) {
+        tool_ = change->tool;
+        const std::size_t i = static_cast<std::size_t>(change - tool_changes_.data());
+        tool_changes_[i] = tool_changes_[--tool_change_count_];  // order does not matter
+        send_status();
+      }
+      return e;
+    }
     default: break;
   }
   return ErrorCode::unknown_command;
@@ -173,6 +205,9 @@ void ProgramStream::send_status() noexcept {
   write_raw(f, kProgramOverride,
             static_cast<std::uint32_t>(std::clamp(task_.motion().feed_override() * 100.0 + 0.5, 0.0, 255.0)));
   tx_.queue(f, false);  // status the host paces its stream by: never dropped for telemetry's sake
+  hal::CanFrame t = make_frame(kProgramToolMsg, node_id_);
+  write(t, kProgramToolNumber, static_cast<double>(tool_));
+  tx_.queue(t, false);
 }
 
 }  // namespace tnv::fw::can

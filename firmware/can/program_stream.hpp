@@ -5,10 +5,14 @@
 // by one COMMAND_ACK whose code is the queue's free slots after it (flow
 // control, also in every HEARTBEAT); a refusal names the field at fault and
 // leaves the queue as it was. PROGRAM_STATUS carries state, progress and
-// underruns (ProgramTracker; docs/motion.md "Streaming").
+// underruns (ProgramTracker; docs/motion.md "Streaming"), PROGRAM_TOOL beside
+// it the tool in the spindle: a tool_change element's tool once COMMAND
+// cycle_start continues it, unknown from start-up and while a change is
+// under way (the operator may have taken the old tool out).
 //
 // Bounded work, no allocation, exceptions, locks or logging: it runs in
 // CanNode::service().
+#include <array>
 #include <cstdint>
 
 #include "firmware/can/command_ack.hpp"
@@ -17,10 +21,17 @@
 #include "firmware/can/program_tracker.hpp"
 #include "firmware/can/protocol_enums.hpp"
 #include "firmware/can/segment_wire.hpp"
+#include "firmware/motion/segment_queue.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 
 namespace tnv::fw::can {
+
+// A tool_change element: the program's element number and the tool it puts in.
+struct ToolChange {
+  std::uint32_t element = 0;
+  std::int32_t tool = 0;
+};
 
 class ProgramStream {
  public:
@@ -51,11 +62,16 @@ class ProgramStream {
   std::uint8_t free_slots() const noexcept;  // the motion queue's, at most 255
   const ProgramTracker& tracker() const noexcept { return program_; }
   bool segment_pending() const noexcept { return pending_.active; }  // a SEGMENT waits for its tail
+  // The tool in the spindle as PROGRAM_TOOL reports it; kToolUnknown when the node does not know.
+  static constexpr std::int32_t kToolUnknown = -1;
+  std::int32_t tool_in_spindle() const noexcept { return tool_; }
 
  private:
   bool push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
   void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
   void send_status() noexcept;
+  // The tool change accepted as element `element`, or nullptr.
+  const ToolChange* tool_change_at(std::uint32_t element) const noexcept;
 
   struct PendingSegment {
     bool active = false;
@@ -70,6 +86,10 @@ class ProgramStream {
   NodeTransmit& tx_;
   PendingSegment pending_{};  // the owner's SEGMENT waiting for its SEGMENT_TAIL
   ProgramTracker program_{};
+  // This program's tool changes not yet continued: at most the queue's elements and the one paused at.
+  std::array<ToolChange, motion::kSegmentQueueCapacity + 1> tool_changes_{};
+  std::size_t tool_change_count_ = 0;
+  std::int32_t tool_ = kToolUnknown;  // a restart forgets the tool: never guessed
 };
 
 }  // namespace tnv::fw::can

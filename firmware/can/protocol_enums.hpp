@@ -23,7 +23,9 @@ namespace tnv::fw::can {
 //    HEARTBEAT byte 7 is `axes` (homed and shaper bits per axis); capture.channels_high.
 // 6: program pauses (SEGMENT kind pause, PROGRAM_STATUS state paused, COMMAND cycle_start) and the
 //    program's spindle commands (SEGMENT kinds spindle_forward, spindle_reverse, spindle_stop).
-inline constexpr std::uint32_t kProtocolVersion = 6;
+// 7: the tool in the spindle: SEGMENT kind tool_change (an M6 pause carrying its tool) and PROGRAM_TOOL (0x18),
+//    the tool the node knows to be in the spindle (-1 unknown), sent with every PROGRAM_STATUS.
+inline constexpr std::uint32_t kProtocolVersion = 7;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value

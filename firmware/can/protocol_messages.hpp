@@ -28,7 +28,7 @@ static_assert(hal::kAxisCount <= kAxisBlock, "per-axis CAN messages: an axis bey
 // Lower id = higher priority: commands and their answers (0x00-0x13), then
 // the node-wide telemetry, then the per-axis telemetry blocks, the capture
 // upload last; BORE_GAUGE and BORE_INFEED, which wait between parts, rank
-// among the telemetry. 0x11-0x13, 0x18, 0x19, 0x1D-0x1F, 0x24-0x27 and
+// among the telemetry. 0x11-0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
 // 0x30-0x3D are free.
 enum class MessageId : std::uint8_t {
   estop = 0x00,
@@ -52,6 +52,7 @@ enum class MessageId : std::uint8_t {
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
   program_status = 0x17,
+  program_tool = 0x18,
   bore_gauge = 0x1A,
   bore_infeed = 0x1B,
   tlm_spindle = 0x1C,
@@ -211,16 +212,18 @@ inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"kind", WireType::u8, 1, 1, "",
      "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
-     "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop",
+     "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop 13=tool_change",
      "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
      "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
      "speed; a pause (M0, M1, M6) is reached at rest and holds (PROGRAM_STATUS paused) until COMMAND cycle_start, "
-     "the spindle left as it is; the spindle kinds (S, M3, M4, M5) are reached at rest and carried out there in "
-     "program order (a start while turning is a new speed or direction); dwell, pause and the spindle kinds have no "
-     "SEGMENT_TAIL"},
+     "the spindle left as it is; a tool_change (M6) is a pause whose cycle_start puts its tool in the spindle "
+     "(PROGRAM_TOOL); the spindle kinds (S, M3, M4, M5) are reached at rest and carried out there in "
+     "program order (a start while turning is a new speed or direction); dwell, pause, tool_change and the spindle "
+     "kinds have no SEGMENT_TAIL"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
      "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit); for spindle_forward "
-     "and spindle_reverse the speed in rpm / 1000 (0.1 rpm per unit); 0 for a pause and spindle_stop"},
+     "and spindle_reverse the speed in rpm / 1000 (0.1 rpm per unit); for tool_change the tool number / 10000 (one "
+     "tool per unit, 0 = no tool); 0 for a pause and spindle_stop"},
     {"y", WireType::i24, 5, 1e-4, "mm", "", "end point y (line, arc); 0 for the other kinds"},
 };
 inline constexpr FieldDef kSegmentTail[] = {
@@ -241,6 +244,12 @@ inline constexpr FieldDef kProgramStatus[] = {
     {"segment", WireType::u24, 4, 1, "", "",
      "number of the program's element being run, from 1 in the order accepted; 0 before the first"},
     {"feed_override", WireType::u8, 7, 1, "%", "", "feed override in percent of the programmed feeds"},
+};
+inline constexpr FieldDef kProgramTool[] = {
+    {"tool", WireType::i32, 0, 1, "", "-1=unknown",
+     "the tool in the spindle as far as the node knows: the tool of the last tool_change element continued by "
+     "COMMAND cycle_start; -1 (unknown) from start-up and while a tool change is under way or was left unconfirmed "
+     "(aborted at its pause)"},
 };
 // The per-axis telemetry frames: one message per axis, the same fields.
 // Position and following error share a frame: one 8-byte frame per axis
@@ -320,7 +329,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 25 + 3 * hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 26 + 3 * hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -387,6 +396,9 @@ inline constexpr std::array<MessageDef, 25 + 3 * hal::kAxisCount> kMessages{{
     {0x17, "program_status", Direction::from_node, 8, detail::kProgramStatus,
      "Program progress and flow control: with every HEARTBEAT while a program runs, once when its state changes, "
      "and on COMMAND program_status."},
+    {0x18, "program_tool", Direction::from_node, 4, detail::kProgramTool,
+     "The tool in the spindle, as the node knows it: sent with every PROGRAM_STATUS. Forgotten at a restart "
+     "(unknown, never guessed): a host that starts a program after one must say which tool is in."},
     {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
      "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "
      "the bore.* parameters; the node's planner records the part with the infeeds it told for it (RLS on the log "

@@ -112,6 +112,17 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   return nullptr;
 }
 
+const FieldDef* encode_tool_change(int tool, const PlanePoint& at_mm, std::uint8_t node, std::uint8_t tag,
+                                   SegmentFrames& out) noexcept {
+  out = {};
+  out.head = make_frame(kSegmentMsg, node);
+  write_raw(out.head, kSegmentTag, tag);
+  write_raw(out.head, kSegmentKind, static_cast<std::uint32_t>(WireKind::tool_change));
+  if (tool < 0 || !write(out.head, kSegmentX, static_cast<double>(tool) / kToolPerX)) return &kSegmentX;
+  out.end_mm = at_mm;
+  return nullptr;
+}
+
 bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
   const std::uint32_t kind = read_raw(head, kSegmentKind);
   if (kind >= kWireKindCount) return false;
@@ -119,13 +130,15 @@ bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
   out.end_mm = {read(head, kSegmentX), read(head, kSegmentY)};
   out.dwell_s = read(head, kSegmentX);
   out.spindle_rpm = read(head, kSegmentX) * kSpindleRpmPerX;
+  out.tool = static_cast<std::int32_t>(std::lround(read(head, kSegmentX) * kToolPerX));
   return true;
 }
 
 bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
                     motion::Segment& out) noexcept {
   switch (head.kind) {
-    case WireKind::pause: out = motion::pause_here(); return true;
+    case WireKind::pause:
+    case WireKind::tool_change: out = motion::pause_here(); return true;
     case WireKind::spindle_forward: out = motion::spindle_here(motion::SpindleChange::forward, head.spindle_rpm); return true;
     case WireKind::spindle_reverse: out = motion::spindle_here(motion::SpindleChange::reverse, head.spindle_rpm); return true;
     case WireKind::spindle_stop: out = motion::spindle_here(motion::SpindleChange::stop, 0.0); return true;

@@ -36,8 +36,12 @@ enum class WireKind : std::uint8_t {
   spindle_forward,   // a program's spindle start or new speed (M3, S): x = rpm / kSpindleRpmPerX; no tail
   spindle_reverse,   // M4
   spindle_stop,      // M5: no fields, no tail
+  tool_change,       // a pause (M6) whose cycle_start puts its tool in the spindle: x = tool / kToolPerX; no tail
 };
-inline constexpr std::uint8_t kWireKindCount = 13;
+inline constexpr std::uint8_t kWireKindCount = 14;
+
+// A tool change's tool in SEGMENT.x: one tool per 0.1 um step (tools 0..8,388,607).
+inline constexpr double kToolPerX = 1e4;
 
 // A spindle start's speed in SEGMENT.x: 1 mm of the field is 1000 rpm, so its 0.1 um step is 0.1 rpm
 // (up to 838,860 rpm).
@@ -84,6 +88,10 @@ struct SegmentFrames {
 // centre too far off the bisector.
 const FieldDef* encode_segment(const motion::Segment& segment, const motion::PlanePoint& start_mm, std::uint8_t node,
                                std::uint8_t tag, SegmentFrames& out) noexcept;
+// Host side: a manual tool change (M6) that puts `tool` in the spindle, a pause
+// at `at_mm`. nullptr, or &x for a tool outside 0..8,388,607.
+const FieldDef* encode_tool_change(int tool, const motion::PlanePoint& at_mm, std::uint8_t node, std::uint8_t tag,
+                                   SegmentFrames& out) noexcept;
 
 // Node side: the SEGMENT frame. false when its kind is not one of WireKind
 // (refuse out_of_range naming `kind`).
@@ -92,6 +100,7 @@ struct SegmentHead {
   motion::PlanePoint end_mm{};  // lines and arcs
   double dwell_s = 0.0;         // dwells
   double spindle_rpm = 0.0;     // spindle starts
+  std::int32_t tool = 0;        // tool changes
 };
 bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept;
 

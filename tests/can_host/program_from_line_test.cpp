@@ -59,5 +59,42 @@ TEST(ProgramFromLine, ARunFromLineEndsWhereTheFullRunEnds) {
   }
 }
 
+// A run from line after a tool change takes the tool in the spindle from the
+// node when the node knows it (a confirmed M6 on it): no second change. A
+// node that does not know it (just started) gets the change at the start,
+// as with no tool: the operator says which tool is in.
+TEST(ProgramFromLine, TheToolInTheSpindleIsTheNodesWhenItKnowsIt) {
+  const std::string text = "G21 G91 G17 F600\nT2 M6\nG1 X3\nG1 Y3\nM2\n";
+  can_host::EmulatedNodeOptions o;
+  o.storage_path = (std::filesystem::temp_directory_path() / ("tnv_from_" + std::to_string(::getpid()) + "tool")).string();
+  std::string error;
+  auto bus = can_host::EmulatedBus::create(o, error);
+  ASSERT_TRUE(bus) << error;
+  can_host::NodeClient client(*bus, 1);
+  can_host::ProgramRunOptions ro;
+  ASSERT_TRUE(ro.canon.tools.load_text("T2 P2 Z0\n", error)) << error;
+  ro.resume = [](const can_host::StreamPause&, can_host::Micros) { return true; };
+  ro.canon.from_line = gcode::RunFromLine{};
+  ro.canon.from_line->line = 4;
+  ro.tool_from_node = true;
+
+  const can_host::ProgramRunResult unknown = can_host::run_gcode(client, text, ro);
+  ASSERT_EQ(unknown.stream.end, StreamResult::End::done) << unknown.stream.message;
+  ASSERT_EQ(unknown.stream.pauses.size(), 1u) << "the node knew no tool: the start changes to T2";
+  ASSERT_TRUE(unknown.stream.pauses[0].why);
+  EXPECT_EQ(unknown.stream.pauses[0].why->tool, 2);
+  ASSERT_EQ(client.program_tool(), (can_host::ProgramTool{true, 2}));
+
+  const can_host::ProgramRunResult known = can_host::run_gcode(client, text, ro);
+  ASSERT_EQ(known.stream.end, StreamResult::End::done) << known.stream.message;
+  EXPECT_TRUE(known.stream.pauses.empty()) << "T2 is in, as the node knows: no change";
+
+  ro.tool_from_node = false;  // the operator's word (--tool-in-spindle 0) stands over the node's
+  const can_host::ProgramRunResult told = can_host::run_gcode(client, text, ro);
+  ASSERT_EQ(told.stream.end, StreamResult::End::done) << told.stream.message;
+  EXPECT_EQ(told.stream.pauses.size(), 1u);
+  std::filesystem::remove(o.storage_path);
+}
+
 }  // namespace
 }  // namespace tnv

@@ -4,12 +4,15 @@
 // reason and the tool, and the program goes on only when the caller says so
 // (COMMAND cycle_start); without a caller that continues, the run stops at
 // the first pause. The paused runs end where the same program without
-// pauses ends.
+// pauses ends. After M6 the node knows the tool (PROGRAM_TOOL), and a node
+// started again does not.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 #include "tools/can/program_run.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
@@ -124,6 +127,48 @@ TEST(ProgramPause, M0M1AndM6PauseAtRestAndTheRunEndsWhereTheRunWithoutThemEnds) 
   EXPECT_LT(std::hypot(end[0] - plain_end[0], end[1] - plain_end[1]), 1e-6) << "ends where the run without pauses ends";
   ASSERT_TRUE(r.score);
   EXPECT_LE(r.score->path_deviation_max_um, 5.0 + 2e-3);
+}
+
+TEST(ProgramPause, AfterAConfirmedToolChangeTheNodeKnowsTheToolAndARestartForgetsIt) {
+  PauseBench b("tool");
+  ASSERT_TRUE(b.bus);
+  {
+    can_host::NodeClient client(*b.bus, 1);
+    EXPECT_EQ(client.program_tool(), can_host::ProgramTool{}) << "a node just started knows no tool";
+  }
+  const PausedRun first = run_resuming(b, kPausing, true, Micros{100'000});
+  ASSERT_EQ(first.result.stream.end, StreamResult::End::done) << first.result.stream.message;
+  ASSERT_TRUE(first.result.stream.final_tool);
+  EXPECT_EQ(*first.result.stream.final_tool, (can_host::ProgramTool{true, 2}));
+
+  // The next change: unknown while the operator changes it (the node's word at the pause), tool 5 after.
+  can_host::NodeClient client(*b.bus, 1);
+  can_host::ProgramRunOptions o;
+  o.canon = pause_setup();
+  std::string error;
+  ASSERT_TRUE(o.canon.tools.load_text("T5 P5 Z0\n", error)) << error;
+  std::optional<can_host::ProgramTool> at_the_pause;
+  o.resume = [&](const can_host::StreamPause&, Micros paused_for) {
+    at_the_pause = client.last_program_tool();  // the last look before going on
+    return paused_for >= Micros{100'000};
+  };
+  std::vector<can_host::ProgramTool> progress_tools;
+  o.progress = [&](const can_host::StreamProgress& p) {
+    if (p.tool && (progress_tools.empty() || progress_tools.back() != *p.tool)) progress_tools.push_back(*p.tool);
+  };
+  const can_host::ProgramRunResult r = can_host::run_gcode(client, "G17 G21 G91 F600\nG1 X2\nT5 M6\nG1 X-2\nM2\n", o);
+  ASSERT_EQ(r.stream.end, StreamResult::End::done) << r.stream.message;
+  ASSERT_TRUE(at_the_pause);
+  EXPECT_FALSE(at_the_pause->known) << "the node claimed a tool while it was being changed";
+  EXPECT_EQ(progress_tools, (std::vector<can_host::ProgramTool>{{true, 2}, {}, {true, 5}}));
+  EXPECT_EQ(client.program_tool(), (can_host::ProgramTool{true, 5}));
+
+  // The node starts again on the same storage: it does not know the tool (never guessed from the last run).
+  b.bus.reset();
+  b.bus = can_host::EmulatedBus::create(b.o, error);
+  ASSERT_TRUE(b.bus) << error;
+  can_host::NodeClient restarted(*b.bus, 1);
+  EXPECT_EQ(restarted.program_tool(), can_host::ProgramTool{});
 }
 
 TEST(ProgramPause, WithTheOptionalStopSwitchOffM1RunsThrough) {

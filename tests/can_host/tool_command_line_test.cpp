@@ -90,6 +90,15 @@ TEST(ToolCommandLine, MonitorJsonIsJsonLinesOnStdoutWithTheSummaryOnStderr) {
   std::filesystem::remove_all(state);
 }
 
+// The monitor asks for the program's state (COMMAND program_status): a node just started knows no tool.
+TEST(ToolCommandLine, MonitorShowsTheToolInTheSpindleAsTheNodeKnowsIt) {
+  const auto state = test::state_dir("monitor_tool");
+  const ToolRun r = test::tnvctl(state, "--emu monitor --duration-s 0.3 --rate-hz 20");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "in spindle: unknown")) << r.out;
+  std::filesystem::remove_all(state);
+}
+
 TEST(ToolCommandLine, MonitorCsvHasOneHeaderAndFullRowsOnStdoutAndRefusesJsonToo) {
   const auto state = test::state_dir("monitor_csv");
   const ToolRun r = test::tnvctl(state, "--emu monitor --csv --duration-s 0.3 --rate-hz 20");

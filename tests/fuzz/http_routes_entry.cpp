@@ -22,7 +22,7 @@ struct Route {
   const char* method;  // nullptr: the fuzzed text
   const char* path;    // nullptr: the fuzzed text
 };
-constexpr std::array<Route, 28> kRoutes{{
+constexpr std::array<Route, 29> kRoutes{{
     {"GET", "/api/info"},           {"GET", "/api/status"},          {"GET", "/api/control"},
     {"GET", "/api/params"},         {"GET", "/api/captures"},        {"GET", "/api/captures/1"},
     {"GET", "/api/captures/1.csv"}, {"GET", "/api/telemetry"},       {"POST", "/api/control/take"},
@@ -33,7 +33,7 @@ constexpr std::array<Route, 28> kRoutes{{
     {"GET", nullptr},               {nullptr, "/api/motion"},        {nullptr, nullptr},
     // The Program panel's (appended: the seeds above keep their routes).
     {"GET", "/api/program"},        {"POST", "/api/program/preview"}, {"POST", "/api/program/run"},
-    {"POST", "/api/program/resume"},
+    {"POST", "/api/program/resume"}, {"POST", "/api/program/hold"},
 }};
 
 // One server for the whole run: its node thread never runs.

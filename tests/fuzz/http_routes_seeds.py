@@ -14,6 +14,7 @@ BODIES = {
     18: b'{"axis":"x","loop":"open"}',
     25: b'{"gcode":"G21 G91\\nG1 X1 F600\\nM0\\nG1 X-1\\nM2\\n"}',
     26: b'{"gcode":"G21 G91\\nG1 X1 F600\\nM1\\nT1 M6\\nG1 X-1\\nM2\\n"}', 27: b"{}",
+    28: b'{"hold":true}',
 }
 TEXT = {19: b"0" * 64, 20: b"/api/motion?x=1", 21: b"/api/params?filter=x.", 22: b"PUT", 23: b"DELETE /api/control"}
 WAYS = {"ok": 0x00, "cookie": 0x40, "none": 0xC0, "host": 0x03, "origin": 0x08}
@@ -22,7 +23,7 @@ WAYS = {"ok": 0x00, "cookie": 0x40, "none": 0xC0, "host": 0x03, "origin": 0x08}
 def main(out):
     os.makedirs(out, exist_ok=True)
     n = 0
-    for route in range(28):
+    for route in range(29):
         body = BODIES.get(route, b'{"kind":"enable"}' if route == 16 else b"")
         text = TEXT.get(route, b"")
         for way, b0 in WAYS.items():

@@ -53,6 +53,19 @@ class ProgramHost {
     if (acks.size() == 1 && acks[0].result == kOk) at_mm_ = f.end_mm;
     return acks;
   }
+  // A manual tool change (SEGMENT kind tool_change) putting `tool` in the spindle, as run_gcode sends M6.
+  std::vector<ElementAck> send_tool_change(int tool) {
+    fw::can::SegmentFrames f;
+    if (fw::can::encode_tool_change(tool, at_mm_, kRigNode, fw::can::make_tag(host_, sequence_), f) != nullptr) {
+      // A tool the field cannot carry: sent as its raw bits, for the node to refuse.
+      f.head = fw::can::make_frame(fw::can::fields::kSegmentMsg, kRigNode);
+      fw::can::write_raw(f.head, fw::can::fields::kSegmentTag, fw::can::make_tag(host_, sequence_));
+      fw::can::write_raw(f.head, fw::can::fields::kSegmentKind, static_cast<std::uint32_t>(fw::can::WireKind::tool_change));
+      fw::can::write_raw(f.head, fw::can::fields::kSegmentX, static_cast<std::uint32_t>(tool) & 0xFFFFFFu);
+    }
+    sequence_ = static_cast<std::uint8_t>(sequence_ % 15 + 1);
+    return send_frames({f.head});
+  }
   std::vector<ElementAck> send_frames(const std::vector<hal::CanFrame>& frames) {
     for (const hal::CanFrame& f : frames) rig_.port.send(f);
     rig_.service();

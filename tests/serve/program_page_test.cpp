@@ -14,6 +14,7 @@
 #include <numbers>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "tests/serve/tuning_server_fixture.hpp"
 #include "tools/gcode/gcode_program.hpp"
@@ -228,6 +229,223 @@ TEST_F(ProgramPageTest, APauseWaitsForTheResumeOfTheTabWithControl) {
   for (const nlohmann::json& line : audit_lines())
     if (line.value("path", "") == "/api/program/resume") ++resumes_logged;
   EXPECT_EQ(resumes_logged, 3) << "the early one, the other tab's and the accepted one";
+}
+
+// Run from line on the page: the same interpreter as tnvctl run --from-line.
+// From line 3 of the square and arc, the preview has no piece of line 2 (the
+// approach to line 3's start is a rapid) and ends where the whole program's does; the run ends there too, the lines it
+// reports never below 3.
+TEST_F(ProgramPageTest, ARunFromLineStartsThereAndEndsWhereTheWholeProgramEnds) {
+  const httplib::Result whole = post("/api/program/preview", kTabA, {{"gcode", kSquareAndArc}});
+  ASSERT_TRUE(whole);
+  ASSERT_EQ(whole->status, 200) << whole->body;
+  const httplib::Result from = post("/api/program/preview", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 3}});
+  ASSERT_TRUE(from);
+  ASSERT_EQ(from->status, 200) << from->body;
+  const nlohmann::json w = nlohmann::json::parse(whole->body);
+  const nlohmann::json f = nlohmann::json::parse(from->body);
+  for (const nlohmann::json& piece : f["pieces"]) EXPECT_GE(piece["line"].get<int>(), 3) << f.dump();
+  const nlohmann::json& w_end = w["pieces"].back()["points"];
+  const nlohmann::json& f_end = f["pieces"].back()["points"];
+  EXPECT_NEAR(f_end[f_end.size() - 2].get<double>(), w_end[w_end.size() - 2].get<double>(), 1e-4);
+  EXPECT_NEAR(f_end.back().get<double>(), w_end.back().get<double>(), 1e-4);
+  // The approach covers line 2's 5 mm at rapid (50 mm/s), not at line 2's 10 mm/s: 0.4 s less.
+  EXPECT_NEAR(f["cycle_time_s"].get<double>(), w["cycle_time_s"].get<double>() - 0.4, 1e-6) << "line 2 was not left out";
+
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 3}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  EXPECT_EQ(p["line"], 4) << "the last line the node ran";
+  bool logged = false;
+  for (const nlohmann::json& line : audit_lines())
+    if (line.value("path", "") == "/api/program/run") logged = line["body"].value("from_line", 0) == 3;
+  EXPECT_TRUE(logged) << "the audit trail does not say the run started at line 3";
+}
+
+// Bad values are refused with the reason and start nothing: a field of the
+// wrong kind before the run begins (the program stays idle), a line the
+// interpreter cannot start at as a refused program (400 naming it).
+TEST_F(ProgramPageTest, ABadRunFromLineIsRefusedAndStartsNothing) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const std::pair<nlohmann::json, const char*> bad_fields[] = {
+      {{{"from_line", 0}}, "from_line must be a whole number from 1"},
+      {{{"from_line", 2.5}}, "from_line must be a whole number"},
+      {{{"from_line", "3"}}, "from_line must be a whole number"},
+      {{{"from_line", nullptr}}, "from_line must be a whole number"},
+      {{{"from_line", 3}, {"from_pass", 0}}, "from_pass must be a whole number from 1"},
+      {{{"from_line", 3}, {"tool_in_spindle", -1}}, "tool_in_spindle must be a whole number from 0"},
+      {{{"from_line", 3}, {"approach_height_mm", -1.0}}, "approach_height_mm must be a number >= 0"},
+      {{{"tool_in_spindle", 2}}, "tool_in_spindle needs from_line"},
+  };
+  for (const auto& [fields, why] : bad_fields) {
+    nlohmann::json body = fields;
+    body["gcode"] = kSquareAndArc;
+    for (const char* route : {"/api/program/preview", "/api/program/run"}) {
+      const httplib::Result r = post(route, kTabA, body);
+      ASSERT_TRUE(r);
+      EXPECT_EQ(r->status, 400) << route << " " << fields.dump() << ": " << r->body;
+      EXPECT_NE(nlohmann::json::parse(r->body)["error"].get<std::string>().find(why), std::string::npos)
+          << route << ": " << r->body;
+    }
+  }
+  EXPECT_EQ(program()["phase"], "idle") << "a bad field began a run";
+
+  const httplib::Result outside = post("/api/program/run", kTabA, {{"gcode", kSquareAndArc}, {"from_line", 99}});
+  ASSERT_TRUE(outside);
+  EXPECT_EQ(outside->status, 400) << outside->body;
+  const nlohmann::json e = nlohmann::json::parse(outside->body);
+  EXPECT_NE(e["error"].get<std::string>().find("cannot run from line 99"), std::string::npos) << outside->body;
+  EXPECT_EQ(program()["end"], "refused");
+  EXPECT_EQ(node_state(), "disabled") << "the servo was switched on for a refused start";
+}
+
+// The node's PROGRAM_TOOL in the program's state: unknown while the M6
+// pause waits (a fresh node knows no tool either), the tool once Resume
+// confirms the change (T0: the spindle emptied, which the node knows too).
+TEST_F(ProgramPageTest, AConfirmedToolChangeShowsTheNodesToolInTheSpindle) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result run = post("/api/program/run", kTabA, {{"gcode", "G21 G91 G17\nG1 X1 F600\nT0 M6\nG1 X-1\nM2\n"}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json paused = wait_program(
+      [](const nlohmann::json& s) { return (!s["pause"].is_null() && !s["spindle_tool"].is_null()) || s["phase"] == "ended"; },
+      "the tool change's pause");
+  ASSERT_FALSE(paused["pause"].is_null()) << paused.dump();
+  EXPECT_EQ(paused["pause"]["reason"], "tool change (M6)");
+  EXPECT_EQ(paused["spindle_tool"]["known"], false) << paused.dump();
+  EXPECT_EQ(paused["spindle_tool"]["text"], "unknown");
+  ASSERT_EQ(post("/api/program/resume", kTabA)->status, 200);
+  const nlohmann::json p = wait_program([](const nlohmann::json& s) { return s["phase"] == "ended"; }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << p.dump();
+  ASSERT_FALSE(p["spindle_tool"].is_null()) << p.dump();
+  EXPECT_EQ(p["spindle_tool"]["known"], true) << p.dump();
+  EXPECT_EQ(p["spindle_tool"]["tool"], 0);
+  EXPECT_EQ(p["spindle_tool"]["text"], "no tool");
+}
+
+// The optional stop and block delete switches, as --optional-stop and
+// --block-delete: on by default (M1 pauses, '/' lines are skipped); off,
+// the M1 runs through and the slashed line runs. A switch that is not
+// true or false is 400 before anything starts.
+TEST_F(ProgramPageTest, TheOptionalStopAndBlockDeleteSwitchesApplyAndAreCheckedFirst) {
+  const std::string slashed = "G21 G91 G17\nG1 X1 F600\n/G1 Y1\nG1 X-1\nM2\n";
+  const auto segments = [&](const nlohmann::json& body) {
+    const httplib::Result r = post("/api/program/preview", kTabA, body);
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    return r && r->status == 200 ? nlohmann::json::parse(r->body)["segments"].get<int>() : -1;
+  };
+  EXPECT_EQ(segments({{"gcode", slashed}}), 2) << "block delete is on by default";
+  EXPECT_EQ(segments({{"gcode", slashed}, {"block_delete", true}}), 2);
+  EXPECT_EQ(segments({{"gcode", slashed}, {"block_delete", false}}), 3) << "the slashed line did not run";
+
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  for (const char* key : {"optional_stop", "block_delete"}) {
+    const httplib::Result bad = post("/api/program/run", kTabA, {{"gcode", kShort}, {key, "off"}});
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400) << bad->body;
+    EXPECT_NE(nlohmann::json::parse(bad->body)["error"].get<std::string>().find(std::string(key) + " must be true or false"),
+              std::string::npos) << bad->body;
+  }
+  EXPECT_EQ(program()["phase"], "idle") << "a bad switch began a run";
+
+  const httplib::Result run =
+      post("/api/program/run", kTabA, {{"gcode", "G21 G91 G17\nG1 X1 F600\nM1\nG1 X-1\nM2\n"}, {"optional_stop", false}});
+  ASSERT_TRUE(run);
+  ASSERT_EQ(run->status, 200) << run->body;
+  const nlohmann::json p = wait_program(
+      [](const nlohmann::json& s) { return s["phase"] == "ended" || !s["pause"].is_null(); }, "the run's end");
+  EXPECT_EQ(p["end"], "done") << "the M1 paused with the switch off: " << p.dump();
+}
+
+// The Feed hold button: the program brakes on its path and waits there
+// (PROGRAM_STATUS holding, its progress standing still) until the hold is
+// released, then goes on; only the tab with control holds, a hold that is
+// not true or false is 400, and nothing running is 409.
+TEST_F(ProgramPageTest, AFeedHoldWaitsOnThePathUntilReleased) {
+  ASSERT_EQ(post("/api/control/take", kTabA)->status, 200);
+  const httplib::Result idle = post("/api/program/hold", kTabA, {{"hold", true}});
+  ASSERT_TRUE(idle);
+  EXPECT_EQ(idle->status, 409) << idle->body;
+  run_until_halfway_started();
+  const httplib::Result bad = post("/api/program/hold", kTabA, {{"hold", "yes"}});
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400) << bad->body;
+  const httplib::Result other = post("/api/program/hold", kTabB, {{"hold", true}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403) << other->body;
+  const httplib::Result hold = post("/api/program/hold", kTabA, {{"hold", true}});
+  ASSERT_TRUE(hold);
+  ASSERT_EQ(hold->status, 200) << hold->body;
+  const nlohmann::json held =
+      wait_program([](const nlohmann::json& p) { return p["node_state"] == "holding" || p["phase"] == "ended"; },
+                   "the node holding");
+  ASSERT_EQ(held["node_state"], "holding") << held.dump();
+  // Braking on the path may still finish the element it is in; after that nothing moves on.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const nlohmann::json at = program();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const nlohmann::json later = program();
+  EXPECT_EQ(later["phase"], "running");
+  EXPECT_EQ(later["node_state"], "holding");
+  EXPECT_EQ(later["element"], at["element"]) << "it went on while held";
+  EXPECT_LT(later["fraction"].get<double>(), 0.5);
+  const httplib::Result go = post("/api/program/hold", kTabA, {{"hold", false}});
+  ASSERT_TRUE(go);
+  ASSERT_EQ(go->status, 200) << go->body;
+  // It goes on (2 mm more of the path), then a Stop ends it without waiting out the other 10 s.
+  const double from = later["fraction"].get<double>();
+  const nlohmann::json on = wait_program(
+      [from](const nlohmann::json& s) { return s["fraction"].get<double>() >= from + 0.02 || s["phase"] == "ended"; },
+      "the program going on after the release");
+  EXPECT_EQ(on["phase"], "running") << on.dump();
+  EXPECT_EQ(on["node_state"], "running");
+  ASSERT_EQ(post("/api/motion", kTabA, {{"kind", "stop"}})->status, 200);
+}
+
+// The page's tool table and .var file, as --tool-table and --var-file:
+// a tool change needs its tool in the table, a G54 offset from the .var
+// moves the path, a bad line is 400 naming the file and the line, and the
+// audit trail keeps the files' digests, not their text.
+TEST_F(ProgramPageTest, AToolTableAndAVarFileApplyAsOnTheCommandLine) {
+  const std::string change = "G21 G91 G17\nG1 X1 F600\nT2 M6\nG1 X-1\nM2\n";
+  const httplib::Result without = post("/api/program/preview", kTabA, {{"gcode", change}});
+  ASSERT_TRUE(without);
+  EXPECT_EQ(without->status, 400) << without->body;
+  EXPECT_NE(without->body.find("requested tool 2 not found"), std::string::npos) << without->body;
+  const httplib::Result with = post("/api/program/preview", kTabA, {{"gcode", change}, {"tool_table", "T2 P2 Z0 D6\n"}});
+  ASSERT_TRUE(with);
+  EXPECT_EQ(with->status, 200) << with->body;
+  EXPECT_EQ(nlohmann::json::parse(with->body)["tool_changes"], 1);
+
+  const std::string to_origin = "G21 G90 G17 G54\nG0 X7.25 Y1.5\nM2\n";
+  const auto end_x = [&](const nlohmann::json& body) {
+    const httplib::Result r = post("/api/program/preview", kTabA, body);
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    if (!r || r->status != 200) return -1e9;
+    const nlohmann::json pieces = nlohmann::json::parse(r->body)["pieces"];
+    if (pieces.empty()) return -1e9;
+    const nlohmann::json& points = pieces.back()["points"];
+    return points[points.size() - 2].get<double>();
+  };
+  EXPECT_NEAR(end_x({{"gcode", to_origin}}), 7.25, 1e-9);
+  EXPECT_NEAR(end_x({{"gcode", to_origin}, {"var_file", "5221\t12.5\n5222\t-3\n"}}), 19.75, 1e-9);
+
+  const httplib::Result bad = post("/api/program/preview", kTabA, {{"gcode", change}, {"tool_table", "T2 P2 Z0\nT3 Q\n"}});
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400) << bad->body;
+  EXPECT_NE(bad->body.find("tool_table: line 2"), std::string::npos) << bad->body;
+  const httplib::Result wrong = post("/api/program/preview", kTabA, {{"gcode", change}, {"var_file", 5221}});
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 400) << wrong->body;
+  bool logged = false;
+  for (const nlohmann::json& line : audit_lines())
+    if (line.value("path", "") == "/api/program/preview" && line["body"].contains("tool_table") &&
+        line["body"]["tool_table"].is_object())
+      logged = line["body"]["tool_table"]["lines"] == 1 || logged;
+  EXPECT_TRUE(logged) << "the tool table's digest is not in the audit trail";
 }
 
 TEST_F(ProgramPageTest, StopInterruptsARunningProgramAtOnce) {

@@ -57,6 +57,7 @@ void NodeClient::dispatch(const hal::CanFrame& frame, can::MessageId id) {
   if (id == MessageId::heartbeat) heartbeat_ = read_heartbeat(frame);
   if (id == MessageId::fault_event) fault_event_ = read_fault_event(frame);
   if (id == MessageId::program_status) program_status_ = read_program_status(frame);
+  if (id == MessageId::program_tool) program_tool_ = read_program_tool(frame);
   if (listener_) listener_(frame, id);
 }
 
@@ -321,6 +322,15 @@ ProgramStatus NodeClient::program_status() {
   if (!pump_until([this] { return program_status_.has_value(); }, options_.timeout))
     throw RequestError(RequestError::Kind::timeout, timeout_text("program status", MessageId::program_status, options_.timeout));
   return *program_status_;
+}
+
+ProgramTool NodeClient::program_tool() {
+  program_tool_.reset();
+  program_status();
+  // PROGRAM_TOOL follows PROGRAM_STATUS in the same service.
+  if (!pump_until([this] { return program_tool_.has_value(); }, options_.timeout))
+    throw RequestError(RequestError::Kind::timeout, timeout_text("program tool", MessageId::program_tool, options_.timeout));
+  return *program_tool_;
 }
 
 // --- capture

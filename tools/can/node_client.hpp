@@ -86,6 +86,9 @@ class NodeClient {
   // Refreshes the node's PROGRAM_STATUS (COMMAND program_status, open to every host).
   ProgramStatus program_status();
   const std::optional<ProgramStatus>& last_program_status() const noexcept { return program_status_; }
+  // The tool the node knows in the spindle (PROGRAM_TOOL, sent with every PROGRAM_STATUS): asked now.
+  ProgramTool program_tool();
+  const std::optional<ProgramTool>& last_program_tool() const noexcept { return program_tool_; }
   const std::optional<Heartbeat>& last_heartbeat() const noexcept { return heartbeat_; }
   const std::optional<FaultEvent>& last_fault_event() const noexcept { return fault_event_; }
   void set_listener(FrameListener listener) { listener_ = std::move(listener); }
@@ -132,6 +135,7 @@ class NodeClient {
   std::optional<Heartbeat> heartbeat_;
   std::optional<FaultEvent> fault_event_;
   std::optional<ProgramStatus> program_status_;
+  std::optional<ProgramTool> program_tool_;
   FrameListener listener_;
   std::uint64_t upload_rerequests_ = 0;
   std::uint64_t replies_discarded_ = 0;

@@ -142,6 +142,17 @@ ProgramStatus read_program_status(const hal::CanFrame& frame) {
   return p;
 }
 
+ProgramTool read_program_tool(const hal::CanFrame& frame) {
+  const double tool = can::read(frame, field(can::fields::kProgramToolMsg, "tool"));
+  if (tool < 0.0) return {};
+  return {true, static_cast<std::int32_t>(tool)};
+}
+
+std::string to_string(const ProgramTool& t) {
+  if (!t.known) return "unknown";
+  return t.tool == 0 ? "no tool" : "tool " + std::to_string(t.tool);
+}
+
 Heartbeat read_heartbeat(const hal::CanFrame& frame) {
   Heartbeat h;
   h.state = raw_as<fw::MotionState>(frame, field(kHeartbeatMsg, "state"));

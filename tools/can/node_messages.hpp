@@ -4,6 +4,7 @@
 // (firmware/can/frame_codec.hpp), field by field, by name.
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/param_table.hpp"
@@ -35,6 +36,15 @@ struct ProgramStatus {
   std::uint32_t element = 0;    // 1-based number of the element being run (acceptance order)
   std::uint8_t feed_override_percent = 100;
 };
+
+// PROGRAM_TOOL: the tool in the spindle as far as the node knows.
+struct ProgramTool {
+  bool known = false;     // false: unknown (since the node's start, or a tool change not confirmed)
+  std::int32_t tool = 0;  // when known; 0 is no tool
+  bool operator==(const ProgramTool&) const = default;
+};
+// "tool 3", "no tool", "unknown"
+std::string to_string(const ProgramTool& tool);
 
 struct CommandAck {
   std::uint8_t tag = 0;      // the request's tag, echoed
@@ -108,6 +118,7 @@ CaptureStatus read_capture_status(const hal::CanFrame& frame);
 CaptureData read_capture_data(const hal::CanFrame& frame);
 FaultEvent read_fault_event(const hal::CanFrame& frame);
 ProgramStatus read_program_status(const hal::CanFrame& frame);
+ProgramTool read_program_tool(const hal::CanFrame& frame);
 
 // Message name in upper case as the DBC spells it ("PARAM_REPLY").
 std::string message_label(can::MessageId id);

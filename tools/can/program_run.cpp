@@ -35,6 +35,15 @@ gcode::GcodeResult parse(const std::string& text, const fw::motion::PlanePoint& 
   return gcode::parse_gcode(text, g);
 }
 
+// The options with the node's tool in the spindle for a run from line, when asked for and known.
+ProgramRunOptions with_node_tool(NodeClient& client, const ProgramRunOptions& o) {
+  ProgramRunOptions out = o;
+  if (!o.tool_from_node || !o.canon.from_line) return out;
+  const ProgramTool tool = client.program_tool();
+  if (tool.known) out.canon.from_line->tool_in_spindle = tool.tool;
+  return out;
+}
+
 // The run's telemetry, and every frame to the caller's listener too.
 FrameListener both(PathTelemetry& telemetry, const FrameListener& also) {
   return [&telemetry, also](const hal::CanFrame& f, can::MessageId id) {
@@ -56,7 +65,8 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
 
 }  // namespace
 
-ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& o) {
+ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options) {
+  const ProgramRunOptions o = with_node_tool(client, options);
   ProgramPlan plan;
   plan.limits = node_motion_limits(client);
   PathTelemetry telemetry;
@@ -88,7 +98,8 @@ fw::motion::MotionLimits node_motion_limits(NodeClient& client) {
   return m;
 }
 
-ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& o) {
+ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options) {
+  const ProgramRunOptions o = with_node_tool(client, options);
   ProgramRunResult r;
   r.limits = node_motion_limits(client);
   const Heartbeat hb = client.wait_heartbeat(Micros{1'000'000});
@@ -158,6 +169,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     so.before_send = o.before_send;
     so.on_pause = o.on_pause;
     so.resume = o.resume;
+    so.feed_hold = o.feed_hold;
     so.on_frame = both(telemetry, o.on_frame);
     r.stream = stream_program(client, r.wire, so);
     listen();

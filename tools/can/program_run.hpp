@@ -36,6 +36,9 @@ class ProgramInputError : public std::runtime_error {
 struct ProgramRunOptions {
   double rapid_feed_mm_s = 50.0;        // G0
   gcode::CanonSetup canon{};            // tool table, parameters, subroutine path (gcode_program.hpp)
+  // With canon.from_line: the tool in the spindle is the node's PROGRAM_TOOL when the node knows it
+  // (asked before the parse); when it does not, canon.from_line->tool_in_spindle stands.
+  bool tool_from_node = false;
   std::optional<double> feed_override;  // 0..1.5
   int telemetry_ms = 1;                 // 1: sample every tick and score; 0: no score
   std::size_t window = 12;
@@ -45,6 +48,7 @@ struct ProgramRunOptions {
   // Program pauses (M0, M1, M6): StreamOptions::on_pause and resume. No resume: the run stops at the first pause.
   std::function<void(const StreamPause&)> on_pause;
   std::function<bool(const StreamPause&, Micros paused_for)> resume;
+  std::function<bool()> feed_hold;  // StreamOptions::feed_hold: the operator's feed hold switch
   FrameListener on_frame;  // every frame from the node too, besides the run's own telemetry (a live page's scope)
 };
 

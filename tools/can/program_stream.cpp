@@ -60,6 +60,7 @@ class Streamer {
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
       if (acked_ > 0 && o_.feed_override && !override_sent_) set_override();
       handle_pause();
+      handle_hold();
       while (next_ < program_.elements.size() && flight_.size() < window && room() > 0) send_next();
       const Micros now = client_.bus().now();
       if (!flight_.empty() && now - flight_.front().sent_at > client_.options().timeout) {
@@ -108,6 +109,27 @@ class Streamer {
     }
   }
 
+  // Time the feed has been held so far (the hold on now included).
+  Micros held_time() const { return held_total_ + (held_ ? client_.bus().now() - held_since_ : Micros{0}); }
+
+  // The caller's feed hold switch, sent when it changes (once the node has the program).
+  void handle_hold() {
+    if (!o_.feed_hold || acked_ == 0 || failure_) return;
+    const bool want = o_.feed_hold();
+    if (want == held_) return;
+    try {
+      client_.command(want ? can::CommandCode::feed_hold : can::CommandCode::feed_resume);
+    } catch (const RequestError& e) {
+      failure_ = std::string(want ? "feed hold" : "feed resume") + " refused: " + e.what();
+      return;
+    }
+    const Micros now = client_.bus().now();
+    if (want) held_since_ = now;
+    else held_total_ += now - held_since_;
+    held_ = want;
+    r_.held_s = static_cast<double>(held_time().count()) * 1e-6;
+  }
+
   void mark_filled(Micros now) {
     filled_ = true;
     const double s = static_cast<double>((now - first_sent_).count()) * 1e-6;
@@ -151,6 +173,7 @@ class Streamer {
   void on_frame(const hal::CanFrame& f, MessageId id) {
     if (id == MessageId::command_ack) on_ack(read_command_ack(f));
     if (id == MessageId::program_status) on_status(read_program_status(f));
+    if (id == MessageId::program_tool) on_tool(read_program_tool(f));
     if (id == MessageId::heartbeat) {
       r_.final_heartbeat = read_heartbeat(f);
       if (r_.final_heartbeat->state == fw::MotionState::faulted && !failure_ && acked_ > 0 && !over(status_.state))
@@ -188,8 +211,20 @@ class Streamer {
     r_.underruns = s.underruns;
     if (fw::can::active(s.state)) running_ = std::max(running_, s.element);
     track_pause(s);
+    report(s);
+  }
+
+  // PROGRAM_TOOL comes right after its PROGRAM_STATUS: a new tool is reported with that status.
+  void on_tool(const ProgramTool& t) {
+    const bool news = r_.final_tool != t;
+    r_.final_tool = t;
+    if (news && acked_ > 0) report(status_);
+  }
+
+  void report(const ProgramStatus& s) {
     if (!o_.progress) return;
     StreamProgress p;
+    p.tool = r_.final_tool;
     p.sent = next_;
     p.acknowledged = acked_;
     p.total = program_.elements.size();
@@ -252,9 +287,10 @@ class Streamer {
         client_.send_raw(command_request(client_.node(), client_.next_tag(), can::CommandCode::program_status, 0, 0, 0.0));
       }
       handle_pause();
+      handle_hold();
       if (failure_) return stop(StreamResult::End::failed, *failure_);
       if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
-      if (client_.bus().now() > deadline + paused_time())
+      if (client_.bus().now() > deadline + paused_time() + held_time())
         return stop(StreamResult::End::failed, "the program did not end within " +
                                                    std::to_string(limit.count() / 1'000'000) + " s");
       client_.pump_until([this] { return over(status_.state) || failure_.has_value(); }, Micros{50'000});
@@ -288,6 +324,7 @@ class Streamer {
   void finish() {
     r_.run_s = static_cast<double>((client_.bus().now() - first_sent_).count()) * 1e-6;
     r_.underruns = status_.underruns;
+    r_.held_s = static_cast<double>(held_time().count()) * 1e-6;
   }
 
   NodeClient& client_;
@@ -308,6 +345,9 @@ class Streamer {
   bool override_sent_ = false;
   std::optional<StreamPause> pause_;  // the pause the node rests at
   bool resume_sent_ = false;
+  bool held_ = false;  // feed_hold sent and not yet resumed
+  Micros held_since_{0};
+  Micros held_total_{0};
   Micros pause_since_{0};
   Micros paused_total_{0};
 };

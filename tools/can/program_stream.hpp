@@ -44,6 +44,7 @@ struct StreamProgress {
   double fraction = 0.0;         // of the program's length run
   std::uint64_t underruns = 0;
   fw::can::ProgramState state = fw::can::ProgramState::none;
+  std::optional<ProgramTool> tool;  // the node's PROGRAM_TOOL, once seen during this run
 };
 
 // A pause the node rests at.
@@ -68,6 +69,10 @@ struct StreamOptions {
   std::function<void(const StreamPause&)> on_pause;   // the node rests at a pause (once per pause)
   // Asked while paused, with the time since the pause was reported: true sends cycle_start.
   std::function<bool(const StreamPause&, Micros paused_for)> resume;
+  // The operator's feed hold, asked at every look once the program runs: true brakes on the path and
+  // waits there (COMMAND feed_hold), false again goes on (feed_resume). A refusal ends the run failed,
+  // after an abort on the path. The wait for the end grows by the time held.
+  std::function<bool()> feed_hold;
 };
 
 struct StreamResult {
@@ -83,8 +88,10 @@ struct StreamResult {
   double fill_elements_per_s = 0.0;  // elements accepted per second while the queue still had room
   double run_s = 0.0;           // first element sent -> end of the program (bus time), pauses included
   double paused_s = 0.0;        // time the node rested at pauses (bus time)
+  double held_s = 0.0;          // time the feed was held by StreamOptions::feed_hold (bus time)
   std::vector<StreamPause> pauses;  // in the order reached
   ProgramStatus final_status{};
+  std::optional<ProgramTool> final_tool;  // the node's last PROGRAM_TOOL of the run
   std::optional<Heartbeat> final_heartbeat;
 };
 

@@ -49,6 +49,20 @@ struct Builder {
     return true;
   }
 
+  // A manual tool change (M6): a pause that tells the node its tool (SEGMENT kind tool_change).
+  bool add_tool_change(const Segment& s, int tool, int line) {
+    WireElement e;
+    if (fw::can::encode_tool_change(tool, at_mm, node, 0, e.frames) != nullptr) {
+      error = "line " + std::to_string(line) + ": tool " + std::to_string(tool) +
+              " does not fit the wire (SEGMENT.x: tools 0 to 8388607)";
+      return false;
+    }
+    e.segment = s;
+    e.line = line;
+    out.elements.push_back(e);
+    return true;
+  }
+
   static std::string describe(const Segment& s) {
     char buf[96];
     if (s.kind == SegmentKind::dwell) std::snprintf(buf, sizeof buf, "a dwell of %g s", s.dwell_s);
@@ -90,8 +104,9 @@ std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, cons
     const int line = static_cast<int>(s.tag);
     bool ok = true;
     if (fw::motion::is_program_action(s)) {
-      ok = b.add(s, line, 0.0);
       const auto p = std::ranges::find(program.pauses, k, &gcode::ProgramPause::segment);
+      const bool tool_change = p != program.pauses.end() && p->reason == gcode::PauseReason::tool_change;
+      ok = tool_change ? b.add_tool_change(s, p->tool, line) : b.add(s, line, 0.0);
       if (ok && p != program.pauses.end()) b.out.elements.back().pause = *p;
     } else if (s.kind == SegmentKind::dwell) {
       for (double left_s = s.dwell_s; ok && left_s > 0.0; left_s -= kMaxWireDwellS)

@@ -4,7 +4,9 @@
 // stands. What one element cannot carry is split exactly: a full circle or
 // an arc whose centre lies far off its chord's bisector goes as two halves
 // of the same arc, a dwell beyond 838 s as several dwells. Every element
-// keeps its G-code line for progress and error messages.
+// keeps its G-code line for progress and error messages. A tool change (M6)
+// goes as SEGMENT kind tool_change with its tool, so the node knows it once
+// the operator continues.
 #include <optional>
 #include <string>
 #include <vector>

@@ -67,6 +67,7 @@ void TelemetryView::take(const hal::CanFrame& f, can::MessageId id) {
                            can::read(f, field(kArscMsg, "cutting_gain"))};
       break;
     case MessageId::tlm_spindle: spindle = read_spindle(f); break;
+    case MessageId::program_tool: program_tool = read_program_tool(f); break;
     default: {
       // The per-axis messages: one per axis of each block.
       namespace fl = can::fields;

@@ -60,6 +60,7 @@ struct TelemetryView {
   std::optional<ContourTelemetry> contour;
   std::optional<ArscTelemetry> arsc;
   std::optional<SpindleTelemetry> spindle;
+  std::optional<ProgramTool> program_tool;  // PROGRAM_TOOL: the tool the node knows in the spindle
   std::uint64_t frames = 0;  // every frame taken
   std::uint64_t bits = 0;    // their nominal bits on the wire (no stuff bits)
 

@@ -42,8 +42,10 @@ CLI::Option* add_from_line_options(CLI::App& command, FromLineOptions& o) {
       ->check(CLI::NonNegativeNumber)
       ->needs(from_line);
   command.add_option("--tool-in-spindle", o.run_from.tool_in_spindle,
-                     "with --from-line: the tool the machine holds (default 0: none); another is changed at the start")
+                     "with --from-line: the tool the machine holds (default: tnvctl run asks the node, which knows "
+                     "it after a confirmed M6; else 0, none); another is changed at the start")
       ->check(CLI::NonNegativeNumber)
+      ->each([&o](const std::string&) { o.tool_given = true; })
       ->needs(from_line);
   return from_line;
 }

@@ -34,6 +34,8 @@ struct GcodeSetupOptions {
 struct FromLineOptions {
   int from_line = 0;  // 0: the whole program
   gcode::RunFromLine run_from;
+  // --tool-in-spindle was given; without it a machine run takes the node's tool when the node knows it.
+  bool tool_given = false;
 };
 
 // `options` must outlive the parse; the returned option is --from-line (for needs()).

@@ -42,7 +42,7 @@ struct CanonMotion {
     spindle_speed,  // SET_SPINDLE_SPEED: value = rpm (G97; G96 is refused)
     spindle_stop,   // STOP_SPINDLE_TURNING: value 1 at the program's end (M2, M30), else 0
     coolant_on,   // MIST_ON / FLOOD_ON
-    pause,        // PROGRAM_STOP (M0, G88's stop): value 0; OPTIONAL_PROGRAM_STOP (M1): value 1
+    pause,        // PROGRAM_STOP (M0, G88's stop): value 0; OPTIONAL_PROGRAM_STOP (M1): value 1; M60's PROGRAM_STOP: 60
     end,          // PROGRAM_END (M2, M30) / FINISH (the closing %)
   };
   Kind kind = Kind::other;

@@ -95,7 +95,10 @@ void CanonSegmentSink::convert(const CanonCall& call) {
         ++program_.optional_stops_skipped;
         break;
       }
-      add_pause(tag, m.value == 1.0 ? PauseReason::optional_stop : PauseReason::program_stop, 0);
+      add_pause(tag, m.value == 1.0    ? PauseReason::optional_stop
+                     : m.value == 60.0 ? PauseReason::pallet_change
+                                       : PauseReason::program_stop,
+                0);
       break;
     case Kind::end: program_.ended = true; break;
   }

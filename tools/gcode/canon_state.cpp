@@ -57,7 +57,7 @@ std::string unsupported_g(int code) {
 
 int m_group(int code) {
   switch (code) {
-    case 0: case 1: case 2: case 30: return 4;
+    case 0: case 1: case 2: case 30: case 60: return 4;
     case 6: return 6;
     case 3: case 4: case 5: return 7;
     case 7: case 8: case 9: return 8;
@@ -808,7 +808,10 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     comp_flush_here();
     if (m->code == 0) emit("PROGRAM_STOP()", kind_only(CanonMotion::Kind::pause));
     else if (m->code == 1) emit("OPTIONAL_PROGRAM_STOP()", valued(CanonMotion::Kind::pause, 1.0));
-    else program_end(m->code == 30);
+    else if (m->code == 60) {  // pallet change: the shuttle, then a program stop (60: the pause's reason)
+      emit("PALLET_SHUTTLE()");
+      emit("PROGRAM_STOP()", valued(CanonMotion::Kind::pause, 60.0));
+    } else program_end(m->code == 30);
   }
 }
 

@@ -50,6 +50,7 @@ const char* to_string(PauseReason reason) noexcept {
     case PauseReason::program_stop: return "program stop (M0)";
     case PauseReason::optional_stop: return "optional stop (M1)";
     case PauseReason::tool_change: return "tool change (M6)";
+    case PauseReason::pallet_change: return "pallet change (M60)";
   }
   return "?";
 }

@@ -41,6 +41,7 @@ enum class PauseReason : std::uint8_t {
   program_stop,   // M0 (and G88's stop at the bottom of the bore)
   optional_stop,  // M1 with the optional stop switch on
   tool_change,    // M6: a manual tool change; the new tool's length applies from the next move
+  pallet_change,  // M60: no pallet shuttle on this machine: the operator changes the part, a program stop
 };
 const char* to_string(PauseReason reason) noexcept;
 

@@ -272,12 +272,14 @@ class Connection {
       host::Heartbeat hb;
       host::CaptureStatus capture;
       host::NodeIdentity id;
+      host::ProgramTool tool;
     };
     const Status s = blocking([](host::NodeClient& c) {
       Status out;
       out.hb = c.wait_heartbeat(std::max(c.options().timeout, Micros{1'000'000}));
       out.capture = c.capture(can::CaptureOp::status);
       out.id = host::read_identity(c);
+      out.tool = c.program_tool();
       return out;
     });
     py::dict d(to_python(host::heartbeat_json(s.hb)));
@@ -286,6 +288,8 @@ class Connection {
     d["firmware"] = host::firmware_version_text(s.id.firmware_version);
     d["build_id"] = host::build_id_text(s.id.build_id);
     d["protocol_version"] = s.id.protocol_version;
+    // The tool the node knows in the spindle (PROGRAM_TOOL); None when it does not know (never guessed).
+    d["tool_in_spindle"] = s.tool.known ? py::object(py::int_(s.tool.tool)) : py::object(py::none());
     return d;
   }
 

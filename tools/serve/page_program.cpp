@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "tools/serve/api_error.hpp"
+#include "tools/serve/http_reply.hpp"
 
 namespace tnv::serve {
 
@@ -22,7 +25,65 @@ std::size_t chords(const fw::motion::SegmentGeometry& g) {
   return static_cast<std::size_t>(std::clamp(n, 1.0, 4096.0));
 }
 
+// body[key] as a whole number in [min, max]; `fallback` when absent.
+long whole_field(const nlohmann::json& body, const char* key, long fallback, long min, long max) {
+  if (!body.contains(key)) return fallback;
+  const nlohmann::json& v = body[key];
+  if (!v.is_number_integer() || v.get<long long>() < min || v.get<long long>() > max)
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be a whole number from " + std::to_string(min) + " to " +
+                                        std::to_string(max) + " (got " + v.dump() + ")");
+  return static_cast<long>(v.get<long long>());
+}
+
+// body[key] as a finite number of at least `min`; `fallback` when absent.
+double number_field(const nlohmann::json& body, const char* key, double fallback, double min) {
+  if (!body.contains(key)) return fallback;
+  const nlohmann::json& v = body[key];
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < min)
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be a number" +
+                                        (std::isfinite(min) ? " >= " + std::to_string(static_cast<long>(min)) : "") +
+                                        " (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+// body[key] as true or false; `fallback` when absent.
+bool switch_field(const nlohmann::json& body, const char* key, bool fallback) {
+  if (!body.contains(key)) return fallback;
+  if (!body[key].is_boolean())
+    throw ApiError(kHttpBadRequest, std::string(key) + " must be true or false (got " + body[key].dump() + ")");
+  return body[key].get<bool>();
+}
+
 }  // namespace
+
+gcode::CanonSetup page_canon_setup(const nlohmann::json& body) {
+  gcode::CanonSetup setup;
+  // The operator's switches, LinuxCNC's defaults (on) when absent: --optional-stop and --block-delete.
+  setup.optional_stop = switch_field(body, "optional_stop", setup.optional_stop);
+  setup.block_delete = switch_field(body, "block_delete", setup.block_delete);
+  // The tool table and parameter file as their texts (the page reads the files), as --tool-table and
+  // --var-file load them: LinuxCNC's .tbl (lengths in mm) and .var (work offsets, G28/G30, G92 in mm).
+  std::string error;
+  if (body.contains("tool_table") && !setup.tools.load_text(text_field(body, "tool_table"), error))
+    throw ApiError(kHttpBadRequest, "tool_table: " + error);
+  if (body.contains("var_file") && !setup.parameters.load_var_text(text_field(body, "var_file"), error))
+    throw ApiError(kHttpBadRequest, "var_file: " + error);
+  const char* companions[] = {"from_pass", "tool_in_spindle", "approach_height_mm", "clearance_z_mm"};
+  if (!body.contains("from_line")) {
+    for (const char* key : companions)
+      if (body.contains(key)) throw ApiError(kHttpBadRequest, std::string(key) + " needs from_line");
+    return setup;
+  }
+  constexpr long kMax = std::numeric_limits<int>::max();
+  gcode::RunFromLine from;
+  from.line = static_cast<int>(whole_field(body, "from_line", 0, 1, kMax));
+  from.pass = whole_field(body, "from_pass", from.pass, 1, kMax);
+  from.tool_in_spindle = static_cast<int>(whole_field(body, "tool_in_spindle", from.tool_in_spindle, 0, kMax));
+  from.approach_mm = number_field(body, "approach_height_mm", from.approach_mm, 0.0);
+  from.clearance_z_mm = number_field(body, "clearance_z_mm", from.clearance_z_mm, -HUGE_VAL);
+  setup.from_line = from;
+  return setup;
+}
 
 nlohmann::json program_summary(const std::string& gcode_text) {
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -132,9 +193,12 @@ nlohmann::json preview_json(const can_host::ProgramPlan& plan, std::size_t max_p
   return out;
 }
 
-nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text, ProgramState& state,
+nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::string& gcode_text,
+                                    const gcode::CanonSetup& canon, bool tool_from_node, ProgramState& state,
                                     const can_host::FrameListener& scope) {
   can_host::ProgramRunOptions o;
+  o.canon = canon;
+  o.tool_from_node = tool_from_node;
   o.telemetry_ms = 0;
   o.on_frame = scope;
   // Called on this (the node) thread between the stream's bus operations, so
@@ -151,6 +215,8 @@ nlohmann::json run_program_for_page(can_host::NodeClient& client, const std::str
   // A pause waits for the Resume button of the tab with control (POST /api/program/resume).
   o.on_pause = [&state](const can_host::StreamPause& p) { state.paused(p); };
   o.resume = [&state](const can_host::StreamPause&, can_host::Micros) { return state.take_resume(); };
+  // The Feed hold button (POST /api/program/hold): brakes on the path and waits there until released.
+  o.feed_hold = [&state] { return state.feed_hold_wanted(); };
   bool started = false;
   o.before_send = [&](std::size_t) {
     if (started) return;

@@ -11,7 +11,7 @@
 #include <httplib.h>
 
 // The Program panel's endpoints: a program's preview (anyone who may post)
-// and its run (the tab with control). Both interpret the program on the
+// and its run (the tab with control), whole or from a line (page_canon_setup). Both interpret the program on the
 // node thread, with the node's limits from where the table stands.
 namespace tnv::serve {
 
@@ -25,11 +25,16 @@ constexpr std::chrono::milliseconds kStartLook{10};
 void TuningServer::program_routes() {
   post("/api/program/preview", [this](const httplib::Request& req, httplib::Response& res) {
     answer(res, [&] {
-      const std::string text = text_field(body_json(req), "gcode");
+      const nlohmann::json body = body_json(req);
+      const std::string text = text_field(body, "gcode");
+      const gcode::CanonSetup canon = page_canon_setup(body);
+      const bool tool_from_node = !body.contains("tool_in_spindle");  // a run from line: the node's tool
       if (program_.active()) throw ApiError(kHttpConflict, "a program is running: preview it when it has ended");
       auto plan = std::make_shared<can_host::ProgramPlan>();
-      worker_.run([this, text, plan](can_host::NodeClient& c) {
+      worker_.run([this, text, canon, tool_from_node, plan](can_host::NodeClient& c) {
         can_host::ProgramRunOptions o;
+        o.canon = canon;
+        o.tool_from_node = tool_from_node;
         o.on_frame = worker_.scope_listener();
         *plan = can_host::plan_gcode(c, text, o);
         return nlohmann::json();
@@ -47,11 +52,13 @@ void TuningServer::program_routes() {
   post("/api/program/run", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json& body) {
       const std::string text = text_field(body, "gcode");
+      const gcode::CanonSetup canon = page_canon_setup(body);  // a bad field: 400 before anything starts
+      const bool tool_from_node = !body.contains("tool_in_spindle");
       if (!program_.begin(program_summary(text))) throw ApiError(kHttpConflict, "a program is running already");
       std::future<nlohmann::json> done;
       try {
-        done = worker_.submit([this, text](can_host::NodeClient& c) {
-          return run_program_for_page(c, text, program_, worker_.scope_listener());
+        done = worker_.submit([this, text, canon, tool_from_node](can_host::NodeClient& c) {
+          return run_program_for_page(c, text, canon, tool_from_node, program_, worker_.scope_listener());
         });
       } catch (const std::exception& e) {
         program_.finish("refused", e.what());
@@ -72,6 +79,16 @@ void TuningServer::program_routes() {
   post("/api/program/resume", [this](const httplib::Request& req, httplib::Response& res) {
     commanded(req, res, [this](const nlohmann::json&) {
       if (!program_.resume()) throw ApiError(kHttpConflict, "the program is not paused");
+      return program_.json();
+    });
+  });
+
+  // The feed hold of the running program: {"hold": true} brakes on the path and waits, false goes on
+  // (COMMAND feed_hold / feed_resume, sent by the run's stream at its next look).
+  post("/api/program/hold", [this](const httplib::Request& req, httplib::Response& res) {
+    commanded(req, res, [this](const nlohmann::json& body) {
+      if (!body.contains("hold") || !body["hold"].is_boolean()) throw ApiError(kHttpBadRequest, "give \"hold\": true or false");
+      if (!program_.feed_hold(body["hold"].get<bool>())) throw ApiError(kHttpConflict, "no program is running");
       return program_.json();
     });
   });

@@ -10,7 +10,10 @@ bool ProgramState::begin(const nlohmann::json& summary) {
   interrupt_ = false;
   estop_ = false;
   resume_ = false;
+  hold_ = false;
+  node_state_ = "none";
   pause_ = nullptr;
+  spindle_tool_ = nullptr;  // this run's PROGRAM_STATUS brings it again
   phase_ = "starting";
   ++run_;
   summary_ = summary;
@@ -33,6 +36,10 @@ void ProgramState::progress(const can_host::StreamProgress& p) {
   const std::lock_guard lock(mutex_);
   total_ = p.total;
   underruns_ = p.underruns;
+  node_state_ = fw::can::to_string(p.state);
+  if (p.tool)
+    spindle_tool_ = {{"known", p.tool->known}, {"tool", p.tool->known ? nlohmann::json(p.tool->tool) : nullptr},
+                     {"text", can_host::to_string(*p.tool)}};
   if (p.state != fw::can::ProgramState::paused) pause_ = nullptr;
   // Before the node runs (and after an abort) the stream's progress names the last element accepted,
   // not one that ran: the page shows the line the table is on.
@@ -76,6 +83,13 @@ bool ProgramState::resume() {
   return true;
 }
 
+bool ProgramState::feed_hold(bool on) {
+  const std::lock_guard lock(mutex_);
+  if (phase_ != "running") return false;
+  hold_ = on;
+  return true;
+}
+
 bool ProgramState::active() const {
   const std::lock_guard lock(mutex_);
   return phase_ == "starting" || phase_ == "running";
@@ -90,7 +104,8 @@ nlohmann::json ProgramState::json() const {
   const std::lock_guard lock(mutex_);
   return {{"phase", phase_},   {"run", run_},         {"line", line_},           {"element", element_},
           {"total", total_},   {"fraction", fraction_}, {"underruns", underruns_}, {"end", end_},
-          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}, {"pause", pause_}};
+          {"message", message_}, {"program", summary_}, {"interrupting", interrupt_.load()}, {"pause", pause_},
+          {"spindle_tool", spindle_tool_}, {"feed_hold", hold_.load()}, {"node_state", node_state_}};
 }
 
 }  // namespace tnv::serve

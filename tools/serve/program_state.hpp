@@ -36,11 +36,16 @@ class ProgramState {
   bool resume();
   // The stream's look while paused: true once after resume().
   bool take_resume() noexcept { return resume_.exchange(false); }
+  // The Feed hold button (the tab with control): false (nothing changed) when no program is running.
+  bool feed_hold(bool on);
+  bool feed_hold_wanted() const noexcept { return hold_.load(); }
   bool active() const;
   bool is_streaming() const;  // its elements are going out now
   // {"phase", "run", "line", "element", "total", "fraction", "underruns", "end", "message",
   //  "program" (its summary), "interrupting" (a stop was asked),
-  //  "pause": null or {"line", "reason", "tool", "text"} while it rests at a pause}
+  //  "pause": null or {"line", "reason", "tool", "text"} while it rests at a pause,
+  //  "spindle_tool": null (not reported) or {"known", "tool", "text"}: the node's PROGRAM_TOOL,
+  //  "feed_hold": the operator's hold asked for, "node_state": PROGRAM_STATUS.state (holding once it holds)}
   nlohmann::json json() const;
 
  private:
@@ -48,7 +53,10 @@ class ProgramState {
   std::atomic<bool> interrupt_{false};
   std::atomic<bool> estop_{false};
   std::atomic<bool> resume_{false};
+  std::atomic<bool> hold_{false};  // the operator's feed hold, sent by the run's stream
+  std::string node_state_ = "none";  // PROGRAM_STATUS.state as the run last saw it
   nlohmann::json pause_;  // null unless paused
+  nlohmann::json spindle_tool_;  // the node's last PROGRAM_TOOL seen by a run, null before any
   std::string phase_ = "idle";  // idle | starting | running | ended
   std::uint64_t run_ = 0;       // the page tells one run's end from the next's
   nlohmann::json summary_;

@@ -166,7 +166,10 @@ void TuningServer::audited(const httplib::Request& req, const httplib::Response&
   if (req.path.rfind("/api/program/", 0) == 0) {  // a program's size, lines and digest, not its text
     const nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
     if (body.is_object() && body.contains("gcode") && body["gcode"].is_string()) {
-      audit_.request(req, res, session, {{"gcode", program_summary(body["gcode"].get<std::string>())}});
+      nlohmann::json logged = body;  // the other fields (a run from line, the switches) as sent
+      for (const char* text : {"gcode", "tool_table", "var_file"})  // files: their size, lines and digest
+        if (body.contains(text) && body[text].is_string()) logged[text] = program_summary(body[text].get<std::string>());
+      audit_.request(req, res, session, logged);
       return;
     }
   }

@@ -63,6 +63,7 @@ std::string sample_text(const can_host::TelemetryView& l, double t_s) {
   if (l.spindle)
     n += std::snprintf(buf + n, room(), "  spindle %s %6.0f / %6.0f rpm", can_host::spindle_state(*l.spindle),
                        l.spindle->measured_rpm, l.spindle->command_rpm);
+  if (l.program_tool) n += std::snprintf(buf + n, room(), "  in spindle: %s", can_host::to_string(*l.program_tool).c_str());
   return buf;
 }
 
@@ -89,8 +90,16 @@ int run_monitor(const MonitorOptions& o, Session& session, Report& report) {
   const Micros end = o.duration_s > 0.0 ? start + Micros{static_cast<long long>(o.duration_s * 1e6)} : Micros::max();
   std::uint64_t lines = 0;
   if (o.csv) std::cout << can_host::telemetry_csv_header() << '\n';
+  // The tool in the spindle comes with PROGRAM_STATUS: asked for once a second (COMMAND program_status is
+  // open to every host), so a restarted node's "unknown" shows within a second, not a stale tool.
+  const Micros ask_tool_every{1'000'000};
+  Micros tool_asked = start - ask_tool_every;
   try {
     for (Micros next = start + period; !g_interrupted && client.bus().now() < end; next += period) {
+      if (client.bus().now() - tool_asked >= ask_tool_every) {
+        tool_asked = client.bus().now();
+        client.command(can::CommandCode::program_status);
+      }
       const Micros wait = std::min(next, end) - client.bus().now();
       if (wait > Micros{0}) client.pump(wait);
       const double t_s = static_cast<double>((client.bus().now() - start).count()) * 1e-6;

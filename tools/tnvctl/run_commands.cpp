@@ -155,6 +155,7 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   can_host::ProgramRunOptions ro;
   ro.rapid_feed_mm_s = o.rapid_feed_mm_s;
   ro.canon = run_setup(o);
+  ro.tool_from_node = !o.from.tool_given;  // a run from line: the node's tool, when it knows it
   ro.feed_override = o.feed_override;
   ro.telemetry_ms = o.no_score ? 0 : 1;
   ro.window = static_cast<std::size_t>(o.window);
@@ -223,6 +224,12 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
     std::snprintf(buf, sizeof buf, "%zu pause%s, %.3f s paused (the run's time includes them)", st.pauses.size(),
                   st.pauses.size() == 1 ? "" : "s", st.paused_s);
     report.line(buf);
+  }
+  // The node's word (PROGRAM_TOOL), not the program's: unknown after a restart or an unconfirmed change.
+  report.data["tool_in_spindle"] = nullptr;
+  if (st.final_tool) {
+    report.line(o.file + ": in the spindle (the node's PROGRAM_TOOL): " + can_host::to_string(*st.final_tool));
+    if (st.final_tool->known) report.data["tool_in_spindle"] = st.final_tool->tool;
   }
   if (st.end == can_host::StreamResult::End::interrupted) {
     if (st.acknowledged == 0) throw RunFailed("stopped by Ctrl-C before the program started: nothing moved");

@@ -92,7 +92,28 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::spindle_stop);
+  EXPECT_EQ(head.kind, WireKind::tool_change);
+}
+
+// A tool change (M6) is one frame, a pause on the node that carries its tool exactly.
+TEST(SegmentWire, AToolChangeIsAPauseThatCarriesItsTool) {
+  for (const int tool : {0, 1, 7, 99999, 8388607}) {
+    SegmentFrames f;
+    ASSERT_EQ(encode_tool_change(tool, {1.5, -2.0}, 1, 0x11, f), nullptr) << tool;
+    EXPECT_FALSE(f.has_tail);
+    EXPECT_EQ(f.end_mm, (PlanePoint{1.5, -2.0})) << "the next element starts where the change rests";
+    SegmentHead head;
+    ASSERT_TRUE(decode_head(f.head, head));
+    EXPECT_EQ(head.kind, WireKind::tool_change);
+    EXPECT_EQ(head.tool, tool);
+    motion::Segment back;
+    ASSERT_TRUE(decode_segment(head, nullptr, {1.5, -2.0}, back));
+    EXPECT_TRUE(back.pause);
+    EXPECT_EQ(back.dwell_s, 0.0);
+  }
+  SegmentFrames f;
+  EXPECT_EQ(encode_tool_change(-1, {0.0, 0.0}, 1, 0x11, f), &fields::kSegmentX);
+  EXPECT_EQ(encode_tool_change(8388608, {0.0, 0.0}, 1, 0x11, f), &fields::kSegmentX);
 }
 
 // A program pause is one frame of its own kind and comes back a pause, not a dwell that runs out.

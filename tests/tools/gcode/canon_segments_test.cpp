@@ -222,6 +222,36 @@ TEST(CanonSegments, M0AndM6PauseAndM1PausesOnlyWithTheOptionalStopSwitchOn) {
   EXPECT_NE(summary_text(r.program).find("1 optional stop skipped"), std::string::npos) << summary_text(r.program);
 }
 
+// M60 (a pallet change) makes rs274's calls, PALLET_SHUTTLE() then
+// PROGRAM_STOP(), after the line's move; this machine has no shuttle, so a
+// machine run pauses there as at M0 (the operator changes the part),
+// whatever the optional stop switch says.
+TEST(CanonSegments, M60IsAPalletShuttleAndAProgramStopAndPausesTheRun) {
+  const CanonResult c = interpret_canon("G21 G90\nG1 X1 F100\nM60 G1 X3\nG1 X2\nM2\n");
+  ASSERT_FALSE(c.error) << to_string(*c.error);
+  std::vector<std::string> after_feed;
+  bool seen = false;
+  for (const CanonCall& call : c.calls) {
+    if (call.text.rfind("STRAIGHT_FEED(3.0000", 0) == 0) seen = true;
+    else if (seen && after_feed.size() < 3) after_feed.push_back(call.text);
+  }
+  EXPECT_EQ(after_feed, (std::vector<std::string>{"PALLET_SHUTTLE()", "PROGRAM_STOP()",
+                                                   "STRAIGHT_FEED(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"}));
+  for (const bool optional_stop : {true, false}) {
+    GcodeOptions o;
+    o.canon.optional_stop = optional_stop;
+    const GcodeResult r = parse_gcode("G21 G90\nG1 X1 F100\nM60 G1 X3\nG1 X2\nM2\n", o);
+    ASSERT_FALSE(r.error) << to_string(*r.error);
+    ASSERT_EQ(r.program.pauses.size(), 1u);
+    EXPECT_EQ(r.program.pauses[0].reason, PauseReason::pallet_change);
+    EXPECT_EQ(to_string(r.program.pauses[0]), "pallet change (M60)");
+    const Segment& pause = r.program.segments.at(r.program.pauses[0].segment);
+    EXPECT_TRUE(pause.pause);
+    EXPECT_EQ(pause.tag, 3u);
+    EXPECT_EQ(r.program.pauses[0].segment, 2u) << "after the line's own move";
+  }
+}
+
 // S, M3, M4 and M5 become spindle elements in program order: a new S while
 // it turns is a new speed, M3 at S0 is a stop until an S, a command that
 // changes nothing is not sent, and the program's end stops only a spindle

@@ -100,6 +100,7 @@ def test_move_then_capture_to_numpy_and_a_data_frame(node):
     status = node.move("x", 0.5, 10.0)
     assert status["state"] not in ("moving", "dwell", "faulted")
     assert node.status()["fault"] == "none"
+    assert node.status()["tool_in_spindle"] is None  # no tool change since the node started: unknown
 
     data = node.capture(lambda n: n.move("x", -0.5, 10.0), channels="pos_x,pos_y,contour", trigger="motion",
                         decimation=2)
@@ -154,6 +155,8 @@ def test_unix_iface_against_tnv_fw(daemon):
             node.params[GAMMA] = 1e9
         assert node.params[GAMMA] == 0.375
         assert node.status()["protocol_version"] == tnv.protocol_version
+        # A node just started does not know the tool in its spindle: None, not 0 (no tool).
+        assert node.status()["tool_in_spindle"] is None
 
 
 def test_waiting_on_the_bus_releases_the_gil(node):

@@ -227,7 +227,8 @@ class Node:
         return self._conn().command(name, axis, arg, _finite("value", value))
 
     def status(self):
-        """One heartbeat (state, fault, flags, ...), the capture state and the firmware."""
+        """One heartbeat (state, fault, flags, ...), the capture state, the firmware and
+        tool_in_spindle (the node's PROGRAM_TOOL; None when it does not know)."""
         return self._conn().status()
 
     # --- capture

@@ -3,7 +3,9 @@
 and column, a program loaded from a file is previewed (its path drawn, one
 polyline per segment), and run from the tab with control to its end on the
 emulated node, the current line advancing through the program and the tool
-marker following the table."""
+marker following the table; a pause and its Resume; a run from line (a
+line outside the program refused and nothing started, then a run from
+line 4 that shows no line before it); the feed hold and its release."""
 
 import pytest
 from conftest import wait_for
@@ -103,3 +105,51 @@ def test_a_paused_program_shows_resume_and_continues_on_it(tab, tmp_path):
     state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" else None)(program_state(tab)), 60, "the run's end")
     assert state["end"] == "done", (state, tab.find_element("id", "program-state").text)
     assert not tab.find_element("id", "program-resume").is_displayed()
+
+
+def test_a_run_from_line_runs_from_there_and_a_bad_line_starts_nothing(tab, tmp_path):
+    path = tmp_path / "from-line.ngc"
+    path.write_text(PROGRAM)
+    tab.find_element("id", "program-file").send_keys(str(path))
+    wait_for(lambda: page_value(tab, "window.tnvPage.program.drawn") == 3, 60, "the preview's three pieces drawn")
+    before = program_state(tab)["run"]
+    from_line = tab.find_element("id", "program-from-line")
+    try:
+        from_line.send_keys("99")
+        tab.find_element("id", "program-run").click()
+        text = wait_for(lambda: (lambda t: t if "cannot run from line 99" in t else None)(
+            tab.find_element("id", "program-error").text), 60, "the refusal of line 99")
+        assert "lines 1 to" in text, text
+        assert program_state(tab)["run"] == before, "a refused start began a run"
+
+        from_line.clear()
+        from_line.send_keys("4")
+        tab.find_element("id", "program-run").click()
+        state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" and s["run"] > before else None)(
+            program_state(tab)), 120, "the end of the run from line 4")
+        assert state["end"] == "done", (state, tab.find_element("id", "program-error").text)
+        seen = state["linesSeen"]
+        print(f"current lines shown during the run from line 4: {seen}")
+        assert seen and min(seen) >= 4 and seen[-1] == 5, f"a line before 4 ran, or 5 was not reached: {seen}"
+        assert [p["line"] for p in program_state(tab)["preview"]["pieces"]][-1] == 5
+    finally:
+        from_line.clear()
+
+
+def test_feed_hold_holds_on_the_path_and_feed_resume_goes_on(tab, tmp_path):
+    path = tmp_path / "long.ngc"
+    path.write_text("G21 G91 G17 F300\n" + "G1 X0.5\n" * 60 + "G1 X-30\n")  # 60 s of machine time: never ends here
+    tab.find_element("id", "program-file").send_keys(str(path))
+    wait_for(lambda: page_value(tab, "window.tnvPage.program.drawn") == 61, 60, "the preview's 61 pieces drawn")
+    tab.find_element("id", "program-run").click()
+    wait_for(lambda: (lambda s: s["phase"] == "running" and s["line"] >= 3)(program_state(tab)), 60, "the run under way")
+    hold = tab.find_element("id", "program-hold")
+    hold.click()
+    wait_for(lambda: "feed held at line" in tab.find_element("id", "program-state").text, 60, "the feed held")
+    assert hold.text == "Feed resume", hold.text
+    held_line = program_state(tab)["line"]
+    hold.click()
+    wait_for(lambda: program_state(tab)["line"] >= held_line + 2, 60, "the program going on past the held line")
+    tab.find_element("id", "program-stop").click()
+    state = wait_for(lambda: (lambda s: s if s["phase"] == "ended" else None)(program_state(tab)), 60, "the stop")
+    assert state["end"] == "interrupted", state

@@ -1,7 +1,8 @@
 // The Program panel: a program pasted or loaded from a file, its preview
 // (the path the server's interpreter makes of it from where the table
-// stands, with the node's limits), its run from the tab with control, and
-// while it runs the current line and the tool's position on the path.
+// stands, with the node's limits), its run from the tab with control (whole,
+// or from a line), and while it runs the current line and the tool's
+// position on the path.
 'use strict';
 
 const program = (() => {
@@ -13,9 +14,11 @@ const program = (() => {
   let textLines = [];              // the previewed program's lines
   let preview = null;
   let fitTravel = false;
+  const files = { tool_table: null, var_file: null };  // the texts of the loaded tool table and .var file
   // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
-                                 linesSeen: [], runStarted: -1, tool: null, error: '', pause: null };
+                                 linesSeen: [], runStarted: -1, tool: null, error: '', pause: null,
+                                 spindleTool: null, feedHold: false };
 
   function el(name, attrs, parent) {
     const e = document.createElementNS(SVG, name);
@@ -90,9 +93,27 @@ const program = (() => {
     draw();
   }
 
+  // The request's body: the program, and a run from line when one is given (the server checks the values).
+  function body() {
+    const b = { gcode: $('program-text').value, optional_stop: $('program-optional-stop').checked,
+                block_delete: $('program-block-delete').checked };
+    if (files.tool_table !== null) b.tool_table = files.tool_table;
+    if (files.var_file !== null) b.var_file = files.var_file;
+    // A field the browser could not read as a number goes as text: the server refuses it, never runs the whole program.
+    const field = (id) => ($(id).validity.badInput ? 'not a number' : $(id).value.trim());
+    const as = (v) => (Number.isFinite(Number(v)) ? Number(v) : v);
+    const from = field('program-from-line');
+    if (from !== '') {
+      b.from_line = as(from);
+      const tool = field('program-tool');
+      if (tool !== '') b.tool_in_spindle = as(tool);
+    }
+    return b;
+  }
+
   async function previewNow() {
     say($('program-error'), 'interpreting…', true);
-    const r = await api('POST', '/api/program/preview', { gcode: $('program-text').value });
+    const r = await api('POST', '/api/program/preview', body());
     state.error = r.ok ? '' : r.error;
     if (!r.ok) {
       preview = state.preview = null;
@@ -121,7 +142,7 @@ const program = (() => {
     if (!(await previewNow())) return;
     state.linesSeen = [];
     state.runStarted = -1;
-    const r = await api('POST', '/api/program/run', { gcode: $('program-text').value });
+    const r = await api('POST', '/api/program/run', body());
     state.error = r.ok ? '' : r.error;
     if (r.ok) state.runStarted = r.data.program.run;
     say($('program-error'), r.ok ? '' : r.error, r.ok);
@@ -154,12 +175,19 @@ const program = (() => {
       text = `running line ${s.line}: ${(textLines[s.line - 1] || '').trim()} — element ${s.element}/${s.total}, ` +
         `${(100 * s.fraction).toFixed(1)} %` + (s.underruns ? `, underruns ${s.underruns}` : '') +
         (s.interrupting ? ' — stopping' : '');
+      if (s.node_state === 'holding') text = `feed held at line ${s.line} — Feed resume goes on, Stop ends the program`;
       if (s.pause) text = `paused at ${s.pause.text} — Resume continues, Stop ends the program`;
     } else if (s.phase === 'ended') {
       text = `run ${s.run} ${s.end}` + (s.line ? ` at line ${s.line}` : '') + (s.message ? `: ${s.message}` : '');
     }
+    // The tool the node knows in the spindle (PROGRAM_TOOL), as the run last reported it.
+    state.spindleTool = s.spindle_tool || null;
+    if (text && s.spindle_tool) text += ` — in the spindle: ${s.spindle_tool.text}`;
     state.pause = s.pause || null;
     $('program-resume').hidden = !(s.phase === 'running' && s.pause);
+    state.feedHold = !!s.feed_hold;
+    $('program-hold').hidden = s.phase !== 'running';
+    $('program-hold').textContent = s.feed_hold ? 'Feed resume' : 'Feed hold';
     $('program-state').textContent = text;
     $('program-state').classList.toggle('refusal', s.phase === 'ended' && s.end !== 'done');
   }
@@ -178,11 +206,22 @@ const program = (() => {
     const r = await api('POST', '/api/program/resume', {});
     say($('program-error'), r.ok ? '' : r.error, r.ok);
   });
+  $('program-hold').addEventListener('click', async () => {
+    const r = await api('POST', '/api/program/hold', { hold: !state.feedHold });
+    say($('program-error'), r.ok ? '' : r.error, r.ok);
+  });
   $('program-fit').addEventListener('click', () => {
     fitTravel = !fitTravel;
     $('program-fit').textContent = fitTravel ? 'Fit path' : 'Show travel';
     draw();
   });
+  for (const [id, key] of [['program-tool-table', 'tool_table'], ['program-var-file', 'var_file']]) {
+    $(id).addEventListener('change', async (e) => {
+      const file = e.target.files[0];
+      files[key] = file ? await file.text() : null;
+      if ($('program-text').value.trim() !== '') previewNow();
+    });
+  }
   $('program-file').addEventListener('change', async (e) => {
     const file = e.target.files[0];
     if (!file) return;
