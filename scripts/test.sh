@@ -11,9 +11,11 @@
 #            replayed, and refused with a shard missing, using the release
 #            build's tnv-hil                         (scripts/slurm-campaign-test.sh)
 #   asan     the suite under AddressSanitizer + UndefinedBehaviorSanitizer,
-#            without the tests that run tnv-hil or tnvctl as a process
+#            built with clang (the tree the fuzz stage's targets come
+#            from), without the tests that run tnv-hil or tnvctl as a process
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
-#   fuzz     every libFuzzer target for 30 s                   (scripts/fuzz.sh)
+#   fuzz     every libFuzzer target for 30 s, built in the asan tree
+#                                                              (scripts/fuzz.sh)
 #   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
 #   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
 #            build's binaries                                  (scripts/kernel-tests.sh)
@@ -50,6 +52,7 @@ check_disk() {
     # A tree left by an earlier run already holds its share.
     dir=build/${stage}
     [[ "${stage}" == kernel ]] && dir=build/kernel-vm-cache
+    [[ "${stage}" == fuzz ]] && dir=build/asan/fuzz
     have_mb=0
     [[ -d "${dir}" ]] && have_mb=$(du -sm "${dir}" | cut -f1)
     ((have_mb < ${stage_disk_mb[${stage}]:-0})) && need_mb=$((need_mb + ${stage_disk_mb[${stage}]:-0} - have_mb))
@@ -72,17 +75,34 @@ run_stage() {
   report+=("$(printf '%-8s %4d s   build/ now %5d MB' "${name}" $((SECONDS - start)) "$(du -sm build | cut -f1)")")
 }
 
-# A step of a stage, its time reported with the stage's ("release.build").
+# CPU seconds (user + system) of the finished child processes so far, into
+# cpu_s: beside other work on the machine a step's wall time says little.
+# `times` runs in this shell (in a subshell it would count the subshell's).
+cpu_file=$(mktemp)
+trap 'rm -f "${cpu_file}"' EXIT
+children_cpu_s() {
+  times >"${cpu_file}"
+  cpu_s=$(awk 'NR == 2 { split($1, u, /[ms]/); split($2, s, /[ms]/); printf "%d", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "${cpu_file}")
+}
+
+# A step of a stage, its time reported with the stage's ("release.build"),
+# its CPU time beside it.
 run_step() {
   local name=$1
   shift
-  local start=$SECONDS
+  local start=$SECONDS cpu_s cpu_start
+  children_cpu_s
+  cpu_start=${cpu_s}
   "$@"
-  report+=("$(printf '  %-14s %4d s' "${name}" $((SECONDS - start)))")
+  children_cpu_s
+  report+=("$(printf '  %-14s %4d s   CPU %5d s' "${name}" $((SECONDS - start)) $((cpu_s - cpu_start)))")
 }
 
 build_and_test() {
   local preset=$1
+  # The asan tree is clang's (and the fuzz stage's): the release tree and
+  # the tsan stage keep GCC, so both compilers' warnings stop a build.
+  if [[ "${preset}" == asan ]]; then scripts/install-missing.sh asan clang-14 libclang-rt-14-dev; fi
   cmake --preset "${preset}" >/dev/null
   run_step "${preset}.build" cmake --build --preset "${preset}" -j "${jobs}"
   if [[ "${preset}" == release ]]; then run_step release.each scripts/compile-each.py build/release -j "${jobs}"; fi
