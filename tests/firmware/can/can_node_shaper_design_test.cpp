@@ -39,7 +39,15 @@ std::uint64_t service_blocks(NodeBench& b) {
 }
 
 // 50 us of board time at the rig's 5 ns per block (docs/safety.md "Charged time").
+// The asan tree's clang at -O1 runs more blocks for the same code: a
+// restore_defaults there took 14,113, and the cheapest design (mzv) about
+// 17,000 more (zvdd 154,000), so 25,000 still tells a design in service()
+// from none.
+#if defined(__SANITIZE_ADDRESS__) && defined(__clang__)
+constexpr std::uint64_t kBudgetBlocks = 25'000;
+#else
 constexpr std::uint64_t kBudgetBlocks = 10'000;
+#endif
 
 TEST(CanNodeShaperDesign, ANewSpecIsDesignedOnTheWorkerAndAnsweredOnceWhenDone) {
   StepWorker worker;
