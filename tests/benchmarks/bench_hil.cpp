@@ -90,7 +90,7 @@ BENCHMARK(BM_EmulatorOnly)->Unit(benchmark::kMillisecond);
 constexpr std::size_t kSubstepsPerTick = 100;
 
 void BM_PlantTick(benchmark::State& state, double speed_mm_s) {
-  const emu::AxisPlant plant(emu::ZAxisParams{}.plant);
+  const emu::AxisPlant plant(emu::kZAxisLaw);
   const double gravity_mm_s = emu::ZAxisParams{}.gravity_mm_s;
   for (auto _ : state) {
     emu::AxisState x{.position_mm = -100.0, .speed_mm_s = speed_mm_s, .stuck = speed_mm_s == 0.0};
