@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "firmware/tick/work_meter.hpp"
 #include "tests/can_host/tnvctl_runner.hpp"
 
 namespace tnv {
@@ -49,6 +50,50 @@ TEST(ToolCommandLine, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   EXPECT_EQ(option.exit_code, 2);
   EXPECT_TRUE(has(option.err, "tnv-hil: ")) << "the tool names itself: " << option.err;
   std::filesystem::remove_all(state);
+}
+
+// tnv-hil builds the option trees only up to the named command's family
+// (tools/tnv-hil/main.cpp): every command --help lists must still parse,
+// and a second command word is still refused.
+TEST(ToolCommandLine, EveryTnvHilCommandParsesWhenNamedFirst) {
+  const ToolRun all = test::tnv_hil("--help");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const std::size_t from = all.out.find("Subcommands:");
+  ASSERT_NE(from, std::string::npos) << all.out;
+  std::istringstream lines(all.out.substr(from));
+  std::string line;
+  std::getline(lines, line);
+  int commands = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string name;
+    if (!(words >> name)) continue;
+    const ToolRun one = test::tnv_hil(name + " --help");
+    EXPECT_EQ(one.exit_code, 0) << name << ": " << one.err;
+    EXPECT_TRUE(has(one.out, name)) << name << ": " << one.out;
+    ++commands;
+  }
+  EXPECT_GE(commands, 15) << all.out;
+  const ToolRun two = test::tnv_hil("circle table3");
+  EXPECT_EQ(two.exit_code, 2) << two.err;
+  EXPECT_EQ(two.out, "") << "nothing may run";
+}
+
+// An [io] scenario in a tnv-hil without the work meter (the package's) is
+// run, with a warning on stderr and "io_work_unmetered" in its JSON; a
+// metered build, or a scenario without [io], shows neither.
+TEST(ToolCommandLine, TnvHilSaysWhenAnIoRunIsUnmetered) {
+  const ToolRun bench = test::tnv_hil("circle --scenario bench-no-cut --controller rdvsc --json");
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  const nlohmann::json j = nlohmann::json::parse(bench.out, nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << bench.out;
+  const bool unmetered = !fw::work_meter_enabled();
+  EXPECT_EQ(j.contains("io_work_unmetered"), unmetered) << bench.out;
+  EXPECT_EQ(has(bench.err, "warning: scenario 'bench-no-cut' has [io] on"), unmetered) << bench.err;
+  const ToolRun plain = test::tnv_hil("circle --scenario no-cut --controller rdvsc --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(has(plain.out, "io_work_unmetered")) << plain.out;
+  EXPECT_FALSE(has(plain.err, "warning")) << plain.err;
 }
 
 TEST(ToolCommandLine, AnOutputThatCannotBeWrittenIsRefusedBeforeTheRun) {

@@ -9,6 +9,7 @@
 #include "tests/hil/can_node_rig.hpp"
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/tick/work_meter.hpp"
+#include "tools/hil/hil_rig.hpp"
 
 namespace tnv::test {
 namespace {
@@ -33,6 +34,17 @@ void burn_board_ns(std::int64_t board_ns) {
 // A build for a board (TNV_WORK_METER=OFF) meters nothing, so charges nothing.
 #define SKIP_WITHOUT_METER() \
   if (!fw::work_meter_enabled()) GTEST_SKIP() << "built with TNV_WORK_METER=OFF: nothing is metered"
+
+// Without the meter an [io] run lands its writes with no firmware work
+// before them: the build says so (tnv-hil warns and marks its JSON).
+TEST(ChargedTime, AnIoScenarioIsFlaggedUnmeteredOnlyWithoutTheMeter) {
+  const emu::ScenarioResult bench = emu::resolve_scenario("bench-no-cut");
+  const emu::ScenarioResult plain = emu::resolve_scenario("no-cut");
+  ASSERT_TRUE(bench.scenario && plain.scenario);
+  ASSERT_TRUE(bench.scenario->io.enabled()) << "the bench profile has the SPI transport";
+  EXPECT_EQ(hil::io_work_unmetered(*bench.scenario), !fw::work_meter_enabled());
+  EXPECT_FALSE(hil::io_work_unmetered(*plain.scenario)) << "no [io]: nothing depends on the meter";
+}
 
 TEST(ChargedTime, TheWorkMeterCountsFirmwareCodeOnly) {
   SKIP_WITHOUT_METER();

@@ -27,6 +27,7 @@ TEST(RtBudgetCli, BenchSessionLosesNoTickAndNamesEveryRequestKind) {
   EXPECT_TRUE(j["held"].get<bool>());
   EXPECT_GT(j["upload_frames"].get<int>(), 0);
   EXPECT_EQ(j["worker_jobs"], 6);  // a save, a load and a shaper design per round, all off the loop
+  EXPECT_EQ(j.contains("board_time_metered"), !fw::work_meter_enabled()) << "a build without the meter says so";
   if (fw::work_meter_enabled()) {
     EXPECT_GT(j["max_board_us"].get<double>(), 0.0);
     EXPECT_LE(j["max_board_us"].get<double>(), 50.0) << "a call over the real-time budget of one request";

@@ -60,6 +60,15 @@ struct ChargedTime {
   std::int64_t last_call_cpu_ns = 0;  // host CPU time, when measure_cpu_time
 };
 
+// True when the scenario's [io] transport is on and this build's firmware is
+// not metered (TNV_WORK_METER=OFF): each output write then lands with no
+// firmware work before it, sooner than in a metered build, so the run's
+// timing and what depends on it differ from a development build's
+// (docs/performance.md "What an unmetered tnv-hil gives").
+inline bool io_work_unmetered(const emu::Scenario& scenario) noexcept {
+  return scenario.io.enabled() && !fw::work_meter_enabled();
+}
+
 class HilRig {
  public:
   // Validates the scenario and the firmware config made for it from

@@ -63,6 +63,7 @@ int run_circle_command(const CircleOptions& o) {
   const hil::SweepCell& cell = cells.front();
   if (o.json) {
     nlohmann::json j = {{"results", hil::results_json(cells, o.seeds)}, {"pid_gains", hil::pid_gains_json(config)}};
+    note_io_work_unmetered(j, *scenario);
     std::cout << j.dump(2) << '\n';
   } else {
     std::cout << hil::circle_text(cell, o.seeds);

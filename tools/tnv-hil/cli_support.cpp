@@ -15,6 +15,7 @@
 #include "tools/can/param_text.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/cli/run_plotter.hpp"
+#include "tools/hil/hil_rig.hpp"
 
 namespace tnv::cli {
 
@@ -34,7 +35,10 @@ void Progress::operator()(std::size_t done, std::size_t total) {
 
 std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file) {
   emu::ScenarioResult found = emu::resolve_scenario(name_or_file);
-  if (found.scenario) return std::move(found.scenario);
+  if (found.scenario) {
+    warn_if_io_work_unmetered(*found.scenario);
+    return std::move(found.scenario);
+  }
   if (name_or_file.find_first_of("./") == std::string::npos && !std::filesystem::exists(name_or_file)) {
     std::string names;
     for (const std::string& n : emu::builtin_scenario_names()) names += (names.empty() ? "" : ", ") + n;
@@ -44,6 +48,19 @@ std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_
     std::fprintf(stderr, "tnv-hil: %s\n", found.error.c_str());
   }
   return std::nullopt;
+}
+
+void warn_if_io_work_unmetered(const emu::Scenario& scenario) {
+  if (!hil::io_work_unmetered(scenario)) return;
+  std::fprintf(stderr,
+               "tnv-hil: warning: scenario '%s' has [io] on, but this tnv-hil is built without the work meter "
+               "(TNV_WORK_METER=OFF): each output write lands with no firmware work before it, so its timing "
+               "differs from a metered build's (docs/performance.md)\n",
+               scenario.name.c_str());
+}
+
+void note_io_work_unmetered(nlohmann::json& j, const emu::Scenario& scenario) {
+  if (hil::io_work_unmetered(scenario)) j["io_work_unmetered"] = true;
 }
 
 std::optional<fw::ControllerKind> controller_or_report(const std::string& name) {

@@ -40,6 +40,12 @@ class Progress {
 // returns nullopt when neither works.
 std::optional<emu::Scenario> resolve_scenario_or_report(const std::string& name_or_file);
 
+// A scenario with [io] in a build without the work meter (hil::io_work_unmetered):
+// a warning on stderr, and "io_work_unmetered": true in a command's JSON
+// (the key is absent otherwise). resolve_scenario_or_report() warns itself.
+void warn_if_io_work_unmetered(const emu::Scenario& scenario);
+void note_io_work_unmetered(nlohmann::json& j, const emu::Scenario& scenario);
+
 // "pid", "dvsc" or "rdvsc" (fw::to_string's names); prints a one-line error
 // and returns nullopt for anything else.
 std::optional<fw::ControllerKind> controller_or_report(const std::string& name);

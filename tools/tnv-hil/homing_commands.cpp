@@ -41,7 +41,7 @@ int run_homing_command(const HomingCliOptions& o) {
     for (const hil::HomingSeedResult& r : sum.seeds) {
       seeds.push_back(hil::homing_seed_json(r));
     }
-    const nlohmann::json out = {{"seeds", o.seeds},
+    nlohmann::json out = {{"seeds", o.seeds},
                                 {"scenario", scenario.name},
                                 {"reference", "motor side: firmware position - homing.position_mm vs true motor "
                                               "position - the index mark past the switch; home error without the "
@@ -53,6 +53,7 @@ int run_homing_command(const HomingCliOptions& o) {
                                 {"time_s_max", sum.time_s_max},
                                 {"all_homed", sum.all_homed},
                                 {"runs", seeds}};
+    note_io_work_unmetered(out, scenario);
     std::cout << out.dump(2) << "\n";
   } else {
     std::string order;  // "x then y"

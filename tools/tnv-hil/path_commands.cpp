@@ -100,6 +100,7 @@ int run_path_command(const PathOptions& o) {
     }
     j["pauses"] = pauses;
     j["error"] = r.error;
+    note_io_work_unmetered(j, *scenario);
     std::cout << j.dump(2) << '\n';
   } else {
     const hil::PathScore& m = r.mean;

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "firmware/tick/work_meter.hpp"
 #include "tools/hil/rt_budget.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
@@ -36,6 +37,13 @@ int run_rt_budget_command(const RtBudgetCliOptions& o) {
     return kExitBadInput;
   }
   const bool met = r.missed_ticks == 0 && r.late_ticks == 0 && r.held;
+  // Board time is the work meter's: a build without it shows zeros, not a fast board.
+  const bool metered = fw::work_meter_enabled();
+  if (!metered) {
+    std::fprintf(stderr,
+                 "tnv-hil rt-budget: warning: this tnv-hil is built without the work meter (TNV_WORK_METER=OFF): "
+                 "no board time is modelled (the board columns are 0) and no call is charged\n");
+  }
   if (o.json) {
     nlohmann::json kinds = nlohmann::json::array();
     for (const hil::RtBudgetRow& k : r.kinds) kinds.push_back(budget_row_json(k));
@@ -59,6 +67,7 @@ int run_rt_budget_command(const RtBudgetCliOptions& o) {
                           {"charged_us", static_cast<double>(r.charged.charged_ns) * 1e-3},
                           {"held", r.held},
                           {"kinds", kinds}};
+    if (!metered) out["board_time_metered"] = false;
     std::cout << out.dump(2) << "\n";
   } else {
     std::printf("rt-budget: %s, %d rounds, %llu ticks, %llu requests (%llu answers, %llu refused), %llu upload frames, "
