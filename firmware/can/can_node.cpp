@@ -176,6 +176,7 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
     case MessageId::segment_tail:
       if (programs_.segment_tail(frame)) motion_accepted();
       return;
+    case MessageId::segment_z: programs_.segment_z(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }

@@ -46,6 +46,7 @@ inline constexpr const MessageDef& kBoreGaugeMsg = message(MessageId::bore_gauge
 inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infeed);
 inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
 inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
+inline constexpr const MessageDef& kSegmentZMsg = message(MessageId::segment_z);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
 inline constexpr const MessageDef& kProgramToolMsg = message(MessageId::program_tool);
 inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
@@ -162,6 +163,8 @@ inline constexpr const FieldDef& kTailTag = field(kSegmentTailMsg, "tag");
 inline constexpr const FieldDef& kTailFeed = field(kSegmentTailMsg, "feed");
 inline constexpr const FieldDef& kTailCentreNormal = field(kSegmentTailMsg, "centre_normal");
 inline constexpr const FieldDef& kTailCentreAlong = field(kSegmentTailMsg, "centre_along");
+inline constexpr const FieldDef& kSegmentZTag = field(kSegmentZMsg, "tag");
+inline constexpr const FieldDef& kSegmentZField = field(kSegmentZMsg, "z");
 
 inline constexpr const FieldDef& kProgramState = field(kProgramStatusMsg, "state");
 inline constexpr const FieldDef& kProgramFreeSlots = field(kProgramStatusMsg, "free_slots");

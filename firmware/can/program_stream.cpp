@@ -85,6 +85,25 @@ bool ProgramStream::segment_tail(const hal::CanFrame& frame) noexcept {
   return push_element(pending_.head, &frame, kSegmentTailMsg.id);
 }
 
+bool ProgramStream::segment_z(const hal::CanFrame& frame) noexcept {
+  if (!access_.owns()) {
+    ack_.send(kSegmentZMsg.id, free_slots(), ErrorCode::not_owner, 0);
+    return false;
+  }
+  // Only between its SEGMENT and SEGMENT_TAIL, once: else the element is refused whole (its tail will find nothing
+  // waiting and is refused too), so nothing half-described is queued.
+  if (!pending_.active || pending_.tag != access_.tag()) {
+    refuse_pending();  // a lost head's element is answered too
+    ack_.send(kSegmentZMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentZMsg, kSegmentZTag));
+    return false;
+  }
+  if (!decode_z(frame, pending_.head)) {  // a second one: the element is refused, answered once
+    pending_.active = false;
+    ack_.send(kSegmentZMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentZMsg, kSegmentZTag));
+  }
+  return false;
+}
+
 bool ProgramStream::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
   const bool starting = !task_.program_running();
   if (starting) tool_change_count_ = 0;  // an earlier program's changes never continued

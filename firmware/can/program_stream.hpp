@@ -45,6 +45,8 @@ class ProgramStream {
   // True when an element was accepted (motion asked for and accepted).
   bool segment(const hal::CanFrame& frame) noexcept;
   bool segment_tail(const hal::CanFrame& frame) noexcept;
+  // SEGMENT_Z: Z's end point of the SEGMENT waiting for its tail; answered only when refused.
+  bool segment_z(const hal::CanFrame& frame) noexcept;
   // COMMAND feed_hold, feed_resume, feed_override, end_program,
   // abort_program, program_status and cycle_start (the caller answers; `detail` = index
   // of the offending field).

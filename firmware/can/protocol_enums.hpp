@@ -25,7 +25,9 @@ namespace tnv::fw::can {
 //    program's spindle commands (SEGMENT kinds spindle_forward, spindle_reverse, spindle_stop).
 // 7: the tool in the spindle: SEGMENT kind tool_change (an M6 pause carrying its tool) and PROGRAM_TOOL (0x18),
 //    the tool the node knows to be in the spindle (-1 unknown), sent with every PROGRAM_STATUS.
-inline constexpr std::uint32_t kProtocolVersion = 7;
+// 8: Z in programs: SEGMENT_Z (0x11), Z's end point of a line or arc (a helix) whose Z changes, between its
+//    SEGMENT and SEGMENT_TAIL; elements without it keep Z where they start.
+inline constexpr std::uint32_t kProtocolVersion = 8;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value

@@ -28,7 +28,7 @@ static_assert(hal::kAxisCount <= kAxisBlock, "per-axis CAN messages: an axis bey
 // Lower id = higher priority: commands and their answers (0x00-0x13), then
 // the node-wide telemetry, then the per-axis telemetry blocks, the capture
 // upload last; BORE_GAUGE and BORE_INFEED, which wait between parts, rank
-// among the telemetry. 0x11-0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
+// among the telemetry. 0x12-0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
 // 0x30-0x3D are free.
 enum class MessageId : std::uint8_t {
   estop = 0x00,
@@ -48,6 +48,7 @@ enum class MessageId : std::uint8_t {
   segment = 0x0E,
   segment_tail = 0x0F,
   spindle = 0x10,
+  segment_z = 0x11,
   tlm_output = 0x14,
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
@@ -234,6 +235,10 @@ inline constexpr FieldDef kSegmentTail[] = {
     {"centre_along", WireType::i16, 6, 1e-4, "mm", "",
      "arc: the centre's offset from the chord's midpoint along the chord (start -> end); 0 for a line"},
 };
+inline constexpr FieldDef kSegmentZ[] = {
+    {"tag", WireType::u8, 0, 1, "", "", "the tag of the SEGMENT frame whose end point this completes"},
+    {"z", WireType::i24, 1, 1e-4, "mm", "", "end point z (line, arc: a helix); without this frame Z stays where the element starts"},
+};
 inline constexpr FieldDef kProgramStatus[] = {
     {"state", WireType::u8, 0, 1, "", kValueList<kProgramStateNames>,
      "program state: holding = feed hold; starved = underrun, at rest on the path until segments arrive; aborted = "
@@ -329,7 +334,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 26 + 3 * hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 27 + 3 * hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -387,6 +392,11 @@ inline constexpr std::array<MessageDef, 26 + 3 * hal::kAxisCount> kMessages{{
      "starts by itself. While it is commanded on and not at speed, feed moves wait. While a program is active "
      "(running, holding, starved or paused) a start or a new speed is refused busy: the program's spindle elements "
      "command it; a stop is always taken. Answered by COMMAND_ACK (code = op)."},
+    {0x11, "segment_z", Direction::to_node, 4, detail::kSegmentZ,
+     "Z's end point of a line or arc whose Z changes (an arc with it is a helix: Z moves with the angle), between "
+     "its SEGMENT and its SEGMENT_TAIL, with the same tag; elements that keep Z send none. One without its "
+     "SEGMENT waiting, or a second one, is refused (not_ready) with the element. Answered only when refused; the "
+     "tail answers the element."},
     {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,

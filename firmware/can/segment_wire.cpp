@@ -99,7 +99,15 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   }
   if (!write(out.head, kSegmentX, s.end_mm[0])) return &kSegmentX;
   if (!write(out.head, kSegmentY, s.end_mm[1])) return &kSegmentY;
-  out.end_mm = {read(out.head, kSegmentX), read(out.head, kSegmentY)};
+  out.end_mm = start_mm;  // axes the wire does not carry stay
+  out.end_mm[0] = read(out.head, kSegmentX);
+  out.end_mm[1] = read(out.head, kSegmentY);
+  out.z = make_frame(kSegmentZMsg, node);
+  write_raw(out.z, kSegmentZTag, tag);
+  if (!write(out.z, kSegmentZField, s.end_mm[kProgramZ])) return &kSegmentZField;
+  out.has_z = read(out.z, kSegmentZField) != start_mm[kProgramZ];
+  if (out.has_z) out.end_mm[kProgramZ] = read(out.z, kSegmentZField);
+  else out.z = {};
   out.tail = make_frame(kSegmentTailMsg, node);
   out.has_tail = true;
   write_raw(out.tail, kTailTag, tag);
@@ -134,6 +142,13 @@ bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept {
   return true;
 }
 
+bool decode_z(const hal::CanFrame& z, SegmentHead& head) noexcept {
+  if (!wire_kind_has_tail(head.kind) || head.has_z) return false;
+  head.has_z = true;
+  head.end_z_mm = read(z, kSegmentZField);
+  return true;
+}
+
 bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
                     motion::Segment& out) noexcept {
   switch (head.kind) {
@@ -152,15 +167,19 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
   const bool exact_stop = head.kind == WireKind::line_exact_stop || head.kind == WireKind::arc_cw_exact_stop ||
                           head.kind == WireKind::arc_ccw_exact_stop || head.kind == WireKind::rapid_exact_stop;
   const bool rapid = head.kind == WireKind::rapid || head.kind == WireKind::rapid_exact_stop;
+  PlanePoint end_mm = start_mm;  // axes the wire does not carry stay
+  end_mm[0] = head.end_mm[0];
+  end_mm[1] = head.end_mm[1];
+  if (head.has_z) end_mm[kProgramZ] = head.end_z_mm;
   if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop || rapid) {
-    out = motion::line_to(head.end_mm, feed_mm_s);
+    out = motion::line_to(end_mm, feed_mm_s);
     out.rapid = rapid;
   } else {
     const ChordCentre cc{read(*tail, kTailCentreNormal), read(*tail, kTailCentreAlong)};
-    PlanePoint centre_mm{};
-    if (!centre_from_chord(start_mm, head.end_mm, cc, centre_mm)) return false;
+    PlanePoint centre_mm = start_mm;  // x and y from the chord
+    if (!centre_from_chord(start_mm, end_mm, cc, centre_mm)) return false;
     const bool clockwise = head.kind == WireKind::arc_cw || head.kind == WireKind::arc_cw_exact_stop;
-    out = motion::arc_to(clockwise, head.end_mm, centre_mm, feed_mm_s);
+    out = motion::arc_to(clockwise, end_mm, centre_mm, feed_mm_s);
   }
   out.exact_stop = exact_stop;
   return true;

@@ -13,6 +13,11 @@
 // chord's bisector does not fit: the host sends such arcs in two halves.
 // Why not x and y of the centre: two frames hold 14 payload bytes after
 // the tags, and end (6) + centre (6) + feed (2) + kind (1) is 15.
+//
+// Z's end point rides in a third frame, SEGMENT_Z, between the SEGMENT
+// and its SEGMENT_TAIL, sent only when the element moves Z (a plunge, a
+// retract, a helix): XY elements keep their two frames (bus load), and
+// an element without it keeps Z where it starts.
 #include <cstdint>
 
 #include "firmware/can/protocol_messages.hpp"
@@ -39,6 +44,9 @@ enum class WireKind : std::uint8_t {
   tool_change,       // a pause (M6) whose cycle_start puts its tool in the spindle: x = tool / kToolPerX; no tail
 };
 inline constexpr std::uint8_t kWireKindCount = 14;
+
+// The axis SEGMENT_Z carries: the one a program moves beyond the XY plane.
+inline constexpr std::size_t kProgramZ = hal::index(hal::Axis::z);
 
 // A tool change's tool in SEGMENT.x: one tool per 0.1 um step (tools 0..8,388,607).
 inline constexpr double kToolPerX = 1e4;
@@ -74,7 +82,9 @@ double wire_position_mm(double mm) noexcept;
 
 struct SegmentFrames {
   hal::CanFrame head{};  // SEGMENT
+  hal::CanFrame z{};     // SEGMENT_Z (lines and arcs whose Z changes), sent between head and tail
   hal::CanFrame tail{};  // SEGMENT_TAIL (lines and arcs)
+  bool has_z = false;
   bool has_tail = false;
   motion::PlanePoint end_mm{};  // the end point as sent (the next element's start on the node)
 };
@@ -85,7 +95,9 @@ struct SegmentFrames {
 // (out is then unspecified): an end point beyond the i24 range, a feed
 // outside 0.01..655.35 mm/s, a dwell beyond 838 s, a spindle speed that
 // rounds to 0 or beyond 838,860 rpm, an arc without a chord or with its
-// centre too far off the bisector.
+// centre too far off the bisector. Lines and arcs whose end Z (as sent)
+// differs from start_mm's get a SEGMENT_Z; the other axes beyond the
+// plane and Z are not carried (they stay where the element starts).
 const FieldDef* encode_segment(const motion::Segment& segment, const motion::PlanePoint& start_mm, std::uint8_t node,
                                std::uint8_t tag, SegmentFrames& out) noexcept;
 // Host side: a manual tool change (M6) that puts `tool` in the spindle, a pause
@@ -97,12 +109,18 @@ const FieldDef* encode_tool_change(int tool, const motion::PlanePoint& at_mm, st
 // (refuse out_of_range naming `kind`).
 struct SegmentHead {
   WireKind kind = WireKind::line;
-  motion::PlanePoint end_mm{};  // lines and arcs
+  motion::PlanePoint end_mm{};  // lines and arcs: x and y (Z from SEGMENT_Z or the start)
+  bool has_z = false;           // a SEGMENT_Z came for it
+  double end_z_mm = 0.0;
   double dwell_s = 0.0;         // dwells
   double spindle_rpm = 0.0;     // spindle starts
   std::int32_t tool = 0;        // tool changes
 };
 bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept;
+
+// Node side: a SEGMENT_Z completes `head` (a line or arc waiting for its tail
+// that has no Z yet). false (head untouched) otherwise: refuse not_ready.
+bool decode_z(const hal::CanFrame& z, SegmentHead& head) noexcept;
 
 // The element a head (and, for lines and arcs, its tail) describes, starting
 // at start_mm. false only for an arc whose chord is shorter than kMinChordMm

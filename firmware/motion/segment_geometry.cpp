@@ -62,10 +62,11 @@ PlanePoint SegmentGeometry::point_at(double distance_mm) const noexcept {
   if (f >= 1.0) return end_mm;
   const double theta = start_angle_rad + f * sweep_rad;
   const double r = start_radius_mm + f * (end_radius_mm - start_radius_mm);
-  // An arc is in the XY plane; the other axes stay where it starts (no helix).
+  // An arc is in the XY plane; the other axes (Z: a helix) move in step with its angle.
   PlanePoint p = start_mm;
   p[0] = centre_mm[0] + r * std::cos(theta);
   p[1] = centre_mm[1] + r * std::sin(theta);
+  for (std::size_t i = 2; i < hal::kAxisCount; ++i) p[i] = start_mm[i] + f * (end_mm[i] - start_mm[i]);
   return p;
 }
 
@@ -142,10 +143,21 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
                           limits.min_segment_mm;
       if (closed) sweep = ccw ? two_pi : -two_pi;
       g.sweep_rad = sweep;
-      g.length_mm = 0.5 * (g.start_radius_mm + g.end_radius_mm) * std::fabs(sweep);
+      // A helix: the plane's arc length and each further axis' travel, as a line's (hypot(h, 0) is h exactly,
+      // so an arc in the plane keeps its length and tangents bit for bit).
+      const double plane_mm = 0.5 * (g.start_radius_mm + g.end_radius_mm) * std::fabs(sweep);
+      g.length_mm = plane_mm;
+      for (std::size_t i = 2; i < hal::kAxisCount; ++i) g.length_mm = std::hypot(g.length_mm, segment.end_mm[i] - start_mm[i]);
       if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
+      const double in_plane = plane_mm / g.length_mm;
       g.unit_start = arc_tangent(g.start_angle_rad, ccw);
       g.unit_end = arc_tangent(g.start_angle_rad + sweep, ccw);
+      for (std::size_t i = 0; i < 2; ++i) {
+        g.unit_start[i] *= in_plane;
+        g.unit_end[i] *= in_plane;
+      }
+      for (std::size_t i = 2; i < hal::kAxisCount; ++i)
+        g.unit_start[i] = g.unit_end[i] = (segment.end_mm[i] - start_mm[i]) / g.length_mm;
       break;
     }
     default: return SegmentRefusal::bad_kind;

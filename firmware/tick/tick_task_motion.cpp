@@ -28,6 +28,16 @@ CommandStatus TickTask::start_profiled(const motion::Segment& segment,
 namespace {
 // What the circle and programs move (and need homed): the XY plane.
 constexpr hal::AxisSet kPlaneAxes = hal::axis_bit(hal::kPlaneFirst) | hal::axis_bit(hal::kPlaneSecond);
+
+// The axes beyond the plane a line or arc from `start_mm` moves (Z: a plunge, a retract, a helix).
+hal::AxisSet moved_beyond_plane(const motion::Segment& s, const motion::PlanePoint& start_mm) noexcept {
+  hal::AxisSet out = 0;
+  if (s.kind == motion::SegmentKind::dwell) return out;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if ((hal::axis_bit(hal::axis_from_index(i)) & kPlaneAxes) == 0 && s.end_mm[i] != start_mm[i])
+      out |= hal::axis_bit(hal::axis_from_index(i));
+  return out;
+}
 }  // namespace
 
 CommandStatus TickTask::start_circle(const CircleSpec& spec) noexcept { return start_circle(spec, 0.0, 0.0); }
@@ -139,6 +149,7 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
   if (!running && state_ != MotionState::holding) return CommandStatus::busy;
   if (running && stop_requested_) return CommandStatus::busy;
   if (!running && homing_missing(kPlaneAxes)) return CommandStatus::not_homed;
+  if (homing_missing(moved_beyond_plane(segment, next_segment_start_mm()))) return CommandStatus::not_homed;  // a Z move needs Z homed
   if (segment.profiled()) {  // the circle and move producers' elements; a program is planned
     why = motion::SegmentRefusal::bad_ramp;
     return CommandStatus::invalid;
@@ -149,17 +160,9 @@ CommandStatus TickTask::push_segment(const motion::Segment& segment, motion::Seg
     return CommandStatus::invalid;
   }
   if (!running) motion_.reset_at(held_point());  // a refused first segment leaves the task holding
-  // Programs are in the XY plane: an axis beyond it stays where the program
-  // found it (a segment's other coordinates, 0 from the wire, are no target).
-  motion::Segment in_plane = segment;
-  const motion::PlanePoint pinned_mm = running ? motion_.queue_end_mm() : held_point();
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const hal::Axis axis = hal::axis_from_index(i);
-    if (axis == hal::kPlaneFirst || axis == hal::kPlaneSecond) continue;
-    in_plane.end_mm[i] = pinned_mm[i];
-    in_plane.centre_mm[i] = pinned_mm[i];
-  }
-  why = motion_.push(in_plane);
+  // Every coordinate is a target: the wire fills what an element does not
+  // carry with where it starts (segment_wire.hpp), so Z moves only when asked.
+  why = motion_.push(segment);
   if (why != motion::SegmentRefusal::none) return CommandStatus::invalid;
   if (!running) {
     source_ = Source::program;

@@ -109,6 +109,37 @@ TEST(ProgramStream, APausedHostCausesOneUnderrunAndTheProgramStillEndsOnThePath)
   EXPECT_LT(std::hypot(end[0] - last[0], end[1] - last[1]), 2e-4) << "ends on the program's last point";
 }
 
+// Z over the bus (protocol 8): a plunge, a contour at depth, a G2 helix and a retract, each element
+// that moves Z with its SEGMENT_Z; the telemetry's Z follows and the run is scored in 3-D.
+TEST(ProgramStream, AProgramThatMovesZRunsOverTheBusAndItsZFollows) {
+  StreamBench b("z");
+  ASSERT_TRUE(b.bus);
+  can_host::NodeClient client(*b.bus, 1);
+  const char* text =
+      "G21 G91\nG1 Z-5 F300\nG1 X20 F1200\nG1 Y10\nG1 X-20\nG2 X0 Y0 Z-2 I0 J-5 F600\nG0 Z7\nM2\n";
+  const can_host::ProgramRunResult r = can_host::run_gcode(client, text, {});
+  ASSERT_EQ(r.stream.end, StreamResult::End::done) << r.stream.message;
+  ASSERT_TRUE(r.stream.final_heartbeat);
+  EXPECT_EQ(r.stream.final_heartbeat->fault, fw::FaultReason::none);
+  std::size_t with_z = 0;
+  for (const can_host::WireElement& e : r.wire.elements) with_z += e.frames.has_z ? 1u : 0u;
+  EXPECT_GE(with_z, 3u) << "the plunge, the helix (in pieces or whole) and the retract carry SEGMENT_Z";
+  EXPECT_LT(with_z, r.wire.elements.size()) << "the contour at depth keeps two frames";
+  ASSERT_TRUE(r.score);
+  ASSERT_FALSE(r.samples.empty());
+  constexpr std::size_t z = fw::can::kProgramZ;
+  const double z0 = r.start_mm[z];
+  double z_min = z0;
+  for (const hil::PathSample& s : r.samples) z_min = std::min(z_min, s.position_mm[z]);
+  EXPECT_NEAR(z_min, z0 - 7.0, 0.01) << "the helix ends 7 mm below the start";
+  EXPECT_NEAR(r.samples.back().reference_mm[z], z0, 2e-6) << "retracted";
+  std::printf("[stream] Z program over the bus: contour max %.3f um, path deviation %.3f um, %zu of %zu elements "
+              "with SEGMENT_Z\n",
+              r.score->contour_error_max_um, r.score->path_deviation_max_um, with_z, r.wire.elements.size());
+  EXPECT_LE(r.score->path_deviation_max_um, 5.0 + 2e-3);
+  EXPECT_LE(r.score->contour_error_max_um, 6.0);
+}
+
 TEST(ProgramStream, AnInterruptStopsOnThePathAndDropsTheRest) {
   StreamBench b("interrupt");
   ASSERT_TRUE(b.bus);

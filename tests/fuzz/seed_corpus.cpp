@@ -114,6 +114,7 @@ void seed_can_frames(const fs::path& dir) {
     can::SegmentFrames f;
     can::encode_segment(s, {0.0, 0.0}, n, tag, f);
     add_frame(out, f.head, ticks);
+    if (f.has_z) add_frame(out, f.z);
     if (f.has_tail) add_frame(out, f.tail);
   };
   Bytes program;

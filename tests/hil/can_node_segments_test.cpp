@@ -23,10 +23,14 @@ constexpr std::uint32_t kSegment = static_cast<std::uint32_t>(MessageId::segment
 constexpr std::uint32_t kTail = static_cast<std::uint32_t>(MessageId::segment_tail);
 
 
-PlanePoint offset(const PlanePoint& p, double dx, double dy) { return {p[0] + dx, p[1] + dy}; }
+PlanePoint offset(const PlanePoint& p, double dx, double dy) {
+  PlanePoint q = p;  // Z (and any axis beyond the plane) where it is
+  q[0] += dx;
+  q[1] += dy;
+  return q;
+}
 
-// A point's XY coordinates: SEGMENT frames are in the plane (the tick keeps
-// Z where the program found it, so the queue's end has the head's Z).
+// A point's XY coordinates.
 std::array<double, 2> plane(const PlanePoint& p) { return {p[0], p[1]}; }
 
 TEST(CanNodeSegments, ALineWaitsForItsTailThenTheAckCarriesTheFreeSlots) {
@@ -116,6 +120,48 @@ TEST(CanNodeSegments, EveryRefusalNamesItsCodeAndFieldAndLeavesTheQueueUnchanged
   EXPECT_EQ(acks[1].tag, g.head.data[0]);
   EXPECT_EQ(acks[1].result, kOk) << "the next element is whole";
   EXPECT_FALSE(r->task().fault().active());
+}
+
+TEST(CanNodeSegments, AZFrameCompletesItsElementAndAloneIsRefused) {
+  auto r = holding_rig();
+  ASSERT_TRUE(r);
+  ProgramHost host(*r);
+  const PlanePoint at = host.at_mm();
+  PlanePoint down = offset(at, 3.0, 0.0);
+  down[can::kProgramZ] = at[can::kProgramZ] - 2.0;
+  const can::SegmentFrames f = host.frames(fw::motion::line_to(down, 5.0));
+  ASSERT_TRUE(f.has_z);
+  // The Z frame with no SEGMENT waiting: not_ready, nothing queued.
+  std::vector<ElementAck> acks = host.send_frames({f.z});
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].result, code(ErrorCode::not_ready));
+  EXPECT_EQ(acks[0].request, static_cast<std::uint32_t>(MessageId::segment_z));
+  EXPECT_EQ(r->task().motion().queued(), 0u);
+  // Twice for one element: that element is refused whole, and its tail finds nothing waiting.
+  acks = host.send_frames({f.head, f.z, f.z, f.tail});
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_EQ(acks[0].result, code(ErrorCode::not_ready));
+  EXPECT_EQ(acks[1].result, code(ErrorCode::not_ready));
+  EXPECT_EQ(r->task().motion().queued(), 0u);
+  EXPECT_FALSE(r->node->segment_pending());
+  // Whole: accepted, and the queue ends at its Z; the next element in the plane stays at that Z.
+  acks = host.send(fw::motion::line_to(down, 5.0));
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].result, kOk);
+  EXPECT_NEAR(r->task().motion().queue_end_mm()[can::kProgramZ], down[can::kProgramZ], 1e-4);
+  PlanePoint along = offset(host.at_mm(), 2.0, 1.0);
+  acks = host.send(fw::motion::line_to(along, 5.0));
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].result, kOk);
+  EXPECT_NEAR(r->task().motion().queue_end_mm()[can::kProgramZ], down[can::kProgramZ], 1e-4);
+  // Below Z's soft limit: refused by the queue, the queue unchanged.
+  PlanePoint deep = host.at_mm();
+  deep[can::kProgramZ] = -700.0;
+  const std::size_t queued = r->task().motion().queued();
+  acks = host.send(fw::motion::line_to(deep, 5.0));
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].result, code(ErrorCode::outside_workspace));
+  EXPECT_EQ(r->task().motion().queued(), queued);
 }
 
 TEST(CanNodeSegments, AFullQueueRefusesWithQueueFullAndKeepsEveryElement) {

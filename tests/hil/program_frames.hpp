@@ -47,6 +47,7 @@ class ProgramHost {
   std::vector<ElementAck> send(const fw::motion::Segment& s) {
     const fw::can::SegmentFrames f = frames(s);
     rig_.port.send(f.head);
+    if (f.has_z) rig_.port.send(f.z);
     if (f.has_tail) rig_.port.send(f.tail);
     rig_.service();
     std::vector<ElementAck> acks = collect();

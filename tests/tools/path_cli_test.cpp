@@ -53,11 +53,11 @@ TEST(PathCli, ScoresASmallPieceWithinTheLimitsAndReportsEveryKey) {
 }
 
 TEST(PathCli, AProgramErrorNamesLineAndColumnAndRunsNothing) {
-  const std::string file = temp_program("bad", "G21 G90\nG1 F100 X1 Z2\n");
+  const std::string file = temp_program("bad", "G21 G91\nG18 G2 F100 X1 Z0 I0.5 K0\n");
   const CliRun r = run_tnv_hil("path " + file);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("Z"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("G18"), std::string::npos) << r.err;
   std::filesystem::remove(file);
 }
 
@@ -147,10 +147,11 @@ TEST(PathCli, RunsFromALine) {
   const CliRun r = run_tnv_hil("path " + file + " --from-line 3 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  // The spindle as line 3 has it (off: a stop), the approach across to the end of line 2, then lines 3 and 4.
-  EXPECT_EQ(j["segments"], 4) << j.dump();
+  // The spindle as line 3 has it (off: a stop), Z up to the clearance (machine Z 0) from where it homed
+  // (25 mm below), across to the end of line 2, down at rapid and the last 5 mm at the feed, then lines 3 and 4.
+  EXPECT_EQ(j["segments"], 7) << j.dump();
   EXPECT_EQ(j["spindle_commands"], 1);
-  EXPECT_NEAR(j["programmed_length_mm"].get<double>(), 2.0 + 2.0 + 2.0, 1e-9);
+  EXPECT_NEAR(j["programmed_length_mm"].get<double>(), 25.0 + 2.0 + 25.0 + 2.0 + 2.0, 1e-9);
   const CliRun alone = run_tnv_hil("path " + file + " --from-pass 2");
   EXPECT_EQ(alone.exit_code, 2) << "--from-pass without --from-line";
   EXPECT_NE(alone.err.find("--from-line"), std::string::npos) << alone.err;

@@ -42,9 +42,12 @@ PathRunResult run(const std::optional<gcode::RunFromLine>& from) {
 TEST(PathFromLine, ARunFromLineEndsWhereTheFullRunEnds) {
   const PathRunResult full = run(std::nullopt);
   ASSERT_TRUE(full.completed) << full.error;
+  ASSERT_FALSE(full.samples.empty());
   gcode::RunFromLine from;
   from.line = 6;
   from.pass = 2;  // the loop's second pass
+  // The clearance where the machine stands: no retract and no descent, the XY lengths compare.
+  from.clearance_z_mm = full.samples.front().reference_mm[hal::index(hal::Axis::z)];
   const PathRunResult part = run(from);
   ASSERT_TRUE(part.completed) << part.error;
   ASSERT_FALSE(full.samples.empty());

@@ -5,7 +5,8 @@
 // in axis order, every tick; a sample is the plane's first axis' frame and
 // the second's that follows it (a second axis' frame without its first is
 // dropped: counting began between them). The reference is rebuilt from the
-// two rounded 1 nm values (within 1 nm).
+// two rounded 1 nm values (within 1 nm). Z's frame, which follows the
+// pair, completes their sample (until it comes a sample has the last Z).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -31,6 +32,10 @@ class PathTelemetry {
   // The plane's first axis' position and following (raw 1 nm) of a tick whose second axis has not come yet.
   std::optional<std::array<std::int32_t, 2>> first_;
   std::vector<hil::PathSample> samples_;
+  // Z's position and following, raw: its frame comes after the plane's pair and completes their sample.
+  std::optional<std::array<std::int32_t, 2>> z_;
+  bool z_pending_ = false;  // the last sample waits for its tick's Z
+  void set_z(hil::PathSample& s) const;
   bool dropped_ = false;
 };
 

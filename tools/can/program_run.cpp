@@ -151,7 +151,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
       client.command(can::CommandCode::enable);
       // Servo on holds where the table stood; parse again if that is not where the program was planned from.
       const fw::motion::PlanePoint held = standing_reference(client, telemetry);
-      if (std::hypot(held[0] - r.start_mm[0], held[1] - r.start_mm[1]) > 1e-6) {
+      if (std::hypot(std::hypot(held[0] - r.start_mm[0], held[1] - r.start_mm[1]), held[2] - r.start_mm[2]) > 1e-6) {
         r.start_mm = held;
         p = prepare(gcode_text, r.start_mm, r.limits, o, client.node());
       }

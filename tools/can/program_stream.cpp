@@ -161,6 +161,10 @@ class Streamer {
     if (o_.before_send) o_.before_send(next_);
     e.frames.head.data[0] = tag;
     client_.send_raw(e.frames.head);
+    if (e.frames.has_z) {
+      e.frames.z.data[0] = tag;
+      client_.send_raw(e.frames.z);
+    }
     if (e.frames.has_tail) {
       e.frames.tail.data[0] = tag;
       client_.send_raw(e.frames.tail);
@@ -185,7 +189,8 @@ class Streamer {
   void on_ack(const CommandAck& a) {
     const auto segment = static_cast<std::uint8_t>(MessageId::segment);
     const auto tail = static_cast<std::uint8_t>(MessageId::segment_tail);
-    if (a.request != segment && a.request != tail) return;
+    const auto z = static_cast<std::uint8_t>(MessageId::segment_z);
+    if (a.request != segment && a.request != tail && a.request != z) return;
     news_ = true;
     if (flight_.empty() || a.tag != flight_.front().tag) {
       for (const InFlight& f : flight_)

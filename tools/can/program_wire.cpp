@@ -34,7 +34,8 @@ struct Builder {
                     f == &fw::can::fields::kTailFeed || f == &fw::can::fields::kTailCentreNormal ||
                             f == &fw::can::fields::kTailCentreAlong
                         ? "SEGMENT_TAIL"
-                        : "SEGMENT",
+                    : f == &fw::can::fields::kSegmentZField ? "SEGMENT_Z"
+                                                            : "SEGMENT",
                     f->name);
       error = buf;
       return false;
@@ -64,17 +65,24 @@ struct Builder {
   }
 
   static std::string describe(const Segment& s) {
-    char buf[96];
+    char buf[120];
     if (s.kind == SegmentKind::dwell) std::snprintf(buf, sizeof buf, "a dwell of %g s", s.dwell_s);
-    else std::snprintf(buf, sizeof buf, "a move to (%g, %g) mm at %g mm/s", s.end_mm[0], s.end_mm[1], s.feed_mm_s);
+    else
+      std::snprintf(buf, sizeof buf, "a move to (%g, %g, %g) mm at %g mm/s", s.end_mm[0], s.end_mm[1],
+                    s.end_mm[fw::can::kProgramZ], s.feed_mm_s);
     return buf;
   }
 
-  // The arc of `g` from angle fraction t0 to t1 (0..1 of its sweep), radius moving linearly as the firmware runs it.
+  // The arc of `g` from angle fraction t0 to t1 (0..1 of its sweep), radius and a helix's Z moving linearly as
+  // the firmware runs it.
   static PlanePoint arc_point(const SegmentGeometry& g, double t) {
     const double angle = g.start_angle_rad + g.sweep_rad * t;
     const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * t;
-    return {g.centre_mm[0] + r * std::cos(angle), g.centre_mm[1] + r * std::sin(angle)};
+    PlanePoint p{};
+    for (std::size_t i = 2; i < p.size(); ++i) p[i] = g.start_mm[i] + (g.end_mm[i] - g.start_mm[i]) * t;
+    p[0] = g.centre_mm[0] + r * std::cos(angle);
+    p[1] = g.centre_mm[1] + r * std::sin(angle);
+    return p;
   }
 
   bool add_arc(const Segment& s, const SegmentGeometry& g, double t0, double t1, int line, int depth) {

@@ -3,6 +3,7 @@
 #include "tools/gcode/canon_state.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -11,11 +12,27 @@ namespace tnv::gcode {
 
 namespace {
 
+// The signed angle from start to end about centre in the plane, as the motion core measures an arc
+// (segment_geometry.cpp): a closed arc is a full turn.
+double arc_sweep_rad(const PlanePoint& start, const PlanePoint& end, const PlanePoint& centre, bool clockwise,
+                     double closed_mm) {
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  const double a0 = std::atan2(start[1] - centre[1], start[0] - centre[0]);
+  double sweep = std::atan2(end[1] - centre[1], end[0] - centre[0]) - a0;
+  if (std::hypot(end[0] - start[0], end[1] - start[1]) < closed_mm) return clockwise ? -two_pi : two_pi;
+  if (clockwise) {
+    while (sweep >= 0.0) sweep -= two_pi;
+  } else {
+    while (sweep <= 0.0) sweep += two_pi;
+  }
+  return sweep;
+}
+
 using Kind = CanonMotion::Kind;
 using fw::motion::Segment;
 using fw::motion::SegmentRefusal;
 
-// Offsets add up in floating point; a Z that differs by less is the same Z.
+// Offsets add up in floating point; a Z that differs by less is the same Z (no SEGMENT_Z for it).
 constexpr double kSameZ_mm = 1e-6;
 // A move shorter than this goes nowhere (as the old reader skipped a move to where the table is).
 constexpr double kNoMove_mm = 1e-9;
@@ -38,11 +55,11 @@ void CanonSegmentSink::convert(const CanonCall& call) {
     case Kind::other: break;
     case Kind::traverse:
     case Kind::feed: {
-      check_z(m.end_mm);
-      if (std::hypot(m.end_mm[0] - at_[0], m.end_mm[1] - at_[1]) < kNoMove_mm) break;
+      const PlanePoint end = point(m.end_mm);
+      if (std::hypot(std::hypot(end[0] - at_[0], end[1] - at_[1]), end[2] - at_[2]) < kNoMove_mm) break;
       const double feed = m.kind == Kind::traverse ? options_.rapid_feed_mm_s : feed_mm_min_ / 60.0;
       if (!(feed > 0.0)) throw Refusal("feed move without a feed rate (F)");
-      fw::motion::Segment line = fw::motion::line_to({m.end_mm[0], m.end_mm[1]}, feed, tag);
+      fw::motion::Segment line = fw::motion::line_to(end, feed, tag);
       line.rapid = m.kind == Kind::traverse;  // a rapid does not wait for the spindle
       add(line);
       break;
@@ -50,20 +67,30 @@ void CanonSegmentSink::convert(const CanonCall& call) {
     case Kind::arc: {
       if (m.plane != 17)
         throw Refusal(std::string("arc in the ") + (m.plane == 18 ? "XZ plane (G18)" : "YZ plane (G19)") +
-                      ": this machine has X and Y only (arcs in G17)");
-      check_z(m.end_mm);
+                      ": the motion queue takes arcs in the XY plane (G17) only, Z moving with them as a helix");
       const double feed = feed_mm_min_ / 60.0;
       if (!(feed > 0.0)) throw Refusal("arc without a feed rate (F)");
       const bool clockwise = m.turn < 0;
-      const PlanePoint centre{m.centre_mm[0], m.centre_mm[1]};
-      // P turns: the full circles first, then the arc to the end.
-      for (int k = 1; k < std::abs(m.turn); ++k) add(fw::motion::arc_to(clockwise, {at_[0], at_[1]}, centre, feed, tag));
-      add(fw::motion::arc_to(clockwise, {m.end_mm[0], m.end_mm[1]}, centre, feed, tag));
+      const PlanePoint end = point(m.end_mm);
+      const PlanePoint centre{m.centre_mm[0], m.centre_mm[1], at_[2]};
+      // P turns: the full circles first, then the arc to the end; a helix's Z
+      // is shared among them by angle, so it climbs at one pitch throughout.
+      const int turns = std::abs(m.turn);
+      const double last_rad = std::fabs(arc_sweep_rad(at_, end, centre, clockwise, options_.limits.min_segment_mm));
+      const double total_rad = 2.0 * std::numbers::pi * (turns - 1) + last_rad;
+      const double z_per_rad = total_rad > 0.0 ? (end[2] - at_[2]) / total_rad : 0.0;
+      const double z0 = at_[2];
+      for (int k = 1; k < turns; ++k) {
+        PlanePoint full = at_;
+        full[2] = z0 + z_per_rad * 2.0 * std::numbers::pi * k;
+        add(fw::motion::arc_to(clockwise, full, centre, feed, tag));
+      }
+      add(fw::motion::arc_to(clockwise, end, centre, feed, tag));
       break;
     }
     case Kind::probe: throw Refusal("probe move (G38.x): this machine has no probe input");
     case Kind::spline: throw Refusal("G5.1 spline: the motion queue takes lines and arcs only");
-    case Kind::rigid_tap: throw Refusal("rigid tapping (G33.1) moves Z: this machine has X and Y only");
+    case Kind::rigid_tap: throw Refusal("rigid tapping (G33.1): the motion queue has no motion synchronised to the spindle");
     case Kind::dwell:
       if (m.value > 0.0) add(fw::motion::dwell_for(m.value, tag));
       break;
@@ -104,20 +131,19 @@ void CanonSegmentSink::convert(const CanonCall& call) {
   }
 }
 
-void CanonSegmentSink::check_z(const std::array<double, 3>& end) const {
-  if (std::fabs(end[2] - at_[2]) > kSameZ_mm)
-    throw Refusal("this move takes machine Z from " + fixed(at_[2], 4) + " to " + fixed(end[2], 4) +
-                  " mm: this machine has X and Y only");
+PlanePoint CanonSegmentSink::point(const std::array<double, 3>& machine_mm) const {
+  PlanePoint p{machine_mm[0], machine_mm[1], machine_mm[2]};
+  if (std::fabs(p[2] - at_[2]) <= kSameZ_mm) p[2] = at_[2];  // offsets' rounding is no Z move
+  return p;
 }
 
 void CanonSegmentSink::add(const Segment& segment) {
   fw::motion::SegmentGeometry g;
-  const SegmentRefusal r = fw::motion::prepare(segment, {at_[0], at_[1]}, options_.limits, g);
+  const SegmentRefusal r = fw::motion::prepare(segment, at_, options_.limits, g);
   if (r != SegmentRefusal::none) throw Refusal(std::string("segment refused: ") + fw::motion::to_string(r));
   program_.segments.push_back(segment);
   program_.geometry.push_back(g);
-  at_[0] = g.end_mm[0];
-  at_[1] = g.end_mm[1];
+  at_ = g.end_mm;
 }
 
 // The spindle as the program has it now: on at S in its direction, or

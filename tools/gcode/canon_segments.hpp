@@ -1,16 +1,14 @@
 #pragma once
-// The canonical calls of a program (canon_interpreter.hpp) as this XY
-// table's motion queue takes them: rapids, feeds and G17 arcs become line
-// and arc segments, dwells dwell segments, each checked against the
-// firmware's limits (fw::motion::prepare) as the queue will check it.
-// Refused, with the line: a move that changes machine Z (a Z word, with a
-// tool length offset in force or not; a G17 canned cycle; rigid tapping), an
-// arc outside G17 (the
-// machine has X and Y only), a probe move (no probe input) and a G5.1
-// spline. Program pauses (Segment::pause, GcodeProgram::pauses): M0, M1
-// while the optional stop switch is on (CanonSetup::optional_stop), and M6
-// (a manual tool change; the tool's length applies to Z, fine while Z does
-// not move). Spindle commands (S, M3, M4, M5, and the stops of M6 and the
+// The canonical calls of a program (canon_interpreter.hpp) as the machine's
+// motion queue takes them: rapids and feeds become lines in XYZ, G17 arcs
+// arcs in XY (with a Z end: a helix, Z moving with the angle; P turns share
+// Z by angle), dwells dwell segments, each checked against the firmware's
+// limits (fw::motion::prepare) as the queue will check it. Refused, with
+// the line: an arc outside G17 (G18, G19), rigid tapping, a probe move (no
+// probe input) and a G5.1 spline. Program pauses (Segment::pause,
+// GcodeProgram::pauses): M0, M1 while the optional stop switch is on
+// (CanonSetup::optional_stop), and M6 (a manual tool change; the tool's
+// length applies to Z from the next move). Spindle commands (S, M3, M4, M5, and the stops of M6 and the
 // program's end) become spindle elements (Segment::spindle) in program
 // order. Counted and not sent: coolant (the table has none).
 #include <array>
@@ -31,7 +29,7 @@ class CanonSegmentSink {
  public:
   // The interpreter runs from `start_machine_mm` (CanonSetup::start_machine_mm).
   CanonSegmentSink(const std::array<double, 3>& start_machine_mm, const GcodeOptions& options)
-      : at_(start_machine_mm), options_(options) {}
+      : at_{start_machine_mm[0], start_machine_mm[1], start_machine_mm[2]}, options_(options) {}
   void operator()(const CanonCall& call);
   // The run's error if it has one, else the first refusal (its file named
   // from run.files), else the program.
@@ -39,7 +37,8 @@ class CanonSegmentSink {
 
  private:
   void convert(const CanonCall& call);  // throws the refusal (canon_segments.cpp)
-  void check_z(const std::array<double, 3>& end) const;
+  // A machine position as the motion core's point: X, Y and Z (Z within rounding of the current one is it).
+  PlanePoint point(const std::array<double, 3>& machine_mm) const;
   void add(const fw::motion::Segment& segment);
   void add_pause(std::uint32_t tag, PauseReason reason, int tool);
   void add_spindle(std::uint32_t tag);
@@ -49,7 +48,7 @@ class CanonSegmentSink {
     std::uint32_t file = 0;
     std::string message;
   };
-  std::array<double, 3> at_;  // machine coordinates, mm
+  PlanePoint at_;  // machine coordinates, mm (X, Y, Z)
   const GcodeOptions& options_;
   double feed_mm_min_ = 0.0;
   int spindle_direction_ = 0;  // 1 M3, -1 M4, 0 stopped (M5, M6, the program's end)

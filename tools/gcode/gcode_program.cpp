@@ -14,6 +14,7 @@ CanonSetup machine_setup(const GcodeOptions& options) {
   CanonSetup setup = options.canon;
   setup.start_machine_mm[0] = options.start_mm[0];
   setup.start_machine_mm[1] = options.start_mm[1];
+  setup.start_machine_mm[2] = options.start_mm[2];
   setup.end_of_file_ends = true;
   // A run from line N approaches its start from where the machine is.
   if (setup.from_line) setup.from_line->machine_position_mm = setup.start_machine_mm;

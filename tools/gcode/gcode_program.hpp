@@ -24,14 +24,14 @@ namespace tnv::gcode {
 using fw::motion::PlanePoint;
 
 struct GcodeOptions {
-  PlanePoint start_mm{0.0, 0.0};   // where the table is when the program starts (machine X Y)
+  PlanePoint start_mm{};           // where the machine is when the program starts (machine X Y Z)
   double rapid_feed_mm_s = 50.0;   // G0 path speed
   fw::motion::MotionLimits limits{};
   // The tool table, parameters (.var: work offsets, G28/G30, G92) and
   // subroutine path. A program ends at the end of its file too here (no
-  // M2 needed, as LinuxCNC's task runs it); Z starts at start_machine_mm[2].
+  // M2 needed, as LinuxCNC's task runs it); start_mm replaces its start_machine_mm.
   // With canon.from_line set it runs from that line, its approach starting
-  // where the machine is (start_mm and start_machine_mm[2]: the
+  // where the machine is (start_mm: the
   // from_line's own machine_position_mm is replaced).
   CanonSetup canon{};
 };

@@ -12,8 +12,11 @@ using fw::motion::SegmentKind;
 
 namespace {
 
+// Over every axis: the plane's two first, then each further one (hypot(h, 0) is h exactly).
 double point_distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept {
-  return std::hypot(a[0] - b[0], a[1] - b[1]);
+  double d = std::hypot(a[0] - b[0], a[1] - b[1]);
+  for (std::size_t i = 2; i < a.size(); ++i) d = std::hypot(d, a[i] - b[i]);
+  return d;
 }
 
 }  // namespace
@@ -22,11 +25,16 @@ double distance_to_segment_mm(const SegmentGeometry& g, const PlanePoint& p) noe
   switch (g.kind) {
     case SegmentKind::dwell: return point_distance_mm(g.start_mm, p);
     case SegmentKind::line: {
-      const double dx = g.end_mm[0] - g.start_mm[0], dy = g.end_mm[1] - g.start_mm[1];
-      const double len2 = dx * dx + dy * dy;
-      const double t =
-          len2 > 0.0 ? std::clamp(((p[0] - g.start_mm[0]) * dx + (p[1] - g.start_mm[1]) * dy) / len2, 0.0, 1.0) : 0.0;
-      return std::hypot(p[0] - g.start_mm[0] - t * dx, p[1] - g.start_mm[1] - t * dy);
+      double len2 = 0.0, dot = 0.0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const double d = g.end_mm[i] - g.start_mm[i];
+        len2 += d * d;
+        dot += (p[i] - g.start_mm[i]) * d;
+      }
+      const double t = len2 > 0.0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
+      PlanePoint q{};
+      for (std::size_t i = 0; i < p.size(); ++i) q[i] = g.start_mm[i] + t * (g.end_mm[i] - g.start_mm[i]);
+      return point_distance_mm(q, p);
     }
     case SegmentKind::arc_cw:
     case SegmentKind::arc_ccw: {
@@ -39,8 +47,12 @@ double distance_to_segment_mm(const SegmentGeometry& g, const PlanePoint& p) noe
       const double sweep = std::fabs(g.sweep_rad);
       if (along <= sweep) {
         // The radius moves linearly from start to end (within the arc tolerance).
-        const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * along / sweep;
-        return std::fabs(std::hypot(p[0] - g.centre_mm[0], p[1] - g.centre_mm[1]) - r);
+        const double f = along / sweep;
+        const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * f;
+        // A helix: the other axes at that angle (an upper bound on the distance, within the pitch's slope).
+        double d = std::fabs(std::hypot(p[0] - g.centre_mm[0], p[1] - g.centre_mm[1]) - r);
+        for (std::size_t i = 2; i < p.size(); ++i) d = std::hypot(d, p[i] - (g.start_mm[i] + f * (g.end_mm[i] - g.start_mm[i])));
+        return d;
       }
       return std::min(point_distance_mm(g.start_mm, p), point_distance_mm(g.end_mm, p));
     }
@@ -49,11 +61,17 @@ double distance_to_segment_mm(const SegmentGeometry& g, const PlanePoint& p) noe
 }
 
 ProgrammedPath::ProgrammedPath(std::vector<SegmentGeometry> elements) {
-  for (SegmentGeometry& g : elements)
-    if (g.kind != SegmentKind::dwell) elements_.push_back(g);
+  for (SegmentGeometry& g : elements) {
+    if (g.kind == SegmentKind::dwell) continue;
+    for (std::size_t i = 2; i < g.start_mm.size(); ++i) plane_only_ = plane_only_ && g.end_mm[i] == g.start_mm[i];
+    elements_.push_back(g);
+  }
 }
 
-double ProgrammedPath::distance_mm(const PlanePoint& p) const noexcept {
+double ProgrammedPath::distance_mm(const PlanePoint& point) const noexcept {
+  PlanePoint p = point;
+  if (plane_only_ && !elements_.empty())  // measured in the plane: the other axes held are not the path's
+    for (std::size_t i = 2; i < p.size(); ++i) p[i] = elements_.front().start_mm[i];
   double best = 1e300;
   for (const SegmentGeometry& g : elements_) {
     if (g.kind == SegmentKind::arc_cw || g.kind == SegmentKind::arc_ccw) {

@@ -16,8 +16,10 @@ namespace {
 
 PathSample sample_of(const fw::TickRecord& r) {
   PathSample s;
-  s.position_mm = {r.axis[0].position_mm, r.axis[1].position_mm};
-  s.reference_mm = {r.axis[0].reference_mm, r.axis[1].reference_mm};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+    s.position_mm[i] = r.axis[i].position_mm;
+    s.reference_mm[i] = r.axis[i].reference_mm;
+  }
   return s;
 }
 
@@ -37,7 +39,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   rig->tick();
   // The program starts where the table holds, with the planner's own limits.
   gcode::GcodeOptions parse;
-  parse.start_mm = {task.standing_mm(hal::kPlaneFirst), task.standing_mm(hal::kPlaneSecond)};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) parse.start_mm[i] = task.standing_mm(hal::axis_from_index(i));
   parse.rapid_feed_mm_s = options.rapid_feed_mm_s;
   parse.limits = task.motion().limits();
   parse.canon = options.canon;

@@ -12,7 +12,12 @@ using fw::motion::PlanePoint;
 
 namespace {
 
-double distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept { return std::hypot(a[0] - b[0], a[1] - b[1]); }
+// Over every axis (a plunge is motion too); hypot(h, 0) is h exactly, so Z held changes nothing.
+double distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept {
+  double d = std::hypot(a[0] - b[0], a[1] - b[1]);
+  for (std::size_t i = 2; i < a.size(); ++i) d = std::hypot(d, a[i] - b[i]);
+  return d;
+}
 
 }  // namespace
 

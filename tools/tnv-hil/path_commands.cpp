@@ -146,7 +146,7 @@ int run_path_command(const PathOptions& o) {
 void add_path_commands(CLI::App& app, Runner& run) {
   auto o = std::make_shared<PathOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "path", "run a G-code program (LinuxCNC's RS274/NGC dialect, X and Y) on the emulated table and score it against "
+      "path", "run a G-code program (LinuxCNC's RS274/NGC dialect, X, Y and Z) on the emulated machine and score it against "
               "its geometry");
   cmd->add_option("file", o->file, "the program (.ngc)")->required();
   add_gcode_setup_options(*cmd, o->files);

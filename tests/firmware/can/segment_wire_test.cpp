@@ -1,4 +1,4 @@
-// SEGMENT / SEGMENT_TAIL: what the host encodes is what the node decodes,
+// SEGMENT / SEGMENT_Z / SEGMENT_TAIL: what the host encodes is what the node decodes,
 // to the wire's 0.1 um, and what does not fit is refused naming the field.
 #include <gtest/gtest.h>
 
@@ -195,6 +195,81 @@ TEST(SegmentWire, ChordCoordinatesInvertExactly) {
   ASSERT_TRUE(centre_from_chord(s, e, cc, back));
   EXPECT_NEAR(distance(back, c), 0.0, 1e-12);
   EXPECT_FALSE(chord_centre(s, s, c, cc)) << "no chord, no frame to measure the centre in";
+}
+
+// The node's side of an element with its Z frame, as the program stream takes it: head, Z (when sent), tail.
+Segment round_trip_z(const Segment& s, const PlanePoint& start, SegmentFrames& frames) {
+  EXPECT_EQ(encode_segment(s, start, 1, 0x13, frames), nullptr);
+  SegmentHead head;
+  EXPECT_TRUE(decode_head(frames.head, head));
+  if (frames.has_z) {
+    EXPECT_EQ(frames.z.data[0], 0x13) << "the Z frame carries its element's tag";
+    EXPECT_TRUE(decode_z(frames.z, head));
+  }
+  Segment out;
+  EXPECT_TRUE(decode_segment(head, frames.has_tail ? &frames.tail : nullptr, start, out));
+  return out;
+}
+
+TEST(SegmentWire, ALineThatMovesZSendsAThirdFrameAndOneInThePlaneKeepsTwo) {
+  const PlanePoint start{1.0, 2.0, -5.0};
+  SegmentFrames f;
+  Segment out = round_trip_z(motion::line_to({11.0, 7.0, -7.123456}, 20.0), start, f);
+  EXPECT_TRUE(f.has_z);
+  EXPECT_EQ(f.z.dlc, fields::kSegmentZMsg.dlc);
+  EXPECT_LE(std::fabs(out.end_mm[kProgramZ] + 7.123456), kWireMm / 2 + 1e-12);
+  EXPECT_EQ(out.end_mm[kProgramZ], f.end_mm[kProgramZ]) << "the host's end point as sent is the node's";
+  EXPECT_EQ(out.end_mm[kProgramZ], wire_position_mm(-7.123456));
+  EXPECT_NEAR(out.end_mm[0], 11.0, 1e-12);
+
+  // A plunge: X and Y stay, Z alone moves.
+  out = round_trip_z(motion::line_to({1.0, 2.0, -9.5}, 5.0), start, f);
+  EXPECT_TRUE(f.has_z);
+  EXPECT_EQ(out.end_mm, (PlanePoint{1.0, 2.0, -9.5}));
+
+  // In the plane at the start's Z: two frames, and the node keeps Z where the element starts (not 0).
+  out = round_trip_z(motion::line_to({4.0, 2.0, -5.0}, 20.0), start, f);
+  EXPECT_FALSE(f.has_z);
+  EXPECT_TRUE(f.has_tail);
+  EXPECT_EQ(out.end_mm[kProgramZ], -5.0);
+  EXPECT_EQ(f.end_mm[kProgramZ], -5.0);
+}
+
+TEST(SegmentWire, AHelixCarriesItsCentreAndItsZ) {
+  const PlanePoint c{3.0, -4.0, 0.0};
+  const double r = 10.0;
+  for (const bool cw : {false, true}) {
+    const PlanePoint start{c[0] + r, c[1], -2.0};
+    const PlanePoint end{c[0], c[1] + (cw ? -r : r), -3.25};
+    SegmentFrames f;
+    const Segment out = round_trip_z(motion::arc_to(cw, end, c, 8.0), start, f);
+    EXPECT_TRUE(f.has_z);
+    EXPECT_EQ(out.kind, cw ? SegmentKind::arc_cw : SegmentKind::arc_ccw);
+    EXPECT_LE(distance(out.centre_mm, c), 1.5 * kWireMm);
+    EXPECT_NEAR(out.end_mm[kProgramZ], -3.25, 1e-12);
+    EXPECT_NEAR(out.feed_mm_s, 8.0, 1e-12);
+  }
+}
+
+TEST(SegmentWire, AZBeyondTheWireOrWithoutItsElementIsRefused) {
+  SegmentFrames f;
+  const PlanePoint o{0.0, 0.0, 0.0};
+  EXPECT_EQ(encode_segment(motion::line_to({1.0, 1.0, -900.0}, 10.0), o, 1, 0x11, f), &fields::kSegmentZField)
+      << "beyond +-838 mm";
+  ASSERT_EQ(encode_segment(motion::line_to({1.0, 1.0, -3.0}, 10.0), o, 1, 0x11, f), nullptr);
+  SegmentHead head;
+  ASSERT_TRUE(decode_head(f.head, head));
+  ASSERT_TRUE(decode_z(f.z, head));
+  const SegmentHead once = head;
+  EXPECT_FALSE(decode_z(f.z, head)) << "a second Z for one element";
+  EXPECT_EQ(head.end_z_mm, once.end_z_mm);
+  SegmentFrames dwell;
+  ASSERT_EQ(encode_segment(motion::dwell_for(1.0), o, 1, 0x12, dwell), nullptr);
+  EXPECT_FALSE(dwell.has_z) << "a dwell stays where the path is";
+  SegmentHead d;
+  ASSERT_TRUE(decode_head(dwell.head, d));
+  EXPECT_FALSE(decode_z(f.z, d)) << "a dwell has no Z to take";
+  EXPECT_FALSE(d.has_z);
 }
 
 }  // namespace

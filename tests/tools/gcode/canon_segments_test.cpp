@@ -127,31 +127,45 @@ TEST(CanonSegments, ADialectProgramWithOffsetsASubroutineAnArcAndADwell) {
   EXPECT_NEAR(p.programmed_time_s(), (8.0 + arc_mm) / 10.0 + 0.5 + 2.0 / o.rapid_feed_mm_s, 1e-9);
 }
 
-TEST(CanonSegments, AZMoveIsRefusedWithItsLine) {
-  const GcodeResult r = parse_gcode("G0 X1\nG1 X2 Z-1 F100\nM2\n");
-  ASSERT_TRUE(r.error);
-  EXPECT_TRUE(r.program.segments.empty());
-  EXPECT_EQ(r.error->line, 2);
-  EXPECT_NE(r.error->message.find("X and Y only"), std::string::npos) << r.error->message;
-  EXPECT_EQ(to_string(*r.error).rfind("line 2: ", 0), 0u) << to_string(*r.error);
+TEST(CanonSegments, AZMoveIsALineInXyzAndAPlungeALineInZ) {
+  const GcodeResult r = parse_gcode("G0 X1\nG1 X2 Z-1 F100\nG1 Z-3\nG0 Z0\nM2\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.segments.size(), 4u);
+  EXPECT_EQ(r.program.segments[1].end_mm, (PlanePoint{2.0, 0.0, -1.0}));
+  EXPECT_EQ(r.program.segments[2].end_mm, (PlanePoint{2.0, 0.0, -3.0}));
+  EXPECT_TRUE(r.program.segments[3].rapid);
+  EXPECT_EQ(r.program.segments[3].end_mm, (PlanePoint{2.0, 0.0, 0.0}));
+  EXPECT_NEAR(r.program.programmed_length_mm(), 1.0 + std::hypot(1.0, 1.0) + 2.0 + 3.0, 1e-12);
 }
 
-TEST(CanonSegments, AToolChangeAndItsLengthAreFineWhileZDoesNotMove) {
+TEST(CanonSegments, AG17HelixSharesItsZAmongItsTurnsByAngle) {
+  // From (10, 0, 0) about the origin: a full turn, then a quarter, 5 mm down in all.
+  const GcodeResult r = parse_gcode("G1 X10 F600\nG3 X0 Y10 Z-5 I-10 P2\nM2\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.segments.size(), 3u);
+  EXPECT_NEAR(r.program.segments[1].end_mm[2], -4.0, 1e-12) << "2 pi of 2.5 pi";
+  EXPECT_EQ(r.program.segments[2].end_mm, (PlanePoint{0.0, 10.0, -5.0}));
+  const double turn_mm = std::hypot(2.0 * std::numbers::pi * 10.0, 4.0);
+  EXPECT_NEAR(r.program.geometry[1].length_mm, turn_mm, 1e-9);
+  EXPECT_NEAR(r.program.geometry[2].length_mm, turn_mm / 4.0, 1e-9) << "the same pitch throughout";
+}
+
+TEST(CanonSegments, AToolsLengthMovesMachineZFromItsNextZWord) {
   const GcodeOptions o = offsets_and_tools();
   const GcodeResult ok = parse_gcode("T1 M6\nG43\nG0 X1\nM2\n", o);
   ASSERT_FALSE(ok.error) << to_string(*ok.error);
   EXPECT_EQ(ok.program.tool_changes, 1u);
+  EXPECT_EQ(ok.program.segments.back().end_mm[2], 0.0) << "no Z word: Z stays";
   const GcodeResult r = parse_gcode("T1 M6\nG43\nG0 X1 Z0\nM2\n", o);
-  ASSERT_TRUE(r.error);
-  EXPECT_EQ(r.error->line, 3);
-  EXPECT_NE(r.error->message.find("machine Z from 0.0000 to 25.0000"), std::string::npos) << r.error->message;
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  EXPECT_EQ(r.program.segments.back().end_mm[2], 25.0) << "program Z0 with the 25 mm tool is machine Z 25";
 }
 
 TEST(CanonSegments, ARefusalInASubroutineFileNamesTheFile) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("tnv_canon_segments_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "plunge.ngc") << "(a subroutine file)\no<plunge> sub\n  G1 Z-1 F100\no<plunge> endsub\nM2\n";
+  std::ofstream(dir / "plunge.ngc") << "(a subroutine file)\no<plunge> sub\n  G18 G2 X2 Z0 I1 K0 F100\no<plunge> endsub\nM2\n";
   std::ofstream(dir / "main.ngc") << "G0 X1\no<plunge> call\nM2\n";
   const GcodeResult r = parse_gcode_file((dir / "main.ngc").string());
   std::filesystem::remove_all(dir);
@@ -166,7 +180,9 @@ TEST(CanonSegments, ArcsOutsideG17AreRefusedNotThePlaneCode) {
   ASSERT_TRUE(r.error);
   EXPECT_EQ(r.error->line, 2);
   EXPECT_NE(r.error->message.find("XZ plane (G18)"), std::string::npos) << r.error->message;
-  EXPECT_NE(r.error->message.find("X and Y only"), std::string::npos) << r.error->message;
+  EXPECT_NE(r.error->message.find("XY plane (G17) only"), std::string::npos) << r.error->message;
+  EXPECT_TRUE(r.program.segments.empty()) << "nothing to send";
+  EXPECT_EQ(to_string(*r.error).rfind("line 2: ", 0), 0u) << to_string(*r.error);
 }
 
 TEST(CanonSegments, ArcTurnsPBecomeFullCirclesThenTheArc) {
