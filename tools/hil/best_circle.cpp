@@ -1,5 +1,7 @@
 #include "tools/hil/best_circle.hpp"
 
+#include "hal/axis.hpp"
+
 #include <algorithm>
 #include <utility>
 
@@ -8,9 +10,11 @@ namespace tnv::hil {
 fw::FirmwareConfig with_friction_feedforward(const fw::FirmwareConfig& base,
                                              const std::array<fw::FrictionFeedForward, 2>& friction) {
   fw::FirmwareConfig config = base;
-  for (std::size_t i = 0; i < config.axis.size(); ++i) {
-    config.axis[i].friction = friction[i];
-    config.axis[i].friction.enabled = true;
+  const std::array<hal::Axis, 2> plane{hal::kPlaneFirst, hal::kPlaneSecond};
+  for (std::size_t i = 0; i < plane.size(); ++i) {
+    fw::AxisConfig& axis = config.axis[hal::index(plane[i])];
+    axis.friction = friction[i];
+    axis.friction.enabled = true;
   }
   return config;
 }

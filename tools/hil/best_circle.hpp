@@ -22,8 +22,10 @@
 
 namespace tnv::hil {
 
-// base with each axis' friction feed-forward set from friction[axis] and switched on
-// (the papers' gains plus compensation only).
+// base with the circle's plane axes' friction feed-forward set from
+// friction[0] (hal::kPlaneFirst) and friction[1] (hal::kPlaneSecond) and
+// switched on (the papers' gains plus compensation only); any other axis
+// keeps base's.
 fw::FirmwareConfig with_friction_feedforward(const fw::FirmwareConfig& base,
                                              const std::array<fw::FrictionFeedForward, 2>& friction);
 
