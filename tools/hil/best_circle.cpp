@@ -1,9 +1,9 @@
 #include "tools/hil/best_circle.hpp"
 
-#include "hal/axis.hpp"
-
 #include <algorithm>
 #include <utility>
+
+#include "hal/axis.hpp"
 
 namespace tnv::hil {
 
