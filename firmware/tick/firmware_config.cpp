@@ -8,6 +8,29 @@
 
 namespace tnv::fw {
 
+namespace {
+
+// The machine's soft travel limits around home (supervisor and planner).
+// X and Y: +-250 mm, a placeholder for the table's travel. Z: the head's
+// travel below its home at the top (reference plant "Z axis": 0 to
+// -300 mm), with 2 mm above home for the rest error at the switch, still
+// 3 mm short of the hard stop 5 mm above the travel: a program whose Z
+// (tool length and work offset included) rises beyond it is refused
+// `outside_workspace` instead of driving the head into the stop.
+void set_machine_travel(hal::Axis axis, AxisLimits& limits) noexcept {
+  switch (axis) {
+    case hal::Axis::x:
+    case hal::Axis::y:
+      break;
+    case hal::Axis::z:
+      limits.position_min_mm = -300.0;
+      limits.position_max_mm = 2.0;
+      break;
+  }
+}
+
+}  // namespace
+
 FirmwareConfig default_firmware_config() noexcept {
   FirmwareConfig config;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
@@ -17,6 +40,7 @@ FirmwareConfig default_firmware_config() noexcept {
     a.sliding = paper_rdvsc_params(axis);
     a.pid = paper_pid_params(axis, a.sliding.u_max_mm_s);
     a.homing = machine_homing_params(axis);
+    set_machine_travel(axis, config.supervisor.axis[i]);
   }
   return config;
 }
