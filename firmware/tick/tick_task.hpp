@@ -334,11 +334,13 @@ class TickTask {
   // Starts a profiled producer's segment from `start` (the circle, the move).
   CommandStatus start_profiled(const motion::Segment& segment, const std::array<AxisSample, hal::kAxisCount>& start,
                                double dwell_s, Source source) noexcept;
-  motion::PlanePoint held_point() const noexcept {
+  // Each axis' position in `samples`, as a point of the motion core.
+  static motion::PlanePoint positions_mm(const std::array<AxisSample, hal::kAxisCount>& samples) noexcept {
     motion::PlanePoint p{};
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = hold_[i].position_mm;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = samples[i].position_mm;
     return p;
   }
+  motion::PlanePoint held_point() const noexcept { return positions_mm(hold_); }
 
   hal::IoBoard& board_;
   FirmwareConfig config_;

@@ -11,9 +11,7 @@ namespace tnv::fw {
 CommandStatus TickTask::start_profiled(const motion::Segment& segment,
                                        const std::array<AxisSample, hal::kAxisCount>& start, double dwell_s,
                                        Source source) noexcept {
-  motion::PlanePoint at_mm{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) at_mm[i] = start[i].position_mm;
-  motion_.reset_at(at_mm);
+  motion_.reset_at(positions_mm(start));
   if (motion_.push(segment) != motion::SegmentRefusal::none) return CommandStatus::invalid;
   motion_.end_program();
   source_ = source;
@@ -93,9 +91,7 @@ CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
   const double end_mm = start[a].position_mm + spec.distance_mm;
   const AxisLimits& lim = config_.supervisor.axis[a];
   if (!(end_mm >= lim.position_min_mm && end_mm <= lim.position_max_mm)) return CommandStatus::invalid;
-  motion::PlanePoint from_mm{};
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) from_mm[i] = start[i].position_mm;
-  const motion::Segment segment = motion::move_segment(spec, from_mm);
+  const motion::Segment segment = motion::move_segment(spec, positions_mm(start));
   if (const CommandStatus st = start_profiled(segment, start, spec.dwell_s, Source::move); st != CommandStatus::ok)
     return st;
   motion_ticks_ = static_cast<std::int64_t>(
