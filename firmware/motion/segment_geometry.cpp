@@ -14,13 +14,17 @@ bool finite(const PlanePoint& p) noexcept {
   return true;
 }
 
-// |b - a| over every axis: hypot of the plane's two first, then each further
-// axis (hypot(h, 0) is h exactly, so a line in the plane has the length it
-// had with two axes, bit for bit).
+// A path of plane_mm in the plane that also moves each further axis from a
+// to b (a line's, a helix's): hypot with each further axis' travel in turn
+// (hypot(h, 0) is h exactly, so a path in the plane keeps its length bit for bit).
+double with_axes_beyond_plane(double plane_mm, const PlanePoint& a, const PlanePoint& b) noexcept {
+  for (std::size_t i = 2; i < hal::kAxisCount; ++i) plane_mm = std::hypot(plane_mm, b[i] - a[i]);
+  return plane_mm;
+}
+
+// |b - a| over every axis.
 double distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept {
-  double d = std::hypot(b[0] - a[0], b[1] - a[1]);
-  for (std::size_t i = 2; i < hal::kAxisCount; ++i) d = std::hypot(d, b[i] - a[i]);
-  return d;
+  return with_axes_beyond_plane(std::hypot(b[0] - a[0], b[1] - a[1]), a, b);
 }
 
 bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
@@ -143,11 +147,9 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
                           limits.min_segment_mm;
       if (closed) sweep = ccw ? two_pi : -two_pi;
       g.sweep_rad = sweep;
-      // A helix: the plane's arc length and each further axis' travel, as a line's (hypot(h, 0) is h exactly,
-      // so an arc in the plane keeps its length and tangents bit for bit).
+      // A helix: the plane's arc length and each further axis' travel, as a line's.
       const double plane_mm = 0.5 * (g.start_radius_mm + g.end_radius_mm) * std::fabs(sweep);
-      g.length_mm = plane_mm;
-      for (std::size_t i = 2; i < hal::kAxisCount; ++i) g.length_mm = std::hypot(g.length_mm, segment.end_mm[i] - start_mm[i]);
+      g.length_mm = with_axes_beyond_plane(plane_mm, start_mm, segment.end_mm);
       if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
       const double in_plane = plane_mm / g.length_mm;
       g.unit_start = arc_tangent(g.start_angle_rad, ccw);
