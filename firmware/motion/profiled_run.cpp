@@ -42,13 +42,14 @@ PathSample ProfiledRun::point_at(double distance_mm, double speed_mm_s) const no
   }
   const double c = std::cos(theta);
   const double s = std::sin(theta);
-  // In the XY plane; the other axes stay where the centre is (no helix).
+  // In its plane; the other axes stay where the centre is (no helix).
+  const PlaneAxes pa = plane_axes(g.plane);
   out.position_mm = g.centre_mm;
-  out.position_mm[0] = g.centre_mm[0] + r * c;
-  out.position_mm[1] = g.centre_mm[1] + r * s;
+  out.position_mm[pa.first] = g.centre_mm[pa.first] + r * c;
+  out.position_mm[pa.second] = g.centre_mm[pa.second] + r * s;
   out.speed_mm_s = {};
-  out.speed_mm_s[0] = -sign * s * speed_mm_s;
-  out.speed_mm_s[1] = sign * c * speed_mm_s;
+  out.speed_mm_s[pa.first] = -sign * s * speed_mm_s;
+  out.speed_mm_s[pa.second] = sign * c * speed_mm_s;
   return out;
 }
 

@@ -4,15 +4,41 @@
 // absolute table coordinates; a line or arc starts where the previous
 // element ended.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "hal/axis.hpp"
+#include "hal/listed_enum.hpp"
 
 namespace tnv::fw::motion {
 
-using PlanePoint = std::array<double, hal::kAxisCount>;  // [x_mm, y_mm]
+using PlanePoint = std::array<double, hal::kAxisCount>;  // a point on every axis, mm, in axis index order
 
 enum class SegmentKind : std::uint8_t { line = 0, arc_cw = 1, arc_ccw = 2, dwell = 3 };
+
+// The plane of an arc (G17, G18, G19), named by its two axes in the order
+// that makes counter-clockwise the turn from the first towards the second,
+// as RS274/NGC looks at it from the positive third axis: xy (G17), zx (G18),
+// yz (G19). The third axis (and any other) moves linearly with the angle: a
+// helix. Wire values (SEGMENT_PLANE.plane): append, never renumber.
+#define TNV_ARC_PLANES(X) X(xy) X(zx) X(yz)
+TNV_LISTED_ENUM(ArcPlane, TNV_ARC_PLANES)
+
+struct PlaneAxes {
+  std::size_t first = 0;   // the angle is measured from this axis ...
+  std::size_t second = 1;  // ... towards this one
+};
+
+constexpr PlaneAxes plane_axes(ArcPlane plane) noexcept {
+  switch (plane) {
+    case ArcPlane::zx: return {hal::index(hal::Axis::z), hal::index(hal::Axis::x)};
+    case ArcPlane::yz: return {hal::index(hal::Axis::y), hal::index(hal::Axis::z)};
+    case ArcPlane::xy: break;
+  }
+  return {hal::index(hal::Axis::x), hal::index(hal::Axis::y)};
+}
+
+constexpr bool in_plane(PlaneAxes p, std::size_t axis) noexcept { return axis == p.first || axis == p.second; }
 
 // A program's spindle command (S, M3, M4, M5) carried in its place in the queue.
 enum class SpindleChange : std::uint8_t { none = 0, forward, reverse, stop };
@@ -20,7 +46,8 @@ enum class SpindleChange : std::uint8_t { none = 0, forward, reverse, stop };
 struct Segment {
   SegmentKind kind = SegmentKind::line;
   PlanePoint end_mm{};     // line and arc end point
-  PlanePoint centre_mm{};  // arc centre (end == start: a full circle)
+  PlanePoint centre_mm{};  // arc centre in its plane (end == start there: a full circle)
+  ArcPlane plane = ArcPlane::xy;  // arcs: the plane of the circle (a plane value outside ArcPlane: bad_kind)
   double feed_mm_s = 0.0;  // path speed for this element (ignored by a dwell)
   double dwell_s = 0.0;    // dwell only
   bool exact_stop = false; // come to rest at the end before the next element
@@ -71,8 +98,9 @@ constexpr Segment line_to(PlanePoint end_mm, double feed_mm_s, std::uint32_t tag
 }
 
 constexpr Segment arc_to(bool clockwise, PlanePoint end_mm, PlanePoint centre_mm, double feed_mm_s,
-                         std::uint32_t tag = 0) noexcept {
+                         std::uint32_t tag = 0, ArcPlane plane = ArcPlane::xy) noexcept {
   Segment s;
+  s.plane = plane;
   s.kind = clockwise ? SegmentKind::arc_cw : SegmentKind::arc_ccw;
   s.end_mm = end_mm;
   s.centre_mm = centre_mm;
@@ -112,7 +140,7 @@ enum class SegmentRefusal : std::uint8_t {
   none = 0,
   queue_full = 1,
   not_finite = 2,          // a NaN or infinite number
-  bad_kind = 3,
+  bad_kind = 3,            // unknown kind or arc plane, or a pause that is also a spindle command
   zero_length = 4,         // line or arc shorter than MotionLimits::min_segment_mm
   arc_radius_mismatch = 5, // |start - centre| and |end - centre| differ beyond the tolerance
   arc_radius_too_small = 6,

@@ -15,32 +15,55 @@ bool finite(const PlanePoint& p) noexcept {
 }
 
 // A path of plane_mm in the plane that also moves each further axis from a
-// to b (a line's, a helix's): hypot with each further axis' travel in turn
-// (hypot(h, 0) is h exactly, so a path in the plane keeps its length bit for bit).
-double with_axes_beyond_plane(double plane_mm, const PlanePoint& a, const PlanePoint& b) noexcept {
-  for (std::size_t i = 2; i < hal::kAxisCount; ++i) plane_mm = std::hypot(plane_mm, b[i] - a[i]);
+// to b (a line's, a helix's): hypot with each further axis' travel in turn,
+// in axis order (hypot(h, 0) is h exactly, so a path in the plane keeps its
+// length bit for bit).
+double with_axes_beyond_plane(double plane_mm, const PlanePoint& a, const PlanePoint& b, PlaneAxes plane) noexcept {
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    if (!in_plane(plane, i)) plane_mm = std::hypot(plane_mm, b[i] - a[i]);
   return plane_mm;
 }
 
 // |b - a| over every axis.
 double distance_mm(const PlanePoint& a, const PlanePoint& b) noexcept {
-  return with_axes_beyond_plane(std::hypot(b[0] - a[0], b[1] - a[1]), a, b);
+  const PlaneAxes xy = plane_axes(ArcPlane::xy);
+  return with_axes_beyond_plane(std::hypot(b[xy.first] - a[xy.first], b[xy.second] - a[xy.second]), a, b, xy);
 }
 
-bool inside(const PlanePoint& p, const MotionLimits& limits) noexcept {
+bool inside(const PlanePoint& p, const MotionLimits& limits, double slack_mm = 0.0) noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    if (!(p[i] >= limits.axis[i].position_min_mm && p[i] <= limits.axis[i].position_max_mm)) return false;
+    if (!(p[i] >= limits.axis[i].position_min_mm - slack_mm && p[i] <= limits.axis[i].position_max_mm + slack_mm))
+      return false;
   return true;
 }
 
-// Tangent of an arc at angle theta; ccw: +90 degrees from the radius vector.
-PlanePoint arc_tangent(double theta, bool ccw) noexcept {
+// An arc's extreme computed from its angle may land a rounding beyond a limit it only touches.
+constexpr double kArcExtremeSlack_mm = 1e-9;
+
+// Tangent of an arc at angle theta in its plane; ccw: +90 degrees from the radius vector.
+PlanePoint arc_tangent(double theta, bool ccw, PlaneAxes plane) noexcept {
   const double sign = ccw ? 1.0 : -1.0;
   PlanePoint t{};
-  t[0] = -sign * std::sin(theta);
-  t[1] = sign * std::cos(theta);
+  t[plane.first] = -sign * std::sin(theta);
+  t[plane.second] = sign * std::cos(theta);
   return t;
 }
+
+// An arc's extremes on its plane's axes (a G18 arc's Z may rise above both its ends): where its angle passes a multiple
+// of 90 degrees (the other axes move linearly: their ends are theirs).
+bool arc_inside(const SegmentGeometry& g, const MotionLimits& limits) noexcept {
+  constexpr double quarter = 0.5 * std::numbers::pi;
+  const double sweep = std::fabs(g.sweep_rad);
+  for (int k = 0; k < 4; ++k) {
+    double along = g.sweep_rad >= 0.0 ? k * quarter - g.start_angle_rad : g.start_angle_rad - k * quarter;
+    along = std::fmod(along, 4.0 * quarter);
+    if (along < 0.0) along += 4.0 * quarter;
+    if (along <= sweep && !inside(g.arc_point(along / sweep), limits, kArcExtremeSlack_mm)) return false;
+  }
+  return true;
+}
+
+bool known(ArcPlane plane) noexcept { return static_cast<std::uint8_t>(plane) < kArcPlaneCount; }
 
 // A profiled element's two raised-cosine ramps must fit its length, and its
 // time law must stay countable in ticks (the tick task counts in int64).
@@ -64,13 +87,17 @@ PlanePoint SegmentGeometry::point_at(double distance_mm) const noexcept {
     return p;
   }
   if (f >= 1.0) return end_mm;
+  return arc_point(f);
+}
+
+PlanePoint SegmentGeometry::arc_point(double f) const noexcept {
   const double theta = start_angle_rad + f * sweep_rad;
   const double r = start_radius_mm + f * (end_radius_mm - start_radius_mm);
-  // An arc is in the XY plane; the other axes (Z: a helix) move in step with its angle.
-  PlanePoint p = start_mm;
-  p[0] = centre_mm[0] + r * std::cos(theta);
-  p[1] = centre_mm[1] + r * std::sin(theta);
-  for (std::size_t i = 2; i < hal::kAxisCount; ++i) p[i] = start_mm[i] + f * (end_mm[i] - start_mm[i]);
+  const PlaneAxes pa = plane_axes(plane);
+  PlanePoint p{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) p[i] = start_mm[i] + f * (end_mm[i] - start_mm[i]);
+  p[pa.first] = centre_mm[pa.first] + r * std::cos(theta);
+  p[pa.second] = centre_mm[pa.second] + r * std::sin(theta);
   return p;
 }
 
@@ -124,17 +151,22 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
     case SegmentKind::arc_ccw: {
       if (!finite(segment.end_mm) || !finite(segment.centre_mm) || !std::isfinite(segment.feed_mm_s))
         return SegmentRefusal::not_finite;
+      if (!known(segment.plane)) return SegmentRefusal::bad_kind;
       const bool ccw = segment.kind == SegmentKind::arc_ccw;
+      const PlaneAxes pa = plane_axes(segment.plane);
+      const std::size_t a = pa.first;
+      const std::size_t b = pa.second;
       const PlanePoint& c = segment.centre_mm;
+      g.plane = segment.plane;
       g.centre_mm = c;
       g.end_mm = segment.end_mm;
-      g.start_radius_mm = std::hypot(start_mm[0] - c[0], start_mm[1] - c[1]);
-      g.end_radius_mm = std::hypot(segment.end_mm[0] - c[0], segment.end_mm[1] - c[1]);
+      g.start_radius_mm = std::hypot(start_mm[a] - c[a], start_mm[b] - c[b]);
+      g.end_radius_mm = std::hypot(segment.end_mm[a] - c[a], segment.end_mm[b] - c[b]);
       if (std::fabs(g.start_radius_mm - g.end_radius_mm) > limits.arc_radius_tolerance_mm)
         return SegmentRefusal::arc_radius_mismatch;
       if (g.min_radius_mm() < limits.min_arc_radius_mm) return SegmentRefusal::arc_radius_too_small;
-      g.start_angle_rad = std::atan2(start_mm[1] - c[1], start_mm[0] - c[0]);
-      const double end_angle = std::atan2(segment.end_mm[1] - c[1], segment.end_mm[0] - c[0]);
+      g.start_angle_rad = std::atan2(start_mm[b] - c[b], start_mm[a] - c[a]);
+      const double end_angle = std::atan2(segment.end_mm[b] - c[b], segment.end_mm[a] - c[a]);
       constexpr double two_pi = 2.0 * std::numbers::pi;
       double sweep = end_angle - g.start_angle_rad;
       if (ccw) {
@@ -142,29 +174,32 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
       } else {
         while (sweep >= 0.0) sweep -= two_pi;
       }
-      // End on the start point (within the minimum length): a full circle.
-      const bool closed = std::hypot(segment.end_mm[0] - start_mm[0], segment.end_mm[1] - start_mm[1]) <
+      // End on the start point in the plane (within the minimum length): a full circle.
+      const bool closed = std::hypot(segment.end_mm[a] - start_mm[a], segment.end_mm[b] - start_mm[b]) <
                           limits.min_segment_mm;
       if (closed) sweep = ccw ? two_pi : -two_pi;
       g.sweep_rad = sweep;
       // A helix: the plane's arc length and each further axis' travel, as a line's.
       const double plane_mm = 0.5 * (g.start_radius_mm + g.end_radius_mm) * std::fabs(sweep);
-      g.length_mm = with_axes_beyond_plane(plane_mm, start_mm, segment.end_mm);
+      g.length_mm = with_axes_beyond_plane(plane_mm, start_mm, segment.end_mm, pa);
       if (!(g.length_mm >= limits.min_segment_mm)) return SegmentRefusal::zero_length;
-      const double in_plane = plane_mm / g.length_mm;
-      g.unit_start = arc_tangent(g.start_angle_rad, ccw);
-      g.unit_end = arc_tangent(g.start_angle_rad + sweep, ccw);
-      for (std::size_t i = 0; i < 2; ++i) {
-        g.unit_start[i] *= in_plane;
-        g.unit_end[i] *= in_plane;
+      const double in_plane_share = plane_mm / g.length_mm;
+      g.unit_start = arc_tangent(g.start_angle_rad, ccw, pa);
+      g.unit_end = arc_tangent(g.start_angle_rad + sweep, ccw, pa);
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+        if (in_plane(pa, i)) {
+          g.unit_start[i] *= in_plane_share;
+          g.unit_end[i] *= in_plane_share;
+        } else {
+          g.unit_start[i] = g.unit_end[i] = (segment.end_mm[i] - start_mm[i]) / g.length_mm;
+        }
       }
-      for (std::size_t i = 2; i < hal::kAxisCount; ++i)
-        g.unit_start[i] = g.unit_end[i] = (segment.end_mm[i] - start_mm[i]) / g.length_mm;
       break;
     }
     default: return SegmentRefusal::bad_kind;
   }
   if (!inside(g.end_mm, limits)) return SegmentRefusal::outside_workspace;
+  if (g.kind != SegmentKind::line && !arc_inside(g, limits)) return SegmentRefusal::outside_workspace;
   if (!(segment.feed_mm_s > 0.0)) return SegmentRefusal::feed_not_positive;
   if (segment.feed_mm_s > g.axis_speed_cap_mm_s(limits) * (1.0 + 1e-12)) return SegmentRefusal::feed_above_limit;
   if (const SegmentRefusal r = check_ramp(segment, g.length_mm); r != SegmentRefusal::none) return r;

@@ -15,6 +15,7 @@ struct SegmentGeometry {
   PlanePoint start_mm{};
   PlanePoint end_mm{};
   PlanePoint centre_mm{};
+  ArcPlane plane = ArcPlane::xy;  // arcs: start_angle_rad and sweep_rad are measured in it
   double length_mm = 0.0;       // 0 for a dwell
   double start_radius_mm = 0.0; // arcs: radius at the start; it moves linearly to the end radius
   double end_radius_mm = 0.0;
@@ -24,6 +25,9 @@ struct SegmentGeometry {
   PlanePoint unit_end{};        // tangent at the end (unit)
 
   PlanePoint point_at(double distance_mm) const noexcept;
+  // An arc's point at `fraction` (0 ... 1) of its sweep: angle and radius
+  // in its plane, every other axis (a helix' third) linearly with the angle.
+  PlanePoint arc_point(double fraction) const noexcept;
   // Largest path speed the axis speed limits allow anywhere on the element.
   double axis_speed_cap_mm_s(const MotionLimits& limits) const noexcept;
   double min_radius_mm() const noexcept { return start_radius_mm < end_radius_mm ? start_radius_mm : end_radius_mm; }

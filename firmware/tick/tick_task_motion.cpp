@@ -27,14 +27,16 @@ namespace {
 // What the circle and programs move (and need homed): the XY plane.
 constexpr hal::AxisSet kPlaneAxes = hal::axis_bit(hal::kPlaneFirst) | hal::axis_bit(hal::kPlaneSecond);
 
-// The axes beyond the plane a line or arc from `start_mm` moves (Z: a plunge, a retract, a helix).
+// The axes beyond the XY plane a line or arc from `start_mm` moves (Z: a plunge, a retract, a helix;
+// an arc in G18 or G19 moves both axes of its plane, whether or not its end differs on them).
 hal::AxisSet moved_beyond_plane(const motion::Segment& s, const motion::PlanePoint& start_mm) noexcept {
   hal::AxisSet out = 0;
   if (s.kind == motion::SegmentKind::dwell) return out;
+  const bool arc = s.kind == motion::SegmentKind::arc_cw || s.kind == motion::SegmentKind::arc_ccw;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    if ((hal::axis_bit(hal::axis_from_index(i)) & kPlaneAxes) == 0 && s.end_mm[i] != start_mm[i])
+    if (s.end_mm[i] != start_mm[i] || (arc && motion::in_plane(motion::plane_axes(s.plane), i)))
       out |= hal::axis_bit(hal::axis_from_index(i));
-  return out;
+  return out & static_cast<hal::AxisSet>(~kPlaneAxes);
 }
 }  // namespace
 

@@ -35,7 +35,8 @@ struct Builder {
                             f == &fw::can::fields::kTailCentreAlong
                         ? "SEGMENT_TAIL"
                     : f == &fw::can::fields::kSegmentZField ? "SEGMENT_Z"
-                                                            : "SEGMENT",
+                    : f == &fw::can::fields::kPlaneField || f == &fw::can::fields::kPlaneZ ? "SEGMENT_PLANE"
+                                                                                             : "SEGMENT",
                     f->name);
       error = buf;
       return false;
@@ -73,21 +74,9 @@ struct Builder {
     return buf;
   }
 
-  // The arc of `g` from angle fraction t0 to t1 (0..1 of its sweep), radius and a helix's Z moving linearly as
-  // the firmware runs it.
-  static PlanePoint arc_point(const SegmentGeometry& g, double t) {
-    const double angle = g.start_angle_rad + g.sweep_rad * t;
-    const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * t;
-    PlanePoint p{};
-    for (std::size_t i = 2; i < p.size(); ++i) p[i] = g.start_mm[i] + (g.end_mm[i] - g.start_mm[i]) * t;
-    p[0] = g.centre_mm[0] + r * std::cos(angle);
-    p[1] = g.centre_mm[1] + r * std::sin(angle);
-    return p;
-  }
-
   bool add_arc(const Segment& s, const SegmentGeometry& g, double t0, double t1, int line, int depth) {
     Segment part = s;
-    part.end_mm = t1 >= 1.0 ? s.end_mm : arc_point(g, t1);
+    part.end_mm = t1 >= 1.0 ? s.end_mm : g.arc_point(t1);
     part.exact_stop = t1 >= 1.0 && s.exact_stop;
     const double length_mm = g.length_mm * (t1 - t0);
     WireElement probe;
