@@ -177,6 +177,7 @@ void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
       if (programs_.segment_tail(frame)) motion_accepted();
       return;
     case MessageId::segment_z: programs_.segment_z(frame); return;
+    case MessageId::segment_plane: programs_.segment_plane(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
 }

@@ -47,6 +47,7 @@ inline constexpr const MessageDef& kBoreInfeedMsg = message(MessageId::bore_infe
 inline constexpr const MessageDef& kSegmentMsg = message(MessageId::segment);
 inline constexpr const MessageDef& kSegmentTailMsg = message(MessageId::segment_tail);
 inline constexpr const MessageDef& kSegmentZMsg = message(MessageId::segment_z);
+inline constexpr const MessageDef& kSegmentPlaneMsg = message(MessageId::segment_plane);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
 inline constexpr const MessageDef& kProgramToolMsg = message(MessageId::program_tool);
 inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
@@ -165,6 +166,9 @@ inline constexpr const FieldDef& kTailCentreNormal = field(kSegmentTailMsg, "cen
 inline constexpr const FieldDef& kTailCentreAlong = field(kSegmentTailMsg, "centre_along");
 inline constexpr const FieldDef& kSegmentZTag = field(kSegmentZMsg, "tag");
 inline constexpr const FieldDef& kSegmentZField = field(kSegmentZMsg, "z");
+inline constexpr const FieldDef& kPlaneTag = field(kSegmentPlaneMsg, "tag");
+inline constexpr const FieldDef& kPlaneField = field(kSegmentPlaneMsg, "plane");
+inline constexpr const FieldDef& kPlaneZ = field(kSegmentPlaneMsg, "z");
 
 inline constexpr const FieldDef& kProgramState = field(kProgramStatusMsg, "state");
 inline constexpr const FieldDef& kProgramFreeSlots = field(kProgramStatusMsg, "free_slots");

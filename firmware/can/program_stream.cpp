@@ -104,6 +104,25 @@ bool ProgramStream::segment_z(const hal::CanFrame& frame) noexcept {
   return false;
 }
 
+bool ProgramStream::segment_plane(const hal::CanFrame& frame) noexcept {
+  if (!access_.owns()) {
+    ack_.send(kSegmentPlaneMsg.id, free_slots(), ErrorCode::not_owner, 0);
+    return false;
+  }
+  // As SEGMENT_Z: a refusal refuses the element whole (its tail then finds nothing waiting).
+  if (!pending_.active || pending_.tag != access_.tag()) {
+    refuse_pending();
+    ack_.send(kSegmentPlaneMsg.id, free_slots(), ErrorCode::not_ready, index_of(kSegmentPlaneMsg, kPlaneTag));
+    return false;
+  }
+  if (const ErrorCode e = decode_plane(frame, pending_.head); e != ErrorCode::ok) {
+    pending_.active = false;
+    const FieldDef& f = e == ErrorCode::out_of_range ? kPlaneField : kPlaneTag;
+    ack_.send(kSegmentPlaneMsg.id, free_slots(), e, index_of(kSegmentPlaneMsg, f));
+  }
+  return false;
+}
+
 bool ProgramStream::push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept {
   const bool starting = !task_.program_running();
   if (starting) tool_change_count_ = 0;  // an earlier program's changes never continued

@@ -47,6 +47,8 @@ class ProgramStream {
   bool segment_tail(const hal::CanFrame& frame) noexcept;
   // SEGMENT_Z: Z's end point of the SEGMENT waiting for its tail; answered only when refused.
   bool segment_z(const hal::CanFrame& frame) noexcept;
+  // SEGMENT_PLANE: the plane and Z's end point of the arc waiting for its tail; answered only when refused.
+  bool segment_plane(const hal::CanFrame& frame) noexcept;
   // COMMAND feed_hold, feed_resume, feed_override, end_program,
   // abort_program, program_status and cycle_start (the caller answers; `detail` = index
   // of the offending field).

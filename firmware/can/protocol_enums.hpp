@@ -27,7 +27,9 @@ namespace tnv::fw::can {
 //    the tool the node knows to be in the spindle (-1 unknown), sent with every PROGRAM_STATUS.
 // 8: Z in programs: SEGMENT_Z (0x11), Z's end point of a line or arc (a helix) whose Z changes, between its
 //    SEGMENT and SEGMENT_TAIL; elements without it keep Z where they start.
-inline constexpr std::uint32_t kProtocolVersion = 8;
+// 9: arcs in the ZX (G18) and YZ (G19) planes: SEGMENT_PLANE (0x12), the arc's plane and Z's end point, in
+//    place of SEGMENT_Z; the tail's centre is in that plane's chord frame. XY elements are unchanged.
+inline constexpr std::uint32_t kProtocolVersion = 9;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value

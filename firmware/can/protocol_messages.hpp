@@ -11,6 +11,7 @@
 #include "firmware/can/value_list.hpp"
 #include "firmware/can/wire.hpp"
 #include "firmware/compensation/excitation.hpp"
+#include "firmware/motion/segment.hpp"
 #include "firmware/shaper/shaper_type.hpp"
 #include "firmware/spindle/spindle_control.hpp"
 #include "firmware/supervisor/fault.hpp"
@@ -28,7 +29,7 @@ static_assert(hal::kAxisCount <= kAxisBlock, "per-axis CAN messages: an axis bey
 // Lower id = higher priority: commands and their answers (0x00-0x13), then
 // the node-wide telemetry, then the per-axis telemetry blocks, the capture
 // upload last; BORE_GAUGE and BORE_INFEED, which wait between parts, rank
-// among the telemetry. 0x12-0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
+// among the telemetry. 0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
 // 0x30-0x3D are free.
 enum class MessageId : std::uint8_t {
   estop = 0x00,
@@ -49,6 +50,7 @@ enum class MessageId : std::uint8_t {
   segment_tail = 0x0F,
   spindle = 0x10,
   segment_z = 0x11,
+  segment_plane = 0x12,
   tlm_output = 0x14,
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
@@ -239,6 +241,13 @@ inline constexpr FieldDef kSegmentZ[] = {
     {"tag", WireType::u8, 0, 1, "", "", "the tag of the SEGMENT frame whose end point this completes"},
     {"z", WireType::i24, 1, 1e-4, "mm", "", "end point z (line, arc: a helix); without this frame Z stays where the element starts"},
 };
+inline constexpr FieldDef kSegmentPlane[] = {
+    {"tag", WireType::u8, 0, 1, "", "", "the tag of the SEGMENT frame (an arc) whose plane and end point this completes"},
+    {"plane", WireType::u8, 1, 1, "", kValueList<motion::kArcPlaneNames>,
+     "the arc's plane, counter-clockwise from its first axis towards its second: xy (G17), zx (G18), yz (G19); "
+     "the axis beyond it moves linearly with the angle (a helix)"},
+    {"z", WireType::i24, 2, 1e-4, "mm", "", "end point z of the arc (always sent)"},
+};
 inline constexpr FieldDef kProgramStatus[] = {
     {"state", WireType::u8, 0, 1, "", kValueList<kProgramStateNames>,
      "program state: holding = feed hold; starved = underrun, at rest on the path until segments arrive; aborted = "
@@ -334,7 +343,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 27 + 3 * hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 28 + 3 * hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -397,6 +406,12 @@ inline constexpr std::array<MessageDef, 27 + 3 * hal::kAxisCount> kMessages{{
      "its SEGMENT and its SEGMENT_TAIL, with the same tag; elements that keep Z send none. One without its "
      "SEGMENT waiting, or a second one, is refused (not_ready) with the element. Answered only when refused; the "
      "tail answers the element."},
+    {0x12, "segment_plane", Direction::to_node, 5, detail::kSegmentPlane,
+     "An arc outside the XY plane (G18, G19): its plane and Z's end point, between its SEGMENT and its SEGMENT_TAIL "
+     "with the same tag, instead of SEGMENT_Z; the centre in SEGMENT_TAIL is then in the chord frame of that plane. "
+     "Refused with the element (nothing queued): an unknown plane (out_of_range, plane), one for an element that is "
+     "not an arc (out_of_range, plane), one without its SEGMENT waiting or after a SEGMENT_Z or another "
+     "SEGMENT_PLANE (not_ready). Answered only when refused; the tail answers the element."},
     {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,

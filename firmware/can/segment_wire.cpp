@@ -21,15 +21,21 @@ struct Chord {
 };
 
 // Host and node call this with the same doubles, so they get the same frame.
-bool chord_of(const PlanePoint& start_mm, const PlanePoint& end_mm, Chord& c) noexcept {
-  const double dx = end_mm[0] - start_mm[0];
-  const double dy = end_mm[1] - start_mm[1];
+// In the plane's two coordinates (first, second): mid, unit and left hold those only.
+bool chord_of(const PlanePoint& start_mm, const PlanePoint& end_mm, motion::PlaneAxes p, Chord& c) noexcept {
+  const double dx = end_mm[p.first] - start_mm[p.first];
+  const double dy = end_mm[p.second] - start_mm[p.second];
   const double length = std::hypot(dx, dy);
   if (!(length >= kMinChordMm)) return false;
-  c.mid = {0.5 * (start_mm[0] + end_mm[0]), 0.5 * (start_mm[1] + end_mm[1])};
+  c.mid = {0.5 * (start_mm[p.first] + end_mm[p.first]), 0.5 * (start_mm[p.second] + end_mm[p.second])};
   c.unit = {dx / length, dy / length};
   c.left = {-c.unit[1], c.unit[0]};
   return true;
+}
+
+bool is_arc(WireKind k) noexcept {
+  return k == WireKind::arc_cw || k == WireKind::arc_ccw || k == WireKind::arc_cw_exact_stop ||
+         k == WireKind::arc_ccw_exact_stop;
 }
 
 WireKind wire_kind(const motion::Segment& s) noexcept {
@@ -53,21 +59,25 @@ WireKind wire_kind(const motion::Segment& s) noexcept {
 }  // namespace
 
 bool chord_centre(const PlanePoint& start_mm, const PlanePoint& end_mm, const PlanePoint& centre_mm,
-                  ChordCentre& out) noexcept {
+                  motion::ArcPlane plane, ChordCentre& out) noexcept {
+  const motion::PlaneAxes p = motion::plane_axes(plane);
   Chord c;
-  if (!chord_of(start_mm, end_mm, c)) return false;
-  const double vx = centre_mm[0] - c.mid[0];
-  const double vy = centre_mm[1] - c.mid[1];
+  if (!chord_of(start_mm, end_mm, p, c)) return false;
+  const double vx = centre_mm[p.first] - c.mid[0];
+  const double vy = centre_mm[p.second] - c.mid[1];
   out.normal_mm = vx * c.left[0] + vy * c.left[1];
   out.along_mm = vx * c.unit[0] + vy * c.unit[1];
   return true;
 }
 
 bool centre_from_chord(const PlanePoint& start_mm, const PlanePoint& end_mm, const ChordCentre& cc,
-                       PlanePoint& centre_mm) noexcept {
+                       motion::ArcPlane plane, PlanePoint& centre_mm) noexcept {
+  const motion::PlaneAxes p = motion::plane_axes(plane);
   Chord c;
-  if (!chord_of(start_mm, end_mm, c)) return false;
-  for (std::size_t i = 0; i < 2; ++i) centre_mm[i] = c.mid[i] + cc.along_mm * c.unit[i] + cc.normal_mm * c.left[i];
+  if (!chord_of(start_mm, end_mm, p, c)) return false;
+  const std::size_t axes[2] = {p.first, p.second};
+  for (std::size_t i = 0; i < 2; ++i)
+    centre_mm[axes[i]] = c.mid[i] + cc.along_mm * c.unit[i] + cc.normal_mm * c.left[i];
   return true;
 }
 
@@ -102,19 +112,30 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   out.end_mm = start_mm;  // axes the wire does not carry stay
   out.end_mm[0] = read(out.head, kSegmentX);
   out.end_mm[1] = read(out.head, kSegmentY);
-  out.z = make_frame(kSegmentZMsg, node);
-  write_raw(out.z, kSegmentZTag, tag);
-  if (!write(out.z, kSegmentZField, s.end_mm[kProgramZ])) return &kSegmentZField;
-  out.has_z = read(out.z, kSegmentZField) != start_mm[kProgramZ];
-  if (out.has_z) out.end_mm[kProgramZ] = read(out.z, kSegmentZField);
-  else out.z = {};
+  const bool other_plane = s.kind != SegmentKind::line && s.plane != motion::ArcPlane::xy;
+  if (other_plane) {
+    if (static_cast<std::uint8_t>(s.plane) >= motion::kArcPlaneCount) return &kPlaneField;
+    out.z = make_frame(kSegmentPlaneMsg, node);
+    write_raw(out.z, kPlaneTag, tag);
+    write_raw(out.z, kPlaneField, static_cast<std::uint32_t>(s.plane));
+    if (!write(out.z, kPlaneZ, s.end_mm[kProgramZ])) return &kPlaneZ;
+    out.has_z = true;
+    out.end_mm[kProgramZ] = read(out.z, kPlaneZ);
+  } else {
+    out.z = make_frame(kSegmentZMsg, node);
+    write_raw(out.z, kSegmentZTag, tag);
+    if (!write(out.z, kSegmentZField, s.end_mm[kProgramZ])) return &kSegmentZField;
+    out.has_z = read(out.z, kSegmentZField) != start_mm[kProgramZ];
+    if (out.has_z) out.end_mm[kProgramZ] = read(out.z, kSegmentZField);
+    else out.z = {};
+  }
   out.tail = make_frame(kSegmentTailMsg, node);
   out.has_tail = true;
   write_raw(out.tail, kTailTag, tag);
   if (!write(out.tail, kTailFeed, s.feed_mm_s) || read_raw(out.tail, kTailFeed) == 0) return &kTailFeed;
   if (s.kind == SegmentKind::line) return nullptr;
   ChordCentre cc;
-  if (!chord_centre(start_mm, out.end_mm, s.centre_mm, cc)) return &kTailCentreNormal;
+  if (!chord_centre(start_mm, out.end_mm, s.centre_mm, s.plane, cc)) return &kTailCentreNormal;
   if (!write(out.tail, kTailCentreNormal, cc.normal_mm)) return &kTailCentreNormal;
   if (!write(out.tail, kTailCentreAlong, cc.along_mm)) return &kTailCentreAlong;
   return nullptr;
@@ -149,6 +170,16 @@ bool decode_z(const hal::CanFrame& z, SegmentHead& head) noexcept {
   return true;
 }
 
+ErrorCode decode_plane(const hal::CanFrame& frame, SegmentHead& head) noexcept {
+  if (!wire_kind_has_tail(head.kind) || head.has_z) return ErrorCode::not_ready;
+  const std::uint32_t plane = read_raw(frame, kPlaneField);
+  if (!is_arc(head.kind) || plane >= motion::kArcPlaneCount) return ErrorCode::out_of_range;
+  head.has_z = true;
+  head.end_z_mm = read(frame, kPlaneZ);
+  head.plane = static_cast<motion::ArcPlane>(plane);
+  return ErrorCode::ok;
+}
+
 bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const PlanePoint& start_mm,
                     motion::Segment& out) noexcept {
   switch (head.kind) {
@@ -176,10 +207,10 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
     out.rapid = rapid;
   } else {
     const ChordCentre cc{read(*tail, kTailCentreNormal), read(*tail, kTailCentreAlong)};
-    PlanePoint centre_mm = start_mm;  // x and y from the chord
-    if (!centre_from_chord(start_mm, end_mm, cc, centre_mm)) return false;
+    PlanePoint centre_mm = start_mm;  // the plane's two coordinates from the chord
+    if (!centre_from_chord(start_mm, end_mm, cc, head.plane, centre_mm)) return false;
     const bool clockwise = head.kind == WireKind::arc_cw || head.kind == WireKind::arc_cw_exact_stop;
-    out = motion::arc_to(clockwise, end_mm, centre_mm, feed_mm_s);
+    out = motion::arc_to(clockwise, end_mm, centre_mm, feed_mm_s, 0, head.plane);
   }
   out.exact_stop = exact_stop;
   return true;

@@ -18,6 +18,12 @@
 // and its SEGMENT_TAIL, sent only when the element moves Z (a plunge, a
 // retract, a helix): XY elements keep their two frames (bus load), and
 // an element without it keeps Z where it starts.
+//
+// An arc in the ZX (G18) or YZ (G19) plane sends SEGMENT_PLANE in
+// SEGMENT_Z's place: its plane and Z's end point (always). Its centre
+// travels in the chord frame of that plane (the chord of the start and end
+// points' two coordinates in it, first axis then second), so the tail is
+// the same two numbers. XY elements are unchanged.
 #include <cstdint>
 
 #include "firmware/can/protocol_messages.hpp"
@@ -71,10 +77,11 @@ struct ChordCentre {
 inline constexpr double kMinChordMm = 1e-6;
 
 // false (out untouched) when start and end are closer than kMinChordMm.
+// In `plane`'s two axes (the others of centre_mm are not touched).
 bool chord_centre(const motion::PlanePoint& start_mm, const motion::PlanePoint& end_mm,
-                  const motion::PlanePoint& centre_mm, ChordCentre& out) noexcept;
+                  const motion::PlanePoint& centre_mm, motion::ArcPlane plane, ChordCentre& out) noexcept;
 bool centre_from_chord(const motion::PlanePoint& start_mm, const motion::PlanePoint& end_mm, const ChordCentre& c,
-                       motion::PlanePoint& centre_mm) noexcept;
+                       motion::ArcPlane plane, motion::PlanePoint& centre_mm) noexcept;
 
 // A position as the wire carries it (rounded to 0.1 um), exactly as the node decodes it; held to
 // +-838 mm (what does not fit is refused by encode_segment()).
@@ -82,9 +89,11 @@ double wire_position_mm(double mm) noexcept;
 
 struct SegmentFrames {
   hal::CanFrame head{};  // SEGMENT
-  hal::CanFrame z{};     // SEGMENT_Z (lines and arcs whose Z changes), sent between head and tail
+  // Sent between head and tail: SEGMENT_Z (lines and XY arcs whose Z changes) or
+  // SEGMENT_PLANE (every arc in G18 or G19).
+  hal::CanFrame z{};
   hal::CanFrame tail{};  // SEGMENT_TAIL (lines and arcs)
-  bool has_z = false;
+  bool has_z = false;    // z holds a frame to send
   bool has_tail = false;
   motion::PlanePoint end_mm{};  // the end point as sent (the next element's start on the node)
 };
@@ -95,9 +104,10 @@ struct SegmentFrames {
 // (out is then unspecified): an end point beyond the i24 range, a feed
 // outside 0.01..655.35 mm/s, a dwell beyond 838 s, a spindle speed that
 // rounds to 0 or beyond 838,860 rpm, an arc without a chord or with its
-// centre too far off the bisector. Lines and arcs whose end Z (as sent)
-// differs from start_mm's get a SEGMENT_Z; the other axes beyond the
-// plane and Z are not carried (they stay where the element starts).
+// centre too far off the bisector, a plane outside motion::ArcPlane. Lines
+// and XY arcs whose end Z (as sent) differs from start_mm's get a
+// SEGMENT_Z, arcs in another plane a SEGMENT_PLANE; axes beyond X, Y and Z
+// are not carried (they stay where the element starts).
 const FieldDef* encode_segment(const motion::Segment& segment, const motion::PlanePoint& start_mm, std::uint8_t node,
                                std::uint8_t tag, SegmentFrames& out) noexcept;
 // Host side: a manual tool change (M6) that puts `tool` in the spindle, a pause
@@ -110,8 +120,9 @@ const FieldDef* encode_tool_change(int tool, const motion::PlanePoint& at_mm, st
 struct SegmentHead {
   WireKind kind = WireKind::line;
   motion::PlanePoint end_mm{};  // lines and arcs: x and y (Z from SEGMENT_Z or the start)
-  bool has_z = false;           // a SEGMENT_Z came for it
+  bool has_z = false;           // a SEGMENT_Z or SEGMENT_PLANE came for it
   double end_z_mm = 0.0;
+  motion::ArcPlane plane = motion::ArcPlane::xy;  // arcs: from SEGMENT_PLANE
   double dwell_s = 0.0;         // dwells
   double spindle_rpm = 0.0;     // spindle starts
   std::int32_t tool = 0;        // tool changes
@@ -121,6 +132,12 @@ bool decode_head(const hal::CanFrame& head, SegmentHead& out) noexcept;
 // Node side: a SEGMENT_Z completes `head` (a line or arc waiting for its tail
 // that has no Z yet). false (head untouched) otherwise: refuse not_ready.
 bool decode_z(const hal::CanFrame& z, SegmentHead& head) noexcept;
+
+// Node side: a SEGMENT_PLANE completes `head`. ok, or (head untouched) the
+// refusal: not_ready when head has its Z already (a SEGMENT_Z or another
+// SEGMENT_PLANE) or waits for no tail; out_of_range (naming `plane`) for a
+// plane outside motion::ArcPlane or an element that is not an arc.
+ErrorCode decode_plane(const hal::CanFrame& frame, SegmentHead& head) noexcept;
 
 // The element a head (and, for lines and arcs, its tail) describes, starting
 // at start_mm. false only for an arc whose chord is shorter than kMinChordMm

@@ -164,6 +164,49 @@ TEST(CanNodeSegments, AZFrameCompletesItsElementAndAloneIsRefused) {
   EXPECT_EQ(r->task().motion().queued(), queued);
 }
 
+// An arc in G18 (protocol 9): SEGMENT, SEGMENT_PLANE, SEGMENT_TAIL. A
+// plane the node does not know refuses the element whole, naming `plane`.
+TEST(CanNodeSegments, AnArcInG18IsQueuedInItsPlaneAndAnUnknownPlaneRefusesItsElement) {
+  auto r = holding_rig();
+  ASSERT_TRUE(r);
+  ProgramHost host(*r);
+  const PlanePoint at = host.at_mm();
+  // A quarter from the top of a circle in ZX towards +X (counter-clockwise in G18), Y 1 mm along: a helix.
+  PlanePoint centre = at;
+  centre[can::kProgramZ] -= 5.0;
+  PlanePoint end = offset(at, 5.0, 1.0);
+  end[can::kProgramZ] -= 5.0;
+  const fw::motion::Segment arc = fw::motion::arc_to(false, end, centre, 5.0, 0, fw::motion::ArcPlane::zx);
+  can::SegmentFrames f = host.frames(arc);
+  ASSERT_TRUE(f.has_z);
+  ASSERT_EQ(f.z.dlc, fld::kSegmentPlaneMsg.dlc);
+  hal::CanFrame unknown = f.z;
+  unknown.data[fld::kPlaneField.byte_offset] = fw::motion::kArcPlaneCount;
+  std::vector<ElementAck> acks = host.send_frames({f.head, unknown, f.tail});
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_EQ(acks[0].request, static_cast<std::uint32_t>(MessageId::segment_plane));
+  EXPECT_EQ(acks[0].result, code(ErrorCode::out_of_range));
+  EXPECT_EQ(acks[0].detail, fld::index_of(fld::kSegmentPlaneMsg, fld::kPlaneField));
+  EXPECT_EQ(acks[1].result, code(ErrorCode::not_ready)) << "its tail finds nothing waiting";
+  EXPECT_EQ(r->task().motion().queued(), 0u);
+  EXPECT_FALSE(r->node->segment_pending());
+  // A plane for a line: refused the same way.
+  PlanePoint along = offset(at, 1.0, 0.0);
+  can::SegmentFrames line = host.frames(fw::motion::line_to(along, 5.0));
+  hal::CanFrame plane_of_line = f.z;
+  plane_of_line.data[0] = line.head.data[0];
+  acks = host.send_frames({line.head, plane_of_line, line.tail});
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_EQ(acks[0].result, code(ErrorCode::out_of_range));
+  EXPECT_EQ(r->task().motion().queued(), 0u);
+  // Whole: queued as a G18 arc ending where it was sent.
+  acks = host.send(arc);
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].result, kOk);
+  EXPECT_EQ(r->task().motion().queued(), 1u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(r->task().motion().queue_end_mm()[i], end[i], 1e-4) << i;
+}
+
 TEST(CanNodeSegments, AFullQueueRefusesWithQueueFullAndKeepsEveryElement) {
   auto r = holding_rig();
   ASSERT_TRUE(r);

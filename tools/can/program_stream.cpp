@@ -190,7 +190,8 @@ class Streamer {
     const auto segment = static_cast<std::uint8_t>(MessageId::segment);
     const auto tail = static_cast<std::uint8_t>(MessageId::segment_tail);
     const auto z = static_cast<std::uint8_t>(MessageId::segment_z);
-    if (a.request != segment && a.request != tail && a.request != z) return;
+    const auto plane = static_cast<std::uint8_t>(MessageId::segment_plane);
+    if (a.request != segment && a.request != tail && a.request != z && a.request != plane) return;
     news_ = true;
     if (flight_.empty() || a.tag != flight_.front().tag) {
       for (const InFlight& f : flight_)

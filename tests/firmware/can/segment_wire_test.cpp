@@ -190,11 +190,23 @@ TEST(SegmentWire, ChordCoordinatesInvertExactly) {
   const PlanePoint e{-7.0, 2.0};
   const PlanePoint c{0.5, 9.0};
   ChordCentre cc;
-  ASSERT_TRUE(chord_centre(s, e, c, cc));
+  ASSERT_TRUE(chord_centre(s, e, c, motion::ArcPlane::xy, cc));
   PlanePoint back{};
-  ASSERT_TRUE(centre_from_chord(s, e, cc, back));
+  ASSERT_TRUE(centre_from_chord(s, e, cc, motion::ArcPlane::xy, back));
   EXPECT_NEAR(distance(back, c), 0.0, 1e-12);
-  EXPECT_FALSE(chord_centre(s, s, c, cc)) << "no chord, no frame to measure the centre in";
+  EXPECT_FALSE(chord_centre(s, s, c, motion::ArcPlane::xy, cc)) << "no chord, no frame to measure the centre in";
+  // In G18 the chord is Z then X; Y (the helix' axis) is not the centre's business.
+  const PlanePoint s3{1.25, 40.0, -3.5};
+  const PlanePoint e3{-7.0, -12.0, 2.0};
+  const PlanePoint c3{0.5, 7.0, 9.0};
+  ASSERT_TRUE(chord_centre(s3, e3, c3, motion::ArcPlane::zx, cc));
+  PlanePoint back3{0.0, 5.0, 0.0};
+  ASSERT_TRUE(centre_from_chord(s3, e3, cc, motion::ArcPlane::zx, back3));
+  EXPECT_NEAR(back3[0], 0.5, 1e-12);
+  EXPECT_NEAR(back3[2], 9.0, 1e-12);
+  EXPECT_EQ(back3[1], 5.0) << "the axis beyond the plane is left as it was";
+  EXPECT_FALSE(chord_centre(s3, PlanePoint{1.25, 0.0, -3.5}, c3, motion::ArcPlane::zx, cc))
+      << "start and end the same in Z and X: no chord in G18, whatever Y does";
 }
 
 // The node's side of an element with its Z frame, as the program stream takes it: head, Z (when sent), tail.
@@ -204,7 +216,8 @@ Segment round_trip_z(const Segment& s, const PlanePoint& start, SegmentFrames& f
   EXPECT_TRUE(decode_head(frames.head, head));
   if (frames.has_z) {
     EXPECT_EQ(frames.z.data[0], 0x13) << "the Z frame carries its element's tag";
-    EXPECT_TRUE(decode_z(frames.z, head));
+    if (frames.z.dlc == fields::kSegmentPlaneMsg.dlc) EXPECT_EQ(decode_plane(frames.z, head), ErrorCode::ok);
+    else EXPECT_TRUE(decode_z(frames.z, head));
   }
   Segment out;
   EXPECT_TRUE(decode_segment(head, frames.has_tail ? &frames.tail : nullptr, start, out));
@@ -270,6 +283,77 @@ TEST(SegmentWire, AZBeyondTheWireOrWithoutItsElementIsRefused) {
   ASSERT_TRUE(decode_head(dwell.head, d));
   EXPECT_FALSE(decode_z(f.z, d)) << "a dwell has no Z to take";
   EXPECT_FALSE(d.has_z);
+}
+
+// G18 and G19 arcs: SEGMENT_PLANE in SEGMENT_Z's place (the plane and Z,
+// always), the centre in that plane's chord frame; XY elements unchanged.
+TEST(SegmentWire, AnArcInG18OrG19CarriesItsPlaneZAndCentre) {
+  for (const motion::ArcPlane plane : {motion::ArcPlane::zx, motion::ArcPlane::yz}) {
+    for (const bool cw : {false, true}) {
+      const motion::PlaneAxes pa = motion::plane_axes(plane);
+      PlanePoint c{3.0, -4.0, -20.0};
+      PlanePoint start = c;
+      start[pa.first] += 10.0;
+      PlanePoint end = c;
+      end[pa.second] += cw ? -10.0 : 10.0;
+      const std::size_t helix = plane == motion::ArcPlane::zx ? 1 : 0;
+      start[helix] = 1.0;
+      end[helix] = -2.5;
+      c[helix] = start[helix];
+      SegmentFrames f;
+      const Segment out = round_trip_z(motion::arc_to(cw, end, c, 8.0, 0, plane), start, f);
+      ASSERT_TRUE(f.has_z);
+      EXPECT_EQ(f.z.dlc, fields::kSegmentPlaneMsg.dlc);
+      EXPECT_EQ(f.head.dlc, fields::kSegmentMsg.dlc);
+      EXPECT_EQ(f.tail.dlc, fields::kSegmentTailMsg.dlc);
+      EXPECT_EQ(out.plane, plane);
+      EXPECT_EQ(out.kind, cw ? SegmentKind::arc_cw : SegmentKind::arc_ccw);
+      EXPECT_LE(distance(out.centre_mm, c), 1.5 * kWireMm);
+      for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(out.end_mm[i], end[i], kWireMm) << i;
+      EXPECT_EQ(out.end_mm, f.end_mm) << "the host's end point as sent is the node's";
+    }
+  }
+  // An XY arc keeps its two frames (no Z change) and is an XY arc on the node.
+  SegmentFrames f;
+  const Segment xy = round_trip_z(motion::arc_to(false, {0.0, 10.0, -1.0}, {0.0, 0.0, -1.0}, 8.0), {10.0, 0.0, -1.0}, f);
+  EXPECT_FALSE(f.has_z);
+  EXPECT_EQ(xy.plane, motion::ArcPlane::xy);
+}
+
+TEST(SegmentWire, AnUnknownOrMisplacedPlaneIsRefusedAndChangesNothing) {
+  const PlanePoint o{0.0, 0.0, -10.0};
+  SegmentFrames f;
+  ASSERT_EQ(encode_segment(motion::arc_to(false, {0.0, 0.0, 0.0}, {0.0, 0.0, -5.0}, 8.0, 0, motion::ArcPlane::zx),
+                           o, 1, 0x21, f),
+            nullptr);
+  SegmentHead head;
+  ASSERT_TRUE(decode_head(f.head, head));
+  const SegmentHead before = head;
+  hal::CanFrame bad = f.z;
+  bad.data[fields::kPlaneField.byte_offset] = motion::kArcPlaneCount;  // no such plane
+  EXPECT_EQ(decode_plane(bad, head), ErrorCode::out_of_range);
+  EXPECT_FALSE(head.has_z);
+  EXPECT_EQ(head.plane, before.plane);
+  // On a line: a plane is for arcs only.
+  SegmentFrames line;
+  ASSERT_EQ(encode_segment(motion::line_to({1.0, 1.0, -3.0}, 10.0), o, 1, 0x22, line), nullptr);
+  SegmentHead lh;
+  ASSERT_TRUE(decode_head(line.head, lh));
+  EXPECT_EQ(decode_plane(f.z, lh), ErrorCode::out_of_range);
+  EXPECT_FALSE(lh.has_z);
+  // After a SEGMENT_Z, or a second one: not_ready.
+  ASSERT_EQ(decode_plane(f.z, head), ErrorCode::ok);
+  EXPECT_EQ(decode_plane(f.z, head), ErrorCode::not_ready);
+  EXPECT_FALSE(decode_z(line.z, head)) << "a SEGMENT_Z after the plane";
+  SegmentHead zh;
+  ASSERT_TRUE(decode_head(f.head, zh));
+  ASSERT_TRUE(decode_z(line.z, zh));
+  EXPECT_EQ(decode_plane(f.z, zh), ErrorCode::not_ready);
+  // The host refuses a plane it cannot name.
+  EXPECT_EQ(encode_segment(motion::arc_to(false, {0.0, 0.0, 0.0}, {0.0, 0.0, -5.0}, 8.0, 0,
+                                          static_cast<motion::ArcPlane>(9)),
+                           o, 1, 0x23, f),
+            &fields::kPlaneField);
 }
 
 }  // namespace
