@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "firmware/can/node_fields.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tests/tools/gcode/test_piece_path.hpp"
 #include "tools/can/program_run.hpp"
@@ -136,6 +137,38 @@ TEST(ProgramStream, AProgramThatMovesZRunsOverTheBusAndItsZFollows) {
   std::printf("[stream] Z program over the bus: contour max %.3f um, path deviation %.3f um, %zu of %zu elements "
               "with SEGMENT_Z\n",
               r.score->contour_error_max_um, r.score->path_deviation_max_um, with_z, r.wire.elements.size());
+  EXPECT_LE(r.score->path_deviation_max_um, 5.0 + 2e-3);
+  EXPECT_LE(r.score->contour_error_max_um, 6.0);
+}
+
+// Arcs in G18 and G19 over the bus (protocol 9): each with its SEGMENT_PLANE (a full turn in
+// pieces: no chord for a whole one); the telemetry follows them and the run is scored in 3-D.
+TEST(ProgramStream, ArcsInG18AndG19RunOverTheBusInTheirPlanes) {
+  StreamBench b("planes");
+  ASSERT_TRUE(b.bus);
+  can_host::NodeClient client(*b.bus, 1);
+  const char* text =
+      "G21 G91\nG1 Z-10 F300\nG18 G2 X10 Z0 I5 K0 Y-2 F600\nG19 G3 Y10 Z0 J5 K0 X2\n"
+      "G18 G3 X0 Z0 I0 K-3 Y3 P2\nG17 G0 Z10\nM2\n";
+  const can_host::ProgramRunResult r = can_host::run_gcode(client, text, {});
+  ASSERT_EQ(r.stream.end, StreamResult::End::done) << r.stream.message;
+  ASSERT_TRUE(r.stream.final_heartbeat);
+  EXPECT_EQ(r.stream.final_heartbeat->fault, fw::FaultReason::none);
+  std::size_t with_plane = 0;
+  for (const can_host::WireElement& e : r.wire.elements)
+    with_plane += e.frames.has_z && e.frames.z.dlc == fw::can::fields::kSegmentPlaneMsg.dlc ? 1u : 0u;
+  EXPECT_GE(with_plane, 4u) << "two half turns and two full turns (sent in halves) carry SEGMENT_PLANE";
+  ASSERT_TRUE(r.score);
+  ASSERT_FALSE(r.samples.empty());
+  constexpr std::size_t z = fw::can::kProgramZ;
+  const double z0 = r.start_mm[z];
+  double z_min = z0;
+  for (const hil::PathSample& s : r.samples) z_min = std::min(z_min, s.reference_mm[z]);
+  EXPECT_NEAR(z_min, z0 - 16.0, 1e-3) << "the full turns in G18 reach 6 mm below the plunge";
+  EXPECT_NEAR(r.samples.back().reference_mm[z], z0, 2e-6) << "retracted";
+  std::printf("[stream] G18/G19 over the bus: contour max %.3f um, path deviation %.3f um, %zu of %zu elements "
+              "with SEGMENT_PLANE\n",
+              r.score->contour_error_max_um, r.score->path_deviation_max_um, with_plane, r.wire.elements.size());
   EXPECT_LE(r.score->path_deviation_max_um, 5.0 + 2e-3);
   EXPECT_LE(r.score->contour_error_max_um, 6.0);
 }

@@ -15,17 +15,23 @@ namespace {
 // The signed angle from start to end about centre in the plane, as the motion core measures an arc
 // (segment_geometry.cpp): a closed arc is a full turn.
 double arc_sweep_rad(const PlanePoint& start, const PlanePoint& end, const PlanePoint& centre, bool clockwise,
-                     double closed_mm) {
+                     fw::motion::PlaneAxes p, double closed_mm) {
   constexpr double two_pi = 2.0 * std::numbers::pi;
-  const double a0 = std::atan2(start[1] - centre[1], start[0] - centre[0]);
-  double sweep = std::atan2(end[1] - centre[1], end[0] - centre[0]) - a0;
-  if (std::hypot(end[0] - start[0], end[1] - start[1]) < closed_mm) return clockwise ? -two_pi : two_pi;
+  const std::size_t a = p.first, b = p.second;
+  const double a0 = std::atan2(start[b] - centre[b], start[a] - centre[a]);
+  double sweep = std::atan2(end[b] - centre[b], end[a] - centre[a]) - a0;
+  if (std::hypot(end[a] - start[a], end[b] - start[b]) < closed_mm) return clockwise ? -two_pi : two_pi;
   if (clockwise) {
     while (sweep >= 0.0) sweep -= two_pi;
   } else {
     while (sweep <= 0.0) sweep += two_pi;
   }
   return sweep;
+}
+
+// The interpreter's plane (17, 18, 19) as the motion core's.
+fw::motion::ArcPlane arc_plane(int plane) {
+  return plane == 18 ? fw::motion::ArcPlane::zx : plane == 19 ? fw::motion::ArcPlane::yz : fw::motion::ArcPlane::xy;
 }
 
 using Kind = CanonMotion::Kind;
@@ -65,27 +71,32 @@ void CanonSegmentSink::convert(const CanonCall& call) {
       break;
     }
     case Kind::arc: {
-      if (m.plane != 17)
-        throw Refusal(std::string("arc in the ") + (m.plane == 18 ? "XZ plane (G18)" : "YZ plane (G19)") +
-                      ": the motion queue takes arcs in the XY plane (G17) only, Z moving with them as a helix");
       const double feed = feed_mm_min_ / 60.0;
       if (!(feed > 0.0)) throw Refusal("arc without a feed rate (F)");
       const bool clockwise = m.turn < 0;
+      const fw::motion::ArcPlane plane = arc_plane(m.plane);
+      const fw::motion::PlaneAxes pa = fw::motion::plane_axes(plane);
       const PlanePoint end = point(m.end_mm);
-      const PlanePoint centre{m.centre_mm[0], m.centre_mm[1], at_[2]};
-      // P turns: the full circles first, then the arc to the end; a helix's Z
-      // is shared among them by angle, so it climbs at one pitch throughout.
+      // The centre in the arc's plane; on the axis beyond it, where the arc starts.
+      PlanePoint centre = at_;
+      centre[pa.first] = m.centre_mm[pa.first];
+      centre[pa.second] = m.centre_mm[pa.second];
+      // P turns: the full circles first, then the arc to the end; a helix's
+      // third axis is shared among them by angle, so it climbs at one pitch throughout.
+      std::size_t helix = 0;
+      while (fw::motion::in_plane(pa, helix)) ++helix;
       const int turns = std::abs(m.turn);
-      const double last_rad = std::fabs(arc_sweep_rad(at_, end, centre, clockwise, options_.limits.min_segment_mm));
+      const double last_rad =
+          std::fabs(arc_sweep_rad(at_, end, centre, clockwise, pa, options_.limits.min_segment_mm));
       const double total_rad = 2.0 * std::numbers::pi * (turns - 1) + last_rad;
-      const double z_per_rad = total_rad > 0.0 ? (end[2] - at_[2]) / total_rad : 0.0;
-      const double z0 = at_[2];
+      const double per_rad = total_rad > 0.0 ? (end[helix] - at_[helix]) / total_rad : 0.0;
+      const double h0 = at_[helix];
       for (int k = 1; k < turns; ++k) {
         PlanePoint full = at_;
-        full[2] = z0 + z_per_rad * 2.0 * std::numbers::pi * k;
-        add(fw::motion::arc_to(clockwise, full, centre, feed, tag));
+        full[helix] = h0 + per_rad * 2.0 * std::numbers::pi * k;
+        add(fw::motion::arc_to(clockwise, full, centre, feed, tag, plane));
       }
-      add(fw::motion::arc_to(clockwise, end, centre, feed, tag));
+      add(fw::motion::arc_to(clockwise, end, centre, feed, tag, plane));
       break;
     }
     case Kind::probe: throw Refusal("probe move (G38.x): this machine has no probe input");

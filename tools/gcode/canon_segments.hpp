@@ -1,11 +1,11 @@
 #pragma once
 // The canonical calls of a program (canon_interpreter.hpp) as the machine's
-// motion queue takes them: rapids and feeds become lines in XYZ, G17 arcs
-// arcs in XY (with a Z end: a helix, Z moving with the angle; P turns share
-// Z by angle), dwells dwell segments, each checked against the firmware's
+// motion queue takes them: rapids and feeds become lines in XYZ, arcs arcs
+// in their plane (G17 XY, G18 ZX, G19 YZ; with an end off the plane on the
+// third axis: a helix, that axis moving with the angle; P turns share it
+// by angle), dwells dwell segments, each checked against the firmware's
 // limits (fw::motion::prepare) as the queue will check it. Refused, with
-// the line: an arc outside G17 (G18, G19), rigid tapping, a probe move (no
-// probe input) and a G5.1 spline. Program pauses (Segment::pause,
+// the line: rigid tapping, a probe move (no probe input) and a G5.1 spline. Program pauses (Segment::pause,
 // GcodeProgram::pauses): M0, M1 while the optional stop switch is on
 // (CanonSetup::optional_stop), and M6 (a manual tool change; the tool's
 // length applies to Z from the next move). Spindle commands (S, M3, M4, M5, and the stops of M6 and the

@@ -39,7 +39,9 @@ double distance_to_segment_mm(const SegmentGeometry& g, const PlanePoint& p) noe
     case SegmentKind::arc_cw:
     case SegmentKind::arc_ccw: {
       constexpr double two_pi = 2.0 * std::numbers::pi;
-      const double angle = std::atan2(p[1] - g.centre_mm[1], p[0] - g.centre_mm[0]);
+      const fw::motion::PlaneAxes pa = fw::motion::plane_axes(g.plane);
+      const std::size_t a = pa.first, b = pa.second;
+      const double angle = std::atan2(p[b] - g.centre_mm[b], p[a] - g.centre_mm[a]);
       // Angle travelled from the start in the arc's own direction, in [0, 2 pi).
       double along = g.sweep_rad >= 0.0 ? angle - g.start_angle_rad : g.start_angle_rad - angle;
       along = std::fmod(along, two_pi);
@@ -50,8 +52,9 @@ double distance_to_segment_mm(const SegmentGeometry& g, const PlanePoint& p) noe
         const double f = along / sweep;
         const double r = g.start_radius_mm + (g.end_radius_mm - g.start_radius_mm) * f;
         // A helix: the other axes at that angle (an upper bound on the distance, within the pitch's slope).
-        double d = std::fabs(std::hypot(p[0] - g.centre_mm[0], p[1] - g.centre_mm[1]) - r);
-        for (std::size_t i = 2; i < p.size(); ++i) d = std::hypot(d, p[i] - (g.start_mm[i] + f * (g.end_mm[i] - g.start_mm[i])));
+        double d = std::fabs(std::hypot(p[a] - g.centre_mm[a], p[b] - g.centre_mm[b]) - r);
+        for (std::size_t i = 0; i < p.size(); ++i)
+          if (!fw::motion::in_plane(pa, i)) d = std::hypot(d, p[i] - (g.start_mm[i] + f * (g.end_mm[i] - g.start_mm[i])));
         return d;
       }
       return std::min(point_distance_mm(g.start_mm, p), point_distance_mm(g.end_mm, p));
@@ -64,6 +67,8 @@ ProgrammedPath::ProgrammedPath(std::vector<SegmentGeometry> elements) {
   for (SegmentGeometry& g : elements) {
     if (g.kind == SegmentKind::dwell) continue;
     for (std::size_t i = 2; i < g.start_mm.size(); ++i) plane_only_ = plane_only_ && g.end_mm[i] == g.start_mm[i];
+    // An arc in G18 or G19 moves Z between its ends.
+    if (g.kind != SegmentKind::line && g.plane != fw::motion::ArcPlane::xy) plane_only_ = false;
     elements_.push_back(g);
   }
 }
@@ -76,7 +81,8 @@ double ProgrammedPath::distance_mm(const PlanePoint& point) const noexcept {
   for (const SegmentGeometry& g : elements_) {
     if (g.kind == SegmentKind::arc_cw || g.kind == SegmentKind::arc_ccw) {
       // No point of the arc is nearer than the band between its radii: skip the angle test.
-      const double from_centre = std::hypot(p[0] - g.centre_mm[0], p[1] - g.centre_mm[1]);
+      const fw::motion::PlaneAxes pa = fw::motion::plane_axes(g.plane);
+      const double from_centre = std::hypot(p[pa.first] - g.centre_mm[pa.first], p[pa.second] - g.centre_mm[pa.second]);
       const double r_lo = std::min(g.start_radius_mm, g.end_radius_mm);
       const double r_hi = std::max(g.start_radius_mm, g.end_radius_mm);
       const double band = from_centre < r_lo ? r_lo - from_centre : from_centre > r_hi ? from_centre - r_hi : 0.0;

@@ -165,7 +165,7 @@ TEST(CanonSegments, ARefusalInASubroutineFileNamesTheFile) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("tnv_canon_segments_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "plunge.ngc") << "(a subroutine file)\no<plunge> sub\n  G18 G2 X2 Z0 I1 K0 F100\no<plunge> endsub\nM2\n";
+  std::ofstream(dir / "plunge.ngc") << "(a subroutine file)\no<plunge> sub\n  G1 X300 F100\no<plunge> endsub\nM2\n";
   std::ofstream(dir / "main.ngc") << "G0 X1\no<plunge> call\nM2\n";
   const GcodeResult r = parse_gcode_file((dir / "main.ngc").string());
   std::filesystem::remove_all(dir);
@@ -174,15 +174,40 @@ TEST(CanonSegments, ARefusalInASubroutineFileNamesTheFile) {
   EXPECT_NE(r.error->file.find("plunge.ngc"), std::string::npos) << to_string(*r.error);
 }
 
-TEST(CanonSegments, ArcsOutsideG17AreRefusedNotThePlaneCode) {
-  EXPECT_FALSE(parse_gcode("G18\nG17 G1 X5 F60\nM2\n").error);
-  const GcodeResult r = parse_gcode("G1 X5 F60\nG18 G2 X10 I2.5 K0\nM2\n");
+TEST(CanonSegments, ArcsInG18AndG19BecomeArcsInTheirPlanes) {
+  using fw::motion::ArcPlane;
+  // G18: clockwise from Z towards X is the other way; the centre's Z and X from K and I, Y where it starts.
+  GcodeResult r = parse_gcode("G1 X5 F60\nG18 G2 X10 I2.5 K0 Y-1\nM2\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.segments.size(), 2u);
+  const fw::motion::Segment& zx = r.program.segments[1];
+  EXPECT_EQ(zx.plane, ArcPlane::zx);
+  EXPECT_EQ(zx.kind, fw::motion::SegmentKind::arc_cw);
+  EXPECT_EQ(zx.centre_mm, (PlanePoint{7.5, 0.0, 0.0}));
+  EXPECT_EQ(zx.end_mm, (PlanePoint{10.0, -1.0, 0.0}));
+  EXPECT_NEAR(r.program.geometry[1].sweep_rad, -std::numbers::pi, 1e-12);
+  EXPECT_NEAR(r.program.geometry[1].point_at(0.5 * r.program.geometry[1].length_mm)[2], -2.5, 1e-9)
+      << "clockwise in G18 from X = 5 to X = 10 passes below";
+  // G19 with P2: two full turns in YZ, X shared by angle; the R form too.
+  r = parse_gcode("G19 G3 Y0 Z0 J2 K0 X4 P2 F60\nG2 Y4 Z0 R2\nM2\n");
+  ASSERT_FALSE(r.error) << to_string(*r.error);
+  ASSERT_EQ(r.program.segments.size(), 3u);
+  for (const fw::motion::Segment& s : r.program.segments) EXPECT_EQ(s.plane, ArcPlane::yz);
+  EXPECT_NEAR(r.program.segments[0].end_mm[0], 2.0, 1e-12) << "half of X after the first turn";
+  EXPECT_EQ(r.program.segments[1].end_mm, (PlanePoint{4.0, 0.0, 0.0}));
+  EXPECT_NEAR(r.program.segments[2].centre_mm[1], 2.0, 1e-9);
+  EXPECT_NEAR(r.program.programmed_length_mm(), 2.0 * std::hypot(4.0 * std::numbers::pi, 2.0) + 2.0 * std::numbers::pi,
+              1e-9);
+  // An arc whose top leaves the travel is refused with its line, nothing to send.
+  fw::motion::MotionLimits limits;
+  limits.axis[2].position_max_mm = 2.0;
+  GcodeOptions o;
+  o.limits = limits;
+  r = parse_gcode("G1 X5 F60\nG18 G3 X10 I2.5 K0\nM2\n", o);
   ASSERT_TRUE(r.error);
   EXPECT_EQ(r.error->line, 2);
-  EXPECT_NE(r.error->message.find("XZ plane (G18)"), std::string::npos) << r.error->message;
-  EXPECT_NE(r.error->message.find("XY plane (G17) only"), std::string::npos) << r.error->message;
-  EXPECT_TRUE(r.program.segments.empty()) << "nothing to send";
-  EXPECT_EQ(to_string(*r.error).rfind("line 2: ", 0), 0u) << to_string(*r.error);
+  EXPECT_NE(r.error->message.find("outside_workspace"), std::string::npos) << r.error->message;
+  EXPECT_TRUE(r.program.segments.empty());
 }
 
 TEST(CanonSegments, ArcTurnsPBecomeFullCirclesThenTheArc) {

@@ -76,14 +76,14 @@ TEST(CanonStreaming, SegmentsAreMadeAsTheCallsComeAndTheInterpretersErrorComesFi
   ASSERT_FALSE(ok.error);
   EXPECT_EQ(ok.program.segments.size(), 300u);
   EXPECT_EQ(ok.program.segments.back().tag, 301u);
-  // A move the machine cannot make (a G18 arc, line 2) and, later, a line
+  // A move the machine cannot make (beyond the travel, line 2) and, later, a line
   // the interpreter refuses (line 4): the interpreter's error is the one
   // reported, as when the calls were converted after the run.
-  const GcodeResult both = parse_gcode("G1 X1 F60\nG18 G2 X2 Z0 I0.5 K0\nG17 G1 X2\nG5.2 X3\nM2\n");
+  const GcodeResult both = parse_gcode("G1 X1 F60\nG1 X1000\nG17 G1 X2\nG5.2 X3\nM2\n");
   ASSERT_TRUE(both.error);
   EXPECT_EQ(both.error->line, 4);
   EXPECT_TRUE(both.program.segments.empty());
-  const GcodeResult z_only = parse_gcode("G1 X1 F60\nG18 G2 X2 Z0 I0.5 K0\nG17 G1 X2\nM2\n");
+  const GcodeResult z_only = parse_gcode("G1 X1 F60\nG1 X1000\nG17 G1 X2\nM2\n");
   ASSERT_TRUE(z_only.error);
   EXPECT_EQ(z_only.error->line, 2);
   EXPECT_TRUE(z_only.program.segments.empty());
