@@ -1,11 +1,13 @@
 // The oracle's CAM-style programs (tools/gcode/oracle/programs/cam_*.ngc,
 // which LinuxCNC's rs274 agrees with call by call) on the emulated machine:
-// with a tool table and a G54 that put the work inside Z's travel they run
-// to the end within the planner's limits and the path tolerance; the two
-// that cannot run here are refused with their line and reason
-// (docs/gcode.md "CAM-style programs on the emulated machine").
+// with a tool table and a G54 that put the work inside Z's travel (the
+// drilling program sets its own G55 there with G10 L2) all six run to the
+// end within the planner's limits and the path tolerance, the helix one
+// with its arcs in G18 and G19 (docs/gcode.md "CAM-style programs on the
+// emulated machine").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -71,22 +73,25 @@ TEST_P(CamProgramOnMachine, RunsToTheEndWithinTheLimitsAndThePathTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Oracle, CamProgramOnMachine,
                          ::testing::Values("cam_contour_g54_g43", "cam_contour_g41_g42", "cam_tapping_boring_cycles",
-                                           "cam_back_boring_and_side_cycles"));
+                                           "cam_back_boring_and_side_cycles", "cam_drilling_cycles",
+                                           "cam_helix_subroutine"));
 
-TEST(CamProgramOnMachine, AProgramAboveZsTravelIsRefusedAtItsLine) {
-  // It sets its own G55 Z0 and rapids to Z25: above the top with any tool.
-  const PathRunResult r = run("cam_drilling_cycles");
-  EXPECT_FALSE(r.completed);
-  EXPECT_FALSE(r.faulted) << "refused, not driven into the stop: " << r.error;
-  EXPECT_NE(r.error.find("line 9"), std::string::npos) << r.error;
-  EXPECT_NE(r.error.find("outside_workspace"), std::string::npos) << r.error;
-}
-
-TEST(CamProgramOnMachine, AnArcInG18IsRefusedWithItsLine) {
-  const PathRunResult r = run("cam_helix_subroutine");
-  EXPECT_FALSE(r.completed);
-  EXPECT_NE(r.error.find("line 31"), std::string::npos) << r.error;
-  EXPECT_NE(r.error.find("G18"), std::string::npos) << r.error;
+TEST(CamProgramOnMachine, TheDrillingProgramDrillsInItsOwnG55) {
+  // Its G10 L2 P2 X100 Y50 Z-150 sets G55: the last hole, G55 X40 Y20, is at machine X140 Y70.
+  const std::optional<emu::Scenario> scenario = emu::builtin_scenario("no-cut");
+  ASSERT_TRUE(scenario.has_value());
+  PathRunOptions options = machine_setup();
+  options.keep_samples = true;
+  const PathRunResult r = run_path(*scenario, fw::default_firmware_config(), fw::ControllerKind::rdvsc,
+                                   program_text("cam_drilling_cycles"), options);
+  ASSERT_TRUE(r.completed) << r.error;
+  double x_max = -1e9, y_max = -1e9;
+  for (const PathSample& s : r.samples) {
+    x_max = std::max(x_max, s.reference_mm[0]);
+    y_max = std::max(y_max, s.reference_mm[1]);
+  }
+  EXPECT_NEAR(x_max, 140.0, 1e-6);
+  EXPECT_NEAR(y_max, 70.0, 1e-6);
 }
 
 }  // namespace
