@@ -34,7 +34,7 @@ void expect_goal_met(const TickStudyResult& r, const std::string& what) {
   EXPECT_LT(r.program_end_s, 0.0) << what << ": the program ran out";
   ASSERT_GT(r.step_at_s, r.config.settle_s) << what << ": the step comes after the loop settled";
   EXPECT_NEAR(r.depth_before_mm, 1.0, 0.02) << what;
-  EXPECT_NEAR(r.depth_after_mm, 2.0, 1e-9) << what;
+  EXPECT_NEAR(r.depth_after_mm, 2.0, 0.01) << what << ": Z holds its depth within its following error";
   EXPECT_LT(r.feed_after_mm_s, 0.8 * r.feed_before_mm_s) << what << ": the loop must slow the feed for the deeper cut";
   EXPECT_LT(r.step_error_pct, 10.0) << what << ": force error 1 s after the step, % of f*";
   EXPECT_LT(r.step_error_measured_pct, 10.0) << what;
@@ -46,10 +46,12 @@ void expect_goal_met(const TickStudyResult& r, const std::string& what) {
               r.feed_before_mm_s, r.feed_after_mm_s);
 }
 
-TEST(ArscTickStockStep, TheFastLoopHoldsTheForceOneSecondAfterA2To1DepthStep) {
+TEST(ArscTickStockStep, TheOneMsLoopHoldsTheForceOneSecondAfterA2To1DepthStep) {
   for (int seed = 0; seed < 3; ++seed) {
-    const TickStudyResult r = run_tick_study(stock_step(1, 4.0, seed));
-    expect_goal_met(r, "1 ms, 4x poles, seed " + std::to_string(seed));
+    const TickStudyResult r = run_tick_study(stock_step(1, 1.0, seed));
+    expect_goal_met(r, "1 ms, seed " + std::to_string(seed));
+    // Before the step too: the loop holds a_p = 1 mm steadily (the 4x poles do not: docs/reproduction-s3.md).
+    EXPECT_EQ(r.clamped_after_settle, 0u);
   }
 }
 

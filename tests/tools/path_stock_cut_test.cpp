@@ -53,7 +53,7 @@ TEST(PathStockCut, ACutWithTheSpindleOnDoesNotCrashAndLoadsTheAxes) {
   EXPECT_TRUE(r.error.empty()) << r.error;
   EXPECT_EQ(r.crashes, 0u);
   EXPECT_EQ(r.feed_before_at_speed, 0u);
-  EXPECT_GE(r.feed_onsets, 2u) << "the plunge and the cut";
+  EXPECT_GE(r.feed_onsets, 1u) << "the plunge (the cut follows it through the corner without stopping)";
   EXPECT_NEAR(r.tool_force_max_n, 150.0, 6.0) << "F_ss at a_p 1 mm, f_z 0.05 mm (the spindle's droop adds a little)";
   EXPECT_NEAR(r.cutting_load_max_mm_s[kX], 1.5, 0.06) << "F / 100 N per mm/s against the feed on X";
   EXPECT_EQ(r.cutting_load_max_mm_s[kZ], 0.0) << "the force is in XY";
@@ -67,7 +67,7 @@ TEST(PathStockCut, FeedingIntoTheStockWithTheSpindleOffIsACrashAndFailsTheRun) {
   ASSERT_FALSE(r.crash_events.empty());
   EXPECT_EQ(r.crash_events.front().commanded_rpm, 0.0);
   EXPECT_LT(r.crash_events.front().z_mm, -151.0) << "below the stock top";
-  EXPECT_NE(r.error.find("crash"), std::string::npos) << r.error;
+  EXPECT_EQ(r.error.rfind("crash", 0), 0u) << "the crash is the run's first failure: " << r.error;
   EXPECT_EQ(r.feed_before_at_speed, 0u) << "the spindle was never commanded on";
 }
 
@@ -80,10 +80,11 @@ TEST(PathStockCut, AFeedRightAfterM3WaitsForTheSpindle) {
 }
 
 TEST(PathStockCut, AFirmwareThatFeedsBeforeAtSpeedIsCaughtByTheMachine) {
-  // The widest at-speed window the firmware takes and a slow ramp: its gate
-  // opens while the drive's command is still ramping.
+  // The widest at-speed window the firmware takes and the drive's fastest
+  // ramp: its gate opens at the ramp's end with the drive ~1,200 rpm behind
+  // (6,000 rpm/s x tau_sp 0.2 s), far outside a 5 % window.
   fw::FirmwareConfig config = fw::default_firmware_config();
-  config.spindle.accel_rpm_s = 1000.0;
+  config.spindle.accel_rpm_s = 6000.0;
   config.spindle.at_speed_fraction = 0.5;
   config.spindle.at_speed_floor_rpm = 1000.0;
   config.spindle.at_speed_ticks = 1;

@@ -86,6 +86,7 @@ nlohmann::json tick_study_json(const TickStudyResult& r) {
                        {"start_depth_mm", k.start_depth_mm},
                        {"step_mm", k.step_mm},
                        {"step_after_mm", k.step_after_mm},
+                       {"step_ramp_mm", k.step_ramp_mm},
                        {"judged_after_s", k.judged_after_s},
                        {"step_at_s", r.step_at_s < 0.0 ? json(nullptr) : json(r.step_at_s)},
                        {"depth_before_mm", r.depth_before_mm},

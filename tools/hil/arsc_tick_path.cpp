@@ -46,7 +46,7 @@ void push_line_3d(StudyProgram& p, fw::motion::PlanePoint& from, const fw::motio
 }  // namespace
 
 StudyProgram stock_step_program(const fw::motion::PlanePoint& start_mm, double step_at_x_mm, double step_mm,
-                                double end_x_mm, double feed_mm_s, double segment_mm) {
+                                double ramp_mm, double end_x_mm, double feed_mm_s, double segment_mm) {
   constexpr std::size_t kX = hal::index(hal::Axis::x), kZ = hal::index(hal::Axis::z);
   StudyProgram p;
   p.start_mm = start_mm;
@@ -54,7 +54,7 @@ StudyProgram stock_step_program(const fw::motion::PlanePoint& start_mm, double s
   fw::motion::PlanePoint to = at;
   to[kX] = step_at_x_mm;
   push_line_3d(p, at, to, feed_mm_s, segment_mm);
-  to[kX] += step_mm;
+  to[kX] += ramp_mm;
   to[kZ] -= step_mm;
   push_line_3d(p, at, to, feed_mm_s, segment_mm);
   to[kX] = end_x_mm;

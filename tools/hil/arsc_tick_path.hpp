@@ -40,8 +40,8 @@ StudyProgram study_program(StudyPath path, const fw::motion::PlanePoint& start_m
                            double arc_at_x_mm, double feed_mm_s, double segment_mm);
 
 // stock-step: along +X from start_mm at its Z; at X = step_at_x_mm down
-// step_mm in Z over step_mm of X (45 deg), then on along +X to end_x_mm.
+// step_mm in Z over ramp_mm of X, then on along +X to end_x_mm.
 StudyProgram stock_step_program(const fw::motion::PlanePoint& start_mm, double step_at_x_mm, double step_mm,
-                                double end_x_mm, double feed_mm_s, double segment_mm);
+                                double ramp_mm, double end_x_mm, double feed_mm_s, double segment_mm);
 
 }  // namespace tnv::hil

@@ -76,8 +76,8 @@ StudyProgram study_cut_program(const TickStudyConfig& c, double feed_mm_s, bool 
     return study_program(path, c.start_mm, c.end_x_mm, c.arc_at_x_mm, feed_mm_s, c.segment_mm);
   }
   const double x0 = c.start_mm[hal::index(Axis::x)];
-  return stock_step_program(c.start_mm, x0 + c.stock.step_after_mm, c.stock.step_mm, x0 + c.stock.length_mm,
-                            feed_mm_s, c.segment_mm);
+  return stock_step_program(c.start_mm, x0 + c.stock.step_after_mm, c.stock.step_mm, c.stock.step_ramp_mm,
+                            x0 + c.stock.length_mm, feed_mm_s, c.segment_mm);
 }
 
 emu::Scenario tick_study_scenario(const emu::Scenario& table, const emu::MillingParams& milling) {
@@ -176,7 +176,12 @@ constexpr double kStepBeginsMm = 0.01;
 struct StepJudge {
   const TickStudyConfig& c;
   TickStudyResult& r;
-  double last_depth_mm = 0.0, last_feed_mm_s = 0.0;
+  double last_depth_mm = 0.0;
+  // The path feed over the last kFeedLookBack ticks: the feed "before" is the settled cut's, not the
+  // planner's slowdown at the step's corner.
+  static constexpr std::size_t kFeedLookBack = 500;
+  std::array<double, kFeedLookBack> feeds{};
+  std::size_t ticks_seen = 0;
   bool judged = false;
 
   void observe(double t_s, double depth_mm, double true_force_n, double measured_force_n, double feed_mm_s) {
@@ -185,10 +190,10 @@ struct StepJudge {
     if (r.step_at_s < 0.0 && depth_mm > c.stock.start_depth_mm + kStepBeginsMm) {
       r.step_at_s = t_s;
       r.depth_before_mm = last_depth_mm;
-      r.feed_before_mm_s = last_feed_mm_s;
+      r.feed_before_mm_s = ticks_seen >= kFeedLookBack ? feeds[ticks_seen % kFeedLookBack] : 0.0;  // 0.5 s before
     }
     last_depth_mm = depth_mm;
-    last_feed_mm_s = feed_mm_s;
+    feeds[ticks_seen++ % kFeedLookBack] = feed_mm_s;
     if (r.step_at_s < 0.0 || t_s < r.step_at_s + c.stock.judged_after_s) return;
     if (!judged) {
       judged = true;

@@ -46,6 +46,9 @@ struct StockStepCase {
   double step_mm = 1.0;             // 1 -> 2 mm: the 2:1 step of issue 27's goal
   double entry_mm = 2.0;
   double step_after_mm = 80.0;      // X travel from the start to the step (about 4 s in at 150 N)
+  // X travel over which Z steps down: 1 mm with a 1 mm step is a 45 deg ramp, whose corners the planner
+  // takes at about 4 mm/s (5 um path tolerance); a longer one is a gentler corner and a slower step.
+  double step_ramp_mm = 1.0;
   double length_mm = 240.0;         // X travel of the program (the constant-feed baseline does not run out)
   double test_stage_feed_mm_s = 20.0;  // about 150 N at the start depth (the [milling] case's 40 is 250 N here)
   double judged_after_s = 1.0;      // the goal: within 10 % of f* this long after the step
@@ -170,7 +173,7 @@ struct TickStudyResult {
   double after_step_measured_max_pct = 0.0;
   double depth_before_mm = 0.0;             // a_p just before and 1 s after the step
   double depth_after_mm = 0.0;
-  double feed_before_mm_s = 0.0;            // path feed then (judge side)
+  double feed_before_mm_s = 0.0;            // path feed 0.5 s before the step and 1 s after it (judge side)
   double feed_after_mm_s = 0.0;
   std::uint64_t crashes = 0;                // the stock engaged with a slow spindle (never expected)
   std::string error;                        // set if the run could not start

@@ -33,7 +33,8 @@ void take_crashes(const emu::Machine& machine, PathRunResult& result) {
                 "commanded (%llu crash%s)",
                 e.time_s, e.x_mm, e.y_mm, e.z_mm, e.spindle_rpm, e.commanded_rpm,
                 static_cast<unsigned long long>(result.crashes), result.crashes == 1 ? "" : "es");
-  if (result.error.empty()) result.error = buf;
+  // The crash first: a fault that follows it (a stalled axis) is its consequence.
+  result.error = result.error.empty() ? std::string(buf) : std::string(buf).append("; then ").append(result.error);
 }
 
 PathSample sample_of(const fw::TickRecord& r) {

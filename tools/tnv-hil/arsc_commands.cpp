@@ -321,6 +321,7 @@ struct TickOptions {
   std::string plot;
   std::string scenario;  // empty: the reference table
   int seeds = 1;         // --period-ms: runs on seeded tables 0 .. seeds-1 (hil::seeded)
+  double step_ramp_mm = hil::StockStepCase{}.step_ramp_mm;  // --path stock-step
 };
 
 // The comparison behind "what the faster loop buys": no force loop, the
@@ -370,9 +371,9 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
     const hil::StockStepCase& k = c0.stock;
     std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), stock-step path, f* = %.0f N, "
                 "%s,\nthe force where the tool is ([stock]), spindle %.0f rpm, a_p %.1f -> %.1f mm stepping down in Z "
-                "%.0f mm into the cut;\nforce error after %.0f s, every tick, %% of f*\n",
+                "over %.1f mm of X, %.0f mm into the cut;\nforce error after %.0f s, every tick, %% of f*\n",
                 c0.force_ref_n, to_string(c0.poles), k.spindle_rpm, k.start_depth_mm, k.start_depth_mm + k.step_mm,
-                k.step_after_mm, c0.settle_s);
+                k.step_ramp_mm, k.step_after_mm, c0.settle_s);
   } else {
     std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), %s path, f* = %.0f N, %s,\n"
                 "depth %.1f -> %.1f -> %.1f mm over %.0f + %.0f s; force error after %.0f s, every tick, %% of f*\n",
@@ -443,6 +444,7 @@ int run_tick(const TickOptions& o) {
     else
       std::snprintf(label + used, sizeof label - used, "%s", fixed);
     c.label = label;
+    c.stock.step_ramp_mm = o.step_ramp_mm;
     for (int seed = 0; seed < o.seeds; ++seed) {
       c.table = hil::seeded(table, seed);
       if (o.seeds > 1) c.label = std::string(label) + ", seed " + std::to_string(seed);
@@ -530,6 +532,12 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
   tc->add_option("--speedup", tick->speedup, "force-loop poles this many times faster than the paper's (with --period-ms)")
       ->check(CLI::Range(0.1, 20.0))
       ->needs(period);
+  tc->add_option("--step-ramp-mm", tick->step_ramp_mm,
+                 "--path stock-step: X travel over which Z steps down 1 mm (1: a 45 deg ramp, whose corner the planner "
+                 "takes slowly; longer: a gentler corner, a slower step)")
+      ->check(CLI::Range(0.1, 50.0))
+      ->needs(period)
+      ->capture_default_str();
   tc->add_option("--seeds", tick->seeds,
                  "with --period-ms: one run on each seeded table 0 .. N-1 (encoder phases; noise seeds with "
                  "--scenario [noise])")
