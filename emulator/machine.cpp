@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "emulator/axis_plant.hpp"
+#include "emulator/cutting_at_tool.hpp"
 #include "emulator/cutting_disturbance.hpp"
 #include "emulator/fault_timeline.hpp"
 #include "emulator/force_adc.hpp"
@@ -74,6 +75,15 @@ struct Machine::Impl {
   }
   TickSamples tick_samples(const SampleNoise* noise = nullptr) const noexcept;
   void step_spindle(std::size_t n) noexcept;
+  void follow_spindle_encoder() noexcept;
+  // --- [stock] on: cutting where the tool is (emulator/cutting_at_tool.hpp).
+  // Every axis and the spindle are stepped one sub-step at a time (a loop
+  // of its own, so the machine without a stock keeps step_substeps as it
+  // was); per sub-step the tool point's force, from the states at its
+  // start, loads the XY axes and the spindle over it.
+  void step_substeps_at_tool(AxisStates& states, const AxisSpeeds& u, std::size_t n) noexcept;
+  void tool_cut_substep(const AxisStates& states, std::uint64_t at_substep) noexcept;
+  double tool_cut_disturbance_mm_s(std::size_t i) const noexcept;
   SampleNoise draw_sample_noise() noexcept;
   void apply_encoder_glitches() noexcept;
   void move_outputs() noexcept;
@@ -111,6 +121,7 @@ struct Machine::Impl {
   bool any_backlash;
   SpindleDrive spindle;             // on DAC_SPINDLE and the OUTPUTS spindle bits
   SpindleEncoder spindle_encoder;
+  std::unique_ptr<CuttingAtTool> tool_cut;  // [stock] enabled; null otherwise (the table and S1 experiments)
   std::uint32_t spindle_encoder_register = 0;  // SPINDLE_ENCODER and SPINDLE_INDEX as the encoder stands
   std::uint32_t spindle_index_register = 0;    // (updated when it moves)
 
@@ -169,6 +180,7 @@ Machine::Impl::Impl(const Scenario& s)
       any_backlash(std::any_of(screws.begin(), screws.end(), [](const ScrewTransmission& t) { return t.has_backlash(); })),
       spindle(s.spindle),
       spindle_encoder(s.spindle),
+      tool_cut(s.stock.enabled ? std::make_unique<CuttingAtTool>(s, kSubstep_s) : nullptr),
       sample_noise(s.noise.any_sample_noise()),
       force_noise(make_noise_stream(s.noise.seed, NoiseStreamId::force_adc)),
       accel_noise(make_axis_noise_streams(s.noise.seed, AxisNoise::accel)),
@@ -248,16 +260,20 @@ TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept
   samples.adc_force_code = force_adc_code(magnitude_mm_s, scenario.force_sensor.volts_per_mm_s);
   // With [milling] on, the sensor reads the milling force instead (same ADC scaling law, volts per N).
   if (milling.enabled()) samples.adc_force_code = force_adc_code(milling.force_n(), scenario.force_sensor.volts_per_n);
+  // With [stock] on (and [milling] off), the force where the tool is.
+  else if (tool_cut) samples.adc_force_code = force_adc_code(tool_cut->force().force_n(), scenario.force_sensor.volts_per_n);
   if (noise != nullptr) {
     const double volts = milling.enabled() ? milling.force_n() * scenario.force_sensor.volts_per_n
-                                           : magnitude_mm_s * scenario.force_sensor.volts_per_mm_s;
+                         : tool_cut      ? tool_cut->force().force_n() * scenario.force_sensor.volts_per_n
+                                         : magnitude_mm_s * scenario.force_sensor.volts_per_mm_s;
     samples.adc_force_code = force_adc_code_for_volts(volts + noise->force_v);
   }
   // Tool-side accelerometers: table acceleration with the inputs of the
   // sub-step that ends at the tick, plus the mode's deflection acceleration.
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const double process_mm_s = applied_cutting.component(hal::axis_from_index(i)) +
-                                (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
+    double process_mm_s = applied_cutting.component(hal::axis_from_index(i)) +
+                          (i == 0 && milling.enabled() ? milling.disturbance_mm_s() : 0.0);
+    if (tool_cut) process_mm_s += tool_cut_disturbance_mm_s(i);
     // (an axis without a load: exactly the process' disturbance)
     const double disturbance_mm_s =
         loads[i].constant_mm_s != 0.0 ? loads[i].constant_mm_s + process_mm_s : process_mm_s;
@@ -443,7 +459,9 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
     states[i] = plants[i].state();  // local state: independent chains, no memory round trips
     from_mm[i] = states[i].position_mm;
   }
-  if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
+  if (tool_cut) {
+    step_substeps_at_tool(states, u, n);
+  } else if (cutting.enabled() || milling.enabled() || any_mode || any_backlash) {
     step_substeps(states, u, n);
   } else {
     // Held inputs: the closed form where it is provably the same as
@@ -454,7 +472,7 @@ bool Machine::Impl::run_block(std::uint64_t max_substeps) noexcept {
     plants[i].set_state(states[i]);
     watch_index(i, from_mm[i], states[i].position_mm);
   }
-  step_spindle(n);
+  if (!tool_cut) step_spindle(n);  // with a tool cut: in step_substeps_at_tool, loaded
   substep += n;
   const bool tick_due = board.advance_substeps(n);
   if (transport.enabled()) land_due_outputs();  // landing at a latch: before it samples
@@ -471,6 +489,10 @@ void Machine::Impl::step_spindle(std::size_t n) noexcept {
   spindle.set_inputs(board.spindle_dac_output_code(), enabled, board.spindle_reverse());
   if (spindle.at_rest()) return;
   spindle.advance_unloaded(n);
+  follow_spindle_encoder();
+}
+
+void Machine::Impl::follow_spindle_encoder() noexcept {
   // A block is at most one tick: 0.2 rev at 12,000 rpm, so at most one index mark.
   spindle_encoder.follow(spindle.revolutions());
   spindle_encoder_register = QuadratureEncoder::wrap(spindle_encoder.count());
@@ -542,6 +564,76 @@ void Machine::Impl::step_substeps(AxisStates& states, const AxisSpeeds& u, std::
   applied_cutting = cut;  // the last sub-step's: what the force sensor and truth() see
 }
 
+// --- cutting where the tool is ([stock] on) ---------------------------------
+
+// step_substeps with the tool's process in it: every axis in the loop (Z's
+// position makes the depth of cut), the spindle stepped with its load. The
+// spindle's inputs are the block's, as step_spindle() takes them.
+void Machine::Impl::step_substeps_at_tool(AxisStates& states, const AxisSpeeds& u, std::size_t n) noexcept {
+  double load_per_speed[CuttingDisturbance::kMaxFill];
+  cutting.fill_load_per_speed(substep, n, load_per_speed);
+  const bool enabled = board.spindle_enabled();
+  if (enabled || !spindle.at_rest()) spindle.set_inputs(board.spindle_dac_output_code(), enabled, board.spindle_reverse());
+  AxisStates s = states;
+  std::array<ModeState, hal::kAxisCount> mode_states{};
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) mode_states[i] = modes[i].state();
+  CuttingVector cut{};
+  constexpr auto kPerSubstep = static_cast<double>(kSubstepsPerSecond);
+  constexpr std::size_t kX = hal::index(hal::kPlaneFirst), kY = hal::index(hal::kPlaneSecond);
+  for (std::size_t k = 0; k < n; ++k) {
+    const AxisStates at = s;  // the sub-step's start: the inputs held over it
+    if (cutting.enabled()) cut = CuttingDisturbance::force(load_per_speed[k], at[kX].speed_mm_s, at[kY].speed_mm_s);
+    const double milling_x_mm_s = milling.enabled() ? milling.disturbance_mm_s() : 0.0;
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
+      const double d_mm_s = (i == kX ? cut.x_mm_s + milling_x_mm_s : i == kY ? cut.y_mm_s : loads[i].constant_mm_s) +
+                            tool_cut_disturbance_mm_s(i);
+      plants[i].advance(s[i], u[i], d_mm_s);
+      if (any_stops) end_stops[i].apply(s[i]);
+    }
+    if (milling.enabled()) milling.advance(at[0].speed_mm_s, substep_time_s(substep + k));
+    tool_cut_substep(at, substep + k);
+    if (any_mode)
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+        modes[i].advance(mode_states[i], (s[i].speed_mm_s - at[i].speed_mm_s) * kPerSubstep);
+    if (any_backlash)
+      for (std::size_t i = 0; i < hal::kAxisCount; ++i) screws[i].follow(s[i].position_mm);
+  }
+  states = s;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) modes[i].set_state(mode_states[i]);
+  applied_cutting = cut;
+  spindle.settle_if_stopping();
+  if (!spindle.at_rest()) follow_spindle_encoder();
+}
+
+// One sub-step of the process from the states at its start: the tool point
+// is the table's X and Y and the spindle nose's Z less the tool's length;
+// the force it has then loads the spindle over the sub-step (the XY axes
+// take it in step_substeps_at_tool through tool_cut_disturbance_mm_s).
+void Machine::Impl::tool_cut_substep(const AxisStates& at, std::uint64_t at_substep) noexcept {
+  constexpr std::size_t kX = hal::index(hal::kPlaneFirst), kY = hal::index(hal::kPlaneSecond);
+  constexpr std::size_t kZ = hal::index(Axis::z);
+  const auto table_at = [this, &at](std::size_t i) {
+    return screws[i].enabled() ? screws[i].table_mm(at[i].position_mm) : at[i].position_mm;
+  };
+  const double spindle_rpm = spindle.speed_rpm();
+  const double load_n = tool_cut->force().force_n();
+  tool_cut->advance(ToolPointMotion{.x_mm = table_at(kX),
+                                    .y_mm = table_at(kY),
+                                    .z_mm = tool_point_z_mm(table_at(kZ), scenario.tool),
+                                    .vx_mm_s = at[kX].speed_mm_s,
+                                    .vy_mm_s = at[kY].speed_mm_s},
+                    spindle_rpm, spindle.commanded_rpm(), substep_time_s(at_substep));
+  if (!spindle.at_rest()) spindle.step(load_n);
+}
+
+double Machine::Impl::tool_cut_disturbance_mm_s(std::size_t i) const noexcept {
+  const Axis axis = hal::axis_from_index(i);
+  if (axis == hal::kPlaneFirst) return tool_cut->force().disturbance_x_mm_s();
+  if (axis == hal::kPlaneSecond) return tool_cut->force().disturbance_y_mm_s();
+  return 0.0;
+}
+
+
 Machine::Machine(const Scenario& scenario) : impl_(std::make_unique<Impl>(scenario)) {}
 Machine::~Machine() = default;
 
@@ -594,7 +686,9 @@ AxisTruth Machine::truth(Axis axis) const noexcept {
                    .tool_position_mm = table_mm + impl_->modes[i].deflection_mm(),
                    .motor_position_mm = plant.position_mm(),
                    .command_mm_s = impl_->applied_command_mm_s[i],
-                   .cutting_mm_s = impl_->applied_cutting.component(axis),
+                   .cutting_mm_s = impl_->tool_cut ? impl_->applied_cutting.component(axis) +
+                                                         impl_->tool_cut_disturbance_mm_s(i)
+                                                   : impl_->applied_cutting.component(axis),
                    .stuck = plant.stuck(),
                    .dac_output_code = impl_->board.dac_output_code(axis)};
 }
@@ -635,6 +729,8 @@ const Scenario& Machine::scenario() const noexcept { return impl_->scenario; }
 double Machine::milling_force_n() const noexcept { return impl_->milling.force_n(); }
 
 double Machine::milling_depth_mm() const noexcept { return impl_->milling.depth_mm(time_s()); }
+
+const CuttingAtTool* Machine::cutting_at_tool() const noexcept { return impl_->tool_cut.get(); }
 
 bool Machine::fault_active(std::size_t i) const noexcept {
   return i < impl_->fault_on.size() && impl_->fault_on[i];

@@ -19,6 +19,8 @@
 
 namespace tnv::emu {
 
+class CuttingAtTool;
+
 // What really happened on one axis (judge side, not visible to firmware).
 struct AxisTruth {
   double position_mm = 0.0;       // table position: the motor side through the ball screw (backlash, lead error)
@@ -26,7 +28,7 @@ struct AxisTruth {
   double tool_position_mm = 0.0;  // table + structural-mode deflection
   double motor_position_mm = 0.0; // plant state p: the motor side in mm of screw travel, what the encoder counts
   double command_mm_s = 0.0;      // u actually applied (after DAC, enable, watchdog)
-  double cutting_mm_s = 0.0;      // d_cut component on this axis
+  double cutting_mm_s = 0.0;      // d_cut component on this axis (with [stock]: and the force where the tool is)
   bool stuck = false;             // Karnopp stick state
   std::uint32_t dac_output_code = 0;  // what the DAC outputs (its register's code unless a fault sticks it)
 };
@@ -96,6 +98,9 @@ class Machine {
   // S3 milling force on X (N) and the depth of cut now (mm); 0 / profile when [milling] is off.
   double milling_force_n() const noexcept;
   double milling_depth_mm() const noexcept;
+  // [stock] on: the process where the tool is (its force, a_p, the crash
+  // log); nullptr without a stock.
+  const CuttingAtTool* cutting_at_tool() const noexcept;
 
   // --- test-bench inputs
   void set_estop(bool asserted) noexcept;

@@ -227,8 +227,10 @@ struct ToolParams {
 };
 
 // The block of stock (reference plant "Stock"): top face and XY rectangle.
-// Default rectangle: the whole table (unbounded).
+// Default rectangle: the whole table (unbounded). Off by default: with it
+// on, emu::Machine cuts where the tool is ([tool], [tool_cut]).
 struct StockParams {
+  bool enabled = false;
   double top_mm = -150.0;  // z_top, machine coordinates
   double x_min_mm = -std::numeric_limits<double>::infinity();
   double x_max_mm = std::numeric_limits<double>::infinity();

@@ -55,12 +55,23 @@ void SpindleDrive::advance_unloaded(std::size_t count) noexcept {
   if (at_rest()) return;
   AxisState s = motor_.state();
   motor_.advance_held(s, commanded_rpm_, 0.0, count);
-  // Below the limit's knee (A tau) the law is v' = -v / tau: the rest of the
-  // way to zero is v tau exactly.
+  settle(s);
+  motor_.set_state(s);
+}
+
+// Below the limit's knee (A tau) the law is v' = -v / tau: the rest of the
+// way to zero is v tau exactly.
+void SpindleDrive::settle(AxisState& s) const noexcept {
   if (commanded_rpm_ == 0.0 && std::abs(s.speed_mm_s) < kRestRpm) {
     s.position_mm += s.speed_mm_s * params_.tau_s;
     s.speed_mm_s = 0.0;
   }
+}
+
+void SpindleDrive::settle_if_stopping() noexcept {
+  if (at_rest()) return;
+  AxisState s = motor_.state();
+  settle(s);
   motor_.set_state(s);
 }
 

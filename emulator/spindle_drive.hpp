@@ -42,6 +42,9 @@ class SpindleDrive {
   // speed below kRestRpm ends at rest with the exponential's remaining
   // travel (n tau_sp) added, so an idle spindle stops being integrated.
   void advance_unloaded(std::size_t count) noexcept;
+  // After sub-steps of step(): with no command, a speed below kRestRpm ends
+  // at rest as advance_unloaded() ends it.
+  void settle_if_stopping() noexcept;
   bool at_rest() const noexcept { return commanded_rpm_ == 0.0 && motor_.speed_mm_s() == 0.0; }
   static constexpr double kRestRpm = 1e-3;  // its remaining travel: 3e-6 rev, 0.014 counts
 
@@ -56,6 +59,7 @@ class SpindleDrive {
   std::uint32_t max_code_;
   double rpm_per_code_;
   double commanded_rpm_ = 0.0;
+  void settle(AxisState& s) const noexcept;
 };
 
 }  // namespace tnv::emu

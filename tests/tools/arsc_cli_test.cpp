@@ -71,6 +71,25 @@ TEST(ArscCli, TickOnTheArcPathTurnsAndHoldsTheForce) {
   EXPECT_LT(j["travel_x_mm"].get<double>(), j["travel_mm"].get<double>() - 20.0) << "part of the path is not along X";
 }
 
+TEST(ArscCli, TickOnAStockStepReportsTheForceOneSecondAfterTheStepPerSeed) {
+  const CliRun r = run_tnv_hil("arsc tick --path stock-step --period-ms 1 --seeds 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["runs"].size(), 2u);
+  for (const nlohmann::json& run : j["runs"]) {
+    EXPECT_EQ(run["path"], "stock-step");
+    const nlohmann::json& k = run["stock_step"];
+    EXPECT_EQ(k["crashes"].get<int>(), 0);
+    EXPECT_NEAR(k["depth_after_mm"].get<double>(), 2.0, 0.01);
+    EXPECT_LT(k["force_error_pct"].get<double>(), 10.0) << "issue 27's goal";
+    EXPECT_GT(k["step_at_s"].get<double>(), 3.0);
+  }
+  const CliRun text = run_tnv_hil("arsc tick --path stock-step --period-ms 1");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("1.0 s after: force error"), std::string::npos) << text.out;
+  EXPECT_EQ(run_tnv_hil("arsc tick --path stock-step --step-ramp-mm 4").exit_code, 2) << "--step-ramp-mm needs --period-ms";
+}
+
 TEST(ArscCli, TickWithoutAPeriodComparesTheRates) {
   const CliRun r = run_tnv_hil("arsc tick --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -119,6 +119,7 @@ void EmulatedBus::step() {
   rig_->charged_call([this]() noexcept { rig_->task.tick(); });
   rig_->charged_call([this]() noexcept { node_->service(); });
   storage_worker_.run_pending();
+  if (step_observer_) step_observer_();
   if (realtime_) {
     const auto sim = now() - realtime_sim_origin_;
     std::this_thread::sleep_until(realtime_wall_origin_ + sim);

@@ -59,6 +59,9 @@ class EmulatedBus final : public HostBus {
   // Frames the node sends pass through `keep` before the wire; false drops
   // one (to test recovery from lost frames). Empty = keep all.
   void set_node_tx_filter(std::function<bool(const hal::CanFrame&)> keep) { node_tx_filter_ = std::move(keep); }
+  // Called after every step() (the judge of a run watching the machine's
+  // truth each tick); empty = none.
+  void set_step_observer(std::function<void()> observer) { step_observer_ = std::move(observer); }
 
   std::uint8_t node_id() const noexcept;
   const emu::Scenario& scenario() const noexcept { return scenario_; }
@@ -85,6 +88,7 @@ class EmulatedBus final : public HostBus {
   std::unique_ptr<hil::HilRig> rig_;
   std::unique_ptr<fw::can::CanNode> node_;
   std::function<bool(const hal::CanFrame&)> node_tx_filter_;
+  std::function<void()> step_observer_;
   std::string startup_note_;
   std::size_t saved_params_differing_ = 0;
   BusCounters host_counters_{};

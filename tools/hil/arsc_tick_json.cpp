@@ -80,6 +80,25 @@ nlohmann::json tick_study_json(const TickStudyResult& r) {
                             {"drive_gain", ts.drive_gain},
                             {"force_rms_n", ts.force_rms_n},
                             {"drive_rms_mm_s", ts.drive_rms_mm_s}}}};
+  if (r.config.path == StudyPath::stock_step) {
+    const StockStepCase& k = r.config.stock;
+    j["stock_step"] = {{"spindle_rpm", k.spindle_rpm},
+                       {"start_depth_mm", k.start_depth_mm},
+                       {"step_mm", k.step_mm},
+                       {"step_after_mm", k.step_after_mm},
+                       {"step_ramp_mm", k.step_ramp_mm},
+                       {"judged_after_s", k.judged_after_s},
+                       {"step_at_s", r.step_at_s < 0.0 ? json(nullptr) : json(r.step_at_s)},
+                       {"depth_before_mm", r.depth_before_mm},
+                       {"depth_after_mm", r.depth_after_mm},
+                       {"feed_before_mm_s", r.feed_before_mm_s},
+                       {"feed_after_mm_s", r.feed_after_mm_s},
+                       {"force_error_pct", r.step_error_pct},
+                       {"force_error_measured_pct", r.step_error_measured_pct},
+                       {"after_max_pct", r.after_step_max_pct},
+                       {"after_measured_max_pct", r.after_step_measured_max_pct},
+                       {"crashes", r.crashes}};
+  }
   if (!r.config.outer_loop) {  // no force loop: nothing was designed
     j["constant_feed_mm_s"] = r.config.constant_feed_mm_s;
     for (const char* key : {"force_poles_rad_s", "target_poles_z", "initial_gains", "pole_set", "pole_speedup"})

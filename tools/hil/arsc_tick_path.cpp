@@ -25,11 +25,47 @@ void push_line(StudyProgram& p, fw::motion::PlanePoint& from, const fw::motion::
   from = to;
 }
 
+// Straight pieces of at most segment_mm in X, Y and Z from `from` to `to`.
+void push_line_3d(StudyProgram& p, fw::motion::PlanePoint& from, const fw::motion::PlanePoint& to, double feed_mm_s,
+                  double segment_mm) {
+  double sum_sq = 0.0;
+  for (std::size_t a = 0; a < hal::kAxisCount; ++a) sum_sq += (to[a] - from[a]) * (to[a] - from[a]);
+  const double length = std::sqrt(sum_sq);
+  const auto pieces = static_cast<std::size_t>(std::ceil(length / segment_mm - 1e-9));
+  for (std::size_t i = 1; i <= pieces; ++i) {
+    const double s = static_cast<double>(i) / static_cast<double>(pieces);
+    fw::motion::PlanePoint end{};
+    for (std::size_t a = 0; a < hal::kAxisCount; ++a) end[a] = from[a] + s * (to[a] - from[a]);
+    p.segments.push_back(fw::motion::line_to(i == pieces ? to : end, feed_mm_s,
+                                             static_cast<std::uint32_t>(p.segments.size() + 1)));
+  }
+  p.length_mm += length;
+  from = to;
+}
+
 }  // namespace
+
+StudyProgram stock_step_program(const fw::motion::PlanePoint& start_mm, double step_at_x_mm, double step_mm,
+                                double ramp_mm, double end_x_mm, double feed_mm_s, double segment_mm) {
+  constexpr std::size_t kX = hal::index(hal::Axis::x), kZ = hal::index(hal::Axis::z);
+  StudyProgram p;
+  p.start_mm = start_mm;
+  fw::motion::PlanePoint at = start_mm;
+  fw::motion::PlanePoint to = at;
+  to[kX] = step_at_x_mm;
+  push_line_3d(p, at, to, feed_mm_s, segment_mm);
+  to[kX] += ramp_mm;
+  to[kZ] -= step_mm;
+  push_line_3d(p, at, to, feed_mm_s, segment_mm);
+  to[kX] = end_x_mm;
+  push_line_3d(p, at, to, feed_mm_s, segment_mm);
+  return p;
+}
 
 std::optional<StudyPath> parse_study_path(std::string_view name) noexcept {
   if (name == "line") return StudyPath::line;
   if (name == "arc") return StudyPath::arc;
+  if (name == "stock-step") return StudyPath::stock_step;
   return std::nullopt;
 }
 

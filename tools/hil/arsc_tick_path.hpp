@@ -8,6 +8,9 @@
 //   line: along +X, in 10 mm segments;
 //   arc:  the same line, a tangent counter-clockwise arc of 20 mm radius
 //         turning 45 deg, then a straight line at 45 deg (c = 0.707).
+//   stock-step: the line along +X cut where the tool is (emulator [stock],
+//         the spindle turning; issue 27), stepping down in Z at one point by
+//         a short 45 deg ramp, so the depth of cut steps (2:1 by default).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -18,9 +21,11 @@
 
 namespace tnv::hil {
 
-enum class StudyPath : std::uint8_t { line = 0, arc = 1 };
+enum class StudyPath : std::uint8_t { line = 0, arc = 1, stock_step = 2 };
 
-constexpr const char* to_string(StudyPath p) noexcept { return p == StudyPath::arc ? "arc" : "line"; }
+constexpr const char* to_string(StudyPath p) noexcept {
+  return p == StudyPath::arc ? "arc" : p == StudyPath::stock_step ? "stock-step" : "line";
+}
 std::optional<StudyPath> parse_study_path(std::string_view name) noexcept;
 
 struct StudyProgram {
@@ -33,5 +38,10 @@ struct StudyProgram {
 // arc_at_x_mm along X (line path: ignored).
 StudyProgram study_program(StudyPath path, const fw::motion::PlanePoint& start_mm, double end_x_mm,
                            double arc_at_x_mm, double feed_mm_s, double segment_mm);
+
+// stock-step: along +X from start_mm at its Z; at X = step_at_x_mm down
+// step_mm in Z over ramp_mm of X, then on along +X to end_x_mm.
+StudyProgram stock_step_program(const fw::motion::PlanePoint& start_mm, double step_at_x_mm, double step_mm,
+                                double ramp_mm, double end_x_mm, double feed_mm_s, double segment_mm);
 
 }  // namespace tnv::hil

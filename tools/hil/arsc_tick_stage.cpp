@@ -19,21 +19,20 @@ TickTestStage run_tick_test_stage(const TickStudyConfig& c, std::string& error) 
   TickTestStage fit;
   emu::MillingParams m = c.milling;
   m.depth = {c.milling.depth.start_mm, c.milling.depth.start_mm, 1.0, 1.0};
-  emu::Scenario s = tick_study_scenario(c.table, m);
+  emu::Scenario s = study_scenario(c, m);
   s.noise.seed ^= 0x7E57'57A6u;  // a separate cut: its own noise and jitter (inert while [noise] and [io] are off)
   fw::arsc::ArscSourceParams off{};
   off.enabled = false;
   const fw::FirmwareConfig firmware = study_firmware_config(c, off);
   std::unique_ptr<HilRig> rig = ready_study_rig(s, firmware, c, error);
   if (!rig) return fit;
-  const StudyProgram program = study_program(StudyPath::line, c.start_mm, c.end_x_mm, c.arc_at_x_mm,
-                                             c.program_feed_mm_s, c.segment_mm);
+  const StudyProgram program = study_cut_program(c, c.program_feed_mm_s, false);
   ProgramFeeder feeder(program.segments);
   // Two-level feed mean +- step, switching with probability 1/2 every 0.3 s: slower
   // than the axis, comparable to the force's time constant.
   const auto ticks = static_cast<std::size_t>(c.test_stage_s / kTickPeriodS);
-  const std::vector<double> u =
-      test_stage_input(ticks, c.test_stage_feed_mm_s, c.test_stage_step_mm_s, 300, 11);
+  const double mean_feed_mm_s = c.path == StudyPath::stock_step ? c.stock.test_stage_feed_mm_s : c.test_stage_feed_mm_s;
+  const std::vector<double> u = test_stage_input(ticks, mean_feed_mm_s, c.test_stage_step_mm_s, 300, 11);
   std::vector<double> f(ticks + 1), v(ticks + 1), x(ticks + 1), y(ticks + 1);
   const auto read = [&](std::size_t k) {
     const fw::TickRecord& rec = rig->task.last_record();

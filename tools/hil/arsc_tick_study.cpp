@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "emulator/cutting_at_tool.hpp"
 #include "firmware/adaptive/arsc/outer_arsc.hpp"
 #include "firmware/io/force_code.hpp"
 #include "tools/hil/hil_rig.hpp"
@@ -39,7 +40,44 @@ std::unique_ptr<HilRig> ready_study_rig(const emu::Scenario& s, const fw::Firmwa
     return nullptr;
   }
   rig->tick();
+  if (c.path == StudyPath::stock_step) {
+    // The spindle at speed before the program, as an operator starts it.
+    if (rig->task.spindle_start(fw::SpindleDirection::forward, c.stock.spindle_rpm) != fw::SpindleResult::ok) {
+      error = "spindle start refused";
+      return nullptr;
+    }
+    for (int k = 0; k < 20'000 && !rig->task.last_record().spindle.at_speed; ++k) rig->tick();
+    if (!rig->task.last_record().spindle.at_speed) {
+      error = "the spindle did not come to speed";
+      return nullptr;
+    }
+  }
   return rig;
+}
+
+emu::Scenario stock_step_scenario(const emu::Scenario& table, const StockStepCase& k) {
+  emu::Scenario s = table;
+  s.name = "stock-step";
+  s.milling.enabled = false;
+  s.stock.enabled = true;
+  const double tool_z_mm = emu::tool_point_z_mm(emu::power_up_position_mm(s, Axis::z), s.tool);
+  s.stock.top_mm = tool_z_mm + k.start_depth_mm;
+  s.stock.x_min_mm = emu::power_up_position_mm(s, Axis::x) + 0.5 * s.tool.diameter_mm + k.entry_mm;
+  return s;
+}
+
+emu::Scenario study_scenario(const TickStudyConfig& c, const emu::MillingParams& milling) {
+  return c.path == StudyPath::stock_step ? stock_step_scenario(c.table, c.stock) : tick_study_scenario(c.table, milling);
+}
+
+StudyProgram study_cut_program(const TickStudyConfig& c, double feed_mm_s, bool with_step) {
+  if (c.path != StudyPath::stock_step || !with_step) {
+    const StudyPath path = c.path == StudyPath::arc && with_step ? StudyPath::arc : StudyPath::line;
+    return study_program(path, c.start_mm, c.end_x_mm, c.arc_at_x_mm, feed_mm_s, c.segment_mm);
+  }
+  const double x0 = c.start_mm[hal::index(Axis::x)];
+  return stock_step_program(c.start_mm, x0 + c.stock.step_after_mm, c.stock.step_mm, c.stock.step_ramp_mm,
+                            x0 + c.stock.length_mm, feed_mm_s, c.segment_mm);
 }
 
 emu::Scenario tick_study_scenario(const emu::Scenario& table, const emu::MillingParams& milling) {
@@ -133,6 +171,42 @@ struct Judge {
   }
 };
 
+// stock-step: when the depth stepped, and the force judged_after_s later.
+constexpr double kStepBeginsMm = 0.01;
+struct StepJudge {
+  const TickStudyConfig& c;
+  TickStudyResult& r;
+  double last_depth_mm = 0.0;
+  // The path feed over the last kFeedLookBack ticks: the feed "before" is the settled cut's, not the
+  // planner's slowdown at the step's corner.
+  static constexpr std::size_t kFeedLookBack = 500;
+  std::array<double, kFeedLookBack> feeds{};
+  std::size_t ticks_seen = 0;
+  bool judged = false;
+
+  void observe(double t_s, double depth_mm, double true_force_n, double measured_force_n, double feed_mm_s) {
+    const auto error_pct = [this](double f_n) { return std::fabs(f_n - c.force_ref_n) / c.force_ref_n * 100.0; };
+    // The step begins where a_p first leaves the start depth (the ramp's start: 1 s from there is the stricter reading).
+    if (r.step_at_s < 0.0 && depth_mm > c.stock.start_depth_mm + kStepBeginsMm) {
+      r.step_at_s = t_s;
+      r.depth_before_mm = last_depth_mm;
+      r.feed_before_mm_s = ticks_seen >= kFeedLookBack ? feeds[ticks_seen % kFeedLookBack] : 0.0;  // 0.5 s before
+    }
+    last_depth_mm = depth_mm;
+    feeds[ticks_seen++ % kFeedLookBack] = feed_mm_s;
+    if (r.step_at_s < 0.0 || t_s < r.step_at_s + c.stock.judged_after_s) return;
+    if (!judged) {
+      judged = true;
+      r.step_error_pct = error_pct(true_force_n);
+      r.step_error_measured_pct = error_pct(measured_force_n);
+      r.depth_after_mm = depth_mm;
+      r.feed_after_mm_s = feed_mm_s;
+    }
+    r.after_step_max_pct = std::max(r.after_step_max_pct, error_pct(true_force_n));
+    r.after_step_measured_max_pct = std::max(r.after_step_measured_max_pct, error_pct(measured_force_n));
+  }
+};
+
 }  // namespace
 
 TickStudyResult run_tick_study(const TickStudyConfig& c) {
@@ -155,12 +229,14 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     r.target_z = fw::arsc::outer_target_poles(fw::arsc::discretise(oc.model, r.period_s), r.period_s, oc.poles);
   }
 
-  const emu::Scenario s = tick_study_scenario(c.table, c.milling);
+  const emu::Scenario s = study_scenario(c, c.milling);
   std::unique_ptr<HilRig> rig = ready_study_rig(s, firmware, c, r.error);
   if (!rig) return r;
   fw::TickTask& task = rig->task;
+  const emu::CuttingAtTool* tool_cut = rig->machine.cutting_at_tool();  // stock-step only
   const double feed_mm_s = c.outer_loop ? c.program_feed_mm_s : c.constant_feed_mm_s;
-  const StudyProgram program = study_program(c.path, c.start_mm, c.end_x_mm, c.arc_at_x_mm, feed_mm_s, c.segment_mm);
+  const StudyProgram program = study_cut_program(c, feed_mm_s, true);
+  StepJudge step{c, r};
   ProgramFeeder feeder(program.segments);
   const std::uint16_t dac_max = task.config().axis[0].dac.max_code();
   constexpr auto kMaxForceCode = static_cast<std::uint16_t>((1u << hal::regs::kAdcBits) - 1u);
@@ -177,17 +253,28 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
     const fw::TickRecord& rec = task.last_record();
     const double f_n = study_force_n(rec, firmware);
     judge.force(t_s, f_n);
-    judge.true_force(t_s, rig->machine.milling_force_n());  // held by the ADC at this record's latch
+    // held by the ADC at this record's latch
+    const double true_force_n = tool_cut != nullptr ? tool_cut->force().force_n() : rig->machine.milling_force_n();
+    judge.true_force(t_s, true_force_n);
+    const double vx = rig->machine.truth(hal::kPlaneFirst).speed_mm_s, vy = rig->machine.truth(hal::kPlaneSecond).speed_mm_s;
+    const double speed = std::hypot(vx, vy);
+    if (tool_cut != nullptr) step.observe(t_s, tool_cut->depth_mm(), true_force_n, f_n, speed);
     if (k % 10 == 0) {
-      const double depth = rig->machine.milling_depth_mm();
-      const double vx = rig->machine.truth(hal::kPlaneFirst).speed_mm_s, vy = rig->machine.truth(hal::kPlaneSecond).speed_mm_s;
-      const double speed = std::hypot(vx, vy);
+      const double depth = tool_cut != nullptr ? tool_cut->depth_mm() : rig->machine.milling_depth_mm();
       const double share = speed > 1e-6 ? std::max(vx, 0.0) / speed : 1.0;
       const double gain = c.outer_loop ? task.feed_source().status().cutting_gain_n_per_mm_s
                                        : r.test_stage.cutting_gain_n_per_mm_s;
+      // The process' gain: K delta x the X share ([milling]); where the tool is, the secant F_ss / v.
+      const double true_gain =
+          tool_cut != nullptr
+              ? (speed > 1e-6 ? tool_cut->force().steady_force_n(
+                                    depth, tool_cut->force().feed_per_tooth_mm(
+                                               speed, rig->machine.spindle_truth().speed_rpm)) /
+                                    speed
+                              : 0.0)
+              : s.milling.force_n_per_mm_mm_s * depth * share;
       r.trace.push_back({t_s, depth, f_n, c.outer_loop ? rec.arsc_force_ref_n : c.force_ref_n, speed,
-                         rec.feed_override * feed_mm_s, rec.feed_override, gain,
-                         s.milling.force_n_per_mm_mm_s * depth * share, rec.axis[0].position_mm,
+                         rec.feed_override * feed_mm_s, rec.feed_override, gain, true_gain, rec.axis[0].position_mm,
                          rec.axis[1].position_mm});
     }
     rig->tick();
@@ -222,6 +309,7 @@ TickStudyResult run_tick_study(const TickStudyConfig& c) {
       for (double x : {g.k, g.gamma31, g.gamma32, g.gamma33}) r.max_abs_gain = std::max(r.max_abs_gain, std::fabs(x));
     }
   }
+  if (tool_cut != nullptr) r.crashes = tool_cut->crashes().count();
   r.refused_segments = feeder.refused();
   if (r.refused_segments > 0 && r.error.empty())
     r.error = std::string("segment refused: ") + fw::motion::to_string(feeder.last_refusal());

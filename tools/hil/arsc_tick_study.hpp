@@ -32,6 +32,28 @@
 
 namespace tnv::hil {
 
+// --path stock-step (issue 27, "S3 on a real cut"): the force is the
+// emulator's milling force where the tool is ([stock] on, [milling] off;
+// reference plant "Stock, and cutting where the tool is"), the spindle turns
+// at spindle_rpm from before the program, and the program steps down in Z
+// once inside the stock, so a_p goes start_depth_mm -> start_depth_mm +
+// step_mm. The stock is placed from the table's power-up position: its top
+// start_depth_mm above the tool point, its side entry_mm ahead of the
+// tool's edge in +X (the tool enters it from the side, cutting).
+struct StockStepCase {
+  double spindle_rpm = 6000.0;
+  double start_depth_mm = 1.0;
+  double step_mm = 1.0;             // 1 -> 2 mm: the 2:1 step of issue 27's goal
+  double entry_mm = 2.0;
+  double step_after_mm = 80.0;      // X travel from the start to the step (about 4 s in at 150 N)
+  // X travel over which Z steps down: 1 mm with a 1 mm step is a 45 deg ramp, whose corners the planner
+  // takes at about 4 mm/s (5 um path tolerance); a longer one is a gentler corner and a slower step.
+  double step_ramp_mm = 1.0;
+  double length_mm = 240.0;         // X travel of the program (the constant-feed baseline does not run out)
+  double test_stage_feed_mm_s = 20.0;  // about 150 N at the start depth (the [milling] case's 40 is 250 N here)
+  double judged_after_s = 1.0;      // the goal: within 10 % of f* this long after the step
+};
+
 struct TickStudyConfig {
   std::string label = "1 ms";
   std::uint32_t ticks_per_sample = 1;   // arsc.period_ticks (150 = the paper's 0.15 s)
@@ -70,6 +92,7 @@ struct TickStudyConfig {
   // [io] and the rest apply as in any run; its [milling] is replaced by `milling` above. The default
   // is the reference table.
   emu::Scenario table{};
+  StockStepCase stock{};  // path stock_step only
 };
 
 // The test-and-learning stage's fit (continuous time, physical units).
@@ -139,11 +162,31 @@ struct TickStudyResult {
   fw::arsc::OuterGains initial_gains{};     // at the test-stage model, normalised
   double max_abs_gain = 0.0;                // over the run, normalised
   fw::arsc::ArscSourceParams arsc{};        // what the board was told (arsc.*)
+  // path stock_step: the step (the first tick a_p is 0.01 mm past the start depth, judge side)
+  // and the force error judged_after_s later: at that tick and the worst
+  // from then to the end; against the milling force itself and as the ADC
+  // read it. -1 / 0 when the step was not reached.
+  double step_at_s = -1.0;
+  double step_error_pct = 0.0;
+  double step_error_measured_pct = 0.0;
+  double after_step_max_pct = 0.0;
+  double after_step_measured_max_pct = 0.0;
+  double depth_before_mm = 0.0;             // a_p just before and 1 s after the step
+  double depth_after_mm = 0.0;
+  double feed_before_mm_s = 0.0;            // path feed 0.5 s before the step and 1 s after it (judge side)
+  double feed_after_mm_s = 0.0;
+  std::uint64_t crashes = 0;                // the stock engaged with a slow spindle (never expected)
   std::string error;                        // set if the run could not start
 };
 
 // `table` with the study's milling force (and, for the test stage's separate cut, its own noise realisation).
 emu::Scenario tick_study_scenario(const emu::Scenario& table, const emu::MillingParams& milling);
+// path stock_step: `table` with its stock placed for the case and [milling] off.
+emu::Scenario stock_step_scenario(const emu::Scenario& table, const StockStepCase& k);
+// The scenario of a study (its test stage: with `milling` at the start depth).
+emu::Scenario study_scenario(const TickStudyConfig& config, const emu::MillingParams& milling);
+// The program the study cuts at `feed_mm_s` (the test stage: always without the step).
+StudyProgram study_cut_program(const TickStudyConfig& config, double feed_mm_s, bool with_step);
 TickTestStage run_tick_test_stage(const TickStudyConfig& config, std::string& error);
 // The outer loop's force poles for a pole set: the paper's (S3 Fig. 7)
 // force-loop pair, mapped from z at 0.15 s to continuous time, times speedup.

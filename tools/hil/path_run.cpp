@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <thread>
 
+#include "emulator/cutting_at_tool.hpp"
 #include "tools/hil/command_status_text.hpp"
+#include "tools/hil/feed_start_judge.hpp"
 #include "tools/hil/hil_rig.hpp"
 #include "tools/hil/program_feeder.hpp"
 #include "tools/hil/seeded_scenario.hpp"
@@ -13,6 +16,26 @@
 namespace tnv::hil {
 
 namespace {
+
+// The crash log of a machine with a stock, into the run's result; a crash fails the run.
+void take_crashes(const emu::Machine& machine, PathRunResult& result) {
+  const emu::CuttingAtTool* cut = machine.cutting_at_tool();
+  if (cut == nullptr) return;
+  const emu::SpindleCrashLog& log = cut->crashes();
+  result.crashes = log.count();
+  for (std::size_t i = 0; i < std::min<std::size_t>(log.count(), emu::SpindleCrashLog::kKept); ++i)
+    result.crash_events.push_back(log.event(i));
+  if (result.crashes == 0) return;
+  const emu::CrashEvent& e = log.event(0);
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "crash: the tool entered the stock at %.3f s, (%.3f, %.3f, %.3f) mm, spindle %.0f rpm of %.0f "
+                "commanded (%llu crash%s)",
+                e.time_s, e.x_mm, e.y_mm, e.z_mm, e.spindle_rpm, e.commanded_rpm,
+                static_cast<unsigned long long>(result.crashes), result.crashes == 1 ? "" : "es");
+  // The crash first: a fault that follows it (a stalled axis) is its consequence.
+  result.error = result.error.empty() ? std::string(buf) : std::string(buf).append("; then ").append(result.error);
+}
 
 PathSample sample_of(const fw::TickRecord& r) {
   PathSample s;
@@ -55,6 +78,9 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
   samples.push_back(sample_of(task.last_record()));
   ProgramFeeder feeder(program.segments);
+  FeedStartJudge judge;
+  const std::uint64_t done_before = task.motion().stats().segments_done;
+  const emu::CuttingAtTool* tool_cut = rig->machine.cutting_at_tool();
   // Generous: the programmed time three times over, plus ten seconds, plus the pauses.
   const auto resume_ticks = static_cast<std::int64_t>(std::llround(std::max(0.0, options.resume_after_s) / kTickPeriodS));
   const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000 +
@@ -72,6 +98,11 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     }
     result.segments = feeder.next_index();
     rig->tick();
+    judge.observe(rig->machine, static_cast<std::size_t>(task.motion().stats().segments_done - done_before));
+    if (tool_cut != nullptr) result.tool_force_max_n = std::max(result.tool_force_max_n, tool_cut->force().force_n());
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+      result.cutting_load_max_mm_s[i] =
+          std::max(result.cutting_load_max_mm_s[i], std::fabs(rig->machine.truth(hal::axis_from_index(i)).cutting_mm_s));
     if (task.motion().state() == fw::motion::MotionState::paused) {
       if (paused_ticks < 0) {
         paused_ticks = 0;
@@ -99,6 +130,9 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     if (feeder.closed() && task.state() == fw::MotionState::holding) break;
   }
   result.counters = task.counters();
+  const FeedStartCount feed_starts = judge.count(program.segments);
+  result.feed_onsets = feed_starts.feed_onsets;
+  result.feed_before_at_speed = feed_starts.feed_before_at_speed;
   const fw::motion::MotionStats stats = task.motion().stats();
   result.underruns = stats.underruns;
   result.guard_failures = stats.follower.guard_failures;
@@ -114,6 +148,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   } else {
     result.completed = true;
   }
+  take_crashes(rig->machine, result);
   if (options.keep_samples) result.samples = std::move(samples);
   result.program = parsed.program;
   return result;
@@ -145,7 +180,7 @@ PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::Firmware
 
   for (std::size_t s = 0; s < n; ++s) {
     const PathRunResult& r = out.per_seed[s];
-    if (!r.completed && out.error.empty()) out.error = "seed " + std::to_string(s) + ": " + r.error;
+    if (!r.error.empty() && out.error.empty()) out.error = "seed " + std::to_string(s) + ": " + r.error;
     const PathScore& p = r.score;
     PathScore& m = out.mean;
     const double w = 1.0 / static_cast<double>(n);
@@ -159,6 +194,8 @@ PathSweepResult run_path_seeds(const emu::Scenario& scenario, const fw::Firmware
     m.jerk_ratio_max = std::max(m.jerk_ratio_max, p.jerk_ratio_max);
     m.window_samples += p.window_samples;
     out.underruns += r.underruns;
+    out.crashes += r.crashes;
+    out.feed_before_at_speed += r.feed_before_at_speed;
   }
   return out;
 }

@@ -6,12 +6,14 @@
 // exact programmed geometry (tools/score/path_score.hpp). A pause continues
 // after PathRunOptions::resume_after_s; the ticks it rests are left out of
 // the score (its cycle time is the program's motion, not the operator's wait).
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "emulator/scenario.hpp"
+#include "emulator/spindle_crash_log.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
 #include "tools/gcode/gcode_program.hpp"
@@ -39,6 +41,14 @@ struct PathRunResult {
   std::string error;                    // why not: a G-code error (line, column), a refusal, a fault
   bool faulted = false;                 // not completed: the firmware faulted
   bool timed_out = false;               // not completed: the program did not finish in its generous time
+  // Judged from the machine (feed_start_judge.hpp): a crash fails the run
+  // (error set, completed stays as the program ran).
+  std::uint64_t crashes = 0;            // the stock engaged with the spindle stopped or slow ([stock] on)
+  std::vector<emu::CrashEvent> crash_events;  // the first few
+  std::uint32_t feed_onsets = 0;        // feed moves started from rest
+  std::uint32_t feed_before_at_speed = 0;  // ... of them with the spindle commanded on and not at speed
+  double tool_force_max_n = 0.0;        // the milling force where the tool is, largest at a tick ([stock] on)
+  std::array<double, hal::kAxisCount> cutting_load_max_mm_s{};  // largest |d_cut| each axis took (judge side)
   PathScore score{};
   std::uint64_t underruns = 0;          // the queue ran dry before the program's end
   std::uint64_t segments = 0;           // segments streamed
@@ -60,6 +70,8 @@ struct PathSweepResult {
   PathScore mean{};              // contour statistics, feed ratio and cycle time averaged over seeds;
                                         // path deviation, accel and jerk ratios the largest of any seed
   std::uint64_t underruns = 0;          // summed over seeds
+  std::uint64_t crashes = 0;            // summed over seeds
+  std::uint32_t feed_before_at_speed = 0;  // summed over seeds
   std::string error;                    // the first seed's error, "" when all completed
 };
 

@@ -18,6 +18,7 @@
 #include "tools/hil/arsc_tick_json.hpp"
 #include "tools/hil/arsc_tick_study.hpp"
 #include "tools/hil/plot_data.hpp"
+#include "tools/hil/seeded_scenario.hpp"
 #include "tools/tnv-hil/cli_support.hpp"
 #include "tools/tnv-hil/commands.hpp"
 
@@ -319,6 +320,8 @@ struct TickOptions {
   bool json = false;
   std::string plot;
   std::string scenario;  // empty: the reference table
+  int seeds = 1;         // --period-ms: runs on seeded tables 0 .. seeds-1 (hil::seeded)
+  double step_ramp_mm = hil::StockStepCase{}.step_ramp_mm;  // --path stock-step
 };
 
 // The comparison behind "what the faster loop buys": no force loop, the
@@ -349,20 +352,43 @@ std::vector<hil::TickStudyConfig> tick_comparison(PoleSet set, hil::StudyPath pa
   return out;
 }
 
+void print_stock_step_line(const hil::TickStudyResult& r) {
+  const hil::StockStepCase& k = r.config.stock;
+  if (r.step_at_s < 0.0) {
+    std::printf("  %-26s the step was not reached\n", "");
+    return;
+  }
+  std::printf("  %-26s step at %.3f s: a_p %.2f -> %.2f mm, feed %.2f -> %.2f mm/s; %.1f s after: force error "
+              "%.2f %% (ADC %.2f %%), worst from then %.2f %% (ADC %.2f %%); crashes %llu\n",
+              "", r.step_at_s, r.depth_before_mm, r.depth_after_mm, r.feed_before_mm_s, r.feed_after_mm_s,
+              k.judged_after_s, r.step_error_pct, r.step_error_measured_pct, r.after_step_max_pct,
+              r.after_step_measured_max_pct, static_cast<unsigned long long>(r.crashes));
+}
+
 void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
   const hil::TickStudyConfig& c0 = runs.front().config;
-  std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), %s path, f* = %.0f N, %s,\n"
-              "depth %.1f -> %.1f -> %.1f mm over %.0f + %.0f s; force error after %.0f s, every tick, %% of f*\n",
-              hil::to_string(c0.path), c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm,
-              c0.milling.depth.peak_mm, c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s,
-              c0.settle_s);
+  if (c0.path == hil::StudyPath::stock_step) {
+    const hil::StockStepCase& k = c0.stock;
+    std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), stock-step path, f* = %.0f N, "
+                "%s,\nthe force where the tool is ([stock]), spindle %.0f rpm, a_p %.1f -> %.1f mm stepping down in Z "
+                "over %.1f mm of X, %.0f mm into the cut;\nforce error after %.0f s, every tick, %% of f*\n",
+                c0.force_ref_n, to_string(c0.poles), k.spindle_rpm, k.start_depth_mm, k.start_depth_mm + k.step_mm,
+                k.step_ramp_mm, k.step_after_mm, c0.settle_s);
+  } else {
+    std::printf("Robust ARSC as the firmware's feed-override source (emulated TNV-40), %s path, f* = %.0f N, %s,\n"
+                "depth %.1f -> %.1f -> %.1f mm over %.0f + %.0f s; force error after %.0f s, every tick, %% of f*\n",
+                hil::to_string(c0.path), c0.force_ref_n, to_string(c0.poles), c0.milling.depth.start_mm,
+                c0.milling.depth.peak_mm, c0.milling.depth.start_mm, c0.milling.depth.rise_s, c0.milling.depth.fall_s,
+                c0.settle_s);
+  }
   if (c0.table.name != emu::Scenario{}.name)
     std::printf("on %s (its noise, transport and plant; the study's milling force); in brackets: against the "
                 "milling force itself\n",
                 c0.table.name.c_str());
   const hil::TickTestStage& ts = runs.front().test_stage;
   std::printf("test stage: T_f %.4f s, G %.4f N per mm/s at %.1f mm, feed lag %.2f ms (gain %.3f)\n",
-              ts.force_time_constant_s, ts.cutting_gain_n_per_mm_s, c0.milling.depth.start_mm,
+              ts.force_time_constant_s, ts.cutting_gain_n_per_mm_s,
+              c0.path == hil::StudyPath::stock_step ? c0.stock.start_depth_mm : c0.milling.depth.start_mm,
               ts.drive_time_constant_s * 1e3, ts.drive_gain);
   std::printf("  %-26s %9s %9s %9s  %-9s %10s %8s %10s\n", "loop", "period", "max %", "rms %", "diverged",
               "DAC sat.", "clamped", "max |gain|");
@@ -385,6 +411,7 @@ void print_tick_text(const std::vector<hil::TickStudyResult>& runs) {
     if (c0.table.name != emu::Scenario{}.name)
       std::printf("  %-26s %9s %9.2f %9.2f  (the milling force)\n", "", "", r.force_error_true_max_pct,
                   r.force_error_true_rms_pct);
+    if (r.config.path == hil::StudyPath::stock_step) print_stock_step_line(r);
     if (!r.fault.empty()) std::printf("  %-26s firmware fault: %s\n", "", r.fault.c_str());
     if (r.program_end_s >= 0.0) std::printf("  %-26s the program ran out at %.2f s\n", "", r.program_end_s);
   }
@@ -417,14 +444,19 @@ int run_tick(const TickOptions& o) {
     else
       std::snprintf(label + used, sizeof label - used, "%s", fixed);
     c.label = label;
-    configs.push_back(c);
+    c.stock.step_ramp_mm = o.step_ramp_mm;
+    for (int seed = 0; seed < o.seeds; ++seed) {
+      c.table = hil::seeded(table, seed);
+      if (o.seeds > 1) c.label = std::string(label) + ", seed " + std::to_string(seed);
+      configs.push_back(c);
+    }
   } else {
     configs = tick_comparison(set, path, table);
   }
   std::vector<hil::TickStudyResult> runs;
   for (const auto& c : configs) runs.push_back(hil::run_tick_study(c));  // about 50 ms each
   if (o.json) {
-    if (o.period_ms > 0) {
+    if (o.period_ms > 0 && o.seeds == 1) {
       std::cout << hil::tick_study_json(runs.front()).dump(2) << '\n';
     } else {
       json j = json::array();
@@ -436,7 +468,7 @@ int run_tick(const TickOptions& o) {
   }
   if (!o.plot.empty() && !write_figure(o.plot, hil::arsc_tick_plot_data(runs))) return kExitFailure;
   for (const auto& r : runs)
-    if (!r.error.empty() || !r.fault.empty()) return kExitFailure;
+    if (!r.error.empty() || !r.fault.empty() || r.crashes > 0) return kExitFailure;
   return kExitOk;
 }
 
@@ -493,11 +525,25 @@ void add_arsc_commands(CLI::App& app, Runner& run) {
                             ->check(CLI::Range(1, 500));
   tc->add_option("--poles", tick->poles, "case1 | case2 | case3 | case4 (S3 Fig. 7, force-loop pair)")
       ->check(pole_check);
-  tc->add_option("--path", tick->path, "line (along X) | arc (a line, a 45 deg tangent arc, a 45 deg line)")
-      ->check(CLI::IsMember({"line", "arc"}));
+  tc->add_option("--path", tick->path,
+                 "line (along X) | arc (a line, a 45 deg tangent arc, a 45 deg line) | stock-step (the force where the "
+                 "tool is, [stock] on, spindle at 6000 rpm, a_p 1 -> 2 mm by a step down in Z; docs/reproduction-s3.md)")
+      ->check(CLI::IsMember({"line", "arc", "stock-step"}));
   tc->add_option("--speedup", tick->speedup, "force-loop poles this many times faster than the paper's (with --period-ms)")
       ->check(CLI::Range(0.1, 20.0))
       ->needs(period);
+  tc->add_option("--step-ramp-mm", tick->step_ramp_mm,
+                 "--path stock-step: X travel over which Z steps down 1 mm (1: a 45 deg ramp, whose corner the planner "
+                 "takes slowly; longer: a gentler corner, a slower step)")
+      ->check(CLI::Range(0.1, 50.0))
+      ->needs(period)
+      ->capture_default_str();
+  tc->add_option("--seeds", tick->seeds,
+                 "with --period-ms: one run on each seeded table 0 .. N-1 (encoder phases; noise seeds with "
+                 "--scenario [noise])")
+      ->check(CLI::Range(1, 100))
+      ->needs(period)
+      ->capture_default_str();
   tc->add_flag("--fixed-gain", tick->fixed_gain,
                "freeze the cutting-gain estimate at the test stage's (no adaptation; with --period-ms)")
       ->needs(period);

@@ -87,10 +87,20 @@ int run_path_command(const PathOptions& o) {
     j["seeds"] = o.seeds;
     j["best"] = o.best;
     j["underruns"] = r.underruns;
+    // Judged from the machine (tools/hil/feed_start_judge.hpp); summed over seeds. A crash fails the run.
+    j["crashes"] = r.crashes;
+    j["feed_before_at_speed"] = r.feed_before_at_speed;
+    j["feed_onsets"] = seed0.feed_onsets;
+    j["tool_force_max_n"] = seed0.tool_force_max_n;
     j["programmed_length_mm"] = seed0.programmed_length_mm;
     j["segments"] = seed0.segments;
     nlohmann::json per_seed = nlohmann::json::array();
-    for (const hil::PathRunResult& s : r.per_seed) per_seed.push_back(hil::path_score_json(s.score));
+    for (const hil::PathRunResult& s : r.per_seed) {
+      nlohmann::json e = hil::path_score_json(s.score);
+      e["crashes"] = s.crashes;
+      e["feed_before_at_speed"] = s.feed_before_at_speed;
+      per_seed.push_back(e);
+    }
     j["per_seed"] = per_seed;
     nlohmann::json pauses = nlohmann::json::array();
     for (const hil::PathPause& p : seed0.pauses) {
@@ -116,6 +126,11 @@ int run_path_command(const PathOptions& o) {
     std::printf("feed ratio %.4f  cycle time %.3f s  underruns %llu\n", m.feed_ratio, m.cycle_time_s,
                 static_cast<unsigned long long>(r.underruns));
     std::printf("program: %s\n", gcode::summary_text(seed0.program).c_str());
+    std::printf("crashes %llu  feed moves before the spindle was at speed %u (of %u feed starts%s)%s\n",
+                static_cast<unsigned long long>(r.crashes), r.feed_before_at_speed, seed0.feed_onsets,
+                o.seeds > 1 ? " in seed 0; counts summed over seeds" : "",
+                scenario->stock.enabled ? "" : "   (no [stock]: nothing to crash into)");
+    if (scenario->stock.enabled) std::printf("milling force where the tool is: max %.1f N (seed 0)\n", seed0.tool_force_max_n);
     for (const hil::PathPause& p : seed0.pauses) {
       std::printf("paused at line %d: %s; continued after %.3f s (not scored)\n", p.line, gcode::to_string(p.why).c_str(),
                   p.paused_s);

@@ -1,0 +1,43 @@
+#include "tools/hil/feed_start_judge.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tnv::hil {
+
+bool FeedStartJudge::spindle_ready(const emu::Machine& machine) const noexcept {
+  const emu::SpindleTruth s = machine.spindle_truth();
+  if (s.command_rpm == 0.0) return true;  // commanded off: feed moves may run (a cut then is a crash)
+  const double window_rpm = std::max(0.05 * std::fabs(s.command_rpm), 20.0);
+  return steady_ticks_ >= kSteadyTicks && std::fabs(s.speed_rpm - s.command_rpm) <= window_rpm;
+}
+
+void FeedStartJudge::observe(const emu::Machine& machine, std::size_t front) {
+  const double command_rpm = machine.spindle_truth().command_rpm;
+  steady_ticks_ = command_rpm == last_command_rpm_ ? steady_ticks_ + 1 : 0;
+  last_command_rpm_ = command_rpm;
+  double speed_sq = 0.0;
+  for (const hal::Axis axis : hal::kAxes) {
+    const double v = machine.truth(axis).speed_mm_s;
+    speed_sq += v * v;
+  }
+  const double speed_mm_s = std::sqrt(speed_sq);
+  if (speed_mm_s > kMovingMmS && !was_moving_) {
+    was_moving_ = true;
+    onsets_.push_back({front, spindle_ready(machine)});
+  } else if (speed_mm_s < kRestMmS) {
+    was_moving_ = false;
+  }
+}
+
+FeedStartCount FeedStartJudge::count(const std::vector<fw::motion::Segment>& elements) const noexcept {
+  FeedStartCount c;
+  for (const MotionOnset& o : onsets_) {
+    if (o.front >= elements.size() || !fw::motion::is_feed_move(elements[o.front])) continue;
+    ++c.feed_onsets;
+    if (!o.spindle_ready) ++c.feed_before_at_speed;
+  }
+  return c;
+}
+
+}  // namespace tnv::hil
