@@ -37,6 +37,7 @@ Refusal refusal(motion::SegmentRefusal why) noexcept {
     case SegmentRefusal::outside_workspace: return {ErrorCode::outside_workspace, &kSegmentMsg, &kSegmentX};
     case SegmentRefusal::bad_dwell:
     case SegmentRefusal::bad_spindle: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::probe_pending: return {ErrorCode::probe_pending, &kSegmentMsg, nullptr};
     case SegmentRefusal::bad_ramp:
     case SegmentRefusal::none: break;
   }

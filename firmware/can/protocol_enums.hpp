@@ -59,7 +59,8 @@ inline constexpr std::uint32_t kProtocolVersion = 8;
   X(feed_above_limit)        /* feed above what the axis speed limits allow on this element */ \
   X(outside_workspace)       /* the end point lies outside the soft travel limits */ \
   X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */ \
-  X(spindle_running)         /* spindle.* parameters change only while the spindle is stopped and still: stop it first */
+  X(spindle_running)         /* spindle.* parameters change only while the spindle is stopped and still: stop it first */ \
+  X(probe_pending)           /* a probe move (G38.x) is queued or running: wait for its PROBE_RESULT, then send what follows */
 
 TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
 
