@@ -21,9 +21,11 @@
 #include "emulator/screw_transmission.hpp"
 #include "emulator/spindle_drive.hpp"
 #include "emulator/spindle_encoder.hpp"
+#include "emulator/stock_block.hpp"
 #include "emulator/structural_mode.hpp"
 #include "emulator/substep_timing.hpp"
 #include "emulator/tool_accelerometer.hpp"
+#include "emulator/touch_probe.hpp"
 #include "emulator/z_axis_plant.hpp"
 
 namespace tnv::emu {
@@ -87,6 +89,7 @@ struct Machine::Impl {
   // The encoder's index mark: latches the count when the motor side crosses it.
   void watch_index(std::size_t i, double from_mm, double to_mm) noexcept;
   std::uint32_t position_inputs() const noexcept;
+  bool probe_touching() const noexcept;
   void apply_due_faults() noexcept;
   void apply_fault_edge(const FaultEdge& edge) noexcept;
   bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
@@ -138,6 +141,10 @@ struct Machine::Impl {
   std::array<std::uint32_t, hal::kAxisCount> index_register{};  // INDEX_X/Y as latched at the last edge
   bool read_errors = false;
   std::uint64_t ticks_to_sleep = 0;  // missed ticks still to come
+
+  // The touch probe against [stock] (probe_touching); the probe refers to this Impl's stock.
+  StockBlock stock;
+  TouchProbe probe;
 };
 
 namespace {
@@ -175,7 +182,9 @@ Machine::Impl::Impl(const Scenario& s)
       glitch_noise(make_axis_noise_streams(s.noise.seed, AxisNoise::glitch)),
       transport(s.io, s.noise.seed),
       fault_timeline(s.faults),
-      fault_on(s.faults.size(), false) {
+      fault_on(s.faults.size(), false),
+      stock(s.stock),
+      probe(s.probe, stock) {
   assert(validate_scenario(s).empty() && "build Machines from validated scenarios");
   // At rest, held by stiction, where power_up_position_mm puts it (the screws' lash starts centred there).
   for (const Axis axis : hal::kAxes) plants[hal::index(axis)].set_state(power_up_position_mm(s, axis), 0.0, true);
@@ -231,7 +240,19 @@ std::uint32_t Machine::Impl::position_inputs() const noexcept {
       if (table >= max_mm) bits |= axis_registers(axis).input_limit_pos;
     }
   }
+  if (probe_touching()) bits |= kInputProbe;
   return bits;
+}
+
+// The probe's tip at the tool point (the axes' true positions, the head's
+// nose less the tool's length) against the stock; never without a stock.
+// Sampled with the switches at each tick latch, so the firmware sees a
+// touch at the first latch after it.
+bool Machine::Impl::probe_touching() const noexcept {
+  if (!scenario.stock.enabled) return false;
+  const double nose_z_mm = table_mm(hal::index(Axis::z));
+  return probe.triggered(table_mm(hal::index(Axis::x)), table_mm(hal::index(Axis::y)),
+                         nose_z_mm - scenario.tool.length_mm);
 }
 
 TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept {

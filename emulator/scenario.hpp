@@ -227,8 +227,10 @@ struct ToolParams {
 };
 
 // The block of stock (reference plant "Stock"): top face and XY rectangle.
-// Default rectangle: the whole table (unbounded).
+// Default rectangle: the whole table (unbounded). Off by default: a
+// scenario without a stock has nothing on the table (the probe never trips).
 struct StockParams {
+  bool enabled = false;    // [stock] enabled = true: the block is on the table
   double top_mm = -150.0;  // z_top, machine coordinates
   double x_min_mm = -std::numeric_limits<double>::infinity();
   double x_max_mm = std::numeric_limits<double>::infinity();

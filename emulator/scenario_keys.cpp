@@ -213,6 +213,7 @@ std::vector<ScenarioKey> build_table() {
   {
     using S = StockParams;
     Section<S> st(rows, "stock", [](Scenario& s) -> S& { return s.stock; });
+    st.key("enabled", &S::enabled);
     st.key("top_mm", &S::top_mm, plausible(-kMachineRangeMm, kMachineRangeMm, "machine coordinates"));
     // The default rectangle is unbounded (the whole table): +-inf are allowed.
     st.key("x_min_mm", &S::x_min_mm, inf_or_plausible(-kMachineRangeMm, kMachineRangeMm, "machine coordinates"));
