@@ -27,7 +27,10 @@ namespace tnv::fw::can {
 //    the tool the node knows to be in the spindle (-1 unknown), sent with every PROGRAM_STATUS.
 // 8: Z in programs: SEGMENT_Z (0x11), Z's end point of a line or arc (a helix) whose Z changes, between its
 //    SEGMENT and SEGMENT_TAIL; elements without it keep Z where they start.
-inline constexpr std::uint32_t kProtocolVersion = 8;
+// 10: probe moves (G38.2-G38.5): SEGMENT kinds probe_toward_or_error, probe_toward, probe_away_or_error,
+//    probe_away; PROBE_RESULT (0x12), PROBE_RESULT_Z (0x13) and PROBE_REST (0x19); error probe_pending.
+//    (9 is the G18/G19 arc planes.)
+inline constexpr std::uint32_t kProtocolVersion = 10;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
