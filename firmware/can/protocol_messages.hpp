@@ -430,7 +430,7 @@ inline constexpr std::array<MessageDef, 30 + 3 * hal::kAxisCount> kMessages{{
      "A probe move's outcome (SEGMENT probe kinds, G38.2-G38.5), sent once when it is decided (at rest), "
      "followed by PROBE_RESULT_Z and PROBE_REST with the same count; again on COMMAND program_status. The host "
      "sends what follows the probe only after it."},
-    {0x13, "probe_result_z", Direction::from_node, 8, detail::kProbeResultZ,
+    {0x13, "probe_result_z", Direction::from_node, 7, detail::kProbeResultZ,
      "Second frame of PROBE_RESULT: the trip position's z and the rest position's z."},
     {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
@@ -444,7 +444,7 @@ inline constexpr std::array<MessageDef, 30 + 3 * hal::kAxisCount> kMessages{{
     {0x18, "program_tool", Direction::from_node, 4, detail::kProgramTool,
      "The tool in the spindle, as the node knows it: sent with every PROGRAM_STATUS. Forgotten at a restart "
      "(unknown, never guessed): a host that starts a program after one must say which tool is in."},
-    {0x19, "probe_rest", Direction::from_node, 8, detail::kProbeRest,
+    {0x19, "probe_rest", Direction::from_node, 7, detail::kProbeRest,
      "Third frame of PROBE_RESULT: x and y where the motion rests after the probe."},
     {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
      "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "

@@ -248,8 +248,8 @@ MotionReference MotionInterpolator::tick() noexcept {
                                                   feed_gate_open_);
   gate_waiting_ = !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
   if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
-  if (stopping_ && follower_.at_rest()) probe_ = ProbeRun{};  // an abort drops the probe with the queue
   if (stopping_ && follower_.at_rest()) {
+    probe_ = ProbeRun{};  // a probe goes with the queue, without an outcome
     queue_.clear(follower_.point_mm());
     follower_.place(follower_.point_mm());  // its distance along the dropped front goes with it
     planner_.reset();

@@ -13,7 +13,7 @@ namespace tnv::fw {
 struct ProbeReport {
   std::uint32_t count = 0;  // probe outcomes since power-up: a new one is a new report
   motion::ProbeOutcome outcome = motion::ProbeOutcome::none;
-  std::uint32_t tag = 0;    // the probe segment's tag (its G-code line)
+  std::uint32_t tag = 0;    // the probe segment's tag (the producer's reference: a streamed program's element number)
   // Tripped: each axis' measured position (table side) in the tick whose
   // snapshot first showed the input changed, so at most one tick's travel
   // past the contact. Otherwise where the motion rests (the end, or the
