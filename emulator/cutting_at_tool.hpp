@@ -33,6 +33,8 @@ class CuttingAtTool {
   double depth_mm() const noexcept { return depth_mm_; }  // a_p now
   bool engaged() const noexcept { return depth_mm_ > 0.0; }
   bool probe_triggered() const noexcept { return probe_triggered_; }
+  // The probe against this stock at a tool point (emu::Machine samples it at each tick latch).
+  bool probe_touches(double x_mm, double y_mm, double z_mm) const noexcept { return probe_.triggered(x_mm, y_mm, z_mm); }
   const ToolMillingForce& force() const noexcept { return force_; }
   const SpindleCrashLog& crashes() const noexcept { return crashes_; }
   const StockBlock& stock() const noexcept { return stock_; }

@@ -97,6 +97,7 @@ struct Machine::Impl {
   // The encoder's index mark: latches the count when the motor side crosses it.
   void watch_index(std::size_t i, double from_mm, double to_mm) noexcept;
   std::uint32_t position_inputs() const noexcept;
+  bool probe_touching() const noexcept;
   void apply_due_faults() noexcept;
   void apply_fault_edge(const FaultEdge& edge) noexcept;
   bool any_active(FaultKind kind, std::optional<Axis> axis = std::nullopt) const noexcept;
@@ -243,7 +244,18 @@ std::uint32_t Machine::Impl::position_inputs() const noexcept {
       if (table >= max_mm) bits |= axis_registers(axis).input_limit_pos;
     }
   }
+  if (probe_touching()) bits |= kInputProbe;
   return bits;
+}
+
+// The probe's tip at the tool point (the axes' true positions, the head's
+// nose less the tool's length) against the stock the machine cuts
+// (CuttingAtTool's); never without a stock. Sampled with the switches at
+// each tick latch, so the firmware sees a touch at the first latch after it.
+bool Machine::Impl::probe_touching() const noexcept {
+  if (!tool_cut) return false;
+  return tool_cut->probe_touches(table_mm(hal::index(Axis::x)), table_mm(hal::index(Axis::y)),
+                                 tool_point_z_mm(table_mm(hal::index(Axis::z)), scenario.tool));
 }
 
 TickSamples Machine::Impl::tick_samples(const SampleNoise* noise) const noexcept {

@@ -227,10 +227,12 @@ struct ToolParams {
 };
 
 // The block of stock (reference plant "Stock"): top face and XY rectangle.
-// Default rectangle: the whole table (unbounded). Off by default: with it
-// on, emu::Machine cuts where the tool is ([tool], [tool_cut]).
+// Default rectangle: the whole table (unbounded). Off by default: a
+// scenario without a stock has nothing on the table (the probe never trips,
+// emulator::Machine cuts nothing); with it on, emu::Machine cuts where the
+// tool is ([tool], [tool_cut]) and the probe trips on it.
 struct StockParams {
-  bool enabled = false;
+  bool enabled = false;    // [stock] enabled = true: the block is on the table
   double top_mm = -150.0;  // z_top, machine coordinates
   double x_min_mm = -std::numeric_limits<double>::infinity();
   double x_max_mm = std::numeric_limits<double>::infinity();

@@ -50,6 +50,9 @@ inline constexpr const MessageDef& kSegmentZMsg = message(MessageId::segment_z);
 inline constexpr const MessageDef& kSegmentPlaneMsg = message(MessageId::segment_plane);
 inline constexpr const MessageDef& kProgramStatusMsg = message(MessageId::program_status);
 inline constexpr const MessageDef& kProgramToolMsg = message(MessageId::program_tool);
+inline constexpr const MessageDef& kProbeResultMsg = message(MessageId::probe_result);
+inline constexpr const MessageDef& kProbeResultZMsg = message(MessageId::probe_result_z);
+inline constexpr const MessageDef& kProbeRestMsg = message(MessageId::probe_rest);
 inline constexpr const MessageDef& kArscMsg = message(MessageId::tlm_arsc);
 inline constexpr const MessageDef& kSpindleMsg = message(MessageId::spindle);
 inline constexpr const MessageDef& kTlmSpindleMsg = message(MessageId::tlm_spindle);
@@ -176,6 +179,16 @@ inline constexpr const FieldDef& kProgramUnderruns = field(kProgramStatusMsg, "u
 inline constexpr const FieldDef& kProgramSegment = field(kProgramStatusMsg, "segment");
 inline constexpr const FieldDef& kProgramOverride = field(kProgramStatusMsg, "feed_override");
 inline constexpr const FieldDef& kProgramToolNumber = field(kProgramToolMsg, "tool");
+inline constexpr const FieldDef& kProbeCount = field(kProbeResultMsg, "count");
+inline constexpr const FieldDef& kProbeOutcome = field(kProbeResultMsg, "outcome");
+inline constexpr const FieldDef& kProbeTripX = field(kProbeResultMsg, "x");
+inline constexpr const FieldDef& kProbeTripY = field(kProbeResultMsg, "y");
+inline constexpr const FieldDef& kProbeZCount = field(kProbeResultZMsg, "count");
+inline constexpr const FieldDef& kProbeTripZ = field(kProbeResultZMsg, "z");
+inline constexpr const FieldDef& kProbeRestZ = field(kProbeResultZMsg, "rest_z");
+inline constexpr const FieldDef& kProbeRestCount = field(kProbeRestMsg, "count");
+inline constexpr const FieldDef& kProbeRestX = field(kProbeRestMsg, "x");
+inline constexpr const FieldDef& kProbeRestY = field(kProbeRestMsg, "y");
 
 // The axis whose message of a per-axis block `id` is (`block` is that
 // block's messages in axis order), none for another id.

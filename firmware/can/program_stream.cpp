@@ -37,6 +37,7 @@ Refusal refusal(motion::SegmentRefusal why) noexcept {
     case SegmentRefusal::outside_workspace: return {ErrorCode::outside_workspace, &kSegmentMsg, &kSegmentX};
     case SegmentRefusal::bad_dwell:
     case SegmentRefusal::bad_spindle: return {ErrorCode::out_of_range, &kSegmentMsg, &kSegmentX};
+    case SegmentRefusal::probe_pending: return {ErrorCode::probe_pending, &kSegmentMsg, nullptr};
     case SegmentRefusal::bad_ramp:
     case SegmentRefusal::none: break;
   }
@@ -171,6 +172,7 @@ void ProgramStream::stopping() noexcept {
 }
 
 void ProgramStream::on_tick() noexcept {
+  if (task_.probe_report().count != probe_sent_count_) send_probe_result();
   bool news = program_.update(task_);
   // At a tool change the operator takes the old tool out: unknown until cycle_start says the new one is in.
   // Looked at on every paused tick, not only when the state changes: one pause may follow another at once.
@@ -216,7 +218,10 @@ ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, s
       }
       stopping();
       return to_error(task_.stop());
-    case CommandCode::program_status: send_status(); return ErrorCode::ok;
+    case CommandCode::program_status:
+      send_status();
+      if (probe_sent_count_ != 0) send_probe_result();
+      return ErrorCode::ok;
     case CommandCode::cycle_start: {
       const std::uint32_t at = program_.element(task_);  // the pause it rests at
       const ErrorCode e = to_error(task_.cycle_start());
@@ -232,6 +237,29 @@ ErrorCode ProgramStream::command(CommandCode code, const hal::CanFrame& frame, s
     default: break;
   }
   return ErrorCode::unknown_command;
+}
+
+// Before the PROGRAM_STATUS of the same tick: a host that sees the program
+// starved after a probe has its result already.
+void ProgramStream::send_probe_result() noexcept {
+  const ProbeReport& p = task_.probe_report();
+  probe_sent_count_ = p.count;
+  const std::uint32_t count = p.count & 0xFFu;
+  const std::size_t x = hal::index(hal::Axis::x), y = hal::index(hal::Axis::y), z = hal::index(hal::Axis::z);
+  hal::CanFrame r = make_frame(kProbeResultMsg, node_id_);
+  write_raw(r, kProbeCount, count);
+  write_raw(r, kProbeOutcome, static_cast<std::uint32_t>(p.outcome));
+  write_saturated(r, kProbeTripX, p.trip_mm[x]);
+  write_saturated(r, kProbeTripY, p.trip_mm[y]);
+  hal::CanFrame rz = make_frame(kProbeResultZMsg, node_id_);
+  write_raw(rz, kProbeZCount, count);
+  write_saturated(rz, kProbeTripZ, p.trip_mm[z]);
+  write_saturated(rz, kProbeRestZ, p.rest_mm[z]);
+  hal::CanFrame rest = make_frame(kProbeRestMsg, node_id_);
+  write_raw(rest, kProbeRestCount, count);
+  write_saturated(rest, kProbeRestX, p.rest_mm[x]);
+  write_saturated(rest, kProbeRestY, p.rest_mm[y]);
+  for (const hal::CanFrame& f : {r, rz, rest}) tx_.queue(f, false);  // never dropped: the host waits for it
 }
 
 void ProgramStream::send_status() noexcept {

@@ -74,6 +74,7 @@ class ProgramStream {
   bool push_element(const SegmentHead& head, const hal::CanFrame* tail, std::uint8_t request) noexcept;
   void refuse_pending() noexcept;  // a SEGMENT whose tail never came: answered not_ready
   void send_status() noexcept;
+  void send_probe_result() noexcept;  // PROBE_RESULT, PROBE_RESULT_Z, PROBE_REST of the last probe outcome
   // The tool change accepted as element `element`, or nullptr.
   const ToolChange* tool_change_at(std::uint32_t element) const noexcept;
 
@@ -94,6 +95,7 @@ class ProgramStream {
   std::array<ToolChange, motion::kSegmentQueueCapacity + 1> tool_changes_{};
   std::size_t tool_change_count_ = 0;
   std::int32_t tool_ = kToolUnknown;  // a restart forgets the tool: never guessed
+  std::uint32_t probe_sent_count_ = 0;  // the tick task's probe report count last sent
 };
 
 }  // namespace tnv::fw::can

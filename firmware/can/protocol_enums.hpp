@@ -29,7 +29,9 @@ namespace tnv::fw::can {
 //    SEGMENT and SEGMENT_TAIL; elements without it keep Z where they start.
 // 9: arcs in the ZX (G18) and YZ (G19) planes: SEGMENT_PLANE (0x12), the arc's plane and Z's end point, in
 //    place of SEGMENT_Z; the tail's centre is in that plane's chord frame. XY elements are unchanged.
-inline constexpr std::uint32_t kProtocolVersion = 9;
+// 10: probe moves (G38.2-G38.5): SEGMENT kinds probe_toward_or_error, probe_toward, probe_away_or_error,
+//    probe_away; PROBE_RESULT (0x13), PROBE_RESULT_Z (0x19) and PROBE_REST (0x1D); error probe_pending.
+inline constexpr std::uint32_t kProtocolVersion = 10;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The
 // codes, in wire order: the enum, its names and the protocol's value
@@ -61,7 +63,8 @@ inline constexpr std::uint32_t kProtocolVersion = 9;
   X(feed_above_limit)        /* feed above what the axis speed limits allow on this element */ \
   X(outside_workspace)       /* the end point lies outside the soft travel limits */ \
   X(not_homed)               /* homing.required is on and an axis the motion moves is not homed (COMMAND home) */ \
-  X(spindle_running)         /* spindle.* parameters change only while the spindle is stopped and still: stop it first */
+  X(spindle_running)         /* spindle.* parameters change only while the spindle is stopped and still: stop it first */ \
+  X(probe_pending)           /* a probe move (G38.x) is queued or running: wait for its PROBE_RESULT, then send what follows */
 
 TNV_LISTED_ENUM(ErrorCode, TNV_ERROR_CODES)
 

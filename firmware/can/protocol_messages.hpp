@@ -29,8 +29,7 @@ static_assert(hal::kAxisCount <= kAxisBlock, "per-axis CAN messages: an axis bey
 // Lower id = higher priority: commands and their answers (0x00-0x13), then
 // the node-wide telemetry, then the per-axis telemetry blocks, the capture
 // upload last; BORE_GAUGE and BORE_INFEED, which wait between parts, rank
-// among the telemetry. 0x13, 0x19, 0x1D-0x1F, 0x24-0x27 and
-// 0x30-0x3D are free.
+// among the telemetry. 0x1E-0x1F, 0x24-0x27 and 0x30-0x3D are free.
 enum class MessageId : std::uint8_t {
   estop = 0x00,
   fault_event = 0x01,
@@ -51,14 +50,17 @@ enum class MessageId : std::uint8_t {
   spindle = 0x10,
   segment_z = 0x11,
   segment_plane = 0x12,
+  probe_result = 0x13,
   tlm_output = 0x14,
   tlm_contour = 0x15,
   tlm_arsc = 0x16,
   program_status = 0x17,
   program_tool = 0x18,
+  probe_result_z = 0x19,
   bore_gauge = 0x1A,
   bore_infeed = 0x1B,
   tlm_spindle = 0x1C,
+  probe_rest = 0x1D,
 // The per-axis blocks: TLM_POSITION_<AXIS> from 0x20, TLM_SLIDING_<AXIS>
 // from 0x28, TLM_DAC_<AXIS> from 0x2C (0x24-0x27 free).
 #define TNV_AXIS_MESSAGE_IDS(name, ...)                                      \
@@ -215,14 +217,17 @@ inline constexpr FieldDef kSegment[] = {
     {"tag", WireType::u8, 0, 1, "", "", kTagDoc},
     {"kind", WireType::u8, 1, 1, "",
      "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
-     "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop 13=tool_change",
+     "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop 13=tool_change "
+     "14=probe_toward_or_error 15=probe_toward 16=probe_away_or_error 17=probe_away",
      "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
      "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
      "speed; a pause (M0, M1, M6) is reached at rest and holds (PROGRAM_STATUS paused) until COMMAND cycle_start, "
      "the spindle left as it is; a tool_change (M6) is a pause whose cycle_start puts its tool in the spindle "
      "(PROGRAM_TOOL); the spindle kinds (S, M3, M4, M5) are reached at rest and carried out there in "
      "program order (a start while turning is a new speed or direction); dwell, pause, tool_change and the spindle "
-     "kinds have no SEGMENT_TAIL"},
+     "kinds have no SEGMENT_TAIL; the probe kinds (G38.2, G38.3, G38.4, G38.5) are lines at their feed that end "
+     "when the touch probe input changes (PROBE_RESULT), nothing may follow one until its PROBE_RESULT "
+     "(probe_pending)"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
      "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit); for spindle_forward "
      "and spindle_reverse the speed in rpm / 1000 (0.1 rpm per unit); for tool_change the tool number / 10000 (one "
@@ -264,6 +269,30 @@ inline constexpr FieldDef kProgramTool[] = {
      "the tool in the spindle as far as the node knows: the tool of the last tool_change element continued by "
      "COMMAND cycle_start; -1 (unknown) from start-up and while a tool change is under way or was left unconfirmed "
      "(aborted at its pause)"},
+};
+// A probe move's outcome in three frames with the same count: the trip
+// position (x, y; z in PROBE_RESULT_Z) and where the motion rests.
+inline constexpr FieldDef kProbeResult[] = {
+    {"count", WireType::u8, 0, 1, "", "", "probe outcomes since start-up, modulo 256: a new value is a new result"},
+    {"outcome", WireType::u8, 1, 1, "",
+     "1=tripped 2=not_tripped 3=failed 4=already_tripped",
+     "tripped: the input changed, the axes braked to rest; not_tripped: G38.3/G38.5 reached the end, the program "
+     "goes on; failed: G38.2/G38.4 reached the end without a change, already_tripped: the input was in the "
+     "tripping state at the start: both errors, the program is stopped"},
+    {"x", WireType::i24, 2, 1e-4, "mm", "",
+     "tripped: x measured in the tick whose snapshot first showed the change (at most one tick's travel past the "
+     "contact); otherwise where the motion rests"},
+    {"y", WireType::i24, 5, 1e-4, "mm", "", "the same for y"},
+};
+inline constexpr FieldDef kProbeResultZ[] = {
+    {"count", WireType::u8, 0, 1, "", "", "the PROBE_RESULT this completes"},
+    {"z", WireType::i24, 1, 1e-4, "mm", "", "the same for z"},
+    {"rest_z", WireType::i24, 4, 1e-4, "mm", "", "z where the motion rests after it: the next element starts there"},
+};
+inline constexpr FieldDef kProbeRest[] = {
+    {"count", WireType::u8, 0, 1, "", "", "the PROBE_RESULT this completes"},
+    {"x", WireType::i24, 1, 1e-4, "mm", "", "x where the motion rests after it: the next element starts there"},
+    {"y", WireType::i24, 4, 1e-4, "mm", "", "the same for y"},
 };
 // The per-axis telemetry frames: one message per axis, the same fields.
 // Position and following error share a frame: one 8-byte frame per axis
@@ -343,7 +372,7 @@ inline constexpr FieldDef kBoreInfeed[] = {
 
 }  // namespace detail
 
-inline constexpr std::array<MessageDef, 28 + 3 * hal::kAxisCount> kMessages{{
+inline constexpr std::array<MessageDef, 31 + 3 * hal::kAxisCount> kMessages{{
     {0x00, "estop", Direction::to_node, 0, {},
      "Emergency stop: outputs safe at the next tick, fault latched (reason estop). Acted on whatever its "
      "length, also on node 0 (broadcast); never acknowledged (the FAULT_EVENT and HEARTBEAT show it)."},
@@ -412,6 +441,10 @@ inline constexpr std::array<MessageDef, 28 + 3 * hal::kAxisCount> kMessages{{
      "Refused with the element (nothing queued): an unknown plane (out_of_range, plane), one for an element that is "
      "not an arc (out_of_range, plane), one without its SEGMENT waiting or after a SEGMENT_Z or another "
      "SEGMENT_PLANE (not_ready). Answered only when refused; the tail answers the element."},
+    {0x13, "probe_result", Direction::from_node, 8, detail::kProbeResult,
+     "A probe move's outcome (SEGMENT probe kinds, G38.2-G38.5), sent once when it is decided (at rest), "
+     "followed by PROBE_RESULT_Z and PROBE_REST with the same count; again on COMMAND program_status. The host "
+     "sends what follows the probe only after it."},
     {0x14, "tlm_output", Direction::from_node, 4, detail::kTlmOutput,
      "Telemetry every tlm.output_ms (0 = off): the force sensor (the DAC codes are TLM_DAC_<AXIS>)."},
     {0x15, "tlm_contour", Direction::from_node, 8, detail::kTlmContour,
@@ -424,6 +457,8 @@ inline constexpr std::array<MessageDef, 28 + 3 * hal::kAxisCount> kMessages{{
     {0x18, "program_tool", Direction::from_node, 4, detail::kProgramTool,
      "The tool in the spindle, as the node knows it: sent with every PROGRAM_STATUS. Forgotten at a restart "
      "(unknown, never guessed): a host that starts a program after one must say which tool is in."},
+    {0x19, "probe_result_z", Direction::from_node, 7, detail::kProbeResultZ,
+     "Second frame of PROBE_RESULT: the trip position's z and the rest position's z."},
     {0x1A, "bore_gauge", Direction::to_node, 8, detail::kBoreGauge,
      "Boring on the board (S4, docs/reproduction-s4.md): a finished part's gauge readings at the two overhangs of "
      "the bore.* parameters; the node's planner records the part with the infeeds it told for it (RLS on the log "
@@ -452,6 +487,8 @@ inline constexpr std::array<MessageDef, 28 + 3 * hal::kAxisCount> kMessages{{
 #undef TNV_TLM_POSITION
 #undef TNV_TLM_SLIDING
 #undef TNV_TLM_DAC
+    {0x1D, "probe_rest", Direction::from_node, 7, detail::kProbeRest,
+     "Third frame of PROBE_RESULT: x and y where the motion rests after the probe."},
     {0x3E, "capture_data", Direction::from_node, 8, detail::kCaptureData,
      "One segment of a capture upload. The lowest priority of all: never delays control traffic or telemetry."},
 }};

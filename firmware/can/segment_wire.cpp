@@ -52,6 +52,9 @@ WireKind wire_kind(const motion::Segment& s) noexcept {
     case SegmentKind::arc_ccw: return s.exact_stop ? WireKind::arc_ccw_exact_stop : WireKind::arc_ccw;
     case SegmentKind::line: break;
   }
+  if (s.probe != motion::ProbeKind::none)
+    return static_cast<WireKind>(static_cast<std::uint8_t>(WireKind::probe_toward_or_error) +
+                                 static_cast<std::uint8_t>(s.probe) - 1);
   if (s.rapid) return s.exact_stop ? WireKind::rapid_exact_stop : WireKind::rapid;
   return s.exact_stop ? WireKind::line_exact_stop : WireKind::line;
 }
@@ -202,6 +205,12 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
   end_mm[0] = head.end_mm[0];
   end_mm[1] = head.end_mm[1];
   if (head.has_z) end_mm[kProgramZ] = head.end_z_mm;
+  if (is_probe_kind(head.kind)) {
+    const auto kind = static_cast<motion::ProbeKind>(static_cast<std::uint8_t>(head.kind) -
+                                                     static_cast<std::uint8_t>(WireKind::probe_toward_or_error) + 1);
+    out = motion::probe_to(kind, end_mm, feed_mm_s);
+    return true;
+  }
   if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop || rapid) {
     out = motion::line_to(end_mm, feed_mm_s);
     out.rapid = rapid;

@@ -48,8 +48,17 @@ enum class WireKind : std::uint8_t {
   spindle_reverse,   // M4
   spindle_stop,      // M5: no fields, no tail
   tool_change,       // a pause (M6) whose cycle_start puts its tool in the spindle: x = tool / kToolPerX; no tail
+  probe_toward_or_error,  // G38.2: a probe line (motion/probe_move.hpp), with its tail (feed) and SEGMENT_Z
+  probe_toward,           // G38.3
+  probe_away_or_error,    // G38.4
+  probe_away,             // G38.5
 };
-inline constexpr std::uint8_t kWireKindCount = 14;
+inline constexpr std::uint8_t kWireKindCount = 18;
+
+// The probe kinds in ProbeKind's order from probe_toward_or_error.
+constexpr bool is_probe_kind(WireKind k) noexcept {
+  return k >= WireKind::probe_toward_or_error && k <= WireKind::probe_away;
+}
 
 // The axis SEGMENT_Z carries: the one a program moves beyond the XY plane.
 inline constexpr std::size_t kProgramZ = hal::index(hal::Axis::z);
@@ -64,7 +73,7 @@ inline constexpr double kSpindleRpmPerX = 1000.0;
 constexpr bool wire_kind_has_tail(WireKind k) noexcept {
   return k == WireKind::line || k == WireKind::arc_cw || k == WireKind::arc_ccw || k == WireKind::line_exact_stop ||
          k == WireKind::arc_cw_exact_stop || k == WireKind::arc_ccw_exact_stop || k == WireKind::rapid ||
-         k == WireKind::rapid_exact_stop;
+         k == WireKind::rapid_exact_stop || is_probe_kind(k);
 }
 
 // The offset of an arc's centre from the chord's midpoint, in the chord's frame.

@@ -33,6 +33,9 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   program_open_ = false;
   last_phase_ = FollowerPhase::drained;
   state_ = MotionState::idle;
+  probe_ = ProbeRun{};
+  probe_tripped_now_ = false;
+  probe_outcome_ = ProbeOutcome::none;
 }
 
 void MotionInterpolator::stop() noexcept {
@@ -54,6 +57,55 @@ bool MotionInterpolator::front_action() const noexcept {
   return !queue_.empty() && is_program_action(queue_.at(queue_.head_seq()).segment);
 }
 
+bool MotionInterpolator::front_probe() const noexcept {
+  return !queue_.empty() && queue_.at(queue_.head_seq()).segment.probe != ProbeKind::none;
+}
+
+bool MotionInterpolator::probe_before_step() noexcept {
+  if (!probe_.queued || stopping_) return false;
+  if (front_probe() && !probe_.started) {
+    // The element before it ends at rest (an exact stop): the follower
+    // holds while the filter's output comes to rest, then the input is checked.
+    if (!follower_.at_rest()) return false;
+    if (!at_rest()) return true;
+    if (probe_trips_on(probe_.kind, probe_input_)) {
+      probe_outcome_ = ProbeOutcome::already_tripped;
+      probe_ = ProbeRun{};
+      stop();  // the program stops: the probe and the end of the program are dropped
+      return true;
+    }
+    probe_.started = true;
+  }
+  if (probe_.started && !probe_.braking && probe_trips_on(probe_.kind, probe_input_)) {
+    probe_.braking = true;
+    probe_tripped_now_ = true;
+  }
+  return false;
+}
+
+bool MotionInterpolator::probe_after_step() noexcept {
+  if (!probe_.queued || stopping_) return false;
+  if (probe_.braking) {
+    if (!at_rest()) return false;
+    // At rest on the line: the rest of it goes (nothing is queued behind a probe).
+    if (front_probe()) ++stats_.segments_done;
+    queue_.clear(follower_.point_mm());
+    follower_.place(follower_.point_mm());
+    planner_.reset();
+    probe_outcome_ = ProbeOutcome::tripped;
+    probe_ = ProbeRun{};
+    last_phase_ = FollowerPhase::drained;  // waiting for the host's next element is no underrun
+    return true;
+  }
+  if (probe_.started && !front_probe()) probe_.left_queue = true;
+  if (!probe_.left_queue || !at_rest()) return false;
+  probe_outcome_ = probe_end_is_error(probe_.kind) ? ProbeOutcome::failed : ProbeOutcome::not_tripped;
+  probe_ = ProbeRun{};
+  last_phase_ = FollowerPhase::drained;
+  if (is_error(probe_outcome_)) stop();
+  return true;
+}
+
 bool MotionInterpolator::release_pause() noexcept {
   if (state_ != MotionState::paused) return false;
   release_front_ = true;
@@ -71,13 +123,14 @@ void MotionInterpolator::spindle_change_done() noexcept {
 }
 
 SegmentRefusal MotionInterpolator::push(const Segment& segment) noexcept {
-  const SegmentRefusal r = queue_.push(segment);
+  const SegmentRefusal r = probe_.queued ? SegmentRefusal::probe_pending : queue_.push(segment);
   if (r != SegmentRefusal::none) {
     ++stats_.segments_refused;
     return r;
   }
   ++stats_.segments_accepted;
   program_open_ = true;
+  if (segment.probe != ProbeKind::none) probe_ = ProbeRun{.queued = true, .kind = segment.probe};
   planner_.segment_added(queue_);
   return r;
 }
@@ -161,6 +214,8 @@ void MotionInterpolator::finish_profiled() noexcept {
 
 MotionReference MotionInterpolator::tick() noexcept {
   gate_waiting_ = false;
+  probe_tripped_now_ = false;
+  probe_outcome_ = ProbeOutcome::none;
   if (profiled_.active()) return profiled_tick();
   const bool front_gated =
       !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
@@ -185,14 +240,16 @@ MotionReference MotionInterpolator::tick() noexcept {
   update_effective_override();
   const double walk_override = std::max(effective_override_, override_);
   stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, walk_override));
-  // A profiled element waits at the front while the reference comes to rest on its start.
-  const bool wait = front_profiled();
+  // A profiled element, and a probe, wait at the front while the reference comes to rest on its start.
+  const bool wait = probe_before_step() || front_profiled();
   const std::size_t queued_before = queue_.size();
   const FollowerStep step = wait ? FollowerStep{FollowerPhase::holding, queue_.at(queue_.head_seq()).segment.tag}
-                                 : follower_.step(queue_, effective_override_, hold_ || stopping_, feed_gate_open_);
+                                 : follower_.step(queue_, effective_override_, hold_ || stopping_ || probe_.braking,
+                                                  feed_gate_open_);
   gate_waiting_ = !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
   if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
   if (stopping_ && follower_.at_rest()) {
+    probe_ = ProbeRun{};  // a probe goes with the queue, without an outcome
     queue_.clear(follower_.point_mm());
     follower_.place(follower_.point_mm());  // its distance along the dropped front goes with it
     planner_.reset();
@@ -205,11 +262,13 @@ MotionReference MotionInterpolator::tick() noexcept {
 
   for (std::size_t i = 0; i + 1 < out_mm_.size(); ++i) out_mm_[i] = out_mm_[i + 1];
   out_mm_[3] = filter_.push(follower_.point_mm());
+  // A probe decided at rest leaves nothing queued: the state is the host's wait already.
+  const FollowerPhase phase = probe_after_step() ? FollowerPhase::drained : step.phase;
 
   if (stopping_) state_ = MotionState::stopping;
   else if (hold_ && !queue_.empty()) state_ = MotionState::holding;
   else if (front_pause() && at_rest()) state_ = MotionState::paused;
-  else if (step.phase != FollowerPhase::drained || !at_rest()) state_ = MotionState::running;
+  else if (phase != FollowerPhase::drained || !at_rest()) state_ = MotionState::running;
   else state_ = program_open_ ? MotionState::starved : MotionState::idle;
 
   MotionReference ref;

@@ -99,6 +99,24 @@ class MotionInterpolator {
   // The last tick held a feed move at the gate (at rest or braking for it).
   bool waiting_for_feed_gate() const noexcept { return gate_waiting_; }
 
+  // The touch probe input (the board's, sampled at this tick's latch), set
+  // before each tick(). Only a probe move (Segment::probe) looks at it: it
+  // starts once everything rests at its start, refused (already_tripped,
+  // and the program stops) when the input is then in the state that would
+  // end it; running, the first tick that sees that state is the trip
+  // (probe_tripped_now()): the path point brakes to rest on the line at
+  // the path acceleration, the rest of the line is dropped and the next
+  // element starts where it rests. Untripped at the end (the reference at
+  // rest there), G38.3/G38.5 go on and G38.2/G38.4 stop the program.
+  void set_probe_input(bool touching) noexcept { probe_input_ = touching; }
+  // This tick saw the probe's trip (the tick task latches the measured position now).
+  bool probe_tripped_now() const noexcept { return probe_tripped_now_; }
+  // A probe move's outcome, in the tick it was decided (none otherwise):
+  // at rest after a trip, at rest at an untripped end, or at the refused start.
+  ProbeOutcome probe_outcome() const noexcept { return probe_outcome_; }
+  // A probe move is queued or running: push() refuses (probe_pending) until its outcome.
+  bool probe_pending() const noexcept { return probe_.queued; }
+
   // A program pause at the front (Segment::pause) with everything at rest
   // (state() paused): the next tick drops it and the program goes on. false
   // (nothing changes) when not paused. A feed hold or a stop is not a pause:
@@ -141,6 +159,12 @@ class MotionInterpolator {
   bool front_pause() const noexcept;
   bool front_action() const noexcept;
   void finish_profiled() noexcept;
+  bool front_probe() const noexcept;
+  // Before the follower's step: start, refuse or trip the probe at the front. True: the follower waits.
+  bool probe_before_step() noexcept;
+  // After it: a tripped probe at rest leaves the queue; an untripped one at
+  // rest at its end is decided. True when an outcome was decided this tick.
+  bool probe_after_step() noexcept;
 
   MotionLimits limits_{};
   SegmentQueue queue_{};
@@ -158,6 +182,18 @@ class MotionInterpolator {
   bool release_front_ = false;  // release_pause() / spindle_change_done(): the front leaves the queue at the next tick
   bool program_open_ = false;
   FollowerPhase last_phase_ = FollowerPhase::drained;
+  // The probe move in the queue, if any (probe_move.hpp).
+  struct ProbeRun {
+    bool queued = false;    // pushed, outcome not yet known
+    bool started = false;   // its input was checked at rest at its start
+    bool braking = false;   // tripped: braking to rest on the line
+    bool left_queue = false;  // reached its end untripped: waiting for the reference to rest there
+    ProbeKind kind = ProbeKind::none;
+  };
+  ProbeRun probe_{};
+  bool probe_input_ = false;
+  bool probe_tripped_now_ = false;
+  ProbeOutcome probe_outcome_ = ProbeOutcome::none;
   MotionState state_ = MotionState::idle;
   MotionStats stats_{};  // follower counts are added by stats()
 };

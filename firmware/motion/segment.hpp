@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "firmware/motion/probe_move.hpp"
 #include "hal/axis.hpp"
 #include "hal/listed_enum.hpp"
 
@@ -78,6 +79,11 @@ struct Segment {
   // LinuxCNC's task waits for motion to finish before a spindle command.
   SpindleChange spindle = SpindleChange::none;
   double spindle_rpm = 0.0;
+  // A probe move (G38.2-G38.5, probe_move.hpp): a feed line that starts at
+  // rest with the input checked, ends when the probe input changes
+  // (braking on the path) or at its end, and ends at rest. Nothing may be
+  // queued behind it until its outcome is known (probe_pending).
+  ProbeKind probe = ProbeKind::none;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
 };
@@ -117,6 +123,14 @@ constexpr Segment dwell_for(double dwell_s, std::uint32_t tag = 0) noexcept {
   return s;
 }
 
+// G38.2-G38.5: a probe line to end_mm at feed_mm_s.
+constexpr Segment probe_to(ProbeKind kind, PlanePoint end_mm, double feed_mm_s, std::uint32_t tag = 0) noexcept {
+  Segment s = line_to(end_mm, feed_mm_s, tag);
+  s.probe = kind;
+  s.exact_stop = true;
+  return s;
+}
+
 constexpr Segment pause_here(std::uint32_t tag = 0) noexcept {
   Segment s;
   s.kind = SegmentKind::dwell;
@@ -150,6 +164,7 @@ enum class SegmentRefusal : std::uint8_t {
   bad_dwell = 10,          // dwell time <= 0 or too long (a pause's not 0)
   bad_ramp = 11,           // ramp_s negative, on a dwell, or its two ramps longer than the element
   bad_spindle = 12,        // a spindle start's rpm not above zero or above the spindle's max_rpm
+  probe_pending = 13,      // a probe move is queued or running: its outcome decides what comes next
 };
 
 constexpr const char* to_string(SegmentRefusal r) noexcept {
@@ -167,6 +182,7 @@ constexpr const char* to_string(SegmentRefusal r) noexcept {
     case SegmentRefusal::bad_dwell: return "bad_dwell";
     case SegmentRefusal::bad_ramp: return "bad_ramp";
     case SegmentRefusal::bad_spindle: return "bad_spindle";
+    case SegmentRefusal::probe_pending: return "probe_pending";
   }
   return "?";
 }

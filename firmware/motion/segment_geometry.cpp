@@ -122,6 +122,12 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   // A pause or a spindle command is a dwell, and one element is not both.
   if (is_program_action(segment) && (segment.kind != SegmentKind::dwell || (segment.pause && segment.spindle != SpindleChange::none)))
     return SegmentRefusal::bad_kind;
+  // A probe is a feed line (not a rapid, not a profiled element) and ends at rest.
+  if (segment.probe != ProbeKind::none &&
+      (static_cast<std::uint8_t>(segment.probe) > static_cast<std::uint8_t>(ProbeKind::away) ||
+       segment.kind != SegmentKind::line || segment.rapid || segment.profiled() || !segment.exact_stop ||
+       is_program_action(segment)))
+    return SegmentRefusal::bad_kind;
   if (segment.spindle == SpindleChange::forward || segment.spindle == SpindleChange::reverse) {
     if (!std::isfinite(segment.spindle_rpm)) return SegmentRefusal::not_finite;
     if (segment.spindle_rpm <= 0.0) return SegmentRefusal::bad_spindle;

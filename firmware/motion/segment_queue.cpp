@@ -153,9 +153,12 @@ SegmentRefusal SegmentQueue::push(const Segment& segment) noexcept {
   // A rapid into a feed move ends at rest: the feed move may have to wait
   // there for the spindle. The rapid is the queue's last element, planned to
   // end at rest already, so marking it changes no plan in progress.
+  // A probe starts at rest (its input is checked there): the element before
+  // it ends at rest, by the same reasoning.
   if (!empty() && is_feed_move(segment)) {
     QueuedSegment& rapid_before = at(tail_seq_ - 1);
-    if (rapid_before.segment.rapid && rapid_before.segment.kind != SegmentKind::dwell)
+    if ((rapid_before.segment.rapid || segment.probe != ProbeKind::none) &&
+        rapid_before.segment.kind != SegmentKind::dwell)
       rapid_before.segment.exact_stop = true;
   }
   const QueuedSegment* before = nullptr;

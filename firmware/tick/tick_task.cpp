@@ -142,7 +142,9 @@ void TickTask::moving_reference() noexcept {
   if (source_ == Source::jog) jog_.produce(motion_);
   // Feed moves of programs, circles and moves wait for the spindle; the operator's jog does not.
   motion_.set_feed_gate(source_ == Source::jog || spindle_.feed_permitted());
+  motion_.set_probe_input(last_inputs_.probe);
   const motion::MotionReference r = motion_.tick();
+  if (source_ == Source::program) probe_tick(r);
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     const AxisReference& a = r.axis[i];
     shape_reference(i, {a.position_mm, a.speed_mm_s}, {a.next_position_mm, a.next_speed_mm_s});

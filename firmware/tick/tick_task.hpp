@@ -45,6 +45,7 @@
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
+#include "firmware/tick/probe_report.hpp"
 #include "firmware/tick/program_feed_override.hpp"
 #include "firmware/motion/jog_producer.hpp"
 #include "firmware/motion/motion_interpolator.hpp"
@@ -248,6 +249,13 @@ class TickTask {
   const SpindleControl& spindle() const noexcept { return spindle_; }
   double spindle_measured_rpm() const noexcept { return spindle_rpm_; }  // signed, M-method over the last period
 
+  // --- probe moves of programs (Segment::probe, G38.2-G38.5): the touch
+  // probe input (hal::DiscreteInputs::probe) of each tick's snapshot goes to
+  // the motion core; the measured position is latched in the tick that sees
+  // the trip. An error outcome (failed, already_tripped) stops the program
+  // as an abort (the spindle stops). Homing as any program segment.
+  const ProbeReport& probe_report() const noexcept { return probe_report_; }
+
   // --- status
   const TickRecord& last_record() const noexcept { return record_; }
   const FaultRecord& fault() const noexcept { return fault_; }
@@ -316,6 +324,8 @@ class TickTask {
   void spindle_tick() noexcept;
   // A running program, circle or move ends early (stop, disable): the spindle stops (abort).
   void abort_spindle() noexcept;
+  // After the motion core's tick: latch the trip position, publish an outcome (tick_task_probe.cpp).
+  void probe_tick(const motion::MotionReference& r) noexcept;
   // A program's spindle command the motion core rests at (Segment::spindle):
   // carried out now; a start the spindle refuses (inhibited) stops the program.
   void program_spindle_change(const motion::Segment& change) noexcept;
@@ -384,6 +394,8 @@ class TickTask {
   EncoderPosition spindle_encoder_{};
   double spindle_rpm_ = 0.0;  // measured (signed)
   bool host_lost_ = false;
+  std::array<double, hal::kAxisCount> probe_trip_mm_{};  // latched at the trip, published with the outcome
+  ProbeReport probe_report_{};
 };
 
 }  // namespace tnv::fw

@@ -92,7 +92,34 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::tool_change);
+  EXPECT_EQ(head.kind, WireKind::probe_away);
+}
+
+// Each probe kind (G38.2-G38.5) travels as its own SEGMENT kind with a tail
+// and, moving Z, a SEGMENT_Z; the node rebuilds the same probe line.
+TEST(SegmentWire, AProbeMoveKeepsItsKindEndPointAndFeed) {
+  using motion::ProbeKind;
+  for (const ProbeKind kind :
+       {ProbeKind::toward_or_error, ProbeKind::toward, ProbeKind::away_or_error, ProbeKind::away}) {
+    SCOPED_TRACE(static_cast<int>(kind));
+    const motion::PlanePoint start{1.0, 2.0, -3.0};
+    const motion::Segment probe = motion::probe_to(kind, {1.0, 2.0, -13.25}, 2.5);
+    SegmentFrames f;
+    ASSERT_EQ(encode_segment(probe, start, 1, 0x21, f), nullptr);
+    ASSERT_TRUE(f.has_tail);
+    ASSERT_TRUE(f.has_z);
+    SegmentHead head;
+    ASSERT_TRUE(decode_head(f.head, head));
+    ASSERT_TRUE(decode_z(f.z, head));
+    motion::Segment out;
+    ASSERT_TRUE(decode_segment(head, &f.tail, start, out));
+    EXPECT_EQ(out.probe, kind);
+    EXPECT_EQ(out.kind, motion::SegmentKind::line);
+    EXPECT_TRUE(out.exact_stop);
+    EXPECT_FALSE(out.rapid);
+    EXPECT_NEAR(out.end_mm[2], -13.25, 1e-9);
+    EXPECT_NEAR(out.feed_mm_s, 2.5, 1e-9);
+  }
 }
 
 // A tool change (M6) is one frame, a pause on the node that carries its tool exactly.
