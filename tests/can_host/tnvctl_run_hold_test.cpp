@@ -1,0 +1,114 @@
+// `tnvctl run` and the operator without a keyboard: a feed hold on a
+// schedule (--hold-at / --resume-at) and by signals (SIGUSR1 holds, SIGUSR2
+// resumes) goes to the node as COMMAND feed_hold / feed_resume, and the run
+// ends as the run without a hold ends, its time longer by the hold; a
+// program with a tool change (or any pause) is refused without a terminal
+// to confirm it from, naming the line, before anything is sent.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "tests/can_host/tnvctl_runner.hpp"
+#include "tests/tools/gcode/test_piece_path.hpp"
+
+namespace tnv {
+namespace {
+
+using test::ToolRun;
+
+constexpr const char* kProgram = "G21 G91\nG1 X20 F1200\nG1 Y5\nG1 X-20\nM2\n";
+
+TEST(TnvctlRunHold, AScheduledHoldWaitsOnThePathAndTheRunEndsAsWithoutIt) {
+  const auto state = test::state_dir("run_hold_schedule");
+  const auto prog = test::write_file(state / "p.ngc", kProgram);
+  const ToolRun plain = test::tnvctl(state, "--emu --json run " + prog.string() + " </dev/null");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const ToolRun held = test::tnvctl(state, "--emu --json run " + prog.string() +
+                                                " --hold-at 0.3 --resume-at 0.8 --hold-at 1.2 --resume-at 1.5 </dev/null");
+  ASSERT_EQ(held.exit_code, 0) << held.err;
+  const nlohmann::json p = nlohmann::json::parse(plain.out);
+  const nlohmann::json h = nlohmann::json::parse(held.out);
+  EXPECT_EQ(p["held_s"].get<double>(), 0.0);
+  EXPECT_EQ(h["feed_hold_changes"], 4) << "two holds, two resumes";
+  // Bus time between the stream's looks (a PROGRAM_STATUS round every few ms).
+  EXPECT_NEAR(h["held_s"].get<double>(), 0.8, 0.05);
+  EXPECT_EQ(h["elements_accepted"], p["elements_accepted"]) << "nothing lost";
+  EXPECT_GE(h["run_s"].get<double>(), p["run_s"].get<double>() + 0.8 - 0.05);
+  // The same geometry: within the planner's 5 um path tolerance plus 1 um of following, as without the holds
+  // (measured 5.0 um against 3.75 um: a hold near the corner rests on the corner's blend and restarts from it).
+  EXPECT_LE(h["contour_error_max_um"].get<double>(), 6.0) << "the holds cost the contour";
+  EXPECT_LE(p["contour_error_max_um"].get<double>(), 6.0);
+  EXPECT_LE(h["path_deviation_max_um"].get<double>(), 5.0 + 1e-6) << "braked off the path";
+  EXPECT_NE(held.err.find("holding"), std::string::npos) << "the node reported holding: " << held.err;
+  // Bad pairs are refused before anything is sent.
+  const ToolRun bad = test::tnvctl(state, "--iface tnv_none0 run " + prog.string() + " --hold-at 2 --resume-at 1");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--resume-at 1 must come after its --hold-at 2"), std::string::npos) << bad.err;
+  std::filesystem::remove_all(state);
+}
+
+TEST(TnvctlRunHold, SigusrOneHoldsAndSigusrTwoResumesWithoutATerminal) {
+  const auto state = test::state_dir("run_hold_signal");
+  const std::string err_path = (state / "err.txt").string();
+  const std::string out_path = (state / "out.json").string();
+  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
+                          gcode::test::test_piece_path("nas979_diamond_circle_square.ngc") + " --no-score </dev/null 2>" +
+                          err_path + " >" + out_path;
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Waits for what the run reports (not for a time): the program runs, then the node holds.
+  const auto wait_for = [&](const std::string& text) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!test::has(test::read_file(err_path), text) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return test::has(test::read_file(err_path), text);
+  };
+  ASSERT_TRUE(wait_for("run: line")) << test::read_file(err_path);
+  ::kill(pid, SIGUSR1);
+  EXPECT_TRUE(wait_for("holding")) << test::read_file(err_path);
+  ::kill(pid, SIGUSR2);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "tnvctl died of the signal instead of holding";
+  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  EXPECT_EQ(j["feed_hold_changes"], 2);
+  EXPECT_GT(j["held_s"].get<double>(), 0.0);
+  EXPECT_EQ(j["elements_accepted"], j["elements"]) << "the whole program ran after the resume";
+  std::filesystem::remove_all(state);
+}
+
+// Without a terminal a tool change could never be confirmed: refused before
+// anything is sent, naming the first pause and the first M6 with their lines.
+TEST(TnvctlRunHold, AToolChangeWithoutATerminalIsRefusedNamingItsLineBeforeAnythingIsSent) {
+  const auto state = test::state_dir("run_m6_no_tty");
+  const auto tbl = test::write_file(state / "tools.tbl", "T2 P2 Z30 D6\n");
+  const auto only_m6 = test::write_file(state / "m6.ngc", "G21 G91\nG1 X1 F600\nT2 M6\nG1 X1\nM2\n");
+  // tnv_none0 does not exist: a refusal that opened the bus would fail there instead.
+  ToolRun r = test::tnvctl(state, "--iface tnv_none0 run " + only_m6.string() + " --tool-table " + tbl.string() +
+                                      " </dev/null");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("the program pauses (line 3: tool change (M6))"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("nothing was sent"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--resume-after-s"), std::string::npos) << "names the way to run it unattended: " << r.err;
+  const auto m0_then_m6 = test::write_file(state / "m0m6.ngc", "G21 G91\nM0\nG1 X1 F600\nT2 M6\nG1 X1\nM2\n");
+  r = test::tnvctl(state, "--iface tnv_none0 run " + m0_then_m6.string() + " --tool-table " + tbl.string() +
+                              " </dev/null");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("the program pauses (line 2: program stop (M0)); its first tool change (M6, tool 2) is at line 4"),
+            std::string::npos)
+      << r.err;
+  std::filesystem::remove_all(state);
+}
+
+}  // namespace
+}  // namespace tnv
