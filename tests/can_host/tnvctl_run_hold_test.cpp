@@ -1,11 +1,13 @@
-// `tnvctl run` and the operator without a keyboard: a feed hold on a
-// schedule (--hold-at / --resume-at) and by signals (SIGUSR1 holds, SIGUSR2
-// resumes) goes to the node as COMMAND feed_hold / feed_resume, and the run
+// `tnvctl run` and the operator: a feed hold by the space key on a
+// terminal, on a schedule (--hold-at / --resume-at) and by signals (SIGUSR1
+// holds, SIGUSR2 resumes) goes to the node as COMMAND feed_hold / feed_resume, and the run
 // ends as the run without a hold ends, its time longer by the hold; a
 // program with a tool change (or any pause) is refused without a terminal
 // to confirm it from, naming the line, before anything is sent.
 #include <gtest/gtest.h>
+#include <pty.h>
 #include <signal.h>
+#include <termios.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -80,6 +82,51 @@ TEST(TnvctlRunHold, SigusrOneHoldsAndSigusrTwoResumesWithoutATerminal) {
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status)) << "tnvctl died of the signal instead of holding";
   EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  EXPECT_EQ(j["feed_hold_changes"], 2);
+  EXPECT_GT(j["held_s"].get<double>(), 0.0);
+  EXPECT_EQ(j["elements_accepted"], j["elements"]) << "the whole program ran after the resume";
+  std::filesystem::remove_all(state);
+}
+
+// On a terminal (a pseudo-terminal here) the space key holds and the next
+// space resumes: the terminal gives tnvctl each key as typed, and gets its
+// line mode back at the end.
+TEST(TnvctlRunHold, TheSpaceKeyOnATerminalHoldsAndTheNextSpaceResumes) {
+  const auto state = test::state_dir("run_hold_key");
+  const std::string err_path = (state / "err.txt").string();
+  const std::string out_path = (state / "out.json").string();
+  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
+                          gcode::test::test_piece_path("nas979_diamond_circle_square.ngc") + " --no-score 2>" +
+                          err_path + " >" + out_path;
+  int terminal = -1;
+  const pid_t pid = ::forkpty(&terminal, nullptr, nullptr, nullptr);
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto wait_for = [&](const std::string& text) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!test::has(test::read_file(err_path), text) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return test::has(test::read_file(err_path), text);
+  };
+  ASSERT_TRUE(wait_for("run: line")) << test::read_file(err_path);
+  termios during{};
+  ASSERT_EQ(::tcgetattr(terminal, &during), 0);
+  EXPECT_EQ(during.c_lflag & ICANON, 0u) << "keys wait for Enter while the program runs";
+  ASSERT_EQ(::write(terminal, " ", 1), 1);
+  EXPECT_TRUE(wait_for("holding")) << test::read_file(err_path);
+  ASSERT_EQ(::write(terminal, " ", 1), 1);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
+  termios after{};
+  ASSERT_EQ(::tcgetattr(terminal, &after), 0);
+  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+  ::close(terminal);
   const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
   EXPECT_EQ(j["feed_hold_changes"], 2);
   EXPECT_GT(j["held_s"].get<double>(), 0.0);
