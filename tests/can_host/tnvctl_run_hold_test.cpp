@@ -134,6 +134,59 @@ TEST(TnvctlRunHold, TheSpaceKeyOnATerminalHoldsAndTheNextSpaceResumes) {
   std::filesystem::remove_all(state);
 }
 
+// A hold while paused: an Enter typed while held is dropped (the node would
+// refuse to continue a held pause and the run would end failed); after the
+// resume the pause waits for an Enter of its own.
+TEST(TnvctlRunHold, AnEnterWhileHeldAtAPauseIsDroppedAndTheNextContinues) {
+  const auto state = test::state_dir("run_hold_pause_key");
+  const auto prog = test::write_file(state / "m0.ngc", "G21 G91\nG1 X2 F600\nM0\nG1 X-2\nM2\n");
+  const std::string err_path = (state / "err.txt").string();
+  const std::string out_path = (state / "out.json").string();
+  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
+                          prog.string() + " --no-score 2>" + err_path + " >" + out_path;
+  int terminal = -1;
+  const pid_t pid = ::forkpty(&terminal, nullptr, nullptr, nullptr);
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // The n-th occurrence of `text` in what the run reported.
+  const auto count = [&](const std::string& text) {
+    const std::string err = test::read_file(err_path);
+    int n = 0;
+    for (std::size_t at = err.find(text); at != std::string::npos; at = err.find(text, at + 1)) ++n;
+    return n;
+  };
+  const auto wait_for = [&](const std::string& text, int n) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (count(text) < n && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return count(text) >= n;
+  };
+  ASSERT_TRUE(wait_for("press Enter to continue", 1)) << test::read_file(err_path);
+  ASSERT_EQ(::write(terminal, " ", 1), 1);
+  ASSERT_TRUE(wait_for("holding", 1)) << test::read_file(err_path);
+  const int paused_lines = count(" paused");
+  ASSERT_EQ(::write(terminal, "\n ", 2), 2);  // Enter while held, then resume
+  ASSERT_TRUE(wait_for(" paused", paused_lines + 1)) << "the node back at the pause: " << test::read_file(err_path);
+  // Were the Enter taken, the pause would go on at once (the rest is 0.2 s of emulated time).
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "the Enter typed while held continued the pause: "
+                                                  << test::read_file(err_path);
+  ASSERT_EQ(::write(terminal, "\n", 1), 1);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
+  ::close(terminal);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  EXPECT_EQ(j["feed_hold_changes"], 2);
+  EXPECT_EQ(j["pauses"].size(), 1u);
+  EXPECT_EQ(j["elements_accepted"], j["elements"]);
+  std::filesystem::remove_all(state);
+}
+
 // Without a terminal a tool change could never be confirmed: refused before
 // anything is sent, naming the first pause and the first M6 with their lines.
 TEST(TnvctlRunHold, AToolChangeWithoutATerminalIsRefusedNamingItsLineBeforeAnythingIsSent) {

@@ -59,7 +59,7 @@ void OperatorConsole::read_keys() {
     const ssize_t n = read(fd_, buf, sizeof buf);
     if (n <= 0) return;  // end of input: no more keys
     for (ssize_t i = 0; i < n; ++i) {
-      if (buf[i] == '\n' || buf[i] == '\r') ++enters_;
+      if (buf[i] == '\n' || buf[i] == '\r') enters_ += hold_ ? 0 : 1;  // typed while held: dropped
       else if (buf[i] == ' ' && terminal_) set_hold(!hold_);  // a space in a piped file is no key
     }
   }
@@ -73,6 +73,8 @@ void OperatorConsole::set_hold(bool on) {
 
 bool OperatorConsole::take_enter() {
   read_keys();
+  // A pause cannot be continued while the feed is held (the node refuses it): an Enter then is dropped.
+  if (hold_) enters_ = 0;
   if (enters_ == 0) return false;
   enters_ = 0;
   return true;

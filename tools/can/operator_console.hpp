@@ -27,7 +27,8 @@ class OperatorConsole {
   OperatorConsole& operator=(const OperatorConsole&) = delete;
 
   bool terminal() const noexcept { return terminal_; }
-  // An Enter typed since the last call or forget_enter() (reads what is there, never waits).
+  // An Enter typed since the last call or forget_enter() (reads what is there, never waits); one typed
+  // while the feed is held is dropped (resume first: the node does not continue a pause while held).
   bool take_enter();
   // Drops what was typed (an Enter before a pause is not an answer to it).
   void forget_enter();

@@ -184,6 +184,7 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
     std::fflush(stderr);
   };
   ro.resume = [&o, &console](const can_host::StreamPause&, can_host::Micros paused_for) {
+    if (console.hold_wanted()) return false;  // the node does not continue a pause while held: resume first
     if (o.resume_after_s) return static_cast<double>(paused_for.count()) * 1e-6 >= *o.resume_after_s;
     return console.take_enter();
   };
@@ -312,7 +313,8 @@ constexpr const char* kRunHelp =
     "  deceleration and waits there, the spindle keeps turning, a dwell's clock stops) and the next space resumes it\n"
     "  (feed_resume). Without a terminal: SIGUSR1 holds, SIGUSR2 resumes (kill -USR1 PID). --hold-at S and\n"
     "  --resume-at S (each repeatable, in pairs) hold on a schedule, seconds from the program's start. The\n"
-    "  report gives the time held (--json held_s). A hold is not a pause: Enter does not end it.\n\n"
+    "  report gives the time held (--json held_s). A hold is not a pause: Enter does not end it, and an Enter\n"
+    "  while held is dropped (a pause reached while held continues after the resume and an Enter).\n\n"
     "CTRL-C\n"
     "  A controlled stop on the path (COMMAND abort_program): the table brakes along the programmed path, holds\n"
     "  there, the rest of the program is dropped; tnvctl exits 1 naming the line it stopped at.\n\n"

@@ -42,9 +42,14 @@ def run_to_end(tab, resume_pauses=False):
     tab.find_element("id", "program-run").click()
 
     def ended():
+        from selenium.common.exceptions import ElementClickInterceptedException, ElementNotInteractableException
+
         s = program_state(tab)
         if resume_pauses and s["pause"] and tab.find_element("id", "program-resume").is_displayed():
-            tab.find_element("id", "program-resume").click()
+            try:
+                tab.find_element("id", "program-resume").click()
+            except (ElementNotInteractableException, ElementClickInterceptedException):
+                pass  # the panel redrew between the look and the click: the next look clicks again
         return s if s["phase"] == "ended" and s["run"] > before else None
 
     state = wait_for(ended, 120, "the run's end")
