@@ -245,7 +245,7 @@ MotionReference MotionInterpolator::tick() noexcept {
   const std::size_t queued_before = queue_.size();
   const FollowerStep step = wait ? FollowerStep{FollowerPhase::holding, queue_.at(queue_.head_seq()).segment.tag}
                                  : follower_.step(queue_, effective_override_, hold_ || stopping_ || probe_.braking,
-                                                  feed_gate_open_);
+                                                  feed_gate_open_, hold_ && !stopping_);
   gate_waiting_ = !feed_gate_open_ && !queue_.empty() && is_feed_move(queue_.at(queue_.head_seq()).segment);
   if (queue_.size() < queued_before) stats_.segments_done += queued_before - queue_.size();
   if (stopping_ && follower_.at_rest()) {
@@ -266,7 +266,7 @@ MotionReference MotionInterpolator::tick() noexcept {
   const FollowerPhase phase = probe_after_step() ? FollowerPhase::drained : step.phase;
 
   if (stopping_) state_ = MotionState::stopping;
-  else if (hold_ && !queue_.empty()) state_ = MotionState::holding;
+  else if (hold_ && (!queue_.empty() || follower_.rest_ticks_left() > 0)) state_ = MotionState::holding;
   else if (front_pause() && at_rest()) state_ = MotionState::paused;
   else if (phase != FollowerPhase::drained || !at_rest()) state_ = MotionState::running;
   else state_ = program_open_ ? MotionState::starved : MotionState::idle;

@@ -99,11 +99,12 @@ void PathFollower::finish_front(SegmentQueue& queue) noexcept {
   distance_mm_ = 0.0;
 }
 
-FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open) noexcept {
+FollowerStep PathFollower::step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open,
+                                bool rest_waits) noexcept {
   const PlanePoint here_mm = point_mm_;
   const DerivedLimits& d = queue.derived();
   if (hold_ticks_ > 0) {
-    --hold_ticks_;
+    if (!rest_waits) --hold_ticks_;
     prev_point_mm_ = point_mm_;
     speed_mm_s_ = 0.0;
     return {FollowerPhase::holding, tag_};

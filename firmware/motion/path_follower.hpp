@@ -35,7 +35,10 @@ class PathFollower {
   // hold: brake to rest on the path (feed hold or controlled stop).
   // feed_gate_open false: while the front element is a feed move the point
   // brakes to rest and waits (the spindle is not at speed); a rapid runs.
-  FollowerStep step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open = true) noexcept;
+  // rest_waits: a feed hold (not a stop) also stops the clock of a dwell or
+  // an exact stop's settling, so a dwell's remainder waits for the resume.
+  FollowerStep step(SegmentQueue& queue, double feed_override, bool hold, bool feed_gate_open = true,
+                    bool rest_waits = false) noexcept;
 
   // A stop during a dwell ends it: at most settle_ticks more (the jerk
   // filter's taps, so its output comes to rest on the point) instead of
@@ -46,6 +49,7 @@ class PathFollower {
   double speed_mm_s() const noexcept { return speed_mm_s_; }
   double distance_on_front_mm() const noexcept { return distance_mm_; }
   bool at_rest() const noexcept { return speed_mm_s_ == 0.0 && hold_ticks_ == 0; }
+  std::uint64_t rest_ticks_left() const noexcept { return hold_ticks_; }  // of a dwell or an exact stop's settling
   const FollowerStats& stats() const noexcept { return stats_; }
 
  private:

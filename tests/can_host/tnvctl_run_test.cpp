@@ -152,7 +152,7 @@ TEST(TnvctlRun, ToolTableVarFileAndSubroutinesWithTheirReport) {
   ToolRun r = test::tnvctl(state, "--iface tnv_none0 run " + prog.string() + " --tool-table " + tbl.string() +
                                       " --var-file " + var.string() + " </dev/null");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("the program pauses (line 1: tool change (M6)) and stdin is not a terminal"), std::string::npos)
+  EXPECT_NE(r.err.find("the program pauses (line 1: tool change (M6)), and stdin is not a terminal"), std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("nothing was sent"), std::string::npos) << r.err;
   r = test::tnvctl(state, "--emu --json run " + prog.string() + " --no-score --tool-table " + tbl.string() +
@@ -234,7 +234,8 @@ TEST(TnvctlRun, GcodeCanonRunsFromALineWithTheSharedOptions) {
 TEST(TnvctlRun, HelpReadsLikeAManualPage) {
   const ToolRun r = test::run_tool(std::string(TNVCTL_EXE) + " run --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* section : {"G-CODE", "PAUSES", "RUN FROM LINE", "--from-line", "--resume-after-s", "--optional-stop",
+  for (const char* section : {"G-CODE", "PAUSES", "FEED HOLD", "--hold-at", "--resume-at", "SIGUSR1", "RUN FROM LINE",
+                              "--from-line", "--resume-after-s", "--optional-stop",
                               "PROGRESS", "CTRL-C", "SCORE", "EXIT CODES", "EXAMPLES", "--feed-override",
                               "--tool-table", "--var-file", "--subroutine-path"})
     EXPECT_NE(r.out.find(section), std::string::npos) << section;

@@ -180,5 +180,35 @@ TEST(PathCli, WritesThePlot) {
   std::filesystem::remove(svg);
 }
 
+// --hold-at / --resume-at hold the feed on the emulated machine and say so:
+// per hold the path speed when it came, the time to rest and the spindle
+// while held; the held time is in the cycle. Bad pairs are refused, exit 2.
+TEST(PathCli, HoldAtAndResumeAtHoldTheFeedAndReportEachHold) {
+  const std::string file = temp_program("hold", "G21 G91\nM3 S1000\nG1 X40 F1200\nM5\nM2\n");
+  const CliRun plain = run_tnv_hil("path " + file + " --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const CliRun r = run_tnv_hil("path " + file + " --hold-at 1.2 --resume-at 1.7 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["holds"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["holds"][0]["applied"], true);
+  EXPECT_NEAR(j["holds"][0]["path_speed_at_hold_mm_s"].get<double>(), 20.0, 1e-9);
+  EXPECT_GT(j["holds"][0]["stopped_after_s"].get<double>(), 0.0);
+  EXPECT_GT(j["holds"][0]["spindle_rpm_min_held"].get<double>(), 900.0) << "the spindle keeps turning";
+  EXPECT_NEAR(j["held_s"].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(j["cycle_time_s"].get<double>(), nlohmann::json::parse(plain.out)["cycle_time_s"].get<double>() + 0.5,
+              0.002);
+  const CliRun text = run_tnv_hil("path " + file + " --hold-at 1.2 --resume-at 1.7");
+  EXPECT_NE(text.out.find("feed hold 1.200-1.700 s: path speed 20.000 mm/s at the hold"), std::string::npos)
+      << text.out;
+  const CliRun unpaired = run_tnv_hil("path " + file + " --hold-at 1");
+  EXPECT_EQ(unpaired.exit_code, 2);
+  EXPECT_NE(unpaired.err.find("come in pairs"), std::string::npos) << unpaired.err;
+  const CliRun backwards = run_tnv_hil("path " + file + " --hold-at 1 --resume-at 2 --hold-at 1.5 --resume-at 3");
+  EXPECT_EQ(backwards.exit_code, 2);
+  EXPECT_NE(backwards.err.find("before the previous --resume-at 2"), std::string::npos) << backwards.err;
+  std::filesystem::remove(file);
+}
+
 }  // namespace
 }  // namespace tnv::test

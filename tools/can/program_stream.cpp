@@ -244,7 +244,9 @@ class Streamer {
 
   void track_pause(const ProgramStatus& s) {
     const bool paused = s.state == ProgramState::paused;
-    if (pause_ && (!paused || s.element != pause_->element)) {  // left it (continued, or stopped)
+    // A feed hold while paused shows holding on the pause's element: still the same pause, not a new one after it.
+    const bool held_at_pause = pause_ && s.state == ProgramState::holding && s.element == pause_->element;
+    if (pause_ && !held_at_pause && (!paused || s.element != pause_->element)) {  // left it (continued, or stopped)
       paused_total_ += client_.bus().now() - pause_since_;
       r_.paused_s = static_cast<double>(paused_total_.count()) * 1e-6;
       pause_.reset();

@@ -26,6 +26,20 @@ void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options) {
       ->capture_default_str();
 }
 
+void add_feed_hold_options(CLI::App& command, FeedHoldOptions& o) {
+  command
+      .add_option("--hold-at", o.hold_at_s,
+                  "hold the feed this many seconds after the program starts (repeatable, each with a --resume-at): "
+                  "the table brakes on the path and waits, the spindle keeps turning")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command
+      .add_option("--resume-at", o.resume_at_s,
+                  "resume the feed held by the --hold-at before it, seconds after the program starts (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
 CLI::Option* add_from_line_options(CLI::App& command, FromLineOptions& o) {
   CLI::Option* from_line = command.add_option("--from-line", o.from_line,
                     "run from this line (1-based): the lines before run silently, the modal state is made again and "

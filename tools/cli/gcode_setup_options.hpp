@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tools/gcode/canon_interpreter.hpp"
+#include "tools/gcode/feed_hold_schedule.hpp"
 
 namespace CLI {
 class App;
@@ -42,6 +43,15 @@ struct FromLineOptions {
 CLI::Option* add_from_line_options(CLI::App& command, FromLineOptions& options);
 // setup.from_line from the options (unset when --from-line is not given).
 void apply_from_line(const FromLineOptions& options, gcode::CanonSetup& setup);
+
+// The operator's feed holds on a schedule (tools/gcode/feed_hold_schedule.hpp):
+// --hold-at S and --resume-at S, each repeatable, paired in order.
+struct FeedHoldOptions {
+  std::vector<double> hold_at_s;
+  std::vector<double> resume_at_s;
+};
+// `options` must outlive the parse.
+void add_feed_hold_options(CLI::App& command, FeedHoldOptions& options);
 
 // `options` must outlive the parse.
 void add_gcode_setup_options(CLI::App& command, GcodeSetupOptions& options);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "emulator/cutting_at_tool.hpp"
@@ -83,10 +84,37 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   const emu::CuttingAtTool* tool_cut = rig->machine.cutting_at_tool();
   // Generous: the programmed time three times over, plus ten seconds, plus the pauses.
   const auto resume_ticks = static_cast<std::int64_t>(std::llround(std::max(0.0, options.resume_after_s) / kTickPeriodS));
+  double holds_s = 0.0;
+  for (const gcode::FeedHoldWindow& w : options.feed_holds) {
+    holds_s += w.resume_at_s - w.hold_at_s;
+    PathHold h;
+    h.window = w;
+    result.holds.push_back(h);
+  }
   const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000 +
-                         static_cast<std::int64_t>(program.pauses.size()) * resume_ticks;
+                         static_cast<std::int64_t>(program.pauses.size()) * resume_ticks +
+                         static_cast<std::int64_t>(std::ceil(holds_s / kTickPeriodS));
   std::int64_t paused_ticks = -1;  // >= 0 while the task rests at a pause
+  bool held = false;
+  std::size_t hold_index = 0;      // the window of the hold on now (or the last one)
   for (std::int64_t k = 0; k < max_ticks; ++k) {
+    // The operator's hold switch, as COMMAND feed_hold / feed_resume set it on the node.
+    const double t_s = static_cast<double>(k) * kTickPeriodS;
+    if (const bool want = gcode::feed_held_at(options.feed_holds, t_s); want != held) {
+      if (const fw::CommandStatus st = task.feed_hold(want); st != fw::CommandStatus::ok) {
+        result.error = std::string(want ? "feed hold" : "feed resume") + " at " + std::to_string(t_s) +
+                       " s refused: " + command_status_text(st, task);
+        return result;
+      }
+      held = want;
+      if (held) {
+        while (hold_index + 1 < result.holds.size() && result.holds[hold_index].window.resume_at_s <= t_s) ++hold_index;
+        PathHold& h = result.holds[hold_index];
+        h.applied = true;
+        h.path_speed_at_hold_mm_s = task.motion().path_speed_mm_s();
+        h.spindle_rpm_min_held = std::numeric_limits<double>::infinity();
+      }
+    }
     // Stream as a host would: as many segments as there are free slots.
     if (!feeder.feed(task)) {
       const fw::motion::SegmentRefusal why = feeder.last_refusal();
@@ -124,11 +152,24 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
       }
       continue;  // the operator's wait is not scored
     }
+    if (held) {
+      result.held_s += kTickPeriodS;
+      PathHold& h = result.holds[hold_index];
+      if (h.stopped_after_s < 0.0 && task.motion().path_speed_mm_s() == 0.0)
+        h.stopped_after_s = t_s + kTickPeriodS - h.window.hold_at_s;
+      if (h.stopped_after_s >= 0.0) {
+        const double rpm = std::fabs(task.last_record().spindle.measured_rpm);
+        h.spindle_rpm_min_held = std::min(h.spindle_rpm_min_held, rpm);
+        h.spindle_rpm_max_held = std::max(h.spindle_rpm_max_held, rpm);
+      }
+    }
     samples.push_back(sample_of(task.last_record()));
     if (options.keep_samples) result.path_speed_mm_s.push_back(task.motion().path_speed_mm_s());
     if (task.state() == fw::MotionState::faulted) break;
     if (feeder.closed() && task.state() == fw::MotionState::holding) break;
   }
+  for (PathHold& h : result.holds)
+    if (!std::isfinite(h.spindle_rpm_min_held)) h.spindle_rpm_min_held = 0.0;
   result.counters = task.counters();
   const FeedStartCount feed_starts = judge.count(program.segments);
   result.feed_onsets = feed_starts.feed_onsets;

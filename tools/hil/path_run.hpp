@@ -6,6 +6,9 @@
 // exact programmed geometry (tools/score/path_score.hpp). A pause continues
 // after PathRunOptions::resume_after_s; the ticks it rests are left out of
 // the score (its cycle time is the program's motion, not the operator's wait).
+// Feed holds (PathRunOptions::feed_holds) are TickTask::feed_hold, what the
+// node's COMMAND feed_hold does: their ticks are scored (the braking, the
+// rest on the path and the restart are the machine's motion).
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -16,6 +19,7 @@
 #include "emulator/spindle_crash_log.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "tools/gcode/feed_hold_schedule.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/score/path_score.hpp"
 
@@ -28,6 +32,17 @@ struct PathRunOptions {
   // A program pause (M0, M1, M6) continues (TickTask::cycle_start) after
   // resting this long, as an operator would; its ticks are not scored.
   double resume_after_s = 1.0;
+  // The feed held from each window's hold to its resume, seconds from the first tick of the program.
+  std::vector<gcode::FeedHoldWindow> feed_holds;
+};
+
+struct PathHold {
+  gcode::FeedHoldWindow window;
+  bool applied = false;                  // false: the program had ended before the hold's time
+  double path_speed_at_hold_mm_s = 0.0;  // the planner's path speed when the hold was asked
+  double stopped_after_s = -1.0;         // from the hold to the path speed's first 0 (-1: not before the resume)
+  double spindle_rpm_min_held = 0.0;     // the smallest |measured spindle speed| once the path rested, held
+  double spindle_rpm_max_held = 0.0;     // the largest, likewise
 };
 
 struct PathPause {
@@ -59,6 +74,8 @@ struct PathRunResult {
   std::vector<PathSample> samples;  // from the first streamed segment, when keep_samples
   std::vector<double> path_speed_mm_s;     // the planner's path speed, with samples
   std::vector<PathPause> pauses;           // in the order reached
+  std::vector<PathHold> holds;             // one per PathRunOptions::feed_holds window
+  double held_s = 0.0;                     // ticks held, in seconds
 };
 
 // One run of `gcode_text` with `controller` on both axes.

@@ -27,6 +27,7 @@ struct PathOptions {
   std::string file;
   GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
   FromLineOptions from;     // --from-line and its companions
+  FeedHoldOptions holds;    // --hold-at, --resume-at
   std::string controller = "rdvsc";
   std::string scenario = "no-cut";
   int seeds = 1;
@@ -65,6 +66,11 @@ int run_path_command(const PathOptions& o) {
   }
   apply_from_line(o.from, options.canon);
   gcode::add_program_directory(options.canon, o.file);
+  error = gcode::feed_hold_windows(o.holds.hold_at_s, o.holds.resume_at_s, options.feed_holds);
+  if (!error.empty()) {
+    std::fprintf(stderr, "tnv-hil path: %s\n", error.c_str());
+    return kExitBadInput;
+  }
   options.rapid_feed_mm_s = o.rapid_feed_mm_s;
   options.resume_after_s = o.resume_after_s;
   options.keep_samples = !o.plot.empty() || !o.csv.empty();
@@ -109,6 +115,18 @@ int run_path_command(const PathOptions& o) {
       pauses.push_back(pj);
     }
     j["pauses"] = pauses;
+    nlohmann::json holds = nlohmann::json::array();
+    for (const hil::PathHold& h : seed0.holds) {
+      holds.push_back({{"hold_at_s", h.window.hold_at_s},
+                       {"resume_at_s", h.window.resume_at_s},
+                       {"applied", h.applied},
+                       {"path_speed_at_hold_mm_s", h.path_speed_at_hold_mm_s},
+                       {"stopped_after_s", h.stopped_after_s},
+                       {"spindle_rpm_min_held", h.spindle_rpm_min_held},
+                       {"spindle_rpm_max_held", h.spindle_rpm_max_held}});
+    }
+    j["holds"] = holds;
+    j["held_s"] = seed0.held_s;
     j["error"] = r.error;
     note_io_work_unmetered(j, *scenario);
     std::cout << j.dump(2) << '\n';
@@ -134,6 +152,16 @@ int run_path_command(const PathOptions& o) {
     for (const hil::PathPause& p : seed0.pauses) {
       std::printf("paused at line %d: %s; continued after %.3f s (not scored)\n", p.line, gcode::to_string(p.why).c_str(),
                   p.paused_s);
+    }
+    for (const hil::PathHold& h : seed0.holds) {
+      if (!h.applied) {
+        std::printf("feed hold at %.3f s: not applied, the program had ended\n", h.window.hold_at_s);
+        continue;
+      }
+      std::printf("feed hold %.3f-%.3f s: path speed %.3f mm/s at the hold, at rest after %.3f s, spindle %.0f-%.0f "
+                  "rpm while held (scored)\n",
+                  h.window.hold_at_s, h.window.resume_at_s, h.path_speed_at_hold_mm_s, h.stopped_after_s,
+                  h.spindle_rpm_min_held, h.spindle_rpm_max_held);
     }
   }
   bool ok = r.error.empty();
@@ -166,6 +194,7 @@ void add_path_commands(CLI::App& app, Runner& run) {
   cmd->add_option("file", o->file, "the program (.ngc)")->required();
   add_gcode_setup_options(*cmd, o->files);
   add_from_line_options(*cmd, o->from);
+  add_feed_hold_options(*cmd, o->holds);
   cmd->add_option("--controller", o->controller, "pid | dvsc | rdvsc")
       ->check(CLI::IsMember({"pid", "dvsc", "rdvsc"}))
       ->capture_default_str();

@@ -1,7 +1,5 @@
 // tnvctl run FILE.ngc: stream a G-code program to the node and score the
 // run (the work is in tools/can/program_run.hpp; this file parses and prints).
-#include <poll.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +15,7 @@
 #include <sstream>
 
 #include "emulator/cutting_at_tool.hpp"
+#include "tools/can/operator_console.hpp"
 #include "tools/can/program_run.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
 #include "tools/hil/feed_start_judge.hpp"
@@ -35,6 +34,7 @@ struct RunOptions {
   std::string file;
   cli::GcodeSetupOptions files;  // --tool-table, --var-file, --subroutine-path
   cli::FromLineOptions from;     // --from-line and its companions
+  cli::FeedHoldOptions holds;    // --hold-at, --resume-at
   std::optional<double> feed_override;
   double rapid_feed_mm_s = 50.0;
   bool no_score = false;
@@ -61,6 +61,15 @@ gcode::CanonSetup run_setup(const RunOptions& o) {
   return setup;
 }
 
+// The --hold-at / --resume-at schedule, or the reason it is refused.
+std::vector<gcode::FeedHoldWindow> hold_schedule(const RunOptions& o) {
+  std::vector<gcode::FeedHoldWindow> windows;
+  if (const std::string error = gcode::feed_hold_windows(o.holds.hold_at_s, o.holds.resume_at_s, windows);
+      !error.empty())
+    throw BadInput(error);
+  return windows;
+}
+
 // Before anything is sent: the options, and the program's syntax. The limits
 // here are wide open (the node's own come with the run), so only what is
 // wrong from any start point and on any table is reported now.
@@ -81,24 +90,22 @@ void check_run(const RunOptions& o) {
   if (r.program.segments.empty()) throw BadInput(o.file + ": the program has no motion and no dwell (nothing was sent)");
   if (o.resume_after_s && !(*o.resume_after_s >= 0.0 && *o.resume_after_s <= 3600.0))
     throw BadInput("--resume-after-s must be in [0, 3600] s");
+  hold_schedule(o);
   // A pause waits for the operator's Enter: without a terminal nobody could press it.
   if (!r.program.pauses.empty() && !o.resume_after_s && isatty(STDIN_FILENO) == 0) {
+    const auto line_of = [&r](const gcode::ProgramPause& p) { return std::to_string(r.program.segments[p.segment].tag); };
     const gcode::ProgramPause& p = r.program.pauses.front();
-    throw BadInput(o.file + ": the program pauses (line " + std::to_string(r.program.segments[p.segment].tag) + ": " +
-                   gcode::to_string(p.reason) +
-                   ") and stdin is not a terminal to continue it from: run it from a terminal (Enter continues) or "
-                   "give --resume-after-s S (nothing was sent)");
+    std::string tool_change;  // a manual tool change nobody could confirm, named even when another pause comes first
+    const auto m6 = std::find_if(r.program.pauses.begin(), r.program.pauses.end(), [](const gcode::ProgramPause& q) {
+      return q.reason == gcode::PauseReason::tool_change;
+    });
+    if (m6 != r.program.pauses.end() && m6 != r.program.pauses.begin())
+      tool_change = "; its first tool change (M6, tool " + std::to_string(m6->tool) + ") is at line " + line_of(*m6);
+    throw BadInput(o.file + ": the program pauses (line " + line_of(p) + ": " + gcode::to_string(p.reason) + ")" +
+                   tool_change +
+                   ", and stdin is not a terminal to confirm it from: run it from a terminal (Enter continues) or "
+                   "give --resume-after-s S to continue every pause by itself (nothing was sent)");
   }
-}
-
-// The operator's Enter on stdin, without blocking the stream (which keeps the node's host timeout fed).
-bool enter_pressed() {
-  pollfd p{STDIN_FILENO, POLLIN, 0};
-  if (poll(&p, 1, 0) <= 0 || (p.revents & (POLLIN | POLLHUP)) == 0) return false;
-  char c = 0;
-  while (read(STDIN_FILENO, &c, 1) == 1)
-    if (c == '\n') return true;
-  return false;  // end of input: never a go
 }
 
 // Progress on stderr: rewritten in place on a terminal (at most 5 times a
@@ -228,22 +235,26 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   ro.telemetry_ms = o.no_score ? 0 : 1;
   ro.window = static_cast<std::size_t>(o.window);
   ro.interrupted = [] { return g_run_interrupted.load(); };
+  can_host::OperatorConsole console(STDIN_FILENO, hold_schedule(o),
+                                    [&client] { return static_cast<double>(client.bus().now().count()) * 1e-6; });
+  ro.feed_hold = [&console] { return console.hold_wanted(); };
   ProgressPrinter printer;
   ro.progress = [&printer](const can_host::StreamProgress& p) { printer(p); };
-  ro.on_pause = [&o](const can_host::StreamPause& p) {
+  ro.on_pause = [&o, &console](const can_host::StreamPause& p) {
     if (o.resume_after_s) {
       std::fprintf(stderr, "\nrun: paused at %s: continuing in %.1f s (--resume-after-s), Ctrl-C stops\n",
                    can_host::pause_text(p).c_str(), *o.resume_after_s);
     } else {
-      tcflush(STDIN_FILENO, TCIFLUSH);  // an Enter typed before the pause is not an answer to it
+      console.forget_enter();  // an Enter typed before the pause is not an answer to it
       std::fprintf(stderr, "\nrun: paused at %s: press Enter to continue, Ctrl-C stops the program\n",
                    can_host::pause_text(p).c_str());
     }
     std::fflush(stderr);
   };
-  ro.resume = [&o](const can_host::StreamPause&, can_host::Micros paused_for) {
+  ro.resume = [&o, &console](const can_host::StreamPause&, can_host::Micros paused_for) {
+    if (console.hold_wanted()) return false;  // the node does not continue a pause while held: resume first
     if (o.resume_after_s) return static_cast<double>(paused_for.count()) * 1e-6 >= *o.resume_after_s;
-    return enter_pressed();
+    return console.take_enter();
   };
   const CutWatch watch(session.is_emulated() ? session.emulated() : nullptr);
   g_run_interrupted = false;
@@ -279,6 +290,8 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   report.data["run_s"] = st.run_s;
   report.data["fill_elements_per_s"] = st.fill_elements_per_s;
   report.data["paused_s"] = st.paused_s;
+  report.data["held_s"] = st.held_s;
+  report.data["feed_hold_changes"] = console.hold_changes();
   nlohmann::json pauses = nlohmann::json::array();
   for (const can_host::StreamPause& p : st.pauses) {
     nlohmann::json j{{"element", p.element}, {"line", p.line}};
@@ -292,6 +305,11 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
   if (!st.pauses.empty()) {
     std::snprintf(buf, sizeof buf, "%zu pause%s, %.3f s paused (the run's time includes them)", st.pauses.size(),
                   st.pauses.size() == 1 ? "" : "s", st.paused_s);
+    report.line(buf);
+  }
+  if (console.hold_changes() > 0) {
+    std::snprintf(buf, sizeof buf, "feed held %.3f s (%d change%s of the hold switch; the run's time includes it)",
+                  st.held_s, console.hold_changes(), console.hold_changes() == 1 ? "" : "s");
     report.line(buf);
   }
   // The node's word (PROGRAM_TOOL), not the program's: unknown after a restart or an unconfirmed change.
@@ -360,6 +378,13 @@ constexpr const char* kRunHelp =
     "  --resume-after-s S it continues by itself after S seconds. A program that pauses is refused before\n"
     "  anything is sent when stdin is not a terminal and --resume-after-s is not given. Waiting keeps the\n"
     "  node's host timeout fed; Ctrl-C while paused stops the program there.\n\n"
+    "FEED HOLD\n"
+    "  On a terminal the space key holds the feed (COMMAND feed_hold: the table brakes on the path at the planner's\n"
+    "  deceleration and waits there, the spindle keeps turning, a dwell's clock stops) and the next space resumes it\n"
+    "  (feed_resume). Without a terminal: SIGUSR1 holds, SIGUSR2 resumes (kill -USR1 PID). --hold-at S and\n"
+    "  --resume-at S (each repeatable, in pairs) hold on a schedule, seconds from the program's start. The\n"
+    "  report gives the time held (--json held_s). A hold is not a pause: Enter does not end it, and an Enter\n"
+    "  while held is dropped (a pause reached while held continues after the resume and an Enter).\n\n"
     "CTRL-C\n"
     "  A controlled stop on the path (COMMAND abort_program): the table brakes along the programmed path, holds\n"
     "  there, the rest of the program is dropped; tnvctl exits 1 naming the line it stopped at.\n\n"
@@ -393,6 +418,7 @@ void add_run_commands(CLI::App& app, ActionSlot& slot) {
   cmd->add_option("file", o->file, "RS274/NGC program")->required();
   cli::add_gcode_setup_options(*cmd, o->files);
   cli::add_from_line_options(*cmd, o->from);
+  cli::add_feed_hold_options(*cmd, o->holds);
   cmd->add_option("--feed-override", o->feed_override, "path speed ratio 0..1.5, applied once the program runs");
   cmd->add_option("--rapid-feed", o->rapid_feed_mm_s, "G0 path speed, mm/s")->capture_default_str();
   cmd->add_flag("--no-score", o->no_score, "leave telemetry as it is and print no score");

@@ -121,6 +121,40 @@ TEST(MotionStop, AStopDuringADwellEndsItOnceTheFilterHasSettled) {
   EXPECT_EQ(m.queued(), 0u);
 }
 
+// The number of ticks from the dwell's first tick to the first tick the
+// line after it moves, with a feed hold of hold_ticks starting hold_at ticks
+// into the dwell (none when hold_ticks is 0).
+long dwell_to_motion_ticks(long hold_at, long hold_ticks, std::vector<MotionState>* states = nullptr) {
+  MotionInterpolator m = configured();
+  EXPECT_EQ(m.push(dwell_for(0.5)), SegmentRefusal::none);
+  EXPECT_EQ(m.push(line_to({10.0, 0.0}, 20.0)), SegmentRefusal::none);
+  m.end_program();
+  for (long k = 0; k < 10'000; ++k) {
+    if (hold_ticks > 0 && k == hold_at) m.hold();
+    if (hold_ticks > 0 && k == hold_at + hold_ticks) m.resume();
+    const MotionReference r = m.tick();
+    if (states != nullptr) states->push_back(r.state);
+    if (r.axis[0].next_position_mm != 0.0) return k;
+  }
+  return -1;
+}
+
+// A feed hold stops a dwell's clock: the remainder runs after the resume,
+// so the dwell at rest is as long as programmed plus the time held (a
+// deliberate deviation from LinuxCNC, whose task times G4 on the wall
+// clock through a pause: docs/gcode.md "Feed hold").
+TEST(MotionDwell, AFeedHoldStopsTheDwellsClockAndTheRemainderRunsAfterTheResume) {
+  const long plain = dwell_to_motion_ticks(0, 0);
+  ASSERT_GE(plain, 500) << "the dwell of 0.5 s rests 500 ticks at least";
+  std::vector<MotionState> states;
+  const long held = dwell_to_motion_ticks(200, 700, &states);
+  EXPECT_EQ(held, plain + 700) << "the dwell ran on while held";
+  for (long k = 200; k < 900; ++k) ASSERT_EQ(states[static_cast<std::size_t>(k)], MotionState::holding) << "tick " << k;
+  // Held from 50 ticks before the dwell's end for longer than the dwell: the remainder still runs after it.
+  const long late = dwell_to_motion_ticks(450, 2000);
+  EXPECT_EQ(late, plain + 2000);
+}
+
 TEST(MotionJoints, AStraightLineInPiecesKeepsItsSpeedAtEveryJoint) {
   MotionInterpolator m = configured();
   std::vector<Segment> pieces;

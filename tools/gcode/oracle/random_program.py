@@ -5,7 +5,11 @@ dwells, spindle, coolant, tools and length offsets, work offsets, G10,
 G92, G28/G30, G53, canned cycles (G73, G81-G89 in G17, G18 and G19),
 cutter radius compensation (G41/G42/G41.1/G42.1
 contours of lines and arcs, G40 and a straight exit), parameters,
-expressions, comments and O-word control flow. Every program is valid by construction; each seed gives one program.
+expressions, comments and O-word control flow, and pallet changes (M60)
+between statements. Every program is valid by construction; each seed gives one program.
+The pallet changes are drawn from a stream of their own (seeded from the
+seed), so a seed's program is the one it gave before M60 was written, with
+the M60 lines added.
 """
 from __future__ import annotations
 
@@ -20,6 +24,7 @@ FUNCTIONS = ["abs", "cos", "sin", "sqrt", "fix", "fup", "round", "exp", "tan"]
 class Generator:
     def __init__(self, seed: int, tool_count: int = 20):
         self.r = random.Random(seed)
+        self.pallet = random.Random(f"M60 {seed}")  # M60's own stream: the other draws stay as they were
         self.tool_count = tool_count
         self.lines: list[str] = []
         self.absolute = True
@@ -298,6 +303,13 @@ class Generator:
         else:
             self.control()
 
+    def pallet_change(self) -> None:
+        # M60: PALLET_SHUTTLE() then PROGRAM_STOP(), after the line's move when it has one.
+        if self.pallet.random() >= 0.04:
+            return
+        p = self.pallet
+        self.lines.append(p.choice(["M60", "M5 M60", f"G1 X{p.uniform(-5, 5):.4f} M60", f"G0 Y{p.uniform(-5, 5):.4f} M60"]))
+
     def program(self, statements: int) -> str:
         self.lines = ["(random program)", "G21 G17 G90 G94", f"F{self.num(100, 2000)}"]
         self.lines.append("o<sub1> sub")
@@ -309,6 +321,7 @@ class Generator:
                 if not self.absolute:  # the subroutine ends in G90
                     self.lines.append("G91")
             self.statement()
+            self.pallet_change()
         self.lines.append(self.r.choice(["M2", "M30"]))
         return "\n".join(self.lines) + "\n"
 

@@ -15,10 +15,12 @@ const program = (() => {
   let preview = null;
   let fitTravel = false;
   const files = { tool_table: null, var_file: null };  // the texts of the loaded tool table and .var file
-  // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order.
+  // What the page's browser test reads: linesSeen, the current lines of this tab's last run in order;
+  // nodeStatesSeen, the node's PROGRAM_STATUS states of that run in order; pausesSeen, the pauses the
+  // node reported (line and reason); total, the elements sent to the node.
   const state = page.program = { preview: null, drawn: 0, phase: 'idle', run: 0, line: 0, end: '',
                                  linesSeen: [], runStarted: -1, tool: null, error: '', pause: null,
-                                 spindleTool: null, feedHold: false };
+                                 spindleTool: null, feedHold: false, nodeStatesSeen: [], pausesSeen: [], total: 0 };
 
   function el(name, attrs, parent) {
     const e = document.createElementNS(SVG, name);
@@ -141,6 +143,9 @@ const program = (() => {
   async function run() {
     if (!(await previewNow())) return;
     state.linesSeen = [];
+    state.nodeStatesSeen = [];
+    state.pausesSeen = [];
+    state.total = 0;
     state.runStarted = -1;
     const r = await api('POST', '/api/program/run', body());
     state.error = r.ok ? '' : r.error;
@@ -184,6 +189,14 @@ const program = (() => {
     state.spindleTool = s.spindle_tool || null;
     if (text && s.spindle_tool) text += ` — in the spindle: ${s.spindle_tool.text}`;
     state.pause = s.pause || null;
+    if (s.run === state.runStarted) {
+      const seen = state.nodeStatesSeen;
+      if (s.node_state && seen[seen.length - 1] !== s.node_state) seen.push(s.node_state);
+      const last = state.pausesSeen[state.pausesSeen.length - 1];
+      if (s.pause && !(last && last.line === s.pause.line && last.reason === s.pause.reason))
+        state.pausesSeen.push({ line: s.pause.line, reason: s.pause.reason });
+      if (s.total) state.total = s.total;
+    }
     $('program-resume').hidden = !(s.phase === 'running' && s.pause);
     state.feedHold = !!s.feed_hold;
     $('program-hold').hidden = s.phase !== 'running';

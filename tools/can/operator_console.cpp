@@ -1,0 +1,102 @@
+#include "tools/can/operator_console.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+
+namespace tnv::can_host {
+
+namespace {
+
+// 0 nothing new, 1 hold asked (SIGUSR1), 2 resume asked (SIGUSR2).
+std::atomic<int> g_signal_request{0};
+extern "C" void on_hold_signal(int) { g_signal_request = 1; }
+extern "C" void on_resume_signal(int) { g_signal_request = 2; }
+
+struct sigaction g_saved_usr1 {};
+struct sigaction g_saved_usr2 {};
+
+void catch_signal(int sig, void (*handler)(int), struct sigaction& saved) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(sig, &sa, &saved);
+}
+
+}  // namespace
+
+OperatorConsole::OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> schedule, std::function<double()> clock_s)
+    : fd_(fd), terminal_(isatty(fd) != 0), schedule_(std::move(schedule)), clock_s_(std::move(clock_s)) {
+  if (terminal_) {
+    termios t{};
+    if (tcgetattr(fd_, &t) == 0) {
+      saved_ = t;
+      t.c_lflag &= static_cast<tcflag_t>(~(ICANON | ECHO));
+      t.c_cc[VMIN] = 0;
+      t.c_cc[VTIME] = 0;
+      tcsetattr(fd_, TCSANOW, &t);
+    }
+  }
+  g_signal_request = 0;
+  catch_signal(SIGUSR1, on_hold_signal, g_saved_usr1);
+  catch_signal(SIGUSR2, on_resume_signal, g_saved_usr2);
+}
+
+OperatorConsole::~OperatorConsole() {
+  sigaction(SIGUSR1, &g_saved_usr1, nullptr);
+  sigaction(SIGUSR2, &g_saved_usr2, nullptr);
+  if (saved_) tcsetattr(fd_, TCSANOW, &*saved_);
+}
+
+void OperatorConsole::read_keys() {
+  for (;;) {
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, 0) <= 0 || (p.revents & POLLIN) == 0) return;
+    char buf[64];
+    const ssize_t n = read(fd_, buf, sizeof buf);
+    if (n <= 0) return;  // end of input: no more keys
+    for (ssize_t i = 0; i < n; ++i) {
+      if (buf[i] == '\n' || buf[i] == '\r') enters_ += hold_ ? 0 : 1;  // typed while held: dropped
+      else if (buf[i] == ' ' && terminal_) set_hold(!hold_);  // a space in a piped file is no key
+    }
+  }
+}
+
+void OperatorConsole::set_hold(bool on) {
+  if (on == hold_) return;
+  hold_ = on;
+  ++hold_changes_;
+}
+
+bool OperatorConsole::take_enter() {
+  read_keys();
+  // A pause cannot be continued while the feed is held (the node refuses it): an Enter then is dropped.
+  if (hold_) enters_ = 0;
+  if (enters_ == 0) return false;
+  enters_ = 0;
+  return true;
+}
+
+void OperatorConsole::forget_enter() {
+  if (terminal_) tcflush(fd_, TCIFLUSH);
+  read_keys();
+  enters_ = 0;
+}
+
+bool OperatorConsole::hold_wanted() {
+  read_keys();
+  if (const int request = g_signal_request.exchange(0); request != 0) set_hold(request == 1);
+  if (schedule_.empty() || !clock_s_) return hold_;
+  const double now_s = clock_s_();
+  if (!started_s_) started_s_ = now_s;
+  if (const bool scheduled = gcode::feed_held_at(schedule_, now_s - *started_s_); scheduled != scheduled_) {
+    scheduled_ = scheduled;
+    set_hold(scheduled);
+  }
+  return hold_;
+}
+
+}  // namespace tnv::can_host
