@@ -16,7 +16,7 @@ set(tnv_exported
   tnv_emulator:emulator tnv_driver_fpga:driver_fpga tnv_driver_emulated:driver_emulated
   tnv_driver_linux:driver_linux tnv_driver_socketcan:driver_socketcan tnv_driver_storage:driver_storage
   tnv_tune:tune tnv_gcode_lib:gcode tnv_score:score tnv_hil_lib:hil tnv_protogen_lib:protogen tnv_can_host:can_host
-  tnv_can_emu:can_emu)
+  tnv_can_emu:can_emu tnv_toml:toml tnv_toml_impl:toml_impl tnv_sqlite3:sqlite3 tnv_gpiod:gpiod)
 set(tnv_export_targets "")
 foreach(pair ${tnv_exported})
   string(REPLACE ":" ";" pair "${pair}")

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "firmware/tick/work_meter.hpp"
 #include "tests/campaign/campaign_fixture.hpp"
 #include "tools/campaign/campaign_file.hpp"
 #include "tools/campaign/experiment_row.hpp"
@@ -237,6 +238,42 @@ TEST_F(CampaignPipeline, ARunThatFaultsIsARowWithItsReason) {
   const CampaignReport report = report_campaign(dir() / kDatabaseName, "max_um", 1e9);
   EXPECT_EQ(report.controllers[0].ok, 0u);
   EXPECT_DOUBLE_EQ(report.controllers[0].yield, 0.0);  // a run that did not finish is out
+}
+
+// An [io] run's output writes land after the firmware's metered work; a
+// build without the meter lands them sooner (docs/performance.md). Its rows
+// say so, the database has the column, the report counts them; a metered
+// build's rows carry no mark, and neither does a run without [io].
+TEST_F(CampaignPipeline, AnIoRunOnABuildWithoutTheWorkMeterIsMarkedInRowDatabaseAndReport) {
+  write_all(tmp_.path() / "short.toml", std::string(test::kShortScenario) + "[io]\nread_latency_us = 30.0\n");
+  const Manifest m = plan();
+  ASSERT_TRUE(run_shard(dir(), m, 1, 1).error.empty());
+  const bool unmetered = !fw::work_meter_enabled();
+  for (const ManifestRun& r : m.runs) {
+    const auto row = run_row(m, r);
+    EXPECT_EQ(row["status"], "ok") << row.dump();
+    EXPECT_EQ(row.contains("io_work_unmetered"), unmetered) << row.dump();
+  }
+  ASSERT_TRUE(merge_campaign(dir()).error.empty());
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2((dir() / kDatabaseName).c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* st = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT sum(io_work_unmetered), count(*) FROM runs", -1, &st, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int64(st, 0), unmetered ? 6 : 0);
+  EXPECT_EQ(sqlite3_column_int64(st, 1), 6);
+  sqlite3_finalize(st);
+  sqlite3_close(db);
+  const CampaignReport report = report_campaign(dir() / kDatabaseName, "max_um", 1e9);
+  ASSERT_TRUE(report.error.empty()) << report.error;
+  EXPECT_EQ(report.io_work_unmetered_runs, unmetered ? 6u : 0u);
+  EXPECT_EQ(report_text(report).find("warning: 6 runs ran an [io] scenario") != std::string::npos, unmetered);
+  EXPECT_EQ(report_json(report)["io_work_unmetered_runs"], unmetered ? 6 : 0);
+}
+
+TEST_F(CampaignPipeline, ARunWithoutIoCarriesNoUnmeteredMark) {
+  const Manifest m = plan();
+  EXPECT_FALSE(run_row(m, m.runs[0]).contains("io_work_unmetered"));
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <exception>
 
+#include "tools/hil/hil_rig.hpp"
+
 namespace tnv::campaign {
 
 const std::vector<ResultKey>& result_keys(const std::string& experiment) {
@@ -32,6 +34,11 @@ nlohmann::ordered_json run_row(const Manifest& manifest, const ManifestRun& run)
     row["status"] = "error";
     row["reason"] = std::string("exception: ") + e.what();
   }
+  // An [io] run on a build without the work meter lands each output write
+  // sooner than a metered build would (docs/performance.md "What an
+  // unmetered tnv-hil gives"): the row says so, as circle's and path's
+  // --json do; the key is absent otherwise, so other rows keep their bytes.
+  if (hil::io_work_unmetered(*setup.scenario)) row["io_work_unmetered"] = true;
   return row;
 }
 

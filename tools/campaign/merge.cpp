@@ -127,12 +127,12 @@ MergeResult merge_campaign(const fs::path& dir) {
                           "status TEXT NOT NULL, reason TEXT NOT NULL";
     for (const InputName& in : m.inputs) columns += ", " + quoted_identifier(in.name);
     for (const ResultKey& k : results) columns += ", " + quoted_identifier(k.name) + " " + k.sql_type;
-    columns += ", tool_version TEXT NOT NULL, build_id TEXT NOT NULL";
+    columns += ", io_work_unmetered INTEGER NOT NULL, tool_version TEXT NOT NULL, build_id TEXT NOT NULL";
     if (!db.exec("PRAGMA journal_mode=OFF; PRAGMA synchronous=OFF; BEGIN;", error) ||
         !db.exec("CREATE TABLE runs (" + columns + ");", error) ||
         !db.exec("CREATE TABLE campaign (key TEXT PRIMARY KEY, value);", error))
       return fail(error);
-    const std::size_t n_columns = 6 + m.inputs.size() + results.size() + 2;
+    const std::size_t n_columns = 6 + m.inputs.size() + results.size() + 3;
     std::string placeholders;
     for (std::size_t i = 0; i < n_columns; ++i) placeholders += i == 0 ? "?" : ",?";
     SqliteStatement insert;
@@ -158,6 +158,7 @@ MergeResult merge_campaign(const fs::path& dir) {
         bind_json(insert.stmt, c++, row.value("reason", ""));
         for (const InputName& in : m.inputs) bind_json(insert.stmt, c++, run.inputs.at(in.name));
         for (const ResultKey& k : results) bind_json(insert.stmt, c++, row.contains(k.name) ? row[k.name] : ojson());
+        sqlite3_bind_int(insert.stmt, c++, row.value("io_work_unmetered", false) ? 1 : 0);
         bind_json(insert.stmt, c++, version);
         bind_json(insert.stmt, c++, build);
         if (sqlite3_step(insert.stmt) != SQLITE_DONE) insert_error = std::string("sqlite: ") + sqlite3_errmsg(db.db);

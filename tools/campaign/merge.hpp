@@ -6,7 +6,8 @@
 //
 // Table runs: run_id, sample, controller, seed, status, reason, one column
 // per varied input named as in the campaign file, the experiment's result
-// keys (result_keys()), tool_version, build_id. Table campaign: key, value
+// keys (result_keys()), io_work_unmetered (1: an [io] run on a build
+// without the work meter), tool_version, build_id. Table campaign: key, value
 // (the manifest's experiment, scenario, seed, sampling, limit_um, ...).
 #include <cstddef>
 #include <filesystem>

@@ -98,6 +98,16 @@ CampaignReport report_campaign(const std::filesystem::path& database, const std:
   }
   if (limit) report.limit = *limit;
   if (report.metric.empty()) report.metric = "max_um";
+  {
+    SqliteStatement u;
+    if (sqlite3_prepare_v2(db.db, "SELECT count(*) FROM runs WHERE io_work_unmetered != 0;", -1, &u.stmt, nullptr) !=
+            SQLITE_OK ||
+        sqlite3_step(u.stmt) != SQLITE_ROW) {
+      report.error = sql_error();
+      return report;
+    }
+    report.io_work_unmetered_runs = static_cast<std::size_t>(sqlite3_column_int64(u.stmt, 0));
+  }
   std::string select = "SELECT controller, status, " + quoted_identifier(report.metric);
   for (const std::string& in : inputs) select += ", " + quoted_identifier(in);
   select += " FROM runs ORDER BY run_id;";
@@ -163,6 +173,13 @@ CampaignReport report_campaign(const std::filesystem::path& database, const std:
 std::string report_text(const CampaignReport& report) {
   std::string out;
   char buf[256];
+  if (report.io_work_unmetered_runs > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "warning: %zu runs ran an [io] scenario on a build without the work meter (their output writes "
+                  "landed sooner than on a metered build: docs/performance.md)\n",
+                  report.io_work_unmetered_runs);
+    out += buf;
+  }
   for (const ControllerReport& r : report.controllers) {
     std::snprintf(buf, sizeof buf,
                   "%s: %zu runs, %zu finished; yield %.1f %% (%s <= %g); %s p50 %.3f  p90 %.3f  p99 %.3f  max %.3f\n",
@@ -181,7 +198,10 @@ std::string report_text(const CampaignReport& report) {
 }
 
 ojson report_json(const CampaignReport& report) {
-  ojson j = {{"metric", report.metric}, {"limit", report.limit}, {"controllers", ojson::array()}};
+  ojson j = {{"metric", report.metric},
+             {"limit", report.limit},
+             {"io_work_unmetered_runs", report.io_work_unmetered_runs},
+             {"controllers", ojson::array()}};
   const auto number = [](double v) { return std::isnan(v) ? ojson() : ojson(v); };
   for (const ControllerReport& r : report.controllers) {
     ojson c = {{"controller", r.controller}, {"runs", r.runs}, {"finished", r.ok}, {"within_limit", r.within_limit},

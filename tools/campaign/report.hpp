@@ -32,6 +32,9 @@ struct CampaignReport {
   std::string metric;
   double limit = 0.0;
   std::vector<ControllerReport> controllers;
+  // Rows of [io] runs done by a build without the work meter: their
+  // output writes landed sooner than a metered build's (merge.hpp).
+  std::size_t io_work_unmetered_runs = 0;
 };
 
 // `metric`: a result column (max_um, true_tool_max_um, ...), "" for the
