@@ -471,6 +471,8 @@ inline constexpr std::array<MessageDef, 31 + 3 * hal::kAxisCount> kMessages{{
      "bore.c_hat_mm, bore.alpha_hat and bore.beta_hat."},
     {0x1C, "tlm_spindle", Direction::from_node, 8, detail::kTlmSpindle,
      "Telemetry every tlm.spindle_ms (0 = off): the spindle's speeds, outputs and last stop cause."},
+    {0x1D, "probe_rest", Direction::from_node, 7, detail::kProbeRest,
+     "Third frame of PROBE_RESULT: x and y where the motion rests after the probe."},
 // The per-axis blocks, block by block so that the ids stay sorted.
 #define TNV_TLM_POSITION(name, ...)                                                                           \
   {static_cast<std::uint8_t>(MessageId::tlm_position_##name), "tlm_position_" #name, Direction::from_node, 8, \
@@ -487,8 +489,6 @@ inline constexpr std::array<MessageDef, 31 + 3 * hal::kAxisCount> kMessages{{
 #undef TNV_TLM_POSITION
 #undef TNV_TLM_SLIDING
 #undef TNV_TLM_DAC
-    {0x1D, "probe_rest", Direction::from_node, 7, detail::kProbeRest,
-     "Third frame of PROBE_RESULT: x and y where the motion rests after the probe."},
     {0x3E, "capture_data", Direction::from_node, 8, detail::kCaptureData,
      "One segment of a capture upload. The lowest priority of all: never delays control traffic or telemetry."},
 }};
