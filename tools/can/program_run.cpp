@@ -44,11 +44,7 @@ gcode::GcodeOptions parse_options(const fw::motion::PlanePoint& start_mm, const 
 gcode::GcodeResult parse(const std::string& text, const fw::motion::PlanePoint& start_mm,
                          const fw::motion::MotionLimits& limits, const ProgramRunOptions& o) {
   gcode::GcodeOptions g = parse_options(start_mm, limits, o);
-  g.run_probe = [](const gcode::GcodeProgram& so_far) {
-    gcode::ProbeRun untouched;
-    untouched.rest_mm = so_far.segments.back().end_mm;
-    return untouched;
-  };
+  g.run_probe = gcode::untouched_probe;
   return gcode::parse_gcode(text, g);
 }
 

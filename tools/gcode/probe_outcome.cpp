@@ -45,4 +45,11 @@ ProbeRun probe_run(fw::motion::ProbeOutcome outcome, fw::motion::ProbeKind kind,
   return run;
 }
 
+ProbeRun untouched_probe(const GcodeProgram& so_far) {
+  ProbeRun run;
+  run.rest_mm = so_far.segments.back().end_mm;
+  run.trip_mm = run.rest_mm;
+  return run;
+}
+
 }  // namespace tnv::gcode
