@@ -4,6 +4,7 @@
 #include "tools/campaign/experiment.hpp"
 #include "tools/campaign/manifest.hpp"
 #include "tools/gcode/gcode_program.hpp"
+#include "tools/gcode/probe_outcome.hpp"
 #include "tools/hil/path_run.hpp"
 #include "tools/hil/seeded_scenario.hpp"
 #include "tools/score/score_json.hpp"
@@ -26,6 +27,7 @@ std::string check_path_settings(const nlohmann::ordered_json& settings, const st
   // where the table stands (the run reads it again from where it holds).
   gcode::GcodeOptions options;
   options.rapid_feed_mm_s = rapid;
+  options.run_probe = gcode::untouched_probe;  // as if no probe tripped: the run reads on from each result
   const gcode::GcodeResult parsed = gcode::parse_gcode(program_text, options);
   if (parsed.error) {
     key = "program";

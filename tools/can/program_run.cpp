@@ -1,9 +1,12 @@
 #include "tools/can/program_run.hpp"
 
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "firmware/can/param_table.hpp"
 #include "tools/can/path_telemetry.hpp"
+#include "tools/gcode/probe_outcome.hpp"
 
 namespace tnv::can_host {
 
@@ -25,14 +28,71 @@ struct Prepared {
   WireProgram wire;
 };
 
-gcode::GcodeResult parse(const std::string& text, const fw::motion::PlanePoint& start_mm,
-                         const fw::motion::MotionLimits& limits, const ProgramRunOptions& o) {
+gcode::GcodeOptions parse_options(const fw::motion::PlanePoint& start_mm, const fw::motion::MotionLimits& limits,
+                                  const ProgramRunOptions& o) {
   gcode::GcodeOptions g;
   g.start_mm = start_mm;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
   g.limits = limits;
   g.canon = o.canon;
+  return g;
+}
+
+// Read before anything moves. A program that probes is read as if no probe
+// tripped (each ends at its end, #5070 0): what follows a probe is read
+// again from its real outcome while the program runs (stream_probing).
+gcode::GcodeResult parse(const std::string& text, const fw::motion::PlanePoint& start_mm,
+                         const fw::motion::MotionLimits& limits, const ProgramRunOptions& o) {
+  gcode::GcodeOptions g = parse_options(start_mm, limits, o);
+  g.run_probe = gcode::untouched_probe;
   return gcode::parse_gcode(text, g);
+}
+
+// A program that probes: read again as it runs; at each probe what was
+// read is sent, the probe's result awaited, and the reading goes on from
+// it (docs/gcode.md "Probe moves"). A probe's error stops the reading:
+// nothing after it is sent.
+StreamResult stream_probing(NodeClient& client, const std::string& text, const ProgramRunOptions& o,
+                            const StreamOptions& so, ProgramRunResult& r) {
+  WireProgram wire;
+  fw::motion::PlanePoint at_mm = r.start_mm;
+  std::size_t wired = 0;
+  std::string wire_error;
+  ProgramStreamer streamer(client, wire, so);
+  gcode::GcodeOptions g = parse_options(r.start_mm, r.limits, o);
+  g.run_probe = [&](const gcode::GcodeProgram& so_far) {
+    gcode::ProbeRun run;
+    if (!wire_append(so_far, wired, at_mm, client.node(), wire, wire_error)) {
+      run.error = wire_error;
+      return run;
+    }
+    wired = so_far.segments.size();
+    const std::optional<ProbeResult> result = streamer.run_to_probe(so_far.programmed_time_s());
+    if (!result) {
+      run.error = "the run stopped before the probe's result";
+      return run;
+    }
+    run = gcode::probe_run(result->outcome, so_far.segments.back().probe, result->trip_mm, result->rest_mm);
+    at_mm = result->rest_mm;
+    return run;
+  };
+  gcode::GcodeResult parsed = gcode::parse_gcode(text, g);
+  if (parsed.error) {
+    r.program = {};
+    StreamResult out = streamer.abandon(gcode::to_string(*parsed.error));
+    r.wire = std::move(wire);
+    return out;
+  }
+  if (!wire_append(parsed.program, wired, at_mm, client.node(), wire, wire_error)) {
+    r.program = {};
+    StreamResult out = streamer.abandon(wire_error);
+    r.wire = std::move(wire);
+    return out;
+  }
+  r.program = std::move(parsed.program);
+  StreamResult out = streamer.finish(r.program.programmed_time_s());
+  r.wire = std::move(wire);
+  return out;
 }
 
 // The options with the node's tool in the spindle for a run from line, when asked for and known.
@@ -171,7 +231,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     so.resume = o.resume;
     so.feed_hold = o.feed_hold;
     so.on_frame = both(telemetry, o.on_frame);
-    r.stream = stream_program(client, r.wire, so);
+    r.stream = r.program.probes == 0 ? stream_program(client, r.wire, so) : stream_probing(client, gcode_text, o, so, r);
     listen();
     client.pump(Micros{20'000});  // the reference at rest after the end closes the motion window
     client.set_listener(o.on_frame);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <memory>
 
 #include "firmware/can/node_fields.hpp"
 
@@ -20,31 +21,99 @@ constexpr Micros kStatusRefresh{1'000'000};
 
 bool over(ProgramState s) { return s == ProgramState::done || s == ProgramState::aborted; }
 
-struct InFlight {
-  std::size_t index;
-  std::uint8_t tag;
-  Micros sent_at;
-};
+}  // namespace
 
 class Streamer {
+  struct InFlight {
+    std::size_t index;
+    std::uint8_t tag;
+    Micros sent_at;
+  };
+
  public:
   Streamer(NodeClient& client, const WireProgram& program, const StreamOptions& options)
       : client_(client), program_(program), o_(options) {}
+  ~Streamer() {
+    if (listening_) client_.set_listener({});
+  }
+  Streamer(const Streamer&) = delete;
+  Streamer& operator=(const Streamer&) = delete;
 
   StreamResult run() {
-    client_.set_listener([this](const hal::CanFrame& f, MessageId id) { on_frame(f, id); });
-    try {
+    if (!ended_) {
+      listen();
       stream();
-    } catch (...) {
-      client_.set_listener({});
-      throw;
     }
-    client_.set_listener({});
+    unlisten();
+    return r_;
+  }
+
+  // Sends what is not yet sent; the last element is a probe move: waits for its PROBE_RESULT (with
+  // PROBE_RESULT_Z and PROBE_REST). nullopt: the run ended (run() says how).
+  std::optional<ProbeResult> run_to_probe() {
+    if (ended_) return std::nullopt;
+    listen();
+    start();
+    const std::optional<std::uint8_t> seen = probe_ ? std::optional<std::uint8_t>(probe_->count) : std::nullopt;
+    if (!send_all()) return std::nullopt;
+    const double ratio = o_.feed_override ? std::max(*o_.feed_override, 0.05) : 1.0;
+    const Micros limit{static_cast<long long>((o_.expected_s * 1.5 / ratio + 10.0) * 1e6)};
+    const Micros deadline = client_.bus().now() + limit;
+    Micros last_poll = client_.bus().now();
+    const auto decided = [&] { return probe_ && (!seen || probe_->count != *seen); };
+    while (!decided()) {
+      // The result is sent once: ask again now and then (PROGRAM_STATUS brings it again) in case it was lost.
+      if (client_.bus().now() - last_poll >= kStatusRefresh) {
+        last_poll = client_.bus().now();
+        client_.send_raw(command_request(client_.node(), client_.next_tag(), can::CommandCode::program_status, 0, 0, 0.0));
+      }
+      handle_pause();
+      handle_hold();
+      if (!failure_ && over(status_.state)) failure_ = "the node stopped the program before the probe's result";
+      if (failure_) return stop(StreamResult::End::failed, *failure_), std::nullopt;
+      if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted"), std::nullopt;
+      if (client_.bus().now() > deadline + paused_time() + held_time())
+        return stop(StreamResult::End::failed, "no probe result within " + std::to_string(limit.count() / 1'000'000) +
+                                                   " s"),
+               std::nullopt;
+      client_.pump_until([&] { return decided() || failure_.has_value() || over(status_.state); }, Micros{50'000});
+    }
+    return probe_;
+  }
+
+  // The program's time so far (the wait for a probe's result is 1.5 x this + 10 s).
+  void set_expected_s(double s) { o_.expected_s = s; }
+
+  // The run ends failed here (the program cannot go on): a controlled stop if anything was sent.
+  StreamResult abandon(const std::string& why) {
+    if (!ended_ && started_ && over(status_.state)) {  // the node stopped it already (a probe's error)
+      ended_ = true;
+      r_.end = StreamResult::End::failed;
+      r_.message = why;
+      finish();
+    } else if (!ended_) {
+      listen();
+      stop(StreamResult::End::failed, why);
+    }
+    unlisten();
     return r_;
   }
 
  private:
-  void stream() {
+  void listen() {
+    if (listening_) return;
+    listening_ = true;
+    client_.set_listener([this](const hal::CanFrame& f, MessageId id) { on_frame(f, id); });
+  }
+  void unlisten() {
+    if (!listening_) return;
+    listening_ = false;
+    client_.set_listener({});
+  }
+
+  void start() {
+    if (started_) return;
+    started_ = true;
     const ProgramStatus before = client_.program_status();
     if (fw::can::active(before.state))
       throw RequestError(RequestError::Kind::refused, "node " + std::to_string(client_.node()) +
@@ -53,11 +122,28 @@ class Streamer {
     capacity_ = before.free_slots;
     r_.queue_capacity = capacity_;
     first_sent_ = client_.bus().now();
-    Micros last_poll = first_sent_;
+    last_poll_ = first_sent_;
+  }
+
+  void stream() {
+    start();
+    if (!send_all()) return;
+    if (!filled_) mark_filled(client_.bus().now());
+    try {
+      client_.command(can::CommandCode::end_program);
+    } catch (const RequestError& e) {
+      return stop(StreamResult::End::failed, e.what());
+    }
+    wait_end();
+  }
+
+  // Sends every element of the program and waits for their answers; false: the run ended (stopped).
+  bool send_all() {
     const std::size_t window = std::clamp<std::size_t>(o_.window, 1, 15);
+    Micros& last_poll = last_poll_;
     while (next_ < program_.elements.size() || !flight_.empty()) {
-      if (failure_) return stop(StreamResult::End::failed, *failure_);
-      if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted");
+      if (failure_) return stop(StreamResult::End::failed, *failure_), false;
+      if (o_.interrupted && o_.interrupted()) return stop(StreamResult::End::interrupted, "interrupted"), false;
       if (acked_ > 0 && o_.feed_override && !override_sent_) set_override();
       handle_pause();
       handle_hold();
@@ -79,13 +165,7 @@ class Streamer {
       news_ = false;
       client_.pump_until([this] { return news_ || failure_.has_value(); }, kPumpSlice);
     }
-    if (!filled_) mark_filled(client_.bus().now());
-    try {
-      client_.command(can::CommandCode::end_program);
-    } catch (const RequestError& e) {
-      return stop(StreamResult::End::failed, e.what());
-    }
-    wait_end();
+    return true;
   }
 
   // Time the node has rested at pauses so far (the one it rests at now included).
@@ -178,6 +258,7 @@ class Streamer {
     if (id == MessageId::command_ack) on_ack(read_command_ack(f));
     if (id == MessageId::program_status) on_status(read_program_status(f));
     if (id == MessageId::program_tool) on_tool(read_program_tool(f));
+    if (id == MessageId::probe_result || id == MessageId::probe_result_z || id == MessageId::probe_rest) on_probe(f, id);
     if (id == MessageId::heartbeat) {
       r_.final_heartbeat = read_heartbeat(f);
       if (r_.final_heartbeat->state == fw::MotionState::faulted && !failure_ && acked_ > 0 && !over(status_.state))
@@ -207,6 +288,32 @@ class Streamer {
       return;
     }
     r_.acknowledged = ++acked_;
+  }
+
+  // The three frames of one probe result, in the order the node sends them.
+  void on_probe(const hal::CanFrame& f, MessageId id) {
+    news_ = true;
+    namespace fields = can::fields;
+    const auto count = static_cast<std::uint8_t>(f.data[0]);
+    if (id == MessageId::probe_result) {
+      probe_part_ = ProbeResult{};
+      probe_part_->count = count;
+      probe_part_->outcome = static_cast<fw::motion::ProbeOutcome>(can::read(f, fields::kProbeOutcome));
+      probe_part_->trip_mm[0] = can::read(f, fields::kProbeTripX);
+      probe_part_->trip_mm[1] = can::read(f, fields::kProbeTripY);
+      probe_has_z_ = false;
+    } else if (!probe_part_ || probe_part_->count != count) {
+      return;  // the rest of a result whose first frame was not seen
+    } else if (id == MessageId::probe_result_z) {
+      probe_part_->trip_mm[fw::can::kProgramZ] = can::read(f, fields::kProbeTripZ);
+      probe_part_->rest_mm[fw::can::kProgramZ] = can::read(f, fields::kProbeRestZ);
+      probe_has_z_ = true;
+    } else if (probe_has_z_) {
+      probe_part_->rest_mm[0] = can::read(f, fields::kProbeRestX);
+      probe_part_->rest_mm[1] = can::read(f, fields::kProbeRestY);
+      probe_ = *probe_part_;
+      probe_part_.reset();
+    }
   }
 
   void on_status(const ProgramStatus& s) {
@@ -303,6 +410,7 @@ class Streamer {
                                                    std::to_string(limit.count() / 1'000'000) + " s");
       client_.pump_until([this] { return over(status_.state) || failure_.has_value(); }, Micros{50'000});
     }
+    ended_ = true;
     finish();
     if (status_.state == ProgramState::aborted) {
       r_.end = StreamResult::End::failed;
@@ -316,6 +424,7 @@ class Streamer {
 
   // A controlled stop on the path (abort_program), then the wait until it rests.
   void stop(StreamResult::End end, const std::string& why) {
+    ended_ = true;
     r_.end = end;
     r_.message = why;
     if (acked_ == 0 && flight_.empty()) return finish();
@@ -349,6 +458,13 @@ class Streamer {
   std::optional<std::string> failure_;
   Micros first_sent_{0};
   bool news_ = false;
+  bool listening_ = false;
+  bool started_ = false;
+  bool ended_ = false;  // stopped or ended: nothing more is sent
+  Micros last_poll_{0};
+  std::optional<ProbeResult> probe_part_;  // PROBE_RESULT seen, its other frames awaited
+  bool probe_has_z_ = false;
+  std::optional<ProbeResult> probe_;  // the last complete result
   bool filled_ = false;
   bool override_sent_ = false;
   std::optional<StreamPause> pause_;  // the pause the node rests at
@@ -360,8 +476,6 @@ class Streamer {
   Micros paused_total_{0};
 };
 
-}  // namespace
-
 std::string pause_text(const StreamPause& pause) {
   std::string out = "line " + std::to_string(pause.line) + ": ";
   if (!pause.why) return out + "pause (element " + std::to_string(pause.element) + ")";
@@ -371,5 +485,18 @@ std::string pause_text(const StreamPause& pause) {
 StreamResult stream_program(NodeClient& client, const WireProgram& program, const StreamOptions& options) {
   return Streamer(client, program, options).run();
 }
+
+ProgramStreamer::ProgramStreamer(NodeClient& client, const WireProgram& program, const StreamOptions& options)
+    : impl_(std::make_unique<Streamer>(client, program, options)) {}
+ProgramStreamer::~ProgramStreamer() = default;
+std::optional<ProbeResult> ProgramStreamer::run_to_probe(double expected_s) {
+  impl_->set_expected_s(expected_s);
+  return impl_->run_to_probe();
+}
+StreamResult ProgramStreamer::finish(double expected_s) {
+  impl_->set_expected_s(expected_s);
+  return impl_->run();
+}
+StreamResult ProgramStreamer::abandon(const std::string& why) { return impl_->abandon(why); }
 
 }  // namespace tnv::can_host

@@ -25,11 +25,14 @@
 // resume() the run ends failed at the first pause, after an abort: a
 // program never goes on by itself unless the caller asked for it.
 #include <cstdint>
+#include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "firmware/motion/probe_move.hpp"
 #include "tools/can/node_client.hpp"
 #include "tools/can/program_wire.hpp"
 
@@ -93,6 +96,41 @@ struct StreamResult {
   ProgramStatus final_status{};
   std::optional<ProgramTool> final_tool;  // the node's last PROGRAM_TOOL of the run
   std::optional<Heartbeat> final_heartbeat;
+};
+
+// A probe move's outcome from the node: PROBE_RESULT with its
+// PROBE_RESULT_Z and PROBE_REST (the same count). Machine coordinates, mm.
+struct ProbeResult {
+  std::uint8_t count = 0;
+  fw::motion::ProbeOutcome outcome = fw::motion::ProbeOutcome::none;
+  std::array<double, 3> trip_mm{};  // X Y Z
+  std::array<double, 3> rest_mm{};
+};
+
+class Streamer;
+
+// A stream that goes on while the program is read (a program that probes:
+// what follows a probe is read only after its outcome, docs/gcode.md).
+// `program` grows between calls; the elements sent stay as they are.
+// Throws as stream_program.
+class ProgramStreamer {
+ public:
+  ProgramStreamer(NodeClient& client, const WireProgram& program, const StreamOptions& options);
+  ~ProgramStreamer();
+  ProgramStreamer(const ProgramStreamer&) = delete;
+  ProgramStreamer& operator=(const ProgramStreamer&) = delete;
+  // Sends the elements not yet sent, the last of them a probe move, and
+  // waits for its result (within 1.5 x expected_s + 10 s, the program's
+  // time so far). nullopt: the run ended (finish() says how).
+  std::optional<ProbeResult> run_to_probe(double expected_s);
+  // Sends the rest, ends the program and waits for its end, as stream_program.
+  StreamResult finish(double expected_s);
+  // The program cannot go on (its reading stopped with an error): the run ends failed with `why`, after a
+  // controlled stop on the path if the node still runs it.
+  StreamResult abandon(const std::string& why);
+
+ private:
+  std::unique_ptr<Streamer> impl_;
 };
 
 // Throws RequestError / BusError for what stops the conversation itself (no

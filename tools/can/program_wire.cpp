@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "firmware/can/node_fields.hpp"
 
@@ -90,16 +91,17 @@ struct Builder {
 
 }  // namespace
 
-std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, const PlanePoint& start_mm,
-                                        std::uint8_t node, std::string& error) {
+bool wire_append(const gcode::GcodeProgram& program, std::size_t from, PlanePoint& at_mm, std::uint8_t node,
+                 WireProgram& out, std::string& error) {
   Builder b;
   b.node = node;
-  b.at_mm = start_mm;
-  for (std::size_t k = 0; k < program.segments.size(); ++k) {
+  b.at_mm = at_mm;
+  b.out = std::move(out);
+  bool ok = true;
+  for (std::size_t k = from; ok && k < program.segments.size(); ++k) {
     const Segment& s = program.segments[k];
     const SegmentGeometry& g = program.geometry[k];
     const int line = static_cast<int>(s.tag);
-    bool ok = true;
     if (fw::motion::is_program_action(s)) {
       const auto p = std::ranges::find(program.pauses, k, &gcode::ProgramPause::segment);
       const bool tool_change = p != program.pauses.end() && p->reason == gcode::PauseReason::tool_change;
@@ -113,12 +115,22 @@ std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, cons
     } else {
       ok = b.add_arc(s, g, 0.0, 1.0, line, 0);
     }
-    if (!ok) {
-      error = b.error;
-      return std::nullopt;
-    }
   }
-  return b.out;
+  out = std::move(b.out);
+  if (!ok) {
+    error = b.error;
+    return false;
+  }
+  at_mm = b.at_mm;
+  return true;
+}
+
+std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, const PlanePoint& start_mm,
+                                        std::uint8_t node, std::string& error) {
+  WireProgram out;
+  PlanePoint at_mm = start_mm;
+  if (!wire_append(program, 0, at_mm, node, out, error)) return std::nullopt;
+  return out;
 }
 
 double length_fraction(const WireProgram& program, std::size_t elements_done) {

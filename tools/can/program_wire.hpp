@@ -35,6 +35,14 @@ struct WireProgram {
 std::optional<WireProgram> wire_program(const gcode::GcodeProgram& program, const fw::motion::PlanePoint& start_mm,
                                         std::uint8_t node, std::string& error);
 
+// The program's segments from index `from` on appended to `out`, from
+// `at_mm` (where the node's queue ends; moved to the new end). A program
+// read while it runs (it probes) is sent in parts: after a probe the next
+// part starts where the node rests. False with `error` as wire_program's;
+// `out` then holds the elements before the one that did not fit.
+bool wire_append(const gcode::GcodeProgram& program, std::size_t from, fw::motion::PlanePoint& at_mm,
+                 std::uint8_t node, WireProgram& out, std::string& error);
+
 // Progress along the program after `elements_done` whole elements: 0..1 of its length.
 double length_fraction(const WireProgram& program, std::size_t elements_done);
 

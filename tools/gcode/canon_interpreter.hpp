@@ -32,7 +32,7 @@ struct CanonMotion {
     traverse,     // STRAIGHT_TRAVERSE: end_mm
     feed,         // STRAIGHT_FEED: end_mm
     arc,          // ARC_FEED: end_mm, centre_mm, plane, turn
-    probe,        // STRAIGHT_PROBE: end_mm
+    probe,        // STRAIGHT_PROBE: end_mm; value = 2, 3, 4, 5 for G38.2 .. G38.5
     spline,       // NURBS_FEED (G5.1): end_mm
     rigid_tap,    // RIGID_TAP (G33.1): end_mm, the bottom (the tap returns to its start)
     dwell,        // DWELL: value = seconds
@@ -79,6 +79,18 @@ struct RunFromLine {
   int tool_in_spindle = 0;
 };
 
+// A probe move run on a machine (CanonSetup::probe_input): how it ended.
+// Positions in machine coordinates, mm (X Y Z).
+struct ProbeRun {
+  bool tripped = false;
+  std::array<double, 3> trip_mm{};  // tripped: where the probe changed state
+  std::array<double, 3> rest_mm{};  // where the machine rests after it: the program goes on from here
+  std::string error;  // set: the probe failed (G38.2/G38.4 without a change, ...): the program stops at its line
+};
+// Runs the probe move of the call just made (STRAIGHT_PROBE, kind probe) on the
+// machine and returns when its outcome is known.
+using ProbeInput = std::function<ProbeRun(const CanonCall& probe)>;
+
 struct CanonSetup {
   ToolTable tools;           // lengths in millimetres (this machine's units)
   NgcParameters parameters;  // from a .var file: work offsets, G28/G30 homes, G92
@@ -100,6 +112,11 @@ struct CanonSetup {
   // (and so the canon text compared with it) refuses a file with no M2, M30
   // or closing %.
   bool end_of_file_ends = false;
+  // Unset: a probe move as the standalone rs274 models it (no probe input:
+  // it never trips; docs/gcode.md). Set: the interpreter waits at each
+  // probe for the machine's outcome and sets #5061-#5070 and the current
+  // position from it, as LinuxCNC does.
+  ProbeInput probe_input;
 };
 
 // Receives each call as it is made, in order.

@@ -99,7 +99,20 @@ void CanonSegmentSink::convert(const CanonCall& call) {
       add(fw::motion::arc_to(clockwise, end, centre, feed, tag, plane));
       break;
     }
-    case Kind::probe: throw Refusal("probe move (G38.x): this machine has no probe input");
+    case Kind::probe: {
+      if (!options_.run_probe) throw Refusal("probe move (G38.x): this run has no probe input");
+      const double feed = feed_mm_min_ / 60.0;
+      if (!(feed > 0.0)) throw Refusal("probe move without a feed rate (F)");
+      using fw::motion::ProbeKind;
+      const int g = static_cast<int>(m.value);
+      const ProbeKind kind = g == 2   ? ProbeKind::toward_or_error
+                             : g == 3 ? ProbeKind::toward
+                             : g == 4 ? ProbeKind::away_or_error
+                                      : ProbeKind::away;
+      add(fw::motion::probe_to(kind, point(m.end_mm), feed, tag));
+      ++program_.probes;
+      break;
+    }
     case Kind::spline: throw Refusal("G5.1 spline: the motion queue takes lines and arcs only");
     case Kind::rigid_tap: throw Refusal("rigid tapping (G33.1): the motion queue has no motion synchronised to the spindle");
     case Kind::dwell:

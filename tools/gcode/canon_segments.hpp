@@ -5,7 +5,9 @@
 // third axis: a helix, that axis moving with the angle; P turns share it
 // by angle), dwells dwell segments, each checked against the firmware's
 // limits (fw::motion::prepare) as the queue will check it. Refused, with
-// the line: rigid tapping, a probe move (no probe input) and a G5.1 spline. Program pauses (Segment::pause,
+// the line: rigid tapping, a G5.1 spline and a probe move unless the run
+// has a probe input (GcodeOptions::run_probe: a probe segment, and the
+// program goes on from where the machine rests). Program pauses (Segment::pause,
 // GcodeProgram::pauses): M0, M1 while the optional stop switch is on
 // (CanonSetup::optional_stop), and M6 (a manual tool change; the tool's
 // length applies to Z from the next move). Spindle commands (S, M3, M4, M5, and the stops of M6 and the
@@ -34,6 +36,11 @@ class CanonSegmentSink {
   // The run's error if it has one, else the first refusal (its file named
   // from run.files), else the program.
   GcodeResult finish(const CanonRun& run);
+  // The segments so far (a probe move last while the machine runs it).
+  const GcodeProgram& so_far() const { return program_; }
+  bool refused() const { return refused_.has_value(); }
+  // After a probe: the next segment starts where the machine rests.
+  void rest_at(const std::array<double, 3>& machine_mm) { at_ = {machine_mm[0], machine_mm[1], machine_mm[2]}; }
 
  private:
   void convert(const CanonCall& call);  // throws the refusal (canon_segments.cpp)

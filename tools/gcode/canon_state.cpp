@@ -407,8 +407,11 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
     throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
   if (muted_) muted_probe_line_ = line_;
   emit("TURN_PROBE_ON()");
-  emit("STRAIGHT_PROBE(" + xyz(to) + ")", move_to(CanonMotion::Kind::probe, to));
+  CanonMotion move = move_to(CanonMotion::Kind::probe, to);
+  move.value = motion - 380;  // 2..5: G38.2..G38.5
+  emit("STRAIGHT_PROBE(" + xyz(to) + ")", move);
   emit("TURN_PROBE_OFF()");
+  if (setup_.probe_input && !muted_) return probe_on_machine(move, to, column);
   for (int a = 0; a < 9; ++a)
     params_.set(kProbeResult + a, a < 3 ? to[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
   params_.set(kProbeTripped, 0.0, column);
@@ -420,6 +423,24 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   if (distance > 0.0)
     for (std::size_t a = 0; a < 3; ++a) end[a] += kBackoffMm * (from[a] - to[a]) / distance;
   pos_ = canon_pos_ = end;
+}
+
+// A probe run on the machine, as LinuxCNC's task does after it:
+// #5061-#5063 where it tripped, in the program's coordinates and units at
+// the time of the probe; without a trip (G38.3/G38.5) the programmed end;
+// #5064-#5069 zero (no such axes), #5070 1 if it tripped. The program goes
+// on from where the machine rests.
+void CanonMachine::probe_on_machine(const CanonMotion& move, const Vec3& to, int column) {
+  CanonCall call;
+  call.line = line_;
+  call.file = file_;
+  call.motion = move;
+  const ProbeRun run = setup_.probe_input(call);
+  if (!run.error.empty()) throw NgcError(column, run.error);
+  const Vec3 at = run.tripped ? machine_to_program(run.trip_mm) : to;
+  for (int a = 0; a < 9; ++a) params_.set(kProbeResult + a, a < 3 ? at[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
+  params_.set(kProbeTripped, run.tripped ? 1.0 : 0.0, column);
+  pos_ = canon_pos_ = machine_to_program(run.rest_mm);
 }
 
 // G33.1: the spindle drives Z to the end and back at K per turn; the

@@ -97,6 +97,7 @@ class CanonMachine : private NgcMachineValues {
   void spline(const NgcBlock& block, const Vec3& to, int column);
   static bool is_probe(int motion) { return motion >= 382 && motion <= 385; }
   void probe(int motion, const Vec3& to, int column);
+  void probe_on_machine(const CanonMotion& move, const Vec3& to, int column);  // CanonSetup::probe_input set
   void rigid_tap(const NgcBlock& block, const Vec3& to, int column);
   void program_end(bool m30);
   void emit_control_mode();

@@ -70,22 +70,46 @@ std::string summary_text(const GcodeProgram& p) {
   if (!p.pauses.empty()) s += ", " + count_of(p.pauses.size(), "pause");
   if (p.optional_stops_skipped > 0) s += ", " + count_of(p.optional_stops_skipped, "optional stop") + " skipped (switch off)";
   if (p.spindle_changes > 0) s += ", " + count_of(p.spindle_changes, "spindle command");
+  if (p.probes > 0) s += ", " + count_of(p.probes, "probe move");
   if (p.coolant_starts > 0)
     s += "; not sent (this table has no coolant): " + count_of(p.coolant_starts, "coolant start");
   return s;
 }
 
+namespace {
+
+// With a probe input: each probe runs the segments so far on the machine and
+// the rest of the program goes on from where it rests. After a refusal
+// nothing more runs (the result is the refusal).
+void connect_probe(CanonSetup& setup, CanonSegmentSink& sink, const GcodeOptions& options) {
+  if (!options.run_probe) return;
+  setup.probe_input = [&sink, &options](const CanonCall& call) {
+    if (sink.refused()) {
+      ProbeRun idle;
+      idle.rest_mm = call.motion.end_mm;
+      return idle;
+    }
+    ProbeRun run = options.run_probe(sink.so_far());
+    if (run.error.empty()) sink.rest_at(run.rest_mm);
+    return run;
+  };
+}
+
+}  // namespace
+
 // The calls become segments as they are made: none is held.
 GcodeResult parse_gcode(std::string_view text, const GcodeOptions& options) {
-  const CanonSetup setup = machine_setup(options);
+  CanonSetup setup = machine_setup(options);
   CanonSegmentSink sink(setup.start_machine_mm, options);
+  connect_probe(setup, sink, options);
   const CanonRun run = interpret_canon_to(text, setup, [&sink](const CanonCall& call) { sink(call); });
   return sink.finish(run);
 }
 
 GcodeResult parse_gcode_file(const std::string& path, const GcodeOptions& options) {
-  const CanonSetup setup = machine_setup(options);
+  CanonSetup setup = machine_setup(options);
   CanonSegmentSink sink(setup.start_machine_mm, options);
+  connect_probe(setup, sink, options);
   const CanonRun run = interpret_canon_file_to(path, setup, [&sink](const CanonCall& call) { sink(call); });
   return sink.finish(run);
 }

@@ -7,6 +7,7 @@
 // line (and the column where the interpreter found it) and no segment is
 // returned.
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +24,8 @@ namespace tnv::gcode {
 
 using fw::motion::PlanePoint;
 
+struct GcodeProgram;
+
 struct GcodeOptions {
   PlanePoint start_mm{};           // where the machine is when the program starts (machine X Y Z)
   double rapid_feed_mm_s = 50.0;   // G0 path speed
@@ -34,6 +37,11 @@ struct GcodeOptions {
   // where the machine is (start_mm: the
   // from_line's own machine_position_mm is replaced).
   CanonSetup canon{};
+  // A machine run's probe input: runs the program's segments so far, the
+  // last a probe move (Segment::probe), and returns the probe's outcome;
+  // the rest of the program is interpreted from it (docs/gcode.md "Probe
+  // moves"). Unset: a probe line is refused.
+  std::function<ProbeRun(const GcodeProgram& so_far)> run_probe;
 };
 
 // Why a program pauses (a Segment::pause): the operator continues it.
@@ -66,6 +74,7 @@ struct GcodeProgram {
   std::size_t spindle_changes = 0;  // spindle elements sent (starts, new speeds, stops)
   // Calls this machine has nothing to do with (no coolant): counted and reported, not sent.
   std::size_t coolant_starts = 0;  // M7, M8
+  std::size_t probes = 0;          // probe moves (G38.x) run on the machine
   double programmed_length_mm() const noexcept;
   // Sum of length / feed over the moves (rapids at the rapid feed); dwells add their time.
   double programmed_time_s() const noexcept;

@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <thread>
 
 #include "emulator/cutting_at_tool.hpp"
+#include "tools/gcode/probe_outcome.hpp"
 #include "tools/hil/command_status_text.hpp"
 #include "tools/hil/feed_start_judge.hpp"
 #include "tools/hil/hil_rig.hpp"
@@ -67,18 +69,10 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   parse.rapid_feed_mm_s = options.rapid_feed_mm_s;
   parse.limits = task.motion().limits();
   parse.canon = options.canon;
-  const gcode::GcodeResult parsed = gcode::parse_gcode(gcode_text, parse);
-  if (parsed.error) {
-    result.error = gcode::to_string(*parsed.error);
-    return result;
-  }
-  const gcode::GcodeProgram& program = parsed.program;
-  result.programmed_length_mm = program.programmed_length_mm();
 
   std::vector<PathSample> samples;
-  samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
   samples.push_back(sample_of(task.last_record()));
-  ProgramFeeder feeder(program.segments);
+  std::optional<ProgramFeeder> feeder;
   FeedStartJudge judge;
   const std::uint64_t done_before = task.motion().stats().segments_done;
   const emu::CuttingAtTool* tool_cut = rig->machine.cutting_at_tool();
@@ -91,20 +85,25 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     h.window = w;
     result.holds.push_back(h);
   }
-  const auto max_ticks = static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000 +
-                         static_cast<std::int64_t>(program.pauses.size()) * resume_ticks +
-                         static_cast<std::int64_t>(std::ceil(holds_s / kTickPeriodS));
+  const auto hold_ticks = static_cast<std::int64_t>(std::ceil(holds_s / kTickPeriodS));
+  const auto max_ticks = [&](const gcode::GcodeProgram& program) {
+    return static_cast<std::int64_t>(program.programmed_time_s() * 3000.0) + 10'000 +
+           static_cast<std::int64_t>(program.pauses.size()) * resume_ticks + hold_ticks;
+  };
+  std::int64_t ticks = 0;
   std::int64_t paused_ticks = -1;  // >= 0 while the task rests at a pause
   bool held = false;
   std::size_t hold_index = 0;      // the window of the hold on now (or the last one)
-  for (std::int64_t k = 0; k < max_ticks; ++k) {
+  enum class Step { go, stop, error };  // stop: faulted or ended; error: result.error says why
+  // One tick of `program` as read so far.
+  const auto step = [&](const gcode::GcodeProgram& program) {
     // The operator's hold switch, as COMMAND feed_hold / feed_resume set it on the node.
-    const double t_s = static_cast<double>(k) * kTickPeriodS;
+    const double t_s = static_cast<double>(ticks) * kTickPeriodS;
     if (const bool want = gcode::feed_held_at(options.feed_holds, t_s); want != held) {
       if (const fw::CommandStatus st = task.feed_hold(want); st != fw::CommandStatus::ok) {
         result.error = std::string(want ? "feed hold" : "feed resume") + " at " + std::to_string(t_s) +
                        " s refused: " + command_status_text(st, task);
-        return result;
+        return Step::error;
       }
       held = want;
       if (held) {
@@ -116,15 +115,15 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
       }
     }
     // Stream as a host would: as many segments as there are free slots.
-    if (!feeder.feed(task)) {
-      const fw::motion::SegmentRefusal why = feeder.last_refusal();
-      result.error = "segment of line " + std::to_string(program.segments[feeder.next_index()].tag) + " refused: " +
-                     command_status_text(feeder.last_status(), task) +
+    if (!feeder->feed(task)) {
+      const fw::motion::SegmentRefusal why = feeder->last_refusal();
+      result.error = "segment of line " + std::to_string(program.segments[feeder->next_index()].tag) + " refused: " +
+                     command_status_text(feeder->last_status(), task) +
                      (why != fw::motion::SegmentRefusal::none ? std::string(" (") + fw::motion::to_string(why) + ")"
                                                                : std::string());
-      return result;
+      return Step::error;
     }
-    result.segments = feeder.next_index();
+    result.segments = feeder->next_index();
     rig->tick();
     judge.observe(rig->machine, static_cast<std::size_t>(task.motion().stats().segments_done - done_before));
     if (tool_cut != nullptr) result.tool_force_max_n = std::max(result.tool_force_max_n, tool_cut->force().force_n());
@@ -146,11 +145,11 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
         result.pauses.back().paused_s = static_cast<double>(paused_ticks) * kTickPeriodS;
         if (const fw::CommandStatus st = task.cycle_start(); st != fw::CommandStatus::ok) {
           result.error = "cycle start refused: " + command_status_text(st, task);
-          return result;
+          return Step::error;
         }
         paused_ticks = -1;
       }
-      continue;  // the operator's wait is not scored
+      return Step::go;  // the operator's wait is not scored
     }
     if (held) {
       result.held_s += kTickPeriodS;
@@ -165,8 +164,43 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
     }
     samples.push_back(sample_of(task.last_record()));
     if (options.keep_samples) result.path_speed_mm_s.push_back(task.motion().path_speed_mm_s());
-    if (task.state() == fw::MotionState::faulted) break;
-    if (feeder.closed() && task.state() == fw::MotionState::holding) break;
+    if (task.state() == fw::MotionState::faulted) return Step::stop;
+    if (feeder->closed() && task.state() == fw::MotionState::holding) return Step::stop;
+    return Step::go;
+  };
+  // A probe move (the last segment read): run what is read until its outcome.
+  parse.run_probe = [&](const gcode::GcodeProgram& so_far) {
+    gcode::ProbeRun run;
+    if (!feeder) feeder.emplace(so_far.segments);
+    feeder->follow(so_far.segments, true);
+    const std::uint32_t count_before = task.probe_report().count;
+    while (task.probe_report().count == count_before) {
+      const Step s = ticks < max_ticks(so_far) ? step(so_far) : Step::stop;
+      ++ticks;
+      if (s == Step::error) run.error = result.error;
+      else if (s == Step::stop)
+        run.error = task.state() == fw::MotionState::faulted
+                        ? "fault: " + command_status_text(fw::CommandStatus::faulted, task)
+                        : std::string("the probe move did not end in three times its programmed time");
+      if (!run.error.empty()) return run;
+    }
+    const fw::ProbeReport& p = task.probe_report();
+    return gcode::probe_run(p.outcome, so_far.segments.back().probe, p.trip_mm, p.rest_mm);
+  };
+  const gcode::GcodeResult parsed = gcode::parse_gcode(gcode_text, parse);
+  if (parsed.error) {
+    result.error = gcode::to_string(*parsed.error);
+    return result;
+  }
+  const gcode::GcodeProgram& program = parsed.program;
+  result.programmed_length_mm = program.programmed_length_mm();
+  samples.reserve(static_cast<std::size_t>(program.programmed_time_s() * 1100.0) + 1000);
+  if (!feeder) feeder.emplace(program.segments);
+  feeder->follow(program.segments, false);
+  for (; ticks < max_ticks(program); ++ticks) {
+    const Step s = step(program);
+    if (s == Step::error) return result;
+    if (s == Step::stop) break;
   }
   for (PathHold& h : result.holds)
     if (!std::isfinite(h.spindle_rpm_min_held)) h.spindle_rpm_min_held = 0.0;
@@ -183,7 +217,7 @@ PathRunResult run_path(const emu::Scenario& scenario, const fw::FirmwareConfig& 
   if (task.state() == fw::MotionState::faulted) {
     result.faulted = true;
     result.error = "fault: " + command_status_text(fw::CommandStatus::faulted, task);
-  } else if (!feeder.closed() || task.state() != fw::MotionState::holding) {
+  } else if (!feeder->closed() || task.state() != fw::MotionState::holding) {
     result.timed_out = true;
     result.error = "the program did not finish in three times its programmed time";
   } else {

@@ -3,9 +3,9 @@
 namespace tnv::hil {
 
 bool ProgramFeeder::feed(fw::TickTask& task) noexcept {
-  while (next_ < segments_.size() && task.motion().free_slots() > 0) {
+  while (next_ < segments_->size() && task.motion().free_slots() > 0) {
     fw::motion::SegmentRefusal why = fw::motion::SegmentRefusal::none;
-    status_ = task.push_segment(segments_[next_], why);
+    status_ = task.push_segment((*segments_)[next_], why);
     if (status_ != fw::CommandStatus::ok) {
       ++refused_;
       why_ = why;
@@ -13,7 +13,7 @@ bool ProgramFeeder::feed(fw::TickTask& task) noexcept {
     }
     ++next_;
   }
-  if (all_pushed() && !closed_) closed_ = task.end_program() == fw::CommandStatus::ok;
+  if (all_pushed() && !closed_ && !more_to_come_) closed_ = task.end_program() == fw::CommandStatus::ok;
   return true;
 }
 

@@ -15,11 +15,18 @@ namespace tnv::hil {
 
 class ProgramFeeder {
  public:
-  explicit ProgramFeeder(const std::vector<fw::motion::Segment>& segments) : segments_(segments) {}
+  explicit ProgramFeeder(const std::vector<fw::motion::Segment>& segments) : segments_(&segments) {}
+  // A program still being read (it waits at a probe move for the outcome):
+  // the list grows and the program is not ended until more_to_come is false;
+  // `segments` may be another list that starts with the same segments.
+  void follow(const std::vector<fw::motion::Segment>& segments, bool more_to_come) noexcept {
+    segments_ = &segments;
+    more_to_come_ = more_to_come;
+  }
   // Pushes while the queue has room; false if a segment was refused (its
   // index next_index(), the status and the queue's reason kept).
   bool feed(fw::TickTask& task) noexcept;
-  bool all_pushed() const noexcept { return next_ == segments_.size(); }
+  bool all_pushed() const noexcept { return next_ == segments_->size(); }
   bool closed() const noexcept { return closed_; }  // end_program() was taken
   std::size_t next_index() const noexcept { return next_; }  // segments pushed so far
   std::uint32_t refused() const noexcept { return refused_; }
@@ -27,7 +34,8 @@ class ProgramFeeder {
   fw::motion::SegmentRefusal last_refusal() const noexcept { return why_; }
 
  private:
-  const std::vector<fw::motion::Segment>& segments_;
+  const std::vector<fw::motion::Segment>* segments_;
+  bool more_to_come_ = false;
   std::size_t next_ = 0;
   bool closed_ = false;
   std::uint32_t refused_ = 0;

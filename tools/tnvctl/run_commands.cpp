@@ -20,6 +20,7 @@
 #include "tools/can_emu/emulated_bus.hpp"
 #include "tools/hil/feed_start_judge.hpp"
 #include "tools/cli/gcode_setup_options.hpp"
+#include "tools/gcode/probe_outcome.hpp"
 #include "tools/score/score_json.hpp"
 #include "tools/tnvctl/commands.hpp"
 
@@ -80,6 +81,7 @@ void check_run(const RunOptions& o) {
   gcode::GcodeOptions g;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
   g.canon = run_setup(o);
+  g.run_probe = gcode::untouched_probe;  // read as if no probe tripped: the run reads on from each result
   for (fw::motion::AxisLimits& a : g.limits.axis) {
     a.speed_mm_s = 1e9;
     a.position_min_mm = -1e9;
@@ -358,8 +360,11 @@ constexpr const char* kRunHelp =
     "  LinuxCNC's RS274/NGC dialect, as `tnvctl gcode canon` reads it (docs/gcode.md): work offsets, tools,\n"
     "  parameters, O-word subroutines and flow, cutter compensation. --tool-table, --var-file and\n"
     "  --subroutine-path as for `tnvctl gcode canon`. Moves are in X, Y and Z (G43's tool length counts in Z;\n"
-    "  a G17 arc with a Z end is a helix); an arc outside G17 (G18, G19), rigid tapping, a probe move, a G5.1\n"
-    "  spline are refused with their line. M0, M1 (with --optional-stop on, the default) and M6 (a manual tool change)\n"
+    "  a G17 arc with a Z end is a helix); rigid tapping and a G5.1 spline are refused with their line. A probe\n"
+    "  move (G38.2-G38.5) runs: what precedes it is sent, the node's PROBE_RESULT awaited, #5061-#5070 set\n"
+    "  from it and the rest read from where the table rests (a G38.2/G38.4 that does not trip stops the\n"
+    "  program at its line; docs/gcode.md \"Probe moves\"); before the run, such a program is parsed as if no\n"
+    "  probe tripped. M0, M1 (with --optional-stop on, the default) and M6 (a manual tool change)\n"
     "  pause the program: see PAUSES. S, M3, M4 and M5 start and stop the spindle where the program reaches\n"
     "  them (at rest; feed moves wait for it at speed); coolant (M7/M8) is counted and not sent. The program\n"
     "  ends at M2, M30, the closing % or the end of the file.\n"
