@@ -3,13 +3,18 @@
 // stock's own faces. Down onto the top face and sideways onto a side face:
 // the reported trip position lies within one tick's travel at the probe's
 // feed (the input and the encoders are latched together once per tick)
-// and a count of the encoder of the face.
+// and a count of the encoder of where the stylus ball touches the face.
+// The probe is a touch probe's stylus, not the end mill: the machine cuts
+// where the tool is, and a tool point resting in the stock with the
+// spindle stopped is a crash (reference plant), so the ball (0.5 mm) trips
+// before the shank's point reaches the stock and it rests clear of it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <memory>
 
+#include "emulator/cutting_at_tool.hpp"
 #include "emulator/scenario_file.hpp"
 #include "tests/hil/hil_rig.hpp"
 
@@ -22,6 +27,8 @@ constexpr double kTop_mm = -160.0;     // the stock's top face (tool point)
 constexpr double kSideX_mm = 3.0;      // its side face at X max (the table powers up at X = 6)
 constexpr double kFeed_mm_s = 2.0;     // the probe's feed
 constexpr double kTick_s = 1e-3;
+constexpr double kTip_mm = 0.5;            // the stylus ball's radius around the tool point
+constexpr double kShankDiameter_mm = 0.8;  // the "tool" in the spindle: the probe's shank
 
 emu::Scenario with_stock() {
   emu::Scenario s = *emu::builtin_scenario("no-cut");
@@ -29,6 +36,8 @@ emu::Scenario with_stock() {
   s.stock.top_mm = kTop_mm;
   s.stock.x_min_mm = -50.0;
   s.stock.x_max_mm = kSideX_mm;
+  s.probe.tip_radius_mm = kTip_mm;
+  s.tool.diameter_mm = kShankDiameter_mm;
   return s;
 }
 
@@ -82,12 +91,13 @@ TEST(ProbeOnMachine, DownOntoTheTopFaceAndSidewaysOntoASideFace) {
   // beyond it: feed x 1 ms = 2 um, plus a count (0.42 um) of rounding.
   const double tolerance_z_mm = kFeed_mm_s * kTick_s + count_mm(*rig, kZ);
   const double trip_tool_z_mm = p.trip_mm[kZ] - tool_mm;
-  EXPECT_LE(trip_tool_z_mm, kTop_mm + count_mm(*rig, kZ));
-  EXPECT_GE(trip_tool_z_mm, kTop_mm - tolerance_z_mm)
-      << "tripped " << (kTop_mm - trip_tool_z_mm) * 1e3 << " um below the top face";
+  const double touch_z_mm = kTop_mm + kTip_mm;  // the tool point when the ball touches the top
+  EXPECT_LE(trip_tool_z_mm, touch_z_mm + count_mm(*rig, kZ));
+  EXPECT_GE(trip_tool_z_mm, touch_z_mm - tolerance_z_mm)
+      << "tripped " << (touch_z_mm - trip_tool_z_mm) * 1e3 << " um past the ball's touch";
   const double rest_tool_z_mm = rig->machine.truth(hal::Axis::z).position_mm - tool_mm;
-  EXPECT_LT(rest_tool_z_mm, kTop_mm) << "it rests in contact";
-  EXPECT_GT(rest_tool_z_mm, kTop_mm - 1.0) << "it did not stop within its braking distance";
+  EXPECT_LT(rest_tool_z_mm, touch_z_mm) << "it rests in contact";
+  EXPECT_GT(rest_tool_z_mm, kTop_mm) << "the point stopped clear of the stock (within the ball)";
   EXPECT_TRUE(rig->task.program_running());
 
   // Up 5 mm and beside the stock: 1 mm below the top at X = 6 (3 mm off the side face).
@@ -109,9 +119,11 @@ TEST(ProbeOnMachine, DownOntoTheTopFaceAndSidewaysOntoASideFace) {
   ASSERT_EQ(p.outcome, motion::ProbeOutcome::tripped);
   EXPECT_EQ(p.tag, 9u);
   const double tolerance_x_mm = kFeed_mm_s * kTick_s + count_mm(*rig, kX);
-  EXPECT_LE(p.trip_mm[kX], kSideX_mm + count_mm(*rig, kX));
-  EXPECT_GE(p.trip_mm[kX], kSideX_mm - tolerance_x_mm)
-      << "tripped " << (kSideX_mm - p.trip_mm[kX]) * 1e3 << " um inside the side face";
+  const double touch_x_mm = kSideX_mm + kTip_mm;
+  EXPECT_LE(p.trip_mm[kX], touch_x_mm + count_mm(*rig, kX));
+  EXPECT_GE(p.trip_mm[kX], touch_x_mm - tolerance_x_mm)
+      << "tripped " << (touch_x_mm - p.trip_mm[kX]) * 1e3 << " um past the ball's touch";
+  EXPECT_EQ(rig->machine.cutting_at_tool()->crashes().count(), 0u) << "the stylus never cut";
   EXPECT_NEAR(p.trip_mm[kZ] - tool_mm, kTop_mm - 1.0, 0.01) << "Z held while probing sideways";
 
   // A probe that starts in contact is refused and the program stops.

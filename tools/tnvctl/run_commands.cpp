@@ -14,11 +14,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "emulator/cutting_at_tool.hpp"
 #include "tools/can/operator_console.hpp"
 #include "tools/can/program_run.hpp"
+#include "tools/can_emu/cut_watch.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
-#include "tools/hil/feed_start_judge.hpp"
 #include "tools/cli/gcode_setup_options.hpp"
 #include "tools/gcode/probe_outcome.hpp"
 #include "tools/score/score_json.hpp"
@@ -160,69 +159,20 @@ void report_score(const hil::PathScore& s, std::uint64_t underruns, Report& repo
   report.line(buf);
   report.data.update(hil::path_score_json(s));
 }
-
-// --emu: the machine's own judgement of the cut, every tick of the run
-// (crashes from the emulator's log; feed moves started before the spindle
-// was at speed: tools/hil/feed_start_judge.hpp). Nothing on a real bus.
-class CutWatch {
- public:
-  explicit CutWatch(can_host::EmulatedBus* bus) : bus_(bus) {
-    if (bus_ == nullptr) return;
-    const hil::HilRig& rig = bus_->rig();
-    crashes_before_ = crashes();
-    done_before_ = rig.task.motion().stats().segments_done;
-    bus_->set_step_observer([this, &rig] {
-      judge_.observe(rig.machine, static_cast<std::size_t>(rig.task.motion().stats().segments_done - done_before_));
-    });
-  }
-  ~CutWatch() {
-    if (bus_ != nullptr) bus_->set_step_observer({});
-  }
-  CutWatch(const CutWatch&) = delete;
-  CutWatch& operator=(const CutWatch&) = delete;
-
-  bool on() const noexcept { return bus_ != nullptr; }
-  std::uint64_t crashes() const noexcept {
-    const emu::CuttingAtTool* cut = bus_ != nullptr ? bus_->rig().machine.cutting_at_tool() : nullptr;
-    return cut != nullptr ? cut->crashes().count() - crashes_before_ : 0;
-  }
-  const emu::CrashEvent* first_crash() const noexcept {
-    const emu::CuttingAtTool* cut = bus_->rig().machine.cutting_at_tool();
-    if (cut == nullptr || crashes() == 0 || crashes_before_ >= emu::SpindleCrashLog::kKept) return nullptr;
-    return &cut->crashes().event(static_cast<std::size_t>(crashes_before_));
-  }
-  hil::FeedStartCount feed_starts(const can_host::WireProgram& wire) const {
-    std::vector<fw::motion::Segment> elements;
-    elements.reserve(wire.elements.size());
-    for (const can_host::WireElement& e : wire.elements) elements.push_back(e.segment);
-    return judge_.count(elements);
-  }
-
- private:
-  can_host::EmulatedBus* bus_;
-  hil::FeedStartJudge judge_;
-  std::uint64_t crashes_before_ = 0;
-  std::uint64_t done_before_ = 0;
-};
-
 // The cut's judgement into the report; a crash fails the run.
-void report_cut(const CutWatch& watch, const can_host::ProgramRunResult& r, Report& report) {
+void report_cut(const can_host::CutWatch& watch, const can_host::ProgramRunResult& r, Report& report) {
   if (!watch.on()) return;
-  const hil::FeedStartCount starts = watch.feed_starts(r.wire);
-  report.data["crashes"] = watch.crashes();
-  report.data["feed_before_at_speed"] = starts.feed_before_at_speed;
-  report.data["feed_onsets"] = starts.feed_onsets;
+  const can_host::CutJudgement cut = watch.judge(r.wire);
+  report.data["crashes"] = cut.crashes;
+  report.data["feed_before_at_speed"] = cut.feed_before_at_speed;
+  report.data["feed_onsets"] = cut.feed_onsets;
   char buf[200];
   std::snprintf(buf, sizeof buf, "crashes %llu   feed moves before the spindle was at speed %u (of %u feed starts)",
-                static_cast<unsigned long long>(watch.crashes()), starts.feed_before_at_speed, starts.feed_onsets);
+                static_cast<unsigned long long>(cut.crashes), cut.feed_before_at_speed, cut.feed_onsets);
   report.line(buf);
-  if (watch.crashes() == 0) return;
+  if (cut.crashes == 0) return;
   std::string message = "crash: the tool entered the stock with the spindle stopped or slow";
-  if (const emu::CrashEvent* e = watch.first_crash()) {
-    std::snprintf(buf, sizeof buf, " at (%.3f, %.3f, %.3f) mm, spindle %.0f rpm of %.0f commanded", e->x_mm, e->y_mm,
-                  e->z_mm, e->spindle_rpm, e->commanded_rpm);
-    message.append(buf);
-  }
+  if (cut.first_crash) message.append(" ").append(*cut.first_crash);
   throw RunFailed(message);
 }
 
@@ -258,7 +208,7 @@ int run_program_file(const RunOptions& o, Session& session, Report& report) {
     if (o.resume_after_s) return static_cast<double>(paused_for.count()) * 1e-6 >= *o.resume_after_s;
     return console.take_enter();
   };
-  const CutWatch watch(session.is_emulated() ? session.emulated() : nullptr);
+  const can_host::CutWatch watch(session.is_emulated() ? session.emulated() : nullptr);
   g_run_interrupted = false;
   auto previous = std::signal(SIGINT, on_run_interrupt);
   can_host::ProgramRunResult r;
