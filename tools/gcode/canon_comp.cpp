@@ -74,7 +74,7 @@ void CanonMachine::comp_on(const NgcBlock& block, const NgcCode& g) {
       if (whole != 0.0) tool = static_cast<int>(std::fmin(whole, 2e9));
     }
     if (tool != 0) {
-      const ToolEntry* e = setup_.tools.find(tool);
+      const ToolEntry* e = tools_.find(tool);
       if (!e) throw NgcError(block.has('d') ? block.column('d') : g.column, "requested tool " + std::to_string(tool) + " not found in the tool table");
       if (plane_ != 180 && e->orientation != 0 && e->orientation != 9)
         throw NgcError(g.column, name + " with a lathe tool (orientation " + std::to_string(e->orientation) + ") needs the XZ plane (G18)");

@@ -39,6 +39,7 @@ CanonMachine::SavedModes CanonMachine::current_modes() const {
   s.control_p = control_p_;
   s.control_q = control_q_;
   s.retract_old_z = retract_old_z_;
+  s.inverse_time = inverse_time_;
   return s;
 }
 
@@ -75,6 +76,7 @@ void CanonMachine::restore_modes(const SavedModes& saved, int column) {
   std::vector<NgcBlock> blocks(2);  // the units, then the modes
   if (saved.unit_mm != unit_mm_) blocks[0].g.push_back(code(saved.unit_mm == 1.0 ? 210 : 200));
   NgcBlock& b = blocks[1];
+  if (saved.inverse_time != inverse_time_) b.g.push_back(code(saved.inverse_time ? 930 : 940));
   if (saved.feed != feed_) set_word(b, 'f', saved.feed);
   if (saved.speed != speed_) set_word(b, 's', saved.speed);
   if (saved.plane != plane_) b.g.push_back(code(saved.plane));

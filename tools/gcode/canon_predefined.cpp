@@ -44,8 +44,8 @@ std::optional<double> CanonMachine::predefined(const std::string& name) const {
       {"_imperial", flag(unit_mm_ != 1.0)},
       {"_absolute", flag(absolute_)},
       {"_incremental", flag(!absolute_)},
-      {"_inverse_time", 0.0},  // G93 is refused here
-      {"_units_per_minute", 1.0},
+      {"_inverse_time", flag(inverse_time_)},
+      {"_units_per_minute", flag(!inverse_time_)},
       {"_units_per_rev", 0.0},
       {"_coord_system", kCoordSystem[origin_ - 1]},
       {"_tool_offset", flag(tool_length_ != 490)},
@@ -84,7 +84,7 @@ double CanonMachine::read_only_number(int number) const {
   if (number == 5400) return tool_in_spindle_;
   // #5401-#5413: the tool table's entry for the tool in the spindle, as the
   // table holds it (this machine's table is in millimetres).
-  const ToolEntry* tool = setup_.tools.find(tool_in_spindle_);
+  const ToolEntry* tool = tools_.find(tool_in_spindle_);
   if (tool == nullptr) return 0.0;
   if (number <= 5409) return tool->offset[number - 5401];
   if (number == 5410) return tool->diameter;

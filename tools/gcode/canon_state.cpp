@@ -38,7 +38,7 @@ int g_group(int code) {
     case 170: case 180: case 190: return 2;
     case 900: case 910: return 3;
     case 901: case 911: return 4;
-    case 940: return 5;
+    case 930: case 940: return 5;
     case 200: case 210: return 6;
     case 400: case 410: case 420: case 411: case 421: return 7;
     case 430: case 431: case 490: return 8;
@@ -50,9 +50,7 @@ int g_group(int code) {
 }
 
 std::string unsupported_g(int code) {
-  std::string why;
-  if (code == 930) why = " (inverse-time feed is not supported yet)";
-  return "unsupported G-code " + g_text(code) + why;
+  return "unsupported G-code " + g_text(code);
 }
 
 int m_group(int code) {
@@ -76,7 +74,7 @@ std::string fixed(double v, int decimals) {
 
 
 CanonMachine::CanonMachine(const CanonSetup& setup, const CanonSink& sink)
-    : setup_(setup), sink_(sink), params_(setup.parameters) {
+    : setup_(setup), sink_(sink), params_(setup.parameters), tools_(setup.tools) {
   params_.set_machine(this);
 }
 
@@ -300,10 +298,18 @@ void CanonMachine::move_feed(const Vec3& to, int column) {
   pos_ = canon_pos_ = to;
 }
 
+void CanonMachine::inverse_time_rate(const NgcBlock& block, double length_mm) {
+  const double rate = std::max(0.1, length_mm / unit_mm_ * block.value('f'));  // program units per minute
+  feed_ = rate;
+  emit("SET_FEED_RATE(" + fixed(rate, 4) + ")", valued(CanonMotion::Kind::feed_rate, rate * unit_mm_));
+}
+
 void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column) {
   if (arc_not_allowed_)
     throw NgcError(column, "the move just after turning cutter radius compensation off (G40) must be straight, not an arc");
-  if (feed_ <= 0.0) throw NgcError(column, "cannot make an arc with zero feed rate (F)");
+  if (inverse_time_ && !block.has('f'))
+    throw NgcError(column, "inverse-time feed (G93): an arc needs its own F on its line");
+  if (!inverse_time_ && feed_ <= 0.0) throw NgcError(column, "cannot make an arc with zero feed rate (F)");
   // (first, second, axis) as LinuxCNC orders them per plane.
   std::size_t i1 = 0, i2 = 1, ia = 2;
   if (plane_ == 180) { i1 = 2; i2 = 0; ia = 1; }
@@ -311,6 +317,7 @@ void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, i
   const char other = plane_ == 170 ? 'k' : plane_ == 180 ? 'j' : 'i';
   if (block.has(other)) throw NgcError(block.column(other), std::string("word ") + static_cast<char>(std::toupper(other)) + " is not in the arc's plane");
   if (comp_active()) {  // only ever on in G17 or G18, the plane it was turned on in
+    if (inverse_time_) throw NgcError(column, "an arc in inverse-time feed (G93) with cutter radius compensation is not supported");
     comp_arc(block, clockwise, end, column);
     return;
   }
@@ -322,6 +329,22 @@ void CanonMachine::arc(const NgcBlock& block, bool clockwise, const Vec3& end, i
   m.centre_mm = program_to_machine(centre);
   m.plane = plane_ / 10;
   m.turn = fit.turn;
+  if (inverse_time_) {  // LinuxCNC's find_arc_length: the radius at the start, turns, the helix's rise
+    const double radius = std::hypot(pos_[i1] - fit.c1, pos_[i2] - fit.c2);
+    const double alpha = std::atan2(pos_[i2] - fit.c2, pos_[i1] - fit.c1);
+    double beta = std::atan2(end[i2] - fit.c2, end[i1] - fit.c1);
+    double theta = 0.0;
+    if (fit.turn > 0) {
+      if (beta <= alpha) beta += 2.0 * std::numbers::pi;
+      theta = beta - alpha + (fit.turn - 1) * 2.0 * std::numbers::pi;
+    } else {
+      double a = alpha;
+      if (a <= beta) a += 2.0 * std::numbers::pi;
+      theta = beta - a + (fit.turn + 1) * 2.0 * std::numbers::pi;
+    }
+    const double rise = end[ia] - pos_[ia];
+    inverse_time_rate(block, rise == 0.0 ? radius * std::fabs(theta) : std::hypot(radius * theta, rise));
+  }
   emit("ARC_FEED(" + num(end[i1]) + ", " + num(end[i2]) + ", " + num(fit.c1) + ", " + num(fit.c2) + ", " +
        std::to_string(fit.turn) + ", " + num(end[ia]) + ", 0.0000, 0.0000, 0.0000)", m);
   pos_ = canon_pos_ = end;
@@ -388,6 +411,7 @@ void CanonMachine::spline(const NgcBlock& block, const Vec3& to, int column) {
   if (!block.has('i') || !block.has('j'))
     throw NgcError(block.has('i') ? block.column('i') : block.has('j') ? block.column('j') : column,
                    "G5.1 needs both I and J (the control point)");
+  if (inverse_time_) throw NgcError(column, "G5.1 splines in inverse-time feed (G93) are not supported: G94 and an F first");
   if (feed_ <= 0.0) throw NgcError(column, "cannot do G5.1 with zero feed rate (F)");
   emit("NURBS_FEED(3, ...)", move_to(CanonMotion::Kind::spline, to));
   pos_ = to;
@@ -401,6 +425,7 @@ void CanonMachine::spline(const NgcBlock& block, const Vec3& to, int column) {
 // #5064-#5069 zero and #5070 (tripped) 0.
 void CanonMachine::probe(int motion, const Vec3& to, int column) {
   comp_refuse(comp_side_ != 0, column, "probe (G38.x)");
+  if (inverse_time_) throw NgcError(column, "probe moves (G38.x) in inverse-time feed (G93): G94 and an F first");
   if (feed_ <= 0.0) throw NgcError(column, "cannot probe with zero feed rate (F)");
   // G38.2/G38.4 (an error if the probe does not change) need a move; G38.3/G38.5 may stay put.
   if ((motion == 382 || motion == 384) && to == pos_)
@@ -488,6 +513,7 @@ void CanonMachine::program_end(bool m30) {
   absolute_ = true;
   comp_side_ = 0;
   comp_first_ = true;
+  inverse_time_ = false;
   emit("SET_FEED_MODE(0, 0)");
   feed_ = 0.0;
   emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
@@ -513,15 +539,15 @@ void CanonMachine::check_words(const NgcBlock& block, int motion, int non_modal)
   const bool arc = motion == 20 || motion == 30;
   const bool cycle = is_cycle(motion);
   for (char c : {'i', 'j', 'k'})
-    if (block.has(c) && !arc && !(c == 'k' && motion == 331) && !(c != 'k' && motion == 51) && motion != 870)
+    if (block.has(c) && !arc && !(c == 'k' && motion == 331) && !(c != 'k' && (motion == 51 || non_modal == 100)) && motion != 870)
       throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with no G2, G3 or G87 to use it");
   if (block.has('r') && !arc && !cycle && non_modal != 100)
     throw NgcError(block.column('r'), "word R with no G2 or G3 to use it");
   if (block.has('l') && non_modal != 100 && !cycle && !has_code(block.g, 411) && !has_code(block.g, 421))
     throw NgcError(block.column('l'), "word L with no G10, G41.1, G42.1 or canned cycle to use it");
   if (block.has('h') && !has_code(block.g, 430)) throw NgcError(block.column('h'), "word H with no G43 to use it");
-  if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730)
-    throw NgcError(block.column('q'), "word Q with no G64, G73 or G83 to use it");
+  if (block.has('q') && !has_code(block.g, 640) && motion != 830 && motion != 730 && non_modal != 100)
+    throw NgcError(block.column('q'), "word Q with no G10, G64, G73 or G83 to use it");
   const bool cycle_dwell = motion == 820 || motion == 840 || motion == 860 || motion == 880 || motion == 890;
   if (block.has('p') && !(non_modal == 40 || non_modal == 100 || arc || cycle_dwell || has_code(block.g, 640)))
     throw NgcError(block.column('p'), "word P with no G4, G10, G64, arc or G82/G84/G86/G88/G89 to use it");
@@ -567,15 +593,20 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
 
   apply_assignments(block);  // settings take effect after the line is read
   run_comments(block);
-  if (const NgcCode* g = g_by_group[5]) {  // G94
-    (void)g;
-    emit("COMMENT(\"interpreter: feed mode set to units per minute\")");
-    emit("SET_FEED_MODE(0, 0)");
-    feed_ = 0.0;
-    emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
+  if (const NgcCode* g = g_by_group[5]) {
+    inverse_time_ = g->code == 930;
+    if (inverse_time_) {  // the rate is set per move (inverse_time_rate); F keeps the last one
+      emit("COMMENT(\"interpreter: feed mode set to inverse time\")");
+      emit("SET_FEED_MODE(0, 0)");
+    } else {
+      emit("COMMENT(\"interpreter: feed mode set to units per minute\")");
+      emit("SET_FEED_MODE(0, 0)");
+      feed_ = 0.0;
+      emit("SET_FEED_RATE(0.0000)", valued(CanonMotion::Kind::feed_rate, 0.0));
+    }
   }
-  if (block.has('f')) {
-    if (block.value('f') < 0.0) throw NgcError(block.column('f'), "negative feed rate F");
+  if (block.has('f') && block.value('f') < 0.0) throw NgcError(block.column('f'), "negative feed rate F");
+  if (block.has('f') && !inverse_time_) {
     feed_ = block.value('f');
     emit("SET_FEED_RATE(" + fixed(feed_, 4) + ")", valued(CanonMotion::Kind::feed_rate, feed_ * unit_mm_));
   }
@@ -587,7 +618,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   if (block.has('t')) {
     const int t = static_cast<int>(block.value('t'));
     if (t < 0) throw NgcError(block.column('t'), "negative tool number T");
-    if (t != 0 && !setup_.tools.find(t))
+    if (t != 0 && !tools_.find(t))
       throw NgcError(block.column('t'), "requested tool " + std::to_string(t) + " not found in the tool table");
     selected_tool_ = t;
     emit("SELECT_TOOL(" + std::to_string(t) + ")");
@@ -638,7 +669,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       const int tool = block.has('h') ? static_cast<int>(block.value('h')) : tool_in_spindle_;
       if (tool < 0) throw NgcError(block.column('h'), "negative tool number H");
       if (tool != 0) {
-        const ToolEntry* e = setup_.tools.find(tool);
+        const ToolEntry* e = tools_.find(tool);
         if (!e) throw NgcError(block.has('h') ? block.column('h') : g->column, "tool " + std::to_string(tool) + " not in the tool table");
         offset = {e->offset[0], e->offset[1], e->offset[2]};
       }
@@ -698,9 +729,17 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
   }
 
   // Group 0: G10, G28/G30, G92 family (G4 ran above, G53 modifies the motion).
-  if (non_modal == 100) {
-    const int l = block.has('l') ? static_cast<int>(block.value('l')) : -1;
-    if (l != 2 && l != 20) throw NgcError(block.has('l') ? block.column('l') : g_by_group[0]->column, "G10 needs L2 or L20 (L1, L10, L11 are not supported yet)");
+  const int g10_l = non_modal == 100 && block.has('l') ? static_cast<int>(block.value('l')) : -1;
+  if (non_modal == 100 && g10_l != 1 && g10_l != 2 && g10_l != 10 && g10_l != 11 && g10_l != 20)
+    throw NgcError(block.has('l') ? block.column('l') : g_by_group[0]->column, "G10 needs L1, L2, L10, L11 or L20");
+  if (g10_l == 1 || g10_l == 10 || g10_l == 11) {
+    setup_tool(block, g10_l, g_by_group[0]->column);
+  } else if (non_modal == 100) {
+    const int l = g10_l;
+    for (char c : {'i', 'j', 'q'})
+      if (block.has(c))
+        throw NgcError(block.column(c), std::string("word ") + static_cast<char>(std::toupper(c)) + " with G10 L" +
+                                            std::to_string(l) + " (I, J and Q are a tool's, for G10 L1, L10, L11)");
     if (!block.has('p')) throw NgcError(g_by_group[0]->column, "G10 L" + std::to_string(l) + " needs P (0 current, 1..9 G54..G59.3)");
     const double pv = block.value('p');
     if (pv < 0.0 || pv > 9.0 || std::floor(pv) != pv) throw NgcError(block.column('p'), "G10 P must be 0..9");
@@ -802,6 +841,15 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
        (block.has('i') || block.has('j') || block.has('k') || block.has('r')))) {
     const Vec3 to = target(block, machine);
     const int column = g_motion ? g_motion->column : 1;
+    if (motion == 10 && inverse_time_) {
+      if (!block.has('f')) throw NgcError(column, "inverse-time feed (G93): G1 needs its own F on its line");
+      // From the programmed point once compensation has entered (the extra corner arc is not counted), as LinuxCNC.
+      const Vec3& from = comp_active() && !comp_first_ ? programmed_ : pos_;
+      constexpr double kTinyProgramUnits = 1e-7;  // LinuxCNC's find_straight_length: no move below it
+      bool moves = false;
+      for (std::size_t a = 0; a < 3; ++a) moves = moves || std::fabs(to[a] - from[a]) > kTinyProgramUnits * unit_mm_;
+      inverse_time_rate(block, moves ? std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]) : 0.0);
+    }
     if ((motion == 0 || motion == 10) && comp_active()) {
       if (motion == 10 && feed_ <= 0.0) throw NgcError(column, "cannot do G1 with zero feed rate (F)");
       arc_not_allowed_ = false;
@@ -815,6 +863,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     else if (motion == 331) rigid_tap(block, to, column);
     else if (is_cycle(motion)) {
       comp_refuse(comp_side_ != 0, column, "use canned cycles");
+      if (inverse_time_) throw NgcError(column, "canned cycles in inverse-time feed (G93): G94 and an F first");
       canned_cycle(block, motion, column);
     }
   }

@@ -76,6 +76,11 @@ class CanonMachine : private NgcMachineValues {
   void emit_g92();
   void move_traverse(const Vec3& to);
   void move_feed(const Vec3& to, int column);
+  // G93: the feed rate of this move, length / (1 / F minutes), as
+  // SET_FEED_RATE before it (LinuxCNC's inverse_time_rate_*; 0.1 at least).
+  void inverse_time_rate(const NgcBlock& block, double length_mm);
+  // G10 L1 / L10 / L11: a tool table entry from the block (canon_tool_setup.cpp).
+  void setup_tool(const NgcBlock& block, int l, int column);
   void arc(const NgcBlock& block, bool clockwise, const Vec3& end, int column);
   // An arc's centre (plane coordinates, mm) and signed turns from a start
   // point, with LinuxCNC's checks of the I J K and R forms.
@@ -121,6 +126,7 @@ class CanonMachine : private NgcMachineValues {
     int control = 640;
     double control_p = 0.0, control_q = 0.0;
     bool retract_old_z = false;
+    bool inverse_time = false;  // G93
     bool auto_restore = false;  // M73
   };
   bool modal_state_code(const NgcBlock& block);  // true: the line was M70..M73 and ran
@@ -182,6 +188,7 @@ class CanonMachine : private NgcMachineValues {
   const CanonSetup& setup_;
   const CanonSink& sink_;
   NgcParameters params_;
+  ToolTable tools_;  // the setup's table as G10 L1/L10/L11 change it
   int line_ = 0;            // the line the calls made now are tagged with
   int source_line_ = 0;      // the line being read and run (#<_line>)
   std::uint32_t file_ = 0;   // the file line_ is in (CanonCall::file)
@@ -193,7 +200,8 @@ class CanonMachine : private NgcMachineValues {
   bool arc_absolute_ = false;  // G90.1
   int plane_ = 170;        // 170 180 190
   int motion_ = 800;       // G-code x 10; 800: none
-  double feed_ = 0.0;      // program units per minute, as given
+  double feed_ = 0.0;      // program units per minute, as given (G93: the last move's rate)
+  bool inverse_time_ = false;  // G93: each G1/G2/G3 gives its own F, 1/minutes
   double speed_ = 0.0;
   int spindle_ = 5;        // 3, 4, 5
   bool mist_ = false, flood_ = false;

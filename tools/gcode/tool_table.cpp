@@ -12,6 +12,7 @@ bool ToolTable::load_text(const std::string& text, std::string& error) {
   std::istringstream in(text);
   std::string line;
   int line_number = 0;
+  int index = 0;
   while (std::getline(in, line)) {
     ++line_number;
     const std::size_t semicolon = line.find(';');
@@ -55,6 +56,7 @@ bool ToolTable::load_text(const std::string& text, std::string& error) {
     if (!any) continue;
     if (!has_tool) return fail("a tool line without T<number>");
     if (loaded.count(e.tool) != 0) return fail("tool T" + std::to_string(e.tool) + " twice");
+    e.index = ++index;
     loaded[e.tool] = e;
   }
   tools_ = std::move(loaded);
@@ -64,6 +66,11 @@ bool ToolTable::load_text(const std::string& text, std::string& error) {
 const ToolEntry* ToolTable::find(int tool) const {
   const auto it = tools_.find(tool);
   return it == tools_.end() ? nullptr : &it->second;
+}
+
+void ToolTable::replace(const ToolEntry& entry) {
+  const auto it = tools_.find(entry.tool);
+  if (it != tools_.end()) it->second = entry;
 }
 
 }  // namespace tnv::gcode

@@ -78,10 +78,22 @@ TEST(GcodeProgram, NegativeRPicksTheArcOverHalfACircle) {
   EXPECT_NEAR(p.geometry[1].length_mm, 1.5 * std::numbers::pi * 10.0, 1e-9);
 }
 
+TEST(GcodeProgram, InverseTimeMovesRunAtTheirLengthOverTheirTime) {
+  // G93: 20 mm in 1/3 minute, then a half circle of radius 10 in 1/2
+  // minute; the rapid is unaffected, and G94 with F goes back to per minute.
+  const GcodeProgram p = parse_ok("G93\nG1 X20 F3\nG2 X40 Y0 I10 J0 F2\nG0 X0\nG94 F600\nG1 X5\n");
+  ASSERT_EQ(p.segments.size(), 4u);
+  EXPECT_NEAR(p.segments[0].feed_mm_s, 1.0, 1e-9);
+  EXPECT_NEAR(p.segments[1].feed_mm_s, 10.0 * std::numbers::pi / 30.0, 1e-9);
+  EXPECT_DOUBLE_EQ(p.segments[2].feed_mm_s, GcodeOptions{}.rapid_feed_mm_s);
+  EXPECT_DOUBLE_EQ(p.segments[3].feed_mm_s, 10.0);
+  EXPECT_NEAR(p.programmed_time_s(), 20.0 + 30.0 + 40.0 / GcodeOptions{}.rapid_feed_mm_s + 0.5, 1e-6);
+}
+
 TEST(GcodeProgram, ErrorsNameLineAndColumnAndUnsupportedWordsByName) {
-  GcodeError e = parse_error("G93\n");
+  GcodeError e = parse_error("G95\n");
   EXPECT_EQ(e.column, 1);
-  EXPECT_NE(e.message.find("G93"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("G95"), std::string::npos) << e.message;
 
   e = parse_error("G1 X1 F100\n  M62 P1\n");
   EXPECT_EQ(e.line, 2);

@@ -90,12 +90,23 @@ def run_tnvctl(tnvctl: str, program: Path, tool_table: Path, var_file: Path | No
     return Run(p.returncode == 0, p.stdout.splitlines() if p.returncode == 0 else [], p.stderr.strip())
 
 
+def _numbers(call: str, ours: bool) -> list[float]:
+    values = [float(x) for x in _NUMBER.findall(call)]
+    # SET_TOOL_TABLE_ENTRY(pocket, tool, 9 offsets, front, back, orientation)
+    # gives the offsets in the machine's units: millimetres for tnvctl,
+    # inches for the standalone rs274. Compared in inches.
+    if ours and call.startswith("SET_TOOL_TABLE_ENTRY(") and len(values) == 14:
+        values[2:11] = [v / MM_PER_INCH for v in values[2:11]]
+    return values
+
+
 def same_call(a: str, b: str) -> bool:
-    if a == b:
+    """a: tnvctl's call, b: rs274's."""
+    if a == b and not a.startswith("SET_TOOL_TABLE_ENTRY("):
         return True
     if _NUMBER.sub("#", a) != _NUMBER.sub("#", b):
         return False
-    return all(abs(float(x) - float(y)) <= TOLERANCE for x, y in zip(_NUMBER.findall(a), _NUMBER.findall(b)))
+    return all(abs(x - y) <= TOLERANCE for x, y in zip(_numbers(a, True), _numbers(b, False)))
 
 
 def first_difference(ours: list[str], theirs: list[str]) -> str | None:

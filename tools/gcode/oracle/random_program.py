@@ -6,10 +6,12 @@ G92, G28/G30, G53, canned cycles (G73, G81-G89 in G17, G18 and G19),
 cutter radius compensation (G41/G42/G41.1/G42.1
 contours of lines and arcs, G40 and a straight exit), parameters,
 expressions, comments and O-word control flow, and pallet changes (M60)
-between statements. Every program is valid by construction; each seed gives one program.
-The pallet changes are drawn from a stream of their own (seeded from the
-seed), so a seed's program is the one it gave before M60 was written, with
-the M60 lines added.
+between statements, tool table edits (G10 L1/L10/L11, after the first tool
+change) and inverse-time runs (G93 lines and full circles, then G94 F).
+Every program is valid by construction; each seed gives one program.
+The pallet changes, and the tool table edits and inverse-time runs, are
+drawn from streams of their own (seeded from the seed), so a seed's program
+is the one it gave before they were written, with their lines added.
 """
 from __future__ import annotations
 
@@ -25,6 +27,8 @@ class Generator:
     def __init__(self, seed: int, tool_count: int = 20):
         self.r = random.Random(seed)
         self.pallet = random.Random(f"M60 {seed}")  # M60's own stream: the other draws stay as they were
+        self.extra = random.Random(f"G10 L1 G93 {seed}")  # tool table edits and inverse time: a stream of their own too
+        self.tool_changed = False  # a T M6 ran (rs274 takes the table's first tool as loaded until then)
         self.tool_count = tool_count
         self.lines: list[str] = []
         self.absolute = True
@@ -141,6 +145,7 @@ class Generator:
         elif c == 6:
             t = self.r.randint(1, self.tool_count)
             self.lines.append(f"T{t} M6")
+            self.tool_changed = True
             offset = self.r.choice(["G43", f"G43 H{self.r.randint(1, self.tool_count)}", "G49"])
             self.length_offset = offset != "G49"
             self.lines.append(offset)
@@ -310,6 +315,44 @@ class Generator:
         p = self.pallet
         self.lines.append(p.choice(["M60", "M5 M60", f"G1 X{p.uniform(-5, 5):.4f} M60", f"G0 Y{p.uniform(-5, 5):.4f} M60"]))
 
+    def tool_edit(self) -> None:
+        # G10 L1 / L10 / L11 of a tool of the table, after the first tool change.
+        e = self.extra
+        if not self.tool_changed or e.random() >= 0.06:
+            return
+        s = self.scale()
+        words = "".join(f" {a}{e.uniform(-20 * s, 20 * s):.4f}" for a in AXES if e.random() < 0.5)
+        if e.random() < 0.4:
+            words += f" R{e.uniform(0.1 * s, 3 * s):.4f}"
+        if e.random() < 0.2:
+            words += f" I{e.uniform(-90, 90):.2f} J{e.uniform(-90, 90):.2f}"
+        if e.random() < 0.2:
+            words += f" Q{e.randint(0, 9)}"
+        self.lines.append(f"G10 L{e.choice([1, 1, 10, 11])} P{e.randint(1, self.tool_count)}{words or ' Z1'}")
+
+    def inverse_time(self) -> None:
+        # G93: feed moves each with their F, a full circle (a helix) in the
+        # plane in force, a rapid between; then G94 and a feed rate again.
+        e = self.extra
+        if e.random() >= 0.04:
+            return
+        s = self.scale()
+        first, second, normal, c1, c2 = PLANES[self.plane]
+        self.lines.append("G93")
+        for _ in range(e.randint(1, 3)):
+            kind = e.random()
+            if kind < 0.5:
+                axes = "".join(f" {a}{e.uniform(-10 * s, 10 * s):.4f}" for a in AXES if e.random() < 0.6)
+                self.lines.append(f"G1{axes} F{e.uniform(0.5, 20):.3f}")
+            elif kind < 0.8:
+                helix = f" {normal}{e.uniform(-3 * s, 3 * s):.4f}" if e.random() < 0.4 else ""
+                self.lines.append(f"G{e.choice([2, 3])} {c1}{e.uniform(1 * s, 5 * s):.4f} {c2}0{helix} F{e.uniform(0.5, 10):.3f}")
+            else:
+                self.lines.append(f"G0 {first}{e.uniform(-10 * s, 10 * s):.4f} {second}{e.uniform(-10 * s, 10 * s):.4f}")
+        # Ends in G1, as a feed move: a later bare X Y is a line again.
+        self.lines.append(f"G1 {first}{e.uniform(-10 * s, 10 * s):.4f} F{e.uniform(0.5, 20):.3f}")
+        self.lines.append(f"G94 F{e.uniform(100, 2000):.1f}")
+
     def program(self, statements: int) -> str:
         self.lines = ["(random program)", "G21 G17 G90 G94", f"F{self.num(100, 2000)}"]
         self.lines.append("o<sub1> sub")
@@ -322,6 +365,8 @@ class Generator:
                     self.lines.append("G91")
             self.statement()
             self.pallet_change()
+            self.tool_edit()
+            self.inverse_time()
         self.lines.append(self.r.choice(["M2", "M30"]))
         return "\n".join(self.lines) + "\n"
 

@@ -67,7 +67,13 @@ def test_var_file_offsets_agree(tnvctl, tables, tmp_path):
 def test_refusals_agree_with_rs274(tnvctl, tables, tmp_path):
     """Programs both refuse (a wrong word, a bad arc): neither runs them."""
     for k, text in enumerate(["G1 X1\nM2\n", "X1\nM2\n", "G0 X[1/0]\nM2\n", "G0 X#<nope>\nM2\n",
-                              "F10\nG2 X10 Y0 I1 J0\nM2\n", "G0 X1\n", "G0 G1 X1\nM2\n", "T99 M6\nM2\n"]):
+                              "F10\nG2 X10 Y0 I1 J0\nM2\n", "G0 X1\n", "G0 G1 X1\nM2\n", "T99 M6\nM2\n",
+                              # G10 L1/L10/L11: P missing, 0, not whole, not a tool; no word; Q not whole or > 9
+                              "G10 L1 Z1\nM2\n", "G10 L10 P0 Z1\nM2\n", "G10 L1 P2.4 Z1\nM2\n",
+                              "G10 L11 P99 Z1\nM2\n", "G10 L1 P2\nM2\n", "G10 L1 P2 Q2.5\nM2\n",
+                              "G10 L1 P2 Q10\nM2\n", "G10 L3 P2 Z1\nM2\n",
+                              # G93: a feed move or arc without its F; G93 and G94 on one line
+                              "G93 F10\nG1 X1\nM2\n", "G93\nG1 X1 F2\nG3 X0 Y1 R1\nM2\n", "G93 G94\nM2\n"]):
         program = tmp_path / f"refused{k}.ngc"
         program.write_text(text)
         theirs = canon_compare.run_rs274(program, tables[1])
