@@ -16,6 +16,7 @@
 
 #include "emulator/cutting_at_tool.hpp"
 #include "emulator/scenario_file.hpp"
+#include "emulator/scenario_validation.hpp"
 #include "tests/hil/hil_rig.hpp"
 
 namespace tnv::hil {
@@ -23,7 +24,7 @@ namespace {
 
 namespace motion = fw::motion;
 constexpr std::size_t kX = hal::index(hal::Axis::x), kZ = hal::index(hal::Axis::z);
-constexpr double kTop_mm = -160.0;     // the stock's top face (tool point)
+constexpr double kTop_mm = -155.0;     // the stock's top face (tool point; the gauge depths of [boring] must reach below it)
 constexpr double kSideX_mm = 3.0;      // its side face at X max (the table powers up at X = 6)
 constexpr double kFeed_mm_s = 2.0;     // the probe's feed
 constexpr double kTick_s = 1e-3;
@@ -42,6 +43,10 @@ emu::Scenario with_stock() {
 }
 
 std::unique_ptr<::tnv::test::HilRig> holding_rig(const emu::Scenario& s) {
+  // A Machine is built from a validated scenario (asserted in builds with assertions).
+  const std::string invalid = emu::validate_scenario(s);
+  EXPECT_EQ(invalid, "");
+  if (!invalid.empty()) return nullptr;
   auto rig = std::make_unique<::tnv::test::HilRig>(s);
   if (!rig->init_ok) return nullptr;
   for (int i = 0; i < 3; ++i) rig->tick();
