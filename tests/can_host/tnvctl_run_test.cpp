@@ -107,11 +107,11 @@ TEST(TnvctlRun, EmulatedRunScoresWithinTenPercentOfAnInProcessRunWithNoUnderrun)
 
 TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
   const auto state = test::state_dir("run_bad");
-  const auto bad = test::write_file(state / "bad.ngc", "G21 G90\nG1 X1 F100\n  G93 G1 X2\n");
+  const auto bad = test::write_file(state / "bad.ngc", "G21 G90\nG1 X1 F100\n  G95 G1 X2\n");
   // An interface that does not exist: reaching for the bus would fail with exit 1, not 2.
   ToolRun r = test::tnvctl(state, "--iface tnv_none0 run " + bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("line 3, column 3: unsupported G-code G93"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3, column 3: unsupported G-code G95"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("nothing was sent"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
   const auto z = test::write_file(state / "z.ngc", "G21\nG91 G18 G2 X1 Z0 I0.5 K0\n");
