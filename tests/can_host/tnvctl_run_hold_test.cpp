@@ -25,6 +25,42 @@ using test::ToolRun;
 
 constexpr const char* kProgram = "G21 G91\nG1 X20 F1200\nG1 Y5\nG1 X-20\nM2\n";
 
+// `tnvctl --emu --json run PROGRAM --no-score` started in the background,
+// its stdin a pseudo-terminal (`on_terminal`) or /dev/null, its stderr and
+// JSON to files: the tests wait for what it reports, never for a time.
+struct BackgroundRun {
+  std::string err_path, out_path;
+  int terminal = -1;
+  pid_t pid = -1;
+
+  BackgroundRun(const std::filesystem::path& state, const std::string& program, bool on_terminal)
+      : err_path((state / "err.txt").string()), out_path((state / "out.json").string()) {
+    const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
+                            program + " --no-score " + (on_terminal ? "" : "</dev/null ") + "2>" + err_path + " >" +
+                            out_path;
+    pid = on_terminal ? ::forkpty(&terminal, nullptr, nullptr, nullptr) : ::fork();
+    if (pid == 0) {
+      ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+  }
+  std::string err() const { return test::read_file(err_path); }
+  // How often `text` stands in what the run reported.
+  int count(const std::string& text) const {
+    const std::string e = err();
+    int n = 0;
+    for (std::size_t at = e.find(text); at != std::string::npos; at = e.find(text, at + 1)) ++n;
+    return n;
+  }
+  // Until `text` stands there `n` times, up to 120 s.
+  bool wait_for(const std::string& text, int n = 1) const {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (count(text) < n && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return count(text) >= n;
+  }
+};
+
 TEST(TnvctlRunHold, AScheduledHoldWaitsOnThePathAndTheRunEndsAsWithoutIt) {
   const auto state = test::state_dir("run_hold_schedule");
   const auto prog = test::write_file(state / "p.ngc", kProgram);
@@ -56,33 +92,17 @@ TEST(TnvctlRunHold, AScheduledHoldWaitsOnThePathAndTheRunEndsAsWithoutIt) {
 
 TEST(TnvctlRunHold, SigusrOneHoldsAndSigusrTwoResumesWithoutATerminal) {
   const auto state = test::state_dir("run_hold_signal");
-  const std::string err_path = (state / "err.txt").string();
-  const std::string out_path = (state / "out.json").string();
-  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
-                          gcode::test::test_piece_path("nas979_diamond_circle_square.ngc") + " --no-score </dev/null 2>" +
-                          err_path + " >" + out_path;
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  // Waits for what the run reports (not for a time): the program runs, then the node holds.
-  const auto wait_for = [&](const std::string& text) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (!test::has(test::read_file(err_path), text) && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    return test::has(test::read_file(err_path), text);
-  };
-  ASSERT_TRUE(wait_for("run: line")) << test::read_file(err_path);
-  ::kill(pid, SIGUSR1);
-  EXPECT_TRUE(wait_for("holding")) << test::read_file(err_path);
-  ::kill(pid, SIGUSR2);
+  const BackgroundRun run(state, gcode::test::test_piece_path("nas979_diamond_circle_square.ngc"), false);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("run: line")) << run.err();
+  ::kill(run.pid, SIGUSR1);
+  EXPECT_TRUE(run.wait_for("holding")) << run.err();
+  ::kill(run.pid, SIGUSR2);
   int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
   ASSERT_TRUE(WIFEXITED(status)) << "tnvctl died of the signal instead of holding";
-  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
-  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << run.err();
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(run.out_path));
   EXPECT_EQ(j["feed_hold_changes"], 2);
   EXPECT_GT(j["held_s"].get<double>(), 0.0);
   EXPECT_EQ(j["elements_accepted"], j["elements"]) << "the whole program ran after the resume";
@@ -94,40 +114,24 @@ TEST(TnvctlRunHold, SigusrOneHoldsAndSigusrTwoResumesWithoutATerminal) {
 // line mode back at the end.
 TEST(TnvctlRunHold, TheSpaceKeyOnATerminalHoldsAndTheNextSpaceResumes) {
   const auto state = test::state_dir("run_hold_key");
-  const std::string err_path = (state / "err.txt").string();
-  const std::string out_path = (state / "out.json").string();
-  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
-                          gcode::test::test_piece_path("nas979_diamond_circle_square.ngc") + " --no-score 2>" +
-                          err_path + " >" + out_path;
-  int terminal = -1;
-  const pid_t pid = ::forkpty(&terminal, nullptr, nullptr, nullptr);
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  const auto wait_for = [&](const std::string& text) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (!test::has(test::read_file(err_path), text) && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    return test::has(test::read_file(err_path), text);
-  };
-  ASSERT_TRUE(wait_for("run: line")) << test::read_file(err_path);
+  const BackgroundRun run(state, gcode::test::test_piece_path("nas979_diamond_circle_square.ngc"), true);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("run: line")) << run.err();
   termios during{};
-  ASSERT_EQ(::tcgetattr(terminal, &during), 0);
+  ASSERT_EQ(::tcgetattr(run.terminal, &during), 0);
   EXPECT_EQ(during.c_lflag & ICANON, 0u) << "keys wait for Enter while the program runs";
-  ASSERT_EQ(::write(terminal, " ", 1), 1);
-  EXPECT_TRUE(wait_for("holding")) << test::read_file(err_path);
-  ASSERT_EQ(::write(terminal, " ", 1), 1);
+  ASSERT_EQ(::write(run.terminal, " ", 1), 1);
+  EXPECT_TRUE(run.wait_for("holding")) << run.err();
+  ASSERT_EQ(::write(run.terminal, " ", 1), 1);
   int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << run.err();
   termios after{};
-  ASSERT_EQ(::tcgetattr(terminal, &after), 0);
+  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
   EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
-  ::close(terminal);
-  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  ::close(run.terminal);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(run.out_path));
   EXPECT_EQ(j["feed_hold_changes"], 2);
   EXPECT_GT(j["held_s"].get<double>(), 0.0);
   EXPECT_EQ(j["elements_accepted"], j["elements"]) << "the whole program ran after the resume";
@@ -140,47 +144,25 @@ TEST(TnvctlRunHold, TheSpaceKeyOnATerminalHoldsAndTheNextSpaceResumes) {
 TEST(TnvctlRunHold, AnEnterWhileHeldAtAPauseIsDroppedAndTheNextContinues) {
   const auto state = test::state_dir("run_hold_pause_key");
   const auto prog = test::write_file(state / "m0.ngc", "G21 G91\nG1 X2 F600\nM0\nG1 X-2\nM2\n");
-  const std::string err_path = (state / "err.txt").string();
-  const std::string out_path = (state / "out.json").string();
-  const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
-                          prog.string() + " --no-score 2>" + err_path + " >" + out_path;
-  int terminal = -1;
-  const pid_t pid = ::forkpty(&terminal, nullptr, nullptr, nullptr);
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  // The n-th occurrence of `text` in what the run reported.
-  const auto count = [&](const std::string& text) {
-    const std::string err = test::read_file(err_path);
-    int n = 0;
-    for (std::size_t at = err.find(text); at != std::string::npos; at = err.find(text, at + 1)) ++n;
-    return n;
-  };
-  const auto wait_for = [&](const std::string& text, int n) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (count(text) < n && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    return count(text) >= n;
-  };
-  ASSERT_TRUE(wait_for("press Enter to continue", 1)) << test::read_file(err_path);
-  ASSERT_EQ(::write(terminal, " ", 1), 1);
-  ASSERT_TRUE(wait_for("holding", 1)) << test::read_file(err_path);
-  const int paused_lines = count(" paused");
-  ASSERT_EQ(::write(terminal, "\n ", 2), 2);  // Enter while held, then resume
-  ASSERT_TRUE(wait_for(" paused", paused_lines + 1)) << "the node back at the pause: " << test::read_file(err_path);
+  const BackgroundRun run(state, prog.string(), true);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("press Enter to continue", 1)) << run.err();
+  ASSERT_EQ(::write(run.terminal, " ", 1), 1);
+  ASSERT_TRUE(run.wait_for("holding", 1)) << run.err();
+  const int paused_lines = run.count(" paused");
+  ASSERT_EQ(::write(run.terminal, "\n ", 2), 2);  // Enter while held, then resume
+  ASSERT_TRUE(run.wait_for(" paused", paused_lines + 1)) << "the node back at the pause: " << run.err();
   // Were the Enter taken, the pause would go on at once (the rest is 0.2 s of emulated time).
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   int status = 0;
-  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "the Enter typed while held continued the pause: "
-                                                  << test::read_file(err_path);
-  ASSERT_EQ(::write(terminal, "\n", 1), 1);
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_EQ(::waitpid(run.pid, &status, WNOHANG), 0) << "the Enter typed while held continued the pause: "
+                                                  << run.err();
+  ASSERT_EQ(::write(run.terminal, "\n", 1), 1);
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << test::read_file(err_path);
-  ::close(terminal);
-  const nlohmann::json j = nlohmann::json::parse(test::read_file(out_path));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << run.err();
+  ::close(run.terminal);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(run.out_path));
   EXPECT_EQ(j["feed_hold_changes"], 2);
   EXPECT_EQ(j["pauses"].size(), 1u);
   EXPECT_EQ(j["elements_accepted"], j["elements"]);

@@ -11,21 +11,13 @@ what the node reports, with a generous limit."""
 
 import pytest
 from conftest import wait_for
-from test_tuning_page import open_page, page_value, take_control
+from program_panel import open_program_tab, program_state
+from test_tuning_page import page_value
 
 
 @pytest.fixture(scope="module")
 def tab(server, browsers):
-    b = browsers()
-    open_page(b, server)
-    b.find_element("id", "pause").click()  # the scope need not redraw meanwhile
-    take_control(b)
-    b.execute_script("document.getElementById('program-section').scrollIntoView();")
-    return b
-
-
-def program_state(b):
-    return page_value(b, "window.tnvPage.program")
+    return open_program_tab(server, browsers)
 
 
 def load(tab, tmp_path, name, text, pieces):

@@ -9,7 +9,8 @@ line 4 that shows no line before it); the feed hold and its release."""
 
 import pytest
 from conftest import wait_for
-from test_tuning_page import open_page, page_value, take_control
+from program_panel import open_program_tab, program_state
+from test_tuning_page import page_value
 
 # Incremental: it runs from wherever the table stands. Lines 3 and 4 are lines,
 # line 5 a half circle back to the start; 21 mm at 10 mm/s, each line 0.5 s or more.
@@ -25,16 +26,7 @@ REFUSED = "G21 G90\nG1 X5 F100\nG1 X20 E3\n"  # line 3, column 8: unsupported wo
 
 @pytest.fixture(scope="module")
 def tab(server, browsers):
-    b = browsers()
-    open_page(b, server)
-    b.find_element("id", "pause").click()  # the scope need not redraw meanwhile
-    take_control(b)
-    b.execute_script("document.getElementById('program-section').scrollIntoView();")
-    return b
-
-
-def program_state(b):
-    return page_value(b, "window.tnvPage.program")
+    return open_program_tab(server, browsers)
 
 
 def test_a_refused_program_is_shown_with_its_line_and_column(tab):
