@@ -140,32 +140,12 @@ TEST_P(MotionArcPlaneHelix, KeepsItsRadiusPitchAndEveryAxisLimit) {
   EXPECT_LE(run.speed_ratio_max, 1.0 + 1e-6);
   EXPECT_GT(run.accel_ratio_max, 0.5) << "the binding axis uses its limit";
   EXPECT_EQ(m.stats().follower.guard_failures, 0u);
-  double radius_worst = 0.0, pitch_worst = 0.0, last_angle = 0.0, unwrapped = 0.0;
-  bool on = false;
-  std::size_t samples = 0;
-  for (const PlanePoint& p : run.position_mm) {
-    const double a = std::atan2(p[pa.second], p[pa.first]);
-    if (on) {
-      double d = a - last_angle;
-      if (d < -std::numbers::pi) d += 2.0 * std::numbers::pi;
-      if (d > std::numbers::pi) d -= 2.0 * std::numbers::pi;
-      unwrapped += d;
-    }
-    last_angle = a;
-    if (p[h] <= -4.8) break;  // the rest is the retract
-    if (!(p[h] < -1.2)) continue;
-    if (!on) {
-      on = true;
-      unwrapped = a < 0.0 ? a + 2.0 * std::numbers::pi : a;
-    }
-    ++samples;
-    radius_worst = std::max(radius_worst, std::fabs(std::hypot(p[pa.first], p[pa.second]) - 10.0));
-    pitch_worst = std::max(pitch_worst, std::fabs(p[h] - (-1.0 - 2.0 * unwrapped / (2.0 * std::numbers::pi))));
-  }
-  EXPECT_GT(samples, 2000u) << "two turns of 62.8 mm at 20 mm/s";
-  EXPECT_GT(unwrapped, 3.5 * std::numbers::pi) << "counter-clockwise in the plane's own sense";
-  EXPECT_LE(radius_worst, limits.path_tolerance_mm) << radius_worst * 1e3 << " um radius error";
-  EXPECT_LE(pitch_worst, limits.path_tolerance_mm) << pitch_worst * 1e3 << " um off the helix";
+  // Below -1.2 and above -4.8 the reference is on the helix: radius 10, height -1 - 2 turns.
+  const test::HelixFit fit = test::fit_helix(run.position_mm, pa.first, pa.second, h, 10.0, -1.0, 2.0, -1.2, -4.8);
+  EXPECT_GT(fit.samples, 2000u) << "two turns of 62.8 mm at 20 mm/s";
+  EXPECT_GT(fit.turned_rad, 3.5 * std::numbers::pi) << "counter-clockwise in the plane's own sense";
+  EXPECT_LE(fit.radius_worst_mm, limits.path_tolerance_mm) << fit.radius_worst_mm * 1e3 << " um radius error";
+  EXPECT_LE(fit.pitch_worst_mm, limits.path_tolerance_mm) << fit.pitch_worst_mm * 1e3 << " um off the helix";
   EXPECT_NEAR(run.position_mm.back()[h], 0.0, 1e-9);
 }
 

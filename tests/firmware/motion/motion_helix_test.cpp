@@ -72,31 +72,10 @@ TEST(MotionHelix, AHelixRunKeepsItsRadiusPitchAndEveryAxisLimit) {
   EXPECT_LE(run.speed_ratio_max, 1.0 + 1e-6);
   EXPECT_EQ(m.stats().follower.guard_failures, 0u);
   // From below -1.2 mm to -4.8 mm the reference is on the helix: radius 10, and Z = -1 - 2 * turns.
-  double radius_worst = 0.0, pitch_worst = 0.0, last_angle = 0.0, unwrapped = 0.0;
-  bool on = false;
-  std::size_t samples = 0;
-  for (const PlanePoint& p : run.position_mm) {
-    const double a = std::atan2(p[1], p[0]);
-    if (on) {
-      double d = a - last_angle;
-      if (d < -std::numbers::pi) d += 2.0 * std::numbers::pi;
-      if (d > std::numbers::pi) d -= 2.0 * std::numbers::pi;
-      unwrapped += d;
-    }
-    last_angle = a;
-    if (p[kZ] <= -4.8) break;  // the rest is the retract, straight up
-    if (!(p[kZ] < -1.2)) continue;
-    if (!on) {  // first point on the helix: its angle from the start of the first turn
-      on = true;
-      unwrapped = a < 0.0 ? a + 2.0 * std::numbers::pi : a;
-    }
-    ++samples;
-    radius_worst = std::max(radius_worst, std::fabs(std::hypot(p[0], p[1]) - 10.0));
-    pitch_worst = std::max(pitch_worst, std::fabs(p[kZ] - (-1.0 - 2.0 * unwrapped / (2.0 * std::numbers::pi))));
-  }
-  EXPECT_GT(samples, 2000u) << "two turns of 62.8 mm at 20 mm/s";
-  EXPECT_LE(radius_worst, limits.path_tolerance_mm) << radius_worst * 1e3 << " um radius error";
-  EXPECT_LE(pitch_worst, limits.path_tolerance_mm) << pitch_worst * 1e3 << " um off the helix in Z";
+  const test::HelixFit fit = test::fit_helix(run.position_mm, 0, 1, kZ, 10.0, -1.0, 2.0, -1.2, -4.8);
+  EXPECT_GT(fit.samples, 2000u) << "two turns of 62.8 mm at 20 mm/s";
+  EXPECT_LE(fit.radius_worst_mm, limits.path_tolerance_mm) << fit.radius_worst_mm * 1e3 << " um radius error";
+  EXPECT_LE(fit.pitch_worst_mm, limits.path_tolerance_mm) << fit.pitch_worst_mm * 1e3 << " um off the helix in Z";
   EXPECT_NEAR(run.position_mm.back()[kZ], 0.0, 1e-9);
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -101,6 +102,46 @@ inline double polyline_deviation_max_mm(const MotionRun& run, const std::vector<
     worst = std::max(worst, best);
   }
   return worst;
+}
+
+// The helix tests' helix, measured on a run's reference: radius_mm around
+// the origin of the plane (first, second), the height axis falling pitch_mm
+// a turn from top_mm. Only the points with the height below from_mm and
+// above to_mm count (the plunge before and the retract after do not).
+struct HelixFit {
+  double radius_worst_mm = 0.0;  // |r - radius|, worst point
+  double pitch_worst_mm = 0.0;   // |height - (top - pitch turns)|, worst point
+  double turned_rad = 0.0;       // the angle swept, from the start of the first turn
+  std::size_t samples = 0;
+};
+
+inline HelixFit fit_helix(const std::vector<PlanePoint>& points, std::size_t first, std::size_t second,
+                          std::size_t height, double radius_mm, double top_mm, double pitch_mm, double from_mm,
+                          double to_mm) {
+  HelixFit fit;
+  double last_angle = 0.0;
+  bool on = false;
+  for (const PlanePoint& p : points) {
+    const double a = std::atan2(p[second], p[first]);
+    if (on) {
+      double d = a - last_angle;
+      if (d < -std::numbers::pi) d += 2.0 * std::numbers::pi;
+      if (d > std::numbers::pi) d -= 2.0 * std::numbers::pi;
+      fit.turned_rad += d;
+    }
+    last_angle = a;
+    if (p[height] <= to_mm) break;
+    if (!(p[height] < from_mm)) continue;
+    if (!on) {  // first point on the helix: its angle from the start of the first turn
+      on = true;
+      fit.turned_rad = a < 0.0 ? a + 2.0 * std::numbers::pi : a;
+    }
+    ++fit.samples;
+    fit.radius_worst_mm = std::max(fit.radius_worst_mm, std::fabs(std::hypot(p[first], p[second]) - radius_mm));
+    const double on_helix_mm = top_mm - pitch_mm * fit.turned_rad / (2.0 * std::numbers::pi);
+    fit.pitch_worst_mm = std::max(fit.pitch_worst_mm, std::fabs(p[height] - on_helix_mm));
+  }
+  return fit;
 }
 
 }  // namespace tnv::fw::motion::test
