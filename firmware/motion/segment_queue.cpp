@@ -76,12 +76,22 @@ double SegmentQueue::tangent_accel_mm_s2(const QueuedSegment& q, const QueuedSeg
   const double full = line_accel_mm_s2(derived_, g.unit_start);
   if (before == nullptr || curvature_per_mm(before->geometry) > 0.0) return full;
   const double v = std::min({q.segment.feed_mm_s, before->segment.feed_mm_s, q.speed_cap_mm_s, before->speed_cap_mm_s});
+  const PlanePoint& ua = before->geometry.unit_end;
+  const PlanePoint& ub = g.unit_start;
+  // The corner at the line's end is not known yet, but this line's rate
+  // binds there too (corner_limit_mm_s takes the larger side's). Assume it
+  // turns as the one at its start, in the same plane (the next chord of a
+  // polyline circle): u_next = 2 (u_a . u_b) u_b - u_a. Without it, a chord
+  // sized for the gentler turn behind it left the next corner a few mm/s^2
+  // short, and where an axis' turn share is small that cost mm/s of speed.
+  double cos_turn = 0.0;
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) cos_turn += ua[i] * ub[i];
   double target = full;
   bool feasible = true;
   const double floor = kTangentFloorShare * full;
   double v_floor = kUnlimited_mm_s;  // the corner's speed when the line keeps only the floor share
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const double du = std::fabs(g.unit_start[i] - before->geometry.unit_end[i]);
+    const double du = std::max(std::fabs(ub[i] - ua[i]), std::fabs((2.0 * cos_turn - 1.0) * ub[i] - ua[i]));
     const double room = derived_.axis_accel_mm_s2[i] - v * du / derived_.dt_s;
     const double u = std::fabs(g.unit_start[i]);
     feasible = feasible && room > 0.0;  // else not even all of the axis turns it at that feed
