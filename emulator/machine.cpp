@@ -665,6 +665,14 @@ bool Machine::read_register(std::uint16_t word, std::uint32_t& value) noexcept {
   return impl_->board.read_register(word, value);
 }
 
+bool Machine::read_registers(std::uint16_t first_word, std::span<std::uint32_t> values) noexcept {
+  if (impl_->read_errors) return false;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!impl_->board.read_register(static_cast<std::uint16_t>(first_word + i), values[i])) return false;
+  }
+  return true;
+}
+
 bool Machine::write_register(std::uint16_t word, std::uint32_t value) noexcept {
   return impl_->board.write_register(word, value);
 }
