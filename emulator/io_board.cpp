@@ -1,5 +1,7 @@
 #include "emulator/io_board.hpp"
 
+#include <array>
+#include <cstdint>
 #include <optional>
 
 namespace tnv::emu {
@@ -18,17 +20,37 @@ constexpr std::uint32_t kMinTickDividerClocks = kSubstepClocks;
 
 constexpr std::uint32_t enable_bit(hal::Axis axis) { return regs::axis_registers(axis).output_enable; }
 
-// The axis whose register `word` is (member: encoder, dac, ...), none for another word.
-constexpr std::optional<std::size_t> axis_of(std::uint16_t word, std::uint16_t regs::AxisRegisters::*member) {
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-    if (regs::kAxisRegisters[i].*member == word) return i;
-  return std::nullopt;
+// word -> the axis slot whose `member` register it is, -1 for another word:
+// built once from the register map, so a register access is one load, not
+// a search over the axes (it runs for every word of every tick).
+using WordAxisTable = std::array<std::int8_t, regs::kLastRegister + 1>;
+constexpr WordAxisTable word_axis_table(std::uint16_t regs::AxisRegisters::*member) {
+  WordAxisTable table{};
+  table.fill(-1);
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) table[regs::kAxisRegisters[i].*member] = static_cast<std::int8_t>(i);
+  return table;
+}
+constexpr WordAxisTable kDacAxis = word_axis_table(&regs::AxisRegisters::dac);
+
+constexpr std::array<bool, regs::kLastRegister + 1> axis_snapshot_words() {
+  std::array<bool, regs::kLastRegister + 1> words{};
+  for (const auto member :
+       {&regs::AxisRegisters::encoder, &regs::AxisRegisters::adc_accel, &regs::AxisRegisters::index}) {
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) words[regs::kAxisRegisters[i].*member] = true;
+  }
+  words[regs::kSpindleEncoder] = true;
+  words[regs::kSpindleIndex] = true;
+  return words;
+}
+constexpr std::array<bool, regs::kLastRegister + 1> kAxisSnapshotWord = axis_snapshot_words();
+
+// The axis whose DAC register `word` is, none for another word.
+constexpr std::optional<std::size_t> dac_axis_of(std::uint16_t word) {
+  if (word > regs::kLastRegister || kDacAxis[word] < 0) return std::nullopt;
+  return static_cast<std::size_t>(kDacAxis[word]);
 }
 
-constexpr bool axis_snapshot_word(std::uint16_t word) {
-  return axis_of(word, &regs::AxisRegisters::encoder) || axis_of(word, &regs::AxisRegisters::adc_accel) ||
-         axis_of(word, &regs::AxisRegisters::index) || word == regs::kSpindleEncoder || word == regs::kSpindleIndex;
-}
+constexpr bool axis_snapshot_word(std::uint16_t word) { return word <= regs::kLastRegister && kAxisSnapshotWord[word]; }
 }  // namespace
 
 IoBoard::IoBoard(const BoardParams& board, const DacParams& dac, double lead_mm, const NoiseParams& noise,
@@ -59,7 +81,7 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
     value = snapshot_[word - regs::kSnapshotFirst];
     return true;
   }
-  if (const std::optional<std::size_t> i = axis_of(word, &regs::AxisRegisters::dac)) {
+  if (const std::optional<std::size_t> i = dac_axis_of(word)) {
     value = dac_codes_[*i];
     return true;
   }
@@ -84,7 +106,7 @@ bool IoBoard::read_register(std::uint16_t word, std::uint32_t& value) const noex
 }
 
 bool IoBoard::accepts_write(std::uint16_t word, std::uint32_t value) const noexcept {
-  if (axis_of(word, &regs::AxisRegisters::dac)) return value <= dac_.max_code();
+  if (dac_axis_of(word)) return value <= dac_.max_code();
   switch (word) {
     case regs::kDacSpindle:
       return value <= spindle_dac_max_code_;
@@ -104,14 +126,14 @@ bool IoBoard::accepts_write(std::uint16_t word, std::uint32_t value) const noexc
 
 bool IoBoard::write_register(std::uint16_t word, std::uint32_t value) noexcept {
   if (!accepts_write(word, value)) return false;
-  if (const std::optional<std::size_t> i = axis_of(word, &regs::AxisRegisters::dac)) {
+  if (const std::optional<std::size_t> i = dac_axis_of(word)) {
     dac_codes_[*i] = value;
     if (outputs_deferred_) {
       outputs_written_ = true;
       return true;
     }
     drive_dac_codes_[*i] = value;
-    refresh_commands();
+    refresh_command(*i);  // the other axes' commands do not depend on this word
     return true;
   }
   switch (word) {
@@ -267,11 +289,13 @@ std::uint32_t IoBoard::dac_output_code(hal::Axis axis) const noexcept {
   return stuck_dac_codes_[i] ? *stuck_dac_codes_[i] : drive_dac_codes_[i];
 }
 
+void IoBoard::refresh_command(std::size_t i) noexcept {
+  const hal::Axis axis = hal::axis_from_index(i);
+  command_mm_s_[i] = enabled(axis) ? dac_.speed_mm_s(dac_output_code(axis)) : 0.0;
+}
+
 void IoBoard::refresh_commands() noexcept {
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    const hal::Axis axis = hal::axis_from_index(i);
-    command_mm_s_[i] = enabled(axis) ? dac_.speed_mm_s(dac_output_code(axis)) : 0.0;
-  }
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i) refresh_command(i);
 }
 
 }  // namespace tnv::emu

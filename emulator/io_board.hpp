@@ -179,6 +179,7 @@ class IoBoard {
   void fill_snapshot(const TickSamples& samples) noexcept;
   void trip_watchdog() noexcept;
   void refresh_commands() noexcept;
+  void refresh_command(std::size_t i) noexcept;  // axis slot i only
   std::uint32_t live_inputs() const noexcept;
 
   DacSpeedMap dac_;

@@ -148,6 +148,11 @@ struct Machine::Impl {
   // Index marks ([board] index_*_deg): motor-side positions index_mm + k lead.
   std::array<double, hal::kAxisCount> index_mm{};
   std::array<std::uint32_t, hal::kAxisCount> index_register{};  // INDEX_X/Y as latched at the last edge
+  // The mark interval of the last block's end (watch_index): the next block
+  // starts there, so its floor is not computed twice.
+  std::array<double, hal::kAxisCount> index_interval_at_mm{};
+  std::array<double, hal::kAxisCount> index_interval{};
+  std::array<bool, hal::kAxisCount> index_interval_known{};
   bool read_errors = false;
   std::uint64_t ticks_to_sleep = 0;  // missed ticks still to come
 };
@@ -214,9 +219,15 @@ std::int64_t Machine::Impl::encoder_count(std::size_t i) const noexcept {
 // reverses across a mark and back within itself is not seen (blocks are at
 // most one tick, and homing crosses marks at constant speed).
 void Machine::Impl::watch_index(std::size_t i, double from_mm, double to_mm) noexcept {
+  if (from_mm == to_mm) return;  // at rest (a stuck axis, Z in a circle): no mark crossed
   const double lead_mm = scenario.encoder.lead_mm;
-  const double k_from = std::floor((from_mm - index_mm[i]) / lead_mm);
+  const double k_from = index_interval_known[i] && index_interval_at_mm[i] == from_mm
+                            ? index_interval[i]
+                            : std::floor((from_mm - index_mm[i]) / lead_mm);
   const double k_to = std::floor((to_mm - index_mm[i]) / lead_mm);
+  index_interval_known[i] = true;
+  index_interval_at_mm[i] = to_mm;
+  index_interval[i] = k_to;
   if (k_from == k_to) return;
   const double mark_mm = index_mm[i] + lead_mm * std::max(k_from, k_to);
   const std::int64_t count =
@@ -652,6 +663,14 @@ Machine::~Machine() = default;
 bool Machine::read_register(std::uint16_t word, std::uint32_t& value) noexcept {
   if (impl_->read_errors) return false;
   return impl_->board.read_register(word, value);
+}
+
+bool Machine::read_registers(std::uint16_t first_word, std::span<std::uint32_t> values) noexcept {
+  if (impl_->read_errors) return false;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!impl_->board.read_register(static_cast<std::uint16_t>(first_word + i), values[i])) return false;
+  }
+  return true;
 }
 
 bool Machine::write_register(std::uint16_t word, std::uint32_t value) noexcept {

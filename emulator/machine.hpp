@@ -74,6 +74,9 @@ class Machine {
   // register changed) when any word is unmapped, read-only or refuses its
   // value, as a bad request must change nothing.
   bool write_registers(std::uint16_t first_word, std::span<const std::uint32_t> values) noexcept;
+  // Consecutive registers from first_word, each as read_register reads it;
+  // false at the first word that fails (the words before it are read).
+  bool read_registers(std::uint16_t first_word, std::span<std::uint32_t> values) noexcept;
 
   // --- simulated time (sub-steps of 100 clocks = 10 us)
   void advance_to_next_tick() noexcept;               // returns right after the next tick latch the firmware wakes for

@@ -4,10 +4,7 @@ namespace tnv::drivers {
 
 hal::HalStatus EmulatedRegisterBus::read_block(std::uint16_t first_word, std::span<std::uint32_t> out) noexcept {
   ++reads_;
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (!machine_.read_register(static_cast<std::uint16_t>(first_word + i), out[i])) return hal::HalStatus::bad_address;
-  }
-  return hal::HalStatus::ok;
+  return machine_.read_registers(first_word, out) ? hal::HalStatus::ok : hal::HalStatus::bad_address;
 }
 
 hal::HalStatus EmulatedRegisterBus::write_block(std::uint16_t first_word, std::span<const std::uint32_t> in) noexcept {

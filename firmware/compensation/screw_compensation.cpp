@@ -67,6 +67,13 @@ ScrewCompensator::Offsets ScrewCompensator::advance(const ScrewCompensation& c, 
   const double step_mm = next_reference_mm - reference_mm;
   if (step_mm > kMotionStep_mm) direction_ = 1;
   if (step_mm < -kMotionStep_mm) direction_ = -1;
+  // Compensation off (the common case): the formulae below give exactly +0
+  // for both offsets; skip their divisions (a hot path of every tick).
+  if (c.backlash_mm == 0.0 && backlash_offset_mm_ == 0.0 && c.lead_um_per_m == 0.0 &&
+      std::ranges::all_of(c.turn_error_mm, [](double e_mm) { return e_mm == 0.0; })) {
+    next_offset_mm_ = 0.0;
+    return Offsets{};
+  }
   const double target_mm = 0.5 * c.backlash_mm * direction_;
   const double max_change_mm = c.backlash_rate_mm_s * tick_s;
   const double now_backlash_mm = backlash_offset_mm_;

@@ -12,6 +12,7 @@ void ProfiledRun::start(const SegmentGeometry& g, double feed_mm_s, double ramp_
   ramp_s_ = ramp_s;
   period_s_ = period_s;
   tick_ = 0;
+  next_sample_tick_ = -1;
   motion_ticks_ = static_cast<std::int64_t>(std::ceil(profile_.duration_s() / period_s - 1e-9));
   stop_ = {};
   rest_mm_ = g.end_mm;
@@ -82,6 +83,7 @@ ProfiledStep ProfiledRun::step() noexcept {
                           : 0.5 * (1.0 + std::cos(std::numbers::pi * static_cast<double>(k) /
                                                    static_cast<double>(stop_.n)));
     };
+    next_sample_tick_ = -1;  // the warp samples other times
     const double r_now = rate(stop_.k);
     const double r_next = rate(stop_.k + 1);
     const double tau_next_s = stop_.tau_s + 0.5 * (r_now + r_next) * period_s_;
@@ -97,9 +99,11 @@ ProfiledStep ProfiledRun::step() noexcept {
     out.done = stop_.k >= stop_.n;
   } else {
     const double t_s = static_cast<double>(tick_) * period_s_;
-    now = at(t_s);
+    now = next_sample_tick_ == tick_ ? next_sample_ : at(t_s);
     // x_{k+1} at (k + 1) T, so it is bit for bit next tick's x_k.
     next = at(static_cast<double>(tick_ + 1) * period_s_);
+    next_sample_ = next;
+    next_sample_tick_ = tick_ + 1;
     out.path_speed_mm_s = profile_.at(t_s).speed_mm_s;
     out.done = tick_ + 1 > motion_ticks_;
   }

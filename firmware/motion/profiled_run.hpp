@@ -63,6 +63,10 @@ class ProfiledRun {
   StopWarp stop_{};
   PlanePoint rest_mm_{};
   bool active_ = false;
+  // x_{k+1} as computed at tick k: tick k+1's x_k, the same call with the
+  // same argument, so it is taken instead of computed twice. -1: none.
+  std::int64_t next_sample_tick_ = -1;
+  PathSample next_sample_{};
 };
 
 }  // namespace tnv::fw::motion
