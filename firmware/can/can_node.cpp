@@ -1,7 +1,7 @@
-// CanNode: construction, the service() loop and receive routing. Requests
-// are handled in can_node_commands.cpp, can_node_excite.cpp,
-// can_node_boring.cpp and by the parts (NodeParameters, ProgramStream,
-// NodeCapture); what the node sends unasked by NodeTelemetry.
+// CanNode: construction, the service() loop, receive routing and the
+// dispatch of each request to the part that handles it (can_node.hpp
+// "Parts"); the worker's finished jobs are collected here too: a deferred
+// request is dispatched again.
 #include "firmware/can/can_node.hpp"
 
 #include "firmware/can/frame_codec.hpp"
@@ -26,6 +26,13 @@ CanNode::CanNode(TickTask& task, hal::CanPort& can, hal::ParamStorage& storage, 
       design_(storage_worker),
       params_(node_id_, task, access_, commissioning_, tx_, storage_, design_, capture_, settings),
       telemetry_(node_id_, task, can, tx_, access_, commissioning_, storage_, params_, programs_, capture_),
+      motion_(commissioning_, telemetry_),
+      storage_requests_(task, access_, ack_, storage_, params_),
+      commands_(task, access_, ack_, commissioning_, programs_, params_, design_, storage_requests_, motion_),
+      motions_(task, access_, ack_, params_, motion_),
+      tuning_(task, access_, ack_, params_, design_, capture_, motion_),
+      spindle_(task, access_, ack_, programs_, motion_),
+      bore_(node_id_, access_, tx_, storage_, params_),
       capture_(node_id_, task, access_, tx_) {
   last_tick_ = task_.last_record().tick;
 }
@@ -58,8 +65,6 @@ bool CanNode::storage_in_flight() const noexcept { return storage_.pending(); }
 std::uint16_t CanNode::reply_sequence() const noexcept { return tx_.sequence(); }
 std::uint16_t CanNode::heartbeat_errors() const noexcept { return telemetry_.heartbeat_errors(); }
 std::uint8_t CanNode::heartbeat_axes() const noexcept { return telemetry_.heartbeat_axes(); }
-
-bool CanNode::moving() const noexcept { return task_.moving(); }
 
 void CanNode::service() noexcept {
   tx_.begin_service();
@@ -139,7 +144,7 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
     switch (id) {
       case MessageId::param_request: params_.reply(e, 0, 0); return;
       case MessageId::capture_control: capture_.reply(e); return;
-      case MessageId::bore_gauge: reply_bore(e, 0); return;
+      case MessageId::bore_gauge: bore_.reply(e, 0); return;
       default: ack_.send(m.id, 0, e, 0); return;
     }
   };
@@ -160,26 +165,47 @@ void CanNode::handle(const hal::CanFrame& frame, const MessageDef& m) noexcept {
 void CanNode::dispatch(const hal::CanFrame& frame, MessageId id) noexcept {
   design_.begin_request(frame, id);
   switch (id) {
-    case MessageId::command: handle_command(frame); return;
-    case MessageId::jog: handle_jog(frame); return;
-    case MessageId::move: handle_move(frame); return;
-    case MessageId::circle: handle_circle(frame); return;
-    case MessageId::shaper: handle_shaper(frame); return;
-    case MessageId::excite: handle_excite(frame); return;
+    case MessageId::command: commands_.handle(frame); return;
+    case MessageId::jog: motions_.jog(frame); return;
+    case MessageId::move: motions_.move(frame); return;
+    case MessageId::circle: motions_.circle(frame); return;
+    case MessageId::shaper: tuning_.shaper(frame); return;
+    case MessageId::excite: tuning_.excite(frame); return;
     case MessageId::param_request: params_.handle(frame); return;
     case MessageId::capture_control: capture_.control(frame, params_.settings().capture); return;
-    case MessageId::bore_gauge: handle_bore(frame); return;
-    case MessageId::spindle: handle_spindle(frame); return;
+    case MessageId::bore_gauge: bore_.handle(frame); return;
+    case MessageId::spindle: spindle_.handle(frame); return;
     case MessageId::segment:
-      if (programs_.segment(frame)) motion_accepted();
+      if (programs_.segment(frame)) motion_.accepted();
       return;
     case MessageId::segment_tail:
-      if (programs_.segment_tail(frame)) motion_accepted();
+      if (programs_.segment_tail(frame)) motion_.accepted();
       return;
     case MessageId::segment_z: programs_.segment_z(frame); return;
     case MessageId::segment_plane: programs_.segment_plane(frame); return;
     default: ++counters_.rx_ignored; return;  // a to_node message this node does not know (none today)
   }
+}
+
+// --- the worker's jobs: a finished save / load is answered (StorageRequests);
+// a request deferred for its shaper designs is dispatched again.
+
+void CanNode::collect_worker() noexcept {
+  // One job at a time (NodeParameters::worker_busy() refuses a second): the one done is the one pending.
+  if (storage_.pending()) {
+    if (storage_.job_done()) storage_requests_.finish();
+    return;
+  }
+  if (design_.job_done()) finish_design();
+}
+
+void CanNode::finish_design() noexcept {
+  const ShaperDesignDeferral::Replay replay = design_.finish(params_.designs());
+  // The request as it came: its tag names the host (ownership is checked again).
+  access_.begin_request(replay.frame.data[0], false);
+  dispatch(replay.frame, replay.id);
+  // Handled again it finds its designs; should it defer once more (a host
+  // changed its staged set meanwhile), it is answered after that job.
 }
 
 }  // namespace tnv::fw::can

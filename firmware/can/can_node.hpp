@@ -42,7 +42,11 @@
 // CommissioningMode, CommandAck, NodeStorage (save / load),
 // ShaperDesignDeferral, NodeParameters (the live set, its one path of
 // change, PARAM_REQUEST), NodeTelemetry (heartbeat, telemetry,
-// FAULT_EVENT), ProgramStream (programs) and NodeCapture.
+// FAULT_EVENT), ProgramStream (programs) and NodeCapture; and the request
+// handlers: CommandRequest (COMMAND), MotionRequests (JOG, MOVE, CIRCLE),
+// TuningRequests (SHAPER, EXCITE), SpindleRequest (SPINDLE),
+// BoreGaugeRequest (BORE_GAUGE), StorageRequests (save / load answered)
+// and MotionAcceptance (what every accepted motion request clears).
 // Every rule above holds for every part.
 //
 // Size: the node holds the capture buffer (NodeCapture's recorder,
@@ -53,10 +57,14 @@
 #include <cstdint>
 #include <span>
 
+#include "firmware/can/bore_gauge_request.hpp"
 #include "firmware/can/capture_channels.hpp"
 #include "firmware/can/command_ack.hpp"
+#include "firmware/can/command_request.hpp"
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
+#include "firmware/can/motion_acceptance.hpp"
+#include "firmware/can/motion_requests.hpp"
 #include "firmware/can/node_capture.hpp"
 #include "firmware/can/node_parameters.hpp"
 #include "firmware/can/node_settings.hpp"
@@ -69,9 +77,12 @@
 #include "firmware/can/staged_params.hpp"
 #include "firmware/can/shaper_design_cache.hpp"
 #include "firmware/can/shaper_design_deferral.hpp"
+#include "firmware/can/spindle_request.hpp"
 #include "firmware/can/storage_jobs.hpp"
+#include "firmware/can/storage_requests.hpp"
 #include "firmware/can/host_staged_sets.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
+#include "firmware/can/tuning_requests.hpp"
 #include "firmware/tick/tick_task.hpp"
 #include "hal/can_port.hpp"
 #include "hal/param_storage.hpp"
@@ -160,31 +171,9 @@ class CanNode {
   // one frame addressed to this node (or an accepted broadcast)
   void handle(const hal::CanFrame& frame, const MessageDef& m) noexcept;
   void dispatch(const hal::CanFrame& frame, MessageId id) noexcept;  // to the handler of its message
-  void handle_command(const hal::CanFrame& frame) noexcept;
-  void handle_jog(const hal::CanFrame& frame) noexcept;
-  void handle_move(const hal::CanFrame& frame) noexcept;
-  void handle_circle(const hal::CanFrame& frame) noexcept;
-  void handle_shaper(const hal::CanFrame& frame) noexcept;
-  void handle_excite(const hal::CanFrame& frame) noexcept;
-  void handle_bore(const hal::CanFrame& frame) noexcept;  // BORE_GAUGE: can_node_boring.cpp
-  void handle_spindle(const hal::CanFrame& frame) noexcept;  // SPINDLE: can_node_spindle.cpp
-  // COMMAND codes with more to them than one TickTask call
-  ErrorCode command_zero(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  ErrorCode command_home(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  ErrorCode command_select_controller(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  ErrorCode command_shaper_enable(const hal::CanFrame& frame, std::uint8_t& detail) noexcept;
-  // save / load (NodeStorage): ok when posted (answered later by finish_storage()), else the refusal to answer now
-  ErrorCode begin_storage(const hal::CanFrame& request, CommandCode code) noexcept;
   void collect_worker() noexcept;  // service() step: finishes a job the worker has finished
-  void finish_storage() noexcept;
-  // A request deferred for its shaper designs (ShaperDesignDeferral), handled again now they are made.
+  // A request deferred for its shaper designs (ShaperDesignDeferral), dispatched again now they are made.
   void finish_design() noexcept;
-  void motion_accepted() noexcept;  // clears the sticky jog-deadman / host-timeout bits
-  bool worker_busy() const noexcept { return params_.worker_busy(); }
-  bool moving() const noexcept;
-  // replies and frames
-  // BORE_INFEED: `flags` of a recorded part (the started bit is added); the infeeds of the part to cut now.
-  void reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags = 0) noexcept;
 
   TickTask& task_;
   hal::CanPort& can_;
@@ -198,6 +187,13 @@ class CanNode {
   ShaperDesignDeferral design_;         // a request waiting for the shaper designs made on the worker
   NodeParameters params_;               // the live set, its one path of change, PARAM_REQUEST
   NodeTelemetry telemetry_;             // HEARTBEAT, the cyclic telemetry, FAULT_EVENT
+  MotionAcceptance motion_;             // leaves commissioning, clears the sticky heartbeat bits
+  StorageRequests storage_requests_;    // COMMAND save_params / load_params, answered when done
+  CommandRequest commands_;             // COMMAND
+  MotionRequests motions_;              // JOG, MOVE, CIRCLE
+  TuningRequests tuning_;               // SHAPER, EXCITE
+  SpindleRequest spindle_;              // SPINDLE
+  BoreGaugeRequest bore_;               // BORE_GAUGE, BORE_INFEED
   NodeCounters counters_{};             // the receive side's (the tx_ fields are tx_'s)
   std::uint64_t last_tick_ = 0;
   NodeCapture capture_;                 // last: it holds the big buffer

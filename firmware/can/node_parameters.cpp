@@ -189,7 +189,7 @@ void NodeParameters::handle(const hal::CanFrame& frame) noexcept {
   reply(e, id, to_wire(*p, p->get(settings_)));
 }
 
-// --- restore_defaults (idle only; save and load: NodeStorage, can_node_worker.cpp)
+// --- restore_defaults (idle only; save and load: NodeStorage, StorageRequests)
 
 // The papers' defaults, except what describes this machine and this node:
 // the encoder count, DAC scale and tick period (commissioning and board facts), the bus

@@ -3,6 +3,7 @@
 // range, access and when a change may apply; defaults are read from
 // default_node_settings() (the papers' values), so they cannot drift.
 // Axis parameters repeat per axis: x at 0x01xx, y at 0x02xx, same low byte.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -16,6 +17,10 @@ namespace tnv::fw::can {
 // (x 0x01nn, y 0x02nn), its rows named "<axis>." (param_table.cpp).
 constexpr std::uint16_t axis_param_base(hal::Axis axis) noexcept {
   return static_cast<std::uint16_t>((hal::index(axis) + 1) << 8);
+}
+// The id of axis `axis`' parameter at `offset` in its block (TNV_AXIS_PARAMS).
+constexpr std::uint16_t axis_param_id(std::size_t axis, std::uint16_t offset) noexcept {
+  return static_cast<std::uint16_t>(axis_param_base(hal::axis_from_index(axis)) + offset);
 }
 
 enum class ParamType : std::uint8_t { f32, u32, i32, boolean, enumeration };

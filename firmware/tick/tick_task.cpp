@@ -244,29 +244,24 @@ void TickTask::tick() noexcept {
              record_);
   update_reference();
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    if (!excite_[i].active()) continue;
-    if (state_ != MotionState::holding) {
-      excite_[i] = ExcitationGenerator{};  // a motion, disable or fault cancels it
-      continue;
+    // A motion, disable or fault cancels a running excitation (hold_step: none).
+    const AxisExcitations::HoldStep step = excite_.hold_step(i, state_ == MotionState::holding);
+    if (step.kind == AxisExcitations::HoldStep::Kind::carrier) {
+      // Closed loop: the controller keeps holding hold_; on a carrier, hold_
+      // moves at the carrier's speed through the drive phase and then rests
+      // where it ended (the shaper, bypassed meanwhile, rests there with it).
+      const double v_mm_s = step.speed_mm_s;
+      const AxisSample now{hold_[i].position_mm, v_mm_s};
+      const AxisSample next{hold_[i].position_mm + v_mm_s * kTickPeriodS, v_mm_s};
+      record_.axis[i].unshaped_reference_mm = now.position_mm;
+      set_reference(i, now, next);
+      hold_[i] = {next.position_mm, 0.0};
+      shapers_.reset(i, hold_[i]);
+    } else if (step.kind == AxisExcitations::HoldStep::Kind::follow_table) {
+      // Open loop: the reference follows the table, so the following error stays 0.
+      hold_[i] = {record_.axis[i].position_mm, 0.0};
+      set_reference(i, hold_[i], hold_[i]);
     }
-    if (excite_[i].closed_loop()) {
-      // The controller keeps holding hold_; on a carrier, hold_ moves at the
-      // carrier's speed through the drive phase and then rests where it ended
-      // (the shaper, bypassed meanwhile, rests there with it).
-      if (excite_[i].has_carrier()) {
-        const double v_mm_s = excite_[i].carrier_mm_s();
-        const AxisSample now{hold_[i].position_mm, v_mm_s};
-        const AxisSample next{hold_[i].position_mm + v_mm_s * kTickPeriodS, v_mm_s};
-        record_.axis[i].unshaped_reference_mm = now.position_mm;
-        set_reference(i, now, next);
-        hold_[i] = {next.position_mm, 0.0};
-        shapers_.reset(i, hold_[i]);
-      }
-      continue;
-    }
-    // Open loop: the reference follows the table, so the following error stays 0.
-    hold_[i] = {record_.axis[i].position_mm, 0.0};
-    set_reference(i, hold_[i], hold_[i]);
   }
 
   // 4. axis controllers -> speed commands
@@ -284,10 +279,10 @@ void TickTask::tick() noexcept {
     double u_mm_s = 0.0;
     AxisController& ctl = axis_[i].active();
     double excitation_mm_s = 0.0;
-    if (on && excite_[i].active() && !excite_[i].closed_loop()) {
-      u_mm_s = excite_[i].next(axis_[i].encoder.counts() - excite_start_counts_[i]);
+    if (on && excite_.open_loop(i)) {
+      u_mm_s = excite_.next(i, axis_[i].encoder.counts());
       excitation_mm_s = u_mm_s;
-      if (!excite_[i].active()) {
+      if (!excite_.running(i)) {
         // Holding resumes from where the axis came to rest, bumpless.
         ctl.reset();
         shapers_.reset(i, hold_[i]);
@@ -307,7 +302,7 @@ void TickTask::tick() noexcept {
       u_mm_s = ctl.update(x, ref);
       u_mm_s += friction_feedforward_mm_s(config_.axis[i].friction, r.reference_speed_mm_s, next_[i].speed_mm_s);
       // Closed-loop excitation at the plant input: u = c + d (excitation.hpp).
-      if (excite_[i].active()) excitation_mm_s = excite_[i].next(axis_[i].encoder.counts() - excite_start_counts_[i]);
+      if (excite_.running(i)) excitation_mm_s = excite_.next(i, axis_[i].encoder.counts());
       u_mm_s += excitation_mm_s;
     }
     r.excitation_mm_s = excitation_mm_s;

@@ -26,8 +26,10 @@
 // parts, each a class with its own state and a small interface, stepped in
 // the tick: HomingSequence (the HOME command's axes, their cycles, homed and
 // the results), PathShapers (each axis' shaper design and on/off, the
-// path's series and its hand-over once quiet) and ProgramFeedOverride (the
-// operator's override and the S3 force loop) and SpindleControl (the
+// path's series and its hand-over once quiet), AxisExcitations (each axis'
+// excitation generator and its start count, what it does to the hold point
+// and the command), ProgramFeedOverride (the operator's override and the S3
+// force loop) and SpindleControl (the
 // spindle's start, ramp, at-speed and stop causes, firmware/spindle/;
 // tick_task_spindle.cpp wires it). The tick's rules hold for each.
 #include <array>
@@ -42,6 +44,7 @@
 #include "firmware/shaper/shaper_design.hpp"
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/spindle/spindle_control.hpp"
+#include "firmware/tick/axis_excitations.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
@@ -165,7 +168,7 @@ class TickTask {
   // The carrier's travel (carrier x duration from where the axis stands) ends
   // inside the soft limits (always, without a carrier).
   bool carrier_travel_fits(hal::Axis axis, const ExcitationSpec& spec) const noexcept;
-  bool exciting() const noexcept;
+  bool exciting() const noexcept { return excite_.running(); }
   CommandStatus disable() noexcept;
   // Clears a latched fault once its cause is gone (cause_present while
   // it is not). Board trips (encoder, DAC, watchdog) are sticky: a clear
@@ -381,8 +384,7 @@ class TickTask {
   std::array<double, hal::kAxisCount> origin_mm_{};  // position of encoder count 0 (home, moved by zero())
   // Kept after the hot per-tick state (the shapers' ring buffers are large).
   PathShapers shapers_{};
-  std::array<ExcitationGenerator, hal::kAxisCount> excite_{};
-  std::array<std::int64_t, hal::kAxisCount> excite_start_counts_{};
+  AxisExcitations excite_{};  // each axis' excitation and its start count (axis_excitations.hpp)
   std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
   std::array<ScrewCompensator, hal::kAxisCount> screw_{};  // table-side reference -> motor-side
   std::array<MotionPlausibility, hal::kAxisCount> plausibility_monitor_{};  // encoder_implausible, runaway

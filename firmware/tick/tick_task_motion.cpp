@@ -245,24 +245,14 @@ CommandStatus TickTask::start_excitation(hal::Axis axis, const ExcitationSpec& s
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (state_ != MotionState::holding || exciting()) return CommandStatus::busy;
   if (!carrier_travel_fits(axis, spec)) return CommandStatus::invalid;
-  excite_start_counts_[a] = axis_[a].encoder.counts();
-  excite_[a].start(spec);
+  excite_.start(a, spec, axis_[a].encoder.counts());
   return CommandStatus::ok;
 }
 
 bool TickTask::carrier_travel_fits(hal::Axis axis, const ExcitationSpec& spec) const noexcept {
   const std::size_t a = hal::index(axis);
   if (a >= hal::kAxisCount) return false;
-  if (spec.carrier_mm_s == 0.0) return true;
-  const AxisLimits& lim = config_.supervisor.axis[a];
-  const double end_mm = standing_mm(axis) + spec.carrier_mm_s * spec.duration_s;
-  return end_mm >= lim.position_min_mm && end_mm <= lim.position_max_mm;
-}
-
-bool TickTask::exciting() const noexcept {
-  for (const ExcitationGenerator& e : excite_)
-    if (e.active()) return true;
-  return false;
+  return AxisExcitations::carrier_travel_fits(config_.supervisor.axis[a], standing_mm(axis), spec);
 }
 
 double TickTask::standing_mm(hal::Axis axis) const noexcept {

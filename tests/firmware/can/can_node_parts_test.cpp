@@ -1,5 +1,6 @@
 // The CAN node's parts on their own (firmware/can: NodeTransmit, HostAccess,
-// CommissioningMode, NodeStorage, NodeParameters, NodeTelemetry), through
+// CommissioningMode, NodeStorage, NodeParameters, NodeTelemetry, and the
+// request handlers MotionRequests, SpindleRequest, BoreGaugeRequest), through
 // their narrow interfaces; the node as a whole is tested by the
 // can_node_*_test files.
 #include <gtest/gtest.h>
@@ -8,8 +9,11 @@
 #include <limits>
 #include <memory>
 
+#include "firmware/can/bore_gauge_request.hpp"
 #include "firmware/can/commissioning_mode.hpp"
 #include "firmware/can/host_access.hpp"
+#include "firmware/can/motion_acceptance.hpp"
+#include "firmware/can/motion_requests.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/node_capture.hpp"
 #include "firmware/can/node_parameters.hpp"
@@ -17,10 +21,12 @@
 #include "firmware/can/node_telemetry.hpp"
 #include "firmware/can/program_stream.hpp"
 #include "firmware/can/shaper_design_deferral.hpp"
+#include "firmware/can/spindle_request.hpp"
 #include "firmware/can/telemetry_scheduler.hpp"
 #include "firmware/can/node_transmit.hpp"
 #include "firmware/can/request_tag.hpp"
 #include "firmware/tick/tick_task.hpp"
+#include "tests/firmware/can/bore_frames.hpp"
 #include "tests/firmware/can/can_test_doubles.hpp"
 #include "tests/firmware/can/node_bench.hpp"
 #include "tests/firmware/fake_io_board.hpp"
@@ -283,6 +289,98 @@ TEST(NodeTelemetry, SendsWhatIsDueAndTheHeartbeatsStickyBitsClearOnAcceptedMotio
   b.telemetry.check_fault();
   b.telemetry.check_fault();
   EXPECT_EQ(only(b.sent(), MessageId::fault_event).size(), 1u) << "once per latch";
+}
+
+// The request handlers as CanNode wires them, over the parts above.
+struct RequestsBench : PartsBench {
+  explicit RequestsBench(const fw::can::NodeSettings& s = quiet_settings()) : PartsBench(s) {}
+  fw::can::MotionAcceptance motion{mode, telemetry};
+  fw::can::MotionRequests motions{task, access, ack, params, motion};
+  fw::can::SpindleRequest spindle{task, access, ack, programs, motion};
+  fw::can::BoreGaugeRequest bore{kNode, access, tx, storage, params};
+};
+
+TEST(MotionRequests, ARefusalStartsNothingAndAnAcceptedJogClearsTheStickyBits) {
+  RequestsBench b;
+  b.task.tick();
+  b.access.begin_request(kTestTag, false);
+  b.motions.jog(jog(kNode, 0, 1.0));
+  std::vector<hal::CanFrame> out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::not_owner);
+  EXPECT_FALSE(b.task.moving());
+
+  ASSERT_EQ(b.access.ownership(CommandCode::take_ownership), ErrorCode::ok);
+  ASSERT_EQ(b.task.hold_position(), fw::CommandStatus::ok);
+  b.telemetry.host_timed_out();
+  b.motions.move(move(kNode, 0, 0.0, 5.0));
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::out_of_range);
+  EXPECT_EQ(ack_detail(out[0]), fw::can::fields::index_of(fw::can::fields::kMoveMsg, fw::can::fields::kMoveSpeed));
+  EXPECT_FALSE(b.task.moving()) << "refused: nothing started";
+  EXPECT_NE(b.telemetry.heartbeat_errors() & fw::can::kHbHostTimeout, 0);
+
+  b.motions.jog(jog(kNode, 0, 1.0));
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::ok);
+  EXPECT_TRUE(b.task.jogging());
+  EXPECT_EQ(b.telemetry.heartbeat_errors() & fw::can::kHbHostTimeout, 0);
+}
+
+TEST(MotionAcceptance, LeavesCommissioningAndClearsTheStickyBits) {
+  RequestsBench b;
+  b.task.tick();
+  ASSERT_EQ(b.mode.enter(), ErrorCode::ok);  // disabled: the mode may be entered
+  b.telemetry.host_timed_out();
+  b.motion.accepted();
+  EXPECT_FALSE(b.mode.active());
+  EXPECT_EQ(b.telemetry.heartbeat_errors() & fw::can::kHbHostTimeout, 0);
+}
+
+TEST(SpindleRequest, NeedsOwnershipAndAKnownOp) {
+  RequestsBench b;
+  b.task.tick();
+  using fw::can::MessageId;
+  hal::CanFrame f = frame_to(MessageId::spindle, kNode);
+  set_raw(f, MessageId::spindle, "op", static_cast<std::uint32_t>(fw::can::kSpindleOpCount));
+  b.access.begin_request(kTestTag, false);
+  b.spindle.handle(f);
+  std::vector<hal::CanFrame> out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::unknown_command);
+  set_raw(f, MessageId::spindle, "op", static_cast<std::uint32_t>(fw::can::SpindleOp::stop));
+  b.spindle.handle(f);
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::not_owner);
+  ASSERT_EQ(b.access.ownership(CommandCode::take_ownership), ErrorCode::ok);
+  b.spindle.handle(f);
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(ack_result(out[0]), ErrorCode::ok) << "a stop is always taken";
+}
+
+TEST(BoreGaugeRequest, AnswersInBoreInfeedWithTheRequestsTag) {
+  fw::can::NodeSettings s = quiet_settings();
+  s.bore.enabled = false;
+  RequestsBench b(s);
+  using fw::can::MessageId;
+  const std::uint8_t host2 = fw::can::make_tag(2, 7);
+  b.access.begin_request(host2, false);
+  b.bore.handle(bore_gauge(kNode, fw::can::BoreOp::record, 1, 0.01, 0.01));
+  std::vector<hal::CanFrame> out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_TRUE(is(out[0], MessageId::bore_infeed));
+  EXPECT_EQ(raw_of(out[0], MessageId::bore_infeed, "result"), static_cast<std::uint32_t>(ErrorCode::not_owner));
+  EXPECT_EQ(raw_of(out[0], MessageId::bore_infeed, "tag"), host2);
+  b.bore.handle(bore_gauge(kNode, fw::can::BoreOp::query));
+  out = b.sent();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(raw_of(out[0], MessageId::bore_infeed, "result"), static_cast<std::uint32_t>(ErrorCode::not_ready))
+      << "query is open to every host; the planner is off";
+  EXPECT_FALSE(b.storage.unsaved()) << "nothing learned";
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 // TickTask's parts on their own (firmware/tick: HomingSequence,
-// PathShapers, ProgramFeedOverride), through their narrow interfaces; the
-// task as a whole is tested by tick_task_test.cpp and the HIL tests.
+// PathShapers, ProgramFeedOverride, AxisExcitations), through their narrow
+// interfaces; the task as a whole is tested by tick_task_test.cpp and the
+// HIL tests.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
+
 #include "firmware/motion/motion_interpolator.hpp"
+#include "firmware/tick/axis_excitations.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
@@ -152,6 +157,68 @@ TEST(ProgramFeedOverride, TheOperatorsOverrideGoesToTheMotionCoreAndEachProgramS
   EXPECT_EQ(record.arsc_force_ref_n, 0.0) << "no loop running: no f*";
   feed.program_started();
   EXPECT_EQ(feed.operator_override(), 1.0);
+}
+
+TEST(AxisExcitations, EachAxisRunsItsOwnCountedFromItsStartAndLeavingHoldingCancelsIt) {
+  using Kind = fw::AxisExcitations::HoldStep::Kind;
+  fw::AxisExcitations e;
+  EXPECT_FALSE(e.running());
+  EXPECT_EQ(e.hold_step(0, true).kind, Kind::none);
+
+  fw::ExcitationSpec ramp;  // open loop; it ends when the axis has moved 12 counts from its start
+  ramp.kind = fw::ExcitationKind::ramp;
+  e.start(0, ramp, 100);
+  EXPECT_TRUE(e.running());
+  EXPECT_TRUE(e.running(0));
+  EXPECT_FALSE(e.running(1));
+  EXPECT_TRUE(e.open_loop(0));
+  EXPECT_EQ(e.hold_step(0, true).kind, Kind::follow_table);
+  EXPECT_EQ(e.hold_step(1, true).kind, Kind::none);
+  fw::ExcitationGenerator alone;  // the same excitation, counted from 0
+  alone.start(ramp);
+  std::array<double, 8> command_mm_s{};
+  for (std::int64_t k = 0; k < 8; ++k) {
+    command_mm_s[static_cast<std::size_t>(k)] = e.next(0, 100 + 2 * k);
+    EXPECT_DOUBLE_EQ(command_mm_s[static_cast<std::size_t>(k)], alone.next(2 * k)) << k;
+  }
+  EXPECT_GT(command_mm_s[1], 0.0) << "ramping while the axis has moved 2 counts";
+  EXPECT_EQ(command_mm_s[7], 0.0) << "14 counts moved: the ramp has ended (settling)";
+  EXPECT_TRUE(e.running(0)) << "settling is part of it";
+
+  fw::ExcitationSpec sweep;
+  sweep.kind = fw::ExcitationKind::sweep;
+  sweep.level_mm_s = 1.0;
+  sweep.duration_s = 1.0;
+  sweep.carrier_mm_s = 5.0;
+  e.start(1, sweep, -40);
+  EXPECT_FALSE(e.open_loop(1)) << "closed loop: added to the controller's command";
+  EXPECT_EQ(e.hold_step(1, true).kind, Kind::carrier);
+  sweep.carrier_mm_s = 0.0;
+  fw::AxisExcitations at_rest;
+  at_rest.start(1, sweep, 0);
+  EXPECT_EQ(at_rest.hold_step(1, true).kind, Kind::none) << "no carrier: the hold point stays";
+  EXPECT_TRUE(at_rest.running(1));
+
+  EXPECT_EQ(e.hold_step(0, false).kind, Kind::none);
+  EXPECT_FALSE(e.running(0)) << "leaving holding cancels it";
+  EXPECT_TRUE(e.running(1)) << "the other axis' goes on";
+}
+
+TEST(AxisExcitations, ACarriersTravelMustEndInsideTheSoftLimits) {
+  fw::AxisLimits limits;
+  limits.position_min_mm = -10.0;
+  limits.position_max_mm = 10.0;
+  fw::ExcitationSpec spec;
+  spec.kind = fw::ExcitationKind::sweep;
+  spec.duration_s = 1.0;
+  spec.carrier_mm_s = 5.0;
+  EXPECT_TRUE(fw::AxisExcitations::carrier_travel_fits(limits, 5.0, spec));  // ends at 10
+  EXPECT_FALSE(fw::AxisExcitations::carrier_travel_fits(limits, 5.5, spec));
+  spec.carrier_mm_s = -5.0;
+  EXPECT_TRUE(fw::AxisExcitations::carrier_travel_fits(limits, -5.0, spec));
+  EXPECT_FALSE(fw::AxisExcitations::carrier_travel_fits(limits, -5.5, spec));
+  spec.carrier_mm_s = 0.0;
+  EXPECT_TRUE(fw::AxisExcitations::carrier_travel_fits(limits, 50.0, spec)) << "no carrier: no travel";
 }
 
 }  // namespace

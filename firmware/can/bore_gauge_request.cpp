@@ -1,18 +1,8 @@
-// CanNode: BORE_GAUGE, the adaptive boring infeed planner (S4) as a node
-// function. A finished part's gauge readings come in, the next part's
-// infeeds go out in BORE_INFEED. The planner's learned state lives in the
-// node's settings (NodeSettings::bore_state), so save_params / load_params
-// and the start-up load carry it with the parameters.
-//
-// record and restart change that state: they need command ownership and
-// wait (busy) while a save or load works on the set; query is open to every
-// host. Every check comes before the planner runs: a refused request
-// changes nothing and names the offending field in BORE_INFEED.detail.
-// The per-part work (eq. (11), the RLS updates, eq. (3) twice) is bounded
-// and allocation-free: it runs here, in service(), between two ticks.
+// BoreGaugeRequest: BORE_GAUGE and its BORE_INFEED reply (bore_gauge_request.hpp).
+#include "firmware/can/bore_gauge_request.hpp"
+
 #include <array>
 
-#include "firmware/can/can_node.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 
@@ -45,22 +35,22 @@ std::int16_t reading_raw(const hal::CanFrame& frame, const FieldDef& f) noexcept
 
 }  // namespace
 
-void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
+void BoreGaugeRequest::handle(const hal::CanFrame& frame) noexcept {
   const auto op_raw = static_cast<std::uint8_t>(read_raw(frame, kBoreOp));
-  if (op_raw >= kBoreOpCount) return reply_bore(ErrorCode::unknown_command, index_of(kBoreGaugeMsg, kBoreOp));
+  if (op_raw >= kBoreOpCount) return reply(ErrorCode::unknown_command, index_of(kBoreGaugeMsg, kBoreOp));
   const auto op = static_cast<BoreOp>(op_raw);
   if (op != BoreOp::query) {
-    if (!access_.owns()) return reply_bore(ErrorCode::not_owner, 0);
+    if (!access_.owns()) return reply(ErrorCode::not_owner, 0);
     // A save or load works on the set (the learned state included) as it was at the request.
-    if (storage_.pending()) return reply_bore(ErrorCode::busy, 0);
+    if (storage_.pending()) return reply(ErrorCode::busy, 0);
   }
-  if (!params_.settings().bore.enabled) return reply_bore(ErrorCode::not_ready, 0);
-  if (op == BoreOp::query) return reply_bore(ErrorCode::ok, 0);
+  if (!params_.settings().bore.enabled) return reply(ErrorCode::not_ready, 0);
+  if (op == BoreOp::query) return reply(ErrorCode::ok, 0);
   if (op == BoreOp::restart) {
     const BoringStationState was = params_.bore_state();
     restart(params_.bore_state());
     if (!(params_.bore_state() == was)) storage_.changed();
-    return reply_bore(ErrorCode::ok, 0);
+    return reply(ErrorCode::ok, 0);
   }
 
   // record: the readings, then the part's number, then the planner.
@@ -68,25 +58,25 @@ void CanNode::handle_bore(const hal::CanFrame& frame) noexcept {
   std::array<double, kBoringStationPositions> bore_error_mm{};
   for (std::size_t i = 0; i < bore_error_mm.size(); ++i) {
     if (reading_raw(frame, *reading_fields[i]) == kBoreNoReading)
-      return reply_bore(ErrorCode::not_finite, index_of(kBoreGaugeMsg, *reading_fields[i]));
+      return reply(ErrorCode::not_finite, index_of(kBoreGaugeMsg, *reading_fields[i]));
     bore_error_mm[i] = read(frame, *reading_fields[i]);
   }
   // The part must be the next one: a repeated frame (its reply lost) or a skipped part is refused.
   const auto expected = static_cast<std::uint32_t>(params_.bore_state().planner.parts + 1) & 0xFFFFu;
-  if (read_raw(frame, kBorePart) != expected) return reply_bore(ErrorCode::out_of_range, index_of(kBoreGaugeMsg, kBorePart));
+  if (read_raw(frame, kBorePart) != expected) return reply(ErrorCode::out_of_range, index_of(kBoreGaugeMsg, kBorePart));
 
   const BoringStationAnswer a =
       record_bored_part(params_.settings().bore, params_.bore_state(), bore_error_mm, kBoreInfeedTop.scale);
   if (!a.check.ok) {
     // A start-up deflection <= 0 (no logarithm for eq. (10)): the reading is named when known.
     const std::uint8_t detail = a.position >= 0 ? index_of(kBoreGaugeMsg, *reading_fields[a.position]) : 0;
-    return reply_bore(ErrorCode::invalid, detail);
+    return reply(ErrorCode::invalid, detail);
   }
   storage_.changed();  // learned, not saved yet
-  reply_bore(ErrorCode::ok, 0, part_flags(a));
+  reply(ErrorCode::ok, 0, part_flags(a));
 }
 
-void CanNode::reply_bore(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
+void BoreGaugeRequest::reply(ErrorCode result, std::uint8_t detail, std::uint8_t flags) noexcept {
   hal::CanFrame frame = make_frame(kBoreInfeedMsg, node_id_);
   if (params_.bore_state().planner.started) flags = static_cast<std::uint8_t>(flags | kBoreStarted);
   write_raw(frame, kBoreReplyTag, access_.tag());

@@ -1,28 +1,44 @@
-// CanNode: EXCITE, the open-loop excitation for identification and the
-// sweep / multisine (closed loop) and multisine_open for frequency response
-// (TickTask::start_excitation, docs/autotune.md, docs/frequency-response.md).
-// Answered by one COMMAND_ACK (detail = index of the offending field); every
-// check comes first, a refused request changes nothing. The frame carries
-// axis, kind, duration and level; the ramp rate, the settle time and the
-// breakaway count are ExcitationSpec's defaults (2 mm/s^2, 0.2 s, 12
-// counts), the values of the host's identification sequence
-// (tools/hil/tune_sequence.hpp); the band and tone count of a sweep /
-// multisine are the excite.* parameters (validated when set), and so is a
-// sweep / multisine's carrier (excite.carrier_mm_s), whose travel, carrier x
-// duration from where the axis stands, must end inside the soft limits
-// (else out_of_range on the duration field).
-#include <cmath>
+// TuningRequests: SHAPER and EXCITE (tuning_requests.hpp).
+#include "firmware/can/tuning_requests.hpp"
 
-#include "firmware/can/can_node.hpp"
+#include <array>
+#include <cmath>
+#include <utility>
+
 #include "firmware/can/command_result.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
+#include "firmware/can/param_table.hpp"
 
 namespace tnv::fw::can {
 
 using namespace fields;
 
-void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
+// Same as staging x|y.shaper.type/freq_hz/zeta and committing.
+void TuningRequests::shaper(const hal::CanFrame& frame) noexcept {
+  if (!access_.owns()) return ack_.send(kShaperMsg.id, 0, ErrorCode::not_owner, 0);
+  const std::uint32_t axis = read_raw(frame, kShaperAxis);
+  const std::uint32_t type = read_raw(frame, kShaperType);
+  const double zeta = read(frame, kShaperZeta);
+  const double freq_hz = read(frame, kShaperFreq);
+  if (axis >= hal::kAxisCount) return ack_.send(kShaperMsg.id, 0, ErrorCode::bad_axis, index_of(kShaperMsg, kShaperAxis));
+  const std::array<std::pair<const FieldDef*, std::uint16_t>, 3> checks{
+      {{&kShaperType, axis_param_id(axis, 0x40)}, {&kShaperZeta, axis_param_id(axis, 0x42)}, {&kShaperFreq, axis_param_id(axis, 0x41)}}};
+  const std::array<double, 3> values{static_cast<double>(type), zeta, freq_hz};
+  NodeSettings next = params_.settings();
+  for (std::size_t k = 0; k < checks.size(); ++k) {
+    const ParamDef* p = find_param(checks[k].second);
+    const std::uint8_t detail = index_of(kShaperMsg, *checks[k].first);
+    if (p == nullptr) return ack_.send(kShaperMsg.id, 0, ErrorCode::unknown_id, detail);
+    if (const ErrorCode e = check_value(*p, values[k]); e != ErrorCode::ok) return ack_.send(kShaperMsg.id, 0, e, detail);
+    p->set(next, values[k]);
+  }
+  const ErrorCode e = params_.apply(next, false);
+  if (design_.deferred()) return;  // handled again, and answered, when the design is made
+  ack_.send(kShaperMsg.id, 0, e, 0);
+}
+
+void TuningRequests::excite(const hal::CanFrame& frame) noexcept {
   const std::uint32_t axis = read_raw(frame, kExciteAxis);
   const std::uint32_t kind = read_raw(frame, kExciteKind);
   const double duration_s = read(frame, kExciteDuration);
@@ -41,7 +57,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
   const double longest_s = with_band ? kExcitationMaxRecordS : 10.0;
   const double shortest_s = with_band ? 0.1 : 0.001;
   if (duration_s < shortest_s || duration_s > longest_s) return ack_.send(id, 0, ErrorCode::out_of_range, duration);
-  ExcitationSpec spec;  // rate, settle and breakaway: the defaults (see the top of this file)
+  ExcitationSpec spec;  // rate, settle and breakaway: the defaults (tuning_requests.hpp)
   spec.kind = excitation_kind;
   spec.level_mm_s = level_mm_s;
   spec.duration_s = duration_s;
@@ -55,7 +71,7 @@ void CanNode::handle_excite(const hal::CanFrame& frame) noexcept {
     return ack_.send(id, 0, ErrorCode::out_of_range, duration);
   const CommandStatus st = task_.start_excitation(hal::axis_from_index(axis), spec);
   if (st != CommandStatus::ok) return ack_.send(id, 0, to_error(st), 0);
-  motion_accepted();
+  motion_.accepted();
   // A capture waiting for a motion records the excitation, first tick to last.
   capture_.excitation_started(params_.settings().capture);
   ack_.send(id, 0, ErrorCode::ok, 0);

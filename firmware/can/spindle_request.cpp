@@ -1,11 +1,8 @@
-// CanNode: SPINDLE (docs/safety.md "Spindle"), answered by one COMMAND_ACK
-// (code = op, detail = index of the offending field). Like every command
-// that moves the machine it needs command ownership, and every check comes
-// before anything changes: a refusal changes nothing. During a program only
-// a stop is taken (the program's elements command the spindle).
+// SpindleRequest: SPINDLE (spindle_request.hpp).
+#include "firmware/can/spindle_request.hpp"
+
 #include <cmath>
 
-#include "firmware/can/can_node.hpp"
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 
@@ -29,7 +26,7 @@ ErrorCode spindle_error(SpindleResult r) noexcept {
 
 }  // namespace
 
-void CanNode::handle_spindle(const hal::CanFrame& frame) noexcept {
+void SpindleRequest::handle(const hal::CanFrame& frame) noexcept {
   const auto op_raw = static_cast<std::uint8_t>(read_raw(frame, kSpindleOp));
   const auto answer = [&](ErrorCode e, std::uint8_t detail) noexcept { ack_.send(kSpindleMsg.id, op_raw, e, detail); };
   if (op_raw >= kSpindleOpCount) return answer(ErrorCode::unknown_command, index_of(kSpindleMsg, kSpindleOp));
@@ -52,7 +49,7 @@ void CanNode::handle_spindle(const hal::CanFrame& frame) noexcept {
   const SpindleResult r = op == SpindleOp::start
                               ? task_.spindle_start(static_cast<SpindleDirection>(direction), rpm)
                               : task_.spindle_set_speed(rpm);
-  if (r == SpindleResult::ok) motion_accepted();
+  if (r == SpindleResult::ok) motion_.accepted();
   answer(spindle_error(r), r == SpindleResult::bad_speed ? rpm_field : 0);
 }
 
