@@ -430,7 +430,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   // G38.2/G38.4 (an error if the probe does not change) need a move; G38.3/G38.5 may stay put.
   if ((motion == 382 || motion == 384) && to == pos_)
     throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
-  if (muted_) muted_probe_line_ = line_;
+  const Vec3 probe_from = pos_;
   emit("TURN_PROBE_ON()");
   CanonMotion move = move_to(CanonMotion::Kind::probe, to);
   move.value = motion - 380;  // 2..5: G38.2..G38.5
@@ -448,6 +448,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   if (distance > 0.0)
     for (std::size_t a = 0; a < 3; ++a) end[a] += kBackoffMm * (from[a] - to[a]) / distance;
   pos_ = canon_pos_ = end;
+  if (muted_) skip_probe(probe_from, to);  // after the results' set: they stay unknown
 }
 
 // A probe run on the machine, as LinuxCNC's task does after it:
@@ -730,6 +731,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
 
   // Group 0: G10, G28/G30, G92 family (G4 ran above, G53 modifies the motion).
   const int g10_l = non_modal == 100 && block.has('l') ? static_cast<int>(block.value('l')) : -1;
+  refuse_unknown_position(block, non_modal, g10_l, g_by_group[0] ? g_by_group[0]->column : 1);
   if (non_modal == 100 && g10_l != 1 && g10_l != 2 && g10_l != 10 && g10_l != 11 && g10_l != 20)
     throw NgcError(block.has('l') ? block.column('l') : g_by_group[0]->column, "G10 needs L1, L2, L10, L11 or L20");
   if (g10_l == 1 || g10_l == 10 || g10_l == 11) {
@@ -867,6 +869,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       canned_cycle(block, motion, column);
     }
   }
+
+  learn_position(block, motion, non_modal, axis_words && !axis_consumer);
 
   // After a tool change LinuxCNC takes its position back from the machine
   // (the last point moved to, shifted by offset changes but not by a new

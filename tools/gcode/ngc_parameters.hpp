@@ -49,6 +49,15 @@ class NgcParameters {
   // A program's assignment: throws NgcError(column) for a predefined name.
   void assign(const std::string& name, double value, int column);
 
+  // Values a run from line cannot know (a skipped probe's result, a position
+  // that came from it): reading `number` (or the predefined `name`) throws
+  // NgcError(column, "#N " + why) until it is known again. set() of a
+  // number makes it known; so does known().
+  void set_unknown(int number, const std::string& why) { unknown_numbers_[number] = why; }
+  void set_unknown(const std::string& name, const std::string& why) { unknown_names_[name] = why; }
+  void known(int number) { unknown_numbers_.erase(number); }
+  void known(const std::string& name) { unknown_names_.erase(name); }
+
   void push_scope();  // a subroutine call
   void pop_scope();   // its return
 
@@ -60,6 +69,8 @@ class NgcParameters {
   std::map<std::string, double> globals_;
   std::vector<std::map<std::string, double>> locals_;
   const NgcMachineValues* machine_ = nullptr;
+  std::map<int, std::string> unknown_numbers_;  // empty but after a run from line skipped a probe
+  std::map<std::string, std::string> unknown_names_;
 };
 
 }  // namespace tnv::gcode
