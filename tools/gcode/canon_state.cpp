@@ -804,10 +804,11 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       canon_pos_[a] += g92_[a] - offset[a];
     }
     g92_ = offset;
-    if (non_modal == 921) {
+    if (non_modal == 921)
       for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, 0.0, 1);
-      params_.set(kG92Enabled, 0.0, 1);
-    }
+    // #5210 says whether G92 is applied: G92.2 keeps the offsets but takes
+    // them off (G10 L10 then measures without them), G92.3 puts them back.
+    params_.set(kG92Enabled, non_modal == 923 ? 1.0 : 0.0, 1);
     emit_g92();
   }
 
