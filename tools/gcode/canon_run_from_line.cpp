@@ -9,6 +9,7 @@
 
 #include "tools/gcode/canon_state.hpp"
 #include "tools/gcode/ngc_error.hpp"
+#include "tools/gcode/ngc_parameters.hpp"
 
 namespace tnv::gcode {
 
@@ -119,7 +120,6 @@ namespace skipped_probe {
 constexpr char kAxisLetters[3] = {'x', 'y', 'z'};
 constexpr const char* kAxisNames[3] = {"X", "Y", "Z"};
 constexpr const char* kPositionNames[3] = {"_x", "_y", "_z"};
-constexpr int kProbeFirst = 5061, kProbeLast = 5070, kPositionFirst = 5420;
 
 }  // namespace skipped_probe
 
@@ -127,7 +127,7 @@ void CanonMachine::skip_probe(const Vec3& from, const Vec3& to) {
   const std::string probe_line = std::to_string(line_);
   const std::string start = setup_.from_line ? std::to_string(setup_.from_line->line) : "a later line";
   const std::string start_here = "; start at or before line " + probe_line;
-  for (int n = skipped_probe::kProbeFirst; n <= skipped_probe::kProbeLast; ++n)
+  for (int n = ngc_number::kProbeResult; n <= ngc_number::kProbeTripped; ++n)
     params_.set_unknown(n, "is the result of the probe (G38.x) at line " + probe_line + ", which the run from line " +
                                start + " skips" + start_here);
   for (std::size_t a = 0; a < 3; ++a) {
@@ -136,7 +136,7 @@ void CanonMachine::skip_probe(const Vec3& from, const Vec3& to) {
     const std::string why = "is the " + std::string(skipped_probe::kAxisNames[a]) +
                             " position where the probe (G38.x) at line " + probe_line +
                             " tripped, which the run from line " + start + " skips" + start_here;
-    params_.set_unknown(skipped_probe::kPositionFirst + static_cast<int>(a), why);
+    params_.set_unknown(ngc_number::kPositionFirst + static_cast<int>(a), why);
     params_.set_unknown(skipped_probe::kPositionNames[a], why);
   }
 }
@@ -144,7 +144,7 @@ void CanonMachine::skip_probe(const Vec3& from, const Vec3& to) {
 void CanonMachine::unknown_axis_known(std::size_t axis) {
   if (unknown_axis_line_[axis] == 0) return;
   unknown_axis_line_[axis] = 0;
-  params_.known(skipped_probe::kPositionFirst + static_cast<int>(axis));
+  params_.known(ngc_number::kPositionFirst + static_cast<int>(axis));
   params_.known(skipped_probe::kPositionNames[axis]);
 }
 

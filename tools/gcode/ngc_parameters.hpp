@@ -15,6 +15,18 @@
 
 namespace tnv::gcode {
 
+// The numbered parameters the interpreter itself reads and writes
+// (LinuxCNC's G-code reference, "Numbered Parameters"), named once here.
+namespace ngc_number {
+inline constexpr int kProbeResult = 5061;  // #5061-#5069: where the last probe tripped (X..W)
+inline constexpr int kProbeTripped = 5070;  // 1 = it tripped
+inline constexpr int kG28Home = 5161, kG30Home = 5181;
+inline constexpr int kG92Enabled = 5210, kG92Base = 5211;
+inline constexpr int kG5xSelected = 5220;
+inline constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1): X Y Z A B C U V W R
+inline constexpr int kPositionFirst = 5420;  // #5420-#5428: the position in the program's frame
+}  // namespace ngc_number
+
 // The interpreter's state as LinuxCNC's predefined parameters show it.
 class NgcMachineValues {
  public:
