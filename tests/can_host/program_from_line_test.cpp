@@ -77,6 +77,8 @@ TEST(ProgramFromLine, TheToolInTheSpindleIsTheNodesWhenItKnowsIt) {
   ro.canon.from_line = gcode::RunFromLine{};
   ro.canon.from_line->line = 4;
   ro.tool_from_node = true;
+  // What `tnvctl run` checks its pauses with before sending: none while the node knows none.
+  EXPECT_EQ(can_host::with_node_tool(client, ro).canon.from_line->tool_in_spindle, 0);
 
   const can_host::ProgramRunResult unknown = can_host::run_gcode(client, text, ro);
   ASSERT_EQ(unknown.stream.end, StreamResult::End::done) << unknown.stream.message;
@@ -88,6 +90,9 @@ TEST(ProgramFromLine, TheToolInTheSpindleIsTheNodesWhenItKnowsIt) {
   const can_host::ProgramRunResult known = can_host::run_gcode(client, text, ro);
   ASSERT_EQ(known.stream.end, StreamResult::End::done) << known.stream.message;
   EXPECT_TRUE(known.stream.pauses.empty()) << "T2 is in, as the node knows: no change";
+  const can_host::ProgramRunOptions asked = can_host::with_node_tool(client, ro);
+  EXPECT_EQ(asked.canon.from_line->tool_in_spindle, 2);
+  EXPECT_FALSE(asked.tool_from_node) << "asked once: the run uses the same answer";
 
   ro.tool_from_node = false;  // the operator's word (--tool-in-spindle 0) stands over the node's
   const can_host::ProgramRunResult told = can_host::run_gcode(client, text, ro);

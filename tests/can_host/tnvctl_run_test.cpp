@@ -136,6 +136,29 @@ TEST(TnvctlRun, ABadProgramIsRefusedNamingLineAndColumnBeforeAnythingIsSent) {
   std::filesystem::remove_all(state);
 }
 
+// A run from line after a tool change, without a terminal: the check before
+// sending starts from the tool the run starts with. A fresh emulated node
+// knows none (the start changes to T2: refused, naming why and the option);
+// with --tool-in-spindle 2 there is no change and it runs.
+// (ProgramFromLine.TheToolInTheSpindleIsTheNodesWhenItKnowsIt: the node's own answer.)
+TEST(TnvctlRun, ARunFromLineChecksItsPausesWithTheToolInTheSpindle) {
+  const auto state = test::state_dir("run_from_line_tool");
+  const auto tbl = test::write_file(state / "tools.tbl", "T2 P2 Z0 D6\n");
+  const auto prog = test::write_file(state / "part.ngc", "G21 G91 F600\nT2 M6\nG1 X3\nG1 Y3\nM2\n");
+  const std::string run = "--emu --json run " + prog.string() + " --no-score --tool-table " + tbl.string() +
+                          " --from-line 4";
+  ToolRun r = test::tnvctl(state, run + " </dev/null");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("the program pauses (line 4: tool change (M6))"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the node reports no tool in the spindle"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--tool-in-spindle T says tool T is in"), std::string::npos) << r.err;
+  r = test::tnvctl(state, run + " --tool-in-spindle 2 </dev/null");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["pauses"].empty()) << j.dump();
+  std::filesystem::remove_all(state);
+}
+
 // The dialect on the emulated node: a work offset from --var-file, a tool
 // from --tool-table (its M6 pauses: refused without a terminal unless
 // --resume-after-s is given), a subroutine in a file beside the program,

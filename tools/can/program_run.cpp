@@ -95,15 +95,6 @@ StreamResult stream_probing(NodeClient& client, const std::string& text, const P
   return out;
 }
 
-// The options with the node's tool in the spindle for a run from line, when asked for and known.
-ProgramRunOptions with_node_tool(NodeClient& client, const ProgramRunOptions& o) {
-  ProgramRunOptions out = o;
-  if (!o.tool_from_node || !o.canon.from_line) return out;
-  const ProgramTool tool = client.program_tool();
-  if (tool.known) out.canon.from_line->tool_in_spindle = tool.tool;
-  return out;
-}
-
 // The run's telemetry, and every frame to the caller's listener too.
 FrameListener both(PathTelemetry& telemetry, const FrameListener& also) {
   return [&telemetry, also](const hal::CanFrame& f, can::MessageId id) {
@@ -124,6 +115,15 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
 }
 
 }  // namespace
+
+ProgramRunOptions with_node_tool(NodeClient& client, const ProgramRunOptions& o) {
+  ProgramRunOptions out = o;
+  if (!o.tool_from_node || !o.canon.from_line) return out;
+  out.tool_from_node = false;  // asked once: the answer stands for this run
+  const ProgramTool tool = client.program_tool();
+  if (tool.known) out.canon.from_line->tool_in_spindle = tool.tool;
+  return out;
+}
 
 ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options) {
   const ProgramRunOptions o = with_node_tool(client, options);

@@ -76,6 +76,14 @@ struct ProgramPlan {
   fw::motion::PlanePoint start_mm{};
 };
 
+// The options with the tool in the spindle a run from line starts with:
+// with tool_from_node, the node's PROGRAM_TOOL when the node knows it (asked
+// now, once: tool_from_node is cleared in the result), else
+// canon.from_line->tool_in_spindle as given (0, none, by default: a tool the
+// start needs is then changed, a pause the operator confirms). A check
+// before sending and the run itself use the same answer.
+ProgramRunOptions with_node_tool(NodeClient& client, const ProgramRunOptions& options);
+
 // Throws RequestError when the node sends no TLM_POSITION_X / _Y pair within 500 ms.
 ProgramPlan plan_gcode(NodeClient& client, const std::string& gcode_text, const ProgramRunOptions& options);
 

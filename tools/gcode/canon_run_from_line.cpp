@@ -9,6 +9,7 @@
 
 #include "tools/gcode/canon_state.hpp"
 #include "tools/gcode/ngc_error.hpp"
+#include "tools/gcode/ngc_parameters.hpp"
 
 namespace tnv::gcode {
 
@@ -28,10 +29,9 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
   if (comp_side_ != 0)
     throw NgcError(1, at + "cutter radius compensation (line " + std::to_string(comp_line_) +
                           ") is in force there and would need an entry move; start at that G41/G42 or after its G40");
-  if (muted_probe_line_ != 0)
-    throw NgcError(1, at + "line " + std::to_string(muted_probe_line_) +
-                          " probes (G38.x) before it, and a skipped probe's result (#5061-#5070) is unknown; start at "
-                          "or before that line");
+  // A probe before the start: its result stays unknown (a read is refused
+  // where it comes); where the tool is must not depend on it.
+  if (const std::string why = unknown_position_reason(); !why.empty()) throw NgcError(1, at + why);
   muted_ = false;
 
   emit("COMMENT(\"interpreter: run from line " + std::to_string(line) + "\")");
@@ -101,6 +101,114 @@ void CanonMachine::resume(const RunFromLine& from, int line) {
       emit("STRAIGHT_TRAVERSE(" + xyz(start) + ")", move_to(CanonMotion::Kind::traverse, start));
     }
   }
+}
+
+// Run from line past a probe (docs/gcode.md "Run from line"): the probe
+// (G38.x) before the start line is skipped, so where it tripped is unknown.
+// Its result (#5061-#5070) and the axes it moved stay unknown until the
+// program gives them again: an axis by an absolute move (G90, G53, G28/G30),
+// a result by an assignment or a probe that runs. Reading an unknown value
+// is refused naming the line that reads it and the probe's line; so is
+// storing an unknown position (G10 L10/L11/L20, G92, G28.1/G30.1) and a
+// start where an axis is still unknown. LinuxCNC reads on with whatever the
+// last real probe left in #5061-#5070: a program that touches off from the
+// probe would run from a stale offset.
+
+// A skipped probe's names (unity builds join files: names of their own).
+namespace skipped_probe {
+
+constexpr char kAxisLetters[3] = {'x', 'y', 'z'};
+constexpr const char* kAxisNames[3] = {"X", "Y", "Z"};
+constexpr const char* kPositionNames[3] = {"_x", "_y", "_z"};
+
+}  // namespace skipped_probe
+
+void CanonMachine::skip_probe(const Vec3& from, const Vec3& to) {
+  const std::string probe_line = std::to_string(line_);
+  const std::string start = setup_.from_line ? std::to_string(setup_.from_line->line) : "a later line";
+  const std::string start_here = "; start at or before line " + probe_line;
+  for (int n = ngc_number::kProbeResult; n <= ngc_number::kProbeTripped; ++n)
+    params_.set_unknown(n, "is the result of the probe (G38.x) at line " + probe_line + ", which the run from line " +
+                               start + " skips" + start_here);
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (to[a] == from[a]) continue;
+    unknown_axis_line_[a] = line_;
+    const std::string why = "is the " + std::string(skipped_probe::kAxisNames[a]) +
+                            " position where the probe (G38.x) at line " + probe_line +
+                            " tripped, which the run from line " + start + " skips" + start_here;
+    params_.set_unknown(ngc_number::kPositionFirst + static_cast<int>(a), why);
+    params_.set_unknown(skipped_probe::kPositionNames[a], why);
+  }
+}
+
+void CanonMachine::unknown_axis_known(std::size_t axis) {
+  if (unknown_axis_line_[axis] == 0) return;
+  unknown_axis_line_[axis] = 0;
+  params_.known(ngc_number::kPositionFirst + static_cast<int>(axis));
+  params_.known(skipped_probe::kPositionNames[axis]);
+}
+
+void CanonMachine::refuse_unknown_position(const NgcBlock& block, int non_modal, int g10_l, int column) const {
+  if (unknown_axis_line_ == std::array<int, 3>{}) return;
+  const std::string start = setup_.from_line ? std::to_string(setup_.from_line->line) : "a later line";
+  const auto refuse = [&](std::size_t a, int at, const std::string& what) {
+    const std::string probe_line = std::to_string(unknown_axis_line_[a]);
+    throw NgcError(at, "cannot run from line " + start + ": " + what + " from the " + skipped_probe::kAxisNames[a] +
+                           " position where the probe (G38.x) at line " + probe_line +
+                           " tripped, which the run skips; start at or before line " + probe_line);
+  };
+  const bool per_axis = (non_modal == 100 && (g10_l == 10 || g10_l == 11 || g10_l == 20)) || non_modal == 920;
+  if (per_axis) {
+    const std::string what =
+        non_modal == 920 ? "G92 sets an offset" : "G10 L" + std::to_string(g10_l) + " sets an offset";
+    for (std::size_t a = 0; a < 3; ++a)
+      if (unknown_axis_line_[a] != 0 && block.has(skipped_probe::kAxisLetters[a]))
+        refuse(a, block.column(skipped_probe::kAxisLetters[a]), what);
+  }
+  if (non_modal == 281 || non_modal == 301) {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (unknown_axis_line_[a] != 0)
+        refuse(a, column, non_modal == 281 ? "G28.1 stores a home" : "G30.1 stores a home");
+  }
+}
+
+void CanonMachine::learn_position(const NgcBlock& block, int motion, int non_modal, bool moved) {
+  if (unknown_axis_line_ == std::array<int, 3>{}) return;
+  if (comp_side_ != 0) return;  // a compensated point depends on the path to it
+  // G28/G30 end at the home of the axes named (of all without words).
+  if (non_modal == 280 || non_modal == 300) {
+    const bool words = block.has('x') || block.has('y') || block.has('z');
+    for (std::size_t a = 0; a < 3; ++a)
+      if (!words || block.has(skipped_probe::kAxisLetters[a])) unknown_axis_known(a);
+    return;
+  }
+  if (!moved || block.polar_radius || block.polar_angle) return;
+  if (non_modal != 530 && !absolute_) return;  // incremental: from the unknown point
+  const bool straight_or_arc = motion == 0 || motion == 10 || motion == 20 || motion == 30;
+  if (straight_or_arc) {
+    for (std::size_t a = 0; a < 3; ++a)
+      if (block.has(skipped_probe::kAxisLetters[a])) unknown_axis_known(a);
+    return;
+  }
+  // A cycle: the plane's axes go where given; along the cycle's axis G99 ends at R.
+  if (is_cycle(motion)) {
+    const std::size_t along = plane_ == 170 ? 2 : plane_ == 180 ? 1 : 0;
+    for (std::size_t a = 0; a < 3; ++a)
+      if (a != along && block.has(skipped_probe::kAxisLetters[a])) unknown_axis_known(a);
+    if (!retract_old_z_) unknown_axis_known(along);
+  }
+}
+
+std::string CanonMachine::unknown_position_reason() const {
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (unknown_axis_line_[a] == 0) continue;
+    const std::string probe_line = std::to_string(unknown_axis_line_[a]);
+    return "the " + std::string(skipped_probe::kAxisNames[a]) +
+           " position there comes from where the probe (G38.x) at line " + probe_line +
+           " tripped, which the run skips; start at or before line " + probe_line +
+           ", or at a line after one that gives " + skipped_probe::kAxisNames[a] + " absolutely (G90)";
+  }
+  return {};
 }
 
 }  // namespace tnv::gcode

@@ -7,17 +7,13 @@
 #include <numbers>
 
 #include "tools/gcode/ngc_error.hpp"
+#include "tools/gcode/ngc_parameters.hpp"
 
 namespace tnv::gcode {
 
 namespace {
 
 constexpr double kMmPerInch = 25.4;
-constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1): X Y Z A B C U V W R
-constexpr int kG5xSelected = 5220;
-constexpr int kG92Base = 5211, kG92Enabled = 5210;
-constexpr int kG28Home = 5161, kG30Home = 5181;
-constexpr int kProbeResult = 5061, kProbeTripped = 5070;
 
 bool has_code(const std::vector<NgcCode>& codes, int code) {
   return std::any_of(codes.begin(), codes.end(), [code](const NgcCode& c) { return c.code == code; });
@@ -127,13 +123,13 @@ void CanonMachine::emit_g5x() { emit("SET_G5X_OFFSET(" + std::to_string(origin_)
 void CanonMachine::emit_g92() { emit("SET_G92_OFFSET(" + xyz(g92_) + ")"); }
 
 void CanonMachine::start() {
-  const double selected = params_.get(kG5xSelected, 1);
+  const double selected = params_.get(ngc_number::kG5xSelected, 1);
   origin_ = (selected >= 1.0 && selected <= 9.0) ? static_cast<int>(selected) : 1;
   for (int a = 0; a < 3; ++a) {
-    g5x_[static_cast<std::size_t>(a)] = params_.get(kG5xBase + 20 * (origin_ - 1) + a, 1);
-    g92_[static_cast<std::size_t>(a)] = params_.get(kG92Enabled, 1) != 0.0 ? params_.get(kG92Base + a, 1) : 0.0;
+    g5x_[static_cast<std::size_t>(a)] = params_.get(ngc_number::kG5xBase + 20 * (origin_ - 1) + a, 1);
+    g92_[static_cast<std::size_t>(a)] = params_.get(ngc_number::kG92Enabled, 1) != 0.0 ? params_.get(ngc_number::kG92Base + a, 1) : 0.0;
   }
-  params_.set(kG5xSelected, origin_, 1);
+  params_.set(ngc_number::kG5xSelected, origin_, 1);
   pos_ = canon_pos_ = machine_to_program(setup_.start_machine_mm);
   emit("USE_LENGTH_UNITS(CANON_UNITS_MM)");
   emit_g5x();
@@ -430,7 +426,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   // G38.2/G38.4 (an error if the probe does not change) need a move; G38.3/G38.5 may stay put.
   if ((motion == 382 || motion == 384) && to == pos_)
     throw NgcError(column, g_text(motion) + " move of zero length: the start point is the probe point");
-  if (muted_) muted_probe_line_ = line_;
+  const Vec3 probe_from = pos_;
   emit("TURN_PROBE_ON()");
   CanonMotion move = move_to(CanonMotion::Kind::probe, to);
   move.value = motion - 380;  // 2..5: G38.2..G38.5
@@ -438,8 +434,8 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   emit("TURN_PROBE_OFF()");
   if (setup_.probe_input && !muted_) return probe_on_machine(move, to, column);
   for (int a = 0; a < 9; ++a)
-    params_.set(kProbeResult + a, a < 3 ? to[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
-  params_.set(kProbeTripped, 0.0, column);
+    params_.set(ngc_number::kProbeResult + a, a < 3 ? to[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
+  params_.set(ngc_number::kProbeTripped, 0.0, column);
   // Backed off toward where the canon last moved to (X0 Y0 after a G5.1 spline).
   const Vec3& from = canon_pos_;
   const double distance = std::hypot(from[0] - to[0], from[1] - to[1], from[2] - to[2]);
@@ -448,6 +444,7 @@ void CanonMachine::probe(int motion, const Vec3& to, int column) {
   if (distance > 0.0)
     for (std::size_t a = 0; a < 3; ++a) end[a] += kBackoffMm * (from[a] - to[a]) / distance;
   pos_ = canon_pos_ = end;
+  if (muted_) skip_probe(probe_from, to);  // after the results' set: they stay unknown
 }
 
 // A probe run on the machine, as LinuxCNC's task does after it:
@@ -463,8 +460,8 @@ void CanonMachine::probe_on_machine(const CanonMotion& move, const Vec3& to, int
   const ProbeRun run = setup_.probe_input(call);
   if (!run.error.empty()) throw NgcError(column, run.error);
   const Vec3 at = run.tripped ? machine_to_program(run.trip_mm) : to;
-  for (int a = 0; a < 9; ++a) params_.set(kProbeResult + a, a < 3 ? at[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
-  params_.set(kProbeTripped, run.tripped ? 1.0 : 0.0, column);
+  for (int a = 0; a < 9; ++a) params_.set(ngc_number::kProbeResult + a, a < 3 ? at[static_cast<std::size_t>(a)] / unit_mm_ : 0.0, column);
+  params_.set(ngc_number::kProbeTripped, run.tripped ? 1.0 : 0.0, column);
   pos_ = canon_pos_ = machine_to_program(run.rest_mm);
 }
 
@@ -494,12 +491,12 @@ void CanonMachine::emit_control_mode() {
 void CanonMachine::set_origin(int index) {
   const Vec3 old = g5x_;
   origin_ = index;
-  for (int a = 0; a < 3; ++a) g5x_[static_cast<std::size_t>(a)] = params_.get(kG5xBase + 20 * (index - 1) + a, 1);
+  for (int a = 0; a < 3; ++a) g5x_[static_cast<std::size_t>(a)] = params_.get(ngc_number::kG5xBase + 20 * (index - 1) + a, 1);
   for (std::size_t a = 0; a < 3; ++a) {
     pos_[a] += old[a] - g5x_[a];
     canon_pos_[a] += old[a] - g5x_[a];
   }
-  params_.set(kG5xSelected, index, 1);
+  params_.set(ngc_number::kG5xSelected, index, 1);
 }
 
 void CanonMachine::program_end(bool m30) {
@@ -730,6 +727,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
 
   // Group 0: G10, G28/G30, G92 family (G4 ran above, G53 modifies the motion).
   const int g10_l = non_modal == 100 && block.has('l') ? static_cast<int>(block.value('l')) : -1;
+  refuse_unknown_position(block, non_modal, g10_l, g_by_group[0] ? g_by_group[0]->column : 1);
   if (non_modal == 100 && g10_l != 1 && g10_l != 2 && g10_l != 10 && g10_l != 11 && g10_l != 20)
     throw NgcError(block.has('l') ? block.column('l') : g_by_group[0]->column, "G10 needs L1, L2, L10, L11 or L20");
   if (g10_l == 1 || g10_l == 10 || g10_l == 11) {
@@ -751,7 +749,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       if (!block.has(kAxes[a])) continue;
       const double v = length(block.value(kAxes[a]));
       const double offset = l == 2 ? v : pos_[a] + g5x_[a] - v;  // L20: here becomes v
-      params_.set(kG5xBase + 20 * (system - 1) + static_cast<int>(a), offset, block.column(kAxes[a]));
+      params_.set(ngc_number::kG5xBase + 20 * (system - 1) + static_cast<int>(a), offset, block.column(kAxes[a]));
     }
     if (system != origin_) {
       emit("COMMENT(\"interpreter: setting coordinate system origin\")");
@@ -764,7 +762,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     comp_refuse(comp_side_ != 0, g_by_group[0]->column, "use G28 or G30");
     const Vec3 via = target(block, false);
     move_traverse(via);
-    const int base = non_modal == 280 ? kG28Home : kG30Home;
+    const int base = non_modal == 280 ? ngc_number::kG28Home : ngc_number::kG30Home;
     Vec3 home_machine{};
     for (int a = 0; a < 3; ++a) home_machine[static_cast<std::size_t>(a)] = params_.get(base + a, 1);
     const Vec3 home = machine_to_program(home_machine);
@@ -775,7 +773,7 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
     move_traverse(to);
   } else if (non_modal == 281 || non_modal == 301) {
     const Vec3 m = program_to_machine(pos_);
-    const int base = non_modal == 281 ? kG28Home : kG30Home;
+    const int base = non_modal == 281 ? ngc_number::kG28Home : ngc_number::kG30Home;
     for (int a = 0; a < 3; ++a) params_.set(base + a, m[static_cast<std::size_t>(a)], 1);
   } else if (non_modal >= 920 && non_modal <= 923) {
     comp_refuse(comp_side_ != 0, g_by_group[0]->column, "change axis offsets (G92)");
@@ -790,22 +788,23 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       canon_pos_[a] += g92_[a] - offset;
       g92_[a] = offset;
     }
-    for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, g92_[static_cast<std::size_t>(a)], 1);
-    params_.set(kG92Enabled, 1.0, 1);
+    for (int a = 0; a < 3; ++a) params_.set(ngc_number::kG92Base + a, g92_[static_cast<std::size_t>(a)], 1);
+    params_.set(ngc_number::kG92Enabled, 1.0, 1);
     emit_g92();
   } else if (non_modal == 921 || non_modal == 922 || non_modal == 923) {
     Vec3 offset{};
     if (non_modal == 923)
-      for (int a = 0; a < 3; ++a) offset[static_cast<std::size_t>(a)] = params_.get(kG92Base + a, 1);
+      for (int a = 0; a < 3; ++a) offset[static_cast<std::size_t>(a)] = params_.get(ngc_number::kG92Base + a, 1);
     for (std::size_t a = 0; a < 3; ++a) {
       pos_[a] += g92_[a] - offset[a];
       canon_pos_[a] += g92_[a] - offset[a];
     }
     g92_ = offset;
-    if (non_modal == 921) {
-      for (int a = 0; a < 3; ++a) params_.set(kG92Base + a, 0.0, 1);
-      params_.set(kG92Enabled, 0.0, 1);
-    }
+    if (non_modal == 921)
+      for (int a = 0; a < 3; ++a) params_.set(ngc_number::kG92Base + a, 0.0, 1);
+    // #5210 says whether G92 is applied: G92.2 keeps the offsets but takes
+    // them off (G10 L10 then measures without them), G92.3 puts them back.
+    params_.set(ngc_number::kG92Enabled, non_modal == 923 ? 1.0 : 0.0, 1);
     emit_g92();
   }
 
@@ -867,6 +866,8 @@ void CanonMachine::execute(const NgcBlock& block, int line) {
       canned_cycle(block, motion, column);
     }
   }
+
+  learn_position(block, motion, non_modal, axis_words && !axis_consumer);
 
   // After a tool change LinuxCNC takes its position back from the machine
   // (the last point moved to, shifted by offset changes but not by a new

@@ -56,6 +56,14 @@ class CanonMachine : private NgcMachineValues {
   // LinuxCNC's predefined parameters (canon_predefined.cpp).
   std::optional<double> predefined(const std::string& name) const override;
   double read_only_number(int number) const override;
+  // A probe skipped by a run from line (canon_run_from_line.cpp): its result
+  // and the axes it moved are unknown until known again; what would store or
+  // start from them is refused.
+  void skip_probe(const Vec3& from, const Vec3& to);
+  void refuse_unknown_position(const NgcBlock& block, int non_modal, int g10_l, int column) const;
+  void learn_position(const NgcBlock& block, int motion, int non_modal, bool moved);
+  void unknown_axis_known(std::size_t axis);
+  std::string unknown_position_reason() const;  // empty when every axis is known
   void emit(const std::string& text, const CanonMotion& motion = {});
   // A move's structured form: its end (program coordinates) in machine coordinates.
   CanonMotion move_to(CanonMotion::Kind kind, const Vec3& program_mm) const;
@@ -234,7 +242,9 @@ class CanonMachine : private NgcMachineValues {
   bool endpoint_valid_ = false;
   int comp_column_ = 1;  // the word an error found while compensating is reported at
   bool muted_ = false;      // run from line: before the start line
-  int muted_probe_line_ = 0;  // the last line that probed while muted
+  // Run from line past a probe (canon_run_from_line.cpp): per axis, the line
+  // of the skipped probe its position came from (0: known).
+  std::array<int, 3> unknown_axis_line_{};
   int comp_line_ = 0;      // the line compensation was turned on
   // After G40 and until the next move the tool stands beside the programmed
   // point (machine coordinates, so no offset change moves it).

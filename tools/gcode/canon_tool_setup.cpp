@@ -8,13 +8,12 @@
 
 #include "tools/gcode/canon_state.hpp"
 #include "tools/gcode/ngc_error.hpp"
+#include "tools/gcode/ngc_parameters.hpp"
 
 namespace tnv::gcode {
 
 namespace {
 
-constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1)
-constexpr int kG92Base = 5211, kG92Enabled = 5210;
 constexpr int kFixtureSystem = 9;  // G10 L11 measures in G59.3, as LinuxCNC
 
 // LinuxCNC's rounding of G10's P and Q (is_near_int): half up, toward zero below.
@@ -52,13 +51,13 @@ void CanonMachine::setup_tool(const NgcBlock& block, int l, int column) {
     // offset; L10 takes G92 off (when it is enabled, as #5210 says),
     // L11 does not.
     const int system = l == 11 ? kFixtureSystem : origin_;
-    const bool g92 = l == 10 && params_.get(kG92Enabled, 1) != 0.0;
+    const bool g92 = l == 10 && params_.get(ngc_number::kG92Enabled, 1) != 0.0;
     const Vec3 machine = program_to_machine(pos_);
     for (std::size_t a = 0; a < 3; ++a) {
       if (!block.has(kAxes[a])) continue;
       const int axis = static_cast<int>(a);
-      const double here = machine[a] - params_.get(kG5xBase + 20 * (system - 1) + axis, 1) -
-                          (g92 ? params_.get(kG92Base + axis, 1) : 0.0);
+      const double here = machine[a] - params_.get(ngc_number::kG5xBase + 20 * (system - 1) + axis, 1) -
+                          (g92 ? params_.get(ngc_number::kG92Base + axis, 1) : 0.0);
       entry.offset[a] = here - length(block.value(kAxes[a]));
     }
   }

@@ -14,6 +14,9 @@ NgcParameters::NgcParameters() : globals_{{"_value", 0.0}, {"_value_returned", 0
 double NgcParameters::get(int number, int column) const {
   if (number < 0 || number >= kCount)
     throw NgcError(column, "parameter #" + std::to_string(number) + " out of range (1.." + std::to_string(kCount - 1) + ")");
+  if (!unknown_numbers_.empty())
+    if (const auto it = unknown_numbers_.find(number); it != unknown_numbers_.end())
+      throw NgcError(column, "#" + std::to_string(number) + " " + it->second);
   if (read_only(number)) return machine_ ? machine_->read_only_number(number) : 0.0;
   return numbered_[static_cast<std::size_t>(number)];
 }
@@ -23,9 +26,13 @@ void NgcParameters::set(int number, double value, int column) {
     throw NgcError(column, "parameter #" + std::to_string(number) + " out of range (1.." + std::to_string(kCount - 1) + ")");
   if (read_only(number)) throw NgcError(column, "parameter #" + std::to_string(number) + " is read-only");
   numbered_[static_cast<std::size_t>(number)] = value;
+  if (!unknown_numbers_.empty()) unknown_numbers_.erase(number);
 }
 
 double NgcParameters::get(const std::string& name, int column) const {
+  if (!unknown_names_.empty())
+    if (const auto it = unknown_names_.find(name); it != unknown_names_.end())
+      throw NgcError(column, "#<" + name + "> " + it->second);
   if (!name.empty() && name[0] == '_') {
     if (machine_)
       if (const std::optional<double> v = machine_->predefined(name)) return *v;

@@ -15,6 +15,18 @@
 
 namespace tnv::gcode {
 
+// The numbered parameters the interpreter itself reads and writes
+// (LinuxCNC's G-code reference, "Numbered Parameters"), named once here.
+namespace ngc_number {
+inline constexpr int kProbeResult = 5061;  // #5061-#5069: where the last probe tripped (X..W)
+inline constexpr int kProbeTripped = 5070;  // 1 = it tripped
+inline constexpr int kG28Home = 5161, kG30Home = 5181;
+inline constexpr int kG92Enabled = 5210, kG92Base = 5211;
+inline constexpr int kG5xSelected = 5220;
+inline constexpr int kG5xBase = 5221;  // system n at 5221 + 20 (n - 1): X Y Z A B C U V W R
+inline constexpr int kPositionFirst = 5420;  // #5420-#5428: the position in the program's frame
+}  // namespace ngc_number
+
 // The interpreter's state as LinuxCNC's predefined parameters show it.
 class NgcMachineValues {
  public:
@@ -49,6 +61,15 @@ class NgcParameters {
   // A program's assignment: throws NgcError(column) for a predefined name.
   void assign(const std::string& name, double value, int column);
 
+  // Values a run from line cannot know (a skipped probe's result, a position
+  // that came from it): reading `number` (or the predefined `name`) throws
+  // NgcError(column, "#N " + why) until it is known again. set() of a
+  // number makes it known; so does known().
+  void set_unknown(int number, const std::string& why) { unknown_numbers_[number] = why; }
+  void set_unknown(const std::string& name, const std::string& why) { unknown_names_[name] = why; }
+  void known(int number) { unknown_numbers_.erase(number); }
+  void known(const std::string& name) { unknown_names_.erase(name); }
+
   void push_scope();  // a subroutine call
   void pop_scope();   // its return
 
@@ -60,6 +81,8 @@ class NgcParameters {
   std::map<std::string, double> globals_;
   std::vector<std::map<std::string, double>> locals_;
   const NgcMachineValues* machine_ = nullptr;
+  std::map<int, std::string> unknown_numbers_;  // empty but after a run from line skipped a probe
+  std::map<std::string, std::string> unknown_names_;
 };
 
 }  // namespace tnv::gcode

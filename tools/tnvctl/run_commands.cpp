@@ -70,43 +70,59 @@ std::vector<gcode::FeedHoldWindow> hold_schedule(const RunOptions& o) {
   return windows;
 }
 
-// Before anything is sent: the options, and the program's syntax. The limits
-// here are wide open (the node's own come with the run), so only what is
-// wrong from any start point and on any table is reported now.
-void check_run(const RunOptions& o) {
-  if (o.feed_override && !(*o.feed_override >= 0.0 && *o.feed_override <= 1.5))
-    throw BadInput("--feed-override must be in [0, 1.5]");
-  if (!(o.rapid_feed_mm_s > 0.0 && o.rapid_feed_mm_s <= 655.35)) throw BadInput("--rapid-feed must be in (0, 655.35] mm/s");
+// The program read as from any start point and on any table: the limits
+// are wide open (the node's own come with the run), probes read as if none
+// tripped.
+gcode::GcodeResult read_anywhere(const RunOptions& o, const gcode::CanonSetup& setup) {
   gcode::GcodeOptions g;
   g.rapid_feed_mm_s = o.rapid_feed_mm_s;
-  g.canon = run_setup(o);
+  g.canon = setup;
   g.run_probe = gcode::untouched_probe;  // read as if no probe tripped: the run reads on from each result
   for (fw::motion::AxisLimits& a : g.limits.axis) {
     a.speed_mm_s = 1e9;
     a.position_min_mm = -1e9;
     a.position_max_mm = 1e9;
   }
-  const gcode::GcodeResult r = gcode::parse_gcode(read_file(o.file), g);
+  return gcode::parse_gcode(read_file(o.file), g);
+}
+
+// Before anything is sent and before the bus is opened: the options, and the
+// program's syntax, so only what is wrong from any start point and on any
+// table is reported now. The program as read, for check_pauses.
+gcode::GcodeProgram check_run(const RunOptions& o) {
+  if (o.feed_override && !(*o.feed_override >= 0.0 && *o.feed_override <= 1.5))
+    throw BadInput("--feed-override must be in [0, 1.5]");
+  if (!(o.rapid_feed_mm_s > 0.0 && o.rapid_feed_mm_s <= 655.35)) throw BadInput("--rapid-feed must be in (0, 655.35] mm/s");
+  gcode::GcodeResult r = read_anywhere(o, run_setup(o));
   if (r.error) throw BadInput(o.file + ": " + gcode::to_string(*r.error) + " (nothing was sent)");
   if (r.program.segments.empty()) throw BadInput(o.file + ": the program has no motion and no dwell (nothing was sent)");
   if (o.resume_after_s && !(*o.resume_after_s >= 0.0 && *o.resume_after_s <= 3600.0))
     throw BadInput("--resume-after-s must be in [0, 3600] s");
   hold_schedule(o);
-  // A pause waits for the operator's Enter: without a terminal nobody could press it.
-  if (!r.program.pauses.empty() && !o.resume_after_s && isatty(STDIN_FILENO) == 0) {
-    const auto line_of = [&r](const gcode::ProgramPause& p) { return std::to_string(r.program.segments[p.segment].tag); };
-    const gcode::ProgramPause& p = r.program.pauses.front();
-    std::string tool_change;  // a manual tool change nobody could confirm, named even when another pause comes first
-    const auto m6 = std::find_if(r.program.pauses.begin(), r.program.pauses.end(), [](const gcode::ProgramPause& q) {
-      return q.reason == gcode::PauseReason::tool_change;
-    });
-    if (m6 != r.program.pauses.end() && m6 != r.program.pauses.begin())
-      tool_change = "; its first tool change (M6, tool " + std::to_string(m6->tool) + ") is at line " + line_of(*m6);
-    throw BadInput(o.file + ": the program pauses (line " + line_of(p) + ": " + gcode::to_string(p.reason) + ")" +
-                   tool_change +
-                   ", and stdin is not a terminal to confirm it from: run it from a terminal (Enter continues) or "
-                   "give --resume-after-s S to continue every pause by itself (nothing was sent)");
-  }
+  return std::move(r.program);
+}
+
+// A pause waits for the operator's Enter: without a terminal nobody could
+// press it. `program` is read with the tool in the spindle the run starts
+// with; `tool_unknown`: nobody said which (no --tool-in-spindle, and the
+// node does not know), so a run from line changes to its tool first.
+void check_pauses(const RunOptions& o, const gcode::GcodeProgram& program, bool tool_unknown) {
+  if (program.pauses.empty() || o.resume_after_s || isatty(STDIN_FILENO) != 0) return;
+  const auto line_of = [&program](const gcode::ProgramPause& p) { return std::to_string(program.segments[p.segment].tag); };
+  const gcode::ProgramPause& p = program.pauses.front();
+  std::string tool_change;  // a manual tool change nobody could confirm, named even when another pause comes first
+  const auto m6 = std::find_if(program.pauses.begin(), program.pauses.end(), [](const gcode::ProgramPause& q) {
+    return q.reason == gcode::PauseReason::tool_change;
+  });
+  if (m6 != program.pauses.end() && m6 != program.pauses.begin())
+    tool_change = "; its first tool change (M6, tool " + std::to_string(m6->tool) + ") is at line " + line_of(*m6);
+  if (m6 != program.pauses.end() && tool_unknown)
+    tool_change.append("; the node reports no tool in the spindle (it knows one once an M6 on it is confirmed), so the "
+                       "start changes to the line's tool: --tool-in-spindle T says tool T is in");
+  throw BadInput(o.file + ": the program pauses (line " + line_of(p) + ": " + gcode::to_string(p.reason) + ")" +
+                 tool_change +
+                 ", and stdin is not a terminal to confirm it from: run it from a terminal (Enter continues) or "
+                 "give --resume-after-s S to continue every pause by itself (nothing was sent)");
 }
 
 // Progress on stderr: rewritten in place on a terminal (at most 5 times a
@@ -177,12 +193,26 @@ void report_cut(const can_host::CutWatch& watch, const can_host::ProgramRunResul
 }
 
 int run_program_file(const RunOptions& o, Session& session, Report& report) {
-  check_run(o);
+  const gcode::GcodeProgram checked = check_run(o);
+  // A run from line without --tool-in-spindle starts with the node's tool: the pauses are checked with it.
+  const bool node_says = o.from.from_line != 0 && !o.from.tool_given;
+  if (!node_says) check_pauses(o, checked, false);
   can_host::NodeClient& client = session.client();
   can_host::ProgramRunOptions ro;
   ro.rapid_feed_mm_s = o.rapid_feed_mm_s;
   ro.canon = run_setup(o);
-  ro.tool_from_node = !o.from.tool_given;  // a run from line: the node's tool, when it knows it
+  if (node_says) {
+    ro.tool_from_node = true;
+    ro = can_host::with_node_tool(client, ro);  // asked once; the run uses the same answer
+    const int tool = ro.canon.from_line->tool_in_spindle;
+    if (tool == 0) {
+      check_pauses(o, checked, true);  // none, or not known: as read before
+    } else {
+      const gcode::GcodeResult again = read_anywhere(o, ro.canon);
+      if (again.error) throw BadInput(o.file + ": " + gcode::to_string(*again.error) + " (nothing was sent)");
+      check_pauses(o, again.program, false);
+    }
+  }
   ro.feed_override = o.feed_override;
   ro.telemetry_ms = o.no_score ? 0 : 1;
   ro.window = static_cast<std::size_t>(o.window);
@@ -326,7 +356,9 @@ constexpr const char* kRunHelp =
     "  --from-line N starts at line N (the Nth line run: --from-pass K for a line in a loop) with the modal state\n"
     "  the full run has there; from where the table stands the tool goes up to --clearance-z, across at rapid and\n"
     "  down to the start, the last --approach-height mm at the feed (docs/gcode.md \"Run from line\"). A tool other\n"
-    "  than --tool-in-spindle (default none) is changed first: a pause. The spindle is started as the line has it.\n\n"
+    "  than --tool-in-spindle (default: the node's, when it knows it; else none) is changed first: a pause. The\n"
+    "  spindle is started as the line has it. A probe (G38.x) before N is skipped: a start where the position or\n"
+    "  an offset depends on where it tripped, or a line that reads its result (#5061-#5070), is refused.\n\n"
     "PAUSES\n"
     "  The table comes to rest at the pause and holds there; the spindle is left as it is. tnvctl prints the\n"
     "  line, the reason and, for M6, the tool, and waits for Enter on the terminal (COMMAND cycle_start). With\n"

@@ -4,6 +4,8 @@
 // programs/cam_contour_g41_g42.ngc); the comments give the geometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,36 @@ TEST(CutterCompensation, EntryArcKeepsTheToolTangentToTheProgrammedCircle) {
   const auto c = moves_of("F100\nG0 X30 Y20\nG42 D3\nG2 X30 Y30 I0 J5\nG40 G1 X30 Y20\nM2\n");
   ASSERT_GE(c.size(), 4u);
   EXPECT_EQ(c[3], "ARC_FEED(30.0000, 28.1250, 30.0000, 24.0625, -1, 0.0000, 0.0000, 0.0000, 0.0000)");
+}
+
+// An ill-conditioned entry arc (from the random program of seed 3546): G41
+// with a 0.625 mm tool radius on a counterclockwise arc of radius 10.94 mm
+// turns into an arc of radius 415 mm over a 2.6 mm chord. Its centre moves
+// 1.4e-4 mm for 5.4e-9 mm of tool radius, so it is checked against rs274's
+// numbers for the same diameter to the last bit (1.25 mm; docs/gcode.md), and
+// by its geometry: equally far from the start and the new end, and the new
+// end one tool radius from the programmed end towards the programmed centre.
+TEST(CutterCompensation, AFlatEntryArcHasLinuxCncsCentreAndIsAnArc) {
+  const CanonResult r = interpret_canon(
+      "G21 G17 G90 F840\nG0 X-39.0761 Y-16.4317\nG41 D1\nG91 G3 X-2.2001 Y2.9142 I-9.7088 J-5.0422\nG90\nG40\nM2\n",
+      test::setup_with_tools("T1 P1 D1.25\n"));
+  ASSERT_FALSE(r.error.has_value()) << to_string(*r.error);
+  const auto arc = std::find_if(r.calls.begin(), r.calls.end(),
+                                [](const CanonCall& c) { return c.motion.kind == CanonMotion::Kind::arc; });
+  ASSERT_NE(arc, r.calls.end());
+  // rs274 -g with the tool table T1 D0.04921259842519685 (inches): the same call.
+  EXPECT_EQ(arc->text, "ARC_FEED(-41.7052, -13.9720, 243.0659, 287.7782, 1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  const double sx = -39.0761, sy = -16.4317;
+  const auto& c = arc->motion.centre_mm;
+  const auto& e = arc->motion.end_mm;
+  const double radius = std::hypot(c[0] - e[0], c[1] - e[1]);
+  EXPECT_NEAR(radius, 414.907, 1e-3);
+  EXPECT_NEAR(std::hypot(c[0] - sx, c[1] - sy), radius, 1e-9);
+  const double px = sx - 2.2001, py = sy + 2.9142;          // the programmed end
+  const double ox = sx - 9.7088, oy = sy - 5.0422;          // the programmed centre
+  const double inward = std::atan2(oy - py, ox - px);       // left of a counterclockwise arc: inside
+  EXPECT_NEAR(e[0], px + 0.625 * std::cos(inward), 1e-12);
+  EXPECT_NEAR(e[1], py + 0.625 * std::sin(inward), 1e-12);
 }
 
 TEST(CutterCompensation, DiameterFromTheToolTableOrTheSpindleOrG41_1) {

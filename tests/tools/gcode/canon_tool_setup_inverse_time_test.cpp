@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,28 @@ TEST(CanonToolSetup, L10AndL11MeasureFromTheToolPointWithoutItsLengthOffset) {
   // machine Z 21 is Z 27 there; Z2.5 makes the length 24.5.
   c = calls_of("T2 M6\nG43\nG0 Z16\nG10 L2 P9 Z-6\nG92 Z1\nG10 L11 P2 Z2.5 X1\nM2\n");
   EXPECT_NE(std::find(c.begin(), c.end(), entry(2, 2, "-1.0000 0.0000 24.5000", "0.0000, 0.0000, 0")), c.end());
+}
+
+// G92.2 keeps the G92 offsets but takes them off, and #5210 (G92 applied)
+// says so: 0 after G92.2, 1 after G92.3, so L10 measures without G92 and
+// then with it again. rs274 prints the same (Z 0.1181 and -0.1181 inches;
+// random seed 9418 found it).
+TEST(CanonToolSetup, L10AfterG92_2MeasuresWithoutTheG92Offset) {
+  const auto c =
+      calls_of("T2 M6\nG43\nG0 Z16\nG92 Z10\nG92.2\n(DEBUG,#5210)\nG10 L10 P2 Z18\nG92.3\n(DEBUG,#5210)\n"
+               "G10 L10 P2 Z18\nM2\n");
+  const auto at = [&c](const std::string& call) { return std::find(c.begin(), c.end(), call) - c.begin(); };
+  const auto off = at("MESSAGE(\"0.000000\")"), on = at("MESSAGE(\"1.000000\")");
+  const auto without = at(entry(2, 2, "0.0000 0.0000 3.0000", "0.0000, 0.0000, 0"));
+  const auto with = at(entry(2, 2, "0.0000 0.0000 -3.0000", "0.0000, 0.0000, 0"));
+  const auto end = static_cast<std::ptrdiff_t>(c.size());
+  ASSERT_LT(off, end);
+  ASSERT_LT(on, end);
+  ASSERT_LT(without, end);
+  ASSERT_LT(with, end);
+  EXPECT_LT(off, without);
+  EXPECT_LT(without, on);
+  EXPECT_LT(on, with);
 }
 
 TEST(CanonToolSetup, BadPAndQAreRefusedAsRs274RefusesThem) {

@@ -5,7 +5,9 @@ nobody here wrote (docs/gcode.md).
 rs274 is an inch machine: it reads a tool table's lengths and a .var file's
 offsets as inches. Both are written here from one millimetre source, the
 millimetre copy for tnvctl and an inch copy for rs274, so both interpreters
-see the same tools and offsets.
+see the same tools and offsets: every number to the last bit of its double
+(a tool diameter 1e-8 mm short moved the centre of an ill-conditioned
+compensated entry arc by 1.4e-4 mm; docs/gcode.md).
 """
 from __future__ import annotations
 
@@ -36,11 +38,19 @@ class Run:
     error: str
 
 
+def exact(value: float) -> str:
+    """A number as text that reads back as the same double (no exponent: both tables' readers take it)."""
+    text = f"{value:.17f}"
+    while len(text) < 64 and float(text) != value:
+        text = f"{value:.{len(text.split('.')[1]) + 3}f}"
+    return text
+
+
 def write_tool_tables(tools: list[tuple[int, float, float]], directory: Path) -> tuple[Path, Path]:
     """(tool, length mm, diameter mm) rows as a millimetre and an inch table."""
     mm, inch = directory / "tools-mm.tbl", directory / "tools-inch.tbl"
-    mm.write_text("".join(f"T{t} P{t} Z{z:.6f} D{d:.6f} ;tool {t}\n" for t, z, d in tools))
-    inch.write_text("".join(f"T{t} P{t} Z{z / MM_PER_INCH:.9f} D{d / MM_PER_INCH:.9f} ;tool {t}\n"
+    mm.write_text("".join(f"T{t} P{t} Z{exact(z)} D{exact(d)} ;tool {t}\n" for t, z, d in tools))
+    inch.write_text("".join(f"T{t} P{t} Z{exact(z / MM_PER_INCH)} D{exact(d / MM_PER_INCH)} ;tool {t}\n"
                             for t, z, d in tools))
     return mm, inch
 
@@ -49,8 +59,8 @@ def write_var_files(values: dict[int, float], directory: Path) -> tuple[Path, Pa
     """Parameters (number -> millimetres, or a plain number for 5220/5210) as mm and inch .var files."""
     unitless = {5210, 5220}
     mm, inch = directory / "params-mm.var", directory / "params-inch.var"
-    mm.write_text("".join(f"{n}\t{v:.9f}\n" for n, v in sorted(values.items())))
-    inch.write_text("".join(f"{n}\t{(v if n in unitless else v / MM_PER_INCH):.12f}\n"
+    mm.write_text("".join(f"{n}\t{exact(v)}\n" for n, v in sorted(values.items())))
+    inch.write_text("".join(f"{n}\t{exact(v if n in unitless else v / MM_PER_INCH)}\n"
                             for n, v in sorted(values.items())))
     return mm, inch
 

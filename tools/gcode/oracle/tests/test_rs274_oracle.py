@@ -337,6 +337,33 @@ def test_lathe_tool_compensation_agrees(tnvctl, tmp_path, tool):
     assert canon_compare.compare(tnvctl, program, (mm, inch)) is None
 
 
+# The entry arc of random seed 3546: G41 with T1 (1.25 mm) on an arc of
+# radius 10.94 mm becomes an arc of radius 415 mm over a 2.6 mm chord, whose
+# centre moves 1.4e-4 mm for 5.4e-9 mm of tool radius.
+ILL_CONDITIONED_ENTRY_ARC = ("G21 G17 G90 G94 F840\nG0 X-39.0761 Y-16.4317\nG41 D1\n"
+                             "G91 G3 X-2.2001 Y2.9142 I-9.7088 J-5.0422\nG90\nG40\nG0 X0 Y0\nM2\n")
+
+
+def _arc_centre(calls: list[str]) -> list[float]:
+    arc = next(c for c in calls if c.startswith("ARC_FEED("))
+    return [float(v) for v in arc[len("ARC_FEED("):-1].split(",")[2:4]]
+
+
+def test_an_ill_conditioned_entry_arc_agrees_when_both_have_the_same_tool(tnvctl, tables, tmp_path):
+    """Agrees with the inch table written to the last bit; with a diameter
+    rounded to 9 decimals of an inch (1e-8 mm short: what this oracle wrote
+    until 2026-11-30) rs274's centre moves by more than the tolerance."""
+    program = tmp_path / "flat_entry_arc.ngc"
+    program.write_text(ILL_CONDITIONED_ENTRY_ARC)
+    assert canon_compare.compare(tnvctl, program, tables) is None
+    rounded = tmp_path / "rounded-inch.tbl"
+    rounded.write_text(f"T1 P1 Z{2.5 / 25.4:.9f} D{1.25 / 25.4:.9f}\n")
+    exact_run, rounded_run = canon_compare.run_rs274(program, tables[1]), canon_compare.run_rs274(program, rounded)
+    assert exact_run.ok and rounded_run.ok
+    moved = [abs(a - b) for a, b in zip(_arc_centre(exact_run.calls), _arc_centre(rounded_run.calls))]
+    assert max(moved) > canon_compare.TOLERANCE, moved
+
+
 def test_random_programs_agree(tnvctl, tables, tmp_path):
     count = int(os.environ.get("GCODE_ORACLE_RANDOM", "100"))
     program = tmp_path / "random.ngc"
