@@ -113,28 +113,38 @@ run_step() {
   report+=("$(printf '  %-14s %4d s   CPU %5d s' "${name}" $((SECONDS - start)) $((cpu_s - cpu_start)))")
 }
 
-# A later stage's build, started now in the background at nice 19 (its
-# own session, so that it can be stopped as a group), if that stage is
-# in this run after the current one. Its packages are installed first,
-# here: two apt-get at once would fail on dpkg's lock.
+# A later stage's build, started now in the background at nice 19, if
+# that stage is in this run after the current one. Its own process group
+# (set -m), so that it can be stopped as a group, but this session: where
+# the kernel groups processes by session (sched_autogroup), nice only
+# ranks processes within one. Its packages are installed first, here:
+# two apt-get at once would fail on dpkg's lock.
 declare -A early_pid=() early_start=()
 early_build() {
   local stage=$1 install=$2 build=$3
   [[ " ${stages[*]:stage_index+1} " == *" ${stage} "* ]] || return 0
   bash -c "${install}"
   echo "=== ${stage} build starts early, at nice 19 (build/${stage}-early-build.log)"
-  setsid nice -n 19 bash -c "${build}" >"build/${stage}-early-build.log" 2>&1 &
+  set -m
+  nice -n 19 bash -c "${build}" >"build/${stage}-early-build.log" 2>&1 &
   early_pid[${stage}]=$!
+  set +m
   early_start[${stage}]=${SECONDS}
 }
 # Waits for a stage's early build before the stage's own configure and
 # build; a failure there is reported by the stage's own build.
+# The report's line: how long the stage waited for it, and the early
+# build's CPU seconds (all of them: it is reaped here).
 wait_early_build() {
-  local stage=$1 pid=${early_pid[$1]:-}
+  local stage=$1 pid=${early_pid[$1]:-} start=$SECONDS cpu_s cpu_start
   [[ -n "${pid}" ]] || return 0
+  children_cpu_s
+  cpu_start=${cpu_s}
   wait "${pid}" || echo "test.sh: the early ${stage} build failed (build/${stage}-early-build.log); building again"
+  children_cpu_s
   unset "early_pid[${stage}]"
-  report+=("$(printf '  %-14s %4d s before its stage (nice 19)' "${stage}.early" $((stage_start - early_start[${stage}])))")
+  report+=("$(printf '  %-14s %4d s   CPU %5d s   (started %d s before its stage, nice 19)' "${stage}.early" \
+    $((SECONDS - start)) $((cpu_s - cpu_start)) $((stage_start - early_start[${stage}])))")
 }
 stop_early_builds() {
   local pid
