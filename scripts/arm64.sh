@@ -2,7 +2,7 @@
 # The arm64 cross stage: builds the firmware, emulator and driver unit tests
 # (and the Linux backend's, when its dependencies exist for arm64) with
 # Debian's aarch64 cross compiler and runs them under qemu-user.
-#   scripts/arm64.sh [--build-only] [BUILD_DIR]     default build/arm64
+#   scripts/arm64.sh [--build-only | --install-only] [BUILD_DIR]     default build/arm64
 # --build-only stops after the build (scripts/test.sh starts it early,
 # beside another stage's tests; the packages must be installed already:
 # scripts/arm64.sh --install-only, which installs and stops).
