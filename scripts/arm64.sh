@@ -2,7 +2,10 @@
 # The arm64 cross stage: builds the firmware, emulator and driver unit tests
 # (and the Linux backend's, when its dependencies exist for arm64) with
 # Debian's aarch64 cross compiler and runs them under qemu-user.
-#   scripts/arm64.sh [BUILD_DIR]     default build/arm64
+#   scripts/arm64.sh [--build-only | --install-only] [BUILD_DIR]     default build/arm64
+# --build-only stops after the build (scripts/test.sh starts it early,
+# beside another stage's tests; the packages must be installed already:
+# scripts/arm64.sh --install-only, which installs and stops).
 # GoogleTest is cross-built from Debian's /usr/src/googletest; the
 # header-only dependencies (Eigen, toml++, CLI11, nlohmann-json) are used
 # from the host's headers through small config shims, so no arm64
@@ -10,13 +13,21 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$PWD
+mode=all
+case "${1:-}" in
+  --build-only) mode=build; shift ;;
+  --install-only) mode=install; shift ;;
+esac
 out=${1:-build/arm64}
 mkdir -p "$out"; out=$(cd "$out" && pwd)
 t0=$SECONDS
 die() { echo "[arm64] FAIL: $*" >&2; exit 1; }
 
-scripts/install-deps.sh
-scripts/install-missing.sh arm64 g++-aarch64-linux-gnu qemu-user googletest
+if [[ $mode != build ]]; then
+  scripts/install-deps.sh
+  scripts/install-missing.sh arm64 g++-aarch64-linux-gnu qemu-user googletest
+fi
+[[ $mode == install ]] && exit 0
 command -v qemu-aarch64 >/dev/null || die "qemu-aarch64 missing (qemu-user)"
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
@@ -48,6 +59,7 @@ t_build=$SECONDS
 echo "[arm64] build ${suites[*]}"
 cmake --build "$out/tnv" -j "$(nproc)" --target "${suites[@]}"
 t_run=$SECONDS
+if [[ $mode == build ]]; then echo "[arm64] built ${suites[*]} in $((t_run - t0)) s"; exit 0; fi
 
 # 4. Run each suite once under qemu-user (one process per suite: far faster
 #    than one emulator start per test case).

@@ -8,6 +8,8 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 dir="${TNV_TSAN_DIR:-$root/build/tsan}"
 start=$(date +%s)
+build_only=0
+if [[ "${1:-}" == --build-only ]]; then build_only=1; shift; fi
 
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
@@ -18,6 +20,7 @@ cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_UN
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
 cmake --build "$dir" -j"${TNV_JOBS:-2}" --target test_linux tnv-fw tnv-board-emu
+((build_only)) && exit 0
 
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ${TSAN_OPTIONS:-}"
 run() { (cd "$root" && "$dir/tests/test_linux" --gtest_brief=1 "$@"); }
