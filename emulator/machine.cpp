@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "emulator/axis_plant.hpp"
+#include "emulator/boring_pass.hpp"
 #include "emulator/cutting_at_tool.hpp"
 #include "emulator/cutting_disturbance.hpp"
 #include "emulator/fault_timeline.hpp"
@@ -123,6 +124,7 @@ struct Machine::Impl {
   SpindleDrive spindle;             // on DAC_SPINDLE and the OUTPUTS spindle bits
   SpindleEncoder spindle_encoder;
   std::unique_ptr<CuttingAtTool> tool_cut;  // [stock] enabled; null otherwise (the table and S1 experiments)
+  std::unique_ptr<BoringPass> boring;       // [boring] enabled (with [stock]); null otherwise
   std::uint32_t spindle_encoder_register = 0;  // SPINDLE_ENCODER and SPINDLE_INDEX as the encoder stands
   std::uint32_t spindle_index_register = 0;    // (updated when it moves)
 
@@ -187,6 +189,9 @@ Machine::Impl::Impl(const Scenario& s)
       spindle(s.spindle),
       spindle_encoder(s.spindle),
       tool_cut(s.stock.enabled ? std::make_unique<CuttingAtTool>(s, kSubstep_s) : nullptr),
+      boring(s.stock.enabled && s.boring.enabled
+                 ? std::make_unique<BoringPass>(s.boring, s.stock, boring_process_config(s))
+                 : nullptr),
       sample_noise(s.noise.any_sample_noise()),
       force_noise(make_noise_stream(s.noise.seed, NoiseStreamId::force_adc)),
       accel_noise(make_axis_noise_streams(s.noise.seed, AxisNoise::accel)),
@@ -640,9 +645,12 @@ void Machine::Impl::tool_cut_substep(const AxisStates& at, std::uint64_t at_subs
   };
   const double spindle_rpm = spindle.speed_rpm();
   const double load_n = tool_cut->force().force_n();
+  const double tool_z_mm = tool_point_z_mm(table_at(kZ), scenario.tool);
+  // The boring bar deflects with the tool point's depth and the head's feed per spindle revolution.
+  if (boring) boring->advance(tool_z_mm, at[kZ].speed_mm_s, spindle_rpm);
   tool_cut->advance(ToolPointMotion{.x_mm = table_at(kX),
                                     .y_mm = table_at(kY),
-                                    .z_mm = tool_point_z_mm(table_at(kZ), scenario.tool),
+                                    .z_mm = tool_z_mm,
                                     .vx_mm_s = at[kX].speed_mm_s,
                                     .vy_mm_s = at[kY].speed_mm_s},
                     spindle_rpm, spindle.commanded_rpm(), substep_time_s(at_substep));
@@ -762,6 +770,8 @@ double Machine::milling_force_n() const noexcept { return impl_->milling.force_n
 double Machine::milling_depth_mm() const noexcept { return impl_->milling.depth_mm(time_s()); }
 
 const CuttingAtTool* Machine::cutting_at_tool() const noexcept { return impl_->tool_cut.get(); }
+BoringPass* Machine::boring_pass() noexcept { return impl_->boring.get(); }
+const BoringPass* Machine::boring_pass() const noexcept { return impl_->boring.get(); }
 
 bool Machine::fault_active(std::size_t i) const noexcept {
   return i < impl_->fault_on.size() && impl_->fault_on[i];

@@ -19,6 +19,7 @@
 
 namespace tnv::emu {
 
+class BoringPass;
 class CuttingAtTool;
 
 // What really happened on one axis (judge side, not visible to firmware).
@@ -104,6 +105,11 @@ class Machine {
   // [stock] on: the process where the tool is (its force, a_p, the crash
   // log); nullptr without a stock.
   const CuttingAtTool* cutting_at_tool() const noexcept;
+  // [boring] on (with [stock]): the boring bar where the tool is, stepped
+  // with the tool's process (boring_pass.hpp); the bench starts each part
+  // and reads the gauge after it. nullptr otherwise.
+  BoringPass* boring_pass() noexcept;
+  const BoringPass* boring_pass() const noexcept;
 
   // --- test-bench inputs
   void set_estop(bool asserted) noexcept;

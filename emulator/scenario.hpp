@@ -252,6 +252,7 @@ struct ToolCutParams {
 
 // S4 on real axes (reference plant "Boring (S4, on real axes)").
 struct BoringAxesParams {
+  bool enabled = false;                  // [boring] enabled = true: emu::Machine bores where the tool is (needs [stock])
   double overhang_at_top_mm = 40.0;      // L0: overhang with the tool point at the stock top
   double gauge_top_depth_mm = 0.0;       // depths below the stock top the gauge reads after a part
   double gauge_bottom_depth_mm = 270.0;  // (L = 40 and 310 mm, the S4 study's measuring overhangs)

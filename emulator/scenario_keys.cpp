@@ -241,6 +241,7 @@ std::vector<ScenarioKey> build_table() {
   {
     using B = BoringAxesParams;
     Section<B> b(rows, "boring", [](Scenario& s) -> B& { return s.boring; });
+    b.key("enabled", &B::enabled);
     b.key("overhang_at_top_mm", &B::overhang_at_top_mm, plausible(1.0, 2000.0, "a boring bar's overhang"));
     b.key("gauge_top_depth_mm", &B::gauge_top_depth_mm,
           plausible(0.0, kMachineRangeMm, "a depth below the stock top"));

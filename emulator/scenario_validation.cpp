@@ -97,6 +97,10 @@ void check_boring(Rules& r, const Scenario& s) {
   const BoringAxesParams& b = s.boring;
   r.ordered("boring.gauge_top_depth_mm", b.gauge_top_depth_mm, "boring.gauge_bottom_depth_mm", b.gauge_bottom_depth_mm);
   if (r.found) return;
+  if (b.enabled && !s.stock.enabled) {
+    r.fail_text("boring.enabled", "the bore is in the stock: boring needs stock.enabled = true");
+    return;
+  }
   // The tool point reaches down to the bottom of Z's travel minus the tool's length.
   const double lowest_mm = s.z_axis.travel_bottom_mm - s.tool.length_mm;
   const double bottom_mm = s.stock.top_mm - b.gauge_bottom_depth_mm;

@@ -311,7 +311,10 @@ TEST(ScenarioKeys, EachKeyReadsBackFromAFile) {
     }
     bool read_back = false;
     for (const std::string& value : values) {
-      const std::string text = (key.section.empty() ? "" : "[" + key.section + "]\n") + key.name + " = " + value + "\n";
+      // A key that only makes sense with another one (the check between keys refuses it alone).
+      const std::string prerequisite = key.section == "boring" && key.name == "enabled" ? "[stock]\nenabled = true\n" : "";
+      const std::string text =
+          prerequisite + (key.section.empty() ? "" : "[" + key.section + "]\n") + key.name + " = " + value + "\n";
       const ScenarioResult r = parse_scenario_text(text, "one.toml");
       if (!r.scenario) continue;
       const FieldTarget read = key.target(const_cast<Scenario&>(*r.scenario));

@@ -85,6 +85,27 @@ TEST(BoringCli, DirectRunsThePlannerInProcessAndTheNodeRefusesWhatItDoesNotCarry
   }
 }
 
+TEST(BoringCli, OnTheMachineEveryPartIsAPassAndWhatItCannotRunIsRefused) {
+  const CliRun r = run_boring("--on-machine --parts 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_NE(j["planner"].get<std::string>().find("emulated machine"), std::string::npos) << j["planner"];
+  const auto& part1 = j["seed1"]["parts"][0];
+  EXPECT_TRUE(part1["bad"].get<bool>()) << "cut at S0";
+  for (const auto& q : part1["positions"]) {
+    // The bar passed both gauge depths at S0 = 0.5 mm/rev (50 mm/s at 6000 rpm) and at their overhangs.
+    EXPECT_NEAR(q["cut_infeed_mm_rev"].get<double>(), 0.5, 0.015) << q.dump();
+    EXPECT_NEAR(q["cut_overhang_mm"].get<double>(), q["overhang_mm"].get<double>(), 0.01) << q.dump();
+  }
+  EXPECT_GT(part1["pass_error_mm"]["max"].get<double>(), 0.16) << "S0 bends the bottom 0.17 mm beyond d0";
+  for (const char* args : {"--on-machine --planner direct", "--on-machine --spindle-rpm 50",
+                           "--on-machine --startup-in-rls"}) {
+    const CliRun refused = run_boring(args);
+    EXPECT_EQ(refused.exit_code, 2) << args << ": " << refused.err;
+    EXPECT_TRUE(refused.out.empty()) << args;
+  }
+}
+
 TEST(BoringCli, BadInputExitsWith2AndRunsNothing) {
   for (const char* args : {"--sigma-mm -1", "--sigma-mm nan", "--alpha0 0", "--change-at 21,11", "--change-at x",
                            "--change-at 1", "--change-at 5,10,20", "--parts 0", "--seeds 0", "--gain-form fuzzy",

@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "emulator/scenario_file.hpp"
+#include "emulator/scenario_validation.hpp"
 #include "firmware/can/param_fallback.hpp"
 #include "firmware/can/param_table.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
@@ -50,7 +51,16 @@ EmulatedBus::EmulatedBus(const emu::Scenario& scenario, const std::string& stora
 EmulatedBus::~EmulatedBus() = default;
 
 std::unique_ptr<EmulatedBus> EmulatedBus::create(const EmulatedNodeOptions& options, std::string& error) {
-  emu::ScenarioResult found = emu::resolve_scenario(options.scenario);
+  emu::ScenarioResult found;
+  if (options.scenario_value) {
+    if (const std::string why = emu::validate_scenario(*options.scenario_value); !why.empty()) {
+      error = "scenario: " + why;
+      return nullptr;
+    }
+    found.scenario = *options.scenario_value;
+  } else {
+    found = emu::resolve_scenario(options.scenario);
+  }
   if (!found.scenario) {
     error = found.error;
     if (error.empty()) error.append("no scenario ").append(options.scenario);

@@ -8,6 +8,7 @@
 // between host and node is a VirtualCanBus at the node's bit rate.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "drivers/storage/file_param_storage.hpp"
@@ -30,6 +31,7 @@ inline constexpr std::size_t kNodeFramesInFlight = 10;
 
 struct EmulatedNodeOptions {
   std::string scenario = "no-cut";  // built-in name or TOML file
+  std::optional<emu::Scenario> scenario_value;  // instead of `scenario`: one built in code (validated here)
   int seed = 0;                     // hil::seeded(); 0 = the scenario as written (tnv-hil circle's default)
   std::string storage_path;         // "" = default_emulated_storage_path()
   std::uint8_t node = 1;            // the id of a node that has nothing stored yet

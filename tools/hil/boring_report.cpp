@@ -41,8 +41,11 @@ nlohmann::json part_json(const BoringPartRecord& p) {
                          {"optimal_infeed_mm_rev", q.optimal_infeed_mm_rev},
                          {"true_deflection_mm", q.true_deflection_mm},
                          {"measured_deflection_mm", q.measured_deflection_mm},
-                         {"infeed_limited", q.infeed_limited}});
+                         {"infeed_limited", q.infeed_limited},
+                         {"cut_infeed_mm_rev", q.cut_infeed_mm_rev},
+                         {"cut_overhang_mm", q.cut_overhang_mm}});
   return {{"part", p.part},
+          {"pass_error_mm", {{"min", p.pass_min_error_mm}, {"max", p.pass_max_error_mm}}},
           {"true", {{"c_mm", p.true_c_mm}, {"alpha", p.true_alpha}, {"beta", p.true_beta}}},
           {"estimate", {{"c_mm", p.c_hat_mm}, {"alpha", p.alpha_hat}, {"beta", p.beta_hat}}},
           {"bad", p.bad},

@@ -93,6 +93,8 @@ BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed, Boring
       pos.overhang_mm = L;
       pos.infeed_mm_rev = s;
       pos.infeed_limited = infeeds[i].infeed_limited;
+      pos.cut_infeed_mm_rev = s;
+      pos.cut_overhang_mm = L;
       pos.optimal_infeed_mm_rev = process.optimal_infeed_mm_rev(part, L);
       pos.true_deflection_mm = process.deflection_mm(part, s, L);
       gauge[i] = process.measure_bore_error_mm(part, s, L);

@@ -50,10 +50,17 @@ struct BoringPositionRecord {
   double true_deflection_mm = 0.0;
   double measured_deflection_mm = 0.0; // from the gauge (as the planner received it) via eq. (11)
   bool infeed_limited = false;
+  // On the machine (tools/can_emu/boring_machine_run.hpp): the infeed and
+  // overhang with which the bar really passed this gauge depth; in process
+  // the commanded ones.
+  double cut_infeed_mm_rev = 0.0;
+  double cut_overhang_mm = 0.0;
 };
 
 struct BoringPartRecord {
   int part = 0;
+  // On the machine: the extremes of the noise-free radius error d - d0 along the pass (0 in process).
+  double pass_min_error_mm = 0.0, pass_max_error_mm = 0.0;
   double true_c_mm = 0.0, true_alpha = 0.0, true_beta = 0.0;
   std::vector<BoringPositionRecord> positions;
   double c_hat_mm = 0.0, alpha_hat = 0.0, beta_hat = 0.0;  // after this part's update

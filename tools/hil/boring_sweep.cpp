@@ -35,11 +35,17 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, c
 
 BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, BoringPlannerLink& planner,
                                    const BoringProgress& progress) {
+  const BoringSeedRun run_seed = [&](std::uint64_t seed) { return run_boring(request, seed, planner); };
+  return run_boring_sweep(request, seeds, planner.describe(), run_seed, progress);
+}
+
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const std::string& planner,
+                                   const BoringSeedRun& run_seed, const BoringProgress& progress) {
   if (seeds < 1) throw std::invalid_argument("seeds: must be >= 1");
   if (const std::string error = validate_boring_request(request); !error.empty())
     throw std::invalid_argument(error);
   BoringSweepResult out;
-  out.planner = planner.describe();
+  out.planner = planner;
   out.seeds = seeds;
   const auto parts = static_cast<std::size_t>(request.parts);
   out.bad_fraction_by_part.assign(parts, 0.0);
@@ -48,7 +54,7 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, B
   for (BoringSegmentStats& s : out.segments) s.bad_parts_min = request.parts;
   const double n = seeds;
   for (int seed = 1; seed <= seeds; ++seed) {
-    BoringRunResult run = run_boring(request, static_cast<std::uint64_t>(seed), planner);
+    BoringRunResult run = run_seed(static_cast<std::uint64_t>(seed));
     if (!run.error.empty() && out.error.empty()) out.error = "seed " + std::to_string(seed) + ": " + run.error;
     out.bad_parts_per_seed.push_back(run.bad_parts);
     out.resets_per_seed.push_back(run.resets);

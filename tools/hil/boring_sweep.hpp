@@ -2,6 +2,7 @@
 // run_boring() over seeds 1..N, with the statistics the S4 claims are
 // stated in: bad parts and resets per run and per segment of the run
 // (part 1 at S0; up to the first change; between the changes; after).
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -50,5 +51,11 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, B
                                    const BoringProgress& progress = {});
 // With the planner in this process at the node's resolution (BoringDirectLink).
 BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const BoringProgress& progress = {});
+// Each seed run by `run_seed` (the same statistics; e.g. every part cut on
+// the emulated machine: tools/can_emu/boring_machine_run.hpp); `planner`
+// names where the planner ran.
+using BoringSeedRun = std::function<BoringRunResult(std::uint64_t seed)>;
+BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const std::string& planner,
+                                   const BoringSeedRun& run_seed, const BoringProgress& progress = {});
 
 }  // namespace tnv::hil

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/can_emu/boring_machine_run.hpp"
 #include "tools/can_emu/boring_node_sweep.hpp"
 #include "tools/cli/output_path.hpp"
 #include "tools/hil/boring_report.hpp"
@@ -44,6 +45,8 @@ struct BoringOptions {
   double gauge_sigma_mm = -1.0; // < 0: same as --sigma-mm
   std::string planner = "node";
   std::string scenario;         // empty: an exact gauge (the paper's setting)
+  bool on_machine = false;      // every part a boring pass on the emulated machine
+  double spindle_rpm = can_host::BoringMachineOptions{}.spindle_rpm;
 };
 
 // "11,21", "11" or "none"; nullopt with a message when malformed.
@@ -102,14 +105,28 @@ int run_boring_command(const BoringOptions& o) {
     return kExitBadInput;
   }
 
+  const can_host::BoringMachineOptions machine{.spindle_rpm = o.spindle_rpm};
+  if (o.on_machine) {
+    if (!on_node) {
+      std::fprintf(stderr, "tnv-hil: boring: --on-machine runs the planner on the node (leave out --planner direct)\n");
+      return kExitBadInput;
+    }
+    if (const std::string why = can_host::boring_machine_refusal(request, machine); !why.empty()) {
+      std::fprintf(stderr, "tnv-hil: boring --on-machine: %s\n", why.c_str());
+      return kExitBadInput;
+    }
+  }
+
   Progress progress("boring");
-  const bool long_run = static_cast<long>(o.seeds) * o.parts > 200'000;
+  // A pass on the machine takes about as long as 10,000 parts in process.
+  const bool long_run = static_cast<long>(o.seeds) * o.parts * (o.on_machine ? 10'000 : 1) > 200'000;
   const hil::BoringProgress report_progress =
       long_run ? hil::BoringProgress(std::ref(progress)) : hil::BoringProgress{};
   std::string node_error;
   const hil::BoringSweepResult result =
-      on_node ? can_host::run_boring_sweep_on_emulated_node(request, o.seeds, report_progress, node_error)
-              : hil::run_boring_sweep(request, o.seeds, report_progress);
+      o.on_machine ? can_host::run_boring_sweep_on_machine(request, o.seeds, machine, report_progress)
+      : on_node    ? can_host::run_boring_sweep_on_emulated_node(request, o.seeds, report_progress, node_error)
+                   : hil::run_boring_sweep(request, o.seeds, report_progress);
   if (!node_error.empty()) {
     std::fprintf(stderr, "tnv-hil: boring: %s\n", node_error.c_str());
     return kExitFailure;
@@ -173,6 +190,13 @@ void add_boring_commands(CLI::App& app, Runner& run) {
   cmd->add_option("--scenario", o->scenario,
                   "measure with this table's bore gauge (built-in name or TOML file; [noise] bore_gauge_um_rms, "
                   "bore_gauge_resolution_um, seed): its error adds to the gauge noise; default: an exact gauge");
+  cmd->add_flag("--on-machine", o->on_machine,
+                "cut every part as a boring pass on the emulated machine: the node's infeeds as Z feed per spindle "
+                "revolution, the bore gauged from the bar's deflection along the pass (slow: a pass is tens of "
+                "seconds of machine time)");
+  cmd->add_option("--spindle-rpm", o->spindle_rpm, "spindle speed of the passes (--on-machine)")
+      ->check(CLI::Range(100.0, 6000.0))
+      ->capture_default_str();
   cmd->callback([&run, o] { run = [o] { return run_boring_command(*o); }; });
 }
 

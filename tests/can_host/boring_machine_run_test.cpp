@@ -1,0 +1,66 @@
+// S4 through real Z motion: every part a boring pass on the emulated
+// machine, its infeeds from the node's planner as Z feed per spindle
+// revolution, its bore gauged from the bar's deflection along the pass.
+// Judged on the machine's truth: the gauge depths see the commanded
+// infeeds, deeper bends more, and the bad parts stay bounded.
+#include "tools/can_emu/boring_machine_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace tnv::can_host {
+namespace {
+
+TEST(BoringMachineRun, RefusesWhatTheMachineCannotCut) {
+  hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
+  EXPECT_EQ(boring_machine_refusal(r, {}), "");
+  hil::BoringRunRequest other = r;
+  other.positions_mm = {40.0, 300.0};  // a node could gauge there (its model spanning them), the machine's gauge cannot
+  other.planner.overhang_max_mm = 300.0;
+  EXPECT_NE(boring_machine_refusal(other, {}).find("positions_mm"), std::string::npos);
+  EXPECT_NE(boring_machine_refusal(r, {.spindle_rpm = -1.0}).find("spindle_rpm"), std::string::npos);
+  EXPECT_THROW(run_boring_on_machine(other, 1, {}), std::invalid_argument);
+}
+
+// Seed 1, the paper's Fig. 3 setting up to the first change and past it (12 parts).
+TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
+  hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
+  r.parts = 12;
+  const hil::BoringRunResult run = run_boring_on_machine(r, 1, {});
+  ASSERT_EQ(run.error, "");
+  ASSERT_EQ(run.parts.size(), 12u);
+  double bottom_ratio_sum = 0.0;
+  for (const hil::BoringPartRecord& p : run.parts) {
+    ASSERT_EQ(p.positions.size(), 2u);
+    for (const hil::BoringPositionRecord& q : p.positions) EXPECT_NEAR(q.cut_overhang_mm, q.overhang_mm, 0.01);
+    // The bar passed the mouth at the infeed the node told (the head at 8 mm/s and more there),
+    // the bottom near it: at 1-3 mm/s the head's speed ripples with its friction and the servo.
+    const hil::BoringPositionRecord& top = p.positions[0];
+    const hil::BoringPositionRecord& bottom = p.positions[1];
+    EXPECT_NEAR(top.cut_infeed_mm_rev, top.infeed_mm_rev, 0.03 * top.infeed_mm_rev) << "part " << p.part;
+    EXPECT_NEAR(bottom.cut_infeed_mm_rev, bottom.infeed_mm_rev, 0.2 * bottom.infeed_mm_rev) << "part " << p.part;
+    bottom_ratio_sum += bottom.cut_infeed_mm_rev / bottom.infeed_mm_rev;
+    // Deeper bends more: from part 2 the node has learned it and feeds the bottom slower than the mouth.
+    if (p.part > 1) {
+      EXPECT_LT(bottom.infeed_mm_rev, 0.6 * top.infeed_mm_rev) << "part " << p.part;
+    }
+    EXPECT_LE(p.pass_min_error_mm, top.true_deflection_mm - 0.1165 + 1e-12);
+    EXPECT_GE(p.pass_max_error_mm, bottom.true_deflection_mm - 0.1165 - 1e-12);
+  }
+  EXPECT_NEAR(bottom_ratio_sum / 12.0, 1.0, 0.03) << "on average the bottom is cut at the told infeed";
+  // Part 1 at S0 = 0.5 mm/rev at both depths: 0.165 / 0.285 mm (in process 0.1650 / 0.2854).
+  EXPECT_NEAR(run.parts[0].positions[0].true_deflection_mm, 0.1650, 0.002);
+  EXPECT_NEAR(run.parts[0].positions[1].true_deflection_mm, 0.2854, 0.002);
+  EXPECT_TRUE(run.parts[0].bad);
+  // The node's infeeds change with what it learned: part 2 cuts the bottom far slower than part 1.
+  EXPECT_LT(run.parts[1].positions[1].infeed_mm_rev, 0.5 * run.parts[0].positions[1].infeed_mm_rev);
+  // Parts 2-10 in band as in process (Fig. 3: 0.005 bad parts per seed there), part 11 out (the large change).
+  for (int part = 2; part <= 10; ++part) EXPECT_FALSE(run.parts[static_cast<std::size_t>(part - 1)].bad) << part;
+  EXPECT_TRUE(run.parts[10].bad) << "part 11 is planned for the old process";
+  EXPECT_LE(run.bad_parts, 4);
+}
+
+}  // namespace
+}  // namespace tnv::can_host

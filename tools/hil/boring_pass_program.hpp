@@ -1,0 +1,53 @@
+#pragma once
+// One S4 part as a program for the machine (reference plant "Boring (S4,
+// on real axes)"): the bar starts above the pre-drilled hole, the spindle
+// comes to speed, Z feeds down through the bore to just below the bottom
+// gauge depth and rapids back out. The feed per revolution follows the
+// planner's two infeeds along the overhang by eq. (3)'s power law
+//   S(L) = S1 (L / L1)^(ln(S2 / S1) / ln(L2 / L1))
+// (eq. (3) with the planner's estimates is exactly this line in log S,
+// log L through its infeeds at L1 and L2), held constant over short
+// segments, and exactly S1 / S2 over the segments holding the gauge depths.
+// G94 feeds in mm/min from the commanded spindle speed: F = S n.
+#include <string>
+#include <vector>
+
+#include "emulator/scenario.hpp"
+
+namespace tnv::hil {
+
+struct BoringPassGeometry {
+  double stock_top_mm = -150.0;       // z_top: the tool point's Z at the bore's mouth (machine coordinates)
+  double tool_length_mm = 125.0;      // spindle nose to tool point: program Z = tool point + this
+  double overhang_at_top_mm = 40.0;   // L0
+  double top_depth_mm = 0.0;          // the gauge depths below z_top
+  double bottom_depth_mm = 270.0;
+  double spindle_rpm = 3000.0;        // S ... M3
+  double approach_mm = 10.0;          // the feed starts this far above z_top (room to settle at S1 before the mouth)
+  double overrun_mm = 4.0;            // and ends this far below the bottom gauge depth (room to brake from 50 mm/s after it)
+  double segment_mm = 10.0;           // the feed is held over segments of about this length
+};
+
+// The geometry a machine scenario ([stock], [tool], [boring]) describes, at this spindle speed.
+BoringPassGeometry boring_pass_geometry(const emu::Scenario& scenario, double spindle_rpm);
+
+// "" if valid, else "field: reason" (a pass needs the top gauge depth above the bottom one,
+// positive lengths, a spindle speed, and its deepest point within Z's travel).
+std::string validate_boring_pass(const BoringPassGeometry& g, double z_travel_bottom_mm);
+
+// The power law through (l1, s1) and (l2, s2) at overhang l (all > 0, l1 < l2).
+double pass_infeed_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm, double s2_mm_rev);
+
+// One feed segment of the pass: from the depth above to the depth below, at this infeed.
+struct BoringPassSegment {
+  double from_depth_mm = 0.0;  // below z_top (negative: above the mouth)
+  double to_depth_mm = 0.0;
+  double infeed_mm_rev = 0.0;
+};
+std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g, double infeed_top_mm_rev,
+                                                    double infeed_bottom_mm_rev);
+
+// The program of one part (G21 G90 G94; metric, absolute, feed per minute; ends with M2).
+std::string boring_pass_gcode(const BoringPassGeometry& g, double infeed_top_mm_rev, double infeed_bottom_mm_rev);
+
+}  // namespace tnv::hil
