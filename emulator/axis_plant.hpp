@@ -114,9 +114,11 @@ class AxisPlant {
     AxisState slide(const AxisState& s, double drive_mm_s, double friction_mm_s, double w_mm_s,
                     const Decay& d) const noexcept {
       AxisState next = s;
-      // Grouped to keep the v0 -> v1 dependency chain short (this is the hot loop).
+      // Grouped to keep the v0 -> v1 dependency chain short (this is the hot
+      // loop): the sign goes on the rise, known before the friction is, and
+      // (+-rise) f is bit for bit +-(rise f).
       next.speed_mm_s =
-          (d.decay * s.speed_mm_s + d.rise * drive_mm_s) - std::copysign(d.rise * friction_mm_s, s.speed_mm_s);
+          (d.decay * s.speed_mm_s + d.rise * drive_mm_s) - std::copysign(d.rise, s.speed_mm_s) * friction_mm_s;
       next.position_mm += d.drive_gain_s * w_mm_s + d.tau_rise_s * s.speed_mm_s;
       return next;
     }

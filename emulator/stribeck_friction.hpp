@@ -12,6 +12,7 @@ class StribeckFriction {
       : coulomb_mm_s_(coulomb_mm_s),
         excess_mm_s_(stiction_mm_s - coulomb_mm_s),
         inv_stribeck_s_mm_(1.0 / stribeck_mm_s),
+        neg_inv_stribeck_s_mm_(-inv_stribeck_s_mm_),
         exp_cutoff_ratio_(exp_cutoff_ratio(coulomb_mm_s, stiction_mm_s - coulomb_mm_s)),
         exp_skip_ratio_(std::min(exp_cutoff_ratio_, vanishing_ratio(coulomb_mm_s, stiction_mm_s - coulomb_mm_s, 55))) {}
 
@@ -25,7 +26,11 @@ class StribeckFriction {
     // f_c + term == f_c exactly and exp() is skipped (6.17 v_s for f_s = 2 f_c):
     // the same bits as evaluating it, the margin covering exp's rounding.
     if (std::abs(ratio) >= exp_skip_ratio_) return coulomb_mm_s_;
-    return coulomb_mm_s_ + excess_mm_s_ * std::exp(-ratio * ratio);
+    // -(v/v_s)^2 as (v * -1/v_s) (v / v_s): the same bits as -ratio * ratio
+    // (a sign is exact), with the negation off the sub-step's dependency
+    // chain (in the Stribeck zone each sub-step waits for the last one's exp).
+    const double neg_ratio = speed_mm_s * neg_inv_stribeck_s_mm_;
+    return coulomb_mm_s_ + excess_mm_s_ * std::exp(neg_ratio * ratio);
   }
   // True if |f| is exactly f_c at every speed of this sign at least this far
   // from zero (with a hair of margin for rounding).
@@ -57,6 +62,7 @@ class StribeckFriction {
   double coulomb_mm_s_;
   double excess_mm_s_;  // f_s - f_c
   double inv_stribeck_s_mm_;
+  double neg_inv_stribeck_s_mm_;
   double exp_cutoff_ratio_;
   double exp_skip_ratio_;  // <= exp_cutoff_ratio_
 };
