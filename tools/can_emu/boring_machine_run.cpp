@@ -150,20 +150,7 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
       readings.push_back(g.reading_mm);
       rec.positions.push_back(pos);
     }
-    const hil::BoringLinkPart report = planner.record(part, readings);
-    if (!report.error.empty()) {
-      result.error = "part " + std::to_string(part) + ": " + report.error;
-      return result;
-    }
-    rec.reset = report.reset;
-    rec.out_of_band = report.out_of_band;
-    rec.c_hat_mm = report.c_hat_mm;
-    rec.alpha_hat = report.alpha_hat;
-    rec.beta_hat = report.beta_hat;
-    rec.resets = report.resets_total - result.resets;
-    result.resets = report.resets_total;
-    result.bad_parts += rec.bad ? 1 : 0;
-    result.parts.push_back(std::move(rec));
+    if (!hil::add_gauged_part(result, std::move(rec), planner.record(part, readings))) return result;
   }
   result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
   return result;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "firmware/adaptive/boring/bore_measurement.hpp"
 #include "tools/hil/boring_direct_link.hpp"
@@ -107,23 +108,27 @@ BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed, Boring
       }
       rec.positions.push_back(pos);
     }
-    const BoringLinkPart report = planner.record(part, gauge);
-    if (!report.error.empty()) {
-      result.error = "part " + std::to_string(part) + ": " + report.error;
-      return result;
-    }
-    rec.reset = report.reset;
-    rec.out_of_band = report.out_of_band;
-    rec.c_hat_mm = report.c_hat_mm;
-    rec.alpha_hat = report.alpha_hat;
-    rec.beta_hat = report.beta_hat;
-    rec.resets = report.resets_total - result.resets;
-    result.resets = report.resets_total;
-    result.bad_parts += rec.bad ? 1 : 0;
-    result.parts.push_back(std::move(rec));
+    if (!add_gauged_part(result, std::move(rec), planner.record(part, gauge))) return result;
   }
   result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
   return result;
+}
+
+bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report) {
+  if (!report.error.empty()) {
+    result.error = "part " + std::to_string(rec.part) + ": " + report.error;
+    return false;
+  }
+  rec.reset = report.reset;
+  rec.out_of_band = report.out_of_band;
+  rec.c_hat_mm = report.c_hat_mm;
+  rec.alpha_hat = report.alpha_hat;
+  rec.beta_hat = report.beta_hat;
+  rec.resets = report.resets_total - result.resets;
+  result.resets = report.resets_total;
+  result.bad_parts += rec.bad ? 1 : 0;
+  result.parts.push_back(std::move(rec));
+  return true;
 }
 
 BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {

@@ -79,6 +79,11 @@ struct BoringRunResult {
   std::string error;          // the planner refused a part (should never happen)
 };
 
+// A gauged part into its run: the planner's report of it (its reset, the
+// estimates after it, the resets so far) and the bad-part count. False, with
+// result.error naming the part, when the planner refused its readings.
+bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report);
+
 // Throws std::invalid_argument when validate_boring_request() fails. The
 // link is started afresh (a planner that has learned nothing).
 BoringRunResult run_boring(const BoringRunRequest& request, std::uint64_t seed, BoringPlannerLink& planner);
