@@ -286,7 +286,9 @@ TEST(MotionEnvelope, EveryCornerOfAFineChordCircleAdmitsTheFeed) {
   tilted[hal::index(hal::kPlaneSecond)] = 0.6;
   tilted[hal::index(hal::Axis::z)] = 0.8;
   const std::pair<const char*, PlanePoint> planes[] = {{"XY", point(0.0, 1.0)}, {"tilted towards Z", tilted}};
-  for (const auto& [plane_name, e2] : planes) {
+  for (const auto& plane : planes) {
+    const char* plane_name = plane.first;
+    const PlanePoint& e2 = plane.second;  // not a structured binding: lambdas capture it (clang 14)
     for (double r : {5.0, 10.0, 20.0, 50.0}) {
       for (bool rounded : {false, true}) {
         const std::string what = std::string(plane_name) + ", r " + std::to_string(r) + (rounded ? ", rounded" : "");
