@@ -24,9 +24,22 @@ void FeedStartJudge::observe(const emu::Machine& machine, std::size_t front) {
   const double speed_mm_s = std::sqrt(speed_sq);
   if (speed_mm_s > kMovingMmS && !was_moving_) {
     was_moving_ = true;
-    onsets_.push_back({front, spindle_ready(machine)});
+    pending_ = MotionOnset{front, spindle_ready(machine)};
+    for (const hal::Axis axis : hal::kAxes) from_mm_[hal::index(axis)] = machine.truth(axis).position_mm;
   } else if (speed_mm_s < kRestMmS) {
     was_moving_ = false;
+    pending_.reset();  // back at rest without leaving: a twitch
+  }
+  if (pending_) {
+    double moved_sq = 0.0;
+    for (const hal::Axis axis : hal::kAxes) {
+      const double d = machine.truth(axis).position_mm - from_mm_[hal::index(axis)];
+      moved_sq += d * d;
+    }
+    if (moved_sq > kLeftRestMm * kLeftRestMm) {
+      onsets_.push_back(*pending_);
+      pending_.reset();
+    }
   }
 }
 

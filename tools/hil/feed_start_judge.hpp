@@ -4,9 +4,13 @@
 // speed". The firmware's own gate says this never happens, so it is
 // counted from the emulator's truth, not from the firmware's record:
 //  - a feed move begins when the tool point's real XYZ speed passes
-//    kMovingMmS after it was at rest (below kRestMmS); the element then at
-//    the front of the motion queue says whether it is a feed move (the
-//    program's own list: a rapid may start while the spindle runs up);
+//    kMovingMmS after it was at rest (below kRestMmS) and the tool then
+//    goes on to leave that point by more than kLeftRestMm before it is at
+//    rest again (a servo's sub-micron twitch at rest, as after a rapid
+//    while the next feed waits for the spindle, starts nothing); the
+//    element at the front of the motion queue when the speed passed says
+//    whether it is a feed move (the program's own list: a rapid may start
+//    while the spindle runs up), and the spindle is judged then too;
 //  - the spindle is commanded on when the drive's speed command (what its
 //    DAC and enable give it) is not zero, and at speed when that command
 //    has not changed for kSteadyTicks (the firmware's ramp is over) and the
@@ -14,12 +18,15 @@
 //    (5 % or 20 rpm, as tnv-hil spindle-safety's judge).
 // Crashes (the stock engaged with a stopped or slow spindle) are the
 // emulator's own log (emu::CuttingAtTool), read by the caller.
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "emulator/machine.hpp"
 #include "firmware/motion/segment.hpp"
+#include "hal/axis.hpp"
 
 namespace tnv::hil {
 
@@ -39,6 +46,8 @@ class FeedStartJudge {
   static constexpr double kMovingMmS = 0.5;
   static constexpr double kRestMmS = 0.05;
   static constexpr std::uint32_t kSteadyTicks = 10;
+  // 24 encoder counts: a move, not a twitch (measured: 0.6 um twitches, moves of 2.4 mm and more).
+  static constexpr double kLeftRestMm = 0.01;
 
   // Once per tick, after the machine advanced; `front` is the index, in the
   // program's element list, of the element at the front of the queue.
@@ -53,6 +62,8 @@ class FeedStartJudge {
 
  private:
   bool was_moving_ = false;
+  std::optional<MotionOnset> pending_;           // passed kMovingMmS, not yet kLeftRestMm from there
+  std::array<double, hal::kAxisCount> from_mm_{};  // where the speed passed kMovingMmS
   double last_command_rpm_ = 0.0;
   std::uint32_t steady_ticks_ = 0;
   std::vector<MotionOnset> onsets_;
