@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "firmware/io/accel_code.hpp"
-#include "firmware/io/dac_code.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/timing/m_method_speed.hpp"
 

@@ -28,7 +28,9 @@
 // the results), PathShapers (each axis' shaper design and on/off, the
 // path's series and its hand-over once quiet), AxisExcitations (each axis'
 // excitation generator and its start count, what it does to the hold point
-// and the command), ProgramFeedOverride (the operator's override and the S3
+// and the command), AxisLoop per axis (count and speed, observer,
+// controllers, screw compensator, stall and plausibility monitors:
+// measure, control, output), ProgramFeedOverride (the operator's override and the S3
 // force loop) and SpindleControl (the
 // spindle's start, ramp, at-speed and stop causes, firmware/spindle/;
 // tick_task_spindle.cpp wires it). The tick's rules hold for each.
