@@ -17,9 +17,11 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "firmware/compensation/screw_compensation.hpp"
 #include "firmware/control/pid_controller.hpp"
 #include "firmware/control/rdvsc_controller.hpp"
 #include "firmware/control/speed_observer.hpp"
+#include "firmware/supervisor/supervisor.hpp"
 #include "firmware/tick/axis_excitations.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/tick_record.hpp"
