@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "firmware/io/accel_code.hpp"
-#include "firmware/io/dac_code.hpp"
 #include "firmware/supervisor/supervisor.hpp"
 #include "firmware/timing/m_method_speed.hpp"
 
@@ -18,9 +17,10 @@ constexpr std::uint32_t kNominalPeriodClocks = 10'000;
 constexpr std::uint32_t kLateToleranceClocks = 500;  // 5% of a period
 }  // namespace
 
-std::array<TickTask::AxisLoop, hal::kAxisCount> TickTask::make_axis_loops(const FirmwareConfig& config) noexcept {
-  return [&config]<std::size_t... I>(std::index_sequence<I...>) {
-    return std::array<AxisLoop, hal::kAxisCount>{AxisLoop(config.axis[I])...};
+std::array<AxisLoop, hal::kAxisCount> TickTask::make_axis_loops(const FirmwareConfig& config,
+                                                                 unsigned counter_bits) noexcept {
+  return [&config, counter_bits]<std::size_t... I>(std::index_sequence<I...>) {
+    return std::array<AxisLoop, hal::kAxisCount>{AxisLoop(config.axis[I], counter_bits)...};
   }(std::make_index_sequence<hal::kAxisCount>{});
 }
 
@@ -28,27 +28,9 @@ std::int64_t TickTask::ticks_for(double seconds) noexcept {
   return static_cast<std::int64_t>(std::llround(seconds / kTickPeriodS));
 }
 
-TickTask::AxisLoop::AxisLoop(const AxisConfig& config) noexcept
-    : pid(config.model, config.pid),
-      dvsc(ControllerKind::dvsc, config.model, config.sliding),
-      rdvsc(ControllerKind::rdvsc, config.model, config.sliding),
-      kind(config.controller) {
-  observer.configure(config.model, config.observer);
-}
-
-AxisController& TickTask::AxisLoop::active() noexcept {
-  switch (kind) {
-    case ControllerKind::pid: return pid;
-    case ControllerKind::dvsc: return dvsc;
-    case ControllerKind::rdvsc: break;
-  }
-  return rdvsc;
-}
-
 TickTask::TickTask(hal::IoBoard& board, const FirmwareConfig& config) noexcept
-    : board_(board), config_(config), axis_(make_axis_loops(config)) {
+    : board_(board), config_(config), axis_(make_axis_loops(config, board.counter_bits())) {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    axis_[i].encoder = EncoderPosition(board_.counter_bits());
     spindle_encoder_ = EncoderPosition(board_.counter_bits());
     hold_[i] = {config_.axis[i].home_position_mm, 0.0};
     next_[i] = hold_[i];
@@ -83,7 +65,7 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
   const hal::TickLatch latch = board_.latched_tick();
   if (first_tick_) {
     // Power-up: this position is home; no period measured yet.
-    for (std::size_t i = 0; i < hal::kAxisCount; ++i) axis_[i].encoder.reset(board_.latched_count(hal::axis_from_index(i)));
+    for (std::size_t i = 0; i < hal::kAxisCount; ++i) axis_[i].restart_count(board_.latched_count(hal::axis_from_index(i)));
     spindle_encoder_.reset(board_.spindle_latched_count());
     last_sequence_ = latch.sequence;
     last_clock_ = latch.clock_10mhz;
@@ -105,11 +87,8 @@ void TickTask::read_timebase(bool bus_ok, std::uint32_t& ticks_missed, bool& adv
   const std::uint32_t deviation = period_clocks > expected ? period_clocks - expected : expected - period_clocks;
   if (deviation > kLateToleranceClocks) ++counters_.late_ticks;
   one_nominal_period_ = sequence_step == 1 && deviation <= kLateToleranceClocks;
-  for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    AxisLoop& loop = axis_[i];
-    const std::int64_t delta = loop.encoder.update(board_.latched_count(hal::axis_from_index(i)));
-    loop.speed_mm_s = m_method_speed_mm_s(delta, config_.axis[i].count_mm, period_clocks);
-  }
+  for (std::size_t i = 0; i < hal::kAxisCount; ++i)
+    axis_[i].count(board_.latched_count(hal::axis_from_index(i)), config_.axis[i].count_mm, period_clocks);
   spindle_rpm_ = spindle_rpm(spindle_encoder_.update(board_.spindle_latched_count()), period_clocks);
   last_sequence_ = latch.sequence;
   last_clock_ = latch.clock_10mhz;
@@ -188,7 +167,7 @@ void TickTask::update_reference() noexcept {
       // The screw compensation's last offset is taken off the measured
       // (motor-side) position: compensated, the reference is where the axis is.
       for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-        hold_[i] = {record_.axis[i].position_mm - screw_[i].next_offset_mm(), 0.0};
+        hold_[i] = {record_.axis[i].position_mm - axis_[i].screw_offset_mm(), 0.0};
         shapers_.reset(i, hold_[i]);
         record_.axis[i].unshaped_reference_mm = hold_[i].position_mm;
         set_reference(i, hold_[i], hold_[i]);
@@ -215,27 +194,9 @@ void TickTask::tick() noexcept {
   // 2. measured state; record_ still holds the previous tick's outputs,
   // which acted over the interval this snapshot ends (stall monitor)
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    record_.axis[i].position_mm = origin_mm_[i] + static_cast<double>(axis_[i].encoder.counts()) * config_.axis[i].count_mm;
-    record_.axis[i].speed_mm_s = axis_[i].speed_mm_s;
-    if (config_.axis[i].observer.enabled) {
-      // Speed observer (speed_observer.hpp): predicted with the command the
-      // DAC applied over the last tick, corrected with this count. Restarted
-      // from the measurement while the outputs were off or a tick was lost.
-      const AxisTickRecord& r = record_.axis[i];  // this tick's measurement, last tick's outputs
-      if (r.enabled && advanced && ticks_missed == 0)
-        axis_[i].observer.update(r.position_mm, dac_code_to_speed_mm_s(r.dac_code, config_.axis[i].dac));
-      else
-        axis_[i].observer.reset(r.position_mm, r.speed_mm_s);
-    }
+    axis_[i].measure(origin_mm_[i], config_.axis[i], config_.supervisor.axis[i], advanced, ticks_missed,
+                     one_nominal_period_, record_.axis[i]);
     record_.axis[i].accel_mm_s2 = accel_code_to_mm_s2(board_.latched_accel_code(hal::axis_from_index(i)));
-    stall_[i].update(axis_[i].encoder.counts(), record_.axis[i].command_mm_s, record_.axis[i].enabled,
-                     config_.supervisor.axis[i].stall);
-    // What the DAC applied over the interval this snapshot ends (its code, not the unquantised command).
-    const AxisTickRecord& applied = record_.axis[i];
-    const double applied_mm_s = applied.enabled ? dac_code_to_speed_mm_s(applied.dac_code, config_.axis[i].dac) : 0.0;
-    plausibility_[i] = plausibility_monitor_[i].update(
-        axis_[i].encoder.counts(), applied_mm_s, advanced && one_nominal_period_, config_.axis[i].model,
-        config_.axis[i].count_mm, config_.axis[i].dac.full_scale_mm_s, config_.supervisor.axis[i].plausibility);
   }
 
   // 3. feed override of a running program (the force loop, when on), then
@@ -275,53 +236,10 @@ void TickTask::tick() noexcept {
   check_in.inputs = last_inputs_;
   check_in.servo_on = on;
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    AxisTickRecord& r = record_.axis[i];
-    double u_mm_s = 0.0;
-    AxisController& ctl = axis_[i].active();
-    double excitation_mm_s = 0.0;
-    if (on && excite_.open_loop(i)) {
-      u_mm_s = excite_.next(i, axis_[i].encoder.counts());
-      excitation_mm_s = u_mm_s;
-      if (!excite_.running(i)) {
-        // Holding resumes from where the axis came to rest, bumpless.
-        ctl.reset();
-        shapers_.reset(i, hold_[i]);
-      }
-    } else if (on) {
-      AxisState x{r.position_mm, r.speed_mm_s};
-      if (const SpeedObserverParams& obs = config_.axis[i].observer; obs.enabled) {
-        x.speed_mm_s = axis_[i].observer.speed_mm_s();
-        if (obs.use_position) x.position_mm = axis_[i].observer.position_mm();
-      }
-      // The program is for the table, the encoder reads the motor: the
-      // controllers follow the motor-side reference (screw_compensation.hpp).
-      const ScrewCompensator::Offsets screw =
-          screw_[i].advance(config_.axis[i].screw, r.reference_mm, next_[i].position_mm, kTickPeriodS);
-      const AxisReference ref{r.reference_mm + screw.now_mm, r.reference_speed_mm_s,
-                              next_[i].position_mm + screw.next_mm, next_[i].speed_mm_s};
-      u_mm_s = ctl.update(x, ref);
-      u_mm_s += friction_feedforward_mm_s(config_.axis[i].friction, r.reference_speed_mm_s, next_[i].speed_mm_s);
-      // Closed-loop excitation at the plant input: u = c + d (excitation.hpp).
-      if (excite_.running(i)) excitation_mm_s = excite_.next(i, axis_[i].encoder.counts());
-      u_mm_s += excitation_mm_s;
-    }
-    r.excitation_mm_s = excitation_mm_s;
-    const ControllerSignals sig = ctl.signals();
-    r.command_mm_s = u_mm_s;
-    r.s = on ? sig.s : 0.0;
-    r.d_hat_mm_s = on ? sig.d_hat_mm_s : 0.0;
-    // Field by field: a braced temporary is built on the stack and copied
-    // with overlapping loads that stall on its own stores (about 4 % of a
-    // whole-process circle, docs/performance.md).
     AxisCheckInput& a = check_in.axis[i];
-    a.position_mm = r.position_mm;
-    a.speed_mm_s = r.speed_mm_s;
-    a.reference_mm = r.reference_mm;
-    a.reference_speed_mm_s = r.reference_speed_mm_s;
-    a.command_mm_s = u_mm_s;
-    a.stalled_ticks = stall_[i].stalled_ticks();
-    a.stall_command_mm_s = stall_[i].applied_command_mm_s();
-    a.plausibility = plausibility_[i];
+    // An open-loop excitation that ended: holding resumes where the axis came to rest, bumpless.
+    if (axis_[i].control(on, config_.axis[i], next_[i], kTickPeriodS, excite_, i, record_.axis[i], a))
+      shapers_.reset(i, hold_[i]);
     a.soft_limits = !homing_.soft_limits_off(i);
   }
 
@@ -333,11 +251,7 @@ void TickTask::tick() noexcept {
 
   // 6. DAC codes and enables, one batched write, watchdog kick
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
-    AxisTickRecord& r = record_.axis[i];
-    const DacScale& dac = config_.axis[i].dac;
-    r.dac_code = outputs_live ? speed_to_dac_code(r.command_mm_s, dac) : dac.mid_code();
-    r.enabled = outputs_live;
-    board_.set_code(hal::axis_from_index(i), r.dac_code);
+    board_.set_code(hal::axis_from_index(i), AxisLoop::output(outputs_live, config_.axis[i].dac, record_.axis[i]));
     board_.set_servo_enable(hal::axis_from_index(i), outputs_live);
   }
   board_.kick();

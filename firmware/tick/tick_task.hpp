@@ -28,7 +28,9 @@
 // the results), PathShapers (each axis' shaper design and on/off, the
 // path's series and its hand-over once quiet), AxisExcitations (each axis'
 // excitation generator and its start count, what it does to the hold point
-// and the command), ProgramFeedOverride (the operator's override and the S3
+// and the command), AxisLoop per axis (count and speed, observer,
+// controllers, screw compensator, stall and plausibility monitors:
+// measure, control, output), ProgramFeedOverride (the operator's override and the S3
 // force loop) and SpindleControl (the
 // spindle's start, ramp, at-speed and stop causes, firmware/spindle/;
 // tick_task_spindle.cpp wires it). The tick's rules hold for each.
@@ -45,6 +47,7 @@
 #include "firmware/shaper/stream_shaper.hpp"
 #include "firmware/spindle/spindle_control.hpp"
 #include "firmware/tick/axis_excitations.hpp"
+#include "firmware/tick/axis_loop.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
@@ -264,7 +267,7 @@ class TickTask {
   const FaultRecord& fault() const noexcept { return fault_; }
   const TickCounters& counters() const noexcept { return counters_; }
   MotionState state() const noexcept { return state_; }
-  ControllerKind controller(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].kind; }
+  ControllerKind controller(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].kind(); }
   const FirmwareConfig& config() const noexcept { return config_; }
   // Ticks from the start of motion to the end of the trajectory (inclusive),
   // unshaped; a shaped axis keeps moving for up to its shaper's span after.
@@ -291,27 +294,15 @@ class TickTask {
   double standing_mm(hal::Axis axis) const noexcept;
   // What the controllers run with now (the sliding set of both DVSC+DDC and
   // R-DVSC+DDC; DVSC+DDC applies it with gamma = 0).
-  const SlidingModeParams& sliding_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].rdvsc.params(); }
-  const PidParams& pid_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].pid.params(); }
+  const SlidingModeParams& sliding_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].sliding_params(); }
+  const PidParams& pid_params(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].pid_params(); }
   // The model the controllers were formed with, and the speed observer's gains.
-  const AxisModel& controller_model(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].rdvsc.model(); }
+  const AxisModel& controller_model(hal::Axis axis) const noexcept { return axis_[hal::index(axis)].controller_model(); }
   const SpeedObserverParams& observer_params(hal::Axis axis) const noexcept {
-    return axis_[hal::index(axis)].observer.params();
+    return axis_[hal::index(axis)].observer_params();
   }
 
  private:
-  struct AxisLoop {
-    AxisLoop(const AxisConfig& config) noexcept;
-    PidController pid;
-    RdvscController dvsc;
-    RdvscController rdvsc;
-    ControllerKind kind;
-    EncoderPosition encoder;
-    double speed_mm_s = 0.0;
-    SpeedObserver observer{};  // config.observer (issue 7); untouched while off
-    AxisController& active() noexcept;
-  };
-
   enum class Source : std::uint8_t { circle, move, jog, program, homing };
   static std::int64_t ticks_for(double seconds) noexcept;
 
@@ -358,8 +349,10 @@ class TickTask {
   hal::IoBoard& board_;
   FirmwareConfig config_;
   bool config_validated_ = false;  // config_ passed validate() (apply_config): a change re-checks only what differs
-  // One loop per axis, each from its own config.
-  static std::array<AxisLoop, hal::kAxisCount> make_axis_loops(const FirmwareConfig& config) noexcept;
+  // One loop per axis, each from its own config (axis_loop.hpp): count,
+  // speed, observer, controllers, screw compensator, stall and plausibility.
+  static std::array<AxisLoop, hal::kAxisCount> make_axis_loops(const FirmwareConfig& config,
+                                                               unsigned counter_bits) noexcept;
   std::array<AxisLoop, hal::kAxisCount> axis_;
   motion::MotionInterpolator motion_{};
   motion::JogProducer jog_{};
@@ -385,10 +378,6 @@ class TickTask {
   // Kept after the hot per-tick state (the shapers' ring buffers are large).
   PathShapers shapers_{};
   AxisExcitations excite_{};  // each axis' excitation and its start count (axis_excitations.hpp)
-  std::array<StallMonitor, hal::kAxisCount> stall_{};  // encoder_stall (supervisor.hpp)
-  std::array<ScrewCompensator, hal::kAxisCount> screw_{};  // table-side reference -> motor-side
-  std::array<MotionPlausibility, hal::kAxisCount> plausibility_monitor_{};  // encoder_implausible, runaway
-  std::array<PlausibilityVerdict, hal::kAxisCount> plausibility_{};         // this tick's verdicts
   bool one_nominal_period_ = false;
   bool board_answering_ = true;  // the last tick's batched read succeeded (clear_fault refuses otherwise)
   HomingSequence homing_{};  // the HOME command's axes, their cycles, homed and the results

@@ -31,7 +31,7 @@ CommandStatus TickTask::select_controller(hal::Axis axis, ControllerKind kind) n
     return CommandStatus::busy;
   if (kind != ControllerKind::pid && kind != ControllerKind::dvsc && kind != ControllerKind::rdvsc)
     return CommandStatus::invalid;
-  axis_[hal::index(axis)].kind = kind;
+  axis_[hal::index(axis)].select(kind);
   config_.axis[hal::index(axis)].controller = kind;  // config() tells the live selection
   return CommandStatus::ok;
 }

@@ -58,35 +58,12 @@ CommandStatus TickTask::apply_config(const FirmwareConfig& config) noexcept {
   for (std::size_t i = 0; i < hal::kAxisCount; ++i) {
     AxisConfig& a = next.axis[i];
     const AxisConfig& old = config_.axis[i];
-    AxisLoop& loop = axis_[i];
     a.home_position_mm = old.home_position_mm;  // the frame moves with zero() only
-    if (a.model != old.model) {
-      loop.pid = PidController(a.model, a.pid);
-      loop.dvsc = RdvscController(ControllerKind::dvsc, a.model, a.sliding);
-      loop.rdvsc = RdvscController(ControllerKind::rdvsc, a.model, a.sliding);
-    } else {
-      // Bumpless: each controller keeps its state and re-forms it for the new gains.
-      if (a.pid != old.pid) loop.pid.set_params(a.pid);
-      if (a.sliding != old.sliding) {
-        loop.dvsc.set_params(a.sliding);
-        loop.rdvsc.set_params(a.sliding);
-      }
-    }
-    if (a.model != old.model || a.observer != old.observer) {
-      loop.observer.configure(a.model, a.observer);
-      loop.observer.reset(record_.axis[i].position_mm, loop.speed_mm_s);
-    }
-    // The residual's history was formed with the old model and scale.
-    if (a.model != old.model || a.count_mm != old.count_mm || a.dac.full_scale_mm_s != old.dac.full_scale_mm_s)
-      plausibility_monitor_[i].reset();
+    axis_[i].apply(old, a, servo_on(), record_.axis[i].position_mm);
     if (a.count_mm != old.count_mm) {
       // Re-base: the position reading stays where it is, later counts use the new scale.
-      const double counts = static_cast<double>(loop.encoder.counts());
+      const double counts = static_cast<double>(axis_[i].counts());
       origin_mm_[i] = origin_mm_[i] + counts * old.count_mm - counts * a.count_mm;
-    }
-    if (a.controller != loop.kind) {
-      loop.kind = a.controller;
-      if (servo_on()) loop.active().reset();
     }
   }
   // The planner's limits (the soft limits are the supervisor's): at rest only (moving: busy above).

@@ -37,7 +37,7 @@ void TickTask::shift_frame(std::size_t a, double delta_mm) noexcept {
   r.position_mm += delta_mm;
   r.reference_mm += delta_mm;
   r.unshaped_reference_mm += delta_mm;
-  axis_[a].observer.shift(delta_mm);
+  axis_[a].shift_frame(delta_mm);
 }
 
 // The homing axis follows the cycle, the other holds; both unshaped (the
@@ -51,7 +51,7 @@ void TickTask::homing_reference() noexcept {
   HomingStep step = homing_.step(last_inputs_.home_switch[a], index.edges);
   if (step.index_found) {
     // The index's latched count, extended like the tick's own count.
-    const std::int64_t latched_counts = axis_[a].encoder.counts_at(index.count);
+    const std::int64_t latched_counts = axis_[a].counts_at(index.count);
     const double origin_mm = config_.axis[a].homing.position_mm - static_cast<double>(latched_counts) * config_.axis[a].count_mm;
     const double delta_mm = origin_mm - origin_mm_[a];
     shift_frame(a, delta_mm);

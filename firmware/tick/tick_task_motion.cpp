@@ -72,11 +72,7 @@ CommandStatus TickTask::start_circle(const CircleSpec& spec, double centre_x_mm,
 }
 
 void TickTask::reset_controllers() noexcept {
-  for (AxisLoop& loop : axis_) {
-    loop.pid.reset();
-    loop.dvsc.reset();
-    loop.rdvsc.reset();
-  }
+  for (AxisLoop& loop : axis_) loop.reset_controllers();
 }
 
 CommandStatus TickTask::start_move(const MoveSpec& spec) noexcept {
@@ -245,7 +241,7 @@ CommandStatus TickTask::start_excitation(hal::Axis axis, const ExcitationSpec& s
   if (state_ == MotionState::faulted) return CommandStatus::faulted;
   if (state_ != MotionState::holding || exciting()) return CommandStatus::busy;
   if (!carrier_travel_fits(axis, spec)) return CommandStatus::invalid;
-  excite_.start(a, spec, axis_[a].encoder.counts());
+  excite_.start(a, spec, axis_[a].counts());
   return CommandStatus::ok;
 }
 

@@ -12,7 +12,7 @@ namespace tnv::fw {
 void TickTask::probe_tick(const motion::MotionReference& r) noexcept {
   if (motion_.probe_tripped_now())
     for (std::size_t i = 0; i < hal::kAxisCount; ++i)
-      probe_trip_mm_[i] = record_.axis[i].position_mm - screw_[i].next_offset_mm();
+      probe_trip_mm_[i] = record_.axis[i].position_mm - axis_[i].screw_offset_mm();
   const motion::ProbeOutcome outcome = motion_.probe_outcome();
   if (outcome == motion::ProbeOutcome::none) return;
   ProbeReport& p = probe_report_;

@@ -1,19 +1,23 @@
 // TickTask's parts on their own (firmware/tick: HomingSequence,
-// PathShapers, ProgramFeedOverride, AxisExcitations), through their narrow
+// PathShapers, ProgramFeedOverride, AxisExcitations, AxisLoop), through their narrow
 // interfaces; the task as a whole is tested by tick_task_test.cpp and the
 // HIL tests.
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "firmware/motion/motion_interpolator.hpp"
+#include "firmware/io/dac_code.hpp"
 #include "firmware/tick/axis_excitations.hpp"
+#include "firmware/tick/axis_loop.hpp"
 #include "firmware/tick/firmware_config.hpp"
 #include "firmware/tick/homing_sequence.hpp"
 #include "firmware/tick/path_shapers.hpp"
 #include "firmware/tick/program_feed_override.hpp"
 #include "firmware/tick/tick_record.hpp"
+#include "firmware/timing/m_method_speed.hpp"
 
 namespace tnv::test {
 namespace {
@@ -219,6 +223,106 @@ TEST(AxisExcitations, ACarriersTravelMustEndInsideTheSoftLimits) {
   EXPECT_FALSE(fw::AxisExcitations::carrier_travel_fits(limits, -5.5, spec));
   spec.carrier_mm_s = 0.0;
   EXPECT_TRUE(fw::AxisExcitations::carrier_travel_fits(limits, 50.0, spec)) << "no carrier: no travel";
+}
+
+// One tick of an AxisLoop on its own: the count since the last snapshot,
+// measure() from it, control() against a reference, output().
+struct AxisLoopBench {
+  fw::FirmwareConfig config = fw::default_firmware_config();
+  fw::AxisConfig& axis = config.axis[0];
+  fw::AxisLimits& limits = config.supervisor.axis[0];
+  fw::AxisLoop loop{axis, 16};
+  fw::AxisExcitations excite{};
+  fw::AxisTickRecord r{};
+  fw::AxisCheckInput check{};
+  static constexpr std::uint32_t kPeriodClocks = 10'000;  // 1 ms
+
+  // raw: this snapshot's latched count; ref_mm: the reference held there.
+  bool tick(std::uint32_t raw, double ref_mm, bool on, double origin_mm = 0.0) {
+    loop.count(raw, axis.count_mm, kPeriodClocks);
+    loop.measure(origin_mm, axis, limits, true, 0, true, r);
+    r.reference_mm = ref_mm;
+    r.reference_speed_mm_s = 0.0;
+    const bool ended = loop.control(on, axis, {ref_mm, 0.0}, kTickS, excite, 0, r, check);
+    fw::AxisLoop::output(on, axis.dac, r);
+    return ended;
+  }
+};
+
+TEST(AxisLoop, MeasuresFromTheCountControlsTowardTheReferenceAndWritesTheDacCode) {
+  AxisLoopBench b;
+  b.axis.observer.enabled = false;
+  b.loop.restart_count(1000);
+  b.tick(1100, 0.0, false, 5.0);
+  EXPECT_EQ(b.loop.counts(), 100);
+  EXPECT_DOUBLE_EQ(b.r.position_mm, 5.0 + 100.0 * b.axis.count_mm);
+  EXPECT_DOUBLE_EQ(b.r.speed_mm_s, fw::m_method_speed_mm_s(100, b.axis.count_mm, AxisLoopBench::kPeriodClocks));
+  EXPECT_EQ(b.r.command_mm_s, 0.0) << "servo off: no command";
+  EXPECT_EQ(b.r.dac_code, b.axis.dac.mid_code());
+  EXPECT_FALSE(b.r.enabled);
+  EXPECT_DOUBLE_EQ(b.check.position_mm, b.r.position_mm);
+
+  b.tick(1100, b.r.position_mm + 1.0, true, 5.0);  // the reference 1 mm ahead of the axis
+  EXPECT_GT(b.r.command_mm_s, 0.0);
+  EXPECT_EQ(b.check.command_mm_s, b.r.command_mm_s);
+  EXPECT_DOUBLE_EQ(b.check.reference_mm, b.r.reference_mm);
+  EXPECT_TRUE(b.r.enabled);
+  EXPECT_EQ(b.r.dac_code, fw::speed_to_dac_code(b.r.command_mm_s, b.axis.dac));
+  EXPECT_GT(b.r.dac_code, b.axis.dac.mid_code());
+
+  b.tick(1100, b.r.position_mm - 1.0, true, 5.0);  // and 1 mm behind
+  EXPECT_LT(b.r.command_mm_s, 0.0);
+}
+
+TEST(AxisLoop, ItsStallMonitorCountsDrivenTicksWithoutACountAndTheCheckInputCarriesThem) {
+  AxisLoopBench b;
+  b.loop.restart_count(0);
+  const double far_mm = 10.0;  // a command well above the stall level
+  b.tick(0, far_mm, true);
+  ASSERT_GE(std::fabs(b.r.command_mm_s), b.limits.stall.command_mm_s);
+  for (std::uint32_t k = 1; k <= 3; ++k) {
+    b.tick(0, far_mm, true);
+    EXPECT_EQ(b.check.stalled_ticks, k) << "the count stands while driven";
+    EXPECT_EQ(b.check.stall_command_mm_s, b.loop.stall().applied_command_mm_s());
+  }
+  b.tick(5, far_mm, true);
+  EXPECT_EQ(b.check.stalled_ticks, 0u) << "a count: moved";
+}
+
+TEST(AxisLoop, AnOpenLoopExcitationReplacesTheControllerAndItsEndIsReported) {
+  AxisLoopBench b;
+  b.loop.restart_count(0);
+  fw::ExcitationSpec ramp;  // open loop; it ends some ticks after the axis has moved 12 counts
+  ramp.kind = fw::ExcitationKind::ramp;
+  b.excite.start(0, ramp, 0);
+  fw::ExcitationGenerator alone;
+  alone.start(ramp);
+  bool ended = false;
+  std::uint32_t raw = 0;
+  for (int k = 0; k < 100000 && !ended; ++k) {
+    const double expected_mm_s = alone.next(raw);
+    ended = b.tick(raw, 100.0, true);  // the reference is ignored while open loop
+    EXPECT_EQ(b.r.command_mm_s, expected_mm_s) << k;
+    EXPECT_EQ(b.r.excitation_mm_s, expected_mm_s) << k;
+    raw += 2;
+  }
+  EXPECT_TRUE(ended);
+  EXPECT_FALSE(b.excite.running(0));
+  EXPECT_FALSE(b.tick(raw, 100.0, true)) << "reported once";
+}
+
+TEST(AxisLoop, ANewConfigSelectsTheControllerAndTakesNewGains) {
+  AxisLoopBench b;
+  fw::AxisConfig to = b.axis;
+  to.controller = to.controller == fw::ControllerKind::pid ? fw::ControllerKind::rdvsc : fw::ControllerKind::pid;
+  to.pid.kp *= 2.0;
+  to.sliding.gamma *= 0.5;
+  b.loop.apply(b.axis, to, false, 0.0);
+  EXPECT_EQ(b.loop.kind(), to.controller);
+  EXPECT_EQ(b.loop.pid_params().kp, to.pid.kp);
+  EXPECT_EQ(b.loop.sliding_params().gamma, to.sliding.gamma);
+  b.loop.select(fw::ControllerKind::dvsc);
+  EXPECT_EQ(b.loop.kind(), fw::ControllerKind::dvsc);
 }
 
 }  // namespace
