@@ -91,8 +91,6 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
   const double band_mm = r.planner.band_sigmas * r.band_sigma_mm;
   ProgramRunOptions run_options;
   run_options.telemetry_ms = 0;  // judged on the machine's truth, not on a path score
-  double sum_sq = 0.0;
-  int n_sq = 0;
   for (int part = 1; part <= r.parts; ++part) {
     const std::vector<hil::BoringLinkInfeed> infeeds = planner.infeeds(error);
     if (infeeds.size() != 2) {
@@ -142,17 +140,12 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
       pos.true_deflection_mm = bar.process().deflection_mm(part, g.infeed_mm_rev, g.overhang_mm);
       pos.measured_deflection_mm = fw::deflection_from_bore_error_mm(planner.received_reading_mm(g.reading_mm), d0,
                                                                      r.planner.force_angle_deg);
-      rec.bad = rec.bad || std::fabs(pos.true_deflection_mm - d0) > band_mm;
-      if (part > 1) {
-        sum_sq += (pos.true_deflection_mm - d0) * (pos.true_deflection_mm - d0);
-        ++n_sq;
-      }
       readings.push_back(g.reading_mm);
       rec.positions.push_back(pos);
     }
-    if (!hil::add_gauged_part(result, std::move(rec), planner.record(part, readings))) return result;
+    if (!hil::add_gauged_part(result, std::move(rec), planner.record(part, readings), d0, band_mm)) return result;
   }
-  result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
+  result.deflection_rms_mm = hil::deflection_rms_mm(result, d0);
   return result;
 }
 

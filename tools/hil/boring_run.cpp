@@ -72,8 +72,6 @@ BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed, Boring
     return result;
   }
   result.parts.reserve(static_cast<std::size_t>(r.parts));
-  double sum_sq = 0.0;
-  int n_sq = 0;
   std::vector<double> gauge(r.positions_mm.size());
   for (int part = 1; part <= r.parts; ++part) {
     BoringPartRecord rec;
@@ -101,20 +99,18 @@ BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed, Boring
       gauge[i] = process.measure_bore_error_mm(part, s, L);
       pos.measured_deflection_mm = fw::deflection_from_bore_error_mm(planner.received_reading_mm(gauge[i]), d0,
                                                                      r.planner.force_angle_deg);
-      rec.bad = rec.bad || std::fabs(pos.true_deflection_mm - d0) > band_mm;
-      if (part > 1) {
-        sum_sq += (pos.true_deflection_mm - d0) * (pos.true_deflection_mm - d0);
-        ++n_sq;
-      }
       rec.positions.push_back(pos);
     }
-    if (!add_gauged_part(result, std::move(rec), planner.record(part, gauge))) return result;
+    if (!add_gauged_part(result, std::move(rec), planner.record(part, gauge), d0, band_mm)) return result;
   }
-  result.deflection_rms_mm = n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
+  result.deflection_rms_mm = deflection_rms_mm(result, d0);
   return result;
 }
 
-bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report) {
+bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report, double d0_mm,
+                     double band_mm) {
+  for (const BoringPositionRecord& pos : rec.positions)
+    rec.bad = rec.bad || std::fabs(pos.true_deflection_mm - d0_mm) > band_mm;
   if (!report.error.empty()) {
     result.error = "part " + std::to_string(rec.part) + ": " + report.error;
     return false;
@@ -129,6 +125,19 @@ bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const Boring
   result.bad_parts += rec.bad ? 1 : 0;
   result.parts.push_back(std::move(rec));
   return true;
+}
+
+double deflection_rms_mm(const BoringRunResult& result, double d0_mm) {
+  double sum_sq = 0.0;
+  int n_sq = 0;
+  for (const BoringPartRecord& rec : result.parts) {
+    if (rec.part <= 1) continue;
+    for (const BoringPositionRecord& pos : rec.positions) {
+      sum_sq += (pos.true_deflection_mm - d0_mm) * (pos.true_deflection_mm - d0_mm);
+      ++n_sq;
+    }
+  }
+  return n_sq > 0 ? std::sqrt(sum_sq / n_sq) : 0.0;
 }
 
 BoringRunResult run_boring(const BoringRunRequest& r, std::uint64_t seed) {

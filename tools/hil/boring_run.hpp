@@ -79,10 +79,14 @@ struct BoringRunResult {
   std::string error;          // the planner refused a part (should never happen)
 };
 
-// A gauged part into its run: the planner's report of it (its reset, the
+// A gauged part into its run: judged (bad = its true deflection outside
+// d0 +- band_mm at any position), the planner's report of it (its reset, the
 // estimates after it, the resets so far) and the bad-part count. False, with
 // result.error naming the part, when the planner refused its readings.
-bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report);
+bool add_gauged_part(BoringRunResult& result, BoringPartRecord rec, const BoringLinkPart& report, double d0_mm,
+                     double band_mm);
+// The rms of the true d - d0 over parts 2..N, every position, of the parts added.
+double deflection_rms_mm(const BoringRunResult& result, double d0_mm);
 
 // Throws std::invalid_argument when validate_boring_request() fails. The
 // link is started afresh (a planner that has learned nothing).
