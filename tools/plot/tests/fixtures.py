@@ -46,9 +46,9 @@ def path_csv(path, n=3000):
     t = np.arange(n) * 1e-3
     x = np.where(t < 1.5, t * 10, 15.0)
     y = np.where(t < 1.5, 0.0, (t - 1.5) * 10)
-    lines = ["t_s,x_ref_mm,y_ref_mm,x_mm,y_mm,contour_um,path_speed_mm_s"]
+    lines = ["t_s,x_ref_mm,y_ref_mm,x_mm,y_mm,contour_um,path_speed_mm_s,z_ref_mm,z_mm"]
     for k in range(n):
-        lines.append(f"{t[k]:.3f},{x[k]:.6f},{y[k]:.6f},{x[k]:.6f},{y[k] + 1e-4:.6f},{0.1 + (k == 1500) * 3:.5f},10")
+        lines.append(f"{t[k]:.3f},{x[k]:.6f},{y[k]:.6f},{x[k]:.6f},{y[k] + 1e-4:.6f},{0.1 + (k == 1500) * 3:.5f},10,-150,-150")
     path.write_text("\n".join(lines) + "\n")
     return path
 

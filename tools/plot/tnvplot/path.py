@@ -2,7 +2,7 @@
 largest, the contour error and the planner's path speed against time.
 
 Reads the path CSV (tools/hil/path_csv.hpp): t_s, x_ref_mm, y_ref_mm,
-x_mm, y_mm, contour_um, path_speed_mm_s.
+x_mm, y_mm, contour_um, path_speed_mm_s, then z_ref_mm, z_mm (not drawn).
 """
 
 import numpy as np
