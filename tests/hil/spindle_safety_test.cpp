@@ -4,6 +4,7 @@
 // is far too wide starts feed moves early, and the judge sees it.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <map>
 #include <string>
 
@@ -43,6 +44,8 @@ TEST(SpindleSafety, TheJudgeSeesFeedMovesThatBeginBeforeTheSpindleIsReallyAtSpee
   const SpindleSafetySummary s = run_spindle_safety(*emu::builtin_scenario("no-cut"), wide);
   EXPECT_GT(s.feed_before_at_speed, 0u);
   EXPECT_FALSE(s.all_ok);
+  std::printf("a 50 %% at-speed window: %u of %u feed starts before at speed\n", s.feed_before_at_speed,
+              s.feed_onsets);
   EXPECT_EQ(s.self_starts, 0u) << "the window has nothing to do with starting";
 }
 

@@ -5,11 +5,14 @@
 
 namespace tnv::hil {
 
+bool within_at_speed_window(double speed_rpm, double command_rpm) noexcept {
+  return std::fabs(speed_rpm - command_rpm) <= std::max(0.05 * std::fabs(command_rpm), 20.0);
+}
+
 bool FeedStartJudge::spindle_ready(const emu::Machine& machine) const noexcept {
   const emu::SpindleTruth s = machine.spindle_truth();
   if (s.command_rpm == 0.0) return true;  // commanded off: feed moves may run (a cut then is a crash)
-  const double window_rpm = std::max(0.05 * std::fabs(s.command_rpm), 20.0);
-  return steady_ticks_ >= kSteadyTicks && std::fabs(s.speed_rpm - s.command_rpm) <= window_rpm;
+  return steady_ticks_ >= kSteadyTicks && within_at_speed_window(s.speed_rpm, s.command_rpm);
 }
 
 void FeedStartJudge::observe(const emu::Machine& machine, std::size_t front) {

@@ -15,7 +15,8 @@
 //    DAC and enable give it) is not zero, and at speed when that command
 //    has not changed for kSteadyTicks (the firmware's ramp is over) and the
 //    drive's real speed is within the firmware's default window of it
-//    (5 % or 20 rpm, as tnv-hil spindle-safety's judge).
+//    (5 % or 20 rpm, within_at_speed_window).
+// tnv-hil path, tnvctl --emu run and tnv-hil spindle-safety count with it.
 // Crashes (the stock engaged with a stopped or slow spindle) are the
 // emulator's own log (emu::CuttingAtTool), read by the caller.
 #include <array>
@@ -29,6 +30,10 @@
 #include "hal/axis.hpp"
 
 namespace tnv::hil {
+
+// The firmware's default at-speed window (spindle.at_speed_fraction 5 %,
+// floor 20 rpm) around `command_rpm`, whatever the firmware under test uses.
+bool within_at_speed_window(double speed_rpm, double command_rpm) noexcept;
 
 // A start of motion from rest, as the machine saw it.
 struct MotionOnset {

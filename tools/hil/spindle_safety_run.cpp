@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "drivers/emulated/emulated_register_bus.hpp"
 #include "drivers/fpga/fpga_io_board.hpp"
 #include "emulator/machine.hpp"
 #include "firmware/tick/tick_task.hpp"
+#include "tools/hil/feed_start_judge.hpp"
 #include "tools/hil/hil_firmware_config.hpp"
 
 namespace tnv::hil {
@@ -16,17 +18,13 @@ namespace {
 
 constexpr double kFirstRpm = 3000.0;   // the start before the transition
 constexpr double kSecondRpm = 2400.0;  // the new start after it
-// A feed move begins when the table's real XY speed passes kMovingMmS (a
-// sixth of the programs' 3 mm/s) after it was at rest (below kRestMmS): a
-// holding axis dithers at up to ~0.2 mm/s, which is no feed move.
-constexpr double kMovingMmS = 0.5;
-constexpr double kRestMmS = 0.05;
 constexpr double kRestRpm = 1.0;
 constexpr int kWatchTicks = 3000;      // watched after the transition's recovery
 constexpr int kLimitTicks = 30'000;    // any wait longer than this is a failure
 
-// The judge: the emulator's truth against what the bench asked for.
-class Judge {
+// The self-start judge: the emulator's truth against what the bench asked
+// for. Feed starts are the shared judge's (feed_start_judge.hpp).
+class SelfStartJudge {
  public:
   void ask_on(double rpm) noexcept {
     asked_on_ = true;
@@ -38,36 +36,22 @@ class Judge {
     rise_rpm_ = 0.0;
   }
   void observe(const emu::Machine& m) noexcept {
-    const double n = m.spindle_truth().speed_rpm;
-    const double v = std::hypot(m.truth(hal::Axis::x).speed_mm_s, m.truth(hal::Axis::y).speed_mm_s);
-    if (v > kMovingMmS && !was_moving_) {
-      ++onsets_;
-      if (asked_on_ && !at_speed(n)) ++early_;
-      was_moving_ = true;
-    } else if (v < kRestMmS) {
-      was_moving_ = false;
-    }
-    if (!asked_on_) {
-      low_rpm_ = std::min(low_rpm_, std::fabs(n));
-      rise_rpm_ = std::max(rise_rpm_, std::fabs(n) - low_rpm_);
-    }
+    if (asked_on_) return;
+    const double n = std::fabs(m.spindle_truth().speed_rpm);
+    low_rpm_ = std::min(low_rpm_, n);
+    rise_rpm_ = std::max(rise_rpm_, n - low_rpm_);
   }
-  // The firmware's default window (spindle.at_speed_fraction 5 %, floor 20 rpm) around what was asked.
-  bool at_speed(double n) const noexcept {
-    return std::fabs(n - asked_rpm_) <= std::max(0.05 * std::fabs(asked_rpm_), 20.0);
+  // The real speed within the at-speed window of what was asked.
+  bool at_asked_speed(const emu::Machine& m) const noexcept {
+    return asked_on_ && within_at_speed_window(m.spindle_truth().speed_rpm, asked_rpm_);
   }
   double rise_rpm() const noexcept { return rise_rpm_; }
-  std::uint32_t onsets() const noexcept { return onsets_; }
-  std::uint32_t early() const noexcept { return early_; }
 
  private:
   bool asked_on_ = false;
   double asked_rpm_ = 0.0;
   double low_rpm_ = 0.0;
   double rise_rpm_ = 0.0;
-  bool was_moving_ = false;
-  std::uint32_t onsets_ = 0;
-  std::uint32_t early_ = 0;
 };
 
 // The machine, the board and the firmware; restart() is a node restart:
@@ -91,6 +75,11 @@ struct Bench {
     machine.advance_to_next_tick();
     task->tick();
     judge.observe(machine);
+    feed.observe(machine, front());
+  }
+  // The element at the front of the queue, as an index into `elements`.
+  std::size_t front() const {
+    return program_base + static_cast<std::size_t>(task->motion().stats().segments_done - done_base);
   }
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i) tick();
@@ -109,12 +98,16 @@ struct Bench {
   // A 3 mm square of feed moves at 3 mm/s from where the table is held (4 s).
   bool push_square() {
     static constexpr double kSide[4][2] = {{3.0, 0.0}, {0.0, 3.0}, {-3.0, 0.0}, {0.0, -3.0}};
+    program_base = elements.size();
+    done_base = task->motion().stats().segments_done;
     for (const auto& d : kSide) {
       fw::motion::PlanePoint end = task->next_segment_start_mm();
-      end[0] += d[0];
-      end[1] += d[1];
+      end[hal::index(hal::kPlaneFirst)] += d[0];
+      end[hal::index(hal::kPlaneSecond)] += d[1];
+      const fw::motion::Segment line = fw::motion::line_to(end, 3.0);
       fw::motion::SegmentRefusal why{};
-      if (task->push_segment(fw::motion::line_to(end, 3.0), why) != fw::CommandStatus::ok) return false;
+      if (task->push_segment(line, why) != fw::CommandStatus::ok) return false;
+      elements.push_back(line);
     }
     return task->end_program() == fw::CommandStatus::ok;
   }
@@ -129,7 +122,11 @@ struct Bench {
   emu::Machine machine;
   drivers::EmulatedRegisterBus bus;
   drivers::FpgaIoBoard board;
-  Judge judge{};
+  SelfStartJudge judge{};
+  FeedStartJudge feed{};
+  std::vector<fw::motion::Segment> elements;  // every element pushed, in order (what `feed` counts against)
+  std::size_t program_base = 0;               // the running program's first element in `elements`
+  std::uint64_t done_base = 0;                // the task's segments_done when it was pushed
   std::unique_ptr<fw::TickTask> task;  // after the board it drives: destroyed before it
   bool ok = false;
 };
@@ -212,11 +209,11 @@ SpindleTransitionResult run_transition(const emu::Scenario& scenario, const fw::
   // parameter load: turning at rest, the load's own condition).
   if (!b.start(kFirstRpm)) return r;
   if (name == "parameter_load") {
-    if (!b.run_until([&] { return b.judge.at_speed(b.rpm()); })) return r;
+    if (!b.run_until([&] { return b.judge.at_asked_speed(b.machine); })) return r;
     b.run(200);
   } else {
     if (!b.push_square()) return r;
-    if (!b.run_until([&] { return b.judge.onsets() > 0; })) return r;
+    if (!b.run_until([&] { return !b.feed.onsets().empty(); })) return r;
     b.run(1500);  // well into the program
   }
   if (!drive_transition(b, name, r)) return r;
@@ -230,7 +227,7 @@ SpindleTransitionResult run_transition(const emu::Scenario& scenario, const fw::
   if (!b.push_square()) return r;
   bool reached = false;
   if (!b.run_until([&] {
-        reached = reached || b.judge.at_speed(b.rpm());
+        reached = reached || b.judge.at_asked_speed(b.machine);
         return reached && b.program_done();
       }))
     return r;
@@ -239,8 +236,9 @@ SpindleTransitionResult run_transition(const emu::Scenario& scenario, const fw::
   b.run(kWatchTicks);
   r.program_end_stop = b.task->spindle().last_stop_cause() == fw::SpindleStopCause::program_end &&
                        std::fabs(b.rpm()) < kRestRpm && b.judge.rise_rpm() <= kSelfStartRpm;
-  r.feed_onsets = b.judge.onsets();
-  r.feed_before_at_speed = b.judge.early();
+  const FeedStartCount feed = b.feed.count(b.elements);
+  r.feed_onsets = feed.feed_onsets;
+  r.feed_before_at_speed = feed.feed_before_at_speed;
   return r;
 }
 

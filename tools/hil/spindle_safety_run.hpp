@@ -13,10 +13,12 @@
 // program, which must wait for the spindle again and whose end stops it.
 //  - self_starts: the spindle's real speed rose (by more than
 //    kSelfStartRpm above its lowest since it was stopped) without a start;
-//  - feed_before_at_speed: a feed move began (the table's real XY speed
-//    rose past 0.5 mm/s from rest, below 0.05 mm/s; the programs have feed
-//    moves only, at 3 mm/s) while the spindle was asked to turn and was not
-//    really within the at-speed window of that speed.
+//  - feed_before_at_speed: a feed move began while the spindle was
+//    commanded on and not at speed, as tools/hil/feed_start_judge.hpp
+//    judges it for tnv-hil path and tnvctl --emu run (the tool's real speed
+//    past 0.5 mm/s from rest and then 10 um from where it was; the drive's
+//    command steady and its real speed within 5 % or 20 rpm of it). The
+//    programs have feed moves only, at 3 mm/s.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -43,9 +43,10 @@ int run_spindle_safety_command(const SpindleSafetyOptions& o) {
                                 {"feed_before_at_speed", s.feed_before_at_speed},
                                 {"feed_onsets", s.feed_onsets},
                                 {"all_ok", s.all_ok},
-                                {"judge", "the emulator's spindle speed and table speed; at speed: within 5 % or "
-                                          "20 rpm of the speed asked for; a self-start: a rise of more than 10 rpm "
-                                          "without a start"},
+                                {"judge", "the emulator's spindle speed and tool speed; a feed start as tnv-hil "
+                                          "path judges it (at speed: the drive's command steady for 10 ticks and "
+                                          "its speed within 5 % or 20 rpm of it); a self-start: a rise of more "
+                                          "than 10 rpm without a start"},
                                 {"runs", runs}};
     std::cout << out.dump(2) << "\n";
   } else {
