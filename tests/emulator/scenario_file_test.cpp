@@ -13,6 +13,7 @@
 
 #include "emulator/scenario_validation.hpp"
 #include "tests/emulator/scenario_error_cases.hpp"
+#include "tests/tools/unique_temp_dir.hpp"
 
 namespace tnv::emu {
 namespace {
@@ -131,13 +132,13 @@ TEST(ScenarioFile, PartialSectionKeepsOtherDefaults) {
 }
 
 TEST(ScenarioFile, LoadsFromDisk) {
-  const auto path = std::filesystem::temp_directory_path() / "tnv_emu_scenario_test.toml";
+  const tnv::test::UniqueTempDir dir("tnv-scenario");
+  const auto path = dir / "disk.toml";
   {
     std::ofstream out(path);
     out << "name = \"disk\"\n[cutting]\nenabled = true\n";
   }
   const ScenarioResult r = load_scenario_file(path.string());
-  std::filesystem::remove(path);
   ASSERT_TRUE(r.scenario) << r.error;
   EXPECT_EQ(r.scenario->name, "disk");
   EXPECT_TRUE(r.scenario->cutting.enabled);

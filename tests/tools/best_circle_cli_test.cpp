@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/tools/cli_runner.hpp"
+#include "tests/tools/unique_temp_dir.hpp"
 
 namespace tnv::test {
 namespace {
@@ -28,14 +29,14 @@ TEST(BestCircleCli, MissingTableFileIsBadInputNothingRun) {
 }
 
 TEST(BestCircleCli, BadValueInTableFileNamesTheFieldNothingRun) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "tnv_best_circle_bad_table.toml";
+  const test::UniqueTempDir dir("tnv-best-circle");
+  const std::filesystem::path file = dir / "bad_table.toml";
   {
     std::ofstream out(file);
     out << "name = \"bad\"\n[plant.x]\ntau_s = -0.004\n";
   }
   // A good table first: it must not be run either when a later one is bad.
   const CliRun r = run_tnv_hil(std::string("best-circle --seeds 1 --scenario no-cut --scenario ") + file.string());
-  std::filesystem::remove(file);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
   EXPECT_EQ(best_circle_cli_lines(r.err), 1u) << r.err;

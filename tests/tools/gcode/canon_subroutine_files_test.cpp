@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tests/tools/gcode/canon_test_support.hpp"
+#include "tests/tools/unique_temp_dir.hpp"
 #include "tools/gcode/canon_interpreter.hpp"
 
 namespace tnv::gcode {
@@ -17,13 +18,7 @@ namespace subroutine_files_test {
 
 class SubroutineFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("tnv-subfiles-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_ / "lib");
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
+  void SetUp() override { std::filesystem::create_directories(dir_ / "lib"); }
   void write(const std::filesystem::path& relative, const std::string& text) const {
     std::ofstream(dir_ / relative) << text;
   }
@@ -34,7 +29,8 @@ class SubroutineFiles : public ::testing::Test {
     setup.subroutine_path = path;
     return interpret_canon_file((dir_ / "main.ngc").string(), setup);
   }
-  std::filesystem::path dir_;
+  tnv::test::UniqueTempDir tmp_{"tnv-subfiles"};  // its own: another checkout's tests may run beside these
+  const std::filesystem::path& dir_ = tmp_.path();
 };
 
 std::vector<std::string> feeds(const CanonResult& r) {
