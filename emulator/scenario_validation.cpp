@@ -97,7 +97,8 @@ void check_boring(Rules& r, const Scenario& s) {
   const BoringAxesParams& b = s.boring;
   r.ordered("boring.gauge_top_depth_mm", b.gauge_top_depth_mm, "boring.gauge_bottom_depth_mm", b.gauge_bottom_depth_mm);
   if (r.found) return;
-  if (b.enabled && !s.stock.enabled) {
+  if (!b.enabled) return;  // the gauge depths matter only to a bar that bores (a stock may take a short tool)
+  if (!s.stock.enabled) {
     r.fail_text("boring.enabled", "the bore is in the stock: boring needs stock.enabled = true");
     return;
   }

@@ -136,6 +136,19 @@ TEST(MachineKeys, DefaultsAreTheReferencePlantAndValid) {
   EXPECT_EQ(s.cutting.spindle_rpm, 900.0);
 }
 
+// The boring gauge's depths are the bar's: with [boring] off a stock takes
+// a tool too short to reach them (the same keys with it on: refused, below).
+TEST(MachineKeys, AShortToolOnAStockIsValidWithBoringOff) {
+  const ScenarioResult r =
+      parse_scenario_text("[stock]\nenabled = true\n[tool]\nlength_mm = 100\n[boring]\ngauge_bottom_depth_mm = 400\n",
+                          "scen.toml");
+  ASSERT_TRUE(r.scenario) << r.error;
+  EXPECT_TRUE(r.scenario->stock.enabled);
+  EXPECT_FALSE(r.scenario->boring.enabled);
+  EXPECT_EQ(r.scenario->tool.length_mm, 100.0);
+  EXPECT_EQ(validate_scenario(*r.scenario), "");
+}
+
 // Refused like every scenario error (scenario_file_test.cpp: one line, file, line, column, key).
 using test::ScenarioErrorCase;
 using test::ScenarioFileErrors;
@@ -188,11 +201,13 @@ INSTANTIATE_TEST_SUITE_P(
                    "2:1: boring.overhang_at_top_mm: must be 1..2000: a boring bar's overhang (got 0)"},
         ScenarioErrorCase{"gauge depths upside down", "[boring]\ngauge_top_depth_mm = 300\n",
                    "2:1: boring.gauge_top_depth_mm: must be <= gauge_bottom_depth_mm = 270 (got 300)"},
-        ScenarioErrorCase{"gauge out of reach", "[boring]\ngauge_bottom_depth_mm = 400\n",
-                   "2:1: boring.gauge_bottom_depth_mm: the bottom gauge depth must be within reach: stock.top_mm - "
+        ScenarioErrorCase{"gauge out of reach",
+                   "[stock]\nenabled = true\n[boring]\nenabled = true\ngauge_bottom_depth_mm = 400\n",
+                   "5:1: boring.gauge_bottom_depth_mm: the bottom gauge depth must be within reach: stock.top_mm - "
                    "boring.gauge_bottom_depth_mm = -550 mm < plant.z.travel_bottom_mm - tool.length_mm = -425 mm"},
-        ScenarioErrorCase{"a longer tool is what cannot reach", "[tool]\nlength_mm = 100\n",
-                   "2:1: tool.length_mm: the bottom gauge depth must be within reach: stock.top_mm - "
+        ScenarioErrorCase{"a shorter tool is what cannot reach",
+                   "[stock]\nenabled = true\n[boring]\nenabled = true\n[tool]\nlength_mm = 100\n",
+                   "6:1: tool.length_mm: the bottom gauge depth must be within reach: stock.top_mm - "
                    "boring.gauge_bottom_depth_mm = -420 mm < plant.z.travel_bottom_mm - tool.length_mm = -400 mm"},
         ScenarioErrorCase{"change part", "[boring]\nchange_at_1 = -3\n", "2:1: boring.change_at_1: must be in 0..1000000 (got -3)"},
         ScenarioErrorCase{"probe", "[probe]\ntip_radius_mm = -1\n",
