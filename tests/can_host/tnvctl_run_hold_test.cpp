@@ -169,6 +169,39 @@ TEST(TnvctlRunHold, AnEnterWhileHeldAtAPauseIsDroppedAndTheNextContinues) {
   std::filesystem::remove_all(state);
 }
 
+// Killed while it waits at a pause (SIGTERM, or SIGHUP as when its
+// terminal goes away), tnvctl still dies of the signal, and the terminal
+// has its echo and line mode back: the operator's shell is not left blind.
+class TnvctlRunEndingSignal : public ::testing::TestWithParam<int> {};
+
+TEST_P(TnvctlRunEndingSignal, GivesTheTerminalItsEchoBackAndDiesOfIt) {
+  const int sig = GetParam();
+  const auto state = test::state_dir(std::string("run_ending_signal_") + std::to_string(sig));
+  const auto prog = test::write_file(state / "m0.ngc", "G21 G91\nG1 X2 F600\nM0\nG1 X-2\nM2\n");
+  const BackgroundRun run(state, prog.string(), true);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("press Enter to continue", 1)) << run.err();
+  termios during{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &during), 0);
+  ASSERT_EQ(during.c_lflag & ECHO, 0u) << "the keys are not echoed while the program runs";
+  ASSERT_EQ(::kill(run.pid, sig), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+  EXPECT_EQ(WTERMSIG(status), sig) << "it dies of the signal, as without the terminal";
+  termios after{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
+  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
+  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+  ::close(run.terminal);
+  std::filesystem::remove_all(state);
+}
+
+INSTANTIATE_TEST_SUITE_P(TermAndHup, TnvctlRunEndingSignal, ::testing::Values(SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& signal) {
+                           return std::string(signal.param == SIGTERM ? "sigterm" : "sighup");
+                         });
+
 // Without a terminal a tool change could never be confirmed: refused before
 // anything is sent, naming the first pause and the first M6 with their lines.
 TEST(TnvctlRunHold, AToolChangeWithoutATerminalIsRefusedNamingItsLineBeforeAnythingIsSent) {

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <iterator>
 
 namespace tnv::can_host {
 
@@ -26,6 +27,43 @@ void catch_signal(int sig, void (*handler)(int), struct sigaction& saved) {
   sigaction(sig, &sa, &saved);
 }
 
+// A signal that ends the process (kill, a closed terminal, Ctrl-\) must not
+// leave the terminal without echo: its handler gives the modes back, then
+// the process dies of the signal as it would have. Ctrl-C is the run's own
+// (it stops the program, and the console's destructor gives them back).
+constexpr int kEndingSignals[] = {SIGTERM, SIGHUP, SIGQUIT};
+struct sigaction g_saved_ending[std::size(kEndingSignals)] {};
+bool g_caught_ending[std::size(kEndingSignals)] {};
+termios g_terminal_modes{};                // what the terminal had before the console
+volatile std::sig_atomic_t g_terminal_fd = -1;  // >= 0 while the console has changed them
+
+extern "C" void on_ending_signal(int sig) {
+  // Only async-signal-safe calls (tcsetattr, sigaction, raise). The signal
+  // is blocked in here: raised again, it ends the process once this returns.
+  if (g_terminal_fd >= 0) tcsetattr(g_terminal_fd, TCSANOW, &g_terminal_modes);
+  struct sigaction by_default {};
+  by_default.sa_handler = SIG_DFL;
+  sigemptyset(&by_default.sa_mask);
+  sigaction(sig, &by_default, nullptr);
+  raise(sig);
+}
+
+// Only where the signal would end the process: one ignored (nohup) or
+// handled by someone else is left as it is.
+void catch_ending_signals() {
+  for (std::size_t i = 0; i < std::size(kEndingSignals); ++i) {
+    struct sigaction now {};
+    g_caught_ending[i] = sigaction(kEndingSignals[i], nullptr, &now) == 0 && now.sa_handler == SIG_DFL &&
+                         (now.sa_flags & SA_SIGINFO) == 0;
+    if (g_caught_ending[i]) catch_signal(kEndingSignals[i], on_ending_signal, g_saved_ending[i]);
+  }
+}
+
+void release_ending_signals() {
+  for (std::size_t i = 0; i < std::size(kEndingSignals); ++i)
+    if (g_caught_ending[i]) sigaction(kEndingSignals[i], &g_saved_ending[i], nullptr);
+}
+
 }  // namespace
 
 OperatorConsole::OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> schedule, std::function<double()> clock_s)
@@ -34,6 +72,10 @@ OperatorConsole::OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> sche
     termios t{};
     if (tcgetattr(fd_, &t) == 0) {
       saved_ = t;
+      g_terminal_modes = t;
+      std::atomic_signal_fence(std::memory_order_seq_cst);  // the modes are in place before a handler may read them
+      g_terminal_fd = fd_;
+      catch_ending_signals();
       t.c_lflag &= static_cast<tcflag_t>(~(ICANON | ECHO));
       t.c_cc[VMIN] = 0;
       t.c_cc[VTIME] = 0;
@@ -48,7 +90,11 @@ OperatorConsole::OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> sche
 OperatorConsole::~OperatorConsole() {
   sigaction(SIGUSR1, &g_saved_usr1, nullptr);
   sigaction(SIGUSR2, &g_saved_usr2, nullptr);
-  if (saved_) tcsetattr(fd_, TCSANOW, &*saved_);
+  if (saved_) {
+    tcsetattr(fd_, TCSANOW, &*saved_);
+    g_terminal_fd = -1;
+    release_ending_signals();  // after the modes are back: a signal before this finds them given back already
+  }
 }
 
 void OperatorConsole::read_keys() {
