@@ -8,7 +8,7 @@ namespace tnv::emu {
 namespace {
 
 constexpr double kLookPeriodS = 1e-3;     // an engaged tool looks at the height field once a tick
-constexpr double kLookMoveMm = 1e-4;      // one not engaged looks again once it has moved 0.1 um,
+constexpr double kLookMoveMm = 1e-3;      // one not engaged over the stock looks again once it has moved 1 um in XY,
 constexpr double kEngagedLookMoveMm = 0.05;  // one engaged once it has moved half a cell (a rapid out of the cut)
 constexpr double kMovingMmPerS = 0.05;    // the XY speed under which the tool is at rest (the feed judge's)
 
@@ -28,9 +28,12 @@ CuttingAtTool::CuttingAtTool(const Scenario& s, double substep_s)
 // the last look (before that look took the material away). A tool feeding
 // into uncut stock meets the top at its leading edge at every look, so a_p
 // is the reference plant's z_top - z exactly; one over its own cut meets
-// the floor it left. Looks: once a tick while engaged; at every 0.1 um of
-// motion while not (so the sub-step a tool reaches material is the one the
-// reference plant's block would engage it at); never above the stock top.
+// the floor it left. Looks: once a tick while engaged (or after half a
+// cell's travel); while not, once the tool has moved 1 um in XY over the
+// stock, or beside it as far as its disc is from the stock's side (so the
+// sub-step it reaches the side is the one the block engages it at);
+// going straight down, the same cells: the last look's height holds. None
+// above the stock top.
 void CuttingAtTool::advance(const ToolPointMotion& at, double spindle_rpm, double commanded_rpm,
                             double time_s) noexcept {
   if (!(at.z_mm < surface_.top_mm())) {
@@ -38,10 +41,10 @@ void CuttingAtTool::advance(const ToolPointMotion& at, double spindle_rpm, doubl
     looked_ = false;
   } else {
     const bool engaged_now = material_top_mm_ > at.z_mm;
-    const double moved_mm = std::hypot(at.x_mm - looked_x_mm_, at.y_mm - looked_y_mm_, at.z_mm - looked_z_mm_);
+    const double moved_xy_mm = std::hypot(at.x_mm - looked_x_mm_, at.y_mm - looked_y_mm_);
     ++substeps_since_look_;
-    if (!looked_ || substeps_since_look_ >= substeps_per_look_ || moved_mm > kEngagedLookMoveMm ||
-        (!engaged_now && moved_mm > kLookMoveMm)) {
+    if (!looked_ || substeps_since_look_ >= substeps_per_look_ || moved_xy_mm > kEngagedLookMoveMm ||
+        (!engaged_now && moved_xy_mm > clearance_mm_)) {
       look(at);
     }
   }
@@ -84,9 +87,11 @@ void CuttingAtTool::look(const ToolPointMotion& at) {
       material_top_mm_ = std::max(material_top_mm_, m.top_mm);
     }
   }
+  // Beside the stock (no cell under the disc) it meets nothing until it has moved as far as the side.
+  const double beside_mm = stock_.xy_distance_mm(at.x_mm, at.y_mm) - 0.5 * tool_.diameter_mm;
+  clearance_mm_ = std::isinf(met_mm) ? std::max(beside_mm, 0.0) : kLookMoveMm;
   looked_x_mm_ = at.x_mm;
   looked_y_mm_ = at.y_mm;
-  looked_z_mm_ = at.z_mm;
   looked_ = true;
   substeps_since_look_ = 0;
 }

@@ -67,7 +67,8 @@ class CuttingAtTool {
   };
   static constexpr std::size_t kMetWindow = 128;
   double material_top_mm_ = -std::numeric_limits<double>::infinity();
-  double looked_x_mm_ = 0.0, looked_y_mm_ = 0.0, looked_z_mm_ = 0.0;
+  double looked_x_mm_ = 0.0, looked_y_mm_ = 0.0;
+  double clearance_mm_ = 0.0;  // the XY travel after which a tool that is not engaged looks again
   double travel_mm_ = 0.0;
   std::array<Met, kMetWindow> met_{};
   std::size_t met_next_ = 0, met_count_ = 0;

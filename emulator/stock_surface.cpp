@@ -129,14 +129,9 @@ double StockSurface::cut(double x_mm, double y_mm, double radius_mm, double z_mm
     for (std::int64_t ti = floor_div(r.i0, kTileCells); ti <= floor_div(r.i1, kTileCells); ++ti) {
       const Range in_tile{std::max(r.i0, ti * kTileCells), std::min(r.i1, ti * kTileCells + kTileCells - 1),
                           std::max(r.j0, tj * kTileCells), std::min(r.j1, tj * kTileCells + kTileCells - 1)};
-      Tile* t = find_tile(ti, tj);  // null until a cell in it has something to take
+      Tile* t = find_tile(ti, tj);
       for_each_cell(in_tile, x_mm, y_mm, radius_mm, [&](std::int64_t i, std::int64_t j) {
-        if (t == nullptr) {
-          const double initial_mm = initial_height_mm(i, j);
-          highest = std::max(highest, initial_mm);
-          if (!(initial_mm > z_mm)) return;  // nothing to take here: no tile for it yet
-          t = &tile(ti, tj);
-        }
+        if (t == nullptr) t = &tile(ti, tj);  // the tool is below the top over it: filled once, read since
         double& h = (*t)[static_cast<std::size_t>(j - tj * kTileCells) * kTileCells +
                          static_cast<std::size_t>(i - ti * kTileCells)];
         highest = std::max(highest, h);

@@ -25,8 +25,8 @@ class StockSurface {
 
   // The highest material (its height, mm) in the cells under a disc of
   // radius_mm at (x, y), then every one of them lowered to z_mm: a tool
-  // whose point is at (x, y, z) cutting what it meets. -inf when the disc
-  // meets no cell with material above z_mm (nothing is allocated then).
+  // whose point is at (x, y, z) cutting what it meets; -inf when the disc
+  // meets no cell of the rectangle. Above the top it only reads.
   double cut(double x_mm, double y_mm, double radius_mm, double z_mm);
   // The highest material under the disc, nothing changed (no allocation).
   double highest_mm(double x_mm, double y_mm, double radius_mm) const noexcept;

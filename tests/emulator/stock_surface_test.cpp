@@ -146,7 +146,7 @@ TEST(StockSurface, AHelixTurnMeetsAboutItsPitch) {
   }
   // The leading edge meets last turn's floor: one pitch (less the ramp's share across the disc).
   EXPECT_LE(later_max, pitch + 0.02);
-  EXPECT_GE(later_min, 0.5 * pitch);
+  EXPECT_GE(later_min, 0.9 * pitch);
   EXPECT_EQ(cut.crashes().count(), 0u);
 }
 
