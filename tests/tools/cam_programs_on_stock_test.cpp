@@ -97,18 +97,20 @@ INSTANTIATE_TEST_SUITE_P(Oracle, CamProgramOnStock,
                          [](const ::testing::TestParamInfo<OnStock>& p) { return std::string(p.param.program); });
 
 // G87 goes down its through hole with the spindle stopped, 4 mm off the
-// axis, and back bores: no crash there any more. The run then fails where
-// the docs say: after the last G88 nobody retracts the bar by hand, and the
-// side cycles of a horizontal spindle drag a vertical tool through the
-// block (docs/gcode.md "CAM-style programs on a stock").
-TEST(CamProgramOnStock, BackBoringPassesThroughItsHolesAndFailsOnlyAfterTheG88s) {
+// axis, and back bores: no crash there any more, nor in the G88s. The run
+// then fails where the docs say: after G49 the program's G0 Z5 is the
+// spindle nose's, 120 mm below the part's top for the tool point, and the
+// rapid hits the part beside the last G88 hole (docs/gcode.md "CAM-style
+// programs on a stock").
+TEST(CamProgramOnStock, BackBoringPassesThroughItsHolesAndFailsOnlyAfterG49) {
   const PathRunResult r = run_on_stock("cam_back_boring_and_side_cycles");
   ASSERT_GE(r.crashes, 1u) << "still no honest end to end: if this passes, update docs/gcode.md's table";
   ASSERT_FALSE(r.crash_events.empty());
   const emu::CrashEvent& first = r.crash_events.front();
-  EXPECT_GT(first.time_s, 60.0) << "the G87s (3-40 s) and G88s go through their holes";
-  EXPECT_GT(first.x_mm, 60.0) << "leaving the last G88 hole (X70 Y50)";
+  EXPECT_GT(first.time_s, 60.0) << "the G87s and G88s go through their holes";
+  EXPECT_GT(first.x_mm, 60.0) << "on the way from the last G88 hole (X70 Y50) to X5 Y30";
   EXPECT_GT(first.y_mm, 45.0);
+  EXPECT_NEAR(first.z_mm, -155.0, 0.01) << "at the part's top: coming down from above it";
 }
 
 // The helices now meet one turn's pitch each (the previous turn's floor):
