@@ -11,6 +11,7 @@
 
 #include "emulator/cutting_at_tool.hpp"
 #include "emulator/scenario_file.hpp"
+#include "emulator/scenario_validation.hpp"
 #include "emulator/substep_timing.hpp"
 
 namespace tnv::emu {
@@ -255,6 +256,16 @@ INSTANTIATE_TEST_SUITE_P(
       }
       return name;
     });
+
+TEST(StockSurface, AHoleBuiltInCodeIsCheckedLikeOneRead) {
+  Scenario s = plate();
+  s.stock.holes = {StockHole{.x_mm = 1.0, .y_mm = 2.0, .diameter_mm = 5.0}};
+  EXPECT_EQ(validate_scenario(s), "");
+  s.stock.holes.push_back(StockHole{.x_mm = 1.0, .y_mm = 2.0, .diameter_mm = 0.0});
+  EXPECT_NE(validate_scenario(s).find("stock.hole[1].diameter_mm"), std::string::npos) << validate_scenario(s);
+  s.stock.holes[1] = StockHole{.x_mm = 1.0, .y_mm = 2.0, .diameter_mm = 5.0, .depth_mm = 0.0};
+  EXPECT_NE(validate_scenario(s).find("stock.hole[1].depth_mm"), std::string::npos) << validate_scenario(s);
+}
 
 TEST(StockSurface, ANotArrayHoleIsRefused) {
   const ScenarioResult r = parse_scenario_text("[stock]\nhole = 3\n", "h.toml");
