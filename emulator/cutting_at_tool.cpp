@@ -7,10 +7,10 @@ namespace tnv::emu {
 
 namespace {
 
-constexpr double kLookPeriodS = 1e-3;     // an engaged tool looks at the height field once a tick
-constexpr double kLookMoveMm = 1e-3;      // one not engaged over the stock looks again once it has moved 1 um in XY,
-constexpr double kEngagedLookMoveMm = 0.05;  // one engaged once it has moved half a cell (a rapid out of the cut)
-constexpr double kMovingMmPerS = 0.05;    // the XY speed under which the tool is at rest (the feed judge's)
+constexpr double kLookPeriodS = 1e-3;         // the tool looks at the height field at least once a tick,
+constexpr double kEngagedLookMoveMm = 0.05;  // and after half a cell of XY travel (a rapid out of the cut);
+constexpr double kLookMoveMm = 1e-3;         // one not engaged over the stock after 1 um
+constexpr double kMovingMmPerS = 0.05;       // the XY speed under which the tool is at rest (the feed judge's)
 
 }  // namespace
 
@@ -39,6 +39,7 @@ void CuttingAtTool::advance(const ToolPointMotion& at, double spindle_rpm, doubl
   if (!(at.z_mm < surface_.top_mm())) {
     material_top_mm_ = -std::numeric_limits<double>::infinity();
     looked_ = false;
+    met_count_ = 0;  // what it met before it rose is not under it when it comes down elsewhere
   } else {
     const bool engaged_now = material_top_mm_ > at.z_mm;
     const double moved_xy_mm = std::hypot(at.x_mm - looked_x_mm_, at.y_mm - looked_y_mm_);

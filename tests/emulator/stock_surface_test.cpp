@@ -113,6 +113,25 @@ TEST(StockSurface, AToolAtRestInItsOwnCutIsNotEngaged) {
   EXPECT_EQ(cut.crashes().count(), 1u);
 }
 
+TEST(StockSurface, WhatTheToolMetBeforeItRoseIsNotUnderItWhenItComesDownInAHole) {
+  Scenario s = plate();
+  s.stock.holes = {StockHole{.x_mm = 60.0, .y_mm = 25.0, .diameter_mm = 10.0}};  // through
+  CuttingAtTool cut(s, kSubstep_s);
+  std::uint64_t k = 0;
+  feed_line(cut, 10.0, 25.0, 30.0, 25.0, kTop_mm - 1.0, 20.0, k);
+  EXPECT_EQ(cut.depth_mm(), 1.0);
+  // Up, across at rapid above the top, and down the hole with the spindle stopped, still moving in XY.
+  cut.advance(ToolPointMotion{.x_mm = 30.0, .y_mm = 25.0, .z_mm = kTop_mm + 1.0, .vx_mm_s = 100.0}, 0.0, 0.0,
+              substep_time_s(k++));
+  for (int i = 0; i < 2'000; ++i) {
+    cut.advance(ToolPointMotion{.x_mm = 60.0 + 1e-4 * i, .y_mm = 25.0, .z_mm = kTop_mm + 1.0 - 0.01 * i,
+                                .vx_mm_s = 10.0},
+                0.0, 0.0, substep_time_s(k++));
+    ASSERT_EQ(cut.depth_mm(), 0.0) << i;
+  }
+  EXPECT_EQ(cut.crashes().count(), 0u);
+}
+
 TEST(StockSurface, ASlowPlungeIntoUncutStockWithTheSpindleStoppedIsACrash) {
   CuttingAtTool cut(plate(), kSubstep_s);
   std::uint64_t k = 0;
