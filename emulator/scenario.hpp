@@ -231,6 +231,17 @@ struct ToolParams {
 // scenario without a stock has nothing on the table (the probe never trips,
 // emulator::Machine cuts nothing); with it on, emu::Machine cuts where the
 // tool is ([tool], [tool_cut]) and the probe trips on it.
+// A hole the part has before the program runs ([[stock.hole]]): a
+// cylinder down from the stock top, depth_mm deep or through (to the table).
+struct StockHole {
+  double x_mm = 0.0;  // its axis, machine coordinates
+  double y_mm = 0.0;
+  double diameter_mm = 0.0;
+  double depth_mm = std::numeric_limits<double>::infinity();  // infinity: through
+};
+
+inline constexpr std::size_t kMaxStockHoles = 64;  // each cell's first height looks at every hole
+
 struct StockParams {
   bool enabled = false;    // [stock] enabled = true: the block is on the table
   double top_mm = -150.0;  // z_top, machine coordinates
@@ -238,6 +249,7 @@ struct StockParams {
   double x_max_mm = std::numeric_limits<double>::infinity();
   double y_min_mm = -std::numeric_limits<double>::infinity();
   double y_max_mm = std::numeric_limits<double>::infinity();
+  std::vector<StockHole> holes{};  // [[stock.hole]]: pre-drilled holes
 };
 
 // The milling force where the tool is (reference plant "Stock, and cutting where the tool is").

@@ -1,5 +1,7 @@
 #include "emulator/scenario_file.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <optional>
@@ -51,6 +53,8 @@ class ScenarioReader {
       const std::string path = section.empty() ? std::string(name) : section + "." + std::string(name);
       if (section.empty() && name == "fault") {
         if (!read_faults(key, node, s)) return false;
+      } else if (section == "stock" && name == "hole") {
+        if (!read_holes(key, node, s)) return false;
       } else if (const ScenarioKey* row = find_scenario_key(section, name)) {
         const bool ok = std::visit([&](auto* target) { return assign(key, path, node, target); }, row->target(s));
         if (!ok) return false;
@@ -130,6 +134,72 @@ class ScenarioReader {
       if (keys.counts && !has_counts) return missing("counts");
       s.faults.push_back(f);
     }
+    return true;
+  }
+
+  // [[stock.hole]] tables: x_mm, y_mm, diameter_mm, and depth_mm or through = true.
+  bool read_holes(const toml::key& key, const toml::node& node, Scenario& s) {
+    constexpr double kRangeMm = 1000.0;  // machine coordinates, as the stock's rectangle
+    const toml::array* list = node.as_array();
+    if (list == nullptr || !list->is_array_of_tables()) {
+      return fail(key, "stock.hole",
+                  std::string("expected an array of tables ([[stock.hole]]), got ") + toml_type_name(node));
+    }
+    if (list->size() > kMaxStockHoles) {
+      return fail(key, "stock.hole", "at most " + std::to_string(kMaxStockHoles) + " holes (got " +
+                                         std::to_string(list->size()) + ")");
+    }
+    std::vector<StockHole> holes;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& table = *list->get(i)->as_table();
+      const std::string path = "stock.hole[" + std::to_string(i) + "]";
+      StockHole h;
+      bool has_x = false, has_y = false, has_diameter = false, has_depth = false, through = false;
+      for (auto&& entry : table) {  // not a structured binding: clang 14 cannot capture one in a lambda
+        const toml::key& field_key = entry.first;
+        const toml::node& field_node = entry.second;
+        const std::string_view name = field_key.str();
+        const std::string field_path = path + "." + std::string(name);
+        const auto within = [&](double value, double lo, double hi, const char* what) {
+          if (std::isfinite(value) && value > lo && value <= hi) return true;
+          char text[96];
+          std::snprintf(text, sizeof text, "must be in (%g, %g] (%s)", lo, hi, what);
+          return fail(field_key, field_path, text);
+        };
+        bool ok = true;
+        if (name == "x_mm") {
+          ok = assign(field_key, field_path, field_node, &h.x_mm) && within(h.x_mm, -kRangeMm, kRangeMm, "machine coordinates");
+          has_x = true;
+        } else if (name == "y_mm") {
+          ok = assign(field_key, field_path, field_node, &h.y_mm) && within(h.y_mm, -kRangeMm, kRangeMm, "machine coordinates");
+          has_y = true;
+        } else if (name == "diameter_mm") {
+          ok = assign(field_key, field_path, field_node, &h.diameter_mm) &&
+               within(h.diameter_mm, 0.0, 500.0, "a hole's diameter");
+          has_diameter = true;
+        } else if (name == "depth_mm") {
+          ok = assign(field_key, field_path, field_node, &h.depth_mm) &&
+               within(h.depth_mm, 0.0, 2.0 * kRangeMm, "a depth below the stock top");
+          has_depth = true;
+        } else if (name == "through") {
+          ok = assign(field_key, field_path, field_node, &through);
+          if (ok && !through) ok = fail(field_key, field_path, "only through = true is meaningful (else give depth_mm)");
+        } else {
+          ok = unknown(field_key, field_path, field_node);
+        }
+        if (!ok) return false;
+      }
+      const auto missing = [&](const std::string& leaf, const char* why) {
+        error_ = location(table.source().begin) + path + "." + leaf + ": " + why;
+        return false;
+      };
+      if (!has_x) return missing("x_mm", "required");
+      if (!has_y) return missing("y_mm", "required");
+      if (!has_diameter) return missing("diameter_mm", "required");
+      if (has_depth == through) return missing(has_depth ? "through" : "depth_mm", "give depth_mm or through = true, one of them");
+      holes.push_back(h);  // through: depth_mm stays infinite
+    }
+    s.stock.holes = std::move(holes);
     return true;
   }
 

@@ -91,6 +91,15 @@ void check_stock(Rules& r, const StockParams& st) {
   if (!r.found && (st.x_min_mm == st.x_max_mm || st.y_min_mm == st.y_max_mm))
     r.fail_text(st.x_min_mm == st.x_max_mm ? "stock.x_max_mm" : "stock.y_max_mm",
                 "the stock's rectangle must not be empty (min = max)");
+  // [[stock.hole]] as the reader checks them, for scenarios built in code too.
+  if (st.holes.size() > kMaxStockHoles) r.fail_text("stock.hole", "at most 64 holes");
+  for (std::size_t i = 0; i < st.holes.size() && !r.found; ++i) {
+    const StockHole& h = st.holes[i];
+    const std::string at = "stock.hole[" + std::to_string(i) + "].";
+    if (!std::isfinite(h.x_mm) || !std::isfinite(h.y_mm)) r.fail_text(at + "x_mm", "its axis must be finite");
+    else if (!(h.diameter_mm > 0.0 && h.diameter_mm <= 500.0)) r.fail_text(at + "diameter_mm", "must be in (0, 500]");
+    else if (!(h.depth_mm > 0.0)) r.fail_text(at + "depth_mm", "must be > 0 (infinite: through)");
+  }
 }
 
 void check_boring(Rules& r, const Scenario& s) {

@@ -24,9 +24,17 @@ Scenario with_stock(double x_min, double x_max, double y_min, double y_max) {
   return s;
 }
 
-void run(CuttingAtTool& cut, const ToolPointMotion& at, double rpm, double seconds, double commanded_rpm = 6000.0) {
+// The tool point moves as its speed says (the stock's height field takes
+// what it passes: standing still with a speed it would meet nothing new).
+// Returns where it ended.
+ToolPointMotion run(CuttingAtTool& cut, ToolPointMotion at, double rpm, double seconds, double commanded_rpm = 6000.0) {
   const auto n = static_cast<std::uint64_t>(std::llround(seconds / kSubstep_s));
-  for (std::uint64_t i = 0; i < n; ++i) cut.advance(at, rpm, commanded_rpm, substep_time_s(i));
+  for (std::uint64_t i = 0; i < n; ++i) {
+    cut.advance(at, rpm, commanded_rpm, substep_time_s(i));
+    at.x_mm += at.vx_mm_s * kSubstep_s;
+    at.y_mm += at.vy_mm_s * kSubstep_s;
+  }
+  return at;
 }
 
 TEST(ToolMillingForce, SpecificForceComesFromTheS3ReferenceCut) {
@@ -74,9 +82,9 @@ TEST(CuttingAtTool, ForceOpposesTheFeedThroughTheLag) {
   const Scenario s;
   CuttingAtTool cut(s, kSubstep_s);
   const ToolPointMotion at{.x_mm = 0.0, .y_mm = 0.0, .z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0, .vy_mm_s = 0.0};
-  run(cut, at, 6000.0, 0.2);  // one T_f
+  const ToolPointMotion after = run(cut, at, 6000.0, 0.2);  // one T_f
   EXPECT_NEAR(cut.force().force_x_n(), -150.0 * (1.0 - std::exp(-1.0)), 1e-9) << "first-order lag, T_f = 0.2 s";
-  run(cut, at, 6000.0, 2.8);
+  run(cut, after, 6000.0, 2.8);
   EXPECT_NEAR(cut.force().force_x_n(), -150.0, 1e-4);
   EXPECT_NEAR(cut.force().force_y_n(), 0.0, 1e-12);
   EXPECT_NEAR(cut.force().force_n(), 150.0, 1e-4);
@@ -112,9 +120,10 @@ TEST(CuttingAtTool, TheSpindlesDroopFeedsBackIntoTheChip) {
   SpindleDrive spindle(s.spindle);
   spindle.set_command_code(spindle.code_for_rpm(6000.0));
   for (int i = 0; i < 300'000; ++i) spindle.step();  // 3 s: at speed before the cut
-  const ToolPointMotion at{.z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0};
+  ToolPointMotion at{.z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0};
   for (std::uint64_t i = 0; i < 600'000; ++i) {  // 6 s = 30 T_f
     cut.advance(at, spindle.speed_rpm(), spindle.commanded_rpm(), substep_time_s(i));
+    at.x_mm += at.vx_mm_s * kSubstep_s;
     spindle.step(cut.force().force_n());
   }
   double n_rpm = 6000.0, f_n = 150.0;
@@ -152,14 +161,16 @@ TEST(CuttingAtTool, EngagingWithASlowOrStoppedSpindleIsACrash) {
   EXPECT_EQ(cut.crashes().event(0).x_mm, 10.0);
   EXPECT_EQ(cut.crashes().event(0).z_mm, kTop_mm - 1.0);
   EXPECT_EQ(cut.crashes().event(0).spindle_rpm, 2999.0);
-  run(cut, inside, 2999.0, 0.1);
+  const ToolPointMotion further = run(cut, inside, 2999.0, 0.1);  // on through uncut stock
   EXPECT_EQ(cut.crashes().count(), 1u) << "one crash per episode";
-  cut.advance(inside, 3000.0, 6000.0, 2.0);
+  cut.advance(further, 3000.0, 6000.0, 2.0);
   EXPECT_FALSE(cut.crashes().crashing()) << "exactly half the commanded speed is not below it";
-  cut.advance(inside, 0.0, 0.0, 2.5);
+  cut.advance(further, 0.0, 0.0, 2.5);
   EXPECT_EQ(cut.crashes().count(), 2u) << "a stopped, commanded-off spindle";
   cut.advance(outside, 0.0, 0.0, 2.6);
-  cut.advance(inside, -6000.0, 6000.0, 2.7);
+  // Back into uncut stock (its own cut at x = 10 is gone: stock_surface_test.cpp).
+  cut.advance(ToolPointMotion{.x_mm = 30.0, .y_mm = 50.0, .z_mm = kTop_mm - 1.0, .vx_mm_s = 20.0}, -6000.0, 6000.0,
+              2.7);
   EXPECT_EQ(cut.crashes().count(), 3u) << "turning against its command";
   EXPECT_EQ(cut.crashes().event(2).time_s, 2.7);
 }
