@@ -74,7 +74,7 @@ TEST(BoringPassProgram, EveryFeedLineBecomesAFeedPerRevolutionAtItsSegmentsInfee
     }
     ASSERT_LT(k, seg.size());
     EXPECT_EQ(s.feed_mm_rev, seg[k].infeed_mm_rev);
-    EXPECT_NEAR(s.feed_mm_s, seg[k].infeed_mm_rev * 6000.0 / 60.0, 1e-9) << "its speed at the commanded spindle speed";
+    EXPECT_NEAR(s.feed_mm_s, seg[k].infeed_mm_rev * 6000.0 / 60.0, 1e-6) << "its speed at the commanded spindle speed (F to 1e-4 mm/min)";
     ++k;
   }
   EXPECT_EQ(k, seg.size());

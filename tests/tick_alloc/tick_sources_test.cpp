@@ -213,7 +213,9 @@ std::vector<SourceCase> source_cases() {
       if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
         return fw::CommandStatus::invalid;
       const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
-      fw::motion::Segment line = fw::motion::line_to({at[0] + 12.0, at[1]}, 5.0);
+      fw::motion::PlanePoint end = at;
+      end[0] += 10.0;
+      fw::motion::Segment line = fw::motion::line_to(end, 5.0);
       line.feed_mm_rev = 0.1;  // 5 mm/s at 3000 rpm
       fw::motion::SegmentRefusal why{};
       return rig.task.push_segment(line, why);
