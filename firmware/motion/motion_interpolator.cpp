@@ -157,7 +157,8 @@ void MotionInterpolator::update_effective_override() noexcept {
     effective_override_ = requested;
   } else {
     const double cap = planner_.walk_in_progress() ? planner_.walk_override() : requested;
-    effective_override_ = std::min(requested, std::max(effective_override_, cap));
+    const double floor = effective_override_ > cap ? effective_override_ : cap;
+    effective_override_ = requested < floor ? requested : floor;  // min(requested, max(in force, cap)) by value
   }
   planner_.override_changed(queue_);
 }
