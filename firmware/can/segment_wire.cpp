@@ -56,6 +56,7 @@ WireKind wire_kind(const motion::Segment& s) noexcept {
     return static_cast<WireKind>(static_cast<std::uint8_t>(WireKind::probe_toward_or_error) +
                                  static_cast<std::uint8_t>(s.probe) - 1);
   if (s.rapid) return s.exact_stop ? WireKind::rapid_exact_stop : WireKind::rapid;
+  if (s.per_rev()) return s.exact_stop ? WireKind::line_per_rev_exact_stop : WireKind::line_per_rev;
   return s.exact_stop ? WireKind::line_exact_stop : WireKind::line;
 }
 
@@ -136,6 +137,14 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   out.has_tail = true;
   write_raw(out.tail, kTailTag, tag);
   if (!write(out.tail, kTailFeed, s.feed_mm_s) || read_raw(out.tail, kTailFeed) == 0) return &kTailFeed;
+  if (s.per_rev()) {
+    // Only a plain feed line is carried per revolution (the queue refuses the rest as bad_kind).
+    if (!is_per_rev_kind(kind)) return &kSegmentKind;
+    if (!write(out.tail, kTailCentreNormal, s.feed_mm_rev / kFeedRevPerNormal) ||
+        read_raw(out.tail, kTailCentreNormal) == 0 || read(out.tail, kTailCentreNormal) < 0.0)
+      return &kTailCentreNormal;
+    return nullptr;
+  }
   if (s.kind == SegmentKind::line) return nullptr;
   ChordCentre cc;
   if (!chord_centre(start_mm, out.end_mm, s.centre_mm, s.plane, cc)) return &kTailCentreNormal;
@@ -209,6 +218,12 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
     const auto kind = static_cast<motion::ProbeKind>(static_cast<std::uint8_t>(head.kind) -
                                                      static_cast<std::uint8_t>(WireKind::probe_toward_or_error) + 1);
     out = motion::probe_to(kind, end_mm, feed_mm_s);
+    return true;
+  }
+  if (is_per_rev_kind(head.kind)) {
+    out = motion::line_to(end_mm, feed_mm_s);
+    out.feed_mm_rev = read(*tail, kTailCentreNormal) * kFeedRevPerNormal;
+    out.exact_stop = head.kind == WireKind::line_per_rev_exact_stop;
     return true;
   }
   if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop || rapid) {

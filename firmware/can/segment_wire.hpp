@@ -52,8 +52,19 @@ enum class WireKind : std::uint8_t {
   probe_toward,           // G38.3
   probe_away_or_error,    // G38.4
   probe_away,             // G38.5
+  line_per_rev,           // a feed line per spindle revolution (G95, Segment::feed_mm_rev): its tail's feed is the
+                          // path speed at the programmed spindle speed, centre_normal the feed in mm/rev / kFeedRevPerNormal
+  line_per_rev_exact_stop,
 };
-inline constexpr std::uint8_t kWireKindCount = 18;
+inline constexpr std::uint8_t kWireKindCount = 20;
+
+// A feed per revolution in SEGMENT_TAIL.centre_normal: 1 mm of the field is 0.01 mm/rev, so its
+// 0.1 um step is 1e-6 mm/rev (up to 8.38 mm/rev).
+inline constexpr double kFeedRevPerNormal = 0.01;
+
+constexpr bool is_per_rev_kind(WireKind k) noexcept {
+  return k == WireKind::line_per_rev || k == WireKind::line_per_rev_exact_stop;
+}
 
 // The probe kinds in ProbeKind's order from probe_toward_or_error.
 constexpr bool is_probe_kind(WireKind k) noexcept {
@@ -73,7 +84,7 @@ inline constexpr double kSpindleRpmPerX = 1000.0;
 constexpr bool wire_kind_has_tail(WireKind k) noexcept {
   return k == WireKind::line || k == WireKind::arc_cw || k == WireKind::arc_ccw || k == WireKind::line_exact_stop ||
          k == WireKind::arc_cw_exact_stop || k == WireKind::arc_ccw_exact_stop || k == WireKind::rapid ||
-         k == WireKind::rapid_exact_stop || is_probe_kind(k);
+         k == WireKind::rapid_exact_stop || is_probe_kind(k) || is_per_rev_kind(k);
 }
 
 // The offset of an arc's centre from the chord's midpoint, in the chord's frame.
@@ -111,7 +122,8 @@ struct SegmentFrames {
 // previous element's end_mm as sent, or where the table stands). nullptr
 // on success; otherwise the field that cannot carry the element's value
 // (out is then unspecified): an end point beyond the i24 range, a feed
-// outside 0.01..655.35 mm/s, a dwell beyond 838 s, a spindle speed that
+// outside 0.01..655.35 mm/s, a feed per revolution on anything but a
+// feed line or one that rounds to 0 or beyond 8.38 mm/rev, a dwell beyond 838 s, a spindle speed that
 // rounds to 0 or beyond 838,860 rpm, an arc without a chord or with its
 // centre too far off the bisector, a plane outside motion::ArcPlane. Lines
 // and XY arcs whose end Z (as sent) differs from start_mm's get a

@@ -25,6 +25,7 @@ void MotionInterpolator::reset_at(const PlanePoint& position_mm, double path_acc
   out_mm_.fill(position_mm);
   profiled_ = ProfiledRun{};
   override_ = effective_override_ = 1.0;
+  spindle_factor_ = 1.0;
   hold_ = false;
   feed_gate_open_ = true;
   gate_waiting_ = false;
@@ -150,14 +151,30 @@ bool MotionInterpolator::set_feed_override(double ratio) noexcept {
 // never below the override in force, so no walk lowers an entry below a
 // feed the follower may be running at.
 void MotionInterpolator::update_effective_override() noexcept {
-  if (override_ == effective_override_) return;
-  if (override_ < effective_override_) {
-    effective_override_ = override_;
+  const double requested = requested_override();
+  if (requested == effective_override_) return;
+  if (requested < effective_override_) {
+    effective_override_ = requested;
   } else {
-    const double cap = planner_.walk_in_progress() ? planner_.walk_override() : override_;
-    effective_override_ = std::min(override_, std::max(effective_override_, cap));
+    const double cap = planner_.walk_in_progress() ? planner_.walk_override() : requested;
+    const double floor = effective_override_ > cap ? effective_override_ : cap;
+    effective_override_ = requested < floor ? requested : floor;  // min(requested, max(in force, cap)) by value
   }
   planner_.override_changed(queue_);
+}
+
+// A feed per revolution at the front runs at feed_mm_rev revolutions' worth
+// of the measured speed; its feed_mm_s is the same at the programmed speed.
+double MotionInterpolator::spindle_factor() const noexcept {
+  if (queue_.empty() || profiled_.active()) return 1.0;
+  const Segment& front = queue_.at(queue_.head_seq()).segment;
+  if (!front.per_rev()) return 1.0;
+  return front.feed_mm_rev * spindle_rpm_ / 60.0 / front.feed_mm_s;  // feed_mm_s > 0: the queue checked it
+}
+
+double MotionInterpolator::requested_override() const noexcept {
+  const double r = override_ * spindle_factor_;
+  return std::isfinite(r) ? std::min(r, kMaxFeedOverride) : 0.0;
 }
 
 double MotionInterpolator::running_feed_mm_s() const noexcept {
@@ -237,8 +254,9 @@ MotionReference MotionInterpolator::tick() noexcept {
       ++stats_.segments_done;
     }
   }
+  spindle_factor_ = spindle_factor();
   update_effective_override();
-  const double walk_override = std::max(effective_override_, override_);
+  const double walk_override = std::max(effective_override_, requested_override());
   stats_.max_replan_examined = std::max(stats_.max_replan_examined, planner_.replan(queue_, walk_override));
   // A profiled element, and a probe, wait at the front while the reference comes to rest on its start.
   const bool wait = probe_before_step() || front_profiled();

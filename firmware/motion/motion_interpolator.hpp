@@ -89,6 +89,16 @@ class MotionInterpolator {
   // dwell or a profiled element in front, feed hold, a controlled stop).
   double running_feed_mm_s() const noexcept;
 
+  // The spindle speed a feed per revolution (Segment::per_rev()) runs at,
+  // set before each tick() (SpindleSyncedFeed: measured, 0 while not at
+  // speed). While one is at the front the override in force is the
+  // requested one times feed_mm_rev * rpm / 60 / feed_mm_s (measured over
+  // programmed spindle speed, up to kMaxFeedOverride in all), so the path
+  // follows the spindle through the override's path and its limits; 0 rpm
+  // brakes it to rest on the path, where it waits. 1 for other elements.
+  void set_spindle_rpm(double rpm) noexcept { spindle_rpm_ = rpm; }
+  double spindle_feed_factor() const noexcept { return spindle_factor_; }
+
   // The spindle's feed gate (firmware/spindle/spindle_control.hpp
   // feed_permitted()), set before each tick(): while it is shut a feed move
   // (is_feed_move(): a line or arc that is not a rapid, a profiled element
@@ -155,6 +165,8 @@ class MotionInterpolator {
  private:
   MotionReference profiled_tick() noexcept;
   void update_effective_override() noexcept;
+  double spindle_factor() const noexcept;       // for the element at the front
+  double requested_override() const noexcept;   // override_ times spindle_factor_, capped
   bool front_profiled() const noexcept;
   bool front_pause() const noexcept;
   bool front_action() const noexcept;
@@ -175,6 +187,8 @@ class MotionInterpolator {
   std::array<PlanePoint, 4> out_mm_{};  // filter output at k-1, k, k+1, k+2
   double override_ = 1.0;            // requested
   double effective_override_ = 1.0;  // in force (update_effective_override)
+  double spindle_rpm_ = 0.0;         // set_spindle_rpm
+  double spindle_factor_ = 1.0;      // this tick's, for a feed per revolution at the front
   bool hold_ = false;
   bool feed_gate_open_ = true;
   bool gate_waiting_ = false;

@@ -84,8 +84,18 @@ struct Segment {
   // (braking on the path) or at its end, and ends at rest. Nothing may be
   // queued behind it until its outcome is known (probe_pending).
   ProbeKind probe = ProbeKind::none;
+  // > 0: a feed per revolution (G95, mm/rev), a feed line synchronised to
+  // the spindle: its path speed is feed_mm_rev times the spindle's measured
+  // revolutions per second, 0 while the spindle is not at speed
+  // (spindle_synced_feed.hpp). feed_mm_s is then its speed at the
+  // programmed spindle speed, what the look-ahead plans with; the tick
+  // scales it by measured over programmed speed through the feed override
+  // (MotionInterpolator::set_spindle_rpm). Only plain feed lines (no
+  // rapid, probe or profiled element).
+  double feed_mm_rev = 0.0;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
+  bool per_rev() const noexcept { return feed_mm_rev > 0.0; }
 };
 
 // An element that is not motion: a pause or a spindle command (the motion core holds it at the front).

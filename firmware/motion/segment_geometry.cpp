@@ -128,6 +128,12 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
        segment.kind != SegmentKind::line || segment.rapid || segment.profiled() || !segment.exact_stop ||
        is_program_action(segment)))
     return SegmentRefusal::bad_kind;
+  // A feed per revolution is a plain feed line's.
+  if (!std::isfinite(segment.feed_mm_rev)) return SegmentRefusal::not_finite;
+  if (segment.feed_mm_rev < 0.0) return SegmentRefusal::feed_not_positive;
+  if (segment.per_rev() && (segment.kind != SegmentKind::line || segment.rapid || segment.profiled() ||
+                            segment.probe != ProbeKind::none))
+    return SegmentRefusal::bad_kind;
   if (segment.spindle == SpindleChange::forward || segment.spindle == SpindleChange::reverse) {
     if (!std::isfinite(segment.spindle_rpm)) return SegmentRefusal::not_finite;
     if (segment.spindle_rpm <= 0.0) return SegmentRefusal::bad_spindle;

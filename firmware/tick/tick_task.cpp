@@ -199,8 +199,11 @@ void TickTask::tick() noexcept {
     record_.axis[i].accel_mm_s2 = accel_code_to_mm_s2(board_.latched_accel_code(hal::axis_from_index(i)));
   }
 
-  // 3. feed override of a running program (the force loop, when on), then
-  // the reference x_ref,k and x_ref,k+1
+  // 3. feed override of a running program (the force loop, when on) and
+  // the spindle speed a feed per revolution runs at (this period's measured
+  // one; none from a snapshot that did not advance), then the reference
+  // x_ref,k and x_ref,k+1
+  motion_.set_spindle_rpm(spindle_sync_.tick(advanced && spindle_.at_speed(), spindle_rpm_, kTickPeriodS));
   feed_.tick(state_ == MotionState::moving && source_ == Source::program, config_.force_sensor.n_per_volt, motion_,
              record_);
   update_reference();

@@ -55,6 +55,7 @@
 #include "firmware/tick/program_feed_override.hpp"
 #include "firmware/motion/jog_producer.hpp"
 #include "firmware/motion/motion_interpolator.hpp"
+#include "firmware/motion/spindle_synced_feed.hpp"
 #include "firmware/tick/tick_record.hpp"
 #include "firmware/timing/encoder_position.hpp"
 #include "firmware/trajectory/circle_trajectory.hpp"
@@ -384,6 +385,7 @@ class TickTask {
   SpindleControl spindle_{};  // the spindle's command logic (firmware/spindle/spindle_control.hpp)
   EncoderPosition spindle_encoder_{};
   double spindle_rpm_ = 0.0;  // measured (signed)
+  motion::SpindleSyncedFeed spindle_sync_{};  // the speed a feed per revolution runs at (spindle_synced_feed.hpp)
   bool host_lost_ = false;
   std::array<double, hal::kAxisCount> probe_trip_mm_{};  // latched at the trip, published with the outcome
   ProbeReport probe_report_{};

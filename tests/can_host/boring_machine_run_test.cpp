@@ -62,5 +62,39 @@ TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
   EXPECT_LE(run.bad_parts, 4);
 }
 
+// A spindle that turns slower than its command (the drive's K_sp at 10,000 rpm
+// instead of 12,000: 5,000 rpm for 6,000, at speed in a 25 % window, as one
+// drooping under load): the node feeds per revolution of the spindle it
+// measures, so the bar still passes both gauge depths at the infeeds told;
+// G94 from the commanded speed (the host's conversion before) cuts 6/5 of them.
+TEST(BoringMachineRun, TheInfeedFollowsTheSpindlesMeasuredSpeedNotItsCommand) {
+  hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
+  r.parts = 2;
+  BoringMachineOptions slow;
+  slow.drive_rpm_at_full_scale = 10'000.0;
+  slow.at_speed_fraction = 0.25;
+  const hil::BoringRunResult per_rev = run_boring_on_machine(r, 1, slow);
+  ASSERT_EQ(per_rev.error, "");
+  BoringMachineOptions per_minute = slow;
+  per_minute.feed_per_rev = false;
+  const hil::BoringRunResult g94 = run_boring_on_machine(r, 1, per_minute);
+  ASSERT_EQ(g94.error, "");
+  ASSERT_EQ(per_rev.parts.size(), 2u);
+  ASSERT_EQ(g94.parts.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t i = 0; i < 2; ++i) {
+      const hil::BoringPositionRecord& a = per_rev.parts[k].positions[i];
+      const hil::BoringPositionRecord& b = g94.parts[k].positions[i];
+      const double tolerance = i == 0 ? 0.03 : 0.2;  // the bottom's Z ripples at low feed (as above)
+      EXPECT_NEAR(a.cut_infeed_mm_rev, a.infeed_mm_rev, tolerance * a.infeed_mm_rev) << "part " << k + 1 << " at " << i;
+      EXPECT_NEAR(b.cut_infeed_mm_rev, 1.2 * b.infeed_mm_rev, tolerance * 1.2 * b.infeed_mm_rev)
+          << "part " << k + 1 << " at " << i;
+    }
+  }
+  // Part 1 (S0 at both depths, the same for both runs): the mouth at 0.5 mm/rev per revolution, 0.6 at G94.
+  EXPECT_NEAR(per_rev.parts[0].positions[0].cut_infeed_mm_rev, 0.5, 0.01);
+  EXPECT_NEAR(g94.parts[0].positions[0].cut_infeed_mm_rev, 0.6, 0.015);
+}
+
 }  // namespace
 }  // namespace tnv::can_host

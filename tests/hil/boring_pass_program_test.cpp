@@ -57,6 +57,36 @@ TEST(BoringPassProgram, TheProgramFeedsZAtSTimesN) {
   EXPECT_EQ(all.back(), "M2");
 }
 
+// On the node every feed line of the pass is a feed per revolution at its segment's infeed.
+TEST(BoringPassProgram, EveryFeedLineBecomesAFeedPerRevolutionAtItsSegmentsInfeed) {
+  const BoringPassGeometry g = boring_pass_geometry(emu::Scenario{}, 6000.0);
+  gcode::GcodeOptions options;
+  options.limits.axis[2].position_min_mm = -300.0;
+  gcode::GcodeResult parsed = gcode::parse_gcode(boring_pass_gcode(g, 0.25, 0.084), options);
+  ASSERT_FALSE(parsed.error);
+  const std::vector<BoringPassSegment> seg = boring_pass_segments(g, 0.25, 0.084);
+  ASSERT_EQ(mark_feed_per_rev(parsed.program, seg), "");
+  std::size_t k = 0;
+  for (const fw::motion::Segment& s : parsed.program.segments) {
+    if (!fw::motion::is_feed_move(s)) {
+      EXPECT_FALSE(s.per_rev()) << "a rapid or the spindle's start stays as it is";
+      continue;
+    }
+    ASSERT_LT(k, seg.size());
+    EXPECT_EQ(s.feed_mm_rev, seg[k].infeed_mm_rev);
+    EXPECT_NEAR(s.feed_mm_s, seg[k].infeed_mm_rev * 6000.0 / 60.0, 1e-6) << "its speed at the commanded spindle speed (F to 1e-4 mm/min)";
+    ++k;
+  }
+  EXPECT_EQ(k, seg.size());
+  // Another pass's segments do not fit this program: refused, nothing changed.
+  gcode::GcodeResult other = gcode::parse_gcode(boring_pass_gcode(g, 0.25, 0.084), options);
+  ASSERT_FALSE(other.error);
+  std::vector<BoringPassSegment> fewer = seg;
+  fewer.pop_back();
+  EXPECT_NE(mark_feed_per_rev(other.program, fewer), "");
+  for (const fw::motion::Segment& s : other.program.segments) EXPECT_FALSE(s.per_rev());
+}
+
 TEST(BoringPassProgram, APassBelowTheTravelIsRefused) {
   BoringPassGeometry g = boring_pass_geometry(emu::Scenario{}, 3000.0);
   EXPECT_EQ(validate_boring_pass(g, -300.0), "");

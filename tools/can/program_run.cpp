@@ -108,6 +108,7 @@ Prepared prepare(const std::string& text, const fw::motion::PlanePoint& start_mm
   gcode::GcodeResult parsed = parse(text, start_mm, limits, o);
   if (parsed.error) throw ProgramInputError(gcode::to_string(*parsed.error));
   if (parsed.program.segments.empty()) throw ProgramInputError("the program has no motion and no dwell");
+  if (o.before_wire && parsed.program.probes == 0) o.before_wire(parsed.program);
   std::string error;
   std::optional<WireProgram> wire = wire_program(parsed.program, start_mm, node, error);
   if (!wire) throw ProgramInputError(error);

@@ -50,6 +50,9 @@ struct ProgramRunOptions {
   std::function<bool(const StreamPause&, Micros paused_for)> resume;
   std::function<bool()> feed_hold;  // StreamOptions::feed_hold: the operator's feed hold switch
   FrameListener on_frame;  // every frame from the node too, besides the run's own telemetry (a live page's scope)
+  // Changes the parsed program before it is put on the wire (a program without probes): the boring
+  // pass gives its feed lines their feed per revolution (Segment::feed_mm_rev; the G-code reader has no G95).
+  std::function<void(gcode::GcodeProgram&)> before_wire;
 };
 
 struct ProgramRunResult {

@@ -11,6 +11,7 @@
 #include "emulator/cutting_at_tool.hpp"
 #include "emulator/machine.hpp"
 #include "firmware/adaptive/boring/bore_measurement.hpp"
+#include "firmware/can/param_table.hpp"
 #include "tools/can/boring_node_link.hpp"
 #include "tools/can/program_run.hpp"
 #include "tools/can_emu/emulated_bus.hpp"
@@ -68,6 +69,7 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
   result.seed = seed;
   EmulatedNodeOptions options;
   options.scenario_value = boring_machine_scenario(r);
+  if (o.drive_rpm_at_full_scale > 0.0) options.scenario_value->spindle.rpm_at_full_scale = o.drive_rpm_at_full_scale;
   options.seed = static_cast<int>(seed);
   std::string file = "tnv_hil_boring_machine_";
   file.append(std::to_string(::getpid()));
@@ -82,6 +84,14 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
   emu::BoringPass& bar = *machine.boring_pass();
   const hil::BoringPassGeometry geometry = hil::boring_pass_geometry(bus->scenario(), o.spindle_rpm);
   NodeClient client(*bus, bus->node_id());
+  if (o.at_speed_fraction > 0.0) {
+    try {
+      client.set(*fw::can::find_param("spindle.at_speed_fraction"), o.at_speed_fraction);
+    } catch (const std::exception& e) {
+      result.error = std::string("spindle.at_speed_fraction: ") + e.what();
+      return result;
+    }
+  }
   BoringNodeLink planner(client);
   if (const std::string why = planner.start(r.planner, r.positions_mm); !why.empty()) {
     result.error = "planner not started: " + why;
@@ -99,6 +109,13 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
     }
     bar.begin_part(part);
     const std::string program = hil::boring_pass_gcode(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
+    const std::vector<hil::BoringPassSegment> segments =
+        hil::boring_pass_segments(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
+    run_options.before_wire = nullptr;
+    if (o.feed_per_rev)
+      run_options.before_wire = [&segments](gcode::GcodeProgram& p) {
+        if (const std::string why = hil::mark_feed_per_rev(p, segments); !why.empty()) throw ProgramInputError(why);
+      };
     try {
       const ProgramRunResult run = run_gcode(client, program, run_options);
       if (run.stream.end != StreamResult::End::done) {
@@ -151,14 +168,14 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
 
 hil::BoringSweepResult run_boring_sweep_on_machine(const hil::BoringRunRequest& request, int seeds,
                                                    const BoringMachineOptions& options,
-                                                   const hil::BoringProgress& progress) {
+                                                   const hil::BoringProgress& progress, std::uint64_t first_seed) {
   if (const std::string why = boring_machine_refusal(request, options); !why.empty())
     throw std::invalid_argument(why);
   const hil::BoringSeedRun run_seed = [&](std::uint64_t seed) {
     return run_boring_on_machine(request, seed, options);
   };
   return hil::run_boring_sweep(request, seeds, "node over CAN, every part a boring pass on the emulated machine",
-                               run_seed, progress);
+                               run_seed, progress, first_seed);
 }
 
 }  // namespace tnv::can_host

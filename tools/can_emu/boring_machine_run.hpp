@@ -20,6 +20,14 @@ namespace tnv::can_host {
 
 struct BoringMachineOptions {
   double spindle_rpm = 6000.0;  // the passes' S: the feed F = S n (mm/min); part 1 (S0 0.5 mm/rev) runs at 50 mm/s
+  // true: every feed line a feed per revolution on the node (Z at S times the measured spindle speed);
+  // false: G94 at F = S n from the commanded speed, converted here (as before the node fed per revolution).
+  bool feed_per_rev = true;
+  // > 0: the emulated spindle drive's K_sp (rpm at full scale) instead of the reference plant's 12,000, and the
+  // node's at-speed window this wide (spindle.at_speed_fraction): a spindle that turns slower than its command
+  // and is still at speed, as one drooping under load.
+  double drive_rpm_at_full_scale = 0.0;
+  double at_speed_fraction = 0.0;  // > 0: the node's spindle.at_speed_fraction for the run
 };
 
 // The machine a request is cut on: the default machine with its stock on,
@@ -39,9 +47,10 @@ std::string boring_machine_refusal(const hil::BoringRunRequest& request, const B
 hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& request, std::uint64_t seed,
                                            const BoringMachineOptions& options);
 
-// Seeds 1..N (statistics as run_boring_sweep).
+// Seeds first_seed .. first_seed + N - 1 (statistics as run_boring_sweep).
 hil::BoringSweepResult run_boring_sweep_on_machine(const hil::BoringRunRequest& request, int seeds,
                                                    const BoringMachineOptions& options,
-                                                   const hil::BoringProgress& progress = {});
+                                                   const hil::BoringProgress& progress = {},
+                                                   std::uint64_t first_seed = 1);
 
 }  // namespace tnv::can_host

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "firmware/adaptive/boring/infeed_schedule.hpp"
 
 namespace tnv::hil {
 
@@ -38,8 +41,7 @@ std::string validate_boring_pass(const BoringPassGeometry& g, double z_travel_bo
 }
 
 double pass_infeed_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm, double s2_mm_rev) {
-  const double slope = std::log(s2_mm_rev / s1_mm_rev) / std::log(l2_mm / l1_mm);
-  return s1_mm_rev * std::pow(overhang_mm / l1_mm, slope);
+  return fw::infeed_along_overhang_mm_rev(overhang_mm, l1_mm, s1_mm_rev, l2_mm, s2_mm_rev);
 }
 
 std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g, double s1, double s2) {
@@ -63,6 +65,20 @@ std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g,
   // The bottom gauge depth in the last segment, fed at S2 (from at least a segment above it).
   out.push_back({std::max(to, g.top_depth_mm), g.bottom_depth_mm + g.overrun_mm, s2});
   return out;
+}
+
+std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<BoringPassSegment>& segments) {
+  std::vector<fw::motion::Segment*> feeds;
+  for (fw::motion::Segment& s : program.segments)
+    if (fw::motion::is_feed_move(s)) feeds.push_back(&s);
+  if (feeds.size() != segments.size())
+    return "the program has " + std::to_string(feeds.size()) + " feed lines, the pass " +
+           std::to_string(segments.size()) + " segments";
+  for (std::size_t k = 0; k < feeds.size(); ++k)
+    if (feeds[k]->kind != fw::motion::SegmentKind::line || !(segments[k].infeed_mm_rev > 0.0))
+      return "feed line " + std::to_string(k + 1) + " cannot be fed per revolution";
+  for (std::size_t k = 0; k < feeds.size(); ++k) feeds[k]->feed_mm_rev = segments[k].infeed_mm_rev;
+  return "";
 }
 
 std::string boring_pass_gcode(const BoringPassGeometry& g, double s1, double s2) {

@@ -6,13 +6,20 @@
 // planner's two infeeds along the overhang by eq. (3)'s power law
 //   S(L) = S1 (L / L1)^(ln(S2 / S1) / ln(L2 / L1))
 // (eq. (3) with the planner's estimates is exactly this line in log S,
-// log L through its infeeds at L1 and L2), held constant over short
-// segments, and exactly S1 / S2 over the segments holding the gauge depths.
-// G94 feeds in mm/min from the commanded spindle speed: F = S n.
+// log L through its infeeds at L1 and L2: fw::infeed_along_overhang_mm_rev),
+// held constant over short segments, and exactly S1 / S2 over the segments
+// holding the gauge depths.
+// The G-code's feeds are G94 (mm/min) at the commanded spindle speed,
+// F = S n: what the node's look-ahead plans with. Cut on the node, every
+// feed line is a feed per revolution (mark_feed_per_rev(): SEGMENT kind
+// line_per_rev): the node moves Z at S times the spindle speed it measures,
+// tick by tick (firmware/motion/spindle_synced_feed.hpp), so a spindle that
+// droops or ramps changes the feed, not the infeed.
 #include <string>
 #include <vector>
 
 #include "emulator/scenario.hpp"
+#include "tools/gcode/gcode_program.hpp"
 
 namespace tnv::hil {
 
@@ -49,5 +56,11 @@ std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g,
 
 // The program of one part (G21 G90 G94; metric, absolute, feed per minute; ends with M2).
 std::string boring_pass_gcode(const BoringPassGeometry& g, double infeed_top_mm_rev, double infeed_bottom_mm_rev);
+
+// The parsed program of boring_pass_gcode() with its feed lines per
+// revolution: the k-th feed line (not a rapid, not a dwell) gets
+// segments[k].infeed_mm_rev as Segment::feed_mm_rev. "" or why not (the
+// program's feed lines are not the segments': nothing is changed then).
+std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<BoringPassSegment>& segments);
 
 }  // namespace tnv::hil

@@ -87,6 +87,7 @@ nlohmann::json boring_sweep_json(const BoringRunRequest& r, const BoringSweepRes
                       {"bad_fraction_by_part", s.bad_fraction_by_part},
                       {"reset_fraction_by_part", s.reset_fraction_by_part},
                       {"seed1", {{"bad_parts", s.seed1.bad_parts}, {"resets", s.seed1.resets}, {"parts", parts}}}};
+  if (s.first_seed != 1) j["settings"]["first_seed"] = s.first_seed;  // a part of a split sweep
   if (!s.error.empty()) j["error"] = s.error;
   return j;
 }
@@ -103,6 +104,13 @@ std::string boring_sweep_text(const BoringRunRequest& r, const BoringSweepResult
                 p.reset_after, fw::to_string(p.reset_count), p.target_deflection_mm, p.band_sigmas * p.sigma_d_mm,
                 p.startup_in_rls ? "yes" : "no", fw::to_string(p.log_base), p.band_sigmas * r.band_sigma_mm);
   out += buf;
+  if (s.first_seed != 1) {  // a part of a split sweep
+    std::snprintf(buf, sizeof buf, "seeds %llu..%llu (seed1 below: seed %llu)\n",
+                  static_cast<unsigned long long>(s.first_seed),
+                  static_cast<unsigned long long>(s.first_seed + static_cast<std::uint64_t>(s.seeds) - 1),
+                  static_cast<unsigned long long>(s.first_seed));
+    out += buf;
+  }
   if (r.gauge_noise_mm_rms > 0.0 || r.gauge_resolution_mm > 0.0) {
     std::snprintf(buf, sizeof buf, "bench gauge: %.4g mm rms on the bore error, read in steps of %.4g mm\n",
                   r.gauge_noise_mm_rms, r.gauge_resolution_mm);

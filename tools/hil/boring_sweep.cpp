@@ -40,21 +40,25 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, B
 }
 
 BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const std::string& planner,
-                                   const BoringSeedRun& run_seed, const BoringProgress& progress) {
+                                   const BoringSeedRun& run_seed, const BoringProgress& progress,
+                                   std::uint64_t first_seed) {
   if (seeds < 1) throw std::invalid_argument("seeds: must be >= 1");
+  if (first_seed < 1) throw std::invalid_argument("first_seed: must be >= 1");
   if (const std::string error = validate_boring_request(request); !error.empty())
     throw std::invalid_argument(error);
   BoringSweepResult out;
   out.planner = planner;
   out.seeds = seeds;
+  out.first_seed = first_seed;
   const auto parts = static_cast<std::size_t>(request.parts);
   out.bad_fraction_by_part.assign(parts, 0.0);
   out.reset_fraction_by_part.assign(parts, 0.0);
   out.segments = segment_bounds(request);
   for (BoringSegmentStats& s : out.segments) s.bad_parts_min = request.parts;
   const double n = seeds;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    BoringRunResult run = run_seed(static_cast<std::uint64_t>(seed));
+  for (int k = 1; k <= seeds; ++k) {
+    const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(k - 1);
+    BoringRunResult run = run_seed(seed);
     if (!run.error.empty() && out.error.empty()) out.error = "seed " + std::to_string(seed) + ": " + run.error;
     out.bad_parts_per_seed.push_back(run.bad_parts);
     out.resets_per_seed.push_back(run.resets);
@@ -95,8 +99,8 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, c
         s.beta_abs_error_end += std::fabs(eb) / n;
       }
     }
-    if (seed == 1) out.seed1 = std::move(run);
-    if (progress) progress(static_cast<std::size_t>(seed), static_cast<std::size_t>(seeds));
+    if (k == 1) out.seed1 = std::move(run);
+    if (progress) progress(static_cast<std::size_t>(k), static_cast<std::size_t>(seeds));
   }
   return out;
 }

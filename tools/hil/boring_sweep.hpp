@@ -30,6 +30,7 @@ struct BoringSegmentStats {
 struct BoringSweepResult {
   std::string planner;  // where it ran (BoringPlannerLink::describe())
   int seeds = 0;
+  std::uint64_t first_seed = 1;  // seeds first_seed .. first_seed + seeds - 1
   double bad_parts_mean = 0.0;  // parts 1..N
   int bad_parts_max = 0;
   double resets_mean = 0.0;
@@ -39,7 +40,7 @@ struct BoringSweepResult {
   std::vector<BoringSegmentStats> segments;
   std::vector<int> bad_parts_per_seed;
   std::vector<int> resets_per_seed;
-  BoringRunResult seed1;
+  BoringRunResult seed1;  // the first seed's run
   std::string error;  // first failed seed
 };
 
@@ -53,9 +54,11 @@ BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, B
 BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const BoringProgress& progress = {});
 // Each seed run by `run_seed` (the same statistics; e.g. every part cut on
 // the emulated machine: tools/can_emu/boring_machine_run.hpp); `planner`
-// names where the planner ran.
+// names where the planner ran. Seeds first_seed .. first_seed + seeds - 1
+// (a long sweep split over processes; first_seed >= 1).
 using BoringSeedRun = std::function<BoringRunResult(std::uint64_t seed)>;
 BoringSweepResult run_boring_sweep(const BoringRunRequest& request, int seeds, const std::string& planner,
-                                   const BoringSeedRun& run_seed, const BoringProgress& progress = {});
+                                   const BoringSeedRun& run_seed, const BoringProgress& progress = {},
+                                   std::uint64_t first_seed = 1);
 
 }  // namespace tnv::hil

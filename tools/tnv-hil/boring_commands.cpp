@@ -34,6 +34,7 @@ struct BoringOptions {
   int parts = 30;
   std::string change_at = "11,21";
   int seeds = 1;
+  int first_seed = 1;
   bool json = false;
   std::string plot;
   std::string gain_form = "normalised";
@@ -115,6 +116,9 @@ int run_boring_command(const BoringOptions& o) {
       std::fprintf(stderr, "tnv-hil: boring --on-machine: %s\n", why.c_str());
       return kExitBadInput;
     }
+  } else if (o.first_seed != 1) {
+    std::fprintf(stderr, "tnv-hil: boring: --first-seed splits an --on-machine sweep (add --on-machine)\n");
+    return kExitBadInput;
   }
 
   Progress progress("boring");
@@ -124,7 +128,8 @@ int run_boring_command(const BoringOptions& o) {
       long_run ? hil::BoringProgress(std::ref(progress)) : hil::BoringProgress{};
   std::string node_error;
   const hil::BoringSweepResult result =
-      o.on_machine ? can_host::run_boring_sweep_on_machine(request, o.seeds, machine, report_progress)
+      o.on_machine ? can_host::run_boring_sweep_on_machine(request, o.seeds, machine, report_progress,
+                                                           static_cast<std::uint64_t>(o.first_seed))
       : on_node    ? can_host::run_boring_sweep_on_emulated_node(request, o.seeds, report_progress, node_error)
                    : hil::run_boring_sweep(request, o.seeds, report_progress);
   if (!node_error.empty()) {
@@ -162,6 +167,10 @@ void add_boring_commands(CLI::App& app, Runner& run) {
   cmd->add_option("--change-at", o->change_at, "parts where the 2nd and 3rd parameter sets start, or none")
       ->capture_default_str();
   cmd->add_option("--seeds", o->seeds, "runs with gauge-noise seeds 1..N")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--first-seed", o->first_seed,
+                  "with --on-machine: seeds K..K+N-1 instead of 1..N (a long sweep split over processes)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "print JSON on stdout");
   cmd->add_option("--plot", o->plot, "write the figure (.svg, .png or .pdf)")->check(tnv::cli::PlotFile());
   cmd->add_option("--gain-form", o->gain_form, "Sigma in eqs. (5)/(6): normalised (1, 1) | kalman (Sigma, Sigma) | printed (Sigma, 1)")

@@ -1,6 +1,8 @@
 #include "firmware/adaptive/boring/infeed_schedule.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tnv::fw {
 
@@ -24,6 +26,14 @@ InfeedCommand optimal_infeed(const BoringTheta& theta, double overhang_mm, const
   out.infeed_limited = !(ln_s >= ln_min && ln_s <= ln_max);
   out.infeed_mm_rev = std::exp(std::clamp(ln_s, ln_min, ln_max));  // a NaN ln_s cannot happen: theta is finite
   return out;
+}
+
+double infeed_along_overhang_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm,
+                                    double s2_mm_rev) noexcept {
+  if (!(overhang_mm > 0.0 && l1_mm > 0.0 && l2_mm > 0.0 && s1_mm_rev > 0.0 && s2_mm_rev > 0.0) || l1_mm == l2_mm)
+    return std::numeric_limits<double>::quiet_NaN();
+  const double slope = std::log(s2_mm_rev / s1_mm_rev) / std::log(l2_mm / l1_mm);
+  return s1_mm_rev * std::pow(overhang_mm / l1_mm, slope);
 }
 
 }  // namespace tnv::fw

@@ -19,4 +19,12 @@ struct InfeedCommand {
 // [overhang_min_mm, overhang_max_mm]; theta not finite.
 InfeedCommand optimal_infeed(const BoringTheta& theta, double overhang_mm, const BoringPlannerParams& params) noexcept;
 
+// The infeed along the depth of a pass from the two the node told, S1 at
+// L1 and S2 at L2: eq. (3) with the planner's estimates is the line
+//   S(L) = S1 (L / L1)^(ln(S2 / S1) / ln(L2 / L1))
+// in log S, log L through them (its alpha and beta are the estimates';
+// the infeed range's clamp aside). All > 0, L1 != L2; NaN otherwise.
+double infeed_along_overhang_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm,
+                                    double s2_mm_rev) noexcept;
+
 }  // namespace tnv::fw

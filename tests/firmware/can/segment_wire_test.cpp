@@ -92,7 +92,47 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::probe_away);
+  EXPECT_EQ(head.kind, WireKind::line_per_rev_exact_stop);
+}
+
+// A feed per revolution (G95) travels as SEGMENT kind line_per_rev: the
+// feed in mm/rev to 1e-6 in the tail's centre_normal, the path speed at the
+// programmed spindle speed in its feed; only a plain feed line carries one.
+TEST(SegmentWire, AFeedPerRevolutionKeepsItsFeedPerRevolution) {
+  motion::Segment s = motion::line_to({0.0, 0.0, -120.0}, 8.3333);
+  s.feed_mm_rev = 0.0833337;
+  const PlanePoint start{0.0, 0.0, -150.0};
+  SegmentFrames f;
+  ASSERT_EQ(encode_segment(s, start, 1, 0x13, f), nullptr);
+  EXPECT_EQ(read_raw(f.head, fields::kSegmentKind), static_cast<std::uint32_t>(WireKind::line_per_rev));
+  SegmentHead head;
+  ASSERT_TRUE(decode_head(f.head, head));
+  ASSERT_TRUE(f.has_z);
+  ASSERT_TRUE(decode_z(f.z, head));
+  Segment out;
+  ASSERT_TRUE(decode_segment(head, &f.tail, start, out));
+  EXPECT_NEAR(out.feed_mm_rev, 0.083334, 1e-12) << "1e-6 mm/rev steps";
+  EXPECT_NEAR(out.feed_mm_s, 8.33, 1e-9);
+  EXPECT_NEAR(out.end_mm[2], -120.0, 1e-9);
+  EXPECT_FALSE(out.exact_stop);
+  EXPECT_FALSE(out.rapid);
+  s.exact_stop = true;
+  EXPECT_TRUE(round_trip(s, start).exact_stop);
+  EXPECT_GT(round_trip(s, start).feed_mm_rev, 0.0);
+  EXPECT_EQ(round_trip(motion::line_to({1.0, 0.0}, 5.0), {0.0, 0.0}).feed_mm_rev, 0.0) << "G94 stays per minute";
+  // Not carried: a rapid or an arc per revolution, one that rounds to nothing or does not fit.
+  motion::Segment rapid = s;
+  rapid.rapid = true;
+  EXPECT_EQ(encode_segment(rapid, start, 1, 1, f), &fields::kSegmentKind);
+  motion::Segment arc = motion::arc_to(false, {10.0, 0.0}, {5.0, 0.0}, 10.0);
+  arc.feed_mm_rev = 0.1;
+  EXPECT_EQ(encode_segment(arc, {0.0, 0.0}, 1, 1, f), &fields::kSegmentKind);
+  motion::Segment tiny = s;
+  tiny.feed_mm_rev = 4e-7;
+  EXPECT_EQ(encode_segment(tiny, start, 1, 1, f), &fields::kTailCentreNormal);
+  motion::Segment huge = s;
+  huge.feed_mm_rev = 9.0;
+  EXPECT_EQ(encode_segment(huge, start, 1, 1, f), &fields::kTailCentreNormal);
 }
 
 // Each probe kind (G38.2-G38.5) travels as its own SEGMENT kind with a tail
