@@ -3,8 +3,10 @@
 // with a tool table and a G54 that put the work inside Z's travel (the
 // drilling program sets its own G55 there with G10 L2) all six run to the
 // end within the planner's limits and the path tolerance, the helix one
-// with its arcs in G18 and G19 (docs/gcode.md "CAM-style programs on the
-// emulated machine").
+// with its arcs in G18 and G19, and so does the horizontal spindle's side
+// drilling in G18 and G19 (horizontal_spindle_cycles.ngc: on this vertical
+// machine its moves only, with no stock; docs/gcode.md "CAM-style programs
+// on the emulated machine").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,7 +76,7 @@ TEST_P(CamProgramOnMachine, RunsToTheEndWithinTheLimitsAndThePathTolerance) {
 INSTANTIATE_TEST_SUITE_P(Oracle, CamProgramOnMachine,
                          ::testing::Values("cam_contour_g54_g43", "cam_contour_g41_g42", "cam_tapping_boring_cycles",
                                            "cam_back_boring_and_side_cycles", "cam_drilling_cycles",
-                                           "cam_helix_subroutine"));
+                                           "cam_helix_subroutine", "horizontal_spindle_cycles"));
 
 TEST(CamProgramOnMachine, TheDrillingProgramDrillsInItsOwnG55) {
   // Its G10 L2 P2 X100 Y50 Z-150 sets G55: the last hole, G55 X40 Y20, is at machine X140 Y70.
