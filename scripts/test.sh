@@ -237,7 +237,6 @@ scripts/install-missing.sh gcode-oracle linuxcnc-uspace
 early_builds
 for stage_index in "${!stages[@]}"; do
   stage=${stages[stage_index]}
-  stage_start=${SECONDS}
   stage_start_epoch=$(date +%s)
   case "${stage}" in
     release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
