@@ -18,26 +18,28 @@
 #   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
 #   fuzz     every libFuzzer target for 45 s, built in the asan tree
 #                                                              (scripts/fuzz.sh)
-#   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
 #   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
 #            build's binaries                                  (scripts/kernel-tests.sh)
+#   arm64    cross-built unit tests under qemu-user            (scripts/arm64.sh)
 #   package  the Debian packages for amd64 and lintian; not in the default
 #            list (a whole extra build)                        (scripts/package.sh)
-# The stages run in this order, one at a time, but for the next
-# stages' builds: the asan build starts beside the release tests (and
-# the slurm stage), the tsan build beside the asan tests, the arm64
-# build beside the tsan tests (and the fuzz stage), each at nice 19, so
-# that it takes only the CPU those steps leave idle (tests that wait on
-# real time: the browser test, the Bode experiments, the RT loop). A
-# stage still runs its own build in its turn, after waiting for the early
-# one: nothing is left to do, or what is left, and a compile error shows
-# there. The early build's log is build/<stage>-early-build.log.
+# The stages run in this order, one at a time, but for the later
+# stages' builds: the asan, tsan and arm64 builds (the arm64 one with its
+# tests under qemu-user) run one after another in the background at
+# nice 19 from the start of the run, so that they take only the CPU the
+# stages in front leave idle (the release build's serial steps, tests
+# that wait on real time: the browser test, the Bode experiments, the RT
+# loop; the kernel stage's VM, which runs on one core). The asan and
+# tsan stages still run their own build in their turn, after waiting for
+# the early one: nothing is left to do, or what is left, and a compile
+# error shows there; the arm64 stage reports the early run. The early
+# build's log is build/<stage>-early-build.log.
 # TNV_STAGES="release asan" scripts/test.sh runs a subset (default: all
 # but package; TNV_STAGES=package runs the package build alone).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-stages=(${TNV_STAGES:-release slurm asan tsan fuzz arm64 kernel})
+stages=(${TNV_STAGES:-release slurm asan tsan fuzz kernel arm64})
 jobs=$(nproc)
 declare -a report=()
 
@@ -92,7 +94,8 @@ run_stage() {
 # cpu_s: beside other work on the machine a step's wall time says little.
 # `times` runs in this shell (in a subshell it would count the subshell's).
 cpu_file=$(mktemp)
-trap 'rm -f "${cpu_file}"; stop_early_builds' EXIT
+early_dir=$(mktemp -d)
+trap 'rm -f "${cpu_file}"; stop_early_builds; rm -rf "${early_dir}"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 children_cpu_s() {
@@ -113,38 +116,61 @@ run_step() {
   report+=("$(printf '  %-14s %4d s   CPU %5d s' "${name}" $((SECONDS - start)) $((cpu_s - cpu_start)))")
 }
 
-# A later stage's build, started now in the background at nice 19, if
-# that stage is in this run after the current one. Its own process group
-# (set -m), so that it can be stopped as a group, but this session: where
-# the kernel groups processes by session (sched_autogroup), nice only
-# ranks processes within one. Its packages are installed first, here:
-# two apt-get at once would fail on dpkg's lock.
-declare -A early_pid=() early_start=()
-early_build() {
-  local stage=$1 install=$2 build=$3
-  [[ " ${stages[*]:stage_index+1} " == *" ${stage} "* ]] || return 0
-  bash -c "${install}"
-  echo "=== ${stage} build starts early, at nice 19 (build/${stage}-early-build.log)"
-  set -m
-  nice -n 19 bash -c "${build}" >"build/${stage}-early-build.log" 2>&1 &
-  early_pid[${stage}]=$!
-  set +m
-  early_start[${stage}]=${SECONDS}
+# The later stages' builds (asan, tsan, arm64: those in this run after its
+# first stage), started at the beginning of the run in the background at
+# nice 19, one after another in the order of the stages: each waits for
+# the one before it to end (a file in early_dir), so that the CPU the
+# stages in front leave idle goes to the build needed first. Each in its
+# own process group (set -m), so that it can be stopped as a group, but
+# this session: where the kernel groups processes by session
+# (sched_autogroup), nice only ranks processes within one. Their packages
+# are installed first, here: two apt-get at once would fail on dpkg's
+# lock, and a stage's own install then finds them present.
+declare -A early_pid=()
+early_builds() {
+  local stage prev="" build install
+  for stage in "${stages[@]:1}"; do
+    case "${stage}" in
+      asan) install=${asan_install} build=${asan_build} ;;
+      tsan) install=true build=${tsan_build} ;;
+      arm64) install=${arm64_install} build=${arm64_early} ;;
+      *) continue ;;
+    esac
+    [[ -z "${early_pid[${stage}]:-}" ]] || continue
+    bash -c "${install}"
+    echo "=== ${stage} build queued early, at nice 19 (build/${stage}-early-build.log)"
+    set -m
+    nice -n 19 bash -c "
+      if [[ -n '${prev}' ]]; then while [[ ! -e '${early_dir}/${prev}.done' ]]; do sleep 1; done; fi
+      date +%s >'${early_dir}/${stage}.start'
+      ${build}
+      rc=\$?
+      echo \${rc} >'${early_dir}/${stage}.done'
+      exit \${rc}" >"build/${stage}-early-build.log" 2>&1 &
+    early_pid[${stage}]=$!
+    set +m
+    prev=${stage}
+  done
 }
 # Waits for a stage's early build before the stage's own configure and
 # build; a failure there is reported by the stage's own build.
-# The report's line: how long the stage waited for it, and the early
-# build's CPU seconds (all of them: it is reaped here).
+# The report's line: how long the stage waited for it, the early build's
+# CPU seconds (all of them: it is reaped here) and when it started.
 wait_early_build() {
-  local stage=$1 pid=${early_pid[$1]:-} start=$SECONDS cpu_s cpu_start
+  local stage=$1 pid=${early_pid[$1]:-} start=$SECONDS cpu_s cpu_start began
   [[ -n "${pid}" ]] || return 0
   children_cpu_s
   cpu_start=${cpu_s}
-  wait "${pid}" || echo "test.sh: the early ${stage} build failed (build/${stage}-early-build.log); building again"
+  early_rc=0
+  wait "${pid}" || early_rc=$?
+  ((early_rc == 0)) || [[ "${stage}" == arm64 ]] ||
+    echo "test.sh: the early ${stage} build failed (build/${stage}-early-build.log); building again"
   children_cpu_s
   unset "early_pid[${stage}]"
-  report+=("$(printf '  %-14s %4d s   CPU %5d s   (started %d s before its stage, nice 19)' "${stage}.early" \
-    $((SECONDS - start)) $((cpu_s - cpu_start)) $((stage_start - early_start[${stage}])))")
+  began=?
+  [[ -f "${early_dir}/${stage}.start" ]] && began=$((stage_start_epoch - $(cat "${early_dir}/${stage}.start")))
+  report+=("$(printf '  %-14s %4d s   CPU %5d s   (started %s s before its stage, nice 19)' "${stage}.early" \
+    $((SECONDS - start)) $((cpu_s - cpu_start)) "${began}")")
 }
 stop_early_builds() {
   local pid
@@ -157,7 +183,10 @@ asan_install="scripts/install-missing.sh asan clang-14 libclang-rt-14-dev"
 asan_build="cmake --preset asan >/dev/null && cmake --build --preset asan -j ${jobs}"
 tsan_build="scripts/tsan.sh --build-only"
 arm64_install="scripts/arm64.sh --install-only"
-arm64_build="scripts/arm64.sh --build-only"
+# The arm64 stage's cross build and its tests under qemu-user need no core
+# to themselves (unit tests, no real-time waits): the queue runs the whole
+# stage, and the stage reports that run (its log, its exit status).
+arm64_early="scripts/arm64.sh"
 
 build_and_test() {
   local preset=$1
@@ -182,21 +211,21 @@ build_and_test() {
       run_step asan.each scripts/compile-each.py build/asan -j "${jobs}"
     fi
   fi
-  # The next stage's build beside these tests (nice 19: the idle CPU).
-  if [[ "${preset}" == release ]]; then early_build asan "${asan_install}" "${asan_build}"; fi
-  if [[ "${preset}" == asan ]]; then early_build tsan true "${tsan_build}"; fi
   run_step "${preset}.tests" ctest --preset "${preset}" -j "${jobs}" -LE kernel
 }
 
 tsan_stage() {
   wait_early_build tsan
   run_step tsan.build scripts/tsan.sh --build-only
-  early_build arm64 "${arm64_install}" "${arm64_build}"
   run_step tsan.tests scripts/tsan.sh
 }
 
 arm64_stage() {
-  wait_early_build arm64
+  if [[ -n "${early_pid[arm64]:-}" ]]; then
+    wait_early_build arm64
+    cat build/arm64-early-build.log
+    return "${early_rc}"
+  fi
   scripts/arm64.sh
 }
 
@@ -205,9 +234,10 @@ scripts/install-deps.sh
 # LinuxCNC's rs274, the G-code oracle (ctest -L gcode-oracle, docs/gcode.md):
 # the tests' alone, so scripts/run-main.sh does not install it.
 scripts/install-missing.sh gcode-oracle linuxcnc-uspace
+early_builds
 for stage_index in "${!stages[@]}"; do
   stage=${stages[stage_index]}
-  stage_start=${SECONDS}
+  stage_start_epoch=$(date +%s)
   case "${stage}" in
     release | asan) run_stage "${stage}" build_and_test "${stage}" ;;
     slurm) run_stage slurm scripts/slurm-campaign-test.sh build/release ;;
@@ -218,13 +248,14 @@ for stage_index in "${!stages[@]}"; do
     # waited for first: both build in build/asan.)
     fuzz) wait_early_build asan; run_stage fuzz scripts/fuzz.sh --seconds 45 ;;
     arm64) run_stage arm64 arm64_stage ;;
-    # The kernel stage's VM needs a whole core (it failed its bus_flood
-    # case beside a build: docs/notes.md "CI time"): no early build beside
-    # it, whatever the order of the stages.
-    kernel) for s in "${!early_pid[@]}"; do wait_early_build "${s}"; done
-            run_stage kernel scripts/kernel-tests.sh build/release ;;
+    # The kernel stage's VM (qemu TCG, -smp 1) needs a whole core: it
+    # failed its bus_flood case beside a build at equal priority
+    # (docs/notes.md "CI time"). The early builds still running (the
+    # arm64 build and tests, in the default order) go on beside it at
+    # nice 19 and take the other core, which the VM leaves idle.
+    kernel) run_stage kernel scripts/kernel-tests.sh build/release ;;
     package) run_stage package scripts/package.sh --arch amd64 --jobs "${jobs}" ;;
-    *) echo "unknown stage '${stage}' (release slurm asan tsan fuzz arm64 kernel package)" >&2; exit 2 ;;
+    *) echo "unknown stage '${stage}' (release slurm asan tsan fuzz kernel arm64 package)" >&2; exit 2 ;;
   esac
 done
 
