@@ -4,6 +4,10 @@
 // request is dispatched again.
 #include "firmware/can/can_node.hpp"
 
+#include <array>
+
+#include "firmware/adaptive/boring/boring_station.hpp"
+
 #include "firmware/can/frame_codec.hpp"
 #include "firmware/can/node_fields.hpp"
 #include "firmware/can/request_tag.hpp"
@@ -86,8 +90,18 @@ void CanNode::service() noexcept {
   capture_.send_upload();
 }
 
+// The planner's infeeds for the part being cut (as BORE_INFEED tells them) at
+// its gauge overhangs: what a feed per revolution along the depth follows.
+static InfeedAlongOverhang depth_infeed(const NodeParameters& params) noexcept {
+  const BoringStationSettings& bore = params.settings().bore;
+  const std::array<double, kBoringStationPositions> s =
+      current_infeeds_mm_rev(bore, params.settings().bore_state, kBoreInfeedTop.scale);
+  return {bore.top_overhang_mm, s[kBoringTop], bore.bottom_overhang_mm, s[kBoringBottom]};
+}
+
 std::uint32_t CanNode::on_new_tick(std::uint64_t ticks) noexcept {
   capture_.on_tick(params_.settings());
+  task_.set_depth_infeed(depth_infeed(params_));
   telemetry_.check_fault();
   programs_.on_tick();
   // Host timeout: no valid frame from the owner for can.host_timeout_ms -> it loses command

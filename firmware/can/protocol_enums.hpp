@@ -32,7 +32,9 @@ namespace tnv::fw::can {
 // 10: probe moves (G38.2-G38.5): SEGMENT kinds probe_toward_or_error, probe_toward, probe_away_or_error,
 //    probe_away; PROBE_RESULT (0x13), PROBE_RESULT_Z (0x19) and PROBE_REST (0x1D); error probe_pending.
 // 11: feeds per revolution (G95): SEGMENT kinds line_per_rev and line_per_rev_exact_stop, the feed in mm/rev in
-//    SEGMENT_TAIL's centre_normal; the node scales the path speed by the spindle speed it measures.
+//    SEGMENT_TAIL's centre_normal; the node scales the path speed by the spindle speed it measures. SEGMENT kinds
+//    line_per_rev_depth and line_per_rev_depth_exact_stop: the feed per revolution the boring planner's infeeds
+//    along the bar's overhang (centre_normal the overhang at the end).
 inline constexpr std::uint32_t kProtocolVersion = 11;
 
 // Result of every request (COMMAND_ACK.result, PARAM_REPLY.result). The

@@ -219,7 +219,7 @@ inline constexpr FieldDef kSegment[] = {
      "0=line 1=arc_cw 2=arc_ccw 3=dwell 4=line_exact_stop 5=arc_cw_exact_stop 6=arc_ccw_exact_stop 7=rapid "
      "8=rapid_exact_stop 9=pause 10=spindle_forward 11=spindle_reverse 12=spindle_stop 13=tool_change "
      "14=probe_toward_or_error 15=probe_toward 16=probe_away_or_error 17=probe_away 18=line_per_rev "
-     "19=line_per_rev_exact_stop",
+     "19=line_per_rev_exact_stop 20=line_per_rev_depth 21=line_per_rev_depth_exact_stop",
      "element; the _exact_stop kinds end at rest before the next element starts; a rapid (G0) is a line that does "
      "not wait for the spindle, every other line and arc is a feed move that starts only with the spindle off or at "
      "speed; a pause (M0, M1, M6) is reached at rest and holds (PROGRAM_STATUS paused) until COMMAND cycle_start, "
@@ -230,7 +230,9 @@ inline constexpr FieldDef kSegment[] = {
      "when the touch probe input changes (PROBE_RESULT), nothing may follow one until its PROBE_RESULT "
      "(probe_pending); the line_per_rev kinds (G95) are feed lines whose path speed is their feed per revolution "
      "(SEGMENT_TAIL centre_normal) times the spindle's measured speed, tick by tick through the feed override, "
-     "and 0 (at rest on the path) while the spindle is not at speed"},
+     "and 0 (at rest on the path) while the spindle is not at speed; the line_per_rev_depth kinds are such lines "
+     "along a boring pass's depth, their feed per revolution the boring planner's infeeds for the part (BORE_INFEED) "
+     "along the bar's overhang (SEGMENT_TAIL centre_normal) at the path point, every tick"},
     {"x", WireType::i24, 2, 1e-4, "mm", "",
      "end point x (line, arc); for a dwell the dwell time in s (same scale, 0.1 ms per unit); for spindle_forward "
      "and spindle_reverse the speed in rpm / 1000 (0.1 rpm per unit); for tool_change the tool number / 10000 (one "
@@ -243,7 +245,9 @@ inline constexpr FieldDef kSegmentTail[] = {
     {"centre_normal", WireType::i24, 3, 1e-4, "mm", "",
      "arc: the centre's offset from the chord's midpoint along the chord's left normal (start -> end); 0 for a "
      "line; for the line_per_rev kinds 100 times the feed per revolution in mm/rev (1e-6 mm/rev per unit), and feed is "
-     "then the path speed at the programmed spindle speed (what the look-ahead plans with)"},
+     "then the path speed at the programmed spindle speed (what the look-ahead plans with); for the "
+     "line_per_rev_depth kinds the bar's overhang (mm) at the end point, > 0 (at the path point: this + the end's Z - "
+     "its Z), and feed the path speed of the line's largest infeed at the programmed spindle speed"},
     {"centre_along", WireType::i16, 6, 1e-4, "mm", "",
      "arc: the centre's offset from the chord's midpoint along the chord (start -> end); 0 for a line"},
 };

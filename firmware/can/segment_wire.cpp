@@ -56,6 +56,8 @@ WireKind wire_kind(const motion::Segment& s) noexcept {
     return static_cast<WireKind>(static_cast<std::uint8_t>(WireKind::probe_toward_or_error) +
                                  static_cast<std::uint8_t>(s.probe) - 1);
   if (s.rapid) return s.exact_stop ? WireKind::rapid_exact_stop : WireKind::rapid;
+  if (s.per_rev_along_depth())
+    return s.exact_stop ? WireKind::line_per_rev_depth_exact_stop : WireKind::line_per_rev_depth;
   if (s.per_rev()) return s.exact_stop ? WireKind::line_per_rev_exact_stop : WireKind::line_per_rev;
   return s.exact_stop ? WireKind::line_exact_stop : WireKind::line;
 }
@@ -140,6 +142,11 @@ const FieldDef* encode_segment(const motion::Segment& s, const PlanePoint& start
   if (s.per_rev()) {
     // Only a plain feed line is carried per revolution (the queue refuses the rest as bad_kind).
     if (!is_per_rev_kind(kind)) return &kSegmentKind;
+    if (s.per_rev_along_depth()) {
+      if (!write(out.tail, kTailCentreNormal, s.overhang_at_end_mm) || !(read(out.tail, kTailCentreNormal) > 0.0))
+        return &kTailCentreNormal;
+      return nullptr;
+    }
     if (!write(out.tail, kTailCentreNormal, s.feed_mm_rev / kFeedRevPerNormal) ||
         read_raw(out.tail, kTailCentreNormal) == 0 || read(out.tail, kTailCentreNormal) < 0.0)
       return &kTailCentreNormal;
@@ -222,8 +229,11 @@ bool decode_segment(const SegmentHead& head, const hal::CanFrame* tail, const Pl
   }
   if (is_per_rev_kind(head.kind)) {
     out = motion::line_to(end_mm, feed_mm_s);
-    out.feed_mm_rev = read(*tail, kTailCentreNormal) * kFeedRevPerNormal;
-    out.exact_stop = head.kind == WireKind::line_per_rev_exact_stop;
+    if (is_per_rev_depth_kind(head.kind))
+      out.overhang_at_end_mm = read(*tail, kTailCentreNormal);
+    else
+      out.feed_mm_rev = read(*tail, kTailCentreNormal) * kFeedRevPerNormal;
+    out.exact_stop = head.kind == WireKind::line_per_rev_exact_stop || head.kind == WireKind::line_per_rev_depth_exact_stop;
     return true;
   }
   if (head.kind == WireKind::line || head.kind == WireKind::line_exact_stop || rapid) {

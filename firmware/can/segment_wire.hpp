@@ -55,15 +55,21 @@ enum class WireKind : std::uint8_t {
   line_per_rev,           // a feed line per spindle revolution (G95, Segment::feed_mm_rev): its tail's feed is the
                           // path speed at the programmed spindle speed, centre_normal the feed in mm/rev / kFeedRevPerNormal
   line_per_rev_exact_stop,
+  line_per_rev_depth,     // a feed line per revolution along a boring pass's depth (Segment::overhang_at_end_mm):
+                          // the node's boring schedule at the bar's overhang, centre_normal the overhang at the end
+  line_per_rev_depth_exact_stop,
 };
-inline constexpr std::uint8_t kWireKindCount = 20;
+inline constexpr std::uint8_t kWireKindCount = 22;
 
 // A feed per revolution in SEGMENT_TAIL.centre_normal: 1 mm of the field is 0.01 mm/rev, so its
 // 0.1 um step is 1e-6 mm/rev (up to 8.38 mm/rev).
 inline constexpr double kFeedRevPerNormal = 0.01;
 
+constexpr bool is_per_rev_depth_kind(WireKind k) noexcept {
+  return k == WireKind::line_per_rev_depth || k == WireKind::line_per_rev_depth_exact_stop;
+}
 constexpr bool is_per_rev_kind(WireKind k) noexcept {
-  return k == WireKind::line_per_rev || k == WireKind::line_per_rev_exact_stop;
+  return k == WireKind::line_per_rev || k == WireKind::line_per_rev_exact_stop || is_per_rev_depth_kind(k);
 }
 
 // The probe kinds in ProbeKind's order from probe_toward_or_error.

@@ -169,7 +169,26 @@ double MotionInterpolator::spindle_factor() const noexcept {
   if (queue_.empty() || profiled_.active()) return 1.0;
   const Segment& front = queue_.at(queue_.head_seq()).segment;
   if (!front.per_rev()) return 1.0;
-  return front.feed_mm_rev * spindle_rpm_ / 60.0 / front.feed_mm_s;  // feed_mm_s > 0: the queue checked it
+  const double mm_rev = front.per_rev_along_depth() ? depth_feed_mm_rev_ : front.feed_mm_rev;
+  return mm_rev * spindle_rpm_ / 60.0 / front.feed_mm_s;  // feed_mm_s > 0: the queue checked it
+}
+
+// Along a boring pass's depth: the schedule at the path point's overhang,
+// handed on only when it leaves a band of kDepthFeedBand around the one held
+// (each change of the override starts a look-ahead walk; S(L) changes
+// smoothly, by ~1e-4 a tick at 30 mm/s). NaN (no schedule) stops the feed.
+void MotionInterpolator::update_depth_feed() noexcept {
+  if (queue_.empty() || profiled_.active()) return;
+  const Segment& front = queue_.at(queue_.head_seq()).segment;
+  if (!front.per_rev_along_depth()) return;
+  constexpr std::size_t z = hal::index(hal::Axis::z);
+  const double overhang_mm = front.overhang_at_end_mm - (follower_.point_mm()[z] - front.end_mm[z]);  // deeper: longer
+  const double s = depth_infeed_.at(overhang_mm);
+  if (!std::isfinite(s)) {
+    depth_feed_mm_rev_ = 0.0;
+  } else if (!(std::fabs(s - depth_feed_mm_rev_) <= kDepthFeedBand * depth_feed_mm_rev_)) {
+    depth_feed_mm_rev_ = s;
+  }
 }
 
 double MotionInterpolator::requested_override() const noexcept {
@@ -254,6 +273,7 @@ MotionReference MotionInterpolator::tick() noexcept {
       ++stats_.segments_done;
     }
   }
+  update_depth_feed();
   spindle_factor_ = spindle_factor();
   update_effective_override();
   const double walk_override = std::max(effective_override_, requested_override());

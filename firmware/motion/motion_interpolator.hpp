@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "firmware/adaptive/boring/infeed_schedule.hpp"
 #include "firmware/control/axis_controller.hpp"
 #include "firmware/motion/jerk_filter.hpp"
 #include "firmware/motion/lookahead_planner.hpp"
@@ -16,6 +17,8 @@
 #include "firmware/motion/segment_queue.hpp"
 
 namespace tnv::fw::motion {
+
+inline constexpr double kDepthFeedBand = 0.0025;  // relative: a per-rev line along the depth's infeed steps
 
 enum class MotionState : std::uint8_t {
   idle = 0,      // nothing queued, reference at rest
@@ -98,6 +101,14 @@ class MotionInterpolator {
   // brakes it to rest on the path, where it waits. 1 for other elements.
   void set_spindle_rpm(double rpm) noexcept { spindle_rpm_ = rpm; }
   double spindle_feed_factor() const noexcept { return spindle_factor_; }
+  // The node's boring schedule a feed per revolution along the depth
+  // (Segment::per_rev_along_depth()) takes its infeed from, at the path
+  // point's overhang every tick (within kDepthFeedBand). Unset: such a line
+  // does not move. reset_at() keeps it.
+  void set_depth_infeed(const InfeedAlongOverhang& schedule) noexcept { depth_infeed_ = schedule; }
+  const InfeedAlongOverhang& depth_infeed() const noexcept { return depth_infeed_; }
+  // The infeed (mm/rev) a line along the depth runs at now.
+  double depth_feed_mm_rev() const noexcept { return depth_feed_mm_rev_; }
 
   // The spindle's feed gate (firmware/spindle/spindle_control.hpp
   // feed_permitted()), set before each tick(): while it is shut a feed move
@@ -166,6 +177,7 @@ class MotionInterpolator {
   MotionReference profiled_tick() noexcept;
   void update_effective_override() noexcept;
   double spindle_factor() const noexcept;       // for the element at the front
+  void update_depth_feed() noexcept;
   double requested_override() const noexcept;   // override_ times spindle_factor_, capped
   bool front_profiled() const noexcept;
   bool front_pause() const noexcept;
@@ -189,6 +201,8 @@ class MotionInterpolator {
   double effective_override_ = 1.0;  // in force (update_effective_override)
   double spindle_rpm_ = 0.0;         // set_spindle_rpm
   double spindle_factor_ = 1.0;      // this tick's, for a feed per revolution at the front
+  InfeedAlongOverhang depth_infeed_{};  // set_depth_infeed
+  double depth_feed_mm_rev_ = 0.0;      // held by update_depth_feed()
   bool hold_ = false;
   bool feed_gate_open_ = true;
   bool gate_waiting_ = false;

@@ -93,9 +93,18 @@ struct Segment {
   // (MotionInterpolator::set_spindle_rpm). Only plain feed lines (no
   // rapid, probe or profiled element).
   double feed_mm_rev = 0.0;
+  // > 0: a feed per revolution along a boring pass's depth (S4 eq. (3) on
+  // the node): the bar's overhang at end_mm; at the path point's Z it is
+  // this less (Z - end Z) (the bar reaches deeper as Z falls). The feed per
+  // revolution is then the node's boring schedule at that overhang
+  // (MotionInterpolator::set_depth_infeed), evaluated every tick, not
+  // feed_mm_rev (0); feed_mm_s is the path speed of the line's largest
+  // infeed at the programmed spindle speed (the look-ahead's upper bound).
+  double overhang_at_end_mm = 0.0;
 
   bool profiled() const noexcept { return ramp_s > 0.0; }
-  bool per_rev() const noexcept { return feed_mm_rev > 0.0; }
+  bool per_rev_along_depth() const noexcept { return overhang_at_end_mm > 0.0; }
+  bool per_rev() const noexcept { return feed_mm_rev > 0.0 || per_rev_along_depth(); }
 };
 
 // An element that is not motion: a pause or a spindle command (the motion core holds it at the front).

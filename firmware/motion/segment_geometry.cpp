@@ -131,6 +131,10 @@ SegmentRefusal prepare(const Segment& segment, const PlanePoint& start_mm, const
   // A feed per revolution is a plain feed line's.
   if (!std::isfinite(segment.feed_mm_rev)) return SegmentRefusal::not_finite;
   if (segment.feed_mm_rev < 0.0) return SegmentRefusal::feed_not_positive;
+  // Along a boring pass's depth: the overhang at the end, and no fixed feed per revolution beside it.
+  if (!std::isfinite(segment.overhang_at_end_mm)) return SegmentRefusal::not_finite;
+  if (segment.overhang_at_end_mm < 0.0 || (segment.per_rev_along_depth() && segment.feed_mm_rev > 0.0))
+    return SegmentRefusal::bad_kind;
   if (segment.per_rev() && (segment.kind != SegmentKind::line || segment.rapid || segment.profiled() ||
                             segment.probe != ProbeKind::none))
     return SegmentRefusal::bad_kind;

@@ -137,6 +137,10 @@ class TickTask {
   const arsc::ArscFeedSource& feed_source() const noexcept { return feed_.force_loop(); }
   // The motion core: queue, planner state, counts (free slots, underruns).
   const motion::MotionInterpolator& motion() const noexcept { return motion_; }
+  // The boring planner's infeeds for the part being cut (the CAN node's, set
+  // between ticks): what a feed per revolution along the depth runs at
+  // (MotionInterpolator::set_depth_infeed).
+  void set_depth_infeed(const InfeedAlongOverhang& schedule) noexcept { motion_.set_depth_infeed(schedule); }
   bool program_running() const noexcept { return moving() && source_ == Source::program; }
   // Where the next pushed program segment starts: the queue's end while a
   // program runs, else where the table is held (the first push starts there).

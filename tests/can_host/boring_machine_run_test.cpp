@@ -9,6 +9,11 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
+
+#include "emulator/boring_pass.hpp"
+#include "emulator/cutting_at_tool.hpp"
+#include "firmware/adaptive/boring/infeed_schedule.hpp"
 
 namespace tnv::can_host {
 namespace {
@@ -60,6 +65,54 @@ TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
   for (int part = 2; part <= 10; ++part) EXPECT_FALSE(run.parts[static_cast<std::size_t>(part - 1)].bad) << part;
   EXPECT_TRUE(run.parts[10].bad) << "part 11 is planned for the old process";
   EXPECT_LE(run.bad_parts, 4);
+}
+
+// The pass is one Z line from the mouth to the bottom; the node takes its
+// infeed from its planner's schedule at the bar's overhang every tick. On the
+// machine's truth, Z's travel over the spindle's revolutions (the infeed) in
+// 4 mm windows at depths between the gauge ones follows S4 eq. (3)'s law
+// through the two infeeds the node told, for the start-up part (S0 at both)
+// and for the learned part 2 (the bottom far slower than the mouth).
+TEST(BoringMachineRun, AlongTheDepthTheInfeedFollowsTheNodesScheduleAtTheBarsOverhang) {
+  hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
+  r.parts = 2;
+  struct Sample {
+    double overhang_mm, revolutions;
+  };
+  std::vector<std::vector<Sample>> samples(3);
+  BoringMachineOptions o;
+  o.on_step = [&samples](const emu::Machine& m) {
+    const emu::BoringPass* bar = m.boring_pass();
+    if (bar->part() < 1 || bar->part() > 2) return;
+    const double z_tool_mm = emu::tool_point_z_mm(m.truth(hal::Axis::z).position_mm, m.scenario().tool);
+    const double overhang_mm = bar->overhang_mm(z_tool_mm);
+    std::vector<Sample>& s = samples[static_cast<std::size_t>(bar->part())];
+    if (s.empty() || overhang_mm > s.back().overhang_mm)  // feeding down, the first time at each depth
+      s.push_back({overhang_mm, std::fabs(m.spindle_truth().revolutions)});
+  };
+  const hil::BoringRunResult run = run_boring_on_machine(r, 1, o);
+  ASSERT_EQ(run.error, "");
+  ASSERT_EQ(run.parts.size(), 2u);
+  EXPECT_GT(std::log(run.parts[1].positions[0].infeed_mm_rev / run.parts[1].positions[1].infeed_mm_rev), 1.0)
+      << "part 2's schedule is steep: the test would not tell a held infeed from the law";
+  for (std::size_t k = 0; k < 2; ++k) {
+    const fw::InfeedAlongOverhang told{40.0, run.parts[k].positions[0].infeed_mm_rev, 310.0,
+                                       run.parts[k].positions[1].infeed_mm_rev};
+    const std::vector<Sample>& s = samples[k + 1];
+    // The revolutions where the bar first reached an overhang.
+    const auto revolutions_at = [&s](double overhang_mm) {
+      for (std::size_t i = 1; i < s.size(); ++i)
+        if (s[i].overhang_mm >= overhang_mm) {
+          const double f = (overhang_mm - s[i - 1].overhang_mm) / (s[i].overhang_mm - s[i - 1].overhang_mm);
+          return s[i - 1].revolutions + f * (s[i].revolutions - s[i - 1].revolutions);
+        }
+      return std::nan("");
+    };
+    for (const double l_mm : {57.0, 93.0, 131.0, 178.0, 226.0, 268.0, 296.0}) {
+      const double infeed_mm_rev = 4.0 / (revolutions_at(l_mm + 2.0) - revolutions_at(l_mm - 2.0));
+      EXPECT_NEAR(infeed_mm_rev, told.at(l_mm), 0.03 * told.at(l_mm)) << "part " << k + 1 << " at L " << l_mm;
+    }
+  }
 }
 
 // A spindle that turns slower than its command (the drive's K_sp at 10,000 rpm

@@ -87,6 +87,38 @@ TEST(BoringPassProgram, EveryFeedLineBecomesAFeedPerRevolutionAtItsSegmentsInfee
   for (const fw::motion::Segment& s : other.program.segments) EXPECT_FALSE(s.per_rev());
 }
 
+// Along the depth: one feed line from 10 mm above the mouth to 4 mm below
+// the bottom gauge depth at the larger infeed's F, marked with the bar's
+// overhang at its end (the node takes the infeed from its schedule there).
+TEST(BoringPassProgram, AlongTheDepthThePassIsOneLineMarkedWithTheOverhangAtItsEnd) {
+  const BoringPassGeometry g = boring_pass_geometry(emu::Scenario{}, 6000.0);
+  gcode::GcodeOptions options;
+  options.limits.axis[2].position_min_mm = -300.0;
+  gcode::GcodeResult parsed = gcode::parse_gcode(boring_pass_depth_gcode(g, 0.084, 0.25), options);
+  ASSERT_FALSE(parsed.error);
+  EXPECT_DOUBLE_EQ(boring_pass_end_overhang_mm(g), 40.0 + 270.0 + 4.0);
+  ASSERT_EQ(mark_feed_along_depth(parsed.program, g), "");
+  int feeds = 0;
+  for (const fw::motion::Segment& s : parsed.program.segments) {
+    if (!fw::motion::is_feed_move(s)) {
+      EXPECT_FALSE(s.per_rev()) << "a rapid or the spindle's start stays as it is";
+      continue;
+    }
+    ++feeds;
+    EXPECT_TRUE(s.per_rev_along_depth());
+    EXPECT_EQ(s.overhang_at_end_mm, 314.0);
+    EXPECT_EQ(s.feed_mm_rev, 0.0);
+    EXPECT_NEAR(s.end_mm[2], g.stock_top_mm - 274.0 + g.tool_length_mm, 1e-9);
+    EXPECT_NEAR(s.feed_mm_s, 0.25 * 6000.0 / 60.0, 1e-6) << "the larger infeed's speed: the look-ahead's bound";
+  }
+  EXPECT_EQ(feeds, 1);
+  // The segmented program is not one line: refused, nothing changed.
+  gcode::GcodeResult other = gcode::parse_gcode(boring_pass_gcode(g, 0.25, 0.084), options);
+  ASSERT_FALSE(other.error);
+  EXPECT_NE(mark_feed_along_depth(other.program, g), "");
+  for (const fw::motion::Segment& s : other.program.segments) EXPECT_FALSE(s.per_rev());
+}
+
 TEST(BoringPassProgram, APassBelowTheTravelIsRefused) {
   BoringPassGeometry g = boring_pass_geometry(emu::Scenario{}, 3000.0);
   EXPECT_EQ(validate_boring_pass(g, -300.0), "");

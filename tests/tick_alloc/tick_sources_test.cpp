@@ -229,6 +229,33 @@ std::vector<SourceCase> source_cases() {
     out.push_back(c);
   }
   {
+    SourceCase c;  // a feed per revolution along a boring pass's depth: the infeed from the boring schedule at
+                   // the bar's overhang and the path speed from the measured spindle speed every tick, through
+                   // a speed change mid-cut, to the program's end
+    c.name = "spindle_per_rev_depth";
+    c.start = [](test::HilRig& rig) {
+      const fw::CommandStatus held = rig.task.hold_position();
+      if (held != fw::CommandStatus::ok) return held;
+      if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
+        return fw::CommandStatus::invalid;
+      rig.task.set_depth_infeed({40.0, 0.12, 310.0, 0.05});
+      const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
+      fw::motion::PlanePoint end = at;
+      end[2] -= 10.0;
+      fw::motion::Segment line = fw::motion::line_to(end, 6.0);  // 0.12 mm/rev at 3000 rpm
+      line.overhang_at_end_mm = 50.0;
+      fw::motion::SegmentRefusal why{};
+      return rig.task.push_segment(line, why);
+    };
+    c.between_ticks = [](test::HilRig& rig, int k) {
+      if (k == 1000) (void)rig.task.spindle_set_speed(2000.0);
+      if (k == 1500) (void)rig.task.end_program();
+    };
+    c.ticks = 7000;
+    c.end_state = fw::MotionState::holding;
+    out.push_back(c);
+  }
+  {
     SourceCase c;  // the spindle turning when the e-stop input trips: stopped in that tick
     c.name = "spindle_estop";
     c.start = [](test::HilRig& rig) {

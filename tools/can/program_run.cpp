@@ -224,7 +224,7 @@ ProgramRunResult run_gcode(NodeClient& client, const std::string& gcode_text, co
     StreamOptions so;
     so.window = o.window;
     so.feed_override = o.feed_override;
-    so.expected_s = r.program.programmed_time_s();
+    so.expected_s = o.expected_s > 0.0 ? o.expected_s : r.program.programmed_time_s();
     so.interrupted = o.interrupted;
     so.progress = o.progress;
     so.before_send = o.before_send;

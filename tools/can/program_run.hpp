@@ -53,6 +53,9 @@ struct ProgramRunOptions {
   // Changes the parsed program before it is put on the wire (a program without probes): the boring
   // pass gives its feed lines their feed per revolution (Segment::feed_mm_rev; the G-code reader has no G95).
   std::function<void(gcode::GcodeProgram&)> before_wire;
+  // > 0: how long the program takes at most (s), for the wait for its end, instead of its programmed time
+  // (the boring pass along the depth: the node slows its line below the programmed F).
+  double expected_s = 0.0;
 };
 
 struct ProgramRunResult {

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -82,6 +83,7 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
   }
   emu::Machine& machine = bus->rig().machine;
   emu::BoringPass& bar = *machine.boring_pass();
+  if (o.on_step) bus->set_step_observer([&machine, &o] { o.on_step(machine); });
   const hil::BoringPassGeometry geometry = hil::boring_pass_geometry(bus->scenario(), o.spindle_rpm);
   NodeClient client(*bus, bus->node_id());
   if (o.at_speed_fraction > 0.0) {
@@ -108,11 +110,28 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
       return result;
     }
     bar.begin_part(part);
-    const std::string program = hil::boring_pass_gcode(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
+    const bool along_depth = o.feed_per_rev && o.along_depth;
+    const std::string program =
+        along_depth ? hil::boring_pass_depth_gcode(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev)
+                    : hil::boring_pass_gcode(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
     const std::vector<hil::BoringPassSegment> segments =
         hil::boring_pass_segments(geometry, infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
     run_options.before_wire = nullptr;
-    if (o.feed_per_rev)
+    run_options.expected_s = 0.0;
+    if (along_depth) {
+      // The line is at the smaller infeed at the slowest (the node's S(L) lies between the two): its whole
+      // length at that, and 10 s for the rapids and the spindle's start and stop.
+      const double s_min_mm_rev = std::min(infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
+      const double feed_mm =
+          geometry.bottom_depth_mm + geometry.overrun_mm - (std::min(geometry.top_depth_mm, 0.0) - geometry.approach_mm);
+      run_options.expected_s = 10.0 + feed_mm / (s_min_mm_rev * geometry.spindle_rpm / 60.0);
+    }
+    if (along_depth)
+      run_options.before_wire = [&geometry](gcode::GcodeProgram& p) {
+        if (const std::string why = hil::mark_feed_along_depth(p, geometry); !why.empty())
+          throw ProgramInputError(why);
+      };
+    else if (o.feed_per_rev)
       run_options.before_wire = [&segments](gcode::GcodeProgram& p) {
         if (const std::string why = hil::mark_feed_per_rev(p, segments); !why.empty()) throw ProgramInputError(why);
       };

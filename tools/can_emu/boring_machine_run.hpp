@@ -10,8 +10,10 @@
 // the node in BORE_GAUGE. Parts are judged, as in process, on the true
 // deflection at the gauge depths (bad: outside d0 +- 3 sigma_d).
 #include <cstdint>
+#include <functional>
 #include <string>
 
+#include "emulator/machine.hpp"
 #include "emulator/scenario.hpp"
 #include "tools/hil/boring_run.hpp"
 #include "tools/hil/boring_sweep.hpp"
@@ -23,6 +25,12 @@ struct BoringMachineOptions {
   // true: every feed line a feed per revolution on the node (Z at S times the measured spindle speed);
   // false: G94 at F = S n from the commanded speed, converted here (as before the node fed per revolution).
   bool feed_per_rev = true;
+  // With feed_per_rev: true, the pass is one feed line along the depth whose infeed the node takes from its
+  // planner's schedule at the bar's overhang every tick (hil::boring_pass_depth_gcode); false, ~10 mm segments
+  // each at the host's S(L) at its middle (hil::boring_pass_segments).
+  bool along_depth = true;
+  // Called after every step of the emulated machine (a judge watching the bar's truth); empty = none.
+  std::function<void(const emu::Machine&)> on_step{};
   // > 0: the emulated spindle drive's K_sp (rpm at full scale) instead of the reference plant's 12,000, and the
   // node's at-speed window this wide (spindle.at_speed_fraction): a spindle that turns slower than its command
   // and is still at speed, as one drooping under load.

@@ -81,6 +81,38 @@ std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<Bo
   return "";
 }
 
+double boring_pass_end_overhang_mm(const BoringPassGeometry& g) {
+  return g.overhang_at_top_mm + g.bottom_depth_mm + g.overrun_mm;
+}
+
+std::string boring_pass_depth_gcode(const BoringPassGeometry& g, double s1, double s2) {
+  const auto nose_z = [&g](double depth_mm) { return g.stock_top_mm - depth_mm + g.tool_length_mm; };
+  const double from_depth_mm = std::min(g.top_depth_mm, 0.0) - g.approach_mm;
+  std::string text = "G21 G90 G94 G17\n";
+  char line[96];
+  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(from_depth_mm));
+  text.append(line);
+  std::snprintf(line, sizeof line, "S%.1f M3\n", g.spindle_rpm);
+  text.append(line);
+  std::snprintf(line, sizeof line, "G1 Z%.4f F%.4f\n", nose_z(g.bottom_depth_mm + g.overrun_mm),
+                std::max(s1, s2) * g.spindle_rpm);
+  text.append(line);
+  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(from_depth_mm));
+  text.append(line);
+  text.append("M2\n");
+  return text;
+}
+
+std::string mark_feed_along_depth(gcode::GcodeProgram& program, const BoringPassGeometry& g) {
+  std::vector<fw::motion::Segment*> feeds;
+  for (fw::motion::Segment& s : program.segments)
+    if (fw::motion::is_feed_move(s)) feeds.push_back(&s);
+  if (feeds.size() != 1 || feeds[0]->kind != fw::motion::SegmentKind::line)
+    return "the pass along the depth is one feed line, the program has " + std::to_string(feeds.size());
+  feeds[0]->overhang_at_end_mm = boring_pass_end_overhang_mm(g);
+  return "";
+}
+
 std::string boring_pass_gcode(const BoringPassGeometry& g, double s1, double s2) {
   const auto nose_z = [&g](double depth_mm) { return g.stock_top_mm - depth_mm + g.tool_length_mm; };
   const std::vector<BoringPassSegment> segments = boring_pass_segments(g, s1, s2);

@@ -14,7 +14,9 @@
 // feed line is a feed per revolution (mark_feed_per_rev(): SEGMENT kind
 // line_per_rev): the node moves Z at S times the spindle speed it measures,
 // tick by tick (firmware/motion/spindle_synced_feed.hpp), so a spindle that
-// droops or ramps changes the feed, not the infeed.
+// droops or ramps changes the feed, not the infeed. The pass the machine run
+// cuts by default is boring_pass_depth_gcode(): one line along which the
+// node evaluates S(L) itself every tick, not held over segments.
 #include <string>
 #include <vector>
 
@@ -62,5 +64,20 @@ std::string boring_pass_gcode(const BoringPassGeometry& g, double infeed_top_mm_
 // segments[k].infeed_mm_rev as Segment::feed_mm_rev. "" or why not (the
 // program's feed lines are not the segments': nothing is changed then).
 std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<BoringPassSegment>& segments);
+
+// The pass as the node cuts it along the depth: one feed line from the
+// approach above the mouth to the overrun below the bottom gauge depth,
+// at F = max(S1, S2) n (the look-ahead's upper bound; G94, as the G-code
+// reader has no G95) and otherwise as boring_pass_gcode().
+// mark_feed_along_depth() makes that line a feed per revolution along the
+// depth (SEGMENT kind line_per_rev_depth): the node takes its infeed from
+// the planner's schedule at the bar's overhang every tick, S4 eq. (3)
+// continuously (firmware/adaptive/boring/infeed_schedule.hpp InfeedAlongOverhang).
+std::string boring_pass_depth_gcode(const BoringPassGeometry& g, double infeed_top_mm_rev,
+                                    double infeed_bottom_mm_rev);
+// The bar's overhang where that line ends (L0 + the bottom gauge depth + the overrun).
+double boring_pass_end_overhang_mm(const BoringPassGeometry& g);
+// "" or why not (the program's feed lines are not the one line: nothing is changed then).
+std::string mark_feed_along_depth(gcode::GcodeProgram& program, const BoringPassGeometry& g);
 
 }  // namespace tnv::hil

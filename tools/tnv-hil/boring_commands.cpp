@@ -47,6 +47,7 @@ struct BoringOptions {
   std::string planner = "node";
   std::string scenario;         // empty: an exact gauge (the paper's setting)
   bool on_machine = false;      // every part a boring pass on the emulated machine
+  bool segmented_pass = false;  // with on_machine: ~10 mm segments at the host's S(L), not one line along the depth
   double spindle_rpm = can_host::BoringMachineOptions{}.spindle_rpm;
 };
 
@@ -106,7 +107,9 @@ int run_boring_command(const BoringOptions& o) {
     return kExitBadInput;
   }
 
-  const can_host::BoringMachineOptions machine{.spindle_rpm = o.spindle_rpm};
+  can_host::BoringMachineOptions machine;
+  machine.spindle_rpm = o.spindle_rpm;
+  machine.along_depth = !o.segmented_pass;
   if (o.on_machine) {
     if (!on_node) {
       std::fprintf(stderr, "tnv-hil: boring: --on-machine runs the planner on the node (leave out --planner direct)\n");
@@ -116,6 +119,9 @@ int run_boring_command(const BoringOptions& o) {
       std::fprintf(stderr, "tnv-hil: boring --on-machine: %s\n", why.c_str());
       return kExitBadInput;
     }
+  } else if (o.segmented_pass) {
+    std::fprintf(stderr, "tnv-hil: boring: --segmented-pass is a pass on the machine (add --on-machine)\n");
+    return kExitBadInput;
   } else if (o.first_seed != 1) {
     std::fprintf(stderr, "tnv-hil: boring: --first-seed splits an --on-machine sweep (add --on-machine)\n");
     return kExitBadInput;
@@ -199,6 +205,9 @@ void add_boring_commands(CLI::App& app, Runner& run) {
   cmd->add_option("--scenario", o->scenario,
                   "measure with this table's bore gauge (built-in name or TOML file; [noise] bore_gauge_um_rms, "
                   "bore_gauge_resolution_um, seed): its error adds to the gauge noise; default: an exact gauge");
+  cmd->add_flag("--segmented-pass", o->segmented_pass,
+                "with --on-machine: the pass as ~10 mm segments, each fed per revolution at the host's S(L) at its "
+                "middle, instead of one line along which the node follows its planner's S(L) every tick");
   cmd->add_flag("--on-machine", o->on_machine,
                 "cut every part as a boring pass on the emulated machine: the node's infeeds as Z feed per spindle "
                 "revolution, the bore gauged from the bar's deflection along the pass (slow: a pass is tens of "

@@ -36,4 +36,11 @@ double infeed_along_overhang_mm_rev(double overhang_mm, double l1_mm, double s1_
   return s1_mm_rev * std::pow(overhang_mm / l1_mm, slope);
 }
 
+double InfeedAlongOverhang::at(double overhang_mm) const noexcept {
+  const double lo = l1_mm < l2_mm ? l1_mm : l2_mm;
+  const double hi = l1_mm < l2_mm ? l2_mm : l1_mm;
+  const double l = overhang_mm < lo ? lo : (overhang_mm > hi ? hi : overhang_mm);  // NaN stays NaN
+  return infeed_along_overhang_mm_rev(l, l1_mm, s1_mm_rev, l2_mm, s2_mm_rev);
+}
+
 }  // namespace tnv::fw

@@ -27,4 +27,19 @@ InfeedCommand optimal_infeed(const BoringTheta& theta, double overhang_mm, const
 double infeed_along_overhang_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm,
                                     double s2_mm_rev) noexcept;
 
+// The node's infeed along the depth of the pass being cut: the infeeds it
+// told for this part, S1 at L1 (top gauge) and S2 at L2 (bottom), and
+// infeed_along_overhang_mm_rev() between them. Outside [L1, L2] (the
+// approach above the top gauge, the overrun below the bottom one) the
+// overhang is held at the nearer end: the model's range (BoringStationSettings).
+struct InfeedAlongOverhang {
+  double l1_mm = 0.0;
+  double s1_mm_rev = 0.0;
+  double l2_mm = 0.0;
+  double s2_mm_rev = 0.0;
+
+  // S at this overhang (mm/rev); NaN while unset or invalid (a feed from it does not move).
+  double at(double overhang_mm) const noexcept;
+};
+
 }  // namespace tnv::fw

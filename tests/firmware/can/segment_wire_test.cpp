@@ -92,7 +92,7 @@ TEST(SegmentWire, TheNodeRefusesAnUnknownKind) {
   EXPECT_FALSE(decode_head(f.head, head));
   write_raw(f.head, fields::kSegmentKind, kWireKindCount - 1);
   EXPECT_TRUE(decode_head(f.head, head));
-  EXPECT_EQ(head.kind, WireKind::line_per_rev_exact_stop);
+  EXPECT_EQ(head.kind, WireKind::line_per_rev_depth_exact_stop);
 }
 
 // A feed per revolution (G95) travels as SEGMENT kind line_per_rev: the
@@ -133,6 +133,46 @@ TEST(SegmentWire, AFeedPerRevolutionKeepsItsFeedPerRevolution) {
   motion::Segment huge = s;
   huge.feed_mm_rev = 9.0;
   EXPECT_EQ(encode_segment(huge, start, 1, 1, f), &fields::kTailCentreNormal);
+}
+
+// A feed per revolution along a boring pass's depth travels as SEGMENT kind
+// line_per_rev_depth: the bar's overhang at the end to 0.1 um in the tail's
+// centre_normal; the node takes the infeed from its planner's schedule.
+TEST(SegmentWire, AFeedAlongTheDepthKeepsTheOverhangAtItsEnd) {
+  motion::Segment s = motion::line_to({0.0, 0.0, -299.0}, 50.0);
+  s.overhang_at_end_mm = 314.00004;
+  const PlanePoint start{0.0, 0.0, -15.0};
+  SegmentFrames f;
+  ASSERT_EQ(encode_segment(s, start, 1, 0x14, f), nullptr);
+  EXPECT_EQ(read_raw(f.head, fields::kSegmentKind), static_cast<std::uint32_t>(WireKind::line_per_rev_depth));
+  SegmentHead head;
+  ASSERT_TRUE(decode_head(f.head, head));
+  ASSERT_TRUE(f.has_z);
+  ASSERT_TRUE(decode_z(f.z, head));
+  Segment out;
+  ASSERT_TRUE(decode_segment(head, &f.tail, start, out));
+  EXPECT_NEAR(out.overhang_at_end_mm, 314.0, 1e-9);
+  EXPECT_EQ(out.feed_mm_rev, 0.0);
+  EXPECT_TRUE(out.per_rev_along_depth());
+  EXPECT_NEAR(out.feed_mm_s, 50.0, 1e-9);
+  EXPECT_NEAR(out.end_mm[2], -299.0, 1e-9);
+  EXPECT_FALSE(out.exact_stop);
+  s.exact_stop = true;
+  ASSERT_EQ(encode_segment(s, start, 1, 0x14, f), nullptr);
+  EXPECT_EQ(read_raw(f.head, fields::kSegmentKind),
+            static_cast<std::uint32_t>(WireKind::line_per_rev_depth_exact_stop));
+  EXPECT_TRUE(round_trip(s, start).exact_stop);
+  EXPECT_TRUE(round_trip(s, start).per_rev_along_depth());
+  // Not carried: an overhang that rounds to nothing or does not fit, a rapid along the depth.
+  motion::Segment tiny = s;
+  tiny.overhang_at_end_mm = 4e-5;
+  EXPECT_EQ(encode_segment(tiny, start, 1, 1, f), &fields::kTailCentreNormal);
+  motion::Segment huge = s;
+  huge.overhang_at_end_mm = 900.0;
+  EXPECT_EQ(encode_segment(huge, start, 1, 1, f), &fields::kTailCentreNormal);
+  motion::Segment rapid = s;
+  rapid.rapid = true;
+  EXPECT_EQ(encode_segment(rapid, start, 1, 1, f), &fields::kSegmentKind);
 }
 
 // Each probe kind (G38.2-G38.5) travels as its own SEGMENT kind with a tail
