@@ -101,6 +101,15 @@ std::string where_it_ended(const test::HilRig& rig) {
 
 fw::CommandStatus start_test_circle(test::HilRig& rig) { return rig.task.start_circle(circle_spec_for(rig.scenario)); }
 
+// The spindle cases start from rest, held, with the spindle started forward at 3000 rpm.
+fw::CommandStatus hold_with_spindle_at_3000(test::HilRig& rig) {
+  const fw::CommandStatus held = rig.task.hold_position();
+  if (held != fw::CommandStatus::ok) return held;
+  return rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) == fw::SpindleResult::ok
+             ? fw::CommandStatus::ok
+             : fw::CommandStatus::invalid;
+}
+
 std::vector<SourceCase> source_cases() {
   std::vector<SourceCase> out;
   // Every controller kind on the circle (past the dwell, into the motion), plain and compensated.
@@ -183,10 +192,7 @@ std::vector<SourceCase> source_cases() {
                    // change mid-cut (the feed brakes and waits), the program's end stopping it
     c.name = "spindle_program";
     c.start = [](test::HilRig& rig) {
-      const fw::CommandStatus held = rig.task.hold_position();
-      if (held != fw::CommandStatus::ok) return held;
-      if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
-        return fw::CommandStatus::invalid;
+      if (const fw::CommandStatus held = hold_with_spindle_at_3000(rig); held != fw::CommandStatus::ok) return held;
       const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
       fw::motion::Segment rapid = fw::motion::line_to({at[0] + 1.0, at[1]}, 20.0);
       rapid.rapid = true;
@@ -208,10 +214,7 @@ std::vector<SourceCase> source_cases() {
                    // tick, through a speed change mid-cut, to the program's end
     c.name = "spindle_per_rev";
     c.start = [](test::HilRig& rig) {
-      const fw::CommandStatus held = rig.task.hold_position();
-      if (held != fw::CommandStatus::ok) return held;
-      if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
-        return fw::CommandStatus::invalid;
+      if (const fw::CommandStatus held = hold_with_spindle_at_3000(rig); held != fw::CommandStatus::ok) return held;
       const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
       fw::motion::PlanePoint end = at;
       end[0] += 10.0;
@@ -234,10 +237,7 @@ std::vector<SourceCase> source_cases() {
                    // a speed change mid-cut, to the program's end
     c.name = "spindle_per_rev_depth";
     c.start = [](test::HilRig& rig) {
-      const fw::CommandStatus held = rig.task.hold_position();
-      if (held != fw::CommandStatus::ok) return held;
-      if (rig.task.spindle_start(fw::SpindleDirection::forward, 3000.0) != fw::SpindleResult::ok)
-        return fw::CommandStatus::invalid;
+      if (const fw::CommandStatus held = hold_with_spindle_at_3000(rig); held != fw::CommandStatus::ok) return held;
       rig.task.set_depth_infeed({40.0, 0.12, 310.0, 0.05});
       const fw::motion::PlanePoint at = rig.task.next_segment_start_mm();
       fw::motion::PlanePoint end = at;
