@@ -4,6 +4,8 @@
 // below the bottom gauge depth.
 #include "tools/hil/boring_pass_program.hpp"
 
+#include "firmware/adaptive/boring/infeed_schedule.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,11 +17,11 @@ namespace tnv::hil {
 namespace {
 
 TEST(BoringPassProgram, ThePowerLawPassesThroughBothInfeeds) {
-  EXPECT_NEAR(pass_infeed_mm_rev(40.0, 40.0, 0.25, 310.0, 0.084), 0.25, 1e-15);
-  EXPECT_NEAR(pass_infeed_mm_rev(310.0, 40.0, 0.25, 310.0, 0.084), 0.084, 1e-15);
+  EXPECT_NEAR(fw::infeed_along_overhang_mm_rev(40.0, 40.0, 0.25, 310.0, 0.084), 0.25, 1e-15);
+  EXPECT_NEAR(fw::infeed_along_overhang_mm_rev(310.0, 40.0, 0.25, 310.0, 0.084), 0.084, 1e-15);
   // Eq. (3) for Table 1's set (C 0.0871, alpha 0.5025, beta 0.2676) at L = 150 mm, from its values at 40 and 310 mm.
   const auto eq3 = [](double l) { return std::pow(0.1165 / (0.0871 * std::pow(l, 0.2676)), 1.0 / 0.5025); };
-  EXPECT_NEAR(pass_infeed_mm_rev(150.0, 40.0, eq3(40.0), 310.0, eq3(310.0)), eq3(150.0), 1e-12);
+  EXPECT_NEAR(fw::infeed_along_overhang_mm_rev(150.0, 40.0, eq3(40.0), 310.0, eq3(310.0)), eq3(150.0), 1e-12);
 }
 
 TEST(BoringPassProgram, SegmentsCoverThePassWithTheGaugeDepthsAtTheirInfeeds) {

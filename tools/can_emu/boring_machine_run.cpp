@@ -122,8 +122,7 @@ hil::BoringRunResult run_boring_on_machine(const hil::BoringRunRequest& r, std::
       // The line is at the smaller infeed at the slowest (the node's S(L) lies between the two): its whole
       // length at that, and 10 s for the rapids and the spindle's start and stop.
       const double s_min_mm_rev = std::min(infeeds[0].infeed_mm_rev, infeeds[1].infeed_mm_rev);
-      const double feed_mm =
-          geometry.bottom_depth_mm + geometry.overrun_mm - (std::min(geometry.top_depth_mm, 0.0) - geometry.approach_mm);
+      const double feed_mm = hil::boring_pass_end_depth_mm(geometry) - hil::boring_pass_start_depth_mm(geometry);
       run_options.expected_s = 10.0 + feed_mm / (s_min_mm_rev * geometry.spindle_rpm / 60.0);
     }
     if (along_depth)

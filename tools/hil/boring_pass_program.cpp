@@ -40,16 +40,16 @@ std::string validate_boring_pass(const BoringPassGeometry& g, double z_travel_bo
   return "";
 }
 
-double pass_infeed_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm, double s2_mm_rev) {
-  return fw::infeed_along_overhang_mm_rev(overhang_mm, l1_mm, s1_mm_rev, l2_mm, s2_mm_rev);
-}
+double boring_pass_start_depth_mm(const BoringPassGeometry& g) { return std::min(g.top_depth_mm, 0.0) - g.approach_mm; }
+
+double boring_pass_end_depth_mm(const BoringPassGeometry& g) { return g.bottom_depth_mm + g.overrun_mm; }
 
 std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g, double s1, double s2) {
   const double l1 = g.overhang_at_top_mm + g.top_depth_mm;
   const double l2 = g.overhang_at_top_mm + g.bottom_depth_mm;
   std::vector<BoringPassSegment> out;
   // The top gauge depth in the first segment, fed at S1 from the approach on.
-  double from = std::min(g.top_depth_mm, 0.0) - g.approach_mm;
+  double from = boring_pass_start_depth_mm(g);
   double to = g.top_depth_mm + g.segment_mm;
   out.push_back({from, to, s1});
   // Between: even segments at the law's infeed at their middle, the last one ending a segment above the bottom depth.
@@ -60,17 +60,52 @@ std::vector<BoringPassSegment> boring_pass_segments(const BoringPassGeometry& g,
     from = to;
     to = i + 1 == n ? last_start : from + step;
     const double mid_overhang = g.overhang_at_top_mm + 0.5 * (from + to);
-    out.push_back({from, to, pass_infeed_mm_rev(mid_overhang, l1, s1, l2, s2)});
+    out.push_back({from, to, fw::infeed_along_overhang_mm_rev(mid_overhang, l1, s1, l2, s2)});
   }
   // The bottom gauge depth in the last segment, fed at S2 (from at least a segment above it).
-  out.push_back({std::max(to, g.top_depth_mm), g.bottom_depth_mm + g.overrun_mm, s2});
+  out.push_back({std::max(to, g.top_depth_mm), boring_pass_end_depth_mm(g), s2});
   return out;
 }
 
-std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<BoringPassSegment>& segments) {
+namespace {
+
+// The program's feed lines (not its rapids or dwells), in order.
+std::vector<fw::motion::Segment*> feed_moves(gcode::GcodeProgram& program) {
   std::vector<fw::motion::Segment*> feeds;
   for (fw::motion::Segment& s : program.segments)
     if (fw::motion::is_feed_move(s)) feeds.push_back(&s);
+  return feeds;
+}
+
+struct PassFeed {
+  double to_depth_mm;
+  double feed_mm_min;
+};
+
+// The pass's program: down at rapid to the start, the spindle on, the feed
+// lines, back up at rapid to the start, M2.
+std::string pass_gcode(const BoringPassGeometry& g, const std::vector<PassFeed>& feeds) {
+  const auto nose_z = [&g](double depth_mm) { return g.stock_top_mm - depth_mm + g.tool_length_mm; };
+  std::string text = "G21 G90 G94 G17\n";
+  char line[96];
+  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(boring_pass_start_depth_mm(g)));
+  text.append(line);
+  std::snprintf(line, sizeof line, "S%.1f M3\n", g.spindle_rpm);
+  text.append(line);
+  for (const PassFeed& f : feeds) {
+    std::snprintf(line, sizeof line, "G1 Z%.4f F%.4f\n", nose_z(f.to_depth_mm), f.feed_mm_min);
+    text.append(line);
+  }
+  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(boring_pass_start_depth_mm(g)));
+  text.append(line);
+  text.append("M2\n");
+  return text;
+}
+
+}  // namespace
+
+std::string mark_feed_per_rev(gcode::GcodeProgram& program, const std::vector<BoringPassSegment>& segments) {
+  const std::vector<fw::motion::Segment*> feeds = feed_moves(program);
   if (feeds.size() != segments.size())
     return "the program has " + std::to_string(feeds.size()) + " feed lines, the pass " +
            std::to_string(segments.size()) + " segments";
@@ -86,27 +121,11 @@ double boring_pass_end_overhang_mm(const BoringPassGeometry& g) {
 }
 
 std::string boring_pass_depth_gcode(const BoringPassGeometry& g, double s1, double s2) {
-  const auto nose_z = [&g](double depth_mm) { return g.stock_top_mm - depth_mm + g.tool_length_mm; };
-  const double from_depth_mm = std::min(g.top_depth_mm, 0.0) - g.approach_mm;
-  std::string text = "G21 G90 G94 G17\n";
-  char line[96];
-  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(from_depth_mm));
-  text.append(line);
-  std::snprintf(line, sizeof line, "S%.1f M3\n", g.spindle_rpm);
-  text.append(line);
-  std::snprintf(line, sizeof line, "G1 Z%.4f F%.4f\n", nose_z(g.bottom_depth_mm + g.overrun_mm),
-                std::max(s1, s2) * g.spindle_rpm);
-  text.append(line);
-  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(from_depth_mm));
-  text.append(line);
-  text.append("M2\n");
-  return text;
+  return pass_gcode(g, {{boring_pass_end_depth_mm(g), std::max(s1, s2) * g.spindle_rpm}});
 }
 
 std::string mark_feed_along_depth(gcode::GcodeProgram& program, const BoringPassGeometry& g) {
-  std::vector<fw::motion::Segment*> feeds;
-  for (fw::motion::Segment& s : program.segments)
-    if (fw::motion::is_feed_move(s)) feeds.push_back(&s);
+  const std::vector<fw::motion::Segment*> feeds = feed_moves(program);
   if (feeds.size() != 1 || feeds[0]->kind != fw::motion::SegmentKind::line)
     return "the pass along the depth is one feed line, the program has " + std::to_string(feeds.size());
   feeds[0]->overhang_at_end_mm = boring_pass_end_overhang_mm(g);
@@ -114,22 +133,10 @@ std::string mark_feed_along_depth(gcode::GcodeProgram& program, const BoringPass
 }
 
 std::string boring_pass_gcode(const BoringPassGeometry& g, double s1, double s2) {
-  const auto nose_z = [&g](double depth_mm) { return g.stock_top_mm - depth_mm + g.tool_length_mm; };
-  const std::vector<BoringPassSegment> segments = boring_pass_segments(g, s1, s2);
-  std::string text = "G21 G90 G94 G17\n";
-  char line[96];
-  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(segments.front().from_depth_mm));
-  text.append(line);
-  std::snprintf(line, sizeof line, "S%.1f M3\n", g.spindle_rpm);
-  text.append(line);
-  for (const BoringPassSegment& seg : segments) {
-    std::snprintf(line, sizeof line, "G1 Z%.4f F%.4f\n", nose_z(seg.to_depth_mm), seg.infeed_mm_rev * g.spindle_rpm);
-    text.append(line);
-  }
-  std::snprintf(line, sizeof line, "G0 Z%.4f\n", nose_z(segments.front().from_depth_mm));
-  text.append(line);
-  text.append("M2\n");
-  return text;
+  std::vector<PassFeed> feeds;
+  for (const BoringPassSegment& seg : boring_pass_segments(g, s1, s2))
+    feeds.push_back({seg.to_depth_mm, seg.infeed_mm_rev * g.spindle_rpm});
+  return pass_gcode(g, feeds);
 }
 
 }  // namespace tnv::hil

@@ -44,8 +44,11 @@ BoringPassGeometry boring_pass_geometry(const emu::Scenario& scenario, double sp
 // positive lengths, a spindle speed, and its deepest point within Z's travel).
 std::string validate_boring_pass(const BoringPassGeometry& g, double z_travel_bottom_mm);
 
-// The power law through (l1, s1) and (l2, s2) at overhang l (all > 0, l1 < l2).
-double pass_infeed_mm_rev(double overhang_mm, double l1_mm, double s1_mm_rev, double l2_mm, double s2_mm_rev);
+// Where every pass starts and goes back to (the approach above the mouth, or above
+// the top gauge depth if that is above the mouth) and where its feed ends (the
+// overrun below the bottom gauge depth): depths below the stock's top, mm.
+double boring_pass_start_depth_mm(const BoringPassGeometry& g);
+double boring_pass_end_depth_mm(const BoringPassGeometry& g);
 
 // One feed segment of the pass: from the depth above to the depth below, at this infeed.
 struct BoringPassSegment {
