@@ -166,11 +166,16 @@ void MotionInterpolator::update_effective_override() noexcept {
 // A feed per revolution at the front runs at feed_mm_rev revolutions' worth
 // of the measured speed; its feed_mm_s is the same at the programmed speed.
 double MotionInterpolator::spindle_factor() const noexcept {
-  if (queue_.empty() || profiled_.active()) return 1.0;
+  const Segment* front = per_rev_front();
+  if (front == nullptr) return 1.0;
+  const double mm_rev = front->per_rev_along_depth() ? depth_feed_mm_rev_ : front->feed_mm_rev;
+  return mm_rev * spindle_rpm_ / 60.0 / front->feed_mm_s;  // feed_mm_s > 0: the queue checked it
+}
+
+const Segment* MotionInterpolator::per_rev_front() const noexcept {
+  if (queue_.empty() || profiled_.active()) return nullptr;
   const Segment& front = queue_.at(queue_.head_seq()).segment;
-  if (!front.per_rev()) return 1.0;
-  const double mm_rev = front.per_rev_along_depth() ? depth_feed_mm_rev_ : front.feed_mm_rev;
-  return mm_rev * spindle_rpm_ / 60.0 / front.feed_mm_s;  // feed_mm_s > 0: the queue checked it
+  return front.per_rev() ? &front : nullptr;
 }
 
 // Along a boring pass's depth: the schedule at the path point's overhang,
@@ -178,11 +183,10 @@ double MotionInterpolator::spindle_factor() const noexcept {
 // (each change of the override starts a look-ahead walk; S(L) changes
 // smoothly, by ~1e-4 a tick at 30 mm/s). NaN (no schedule) stops the feed.
 void MotionInterpolator::update_depth_feed() noexcept {
-  if (queue_.empty() || profiled_.active()) return;
-  const Segment& front = queue_.at(queue_.head_seq()).segment;
-  if (!front.per_rev_along_depth()) return;
+  const Segment* front = per_rev_front();
+  if (front == nullptr || !front->per_rev_along_depth()) return;
   constexpr std::size_t z = hal::index(hal::Axis::z);
-  const double overhang_mm = front.overhang_at_end_mm - (follower_.point_mm()[z] - front.end_mm[z]);  // deeper: longer
+  const double overhang_mm = front->overhang_at_end_mm - (follower_.point_mm()[z] - front->end_mm[z]);  // deeper: longer
   const double s = depth_infeed_.at(overhang_mm);
   if (!std::isfinite(s)) {
     depth_feed_mm_rev_ = 0.0;

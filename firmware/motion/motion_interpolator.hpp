@@ -177,6 +177,7 @@ class MotionInterpolator {
   MotionReference profiled_tick() noexcept;
   void update_effective_override() noexcept;
   double spindle_factor() const noexcept;       // for the element at the front
+  const Segment* per_rev_front() const noexcept;  // the front element if it is fed per revolution, else null
   void update_depth_feed() noexcept;
   double requested_override() const noexcept;   // override_ times spindle_factor_, capped
   bool front_profiled() const noexcept;
