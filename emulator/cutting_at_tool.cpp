@@ -57,7 +57,6 @@ void CuttingAtTool::advance(const ToolPointMotion& at, double spindle_rpm, doubl
                                          .spindle_rpm = spindle_rpm,
                                          .commanded_rpm = commanded_rpm});
   force_.advance(at.vx_mm_s, at.vy_mm_s, depth_mm_, spindle_rpm);
-  probe_triggered_ = probe_touches(at.x_mm, at.y_mm, at.z_mm);
 }
 
 // The tool takes the material under it down to its point. A tool moving

@@ -38,7 +38,6 @@ class CuttingAtTool {
 
   double depth_mm() const noexcept { return depth_mm_; }  // a_p now
   bool engaged() const noexcept { return depth_mm_ > 0.0; }
-  bool probe_triggered() const noexcept { return probe_triggered_; }
   // The probe against this stock at a tool point (emu::Machine samples it at
   // each tick latch): the block's sides, and over it the cut surface under the tip's centre.
   bool probe_touches(double x_mm, double y_mm, double z_mm) const noexcept;
@@ -57,7 +56,6 @@ class CuttingAtTool {
   ToolMillingForce force_;
   SpindleCrashLog crashes_;
   double depth_mm_ = 0.0;
-  bool probe_triggered_ = false;
   // The last look at the height field (look()): where it was, and the
   // highest material met there and at the looks before it over the tool's
   // last cell of XY travel (newest at met_next_ - 1).

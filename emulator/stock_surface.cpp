@@ -55,18 +55,38 @@ StockSurface::Range StockSurface::cells_near(double x_mm, double y_mm, double ra
                std::max(y_.cell_of(y_mm - radius_mm), y_.first), std::min(y_.cell_of(y_mm + radius_mm), y_.last)};
 }
 
-// Calls visit(i, j) for each cell of r whose (clipped) square overlaps the disc.
+// A cell overlaps the disc when its (clipped) square does. Along a row the
+// distance from x to a cell's square falls, then rises (its low edge minus
+// x grows, x minus its high edge shrinks), so the cells under the disc are
+// one run. Its ends are first guessed from the chord's half-width, then
+// moved cell by cell with the exact test until it holds inside and fails
+// outside; a row the disc misses ends with first > last.
+StockSurface::Span StockSurface::row_span(const Range& r, double x_mm, double dy2_mm2, double r2_mm2) const noexcept {
+  const auto in_disc = [&](std::int64_t i) {
+    const double dx = std::max({x_.lo_mm(i) - x_mm, 0.0, x_mm - x_.hi_mm(i)});
+    return dx * dx + dy2_mm2 < r2_mm2;
+  };
+  const double half_mm = std::sqrt(std::max(r2_mm2 - dy2_mm2, 0.0));
+  // The cell nearest x (within one of the cell x falls in, clamped to the row).
+  const std::int64_t near = std::clamp(x_.cell_of(x_mm), r.i0, r.i1);
+  std::int64_t first = std::clamp(x_.cell_of(x_mm - half_mm), r.i0, near);
+  std::int64_t last = std::clamp(x_.cell_of(x_mm + half_mm), near, r.i1);
+  while (first > r.i0 && in_disc(first - 1)) --first;
+  while (first <= last && !in_disc(first)) ++first;
+  while (last < r.i1 && in_disc(last + 1)) ++last;
+  while (last >= first && !in_disc(last)) --last;
+  return Span{first, last};
+}
+
 template <typename Visit>
-void StockSurface::for_each_cell(const Range& r, double x_mm, double y_mm, double radius_mm, Visit&& visit) const {
+void StockSurface::for_each_row(const Range& r, double x_mm, double y_mm, double radius_mm, Visit&& visit) const {
   const double r2 = radius_mm * radius_mm;
   for (std::int64_t j = r.j0; j <= r.j1; ++j) {
     const double dy = std::max({y_.lo_mm(j) - y_mm, 0.0, y_mm - y_.hi_mm(j)});
     const double dy2 = dy * dy;
     if (!(dy2 < r2)) continue;
-    for (std::int64_t i = r.i0; i <= r.i1; ++i) {
-      const double dx = std::max({x_.lo_mm(i) - x_mm, 0.0, x_mm - x_.hi_mm(i)});
-      if (dx * dx + dy2 < r2) visit(i, j);
-    }
+    const Span span = row_span(r, x_mm, dy2, r2);
+    if (span.i0 <= span.i1) visit(j, span);
   }
 }
 
@@ -124,19 +144,30 @@ double StockSurface::cut(double x_mm, double y_mm, double radius_mm, double z_mm
   const Range r = cells_near(x_mm, y_mm, radius_mm);
   double highest = -kInf;
   if (r.empty() || !(z_mm < params_.top_mm)) return r.empty() ? highest : highest_mm(x_mm, y_mm, radius_mm);
-  // Tile by tile: one map look-up per tile, the cells in it by index.
+  spans_.assign(static_cast<std::size_t>(r.j1 - r.j0 + 1), Span{1, 0});
+  for_each_row(r, x_mm, y_mm, radius_mm,
+               [&](std::int64_t j, const Span& span) { spans_[static_cast<std::size_t>(j - r.j0)] = span; });
+  // Tile by tile: one map look-up per tile, each row's run in it by index.
   for (std::int64_t tj = floor_div(r.j0, kTileCells); tj <= floor_div(r.j1, kTileCells); ++tj) {
+    const std::int64_t j0 = std::max(r.j0, tj * kTileCells), j1 = std::min(r.j1, tj * kTileCells + kTileCells - 1);
     for (std::int64_t ti = floor_div(r.i0, kTileCells); ti <= floor_div(r.i1, kTileCells); ++ti) {
-      const Range in_tile{std::max(r.i0, ti * kTileCells), std::min(r.i1, ti * kTileCells + kTileCells - 1),
-                          std::max(r.j0, tj * kTileCells), std::min(r.j1, tj * kTileCells + kTileCells - 1)};
-      Tile* t = find_tile(ti, tj);
-      for_each_cell(in_tile, x_mm, y_mm, radius_mm, [&](std::int64_t i, std::int64_t j) {
-        if (t == nullptr) t = &tile(ti, tj);  // the tool is below the top over it: filled once, read since
-        double& h = (*t)[static_cast<std::size_t>(j - tj * kTileCells) * kTileCells +
-                         static_cast<std::size_t>(i - ti * kTileCells)];
-        highest = std::max(highest, h);
-        h = std::min(h, z_mm);
-      });
+      const std::int64_t tile_i0 = ti * kTileCells, tile_i1 = tile_i0 + kTileCells - 1;
+      Tile* t = nullptr;
+      for (std::int64_t j = j0; j <= j1; ++j) {
+        const Span& span = spans_[static_cast<std::size_t>(j - r.j0)];
+        const std::int64_t i0 = std::max(span.i0, tile_i0), i1 = std::min(span.i1, tile_i1);
+        if (i0 > i1) continue;
+        if (t == nullptr) {
+          t = find_tile(ti, tj);
+          if (t == nullptr) t = &tile(ti, tj);  // the tool is below the top over it: filled once, read since
+        }
+        double* row = t->data() + static_cast<std::size_t>(j - tj * kTileCells) * kTileCells;
+        for (std::int64_t i = i0 - tile_i0; i <= i1 - tile_i0; ++i) {
+          double& h = row[i];
+          highest = std::max(highest, h);
+          h = std::min(h, z_mm);
+        }
+      }
     }
   }
   return highest;
@@ -146,8 +177,9 @@ double StockSurface::highest_mm(double x_mm, double y_mm, double radius_mm) cons
   const Range r = cells_near(x_mm, y_mm, radius_mm);
   double highest = -kInf;
   if (r.empty()) return highest;
-  for_each_cell(r, x_mm, y_mm, radius_mm,
-                [&](std::int64_t i, std::int64_t j) { highest = std::max(highest, cell_height_mm(i, j)); });
+  for_each_row(r, x_mm, y_mm, radius_mm, [&](std::int64_t j, const Span& span) {
+    for (std::int64_t i = span.i0; i <= span.i1; ++i) highest = std::max(highest, cell_height_mm(i, j));
+  });
   return highest;
 }
 

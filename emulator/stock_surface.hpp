@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
+#include <vector>
 
 #include "emulator/scenario.hpp"
 
@@ -50,8 +51,13 @@ class StockSurface {
     std::int64_t i0, i1, j0, j1;
     bool empty() const noexcept { return i0 > i1 || j0 > j1; }
   };
+  struct Span {  // the cells [i0, i1] of one row of a Range under a disc (empty: i0 > i1)
+    std::int64_t i0, i1;
+  };
+  // Calls visit(j, span) for each row j of r that the disc overlaps.
   template <typename Visit>
-  void for_each_cell(const Range& r, double x_mm, double y_mm, double radius_mm, Visit&& visit) const;
+  void for_each_row(const Range& r, double x_mm, double y_mm, double radius_mm, Visit&& visit) const;
+  Span row_span(const Range& r, double x_mm, double dy2_mm2, double r2_mm2) const noexcept;
   Range cells_near(double x_mm, double y_mm, double radius_mm) const noexcept;
   static std::uint64_t tile_key(std::int64_t ti, std::int64_t tj) noexcept;
   const Tile* find_tile(std::int64_t ti, std::int64_t tj) const noexcept;
@@ -63,6 +69,7 @@ class StockSurface {
   StockParams params_;
   Axis x_, y_;
   std::unordered_map<std::uint64_t, std::unique_ptr<Tile>> tiles_;
+  std::vector<Span> spans_;  // cut()'s rows under the disc (kept: no allocation once grown)
 };
 
 }  // namespace tnv::emu

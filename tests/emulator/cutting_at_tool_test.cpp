@@ -196,9 +196,9 @@ TEST(TouchProbe, TriggersOnTheTopFaceAndTheSides) {
 TEST(CuttingAtTool, ProbeInputFollowsTheToolPoint) {
   CuttingAtTool cut(Scenario{}, kSubstep_s);
   cut.advance(ToolPointMotion{.z_mm = kTop_mm + 1.0}, 0.0, 0.0, 0.0);
-  EXPECT_FALSE(cut.probe_triggered());
+  EXPECT_FALSE(cut.probe_touches(0.0, 0.0, kTop_mm + 1.0));
   cut.advance(ToolPointMotion{.z_mm = kTop_mm}, 0.0, 0.0, 0.0);
-  EXPECT_TRUE(cut.probe_triggered());
+  EXPECT_TRUE(cut.probe_touches(0.0, 0.0, kTop_mm));
   EXPECT_EQ(cut.crashes().count(), 0u) << "touching is not engaging (a_p = 0)";
 }
 

@@ -6,8 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "emulator/cutting_at_tool.hpp"
 #include "emulator/scenario_file.hpp"
@@ -215,6 +219,64 @@ TEST(StockSurface, TilesAreAllocatedOnlyWhereTheToolTakesMaterial) {
   EXPECT_EQ(surface.highest_mm(500.0, -300.0, 3.0), kTop_mm - 1.0);
   EXPECT_EQ(surface.height_mm(500.0, -300.0), kTop_mm - 1.0);
   EXPECT_EQ(surface.height_mm(-500.0, 300.0), kTop_mm) << "untouched";
+}
+
+// The cells a cut lowers are exactly those whose square (clipped to the
+// stock's rectangle) overlaps the disc, and it returns the highest of them
+// as they were: checked cell by cell against the rule itself, for discs of
+// every size across the rectangle's edges (which do not fall on the grid),
+// off it, and on a stock without edges (the whole table).
+TEST(StockSurface, ACutLowersExactlyTheCellsUnderItsDiscAndReturnsTheHighestOfThem) {
+  struct Plate {
+    double x_min, x_max, y_min, y_max;  // the rectangle (infinite: no edge)
+    double origin_x, origin_y;          // the grid's corner: the low edge, or 0 without one
+    int i0, j0, nx, ny;                 // the cells the model holds: [i0, i0 + nx) x [j0, j0 + ny)
+  };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (const Plate p : {Plate{0.03, 6.27, -1.05, 4.4, 0.03, -1.05, 0, 0, 63, 55},
+                        Plate{-kInf, kInf, -kInf, kInf, 0.0, 0.0, -45, -55, 150, 150}}) {
+    StockParams params;
+    params.enabled = true;
+    params.x_min_mm = p.x_min;
+    params.x_max_mm = p.x_max;
+    params.y_min_mm = p.y_min;
+    params.y_max_mm = p.y_max;
+    StockSurface surface(params);
+    std::vector<double> model(static_cast<std::size_t>(p.nx * p.ny), params.top_mm);
+    const auto lo = [](double origin, double edge, int i) { return std::max(origin + static_cast<double>(i) * StockSurface::kCellMm, edge); };
+    const auto hi = [](double origin, double edge, int i) { return std::min(origin + static_cast<double>(i + 1) * StockSurface::kCellMm, edge); };
+    std::mt19937 rng(29);
+    std::uniform_real_distribution<double> at(-1.5, 7.5), radius(0.02, 2.5), depth(0.0, 3.0);
+    for (int cut = 0; cut < 250; ++cut) {
+      const double x = at(rng), y = at(rng) - 1.0, r = radius(rng), z = params.top_mm - depth(rng);
+      double expected = -kInf;
+      std::vector<double> after = model;
+      for (int j = p.j0; j < p.j0 + p.ny; ++j) {
+        for (int i = p.i0; i < p.i0 + p.nx; ++i) {
+          const double xl = lo(p.origin_x, p.x_min, i), xh = hi(p.origin_x, p.x_max, i);
+          const double yl = lo(p.origin_y, p.y_min, j), yh = hi(p.origin_y, p.y_max, j);
+          if (!(xl < xh) || !(yl < yh)) continue;  // off the rectangle
+          const double dx = std::max({xl - x, 0.0, x - xh}), dy = std::max({yl - y, 0.0, y - yh});
+          double& h = after[static_cast<std::size_t>((j - p.j0) * p.nx + i - p.i0)];
+          if (dx * dx + dy * dy < r * r) {
+            expected = std::max(expected, h);
+            h = std::min(h, z);
+          }
+        }
+      }
+      ASSERT_EQ(surface.cut(x, y, r, z), expected) << "cut " << cut << " at (" << x << ", " << y << ") r " << r;
+      model = after;
+      for (int j = p.j0; j < p.j0 + p.ny; ++j) {
+        for (int i = p.i0; i < p.i0 + p.nx; ++i) {
+          const double xl = lo(p.origin_x, p.x_min, i), xh = hi(p.origin_x, p.x_max, i);
+          const double yl = lo(p.origin_y, p.y_min, j), yh = hi(p.origin_y, p.y_max, j);
+          if (!(xl < xh) || !(yl < yh)) continue;
+          ASSERT_EQ(surface.height_mm(0.5 * (xl + xh), 0.5 * (yl + yh)), model[static_cast<std::size_t>((j - p.j0) * p.nx + i - p.i0)])
+              << "cell " << i << ", " << j << " after cut " << cut;
+        }
+      }
+    }
+  }
 }
 
 TEST(StockSurface, HoleKeysAreParsed) {
