@@ -232,9 +232,9 @@ TEST(StockSurface, ACutLowersExactlyTheCellsUnderItsDiscAndReturnsTheHighestOfTh
     double origin_x, origin_y;          // the grid's corner: the low edge, or 0 without one
     int i0, j0, nx, ny;                 // the cells the model holds: [i0, i0 + nx) x [j0, j0 + ny)
   };
-  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr double kNoEdge = std::numeric_limits<double>::infinity();
   for (const Plate p : {Plate{0.03, 6.27, -1.05, 4.4, 0.03, -1.05, 0, 0, 63, 55},
-                        Plate{-kInf, kInf, -kInf, kInf, 0.0, 0.0, -45, -55, 150, 150}}) {
+                        Plate{-kNoEdge, kNoEdge, -kNoEdge, kNoEdge, 0.0, 0.0, -45, -55, 150, 150}}) {
     StockParams params;
     params.enabled = true;
     params.x_min_mm = p.x_min;
@@ -249,7 +249,7 @@ TEST(StockSurface, ACutLowersExactlyTheCellsUnderItsDiscAndReturnsTheHighestOfTh
     std::uniform_real_distribution<double> at(-1.5, 7.5), radius(0.02, 2.5), depth(0.0, 3.0);
     for (int cut = 0; cut < 250; ++cut) {
       const double x = at(rng), y = at(rng) - 1.0, r = radius(rng), z = params.top_mm - depth(rng);
-      double expected = -kInf;
+      double expected = -kNoEdge;
       std::vector<double> after = model;
       for (int j = p.j0; j < p.j0 + p.ny; ++j) {
         for (int i = p.i0; i < p.i0 + p.nx; ++i) {
