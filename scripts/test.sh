@@ -15,7 +15,7 @@
 #            compiled after their first, compiled on its own, syntax only
 #            (what a plain non-unity build needs: scripts/compile-each.py),
 #            with this tree's clang flags where it builds the source
-#   tsan     the threaded parts under ThreadSanitizer          (scripts/tsan.sh)
+#   tsan     the threaded parts under ThreadSanitizer, with clang  (scripts/tsan.sh)
 #   fuzz     every libFuzzer target for 45 s, built in the asan tree
 #                                                              (scripts/fuzz.sh)
 #   kernel   tnv-fw on a Debian kernel booted under qemu, using the release
@@ -132,7 +132,7 @@ early_builds() {
   for stage in "${stages[@]:1}"; do
     case "${stage}" in
       asan) install=${asan_install} build=${asan_build} ;;
-      tsan) install=true build=${tsan_build} ;;
+      tsan) install=${tsan_install} build=${tsan_build} ;;
       arm64) install=${arm64_install} build=${arm64_early} ;;
       *) continue ;;
     esac
@@ -181,6 +181,7 @@ stop_early_builds() {
 # and the stage's own run use the same lines).
 asan_install="scripts/install-missing.sh asan clang-14 libclang-rt-14-dev"
 asan_build="cmake --preset asan >/dev/null && cmake --build --preset asan -j ${jobs}"
+tsan_install="scripts/install-missing.sh tsan clang-14 libclang-rt-14-dev"
 tsan_build="scripts/tsan.sh --build-only"
 arm64_install="scripts/arm64.sh --install-only"
 # The arm64 stage's cross build and its tests under qemu-user need no core
@@ -190,8 +191,8 @@ arm64_early="scripts/arm64.sh"
 
 build_and_test() {
   local preset=$1
-  # The asan tree is clang's (and the fuzz stage's): the release tree and
-  # the tsan stage keep GCC, so both compilers' warnings stop a build.
+  # The asan and tsan trees are clang's (asan's also the fuzz stage's): the
+  # release tree keeps GCC, so both compilers' warnings stop a build.
   if [[ "${preset}" == asan ]]; then bash -c "${asan_install}"; fi
   wait_early_build "${preset}"
   cmake --preset "${preset}" >/dev/null

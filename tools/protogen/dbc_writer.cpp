@@ -20,8 +20,9 @@ using fw::can::FieldDef;
 using fw::can::MessageDef;
 using fw::can::WireType;
 
-// DBC wants the identifier escaped for double quotes only.
-std::string quoted(std::string_view s) {
+// DBC wants the identifier escaped for double quotes only. (Not `quoted`:
+// std::quoted would win it by argument-dependent lookup where <iomanip> is in.)
+std::string dbc_quoted(std::string_view s) {
   std::string out = "\"";
   for (char c : s) {
     if (c == '"') out += '\\';
@@ -66,7 +67,7 @@ std::string signal_line(const FieldDef& f, const char* receiver) {
   line += '|';
   line += number(hi * f.scale);
   line += "] ";
-  line += quoted(f.unit);
+  line += dbc_quoted(f.unit);
   line += ' ';
   line += receiver;
   line += '\n';
@@ -94,7 +95,7 @@ std::string param_signal_lines(const char* receiver) {
   for (const fw::can::ParamDef& p : fw::can::param_table()) {
     const bool is_signed = p.type == fw::can::ParamType::f32 || p.type == fw::can::ParamType::i32;
     append(out, " SG_ ", param_signal_name(p), " m", std::to_string(p.id), " : 32|32@1", is_signed ? "-" : "+",
-           " (1,0) [", number(p.min), "|", number(p.max), "] ", quoted(p.unit), " ", receiver, "\n");
+           " (1,0) [", number(p.min), "|", number(p.max), "] ", dbc_quoted(p.unit), " ", receiver, "\n");
   }
   return out;
 }
@@ -175,17 +176,17 @@ std::string write_dbc(std::uint8_t node) {
          " (identifier = message id << ", std::to_string(fw::can::kNodeIdBits), " | node id).\";\n");
   for (const MessageDef& m : fw::can::kMessages) {
     const std::string id = std::to_string(fw::can::make_can_id(m.id, node));
-    append(out, "CM_ BO_ ", id, " ", quoted(m.doc), ";\n");
-    for (const FieldDef& f : m.fields) append(out, "CM_ SG_ ", id, " ", f.name, " ", quoted(f.doc), ";\n");
+    append(out, "CM_ BO_ ", id, " ", dbc_quoted(m.doc), ";\n");
+    for (const FieldDef& f : m.fields) append(out, "CM_ SG_ ", id, " ", f.name, " ", dbc_quoted(f.doc), ";\n");
     if (is_param_message(m))
       for (const fw::can::ParamDef& p : fw::can::param_table())
-        append(out, "CM_ SG_ ", id, " ", param_signal_name(p), " ", quoted(std::string(p.name) + ": " + p.doc), ";\n");
+        append(out, "CM_ SG_ ", id, " ", param_signal_name(p), " ", dbc_quoted(std::string(p.name) + ": " + p.doc), ";\n");
     if (std::string_view(m.name) == "heartbeat")
       for (const fw::can::HeartbeatBitDoc& b : fw::can::kHeartbeatBits)
-        append(out, "CM_ SG_ ", id, " ", b.name, " ", quoted(b.doc), ";\n");
+        append(out, "CM_ SG_ ", id, " ", b.name, " ", dbc_quoted(b.doc), ";\n");
     if (std::string_view(m.name) == "heartbeat")
       for (const AxisBitSignal& s : heartbeat_axis_signals())
-        append(out, "CM_ SG_ ", id, " ", s.name, " ", quoted(s.doc), ";\n");
+        append(out, "CM_ SG_ ", id, " ", s.name, " ", dbc_quoted(s.doc), ";\n");
   }
   // Cycle times: the defaults of the tlm.*_ms parameters (0 = sent on request or event).
   out += "BA_DEF_ BO_ \"GenMsgCycleTime\" INT 0 60000;\n";
@@ -199,14 +200,14 @@ std::string write_dbc(std::uint8_t node) {
     for (const FieldDef& f : m.fields) {
       if (f.values[0] == '\0') continue;
       append(out, "VAL_ ", id, " ", f.name);
-      for (const auto& [value, name] : value_table(f.values)) append(out, " ", std::to_string(value), " ", quoted(name));
+      for (const auto& [value, name] : value_table(f.values)) append(out, " ", std::to_string(value), " ", dbc_quoted(name));
       out += " ;\n";
     }
     if (is_param_message(m))
       for (const fw::can::ParamDef& p : fw::can::param_table()) {
         if (p.values[0] == '\0') continue;
         append(out, "VAL_ ", id, " ", param_signal_name(p));
-        for (const auto& [value, name] : value_table(p.values)) append(out, " ", std::to_string(value), " ", quoted(name));
+        for (const auto& [value, name] : value_table(p.values)) append(out, " ", std::to_string(value), " ", dbc_quoted(name));
         out += " ;\n";
       }
   }
