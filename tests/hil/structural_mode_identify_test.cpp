@@ -84,6 +84,7 @@ TEST(StructuralModeIdentify, FindsTheModeWithin3PercentOnFourAxes) {
 TEST(StructuralModeIdentify, ReportsNoModeOnTheReferencePlant) {
   const emu::Scenario reference = *emu::builtin_scenario("no-cut");
   for (const hal::Axis axis : {hal::Axis::x, hal::Axis::y}) {
+    if (tnv::test::kSanitizedBuild && axis != hal::Axis::x) continue;  // each axis judged alone: X there
     const AxisIdentification id = identify_axis_on_emulator(reference, axis);
     const std::string where = mode_where(reference, axis);
     ASSERT_TRUE(id.ok) << where << ": " << id.error;
@@ -134,7 +135,8 @@ void expect_shaper_reduces_residual(const emu::Scenario& s, hal::Axis axis, doub
 
 TEST(StructuralModeShaper, DesignedShaperCutsTheToolResidual) {
   expect_shaper_reduces_residual(*emu::builtin_scenario("flex-30"), hal::Axis::x, 0.1);
-  expect_shaper_reduces_residual(made_up_mode47_table(), hal::Axis::x, 0.1);
+  // Each table is judged alone: a sanitizer build runs flex-30 only.
+  if (!tnv::test::kSanitizedBuild) expect_shaper_reduces_residual(made_up_mode47_table(), hal::Axis::x, 0.1);
 }
 
 }  // namespace
