@@ -11,7 +11,7 @@
 namespace tnv::hil {
 namespace {
 
-// Under a sanitizer 2 seeds (the claim is about the 8-seed average: Release).
+// Under a sanitizer 2 seeds of 8: the claims hold on their average too (checked when cut).
 constexpr int kSeeds = tnv::test::kSanitizedBuild ? 2 : 8;
 
 // One test: CTest runs each test in its own process, and the sweep (64 HIL
