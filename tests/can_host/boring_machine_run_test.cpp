@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "emulator/boring_pass.hpp"
 #include "emulator/cutting_at_tool.hpp"
 #include "firmware/adaptive/boring/infeed_schedule.hpp"
+#include "tests/sanitized_build.hpp"
 
 namespace tnv::can_host {
 namespace {
@@ -29,13 +31,16 @@ TEST(BoringMachineRun, RefusesWhatTheMachineCannotCut) {
   EXPECT_THROW(run_boring_on_machine(other, 1, {}), std::invalid_argument);
 }
 
-// Seed 1, the paper's Fig. 3 setting up to the first change and past it (12 parts).
+// Seed 1, the paper's Fig. 3 setting up to the first change and past it (12
+// parts). Under a sanitizer the first 3 (the start-up part and two learned
+// ones, the same bits as the first 3 of 12): the per-part checks on those;
+// the average and parts 4-12 in the Release build.
 TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
   hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
-  r.parts = 12;
+  r.parts = tnv::test::kSanitizedBuild ? 3 : 12;
   const hil::BoringRunResult run = run_boring_on_machine(r, 1, {});
   ASSERT_EQ(run.error, "");
-  ASSERT_EQ(run.parts.size(), 12u);
+  ASSERT_EQ(run.parts.size(), static_cast<std::size_t>(r.parts));
   double bottom_ratio_sum = 0.0;
   for (const hil::BoringPartRecord& p : run.parts) {
     ASSERT_EQ(p.positions.size(), 2u);
@@ -54,7 +59,9 @@ TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
     EXPECT_LE(p.pass_min_error_mm, top.true_deflection_mm - 0.1165 + 1e-12);
     EXPECT_GE(p.pass_max_error_mm, bottom.true_deflection_mm - 0.1165 - 1e-12);
   }
-  EXPECT_NEAR(bottom_ratio_sum / 12.0, 1.0, 0.03) << "on average the bottom is cut at the told infeed";
+  if (!tnv::test::kSanitizedBuild) {
+    EXPECT_NEAR(bottom_ratio_sum / 12.0, 1.0, 0.03) << "on average the bottom is cut at the told infeed";
+  }
   // Part 1 at S0 = 0.5 mm/rev at both depths: 0.165 / 0.285 mm (in process 0.1650 / 0.2854).
   EXPECT_NEAR(run.parts[0].positions[0].true_deflection_mm, 0.1650, 0.002);
   EXPECT_NEAR(run.parts[0].positions[1].true_deflection_mm, 0.2854, 0.002);
@@ -62,7 +69,9 @@ TEST(BoringMachineRun, EveryPartIsAPassAtTheNodesInfeeds) {
   // The node's infeeds change with what it learned: part 2 cuts the bottom far slower than part 1.
   EXPECT_LT(run.parts[1].positions[1].infeed_mm_rev, 0.5 * run.parts[0].positions[1].infeed_mm_rev);
   // Parts 2-10 in band as in process (Fig. 3: 0.005 bad parts per seed there), part 11 out (the large change).
-  for (int part = 2; part <= 10; ++part) EXPECT_FALSE(run.parts[static_cast<std::size_t>(part - 1)].bad) << part;
+  for (int part = 2; part <= std::min(10, r.parts); ++part)
+    EXPECT_FALSE(run.parts[static_cast<std::size_t>(part - 1)].bad) << part;
+  if (tnv::test::kSanitizedBuild) return;  // part 11 and the count need all 12 parts
   EXPECT_TRUE(run.parts[10].bad) << "part 11 is planned for the old process";
   EXPECT_LE(run.bad_parts, 4);
 }
@@ -122,7 +131,7 @@ TEST(BoringMachineRun, AlongTheDepthTheInfeedFollowsTheNodesScheduleAtTheBarsOve
 // G94 from the commanded speed (the host's conversion before) cuts 6/5 of them.
 TEST(BoringMachineRun, TheInfeedFollowsTheSpindlesMeasuredSpeedNotItsCommand) {
   hil::BoringRunRequest r = hil::paper_boring_request(0.016231, 0.5);
-  r.parts = 2;
+  r.parts = tnv::test::kSanitizedBuild ? 1 : 2;  // each part judged alone: the start-up part under a sanitizer
   BoringMachineOptions slow;
   slow.drive_rpm_at_full_scale = 10'000.0;
   slow.at_speed_fraction = 0.25;
@@ -132,9 +141,10 @@ TEST(BoringMachineRun, TheInfeedFollowsTheSpindlesMeasuredSpeedNotItsCommand) {
   per_minute.feed_per_rev = false;
   const hil::BoringRunResult g94 = run_boring_on_machine(r, 1, per_minute);
   ASSERT_EQ(g94.error, "");
-  ASSERT_EQ(per_rev.parts.size(), 2u);
-  ASSERT_EQ(g94.parts.size(), 2u);
-  for (std::size_t k = 0; k < 2; ++k) {
+  const std::size_t parts = static_cast<std::size_t>(r.parts);
+  ASSERT_EQ(per_rev.parts.size(), parts);
+  ASSERT_EQ(g94.parts.size(), parts);
+  for (std::size_t k = 0; k < parts; ++k) {
     for (std::size_t i = 0; i < 2; ++i) {
       const hil::BoringPositionRecord& a = per_rev.parts[k].positions[i];
       const hil::BoringPositionRecord& b = g94.parts[k].positions[i];

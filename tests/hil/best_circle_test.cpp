@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "emulator/scenario_file.hpp"
+#include "tests/sanitized_build.hpp"
 #include "tools/hil/best_circle.hpp"
 #include "tools/hil/tune_identify.hpp"
 #include "tools/tune/axis_design.hpp"
@@ -20,7 +21,8 @@ namespace {
 
 using namespace tnv::tune;
 
-constexpr int kBestCircleSeeds = 8;  // the goal is an 8-seed average
+// The goal is an 8-seed average: a sanitizer build runs 2 and leaves the goal to the Release build.
+constexpr int kBestCircleSeeds = tnv::test::kSanitizedBuild ? 2 : 8;
 
 BestCircleRow run_no_cut() {
   const emu::Scenario no_cut = *emu::builtin_scenario("no-cut");
@@ -44,11 +46,12 @@ TEST(BestCircle, MeetsTheIssueGoalOnTheNoCutCircle) {
   ASSERT_TRUE(r.error.empty()) << r.error;
   // The comparison is the papers' own: R-DVSC+DDC keeps its reversal glitch.
   EXPECT_GT(r.rdvsc.max_um, 2.0) << "papers' R-DVSC+DDC max " << r.rdvsc.max_um << " um";
+  EXPECT_LT(r.best.std_um, 0.8 * r.rdvsc.std_um) << "best std " << r.best.std_um << " um vs " << r.rdvsc.std_um;
+  if (tnv::test::kSanitizedBuild) return;  // the goal is stated on 8 seeds
   EXPECT_LE(r.best.max_um, 1.0) << "best configuration: max " << r.best.max_um << " um (" << kBestCircleSeeds
                                 << "-seed average), goal <= 1.0 um";
   EXPECT_LE(r.best.mean_um, 0.15) << "best configuration: mean " << r.best.mean_um << " um (" << kBestCircleSeeds
                                   << "-seed average), goal <= 0.15 um";
-  EXPECT_LT(r.best.std_um, 0.8 * r.rdvsc.std_um) << "best std " << r.best.std_um << " um vs " << r.rdvsc.std_um;
 }
 
 }  // namespace

@@ -14,13 +14,15 @@
 #include <algorithm>
 
 #include "emulator/scenario_file.hpp"
+#include "tests/sanitized_build.hpp"
 #include "tools/hil/shaper_jog_run.hpp"
 #include "tools/hil/shaper_move_compare.hpp"
 
 namespace tnv::hil {
 namespace {
 
-constexpr int kFlexSeeds = 5;
+// Every run is judged alone but the settling median: a sanitizer build runs one seed and leaves the median out.
+constexpr int kFlexSeeds = tnv::test::kSanitizedBuild ? 1 : 5;
 constexpr double kDistancesMm[] = {5.0, 10.0, 20.0};
 
 struct Case {
@@ -69,7 +71,7 @@ TEST(ShaperFlex30, ShapedMovesCancelTheModeAndSettleFaster) {
       }
     }
     const double settling = median(settling_ratios);
-    if (c.settling_checked) {
+    if (c.settling_checked && !tnv::test::kSanitizedBuild) {
       EXPECT_GE(settling, 3.0) << fw::to_string(c.type) << ": median unshaped / shaped settling time to +-1 um over "
                                << settling_ratios.size() << " runs";
     }

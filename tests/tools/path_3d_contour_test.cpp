@@ -12,6 +12,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "tests/sanitized_build.hpp"
 #include "tests/tools/gcode/test_piece_path.hpp"
 #include "tools/gcode/program_file.hpp"
 #include "tools/hil/path_run.hpp"
@@ -20,7 +21,8 @@ namespace tnv::hil {
 namespace contour_3d_test {
 namespace {
 
-constexpr int kSeeds = 8;  // as the goal states it (about 10 s of CPU for both programs)
+// 8 as the goal states it (about 10 s of CPU for both programs); 2 under a sanitizer.
+constexpr int kSeeds = tnv::test::kSanitizedBuild ? 2 : 8;
 
 PathSweepResult run_seeds(const char* name) {
   std::string text, error;
@@ -46,11 +48,13 @@ TEST(PathContour3d, AHelixAndA3dContourAtTwoMmPerSecondStayWithinFiveMicrometres
     EXPECT_LE(sweep.mean.jerk_ratio_max, 1.0 + 1e-6) << name << ": commanded jerk above an axis limit";
     EXPECT_LE(sweep.mean.path_deviation_max_um, 5.0 + 1e-6) << name << ": the path tolerance is 5 um";
     EXPECT_GE(sweep.mean.feed_ratio, 0.95) << name << ": at 2 mm/s the program runs at its feed";
-    EXPECT_LE(sweep.mean.contour_error_max_um, 5.0) << name << ": the goal, 3-D contour error max (8-seed mean)";
+    if (!tnv::test::kSanitizedBuild) {  // the goal is an 8-seed mean
+      EXPECT_LE(sweep.mean.contour_error_max_um, 5.0) << name << ": the goal, 3-D contour error max (8-seed mean)";
+    }
     RecordProperty(name, std::to_string(sweep.mean.contour_error_max_um));
-    std::printf("[contour 3-D] %s: contour max %.3f um (8-seed mean), mean %.3f um, path deviation %.3f um, "
+    std::printf("[contour 3-D] %s: contour max %.3f um (%d-seed mean), mean %.3f um, path deviation %.3f um, "
                 "accel %.3f jerk %.3f, feed ratio %.3f\n",
-                name, sweep.mean.contour_error_max_um, sweep.mean.contour_error_mean_um,
+                name, sweep.mean.contour_error_max_um, kSeeds, sweep.mean.contour_error_mean_um,
                 sweep.mean.path_deviation_max_um, sweep.mean.accel_ratio_max, sweep.mean.jerk_ratio_max,
                 sweep.mean.feed_ratio);
   }

@@ -14,6 +14,7 @@
 
 #include "emulator/scenario_file.hpp"
 #include "firmware/tick/firmware_config.hpp"
+#include "tests/sanitized_build.hpp"
 #include "tests/tools/gcode/test_piece_path.hpp"
 #include "tools/gcode/program_file.hpp"
 #include "tools/hil/path_run.hpp"
@@ -48,8 +49,13 @@ TEST(PathEnvelope, FineChordCirclesKeepNinetyPercentOfTheirFeedOnTheTable) {
   // As programmed: a rapid from the table's home to the circle, then chords
   // at F1200 = 20 mm/s. Issue 27's goal: 0.9 for every radius from 5 mm,
   // the rapid's stop before the first chord (the spindle's feed gate) included.
-  for (const char* name : {"circle_chords_0p1mm_r5.ngc", "circle_chords_0p1mm.ngc", "circle_chords_0p1mm_r20.ngc",
-                           "circle_chords_0p1mm_r50.ngc"}) {
+  // Each radius is judged alone: a sanitizer build runs the two shortest circles.
+  std::vector<const char*> names = {"circle_chords_0p1mm_r5.ngc", "circle_chords_0p1mm.ngc"};
+  if (!tnv::test::kSanitizedBuild) {
+    names.push_back("circle_chords_0p1mm_r20.ngc");
+    names.push_back("circle_chords_0p1mm_r50.ngc");
+  }
+  for (const char* name : names) {
     const PathRunResult run = run_on_table(piece(name));
     EXPECT_GE(run.score.feed_ratio, 0.9) << name;
     EXPECT_LE(run.score.feed_ratio, 1.0 + 1e-9) << name << ": faster than programmed";

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/firmware/motion/motion_run.hpp"
+#include "tests/sanitized_build.hpp"
 #include "tests/tools/gcode/test_piece_path.hpp"
 #include "tools/gcode/gcode_program.hpp"
 #include "tools/gcode/path_distance.hpp"
@@ -80,7 +81,9 @@ TEST(TestPieceMotion, ChordCircleAtTwentyMillimetresPerSecondKeepsNinetyPercentO
 TEST(TestPieceMotion, EveryTestPieceKeepsTheLimitsAndThePathAtEveryFeed) {
   for (const char* name : {"nas979_diamond_circle_square.ngc", "corners_90deg.ngc", "circle_chords_0p1mm.ngc",
                            "spiral.ngc"}) {
-    for (double feed : {2.0, 10.0, 20.0, 50.0}) expect_piece(name, feed);
+    // Each run is judged alone: a sanitizer build leaves out the longest ones (2 and 20 mm/s).
+    for (double feed : {2.0, 10.0, 20.0, 50.0})
+      if (!tnv::test::kSanitizedBuild || feed == 10.0 || feed == 50.0) expect_piece(name, feed);
   }
 }
 
