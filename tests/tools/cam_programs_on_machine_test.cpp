@@ -75,7 +75,7 @@ TEST_P(CamProgramOnMachine, RunsToTheEndWithinTheLimitsAndThePathTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Oracle, CamProgramOnMachine,
                          ::testing::Values("cam_contour_g54_g43", "cam_contour_g41_g42", "cam_tapping_boring_cycles",
-                                           "cam_back_boring_and_side_cycles", "cam_drilling_cycles",
+                                           "cam_back_boring_cycles", "cam_drilling_cycles",
                                            "cam_helix_subroutine", "horizontal_spindle_cycles"));
 
 TEST(CamProgramOnMachine, TheDrillingProgramDrillsInItsOwnG55) {

@@ -95,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(Oracle, CamProgramOnStock,
                                            // taps and bars in the part's own holes ([[stock.hole]]): nothing in XY
                                            OnStock{"cam_tapping_boring_cycles", 0.0},
                                            // the bar goes down and back bores in holes wider than its reach
-                                           OnStock{"cam_back_boring_and_side_cycles", 0.0},
+                                           OnStock{"cam_back_boring_cycles", 0.0},
                                            // each helix turn meets the last turn's floor
                                            OnStock{"cam_helix_subroutine", 100.0}),
                          [](const ::testing::TestParamInfo<OnStock>& p) { return std::string(p.param.program); });
