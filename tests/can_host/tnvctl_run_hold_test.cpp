@@ -7,8 +7,9 @@
 #include <gtest/gtest.h>
 #include <pty.h>
 #include <signal.h>
-#include <termios.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -28,18 +29,62 @@ constexpr const char* kProgram = "G21 G91\nG1 X20 F1200\nG1 Y5\nG1 X-20\nM2\n";
 // `tnvctl --emu --json run PROGRAM --no-score` started in the background,
 // its stdin a pseudo-terminal (`on_terminal`) or /dev/null, its stderr and
 // JSON to files: the tests wait for what it reports, never for a time.
+// Makes the calling process's group a shell's job on its terminal: the
+// kernel drops a stop signal with the default action sent to an orphaned
+// group (nobody would continue it), and the group of a pseudo-terminal's
+// session leader is orphaned (its parent, the test, is in another session).
+// A member whose parent is in another group of the same session, as a job's
+// shell is, makes it a job: a keeper in a group of its own forks a child
+// that joins this one. Both die with the process (PR_SET_PDEATHSIG). Called
+// in a forked child: async-signal-safe calls only.
+void become_a_job() {
+  struct sigaction by_default {};
+  by_default.sa_handler = SIG_DFL;
+  sigemptyset(&by_default.sa_mask);
+  for (const int sig : {SIGTSTP, SIGTTIN, SIGTTOU}) ::sigaction(sig, &by_default, nullptr);  // as a shell's job has them
+  int ready[2];
+  if (::pipe(ready) != 0) ::_exit(126);
+  const pid_t group = ::getpgrp();
+  const pid_t leader = ::getpid();
+  if (::fork() == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != leader) ::_exit(0);
+    ::setpgid(0, 0);
+    const pid_t keeper = ::getpid();
+    if (::fork() == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != keeper) ::_exit(0);
+      ::setpgid(0, group);
+      for (int fd = 0; fd <= 2; ++fd) ::close(fd);
+      if (::write(ready[1], "k", 1) != 1) ::_exit(0);
+      for (;;) ::pause();
+    }
+    for (int fd = 0; fd <= 2; ++fd) ::close(fd);
+    for (;;) ::pause();
+  }
+  char joined = 0;
+  if (::read(ready[0], &joined, 1) != 1) ::_exit(126);
+  ::close(ready[0]);
+  ::close(ready[1]);
+}
+
 struct BackgroundRun {
   std::string err_path, out_path;
   int terminal = -1;
   pid_t pid = -1;
 
-  BackgroundRun(const std::filesystem::path& state, const std::string& program, bool on_terminal)
+  // `as_a_job`: on the terminal as a shell's job, which Ctrl-Z (SIGTSTP) stops;
+  // `stop_ignored`: started with SIGTSTP ignored, as by a shell without job control.
+  BackgroundRun(const std::filesystem::path& state, const std::string& program, bool on_terminal,
+                bool as_a_job = false, bool stop_ignored = false)
       : err_path((state / "err.txt").string()), out_path((state / "out.json").string()) {
     const std::string cmd = "XDG_STATE_HOME=" + state.string() + " exec " + TNVCTL_EXE + " --emu --json run " +
                             program + " --no-score " + (on_terminal ? "" : "</dev/null ") + "2>" + err_path + " >" +
                             out_path;
     pid = on_terminal ? ::forkpty(&terminal, nullptr, nullptr, nullptr) : ::fork();
     if (pid == 0) {
+      if (as_a_job) become_a_job();
+      if (stop_ignored) ::signal(SIGTSTP, SIG_IGN);
       ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
@@ -200,6 +245,103 @@ TEST_P(TnvctlRunEndingSignal, GivesTheTerminalItsEchoBackAndDiesOfIt) {
 INSTANTIATE_TEST_SUITE_P(TermAndHup, TnvctlRunEndingSignal, ::testing::Values(SIGTERM, SIGHUP),
                          [](const ::testing::TestParamInfo<int>& signal) {
                            return std::string(signal.param == SIGTERM ? "sigterm" : "sighup");
+                         });
+
+// The terminal's modes once `echo_on` is what they show, up to 10 s: a
+// continued process takes them in its handler, after the continue is reported.
+bool wait_for_echo(int terminal, bool echo_on) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  for (;;) {
+    termios t{};
+    if (::tcgetattr(terminal, &t) == 0 && ((t.c_lflag & ECHO) != 0) == echo_on) return true;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+// Ctrl-Z at a pause, as from a shell with job control: tnvctl stops with
+// the terminal's echo and line mode given back (the shell is not left
+// blind), takes its own modes again when continued (keys one by one, no
+// echo; a second Ctrl-Z stops it again), reads its keys as before, and
+// killed afterwards gives the modes back as ever.
+TEST(TnvctlRunStop, CtrlZGivesTheShellItsEchoAndSigcontTakesTheConsoleModesAgain) {
+  const auto state = test::state_dir("run_ctrl_z");
+  const auto prog = test::write_file(state / "m0.ngc", "G21 G91\nG1 X2 F600\nM0\nG1 X-2\nM2\n");
+  const BackgroundRun run(state, prog.string(), true, true);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("press Enter to continue", 1)) << run.err();
+  termios during{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &during), 0);
+  ASSERT_EQ(during.c_lflag & ECHO, 0u) << "the keys are not echoed while the program runs";
+  for (int round = 1; round <= 2; ++round) {
+    ASSERT_EQ(::kill(run.pid, SIGTSTP), 0);
+    int status = 0;
+    ASSERT_EQ(::waitpid(run.pid, &status, WUNTRACED), run.pid);
+    ASSERT_TRUE(WIFSTOPPED(status)) << "round " << round << ": status " << status;
+    EXPECT_EQ(WSTOPSIG(status), SIGTSTP);
+    termios stopped{};
+    ASSERT_EQ(::tcgetattr(run.terminal, &stopped), 0);
+    EXPECT_NE(stopped.c_lflag & ECHO, 0u) << "round " << round << ": stopped with the terminal's echo off";
+    EXPECT_NE(stopped.c_lflag & ICANON, 0u) << "round " << round << ": stopped with the terminal's line mode off";
+    ASSERT_EQ(::kill(run.pid, SIGCONT), 0);
+    ASSERT_EQ(::waitpid(run.pid, &status, WCONTINUED), run.pid);
+    ASSERT_TRUE(WIFCONTINUED(status)) << "status " << status;
+    EXPECT_TRUE(wait_for_echo(run.terminal, false)) << "round " << round << ": continued without its modes";
+    termios again{};
+    ASSERT_EQ(::tcgetattr(run.terminal, &again), 0);
+    EXPECT_EQ(again.c_lflag & ICANON, 0u) << "round " << round << ": continued in line mode";
+  }
+  // Its keys after the continue: the space holds.
+  ASSERT_EQ(::write(run.terminal, " ", 1), 1);
+  EXPECT_TRUE(run.wait_for("holding", 1)) << run.err();
+  int status = 0;
+  EXPECT_EQ(::waitpid(run.pid, &status, WNOHANG), 0) << "the stops ended the run: " << run.err();
+  ASSERT_EQ(::kill(run.pid, SIGTERM), 0);
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  termios after{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
+  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
+  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+  ::close(run.terminal);
+  std::filesystem::remove_all(state);
+}
+
+// Where SIGTSTP would not stop tnvctl, it goes on with its modes: ignored
+// (started so by a shell without job control, and kept so), or with the
+// default action in an orphaned process group (the kernel drops the stop
+// the console's handler raises, and the handler takes the modes again).
+class TnvctlRunNoStop : public ::testing::TestWithParam<bool> {};
+
+TEST_P(TnvctlRunNoStop, SigtstpThatCannotStopLeavesTheRunAndItsModesAsTheyWere) {
+  const bool ignored = GetParam();
+  const auto state = test::state_dir(std::string("run_no_stop_") + (ignored ? "ignored" : "orphaned"));
+  const auto prog = test::write_file(state / "m0.ngc", "G21 G91\nG1 X2 F600\nM0\nG1 X-2\nM2\n");
+  const BackgroundRun run(state, prog.string(), true, ignored, ignored);
+  ASSERT_GE(run.pid, 0);
+  ASSERT_TRUE(run.wait_for("press Enter to continue", 1)) << run.err();
+  ASSERT_EQ(::kill(run.pid, SIGTSTP), 0);
+  // A stopped run could not answer the space.
+  ASSERT_EQ(::write(run.terminal, " ", 1), 1);
+  EXPECT_TRUE(run.wait_for("holding", 1)) << run.err();
+  int status = 0;
+  ASSERT_EQ(::waitpid(run.pid, &status, WUNTRACED | WNOHANG), 0) << "status " << status;
+  EXPECT_TRUE(wait_for_echo(run.terminal, false)) << "the run goes on with the terminal's echo on";
+  ASSERT_EQ(::kill(run.pid, SIGTERM), 0);
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  termios after{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
+  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
+  ::close(run.terminal);
+  std::filesystem::remove_all(state);
+}
+
+INSTANTIATE_TEST_SUITE_P(IgnoredAndOrphaned, TnvctlRunNoStop, ::testing::Values(true, false),
+                         [](const ::testing::TestParamInfo<bool>& ignored) {
+                           return std::string(ignored.param ? "ignored" : "orphaned");
                          });
 
 // Without a terminal a tool change could never be confirmed: refused before

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <iterator>
 
@@ -48,18 +49,63 @@ extern "C" void on_ending_signal(int sig) {
   raise(sig);
 }
 
-// Only where the signal would end the process: one ignored (nohup) or
-// handled by someone else is left as it is.
-void catch_ending_signals() {
-  for (std::size_t i = 0; i < std::size(kEndingSignals); ++i) {
-    struct sigaction now {};
-    g_caught_ending[i] = sigaction(kEndingSignals[i], nullptr, &now) == 0 && now.sa_handler == SIG_DFL &&
-                         (now.sa_flags & SA_SIGINFO) == 0;
-    if (g_caught_ending[i]) catch_signal(kEndingSignals[i], on_ending_signal, g_saved_ending[i]);
-  }
+// Ctrl-Z (SIGTSTP) stops the process as a shell's job control expects, with
+// the terminal as it was before the console (the shell gets its echo back);
+// once continued (SIGCONT) the console takes its modes again. The stop
+// itself is the default action, raised from the handler.
+termios g_console_modes{};  // what the console sets: keys one by one, no echo
+bool g_caught_stop = false;
+struct sigaction g_saved_stop {};
+
+extern "C" void on_console_stop(int) {
+  // Only async-signal-safe calls. SIGTSTP is blocked in here: raised with
+  // the default action, it stops the process when it is unblocked, and the
+  // calls after that run only once the process is continued. In an orphaned
+  // process group the kernel drops it (nobody would continue the process):
+  // then the modes are simply taken again.
+  const int saved_errno = errno;
+  const bool had = g_terminal_fd >= 0;
+  if (had) tcsetattr(g_terminal_fd, TCSANOW, &g_terminal_modes);
+  struct sigaction by_default {};
+  by_default.sa_handler = SIG_DFL;
+  sigemptyset(&by_default.sa_mask);
+  sigaction(SIGTSTP, &by_default, nullptr);
+  raise(SIGTSTP);
+  sigset_t stop{};
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGTSTP);
+  sigprocmask(SIG_UNBLOCK, &stop, nullptr);  // stopped here until SIGCONT
+  sigprocmask(SIG_BLOCK, &stop, nullptr);    // another Ctrl-Z waits for this handler's end
+  struct sigaction again {};
+  again.sa_handler = on_console_stop;
+  sigemptyset(&again.sa_mask);
+  again.sa_flags = SA_RESTART;
+  sigaction(SIGTSTP, &again, nullptr);
+  // Continued in the background (`bg`), this tcsetattr stops the process by
+  // SIGTTOU until it is in the foreground again: the shell keeps its modes.
+  if (had && g_terminal_fd >= 0) tcsetattr(g_terminal_fd, TCSANOW, &g_console_modes);
+  errno = saved_errno;
 }
 
-void release_ending_signals() {
+// Only where the signal has its default action: one ignored (nohup, or a
+// shell without job control for SIGTSTP) or handled by someone else is left
+// as it is.
+bool by_default(int sig) {
+  struct sigaction now {};
+  return sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_DFL && (now.sa_flags & SA_SIGINFO) == 0;
+}
+
+void catch_console_signals() {
+  for (std::size_t i = 0; i < std::size(kEndingSignals); ++i) {
+    g_caught_ending[i] = by_default(kEndingSignals[i]);
+    if (g_caught_ending[i]) catch_signal(kEndingSignals[i], on_ending_signal, g_saved_ending[i]);
+  }
+  g_caught_stop = by_default(SIGTSTP);
+  if (g_caught_stop) catch_signal(SIGTSTP, on_console_stop, g_saved_stop);
+}
+
+void release_console_signals() {
+  if (g_caught_stop) sigaction(SIGTSTP, &g_saved_stop, nullptr);
   for (std::size_t i = 0; i < std::size(kEndingSignals); ++i)
     if (g_caught_ending[i]) sigaction(kEndingSignals[i], &g_saved_ending[i], nullptr);
 }
@@ -73,12 +119,13 @@ OperatorConsole::OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> sche
     if (tcgetattr(fd_, &t) == 0) {
       saved_ = t;
       g_terminal_modes = t;
-      std::atomic_signal_fence(std::memory_order_seq_cst);  // the modes are in place before a handler may read them
-      g_terminal_fd = fd_;
-      catch_ending_signals();
       t.c_lflag &= static_cast<tcflag_t>(~(ICANON | ECHO));
       t.c_cc[VMIN] = 0;
       t.c_cc[VTIME] = 0;
+      g_console_modes = t;
+      std::atomic_signal_fence(std::memory_order_seq_cst);  // the modes are in place before a handler may read them
+      g_terminal_fd = fd_;
+      catch_console_signals();
       tcsetattr(fd_, TCSANOW, &t);
     }
   }
@@ -93,7 +140,7 @@ OperatorConsole::~OperatorConsole() {
   if (saved_) {
     tcsetattr(fd_, TCSANOW, &*saved_);
     g_terminal_fd = -1;
-    release_ending_signals();  // after the modes are back: a signal before this finds them given back already
+    release_console_signals();  // after the modes are back: a signal before this finds them given back already
   }
 }
 

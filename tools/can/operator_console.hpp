@@ -19,7 +19,8 @@ class OperatorConsole {
  public:
   // fd is read for keys; on a terminal it delivers keys one by one, without
   // echo, while this lives (Ctrl-C still signals), and SIGTERM, SIGHUP and
-  // SIGQUIT give the terminal its modes back before they end the process.
+  // SIGQUIT give the terminal its modes back before they end the process;
+  // Ctrl-Z (SIGTSTP) gives them back for the stop and takes them again at SIGCONT.
   // SIGUSR1 / SIGUSR2 are caught while this lives. One at a time. The schedule runs on `clock_s`
   // (the bus's time: simulated on an emulated node), from its first look.
   OperatorConsole(int fd, std::vector<gcode::FeedHoldWindow> schedule = {}, std::function<double()> clock_s = {});
