@@ -217,6 +217,20 @@ TEST(TnvctlRunHold, AnEnterWhileHeldAtAPauseIsDroppedAndTheNextContinues) {
 // Killed while it waits at a pause (SIGTERM, or SIGHUP as when its
 // terminal goes away), tnvctl still dies of the signal, and the terminal
 // has its echo and line mode back: the operator's shell is not left blind.
+// Sends `sig` to the run: it dies of it, as without the terminal, and the
+// terminal has its echo and line mode back.
+void expect_dies_of_and_gives_the_modes_back(const BackgroundRun& run, int sig) {
+  ASSERT_EQ(::kill(run.pid, sig), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+  EXPECT_EQ(WTERMSIG(status), sig) << "it dies of the signal, as without the terminal";
+  termios after{};
+  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
+  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
+  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+}
+
 class TnvctlRunEndingSignal : public ::testing::TestWithParam<int> {};
 
 TEST_P(TnvctlRunEndingSignal, GivesTheTerminalItsEchoBackAndDiesOfIt) {
@@ -229,15 +243,7 @@ TEST_P(TnvctlRunEndingSignal, GivesTheTerminalItsEchoBackAndDiesOfIt) {
   termios during{};
   ASSERT_EQ(::tcgetattr(run.terminal, &during), 0);
   ASSERT_EQ(during.c_lflag & ECHO, 0u) << "the keys are not echoed while the program runs";
-  ASSERT_EQ(::kill(run.pid, sig), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
-  EXPECT_EQ(WTERMSIG(status), sig) << "it dies of the signal, as without the terminal";
-  termios after{};
-  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
-  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
-  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+  expect_dies_of_and_gives_the_modes_back(run, sig);
   ::close(run.terminal);
   std::filesystem::remove_all(state);
 }
@@ -296,14 +302,7 @@ TEST(TnvctlRunStop, CtrlZGivesTheShellItsEchoAndSigcontTakesTheConsoleModesAgain
   EXPECT_TRUE(run.wait_for("holding", 1)) << run.err();
   int status = 0;
   EXPECT_EQ(::waitpid(run.pid, &status, WNOHANG), 0) << "the stops ended the run: " << run.err();
-  ASSERT_EQ(::kill(run.pid, SIGTERM), 0);
-  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
-  EXPECT_EQ(WTERMSIG(status), SIGTERM);
-  termios after{};
-  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
-  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
-  EXPECT_NE(after.c_lflag & ICANON, 0u) << "the terminal's line mode was not given back";
+  expect_dies_of_and_gives_the_modes_back(run, SIGTERM);
   ::close(run.terminal);
   std::filesystem::remove_all(state);
 }
@@ -328,13 +327,7 @@ TEST_P(TnvctlRunNoStop, SigtstpThatCannotStopLeavesTheRunAndItsModesAsTheyWere) 
   int status = 0;
   ASSERT_EQ(::waitpid(run.pid, &status, WUNTRACED | WNOHANG), 0) << "status " << status;
   EXPECT_TRUE(wait_for_echo(run.terminal, false)) << "the run goes on with the terminal's echo on";
-  ASSERT_EQ(::kill(run.pid, SIGTERM), 0);
-  ASSERT_EQ(::waitpid(run.pid, &status, 0), run.pid);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
-  EXPECT_EQ(WTERMSIG(status), SIGTERM);
-  termios after{};
-  ASSERT_EQ(::tcgetattr(run.terminal, &after), 0);
-  EXPECT_NE(after.c_lflag & ECHO, 0u) << "the terminal's echo was not given back";
+  expect_dies_of_and_gives_the_modes_back(run, SIGTERM);
   ::close(run.terminal);
   std::filesystem::remove_all(state);
 }
