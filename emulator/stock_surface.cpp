@@ -99,11 +99,6 @@ const StockSurface::Tile* StockSurface::find_tile(std::int64_t ti, std::int64_t 
   return found == tiles_.end() ? nullptr : found->second.get();
 }
 
-StockSurface::Tile* StockSurface::find_tile(std::int64_t ti, std::int64_t tj) noexcept {
-  const auto found = tiles_.find(tile_key(ti, tj));
-  return found == tiles_.end() ? nullptr : found->second.get();
-}
-
 StockSurface::Tile& StockSurface::tile(std::int64_t ti, std::int64_t tj) {
   std::unique_ptr<Tile>& slot = tiles_[tile_key(ti, tj)];
   if (!slot) {
@@ -157,10 +152,7 @@ double StockSurface::cut(double x_mm, double y_mm, double radius_mm, double z_mm
         const Span& span = spans_[static_cast<std::size_t>(j - r.j0)];
         const std::int64_t i0 = std::max(span.i0, tile_i0), i1 = std::min(span.i1, tile_i1);
         if (i0 > i1) continue;
-        if (t == nullptr) {
-          t = find_tile(ti, tj);
-          if (t == nullptr) t = &tile(ti, tj);  // the tool is below the top over it: filled once, read since
-        }
+        if (t == nullptr) t = &tile(ti, tj);  // the tool is below the top over it: filled once, read since
         double* row = t->data() + static_cast<std::size_t>(j - tj * kTileCells) * kTileCells;
         for (std::int64_t i = i0 - tile_i0; i <= i1 - tile_i0; ++i) {
           double& h = row[i];

@@ -61,7 +61,6 @@ class StockSurface {
   Range cells_near(double x_mm, double y_mm, double radius_mm) const noexcept;
   static std::uint64_t tile_key(std::int64_t ti, std::int64_t tj) noexcept;
   const Tile* find_tile(std::int64_t ti, std::int64_t tj) const noexcept;
-  Tile* find_tile(std::int64_t ti, std::int64_t tj) noexcept;
   Tile& tile(std::int64_t ti, std::int64_t tj);
   double initial_height_mm(std::int64_t i, std::int64_t j) const noexcept;
   double cell_height_mm(std::int64_t i, std::int64_t j) const noexcept;
