@@ -38,15 +38,21 @@ bool g_caught_ending[std::size(kEndingSignals)] {};
 termios g_terminal_modes{};                // what the terminal had before the console
 volatile std::sig_atomic_t g_terminal_fd = -1;  // >= 0 while the console has changed them
 
-extern "C" void on_ending_signal(int sig) {
-  // Only async-signal-safe calls (tcsetattr, sigaction, raise). The signal
-  // is blocked in here: raised again, it ends the process once this returns.
+// The terminal's modes back, then `sig` raised with its default action (it
+// takes effect once the handler that called this unblocks it). Only
+// async-signal-safe calls (tcsetattr, sigaction, raise).
+void give_back_modes_and_raise_by_default(int sig) {
   if (g_terminal_fd >= 0) tcsetattr(g_terminal_fd, TCSANOW, &g_terminal_modes);
   struct sigaction by_default {};
   by_default.sa_handler = SIG_DFL;
   sigemptyset(&by_default.sa_mask);
   sigaction(sig, &by_default, nullptr);
   raise(sig);
+}
+
+extern "C" void on_ending_signal(int sig) {
+  // The signal is blocked in here: raised again, it ends the process once this returns.
+  give_back_modes_and_raise_by_default(sig);
 }
 
 // Ctrl-Z (SIGTSTP) stops the process as a shell's job control expects, with
@@ -65,22 +71,14 @@ extern "C" void on_console_stop(int) {
   // then the modes are simply taken again.
   const int saved_errno = errno;
   const bool had = g_terminal_fd >= 0;
-  if (had) tcsetattr(g_terminal_fd, TCSANOW, &g_terminal_modes);
-  struct sigaction by_default {};
-  by_default.sa_handler = SIG_DFL;
-  sigemptyset(&by_default.sa_mask);
-  sigaction(SIGTSTP, &by_default, nullptr);
-  raise(SIGTSTP);
+  give_back_modes_and_raise_by_default(SIGTSTP);
   sigset_t stop{};
   sigemptyset(&stop);
   sigaddset(&stop, SIGTSTP);
   sigprocmask(SIG_UNBLOCK, &stop, nullptr);  // stopped here until SIGCONT
   sigprocmask(SIG_BLOCK, &stop, nullptr);    // another Ctrl-Z waits for this handler's end
-  struct sigaction again {};
-  again.sa_handler = on_console_stop;
-  sigemptyset(&again.sa_mask);
-  again.sa_flags = SA_RESTART;
-  sigaction(SIGTSTP, &again, nullptr);
+  struct sigaction replaced {};  // the default just set: g_saved_stop keeps what was there before the console
+  catch_signal(SIGTSTP, on_console_stop, replaced);
   // Continued in the background (`bg`), this tcsetattr stops the process by
   // SIGTTOU until it is in the foreground again: the shell keeps its modes.
   if (had && g_terminal_fd >= 0) tcsetattr(g_terminal_fd, TCSANOW, &g_console_modes);
@@ -90,17 +88,17 @@ extern "C" void on_console_stop(int) {
 // Only where the signal has its default action: one ignored (nohup, or a
 // shell without job control for SIGTSTP) or handled by someone else is left
 // as it is.
-bool by_default(int sig) {
+bool has_default_action(int sig) {
   struct sigaction now {};
   return sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_DFL && (now.sa_flags & SA_SIGINFO) == 0;
 }
 
 void catch_console_signals() {
   for (std::size_t i = 0; i < std::size(kEndingSignals); ++i) {
-    g_caught_ending[i] = by_default(kEndingSignals[i]);
+    g_caught_ending[i] = has_default_action(kEndingSignals[i]);
     if (g_caught_ending[i]) catch_signal(kEndingSignals[i], on_ending_signal, g_saved_ending[i]);
   }
-  g_caught_stop = by_default(SIGTSTP);
+  g_caught_stop = has_default_action(SIGTSTP);
   if (g_caught_stop) catch_signal(SIGTSTP, on_console_stop, g_saved_stop);
 }
 
